@@ -1,0 +1,89 @@
+//! Time per solved state of the ring BEM at the accuracy of the foundation issue (tolerance 1e-9):
+//! flat annulus states (target < 1 ms) and depth-controlled concave states (target < 5 ms).
+//! Release build, one thread. Run: `cargo bench --bench ring_bem`.
+//!
+//! Prints the median and the spread of repeated solves, the unknowns and the factorisations per
+//! state, and the machine it ran on.
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
+use ringcontact::punch::PunchKind;
+
+const TOLERANCE: f64 = 1e-9;
+const REPEATS: usize = 31;
+
+fn median_ms(mut f: impl FnMut() -> RingState) -> (f64, f64, f64, RingState) {
+    let mut last = f();
+    let mut times: Vec<f64> = (0..REPEATS)
+        .map(|_| {
+            let start = Instant::now();
+            last = black_box(f());
+            start.elapsed().as_secs_f64() * 1e3
+        })
+        .collect();
+    times.sort_by(f64::total_cmp);
+    (times[REPEATS / 2], times[0], times[REPEATS - 1], last)
+}
+
+fn machine() -> String {
+    let cpu = std::fs::read_to_string("/proc/cpuinfo")
+        .ok()
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
+        .unwrap_or_else(|| "unknown CPU".into());
+    format!(
+        "{cpu}, {} logical cores (1 used)",
+        std::thread::available_parallelism()
+            .map(|n| n.get())
+            .unwrap_or(1)
+    )
+}
+
+fn main() {
+    let solver = RingBemSolver::new();
+    println!("ring BEM, time per solved state, tolerance {TOLERANCE:e}, median of {REPEATS} runs");
+    println!("machine: {}\n", machine());
+    println!(
+        "{:<34} {:>9} {:>9} {:>9} {:>4} {:>6} {:>9}",
+        "state", "median ms", "min ms", "max ms", "N", "solves", "est.err"
+    );
+    let mut flat_worst: f64 = 0.0;
+    for &eps in &[0.0, 0.05, 0.3, 0.5, 0.9, 0.99] {
+        let (med, lo, hi, s) = median_ms(|| solver.flat(eps, TOLERANCE).expect("flat state"));
+        flat_worst = flat_worst.max(med);
+        println!(
+            "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
+            format!("flat-annulus eps = {eps}"),
+            s.unknowns,
+            s.solves,
+            s.error_estimate
+        );
+    }
+    let mut concave_worst: f64 = 0.0;
+    for (kind, depths) in [
+        (PunchKind::Cone, [5.5, 3.0, 1.5, 0.4, 0.2]),
+        (PunchKind::Sphere, [2.99, 2.8, 2.0, 1.0, 0.4]),
+    ] {
+        for &d in &depths {
+            let (med, lo, hi, s) = median_ms(|| {
+                solver
+                    .concave_at_depth(kind, d, TOLERANCE)
+                    .expect("concave state")
+            });
+            concave_worst = concave_worst.max(med);
+            println!(
+                "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
+                format!("{kind} d/h = {d} (eps = {:.3})", s.eps),
+                s.unknowns,
+                s.solves,
+                s.error_estimate
+            );
+        }
+    }
+    println!("\nworst median: flat annulus {flat_worst:.3} ms (target < 1 ms), depth-controlled concave {concave_worst:.3} ms (target < 5 ms)");
+}

@@ -1,0 +1,247 @@
+//! `verify`: the command line of the cross-verification harness.
+//!
+//! Run without a subcommand it prints the comparison of every available method with the analytic
+//! references on the three punches. `verify solve` solves one scene.
+
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::{Args, Parser, Subcommand};
+
+use ringcontact::harness::comparison;
+use ringcontact::methods::{self, Method};
+use ringcontact::punch::PunchKind;
+use ringcontact::reference;
+use ringcontact::scene::{SceneSpec, DEFAULT_TOLERANCE};
+use ringcontact::solution::Solution;
+
+/// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
+/// half-space (flat annular, conical concave, spherical concave; flat circular as a check).
+///
+/// Without a subcommand: compare every method with the analytic references on all punches.
+#[derive(Parser)]
+#[command(name = "verify", version, about, long_about = None, after_help = "\
+Examples:
+  verify                                   comparison table of all methods and references
+  verify solve --punch flat-annulus --eps 0.5
+  verify solve --punch cone --depth 2 --json
+  verify solve --scene verify/scenes/sphere-d2.toml")]
+struct Cli {
+    #[command(subcommand)]
+    command: Option<Command>,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve one scene with one method and print the state (or JSON).
+    #[command(after_help = "\
+Defaults: a = 1, E* = 1, h = 1, so the outputs are the paper's dimensionless functions
+(flat punches: F = 2 E* d a gamma; concave: d = h gamma1, F = 2 E* h a gamma2).
+
+Examples:
+  verify solve --punch flat-annulus --eps 0.5            gamma(0.5) at unit depth
+  verify solve --punch cone --depth 2 --json             eps and gamma2 at d = 2h
+  verify solve --punch sphere --eps 0.3                  gamma1(0.3), gamma2(0.3)
+  verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
+  verify solve --punch flat-annulus --eps 0.5 --method reference
+  verify solve --scene verify/scenes/cone-depth.toml --json")]
+    Solve(SolveArgs),
+    /// Compare the methods with the analytic references on all punches (the default job).
+    #[command(after_help = "Example:\n  verify compare --tol 1e-10 --json > comparison.json")]
+    Compare(CompareArgs),
+    /// List the analytic references and the range of eps where each is valid.
+    References,
+}
+
+#[derive(Args)]
+struct SolveArgs {
+    /// Punch shape.
+    #[arg(long, value_enum)]
+    punch: Option<PunchKind>,
+    /// Contact ratio b/a: fixes the flat annulus; for cone and sphere it prescribes the contact
+    /// (depth and force are then computed).
+    #[arg(long, allow_negative_numbers = true)]
+    eps: Option<f64>,
+    /// Indentation depth d of the rim (for concave punches with h = 1 this is d/h).
+    #[arg(long, conflicts_with = "force", allow_negative_numbers = true)]
+    depth: Option<f64>,
+    /// Normal force F, compression positive.
+    #[arg(long, allow_negative_numbers = true)]
+    force: Option<f64>,
+    /// Method.
+    #[arg(long, value_enum, default_value = "ring-bem")]
+    method: Method,
+    /// Scene file (TOML, see verify/scenes/); flags given as well override its values.
+    #[arg(long)]
+    scene: Option<PathBuf>,
+    /// Relative tolerance wanted in the dimensionless results [default: 1e-9, or the scene's].
+    #[arg(long)]
+    tol: Option<f64>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct CompareArgs {
+    /// Relative tolerance of the ring BEM.
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    tol: f64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let outcome = match cli.command {
+        None => run_compare(CompareArgs {
+            tol: DEFAULT_TOLERANCE,
+            json: false,
+        }),
+        Some(Command::Compare(args)) => run_compare(args),
+        Some(Command::Solve(args)) => run_solve(args),
+        Some(Command::References) => {
+            print_references();
+            Ok(ExitCode::SUCCESS)
+        }
+    };
+    match outcome {
+        Ok(code) => code,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
+    let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", comparison::render(&report));
+    }
+    Ok(if report.failures() == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {
+    let mut spec = match &args.scene {
+        Some(path) => SceneSpec::from_file(path).map_err(|e| e.to_string())?,
+        None => SceneSpec::default(),
+    };
+    if let Some(kind) = args.punch {
+        spec = spec.shape(kind);
+    } else if args.scene.is_none() {
+        return Err("give --punch {flat|flat-annulus|cone|sphere} or --scene FILE".into());
+    }
+    // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
+    let kind = args.punch.or_else(|| spec_kind(&args));
+    if let Some(eps) = args.eps {
+        match kind {
+            Some(PunchKind::Cone | PunchKind::Sphere) => {
+                if args.depth.is_some() || args.force.is_some() {
+                    return Err("--eps prescribes the contact of a concave punch; \
+                                do not combine it with --depth or --force"
+                        .into());
+                }
+                spec = spec.contact_ratio(eps);
+            }
+            Some(PunchKind::Flat) => {
+                return Err("--eps does not apply to the flat circular punch; \
+                            use --punch flat-annulus --eps B_OVER_A"
+                    .into())
+            }
+            _ => spec = spec.inner_ratio(eps),
+        }
+    }
+    if let Some(d) = args.depth {
+        spec = spec.depth(d);
+    }
+    if let Some(f) = args.force {
+        spec = spec.force(f);
+    }
+    if let Some(tol) = args.tol {
+        spec = spec.tolerance(tol);
+    }
+    let scene = spec.validate().map_err(|e| e.to_string())?;
+    let solution = methods::solve(&scene, args.method).map_err(|e| e.to_string())?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&solution).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", describe(&scene, &solution));
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// The punch kind named in the scene file, if any (to interpret `--eps`).
+fn spec_kind(args: &SolveArgs) -> Option<PunchKind> {
+    let path = args.scene.as_ref()?;
+    SceneSpec::from_file(path)
+        .ok()?
+        .validate()
+        .ok()
+        .map(|s| s.punch.kind)
+}
+
+fn describe(scene: &ringcontact::scene::Scene, s: &Solution) -> String {
+    let p = &scene.punch;
+    let es = scene.material.effective_modulus;
+    let mut out = String::new();
+    let geometry = match p.kind {
+        PunchKind::Flat => format!("a = {}", p.rim_radius),
+        PunchKind::FlatAnnulus => format!("a = {}, b = {}", p.rim_radius, p.inner_radius),
+        _ => format!("a = {}, h = {}", p.rim_radius, p.hole_depth),
+    };
+    out += &format!("punch            {} ({geometry}, E* = {es})\n", p.kind);
+    out += &format!("method           {}\n", s.method);
+    out += &format!("contact ratio    eps = b/a = {:.12}\n", s.eps);
+    out += &format!("depth            d = {:.12}\n", s.depth);
+    out += &format!("force            F = {:.12}\n", s.force);
+    if let Some(g) = s.gamma {
+        out += &format!("gamma            F/(2 E* d a) = {g:.15}\n");
+    }
+    if let (Some(g1), Some(g2)) = (s.gamma1, s.gamma2) {
+        out += &format!("gamma1           d/h = {g1:.15}\n");
+        out += &format!("gamma2           F/(2 E* h a) = {g2:.15}\n");
+    }
+    if let Some(k) = s.stress_intensity_rim {
+        out += &format!("K at rim         {k:.12} (stress x sqrt(length))\n");
+    }
+    out += &match s.error_estimate {
+        Some(e) => format!("error estimate   {e:.1e} (relative in gamma's, absolute in eps)\n"),
+        None => "error estimate   none (this reference declares no bound)\n".to_string(),
+    };
+    out += &format!("wall time        {:.3} ms\n", s.wall_s * 1e3);
+    out += &format!("provenance       {}\n", s.provenance);
+    out
+}
+
+fn print_references() {
+    println!(
+        "{:<22} {:<14} {:<10} {:<24} source",
+        "name", "quantity", "kind", "valid eps"
+    );
+    for r in reference::catalogue() {
+        println!(
+            "{:<22} {:<14} {:<10} [{}, {}]{:<8} {}",
+            r.name,
+            format!("{:?}", r.quantity),
+            format!("{:?}", r.kind),
+            r.eps_range.0,
+            r.eps_range.1,
+            "",
+            r.source
+        );
+    }
+}

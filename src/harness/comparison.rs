@@ -1,0 +1,362 @@
+//! The default job of `verify`: every method that exists, on the three punches, side by side
+//! with the analytic references, with a verdict wherever a reference declares an error bound.
+//!
+//! Verdict rule (cross-verification, `shared/docs/VERIFICATION.md`): a method and a reference
+//! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or bound.
+//! The paper's fits declare no bound: their difference is shown, not judged.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::bem::ring_contact::{RingBemSolver, RingState};
+use crate::error::Result;
+use crate::punch::PunchKind;
+use crate::reference::{self, Quantity, ReferenceKind};
+
+/// Contact ratios of the flat-annulus table.
+pub const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
+/// Contact ratios of the concave tables.
+pub const CONCAVE_RATIOS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95];
+
+/// One comparison of a computed value with a reference.
+#[derive(Clone, Debug, Serialize)]
+pub struct Comparison {
+    pub reference: String,
+    pub reference_kind: ReferenceKind,
+    pub reference_value: f64,
+    /// `(method - reference) / reference`.
+    pub relative_difference: f64,
+    /// `true`/`false` where the reference declares a bound; `None` for fits.
+    pub agrees: Option<bool>,
+}
+
+/// One row: a quantity at one contact ratio, computed by the ring BEM, against every valid
+/// reference.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub quantity: Quantity,
+    pub eps: f64,
+    pub method: String,
+    pub value: f64,
+    pub error_estimate: f64,
+    pub unknowns: usize,
+    pub wall_s: f64,
+    pub comparisons: Vec<Comparison>,
+}
+
+/// A consistency check that involves no reference (e.g. `γ2' = γ γ1'`).
+#[derive(Clone, Debug, Serialize)]
+pub struct IdentityCheck {
+    pub name: String,
+    pub eps: f64,
+    pub lhs: f64,
+    pub rhs: f64,
+    pub relative_residual: f64,
+    pub tolerance: f64,
+    pub passed: bool,
+}
+
+/// The whole comparison.
+#[derive(Clone, Debug, Serialize)]
+pub struct ComparisonReport {
+    pub tolerance: f64,
+    pub rows: Vec<Row>,
+    pub identities: Vec<IdentityCheck>,
+}
+
+impl ComparisonReport {
+    /// Number of failed verdicts (bounded references that disagree, failed identities).
+    pub fn failures(&self) -> usize {
+        let rows = self
+            .rows
+            .iter()
+            .flat_map(|r| &r.comparisons)
+            .filter(|c| c.agrees == Some(false))
+            .count();
+        rows + self.identities.iter().filter(|i| !i.passed).count()
+    }
+}
+
+fn compare(quantity: Quantity, eps: f64, value: f64, estimate: f64) -> Vec<Comparison> {
+    reference::valid_references(quantity, eps)
+        .iter()
+        .filter_map(|r| {
+            let v = r.evaluate(eps)?;
+            let diff = value - v.value;
+            Some(Comparison {
+                reference: r.name.to_string(),
+                reference_kind: r.kind,
+                reference_value: v.value,
+                relative_difference: diff / v.value,
+                agrees: v
+                    .error_bound
+                    .map(|b| diff.abs() <= b + estimate * value.abs() + 4.0 * f64::EPSILON),
+            })
+        })
+        .collect()
+}
+
+fn row(quantity: Quantity, state: &RingState, value: f64, wall_s: f64) -> Row {
+    Row {
+        quantity,
+        eps: state.eps,
+        method: "ring-bem".into(),
+        value,
+        error_estimate: state.error_estimate,
+        unknowns: state.unknowns,
+        wall_s,
+        comparisons: compare(quantity, state.eps, value, state.error_estimate),
+    }
+}
+
+/// Run the comparison with the ring BEM at `tolerance`.
+pub fn run(tolerance: f64) -> Result<ComparisonReport> {
+    let solver = RingBemSolver::new();
+    let mut rows = Vec::new();
+    for &eps in &FLAT_RATIOS {
+        let start = Instant::now();
+        let state = solver.flat(eps, tolerance)?;
+        let wall = start.elapsed().as_secs_f64();
+        rows.push(row(
+            Quantity::FlatGamma,
+            &state,
+            state.gamma.unwrap_or(f64::NAN),
+            wall,
+        ));
+    }
+    for (kind, q1, q2) in [
+        (PunchKind::Cone, Quantity::ConeGamma1, Quantity::ConeGamma2),
+        (
+            PunchKind::Sphere,
+            Quantity::SphereGamma1,
+            Quantity::SphereGamma2,
+        ),
+    ] {
+        for &eps in &CONCAVE_RATIOS {
+            let start = Instant::now();
+            let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+            let wall = start.elapsed().as_secs_f64();
+            rows.push(row(q1, &state, state.gamma1.unwrap_or(f64::NAN), wall));
+            rows.push(row(q2, &state, state.gamma2.unwrap_or(f64::NAN), wall));
+        }
+    }
+    // Sphere at the onset of full contact (eps -> 0 limit, exact d = 3h, F = 16/3 E* h a),
+    // reached from the full-contact side by the disk discretisation.
+    let start = Instant::now();
+    let onset = solver.sphere_full_contact(3.0, tolerance)?;
+    let wall = start.elapsed().as_secs_f64();
+    rows.push(row(
+        Quantity::SphereGamma2,
+        &onset,
+        onset.gamma2.unwrap_or(f64::NAN),
+        wall,
+    ));
+
+    rows.sort_by_key(|r| r.quantity as u8);
+    let mut identities = incremental_stiffness_checks(&solver, tolerance)?;
+    identities.extend(full_contact_limit_checks(&solver, tolerance)?);
+    identities.extend(edge_intensity_checks(&solver, tolerance)?);
+    Ok(ComparisonReport {
+        tolerance,
+        rows,
+        identities,
+    })
+}
+
+/// PHYSICS.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
+/// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
+/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve.
+pub fn incremental_stiffness_checks(
+    solver: &RingBemSolver,
+    tolerance: f64,
+) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+        for &eps in &[0.1_f64, 0.5, 0.9] {
+            let step = 1e-3 * eps.min(1.0 - eps);
+            let at = |e: f64| solver.concave_at_ratio(kind, e, tolerance);
+            let (p2, p1, m1, m2) = (
+                at(eps + 2.0 * step)?,
+                at(eps + step)?,
+                at(eps - step)?,
+                at(eps - 2.0 * step)?,
+            );
+            let derivative = |f: fn(&RingState) -> f64| {
+                (-f(&p2) + 8.0 * f(&p1) - 8.0 * f(&m1) + f(&m2)) / (12.0 * step)
+            };
+            let d1 = derivative(|s| s.gamma1.unwrap_or(f64::NAN));
+            let d2 = derivative(|s| s.gamma2.unwrap_or(f64::NAN));
+            let gamma = solver.flat(eps, tolerance)?.gamma.unwrap_or(f64::NAN);
+            let residual = (d2 - gamma * d1).abs() / d2.abs();
+            // Difference-quotient error: O(step⁴) truncation plus rounding amplified by 1/step.
+            let allowed = 1e-6_f64.max(100.0 * tolerance);
+            checks.push(IdentityCheck {
+                name: format!("{kind}: gamma2' = gamma * gamma1'"),
+                eps,
+                lhs: d2,
+                rhs: gamma * d1,
+                relative_residual: residual,
+                tolerance: allowed,
+                passed: residual <= allowed,
+            });
+        }
+    }
+    Ok(checks)
+}
+
+/// Small-`eps` limits from the full-contact solutions (method of dimensionality reduction): a
+/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0`
+/// `γ1 - γ2 -> 1 - π/4` (cone: `F = 2 E* a (d - h (1 - π/4))` in full contact) and
+/// `γ1 - γ2 -> 1/3` (sphere: `F = 2 E* a (d - h/3)`). Checked at `eps = 0.01` with the bound
+/// `eps³`.
+pub fn full_contact_limit_checks(
+    solver: &RingBemSolver,
+    tolerance: f64,
+) -> Result<Vec<IdentityCheck>> {
+    let eps = 0.01_f64;
+    let mut checks = Vec::new();
+    for (kind, limit, label) in [
+        (
+            PunchKind::Cone,
+            1.0 - std::f64::consts::FRAC_PI_4,
+            "1 - pi/4",
+        ),
+        (PunchKind::Sphere, 1.0 / 3.0, "1/3"),
+    ] {
+        let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+        let difference = state.gamma1.unwrap_or(f64::NAN) - state.gamma2.unwrap_or(f64::NAN);
+        let residual = (difference - limit).abs() / limit;
+        let allowed = eps.powi(3);
+        checks.push(IdentityCheck {
+            name: format!("{kind}: gamma1 - gamma2 -> {label} (MDR)"),
+            eps,
+            lhs: difference,
+            rhs: limit,
+            relative_residual: residual,
+            tolerance: allowed,
+            passed: residual <= allowed,
+        });
+    }
+    Ok(checks)
+}
+
+/// PHYSICS.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
+/// from the derivative of its force: `κ_out² = γ - eps γ'` and `κ_in² = -γ'/eps` (energy release
+/// rate at a fixed-depth edge). Left: the ring BEM's edge coefficients (local); right: a
+/// fourth-order difference of its force (global).
+pub fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    let root_pi = std::f64::consts::PI.sqrt();
+    for &eps in &[0.2_f64, 0.5, 0.8] {
+        let step = 1e-3 * eps.min(1.0 - eps);
+        let gamma =
+            |e: f64| -> Result<f64> { Ok(solver.flat(e, tolerance)?.gamma.unwrap_or(f64::NAN)) };
+        let slope = (-gamma(eps + 2.0 * step)? + 8.0 * gamma(eps + step)?
+            - 8.0 * gamma(eps - step)?
+            + gamma(eps - 2.0 * step)?)
+            / (12.0 * step);
+        let state = solver.flat(eps, tolerance)?;
+        let g = state.gamma.unwrap_or(f64::NAN);
+        let allowed = 1e-6_f64.max(100.0 * tolerance);
+        for (edge, kappa, expected) in [
+            (
+                "outer",
+                state.rim_stress_intensity * root_pi,
+                g - eps * slope,
+            ),
+            (
+                "inner",
+                state.inner_stress_intensity * root_pi,
+                -slope / eps,
+            ),
+        ] {
+            let lhs = kappa * kappa;
+            let residual = (lhs - expected).abs() / expected.abs();
+            checks.push(IdentityCheck {
+                name: format!("flat-annulus: kappa_{edge}^2 from gamma'"),
+                eps,
+                lhs,
+                rhs: expected,
+                relative_residual: residual,
+                tolerance: allowed,
+                passed: residual <= allowed,
+            });
+        }
+    }
+    Ok(checks)
+}
+
+/// Human-readable table.
+pub fn render(report: &ComparisonReport) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "Ring BEM (the yardstick) against the analytic references; tolerance {:.0e}.\n\
+         rel.diff = (ring-bem - reference)/reference; verdicts where the reference declares a bound.\n",
+        report.tolerance
+    );
+    let mut current = None;
+    for row in &report.rows {
+        if current != Some(row.quantity) {
+            current = Some(row.quantity);
+            let _ = writeln!(
+                out,
+                "{:?}\n  {:>6}  {:>19}  {:>8}  {:>3}  {:>8}  references",
+                row.quantity, "eps", "ring-bem", "est.err", "N", "ms"
+            );
+        }
+        let refs: Vec<String> = row
+            .comparisons
+            .iter()
+            .map(|c| {
+                let verdict = match c.agrees {
+                    Some(true) => " ok",
+                    Some(false) => " FAIL",
+                    None => "",
+                };
+                format!("{} {:+.2e}{}", c.reference, c.relative_difference, verdict)
+            })
+            .collect();
+        let _ = writeln!(
+            out,
+            "  {:>6}  {:>19.15}  {:>8.1e}  {:>3}  {:>8.3}  {}",
+            row.eps,
+            row.value,
+            row.error_estimate,
+            row.unknowns,
+            row.wall_s * 1e3,
+            refs.join(", ")
+        );
+    }
+    let _ = writeln!(
+        out,
+        "\nConsistency checks (no reference involved): PHYSICS.md facts 6 and 7, full-contact limits:"
+    );
+    for c in &report.identities {
+        let _ = writeln!(
+            out,
+            "  {:<40} eps = {:<4}  residual {:.1e} (allowed {:.0e})  {}",
+            c.name,
+            c.eps,
+            c.relative_residual,
+            c.tolerance,
+            if c.passed { "ok" } else { "FAIL" }
+        );
+    }
+    let failures = report.failures();
+    let _ = writeln!(
+        out,
+        "\n{} checks with a verdict, {} failed.",
+        report
+            .rows
+            .iter()
+            .flat_map(|r| &r.comparisons)
+            .filter(|c| c.agrees.is_some())
+            .count()
+            + report.identities.len(),
+        failures
+    );
+    out
+}

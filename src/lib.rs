@@ -1,0 +1,26 @@
+//! # ringcontact
+//!
+//! Cross-verification harness for rigid axisymmetric punches whose contact with an elastic
+//! half-space is a ring: the flat annular, the conical concave and the spherical concave punch
+//! (and the flat circular punch as a check case).
+//!
+//! **Conventions** (see `shared/docs/PHYSICS.md`): `E* = E/(1 - nu²)` of the half-space (rigid
+//! punch); `a` the rim radius, `b` the inner contact radius, `eps = b/a`; `d` the indentation
+//! depth of the rim, positive into the solid; `h` the depth of the concave hole; `F` the normal
+//! force, positive in compression. Any consistent units; the dimensionless functions are
+//! `F = 2 E* d a γ(eps)` (flat annulus) and `d = h γ1(eps)`, `F = 2 E* h a γ2(eps)` (concave).
+//!
+//! A [`scene::Scene`] goes in, a [`solution::Solution`] comes out; every solver is a
+//! [`methods::Method`] behind that one interface.
+
+pub mod bem;
+pub mod error;
+pub mod harness;
+pub mod methods;
+pub mod numerics;
+pub mod punch;
+pub mod reference;
+pub mod scene;
+pub mod solution;
+
+pub use error::{Error, Result};

@@ -1,0 +1,269 @@
+//! Every solver behind one interface: a scene goes in, a solution comes out.
+//!
+//! The methods so far: the ring BEM (the yardstick) and the analytic references. Each turns the
+//! dimensionless state it computes into physical units here, with
+//! `F = 2 E* d a γ` (flat punches) and `d = h γ1`, `F = 2 E* h a γ2` (concave punches).
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::bem::ring_contact::{self, RingBemSolver, RingState};
+use crate::error::{Error, Result};
+use crate::numerics::roots::find_root;
+use crate::punch::PunchKind;
+use crate::reference::{self, Quantity, ReferenceValue};
+use crate::scene::{Load, Scene};
+use crate::solution::{PressureSample, Solution};
+
+/// The methods `verify solve --method` accepts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Method {
+    /// Axisymmetric ring-element BEM, exact elliptic kernel, Gauss-Chebyshev collocation.
+    RingBem,
+    /// The most trusted analytic reference valid at the state (exact, series, asymptote, fit).
+    Reference,
+}
+
+impl Method {
+    /// Name on the command line.
+    pub fn name(self) -> &'static str {
+        match self {
+            Method::RingBem => ring_contact::METHOD,
+            Method::Reference => "reference",
+        }
+    }
+}
+
+/// Solve `scene` with `method`.
+pub fn solve(scene: &Scene, method: Method) -> Result<Solution> {
+    match method {
+        Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
+        Method::Reference => solve_reference(scene),
+    }
+}
+
+/// Solve with a given ring-BEM solver (reuse it across many scenes to keep its quadrature).
+pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution> {
+    let start = Instant::now();
+    let kind = scene.punch.kind;
+    let tol = scene.tolerance;
+    let h = scene.punch.hole_depth;
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let state = match (kind, scene.load) {
+        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => {
+            solver.flat(scene.punch.inner_ratio(), tol)?
+        }
+        (_, Load::ContactRatio(eps)) => solver.concave_at_ratio(kind, eps, tol)?,
+        (_, Load::Depth(d)) => solver.concave_at_depth(kind, d / h, tol)?,
+        (_, Load::Force(f)) => solver.concave_at_force(kind, f / (2.0 * es * h * a), tol)?,
+    };
+    let wall_s = start.elapsed().as_secs_f64();
+    Ok(ring_state_to_solution(scene, &state, wall_s))
+}
+
+/// Physical depth and force of a flat punch with `F = 2 E* d a γ`, under the scene's load.
+fn flat_depth_force(scene: &Scene, gamma: f64) -> Result<(f64, f64)> {
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    match scene.load {
+        Load::Depth(d) => Ok((d, 2.0 * es * d * a * gamma)),
+        Load::Force(f) => Ok((f / (2.0 * es * a * gamma), f)),
+        Load::ContactRatio(_) => Err(Error::invalid(
+            "load.contact_ratio",
+            "applies only to cone and sphere",
+        )),
+    }
+}
+
+fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Solution {
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let kind = scene.punch.kind;
+    let (depth, force, length) = match state.gamma {
+        Some(gamma) => {
+            // Validated scenes never carry a contact ratio for flat punches.
+            let (d, f) = flat_depth_force(scene, gamma).unwrap_or((f64::NAN, f64::NAN));
+            (d, f, d)
+        }
+        None => {
+            let h = scene.punch.hole_depth;
+            let g1 = state.gamma1.unwrap_or(f64::NAN);
+            let g2 = state.gamma2.unwrap_or(f64::NAN);
+            (h * g1, 2.0 * es * h * a * g2, h)
+        }
+    };
+    let pressure_scale = es * length / a;
+    let k_scale = es * length / a.sqrt();
+    Solution {
+        punch: kind,
+        method: ring_contact::METHOD.to_string(),
+        eps: state.eps,
+        depth,
+        force,
+        inner_radius: state.eps * a,
+        rim_radius: a,
+        gamma: state.gamma,
+        gamma1: state.gamma1,
+        gamma2: state.gamma2,
+        stress_intensity_rim: Some(state.rim_stress_intensity * k_scale),
+        stress_intensity_inner: Some(state.inner_stress_intensity * k_scale),
+        error_estimate: Some(state.error_estimate),
+        wall_s,
+        unknowns: state.unknowns,
+        iterations: state.solves,
+        pressure: state
+            .pressure
+            .iter()
+            .map(|&(r, p)| PressureSample {
+                r: r * a,
+                p: p * pressure_scale,
+            })
+            .collect(),
+        provenance: format!(
+            "ring BEM, Gauss-Chebyshev collocation, N = {} nodes, {} factorisations, \
+             self-convergence estimate against the previous ladder rung",
+            state.unknowns, state.solves
+        ),
+    }
+}
+
+/// The most trusted reference for `quantity` at `eps`, or an out-of-range error.
+fn best_reference(
+    quantity: Quantity,
+    eps: f64,
+) -> Result<(ReferenceValue, &'static str, &'static str)> {
+    reference::valid_references(quantity, eps)
+        .first()
+        .map(|r| {
+            (
+                r.evaluate(eps).expect("valid range checked"),
+                r.name,
+                r.source,
+            )
+        })
+        .ok_or_else(|| Error::OutOfRange {
+            method: "reference".into(),
+            reason: format!("no analytic reference for {quantity:?} is valid at eps = {eps}"),
+        })
+}
+
+/// Solve with the analytic references (exact results, series, asymptotes, the paper's fits).
+pub fn solve_reference(scene: &Scene) -> Result<Solution> {
+    let start = Instant::now();
+    let kind = scene.punch.kind;
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let h = scene.punch.hole_depth;
+    let mut solution = Solution {
+        punch: kind,
+        method: String::new(),
+        eps: 0.0,
+        depth: 0.0,
+        force: 0.0,
+        inner_radius: 0.0,
+        rim_radius: a,
+        gamma: None,
+        gamma1: None,
+        gamma2: None,
+        stress_intensity_rim: None,
+        stress_intensity_inner: None,
+        error_estimate: None,
+        wall_s: 0.0,
+        unknowns: 0,
+        iterations: 0,
+        pressure: Vec::new(),
+        provenance: String::new(),
+    };
+    match kind {
+        PunchKind::Flat | PunchKind::FlatAnnulus => {
+            let eps = scene.punch.inner_ratio();
+            let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;
+            let (d, f) = flat_depth_force(scene, value.value)?;
+            solution.eps = eps;
+            solution.inner_radius = eps * a;
+            solution.gamma = Some(value.value);
+            solution.depth = d;
+            solution.force = f;
+            solution.error_estimate = value.error_bound.map(|b| b / value.value);
+            solution.method = format!("reference:{name}");
+            solution.provenance = source.to_string();
+        }
+        PunchKind::Cone | PunchKind::Sphere => {
+            let (q1, q2) = if kind == PunchKind::Cone {
+                (Quantity::ConeGamma1, Quantity::ConeGamma2)
+            } else {
+                (Quantity::SphereGamma1, Quantity::SphereGamma2)
+            };
+            let full_contact = match scene.load {
+                Load::Depth(d) if kind == PunchKind::Sphere => {
+                    reference::sphere_full_contact_gamma2(d / h).map(|g2| (d / h, g2))
+                }
+                Load::Force(f) if kind == PunchKind::Sphere => {
+                    let g2 = f / (2.0 * es * h * a);
+                    (g2 >= 8.0 / 3.0).then_some((g2 + 1.0 / 3.0, g2))
+                }
+                _ => None,
+            };
+            let (eps, g1, g2, name, source, bound) = if let Some((g1, g2)) = full_contact {
+                (
+                    0.0,
+                    g1,
+                    g2,
+                    "sphere-full-contact",
+                    "MDR: F = 2 E* a (d - h/3) for d >= 3h",
+                    Some(0.0),
+                )
+            } else {
+                let eps = match scene.load {
+                    Load::ContactRatio(eps) => eps,
+                    Load::Depth(d) => invert_reference(q1, d / h)?,
+                    Load::Force(f) => invert_reference(q2, f / (2.0 * es * h * a))?,
+                };
+                let (v1, name, source) = best_reference(q1, eps)?;
+                let (v2, _, _) = best_reference(q2, eps)?;
+                let bound = match (v1.error_bound, v2.error_bound) {
+                    (Some(b1), Some(b2)) => Some((b1 / v1.value).max(b2 / v2.value)),
+                    _ => None,
+                };
+                (eps, v1.value, v2.value, name, source, bound)
+            };
+            solution.eps = eps;
+            solution.inner_radius = eps * a;
+            solution.gamma1 = Some(g1);
+            solution.gamma2 = Some(g2);
+            solution.depth = h * g1;
+            solution.force = 2.0 * es * h * a * g2;
+            solution.error_estimate = bound;
+            solution.method = format!("reference:{name}");
+            solution.provenance = source.to_string();
+        }
+    }
+    solution.wall_s = start.elapsed().as_secs_f64();
+    Ok(solution)
+}
+
+/// `eps` where the most trusted reference for `quantity` equals `target` (references decrease
+/// monotonically in `eps`).
+fn invert_reference(quantity: Quantity, target: f64) -> Result<f64> {
+    let (lo, hi) = (1e-12, 1.0 - 1e-12);
+    find_root(
+        |eps| {
+            best_reference(quantity, eps)
+                .map(|(v, _, _)| v.value - target)
+                .map_err(|e| e.to_string())
+        },
+        lo,
+        hi,
+        0.5,
+        1e-15,
+        200,
+    )
+    .map(|r| r.x)
+    .map_err(|e| Error::OutOfRange {
+        method: "reference".into(),
+        reason: format!("cannot invert {quantity:?} = {target} with the references: {e:?}"),
+    })
+}

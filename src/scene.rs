@@ -1,0 +1,453 @@
+//! A scene: punch + material + load + the accuracy wanted. Read from TOML, validated.
+//!
+//! ```toml
+//! [punch]
+//! shape = "cone"            # flat | flat-annulus | cone | sphere
+//! rim_radius = 1.0          # a, length unit of your choice
+//! hole_depth = 0.1          # h, cone and sphere only
+//! # inner_radius = 0.5      # b, flat-annulus only, 0 <= b < a
+//!
+//! [material]
+//! effective_modulus = 1.0   # E* = E/(1 - nu²); or give youngs_modulus and poisson_ratio
+//!
+//! [load]                    # exactly one of:
+//! depth = 0.2               # d, indentation of the rim (positive into the solid)
+//! # force = 0.5             # F, positive in compression
+//! # contact_ratio = 0.5     # eps = b/a prescribed (concave punches): d and F are computed
+//!
+//! [accuracy]
+//! tolerance = 1e-9          # relative error wanted in the dimensionless results
+//! ```
+//!
+//! Every field is checked; a broken rule is reported with the field's name and the rule.
+
+use serde::{Deserialize, Serialize};
+
+use crate::error::{Error, Result};
+use crate::punch::{Punch, PunchKind};
+
+/// Default tolerance: relative error wanted in the dimensionless results.
+pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+
+/// Linear elastic, isotropic half-space; the punch is rigid.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Material {
+    /// `E* = E / (1 - nu²)`, stress units.
+    pub effective_modulus: f64,
+    /// Young's modulus `E`, if given.
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio `nu`, if given.
+    pub poisson_ratio: Option<f64>,
+}
+
+/// What is prescribed.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Load {
+    /// Indentation depth `d` of the rim.
+    Depth(f64),
+    /// Normal force `F` (compression positive).
+    Force(f64),
+    /// Contact ratio `eps = b/a` of a concave punch; depth and force follow.
+    ContactRatio(f64),
+}
+
+/// A validated scene.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Scene {
+    pub punch: Punch,
+    pub material: Material,
+    pub load: Load,
+    /// Relative error wanted in the dimensionless results.
+    pub tolerance: f64,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawPunch {
+    shape: Option<PunchKind>,
+    rim_radius: Option<f64>,
+    inner_radius: Option<f64>,
+    hole_depth: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawMaterial {
+    effective_modulus: Option<f64>,
+    youngs_modulus: Option<f64>,
+    poisson_ratio: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawLoad {
+    depth: Option<f64>,
+    force: Option<f64>,
+    contact_ratio: Option<f64>,
+}
+
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+struct RawAccuracy {
+    tolerance: Option<f64>,
+}
+
+/// The scene as written in TOML (all fields optional so that the command line can fill gaps).
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub struct SceneSpec {
+    #[serde(default)]
+    punch: RawPunch,
+    #[serde(default)]
+    material: RawMaterial,
+    #[serde(default)]
+    load: RawLoad,
+    #[serde(default)]
+    accuracy: RawAccuracy,
+    /// `b/a` given instead of `b` (command line `--eps`); resolved against the rim radius.
+    #[serde(skip)]
+    inner_ratio: Option<f64>,
+}
+
+impl SceneSpec {
+    /// Parse a TOML scene; unknown keys and wrong types are errors naming the key.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Self> {
+        toml::from_str(text).map_err(|e| Error::SceneFile {
+            path: origin.to_string(),
+            message: e.message().to_string(),
+        })
+    }
+
+    /// Read and parse a TOML scene file.
+    pub fn from_file(path: &std::path::Path) -> Result<Self> {
+        let text = std::fs::read_to_string(path).map_err(|e| Error::SceneFile {
+            path: path.display().to_string(),
+            message: e.to_string(),
+        })?;
+        Self::from_toml(&text, &path.display().to_string())
+    }
+
+    /// Set the punch shape.
+    pub fn shape(mut self, kind: PunchKind) -> Self {
+        self.punch.shape = Some(kind);
+        self
+    }
+
+    /// Set `b/a` of a flat annulus (with the rim radius of the scene, default 1).
+    pub fn inner_ratio(mut self, eps: f64) -> Self {
+        self.punch.inner_radius = None;
+        self.inner_ratio = Some(eps);
+        self
+    }
+
+    /// Set the indentation depth (replaces any other load).
+    pub fn depth(mut self, d: f64) -> Self {
+        self.load = RawLoad {
+            depth: Some(d),
+            ..Default::default()
+        };
+        self
+    }
+
+    /// Set the force (replaces any other load).
+    pub fn force(mut self, f: f64) -> Self {
+        self.load = RawLoad {
+            force: Some(f),
+            ..Default::default()
+        };
+        self
+    }
+
+    /// Prescribe the contact ratio of a concave punch (replaces any other load).
+    pub fn contact_ratio(mut self, eps: f64) -> Self {
+        self.load = RawLoad {
+            contact_ratio: Some(eps),
+            ..Default::default()
+        };
+        self
+    }
+
+    /// Set the tolerance.
+    pub fn tolerance(mut self, tol: f64) -> Self {
+        self.accuracy.tolerance = Some(tol);
+        self
+    }
+}
+
+/// `value` must be a finite number.
+fn finite(field: &str, value: f64) -> Result<f64> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(Error::invalid(
+            field,
+            format!("must be a finite number (got {value})"),
+        ))
+    }
+}
+
+/// `value` must be finite and strictly positive.
+fn positive(field: &str, value: f64) -> Result<f64> {
+    let v = finite(field, value)?;
+    if v > 0.0 {
+        Ok(v)
+    } else {
+        Err(Error::invalid(field, format!("must be > 0 (got {v})")))
+    }
+}
+
+impl SceneSpec {
+    /// Apply defaults (`a = 1`, `E* = 1`, `h = 1`, depth 1 for flat punches, tolerance 1e-9)
+    /// and check every rule. The error names the field and the rule it breaks.
+    pub fn validate(self) -> Result<Scene> {
+        let kind = self.punch.shape.ok_or_else(|| {
+            Error::invalid(
+                "punch.shape",
+                "is required: one of flat, flat-annulus, cone, sphere",
+            )
+        })?;
+        let rim_radius = positive("punch.rim_radius", self.punch.rim_radius.unwrap_or(1.0))?;
+
+        let inner_radius = match (kind, self.punch.inner_radius, self.inner_ratio) {
+            (PunchKind::FlatAnnulus, Some(_), Some(_)) => {
+                return Err(Error::invalid(
+                    "punch.inner_radius",
+                    "is given twice (as inner_radius and as --eps); give one",
+                ))
+            }
+            (PunchKind::FlatAnnulus, Some(b), None) => finite("punch.inner_radius", b)?,
+            (PunchKind::FlatAnnulus, None, Some(eps)) => finite("eps", eps)? * rim_radius,
+            (PunchKind::FlatAnnulus, None, None) => {
+                return Err(Error::invalid(
+                    "punch.inner_radius",
+                    "is required for shape = flat-annulus (or pass --eps b/a)",
+                ))
+            }
+            (_, Some(_), _) | (_, _, Some(_)) => {
+                return Err(Error::invalid(
+                    "punch.inner_radius",
+                    format!(
+                        "applies only to shape = flat-annulus, not {kind} \
+                         (for cone and sphere the inner radius is found by the solver; \
+                         prescribe it with load.contact_ratio)"
+                    ),
+                ))
+            }
+            _ => 0.0,
+        };
+        if kind == PunchKind::FlatAnnulus && !(0.0..rim_radius).contains(&inner_radius) {
+            return Err(Error::invalid(
+                "punch.inner_radius",
+                format!(
+                    "must satisfy 0 <= b < a (got b = {inner_radius}, a = {rim_radius}; \
+                     b >= a leaves no contact)"
+                ),
+            ));
+        }
+
+        let hole_depth = match (kind.is_concave(), self.punch.hole_depth) {
+            (true, h) => positive("punch.hole_depth", h.unwrap_or(1.0))?,
+            (false, Some(_)) => {
+                return Err(Error::invalid(
+                    "punch.hole_depth",
+                    format!("applies only to shape = cone or sphere, not {kind}"),
+                ))
+            }
+            (false, None) => 0.0,
+        };
+
+        let material = self.material.validate()?;
+        let load = self.load.validate(kind)?;
+        let tolerance = positive(
+            "accuracy.tolerance",
+            self.accuracy.tolerance.unwrap_or(DEFAULT_TOLERANCE),
+        )?;
+        if tolerance >= 1.0 {
+            return Err(Error::invalid(
+                "accuracy.tolerance",
+                format!("is a relative error and must be < 1 (got {tolerance})"),
+            ));
+        }
+        Ok(Scene {
+            punch: Punch {
+                kind,
+                rim_radius,
+                inner_radius,
+                hole_depth,
+            },
+            material,
+            load,
+            tolerance,
+        })
+    }
+}
+
+impl RawMaterial {
+    fn validate(self) -> Result<Material> {
+        match (
+            self.effective_modulus,
+            self.youngs_modulus,
+            self.poisson_ratio,
+        ) {
+            (Some(_), Some(_), _) | (Some(_), _, Some(_)) => Err(Error::invalid(
+                "material",
+                "give either effective_modulus, or youngs_modulus with poisson_ratio, not both",
+            )),
+            (Some(es), None, None) => Ok(Material {
+                effective_modulus: positive("material.effective_modulus", es)?,
+                youngs_modulus: None,
+                poisson_ratio: None,
+            }),
+            (None, Some(e), Some(nu)) => {
+                let e = positive("material.youngs_modulus", e)?;
+                let nu = finite("material.poisson_ratio", nu)?;
+                if !(nu > -1.0 && nu < 0.5) {
+                    return Err(Error::invalid(
+                        "material.poisson_ratio",
+                        format!("must lie in the open interval (-1, 0.5) (got {nu})"),
+                    ));
+                }
+                Ok(Material {
+                    effective_modulus: e / (1.0 - nu * nu),
+                    youngs_modulus: Some(e),
+                    poisson_ratio: Some(nu),
+                })
+            }
+            (None, Some(_), None) => Err(Error::invalid(
+                "material.poisson_ratio",
+                "is required with youngs_modulus (E* = E/(1 - nu²))",
+            )),
+            (None, None, Some(_)) => Err(Error::invalid(
+                "material.youngs_modulus",
+                "is required with poisson_ratio (E* = E/(1 - nu²))",
+            )),
+            (None, None, None) => Ok(Material {
+                effective_modulus: 1.0,
+                youngs_modulus: None,
+                poisson_ratio: None,
+            }),
+        }
+    }
+}
+
+impl RawLoad {
+    fn validate(self, kind: PunchKind) -> Result<Load> {
+        let given = [
+            self.depth.is_some(),
+            self.force.is_some(),
+            self.contact_ratio.is_some(),
+        ]
+        .iter()
+        .filter(|&&g| g)
+        .count();
+        if given > 1 {
+            return Err(Error::invalid(
+                "load",
+                "give exactly one of depth, force, contact_ratio",
+            ));
+        }
+        if let Some(d) = self.depth {
+            return Ok(Load::Depth(positive("load.depth", d)?));
+        }
+        if let Some(f) = self.force {
+            return Ok(Load::Force(positive("load.force", f)?));
+        }
+        if let Some(eps) = self.contact_ratio {
+            if !kind.is_concave() {
+                return Err(Error::invalid(
+                    "load.contact_ratio",
+                    format!(
+                        "applies only to cone and sphere (for {kind} the contact is fixed by the \
+                         geometry; use punch.inner_radius or --eps)"
+                    ),
+                ));
+            }
+            let eps = finite("load.contact_ratio", eps)?;
+            if !(eps > 0.0 && eps < 1.0) {
+                return Err(Error::invalid(
+                    "load.contact_ratio",
+                    format!("must satisfy 0 < b/a < 1 (got {eps})"),
+                ));
+            }
+            return Ok(Load::ContactRatio(eps));
+        }
+        if kind.is_concave() {
+            Err(Error::invalid(
+                "load",
+                format!(
+                    "{kind} needs one of depth, force or contact_ratio (--depth, --force, --eps)"
+                ),
+            ))
+        } else {
+            Ok(Load::Depth(1.0))
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn rule_of(text: &str) -> String {
+        SceneSpec::from_toml(text, "test")
+            .and_then(SceneSpec::validate)
+            .unwrap_err()
+            .to_string()
+    }
+
+    #[test]
+    fn defaults_give_dimensionless_scene() {
+        let s = SceneSpec::default()
+            .shape(PunchKind::Cone)
+            .depth(2.0)
+            .validate()
+            .unwrap();
+        assert_eq!(s.punch.rim_radius, 1.0);
+        assert_eq!(s.punch.hole_depth, 1.0);
+        assert_eq!(s.material.effective_modulus, 1.0);
+        assert_eq!(s.load, Load::Depth(2.0));
+    }
+
+    #[test]
+    fn each_rule_is_named() {
+        assert!(rule_of("[punch]\nshape='flat-annulus'\ninner_radius=1.0").contains("b < a"));
+        assert!(
+            rule_of("[punch]\nshape='cone'\nhole_depth=-1\n[load]\ndepth=1")
+                .contains("punch.hole_depth")
+        );
+        assert!(
+            rule_of("[punch]\nshape='cone'\nhole_depth=0\n[load]\ndepth=1").contains("must be > 0")
+        );
+        assert!(
+            rule_of("[punch]\nshape='flat'\n[material]\neffective_modulus=-2")
+                .contains("material.effective_modulus")
+        );
+        assert!(
+            rule_of("[punch]\nshape='flat'\n[material]\nyoungs_modulus=1\npoisson_ratio=0.5")
+                .contains("(-1, 0.5)")
+        );
+        assert!(rule_of("[punch]\nshape='flat'\n[load]\ndepth=nan").contains("finite"));
+        assert!(rule_of("[punch]\nshape='flat'\n[load]\ndepth=inf").contains("finite"));
+        assert!(rule_of("[punch]\nshape='flat'\ncolour='red'").contains("unknown field `colour`"));
+        assert!(rule_of("[punch]\nshape='hexagon'").contains("unknown variant"));
+        assert!(rule_of("[punch]\nshape='sphere'").contains("needs one of depth"));
+    }
+
+    #[test]
+    fn youngs_modulus_and_poisson_give_effective_modulus() {
+        let s = SceneSpec::from_toml(
+            "[punch]\nshape='flat'\n[material]\nyoungs_modulus=3.0\npoisson_ratio=0.5e0\n",
+            "t",
+        );
+        assert!(s.unwrap().validate().is_err());
+        let s = SceneSpec::from_toml(
+            "[punch]\nshape='flat'\n[material]\nyoungs_modulus=3.0\npoisson_ratio=0.0\n",
+            "t",
+        )
+        .unwrap()
+        .validate()
+        .unwrap();
+        assert_eq!(s.material.effective_modulus, 3.0);
+    }
+}
