@@ -13,6 +13,10 @@ pub enum Error {
     #[error("cannot read scene file `{path}`: {message}")]
     SceneFile { path: String, message: String },
 
+    /// A mesh file is unreadable or breaks a rule the solver relies on.
+    #[error("mesh `{path}`: {message}")]
+    InvalidMesh { path: String, message: String },
+
     /// The method cannot treat this kind of scene at all.
     #[error("method `{method}` cannot solve this scene: {reason}")]
     Unsupported { method: String, reason: String },

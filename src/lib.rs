@@ -15,6 +15,7 @@
 
 pub mod bem;
 pub mod error;
+pub mod fem;
 pub mod harness;
 pub mod methods;
 pub mod numerics;

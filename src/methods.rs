@@ -8,8 +8,12 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use std::path::PathBuf;
+
 use crate::bem::ring_contact::{self, RingBemSolver, RingState};
 use crate::error::{Error, Result};
+use crate::fem::mesh::Degree;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::numerics::roots::find_root;
 use crate::punch::PunchKind;
 use crate::reference::{self, Quantity, ReferenceValue};
@@ -24,6 +28,8 @@ pub enum Method {
     RingBem,
     /// The most trusted analytic reference valid at the state (exact, series, asymptote, fit).
     Reference,
+    /// Axisymmetric finite elements (P1/P2 triangles) on committed gmsh meshes.
+    Fem,
 }
 
 impl Method {
@@ -32,23 +38,117 @@ impl Method {
         match self {
             Method::RingBem => ring_contact::METHOD,
             Method::Reference => "reference",
+            Method::Fem => fem_solver::METHOD,
         }
     }
 }
 
+/// Options that only some methods use.
+#[derive(Clone, Debug, Default)]
+pub struct MethodOptions {
+    /// FEM: a mesh file instead of the committed family.
+    pub mesh: Option<PathBuf>,
+    /// FEM: element degree (default quadratic).
+    pub degree: Option<Degree>,
+}
+
 /// Solve `scene` with `method`.
 pub fn solve(scene: &Scene, method: Method) -> Result<Solution> {
+    solve_with(scene, method, &MethodOptions::default())
+}
+
+/// Solve `scene` with `method` and method-specific options.
+pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Result<Solution> {
+    if method != Method::Fem && (options.mesh.is_some() || options.degree.is_some()) {
+        return Err(Error::Unsupported {
+            method: method.name().into(),
+            reason: "--mesh and --degree apply to --method fem only".into(),
+        });
+    }
     match method {
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
+        Method::Fem => solve_fem(scene, options),
     }
+}
+
+/// Solve with the finite-element method.
+pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
+    let kind = scene.punch.kind;
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let h = scene.punch.hole_depth;
+    let load = match (kind, scene.load) {
+        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => FemLoad::Flat,
+        (_, Load::Depth(d)) => FemLoad::ConcaveDepth(d / h),
+        (_, Load::Force(f)) => FemLoad::ConcaveForce(f / (2.0 * es * h * a)),
+        (_, Load::ContactRatio(_)) => {
+            return Err(Error::Unsupported {
+                method: fem_solver::METHOD.into(),
+                reason:
+                    "the FEM takes a depth or a force; the contact ratio is one of its outputs \
+                         (use --depth or --force, or the ring BEM for --eps)"
+                        .into(),
+            })
+        }
+    };
+    let fem_options = FemOptions {
+        degree: options.degree.unwrap_or(Degree::Quadratic),
+        tolerance: scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE),
+        mesh: options.mesh.clone(),
+        poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
+    };
+    let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
+    let (depth, force) = match state.gamma {
+        Some(gamma) => flat_depth_force(scene, gamma)?,
+        None => (
+            h * state.gamma1.unwrap_or(f64::NAN),
+            2.0 * es * h * a * state.gamma2.unwrap_or(f64::NAN),
+        ),
+    };
+    Ok(Solution {
+        punch: kind,
+        method: fem_solver::METHOD.to_string(),
+        eps: state.eps,
+        depth,
+        force,
+        inner_radius: state.eps * a,
+        rim_radius: a,
+        gamma: state.gamma,
+        gamma1: state.gamma1,
+        gamma2: state.gamma2,
+        stress_intensity_rim: None,
+        stress_intensity_inner: None,
+        error_estimate: state.error_estimate,
+        wall_s: state.wall_s,
+        unknowns: state.dofs,
+        iterations: state.iterations,
+        dofs: Some(state.dofs),
+        mesh: Some(state.mesh.clone()),
+        degree: Some(state.degree as u8),
+        complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
+        pressure: Vec::new(),
+        provenance: format!(
+            "axisymmetric FEM, P{} triangles, {} dofs on {}, domain radius 1e5 a (truncation bias \
+             {:.1e} included in the estimate){}",
+            state.degree as u8,
+            state.dofs,
+            state.mesh,
+            fem_solver::TRUNCATION_BIAS,
+            if state.error_estimate.is_some() {
+                ", estimate from the previous refinement level"
+            } else {
+                ", single mesh: no error estimate"
+            }
+        ),
+    })
 }
 
 /// Solve with a given ring-BEM solver (reuse it across many scenes to keep its quadrature).
 pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution> {
     let start = Instant::now();
     let kind = scene.punch.kind;
-    let tol = scene.tolerance;
+    let tol = scene.tolerance.unwrap_or(crate::scene::DEFAULT_TOLERANCE);
     let h = scene.punch.hole_depth;
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
@@ -114,6 +214,10 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Solu
         wall_s,
         unknowns: state.unknowns,
         iterations: state.solves,
+        dofs: None,
+        mesh: None,
+        degree: None,
+        complementarity_residual: None,
         pressure: state
             .pressure
             .iter()
@@ -174,6 +278,10 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
         wall_s: 0.0,
         unknowns: 0,
         iterations: 0,
+        dofs: None,
+        mesh: None,
+        degree: None,
+        complementarity_residual: None,
         pressure: Vec::new(),
         provenance: String::new(),
     };

@@ -56,8 +56,20 @@ pub struct Solution {
     pub wall_s: f64,
     /// Number of unknowns of the finest discretisation used (0 for closed forms).
     pub unknowns: usize,
-    /// Linear solves (ring BEM) or iterations spent.
+    /// Factorisations (ring BEM) or active-set iterations (FEM) spent.
     pub iterations: usize,
+    /// Degrees of freedom of the finest finite-element model used (FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub dofs: Option<usize>,
+    /// Mesh used, relative to the repository root (FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh: Option<String>,
+    /// Element degree, 1 or 2 (FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub degree: Option<u8>,
+    /// Complementarity residual of the contact solution (FEM, concave punches).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub complementarity_residual: Option<f64>,
     /// Pressure profile, ascending in `r` (empty for references without one).
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.

@@ -1,5 +1,6 @@
 //! The default job of `verify`: every method that exists, on the three punches, side by side
-//! with the analytic references, with a verdict wherever a reference declares an error bound.
+//! with the analytic references, with a verdict wherever a reference declares an error bound, and
+//! the FEM cross-verified against the ring BEM.
 //!
 //! Verdict rule (cross-verification, `shared/docs/VERIFICATION.md`): a method and a reference
 //! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or bound.
@@ -11,6 +12,8 @@ use serde::Serialize;
 
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
+use crate::fem::mesh::Degree;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::punch::PunchKind;
 use crate::reference::{self, Quantity, ReferenceKind};
 
@@ -57,12 +60,35 @@ pub struct IdentityCheck {
     pub passed: bool,
 }
 
+/// One state solved by the FEM and by the ring BEM (cross-verification of two discretisations).
+#[derive(Clone, Debug, Serialize)]
+pub struct CrossCheck {
+    pub punch: PunchKind,
+    /// `b/a` (flat annulus) or `d/h` (concave): what was prescribed.
+    pub prescribed: String,
+    /// `γ` (flat) or `γ2` (concave) of each method.
+    pub fem_value: f64,
+    pub ring_bem_value: f64,
+    pub fem_eps: f64,
+    pub ring_bem_eps: f64,
+    pub fem_error_estimate: f64,
+    pub ring_bem_error_estimate: f64,
+    pub relative_difference: f64,
+    pub eps_difference: f64,
+    pub dofs: usize,
+    pub mesh: String,
+    pub fem_wall_s: f64,
+    /// `|f_fem - f_bem| <= U_fem + U_bem` for the value and for eps.
+    pub agrees: bool,
+}
+
 /// The whole comparison.
 #[derive(Clone, Debug, Serialize)]
 pub struct ComparisonReport {
     pub tolerance: f64,
     pub rows: Vec<Row>,
     pub identities: Vec<IdentityCheck>,
+    pub fem: Vec<CrossCheck>,
 }
 
 impl ComparisonReport {
@@ -75,6 +101,7 @@ impl ComparisonReport {
             .filter(|c| c.agrees == Some(false))
             .count();
         rows + self.identities.iter().filter(|i| !i.passed).count()
+            + self.fem.iter().filter(|c| !c.agrees).count()
     }
 }
 
@@ -157,11 +184,80 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     let mut identities = incremental_stiffness_checks(&solver, tolerance)?;
     identities.extend(full_contact_limit_checks(&solver, tolerance)?);
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
+    let fem = fem_cross_checks(&solver, tolerance)?;
     Ok(ComparisonReport {
         tolerance,
         rows,
         identities,
+        fem,
     })
+}
+
+/// The FEM (default tolerance, P2, committed meshes) against the ring BEM on states of all
+/// punches.
+pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
+    let options = FemOptions {
+        degree: Degree::Quadratic,
+        tolerance: fem_solver::DEFAULT_TOLERANCE,
+        mesh: None,
+        poisson_ratio: 0.0,
+    };
+    let mut checks = Vec::new();
+    let cases = [
+        (PunchKind::Flat, 0.0, FemLoad::Flat),
+        (PunchKind::FlatAnnulus, 0.5, FemLoad::Flat),
+        (PunchKind::FlatAnnulus, 0.9, FemLoad::Flat),
+        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(0.5)),
+        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
+        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)),
+        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5)),
+    ];
+    for (kind, eps, load) in cases {
+        let fem = fem_solver::solve(kind, eps, load, &options)?;
+        let (bem_value, bem_eps, bem_estimate, prescribed, fem_value) = match load {
+            FemLoad::ConcaveDepth(d) => {
+                let s = solver.concave_at_depth(kind, d, tolerance)?;
+                (
+                    s.gamma2.unwrap_or(f64::NAN),
+                    s.eps,
+                    s.error_estimate,
+                    format!("d/h = {d}"),
+                    fem.gamma2.unwrap_or(f64::NAN),
+                )
+            }
+            _ => {
+                let s = solver.flat(eps, tolerance)?;
+                (
+                    s.gamma.unwrap_or(f64::NAN),
+                    eps,
+                    s.error_estimate,
+                    format!("b/a = {eps}"),
+                    fem.gamma.unwrap_or(f64::NAN),
+                )
+            }
+        };
+        let fem_estimate = fem.error_estimate.unwrap_or(f64::INFINITY);
+        let relative_difference = (fem_value - bem_value) / bem_value;
+        let eps_difference = fem.eps - bem_eps;
+        let allowed = fem_estimate + bem_estimate;
+        checks.push(CrossCheck {
+            punch: kind,
+            prescribed,
+            fem_value,
+            ring_bem_value: bem_value,
+            fem_eps: fem.eps,
+            ring_bem_eps: bem_eps,
+            fem_error_estimate: fem_estimate,
+            ring_bem_error_estimate: bem_estimate,
+            relative_difference,
+            eps_difference,
+            dofs: fem.dofs,
+            mesh: fem.mesh,
+            fem_wall_s: fem.wall_s,
+            agrees: relative_difference.abs() <= allowed && eps_difference.abs() <= allowed,
+        });
+    }
+    Ok(checks)
 }
 
 /// PHYSICS.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
@@ -345,6 +441,32 @@ pub fn render(report: &ComparisonReport) -> String {
             if c.passed { "ok" } else { "FAIL" }
         );
     }
+    let _ = writeln!(
+        out,
+        "\nFEM (P2, default tolerance, committed gmsh meshes) against the ring BEM; \
+         agree when |diff| <= U_fem + U_bem (value relative, eps absolute):"
+    );
+    let _ = writeln!(
+        out,
+        "  {:<13} {:<10} {:>17} {:>10} {:>10} {:>8} {:>7} {:>7}  mesh",
+        "punch", "state", "FEM gamma/gamma2", "rel.diff", "eps diff", "U_fem", "dofs", "s"
+    );
+    for c in &report.fem {
+        let _ = writeln!(
+            out,
+            "  {:<13} {:<10} {:>17.10} {:>+10.2e} {:>+10.2e} {:>8.1e} {:>7} {:>7.2}  {} {}",
+            c.punch.name(),
+            c.prescribed,
+            c.fem_value,
+            c.relative_difference,
+            c.eps_difference,
+            c.fem_error_estimate,
+            c.dofs,
+            c.fem_wall_s,
+            c.mesh,
+            if c.agrees { "ok" } else { "FAIL" }
+        );
+    }
     let failures = report.failures();
     let _ = writeln!(
         out,
@@ -355,7 +477,8 @@ pub fn render(report: &ComparisonReport) -> String {
             .flat_map(|r| &r.comparisons)
             .filter(|c| c.agrees.is_some())
             .count()
-            + report.identities.len(),
+            + report.identities.len()
+            + report.fem.len(),
         failures
     );
     out

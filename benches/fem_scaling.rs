@@ -1,0 +1,62 @@
+//! Cost of the finite-element pipeline against the number of unknowns, up to 10^6:
+//! assembly (`nalgebra-sparse` CSC), symbolic Cholesky analysis (`faer`, AMD ordering, done once),
+//! one numeric factorisation + solve, and the primal-dual active-set contact loop (a spherical
+//! concave punch pressed into the top of the block, which is the contact line `[0, 1]`; the far
+//! side and bottom are fixed). Structured P2 meshes of the unit block, generated in Rust.
+//! Run: `cargo bench --bench fem_scaling` (release build; faer may use both cores).
+
+use std::time::Instant;
+
+use ringcontact::fem::assembly::assemble_stiffness;
+use ringcontact::fem::contact::ContactModel;
+use ringcontact::fem::element::Lame;
+use ringcontact::fem::linear_solver::ConstrainedCholesky;
+use ringcontact::fem::mesh::{structured_rectangle, tags, Degree};
+use ringcontact::fem::quadrature::TriangleRule;
+use ringcontact::punch::PunchKind;
+
+fn main() {
+    let material = Lame::from_young_poisson(1.0, 0.3);
+    let rule = TriangleRule::degree4();
+    println!("FEM pipeline, P2 triangles on a structured block, contact line = top edge");
+    println!(
+        "{:>9} {:>10} {:>11} {:>11} {:>12} {:>12} {:>6} {:>10}",
+        "unknowns",
+        "nnz(K)",
+        "assembly s",
+        "symbolic s",
+        "factor+solve",
+        "contact s",
+        "iters",
+        "factors"
+    );
+    for cells in [16usize, 32, 64, 128, 256, 354] {
+        let mesh =
+            structured_rectangle(1.0, 1.0, cells, cells, tags::CONTACT, tags::FAR, tags::FAR)
+                .with_degree(Degree::Quadratic);
+        let dofs = 2 * mesh.nodes.len();
+        let start = Instant::now();
+        let k = assemble_stiffness(&mesh, &material, &rule).expect("assembly");
+        let assembly = start.elapsed().as_secs_f64();
+        let start = Instant::now();
+        let mut solver = ConstrainedCholesky::new(&k).expect("symbolic");
+        let symbolic = start.elapsed().as_secs_f64();
+        let model = ContactModel::new(&mesh).expect("contact model");
+        // One plain flat-punch solve: numeric factorisation + triangular solves.
+        let start = Instant::now();
+        model.flat(&mut solver, 0.01).expect("flat solve");
+        let factor = start.elapsed().as_secs_f64();
+        let before = solver.factorisations;
+        let start = Instant::now();
+        let (solution, _) = model
+            .concave(&mut solver, PunchKind::Sphere, 0.5, None)
+            .expect("contact solve");
+        let contact = start.elapsed().as_secs_f64();
+        println!(
+            "{dofs:>9} {:>10} {assembly:>11.3} {symbolic:>11.3} {factor:>12.3} {contact:>12.3} {:>6} {:>10}",
+            k.nnz(),
+            solution.iterations,
+            solver.factorisations - before
+        );
+    }
+}

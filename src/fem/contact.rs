@@ -1,0 +1,361 @@
+//! Punch contact on an assembled axisymmetric model (dimensionless: `a = 1`, `E* = 1`).
+//!
+//! Displacements are `(u_r, u_z)` with `z` up, the solid below `z = 0`; the punch pushes down, so
+//! the deflection is `w = -u_z`. Supports: `u = 0` on the far boundary, `u_r = 0` on the axis.
+//!
+//! * **Flat punches**: `u_z = -d` on the contact line, `u_r` free (frictionless).
+//! * **Concave punches**: unilateral constraints at every contact-line node,
+//!   `u_z <= -d + g(r)` (no penetration), reaction `λ = -(K u - f)_z >= 0` (compression), and
+//!   `λ (u_z + d - g) = 0`, solved exactly by the primal-dual active-set method (Hintermüller, Ito
+//!   and Kunisch 2002): the active set is `{λ > 0}` ∪ `{u_z > -d + g}` of the previous iterate,
+//!   until it repeats.
+//!
+//! The force is the sum of the nodal reactions of the contact line (consistent, since the element
+//! stiffness carries the `2π r` factor).
+
+use super::linear_solver::ConstrainedCholesky;
+use super::mesh::{tags, Mesh};
+use crate::error::{Error, Result};
+use crate::punch::PunchKind;
+
+/// Iteration cap of the active-set loop.
+pub const MAX_ACTIVE_SET_ITERATIONS: usize = 100;
+
+/// Result of one contact solve.
+#[derive(Clone, Debug)]
+pub struct ContactSolution {
+    /// Total force (units of `E* a h` or `E* a d`).
+    pub force: f64,
+    /// Inner contact radius `b/a` located between the last free and the first active node.
+    pub inner_radius: f64,
+    /// Spacing of the contact-line nodes around `b` (0 for flat punches and full contact): the
+    /// resolution of the discrete contact boundary.
+    pub inner_node_spacing: f64,
+    /// Active-set iterations (1 for flat punches).
+    pub iterations: usize,
+    /// `max(-λ_i)⁺/max λ` over active and `max(-gap_i)⁺/d` over inactive nodes: zero at an exact
+    /// solution.
+    pub complementarity_residual: f64,
+    /// `(r, λ_i)` of the contact-line nodes, ascending in `r` (nodal reaction forces).
+    pub reactions: Vec<(f64, f64)>,
+    /// Nodal displacements.
+    pub displacement: Vec<f64>,
+}
+
+/// The model: mesh, contact-line nodes and the fixed supports.
+pub struct ContactModel<'m> {
+    pub mesh: &'m Mesh,
+    /// Contact-line nodes sorted by `r`.
+    pub contact_nodes: Vec<usize>,
+    supports: Vec<bool>,
+}
+
+fn fem_error(reason: String) -> Error {
+    Error::NoConvergence {
+        method: "fem".into(),
+        reason,
+    }
+}
+
+impl<'m> ContactModel<'m> {
+    /// Set up supports and the contact line; the mesh must be in units of the rim radius.
+    pub fn new(mesh: &'m Mesh) -> Result<Self> {
+        let mut contact_nodes = mesh.boundary_nodes(tags::CONTACT);
+        contact_nodes.sort_by(|&a, &b| mesh.nodes[a][0].total_cmp(&mesh.nodes[b][0]));
+        let rim = contact_nodes
+            .last()
+            .map(|&n| mesh.nodes[n][0])
+            .unwrap_or(0.0);
+        if (rim - 1.0).abs() > 1e-9 {
+            return Err(Error::InvalidMesh {
+                path: mesh.source.clone(),
+                message: format!("the contact line ends at r = {rim}; meshes must be in units of the rim radius (a = 1)"),
+            });
+        }
+        let mut supports = vec![false; 2 * mesh.nodes.len()];
+        for node in mesh.boundary_nodes(tags::FAR) {
+            supports[2 * node] = true;
+            supports[2 * node + 1] = true;
+        }
+        for node in mesh.boundary_nodes(tags::AXIS) {
+            supports[2 * node] = true;
+        }
+        Ok(Self {
+            mesh,
+            contact_nodes,
+            supports,
+        })
+    }
+
+    /// Inner end `b/a` of the contact line of the mesh.
+    pub fn contact_line_start(&self) -> f64 {
+        self.contact_nodes
+            .first()
+            .map(|&n| self.mesh.nodes[n][0])
+            .unwrap_or(0.0)
+    }
+
+    fn reactions(&self, solver: &ConstrainedCholesky, u: &[f64], zero: &[f64]) -> Vec<(f64, f64)> {
+        let residual = solver.residual(u, zero);
+        self.contact_nodes
+            .iter()
+            .map(|&n| (self.mesh.nodes[n][0], -residual[2 * n + 1]))
+            .collect()
+    }
+
+    /// Flat punch: `u_z = -depth` on the whole contact line.
+    pub fn flat(&self, solver: &mut ConstrainedCholesky, depth: f64) -> Result<ContactSolution> {
+        let dofs = self.supports.len();
+        let mut constrained = self.supports.clone();
+        let mut prescribed = vec![0.0; dofs];
+        for &n in &self.contact_nodes {
+            constrained[2 * n + 1] = true;
+            prescribed[2 * n + 1] = -depth;
+        }
+        let zero = vec![0.0; dofs];
+        let u = solver.solve(&zero, &constrained, &prescribed)?;
+        let reactions = self.reactions(solver, &u, &zero);
+        Ok(ContactSolution {
+            force: reactions.iter().map(|r| r.1).sum(),
+            inner_radius: self.contact_line_start(),
+            inner_node_spacing: 0.0,
+            iterations: 1,
+            complementarity_residual: 0.0,
+            reactions,
+            displacement: u,
+        })
+    }
+
+    /// Concave punch pressed to `depth` (units of `h`, with `h = 1`): unilateral contact by the
+    /// primal-dual active-set method, starting from `initial_active` if given (else from the
+    /// nodes where the rigid punch would penetrate the undeformed surface).
+    pub fn concave(
+        &self,
+        solver: &mut ConstrainedCholesky,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Option<Vec<bool>>,
+    ) -> Result<(ContactSolution, Vec<bool>)> {
+        let dofs = self.supports.len();
+        let bound: Vec<f64> = self
+            .contact_nodes
+            .iter()
+            .map(|&n| -depth + kind.gap_shape(self.mesh.nodes[n][0]))
+            .collect();
+        let mut active = initial_active.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
+        if !active.iter().any(|&a| a) {
+            // The rim node always touches for d > 0.
+            if let Some(last) = active.last_mut() {
+                *last = true;
+            }
+        }
+        let zero = vec![0.0; dofs];
+        for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
+            let mut constrained = self.supports.clone();
+            let mut prescribed = vec![0.0; dofs];
+            for ((&n, &b), &a) in self.contact_nodes.iter().zip(&bound).zip(&active) {
+                if a {
+                    constrained[2 * n + 1] = true;
+                    prescribed[2 * n + 1] = b;
+                }
+            }
+            let u = solver.solve(&zero, &constrained, &prescribed)?;
+            let reactions = self.reactions(solver, &u, &zero);
+            let gaps: Vec<f64> = self
+                .contact_nodes
+                .iter()
+                .zip(&bound)
+                .map(|(&n, &b)| b - u[2 * n + 1])
+                .collect();
+            let next: Vec<bool> = active
+                .iter()
+                .zip(&reactions)
+                .zip(&gaps)
+                .map(|((&a, &(_, lambda)), &gap)| if a { lambda > 0.0 } else { gap < 0.0 })
+                .collect();
+            if next == active {
+                let lambda_scale = reactions
+                    .iter()
+                    .map(|r| r.1.abs())
+                    .fold(f64::MIN_POSITIVE, f64::max);
+                let mut residual: f64 = 0.0;
+                for ((&a, &(_, lambda)), &gap) in active.iter().zip(&reactions).zip(&gaps) {
+                    residual = residual.max(if a {
+                        (-lambda).max(0.0) / lambda_scale
+                    } else {
+                        (-gap).max(0.0) / depth
+                    });
+                }
+                let inner_radius = self.locate_inner_radius(&active, &gaps);
+                let inner_node_spacing = self.spacing_at(&active);
+
+                let force = reactions
+                    .iter()
+                    .zip(&active)
+                    .filter(|(_, &a)| a)
+                    .map(|(r, _)| r.1)
+                    .sum();
+                return Ok((
+                    ContactSolution {
+                        force,
+                        inner_radius,
+                        inner_node_spacing,
+                        iterations: iteration,
+                        complementarity_residual: residual,
+                        reactions,
+                        displacement: u,
+                    },
+                    active,
+                ));
+            }
+            if !next.iter().any(|&a| a) {
+                return Err(fem_error(format!(
+                    "the active set emptied at iteration {iteration}: no contact at d/h = {depth}"
+                )));
+            }
+            active = next;
+        }
+        Err(fem_error(format!(
+            "the primal-dual active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations"
+        )))
+    }
+
+    /// Inner contact radius from the free side: near a non-adhesive edge the gap grows like
+    /// `(b - r)^{3/2}`, so `q = gap^{2/3}` is nearly linear in `r`. `q` is interpolated by a
+    /// quadratic through the three free nodes next to the innermost active one (a line if only
+    /// two exist) and its root is taken, clamped to the element gap between the last free and the
+    /// first active node.
+    fn locate_inner_radius(&self, active: &[bool], gaps: &[f64]) -> f64 {
+        let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+        let q = |i: usize| gaps[i].max(0.0).powf(2.0 / 3.0);
+        // Innermost node of the active ring that reaches the rim.
+        let mut first = active.len() - 1;
+        while first > 0 && active[first - 1] {
+            first -= 1;
+        }
+        // A node on the axis carries no contact area (for quadratic elements even its consistent
+        // reaction vanishes: the first moment of a vertex shape function is zero there), so a free
+        // axis node alone does not open a hole.
+        if first == 0 || (first == 1 && r(0) == 0.0) {
+            return 0.0;
+        }
+        let (i1, r_active) = (first - 1, r(first));
+        let midpoint = 0.5 * (r(i1) + r_active);
+        if i1 == 0 {
+            return midpoint;
+        }
+        let linear = {
+            let (q1, q2) = (q(i1), q(i1 - 1));
+            if q2 <= q1 {
+                return midpoint;
+            }
+            r(i1) + q1 * (r(i1) - r(i1 - 1)) / (q2 - q1)
+        };
+        let estimate = if i1 >= 2 {
+            // Newton form of the quadratic through (r3, q3), (r2, q2), (r1, q1); root near r1.
+            let (x1, x2, x3) = (r(i1), r(i1 - 1), r(i1 - 2));
+            let (y1, y2, y3) = (q(i1), q(i1 - 1), q(i1 - 2));
+            let d12 = (y1 - y2) / (x1 - x2);
+            let d23 = (y2 - y3) / (x2 - x3);
+            let c = (d12 - d23) / (x1 - x3);
+            // q(x) = y1 + (x - x1) (d12 + c (x - x2)) = 0, solved for t = x - x1 by Newton from
+            // the linear estimate (the quadratic term is a small correction).
+            let mut t = linear - x1;
+            for _ in 0..20 {
+                let value = y1 + t * (d12 + c * (t + x1 - x2));
+                let slope = d12 + c * (2.0 * t + x1 - x2);
+                if slope == 0.0 {
+                    break;
+                }
+                let step = value / slope;
+                t -= step;
+                if step.abs() < 1e-15 {
+                    break;
+                }
+            }
+            let root = x1 + t;
+            if root.is_finite() && root >= x1 && root <= r_active {
+                root
+            } else {
+                linear
+            }
+        } else {
+            linear
+        };
+        estimate.clamp(r(i1), r_active)
+    }
+
+    /// Distance between the last free and the first active contact node.
+    fn spacing_at(&self, active: &[bool]) -> f64 {
+        let first = active.iter().rposition(|&a| !a).map_or(0, |i| i + 1);
+        let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+        if first == 0 || first >= active.len() || (first == 1 && r(0) == 0.0) {
+            return 0.0;
+        }
+        r(first) - r(first - 1)
+    }
+
+    /// Concave punch under force control: Newton on the depth. At a fixed active set the force is
+    /// affine in the depth, `F(d) = F(d0) + k (d - d0)`, with `k` from one back-substitution
+    /// (same constraint set, unit depth increment); each step re-solves the contact at the new
+    /// depth, until the depth and the active set settle.
+    pub fn concave_at_force(
+        &self,
+        solver: &mut ConstrainedCholesky,
+        kind: PunchKind,
+        target_force: f64,
+        depth_guess: f64,
+        initial_active: Option<Vec<bool>>,
+        relative_tolerance: f64,
+    ) -> Result<(ContactSolution, f64)> {
+        let dofs = self.supports.len();
+        let zero = vec![0.0; dofs];
+        let mut depth = depth_guess;
+        let mut warm = initial_active;
+        let mut iterations = 0;
+        for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
+            let (solution, active) = self.concave(solver, kind, depth, warm.take())?;
+            iterations += solution.iterations;
+            // Force per unit depth at this active set: prescribed u_z = -1 on active nodes.
+            let mut constrained = self.supports.clone();
+            let mut prescribed = vec![0.0; dofs];
+            for (&n, &a) in self.contact_nodes.iter().zip(&active) {
+                if a {
+                    constrained[2 * n + 1] = true;
+                    prescribed[2 * n + 1] = -1.0;
+                }
+            }
+            let unit = solver.solve(&zero, &constrained, &prescribed)?;
+            let stiffness: f64 = self
+                .reactions(solver, &unit, &zero)
+                .iter()
+                .zip(&active)
+                .filter(|(_, &a)| a)
+                .map(|(r, _)| r.1)
+                .sum();
+            if stiffness <= 0.0 {
+                return Err(fem_error(
+                    "non-positive contact stiffness under force control".into(),
+                ));
+            }
+            let step = (target_force - solution.force) / stiffness;
+            let settled = step.abs() <= 1e-3 * relative_tolerance * depth.abs().max(1e-12);
+            if settled {
+                let mut solution = solution;
+                solution.iterations = iterations;
+                return Ok((solution, depth));
+            }
+            depth = (depth + step).max(0.5 * depth);
+            warm = Some(active);
+        }
+        Err(fem_error("force control: the depth did not settle".into()))
+    }
+
+    /// Active set of a contact ring `[inner_radius, a]` (to warm-start the iteration).
+    pub fn active_set_for_radius(&self, inner_radius: f64) -> Vec<bool> {
+        self.contact_nodes
+            .iter()
+            .map(|&n| self.mesh.nodes[n][0] >= inner_radius)
+            .collect()
+    }
+}

@@ -1,0 +1,168 @@
+//! Axisymmetric linear elasticity on straight-sided triangles in `(r, z)`.
+//!
+//! Strain vector `ε = (ε_rr, ε_zz, ε_θθ, γ_rz) = (∂u_r/∂r, ∂u_z/∂z, u_r/r, ∂u_r/∂z + ∂u_z/∂r)`,
+//! stress `σ = D ε` with `D` the isotropic Lamé matrix, element stiffness
+//! `K_e = ∫ Bᵀ D B 2π r dA` (the `2π` makes nodal reactions total ring forces, so the punch force
+//! is their plain sum). Degrees of freedom are ordered `(u_r, u_z)` per node.
+
+use super::mesh::Degree;
+use super::quadrature::TriangleRule;
+
+/// Isotropic material as Lamé constants.
+#[derive(Clone, Copy, Debug)]
+pub struct Lame {
+    pub lambda: f64,
+    pub mu: f64,
+}
+
+impl Lame {
+    /// From Young's modulus and Poisson's ratio.
+    pub fn from_young_poisson(e: f64, nu: f64) -> Self {
+        Self {
+            lambda: e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            mu: e / (2.0 * (1.0 + nu)),
+        }
+    }
+
+    /// `σ = D ε` for the axisymmetric strain vector.
+    #[inline]
+    pub fn stress(&self, strain: [f64; 4]) -> [f64; 4] {
+        let trace = strain[0] + strain[1] + strain[2];
+        let (l, m) = (self.lambda, self.mu);
+        [
+            l * trace + 2.0 * m * strain[0],
+            l * trace + 2.0 * m * strain[1],
+            l * trace + 2.0 * m * strain[2],
+            m * strain[3],
+        ]
+    }
+}
+
+/// Shape functions and their reference gradients at `(ξ, η)`.
+pub fn shape(degree: Degree, xi: f64, eta: f64, n: &mut [f64], dxi: &mut [f64], deta: &mut [f64]) {
+    let l1 = 1.0 - xi - eta;
+    match degree {
+        Degree::Linear => {
+            n[..3].copy_from_slice(&[l1, xi, eta]);
+            dxi[..3].copy_from_slice(&[-1.0, 1.0, 0.0]);
+            deta[..3].copy_from_slice(&[-1.0, 0.0, 1.0]);
+        }
+        Degree::Quadratic => {
+            let (l2, l3) = (xi, eta);
+            n[..6].copy_from_slice(&[
+                l1 * (2.0 * l1 - 1.0),
+                l2 * (2.0 * l2 - 1.0),
+                l3 * (2.0 * l3 - 1.0),
+                4.0 * l1 * l2,
+                4.0 * l2 * l3,
+                4.0 * l3 * l1,
+            ]);
+            // d/dξ: dl1 = -1, dl2 = 1, dl3 = 0; d/dη: dl1 = -1, dl2 = 0, dl3 = 1.
+            dxi[..6].copy_from_slice(&[
+                -(4.0 * l1 - 1.0),
+                4.0 * l2 - 1.0,
+                0.0,
+                4.0 * (l1 - l2),
+                4.0 * l3,
+                -4.0 * l3,
+            ]);
+            deta[..6].copy_from_slice(&[
+                -(4.0 * l1 - 1.0),
+                0.0,
+                4.0 * l3 - 1.0,
+                -4.0 * l2,
+                4.0 * l2,
+                4.0 * (l1 - l3),
+            ]);
+        }
+    }
+}
+
+/// Geometry of one affine triangle: vertices and the inverse Jacobian.
+#[derive(Clone, Copy, Debug)]
+pub struct AffineTriangle {
+    origin: [f64; 2],
+    jacobian: [[f64; 2]; 2],
+    inverse: [[f64; 2]; 2],
+    /// `|det J|` (twice the area).
+    pub det: f64,
+}
+
+impl AffineTriangle {
+    /// From the three vertices `(r, z)`.
+    pub fn new(p0: [f64; 2], p1: [f64; 2], p2: [f64; 2]) -> Self {
+        let j = [
+            [p1[0] - p0[0], p2[0] - p0[0]],
+            [p1[1] - p0[1], p2[1] - p0[1]],
+        ];
+        let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+        let inverse = [
+            [j[1][1] / det, -j[0][1] / det],
+            [-j[1][0] / det, j[0][0] / det],
+        ];
+        Self {
+            origin: p0,
+            jacobian: j,
+            inverse,
+            det: det.abs(),
+        }
+    }
+
+    /// Physical point of `(ξ, η)`.
+    #[inline]
+    pub fn map(&self, xi: f64, eta: f64) -> [f64; 2] {
+        [
+            self.origin[0] + self.jacobian[0][0] * xi + self.jacobian[0][1] * eta,
+            self.origin[1] + self.jacobian[1][0] * xi + self.jacobian[1][1] * eta,
+        ]
+    }
+
+    /// Physical gradient `(∂/∂r, ∂/∂z)` from the reference gradient: `J^{-T} ∇_ξ`.
+    #[inline]
+    pub fn gradient(&self, dxi: f64, deta: f64) -> [f64; 2] {
+        [
+            self.inverse[0][0] * dxi + self.inverse[1][0] * deta,
+            self.inverse[0][1] * dxi + self.inverse[1][1] * deta,
+        ]
+    }
+}
+
+/// Element stiffness `K_e` (row-major, `2k x 2k` for `k` nodes) of an axisymmetric triangle.
+pub fn stiffness(
+    degree: Degree,
+    vertices: [[f64; 2]; 3],
+    material: &Lame,
+    rule: &TriangleRule,
+    out: &mut [f64],
+) {
+    let k = degree.nodes_per_cell();
+    let size = 2 * k;
+    out[..size * size].iter_mut().for_each(|v| *v = 0.0);
+    let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
+    let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    // Strain of each unit dof: b[dof] = ε vector.
+    let mut b = [[0.0; 4]; 12];
+    for (p, &w) in rule.points.iter().zip(&rule.weights) {
+        shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
+        let r = tri.map(p[0], p[1])[0];
+        for a in 0..k {
+            let g = tri.gradient(dxi[a], deta[a]);
+            b[2 * a] = [g[0], 0.0, n[a] / r, g[1]];
+            b[2 * a + 1] = [0.0, g[1], 0.0, g[0]];
+        }
+        let scale = w * tri.det * 2.0 * std::f64::consts::PI * r;
+        for i in 0..size {
+            let s = material.stress(b[i]);
+            for j in i..size {
+                let e = b[j];
+                let v = scale * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3]);
+                out[i * size + j] += v;
+            }
+        }
+    }
+    for i in 0..size {
+        for j in 0..i {
+            out[i * size + j] = out[j * size + i];
+        }
+    }
+}

@@ -1,0 +1,374 @@
+//! Triangle meshes of the axisymmetric half-space model in `(r, z)` (`r >= 0`, `z <= 0`).
+//!
+//! Nodes are `(r, z)`; cells are 3-node (linear) or 6-node (quadratic) triangles with gmsh's node
+//! order (vertices, then the mid-edge nodes of edges 0-1, 1-2, 2-0); boundary edges carry the
+//! physical tag of their curve. Quadratic elements are straight-sided (affine geometry).
+
+use std::collections::HashMap;
+
+use crate::error::{Error, Result};
+
+/// Physical tags of the boundary curves and the domain, as written by `meshes/half_space.geo`.
+pub mod tags {
+    /// Candidate contact line: `[b, a]` (flat annulus) or `[0, a]`.
+    pub const CONTACT: i32 = 1;
+    /// Free surface `[a, R]`.
+    pub const FREE: i32 = 2;
+    /// Far boundary (arc of radius `R`), `u = 0`.
+    pub const FAR: i32 = 3;
+    /// Symmetry axis `r = 0`, `u_r = 0`.
+    pub const AXIS: i32 = 4;
+    /// Free surface under the hole of an annulus, `[0, b]`.
+    pub const HOLE: i32 = 5;
+    /// The solid.
+    pub const SOLID: i32 = 10;
+}
+
+/// Polynomial degree of the elements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum Degree {
+    Linear = 1,
+    Quadratic = 2,
+}
+
+impl Degree {
+    /// Nodes per triangle.
+    pub fn nodes_per_cell(self) -> usize {
+        match self {
+            Degree::Linear => 3,
+            Degree::Quadratic => 6,
+        }
+    }
+
+    /// Nodes per boundary edge.
+    pub fn nodes_per_edge(self) -> usize {
+        match self {
+            Degree::Linear => 2,
+            Degree::Quadratic => 3,
+        }
+    }
+
+    /// From the command-line number.
+    pub fn from_number(n: u8) -> Option<Self> {
+        match n {
+            1 => Some(Degree::Linear),
+            2 => Some(Degree::Quadratic),
+            _ => None,
+        }
+    }
+}
+
+/// A boundary edge with its physical tag; `nodes` has 2 (linear) or 3 (quadratic: ends, then
+/// middle) entries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoundaryEdge {
+    pub nodes: Vec<usize>,
+    pub tag: i32,
+}
+
+/// A validated triangle mesh.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// `(r, z)` of every node.
+    pub nodes: Vec<[f64; 2]>,
+    /// Connectivity, `degree.nodes_per_cell()` entries per triangle.
+    pub cells: Vec<usize>,
+    pub degree: Degree,
+    pub boundary: Vec<BoundaryEdge>,
+    /// Where the mesh came from (a path or a generator description).
+    pub source: String,
+}
+
+fn mesh_error(source: &str, message: String) -> Error {
+    Error::InvalidMesh {
+        path: source.to_string(),
+        message,
+    }
+}
+
+impl Mesh {
+    /// Number of triangles.
+    pub fn cell_count(&self) -> usize {
+        self.cells.len() / self.degree.nodes_per_cell()
+    }
+
+    /// Node indices of triangle `c`.
+    pub fn cell(&self, c: usize) -> &[usize] {
+        let k = self.degree.nodes_per_cell();
+        &self.cells[c * k..(c + 1) * k]
+    }
+
+    /// Nodes on boundary edges with `tag`, sorted and without duplicates.
+    pub fn boundary_nodes(&self, tag: i32) -> Vec<usize> {
+        let mut nodes: Vec<usize> = self
+            .boundary
+            .iter()
+            .filter(|e| e.tag == tag)
+            .flat_map(|e| e.nodes.iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    /// Whether any boundary edge carries `tag`.
+    pub fn has_tag(&self, tag: i32) -> bool {
+        self.boundary.iter().any(|e| e.tag == tag)
+    }
+
+    /// Check what the solver relies on: indices in range, `r >= 0`, positively oriented
+    /// non-degenerate triangles (inverted ones are reported, not flipped), the required boundary
+    /// groups, and straight quadratic edges.
+    pub fn validate(&self, required_tags: &[(i32, &str)]) -> Result<()> {
+        let src = &self.source;
+        let n = self.nodes.len();
+        if self.cell_count() == 0 {
+            return Err(mesh_error(
+                src,
+                "the mesh has no triangles in the solid".into(),
+            ));
+        }
+        for (i, p) in self.nodes.iter().enumerate() {
+            if !p[0].is_finite() || !p[1].is_finite() {
+                return Err(mesh_error(
+                    src,
+                    format!("node {i} has a non-finite coordinate"),
+                ));
+            }
+            if p[0] < -1e-12 * (1.0 + p[1].abs()) {
+                return Err(mesh_error(
+                    src,
+                    format!("node {i} at r = {} lies off the half-plane r >= 0", p[0]),
+                ));
+            }
+        }
+        let scale = self
+            .nodes
+            .iter()
+            .map(|p| p[0].abs().max(p[1].abs()))
+            .fold(0.0, f64::max);
+        for c in 0..self.cell_count() {
+            let cell = self.cell(c);
+            if let Some(&bad) = cell.iter().find(|&&v| v >= n) {
+                return Err(mesh_error(
+                    src,
+                    format!("triangle {c} refers to missing node {bad}"),
+                ));
+            }
+            let [p0, p1, p2] = [
+                self.nodes[cell[0]],
+                self.nodes[cell[1]],
+                self.nodes[cell[2]],
+            ];
+            let twice_area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
+            let edge =
+                |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
+            let longest = edge(p0, p1).max(edge(p1, p2)).max(edge(p2, p0));
+            if twice_area.abs() <= 1e-14 * longest * longest.max(1e-300) || longest <= 1e-15 * scale
+            {
+                return Err(mesh_error(
+                    src,
+                    format!("triangle {c} (nodes {:?}) is degenerate", &cell[..3]),
+                ));
+            }
+            if twice_area < 0.0 {
+                return Err(mesh_error(
+                    src,
+                    format!(
+                        "triangle {c} (nodes {:?}) is inverted (clockwise in (r, z))",
+                        &cell[..3]
+                    ),
+                ));
+            }
+            if self.degree == Degree::Quadratic {
+                for (k, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                    let (pa, pb, pm) = (
+                        self.nodes[cell[a]],
+                        self.nodes[cell[b]],
+                        self.nodes[cell[3 + k]],
+                    );
+                    let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+                    if edge(mid, pm) > 1e-9 * edge(pa, pb) {
+                        return Err(mesh_error(
+                            src,
+                            format!(
+                                "triangle {c} has a curved edge (mid node {} off the chord); only \
+                                 straight-sided quadratic elements are supported (Mesh.SecondOrderLinear = 1)",
+                                cell[3 + k]
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        for (tag, name) in required_tags {
+            if !self.has_tag(*tag) {
+                return Err(mesh_error(
+                    src,
+                    format!("the physical group {tag} ({name}) is missing from the boundary"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// The same mesh with quadratic triangles: a node is added at the midpoint of every edge.
+    /// A quadratic mesh is returned unchanged.
+    pub fn to_quadratic(&self) -> Mesh {
+        if self.degree == Degree::Quadratic {
+            return self.clone();
+        }
+        let mut nodes = self.nodes.clone();
+        let mut midpoint: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut mid = |a: usize, b: usize, nodes: &mut Vec<[f64; 2]>| -> usize {
+            let key = (a.min(b), a.max(b));
+            *midpoint.entry(key).or_insert_with(|| {
+                let (pa, pb) = (nodes[a], nodes[b]);
+                nodes.push([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
+                nodes.len() - 1
+            })
+        };
+        let mut cells = Vec::with_capacity(self.cell_count() * 6);
+        for c in 0..self.cell_count() {
+            let t = self.cell(c);
+            let (m01, m12, m20) = (
+                mid(t[0], t[1], &mut nodes),
+                mid(t[1], t[2], &mut nodes),
+                mid(t[2], t[0], &mut nodes),
+            );
+            cells.extend_from_slice(&[t[0], t[1], t[2], m01, m12, m20]);
+        }
+        let boundary = self
+            .boundary
+            .iter()
+            .map(|e| BoundaryEdge {
+                nodes: vec![
+                    e.nodes[0],
+                    e.nodes[1],
+                    mid(e.nodes[0], e.nodes[1], &mut nodes),
+                ],
+                tag: e.tag,
+            })
+            .collect();
+        Mesh {
+            nodes,
+            cells,
+            degree: Degree::Quadratic,
+            boundary,
+            source: format!(
+                "{} (edge midpoints added for quadratic elements)",
+                self.source
+            ),
+        }
+    }
+
+    /// The linear mesh on the vertices of a quadratic mesh (mid-edge nodes dropped, renumbered).
+    pub fn to_linear(&self) -> Mesh {
+        if self.degree == Degree::Linear {
+            return self.clone();
+        }
+        let mut map = vec![usize::MAX; self.nodes.len()];
+        let mut nodes = Vec::new();
+        let mut keep = |v: usize, nodes: &mut Vec<[f64; 2]>| -> usize {
+            if map[v] == usize::MAX {
+                map[v] = nodes.len();
+                nodes.push(self.nodes[v]);
+            }
+            map[v]
+        };
+        let mut cells = Vec::with_capacity(self.cell_count() * 3);
+        for c in 0..self.cell_count() {
+            let t = self.cell(c);
+            for &v in &t[..3] {
+                cells.push(keep(v, &mut nodes));
+            }
+        }
+        let boundary = self
+            .boundary
+            .iter()
+            .map(|e| BoundaryEdge {
+                nodes: vec![keep(e.nodes[0], &mut nodes), keep(e.nodes[1], &mut nodes)],
+                tag: e.tag,
+            })
+            .collect();
+        Mesh {
+            nodes,
+            cells,
+            degree: Degree::Linear,
+            boundary,
+            source: format!("{} (vertices only, linear elements)", self.source),
+        }
+    }
+
+    /// The mesh with elements of `degree`.
+    pub fn with_degree(&self, degree: Degree) -> Mesh {
+        match degree {
+            Degree::Linear => self.to_linear(),
+            Degree::Quadratic => self.to_quadratic(),
+        }
+    }
+}
+
+/// A structured mesh of the rectangle `[0, width] x [-height, 0]` with `nr x nz` cells, each split
+/// into two triangles; boundary tags: top `z = 0` -> `top_tag`, right -> `side_tag`,
+/// bottom -> `bottom_tag`, axis `r = 0` -> [`tags::AXIS`]. Used by the manufactured-solution tests.
+pub fn structured_rectangle(
+    width: f64,
+    height: f64,
+    nr: usize,
+    nz: usize,
+    top_tag: i32,
+    side_tag: i32,
+    bottom_tag: i32,
+) -> Mesh {
+    let index = |i: usize, j: usize| j * (nr + 1) + i;
+    let mut nodes = Vec::with_capacity((nr + 1) * (nz + 1));
+    for j in 0..=nz {
+        for i in 0..=nr {
+            nodes.push([width * i as f64 / nr as f64, -height * j as f64 / nz as f64]);
+        }
+    }
+    let mut cells = Vec::with_capacity(6 * nr * nz);
+    for j in 0..nz {
+        for i in 0..nr {
+            // (i, j) is the upper-left corner in (r, z) with z decreasing in j.
+            let (a, b, c, d) = (
+                index(i, j),
+                index(i + 1, j),
+                index(i + 1, j + 1),
+                index(i, j + 1),
+            );
+            // Counter-clockwise in (r, z): a (top-left), d (bottom-left), c (bottom-right).
+            cells.extend_from_slice(&[a, d, c]);
+            cells.extend_from_slice(&[a, c, b]);
+        }
+    }
+    let mut boundary = Vec::new();
+    for i in 0..nr {
+        boundary.push(BoundaryEdge {
+            nodes: vec![index(i, 0), index(i + 1, 0)],
+            tag: top_tag,
+        });
+        boundary.push(BoundaryEdge {
+            nodes: vec![index(i, nz), index(i + 1, nz)],
+            tag: bottom_tag,
+        });
+    }
+    for j in 0..nz {
+        boundary.push(BoundaryEdge {
+            nodes: vec![index(nr, j), index(nr, j + 1)],
+            tag: side_tag,
+        });
+        boundary.push(BoundaryEdge {
+            nodes: vec![index(0, j), index(0, j + 1)],
+            tag: tags::AXIS,
+        });
+    }
+    Mesh {
+        nodes,
+        cells,
+        degree: Degree::Linear,
+        boundary,
+        source: format!("structured {nr}x{nz} rectangle {width} x {height}"),
+    }
+}

@@ -1,0 +1,11 @@
+//! Axisymmetric finite-element solver for the punch problems, on gmsh meshes.
+
+pub mod assembly;
+pub mod contact;
+pub mod element;
+pub mod linear_solver;
+pub mod mesh;
+pub mod msh;
+pub mod norms;
+pub mod quadrature;
+pub mod solver;

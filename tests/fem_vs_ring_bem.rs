@@ -1,0 +1,176 @@
+//! Solution verification of the finite-element solver against the ring BEM (converged to 1e-10,
+//! an independent discretisation of the same problem): with default settings the FEM agrees
+//! within 1e-3, with `--tol 1e-4` within 1e-4, and its error estimate bounds its actual error.
+
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::fem::mesh::Degree;
+use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
+use ringcontact::punch::PunchKind;
+use ringcontact::Error;
+
+fn fem(kind: PunchKind, eps: f64, load: FemLoad, tolerance: f64) -> FemState {
+    let options = FemOptions {
+        degree: Degree::Quadratic,
+        tolerance,
+        mesh: None,
+        poisson_ratio: 0.0,
+    };
+    solver::solve(kind, eps, load, &options).unwrap_or_else(|e| panic!("{kind} {load:?}: {e}"))
+}
+
+/// `(relative error of the force-like output, absolute error of eps)` against the ring BEM.
+fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f64) {
+    let bem = RingBemSolver::new();
+    match load {
+        FemLoad::Flat => {
+            let g = bem.flat(eps, 1e-10).unwrap().gamma.unwrap();
+            ((state.gamma.unwrap() - g).abs() / g, 0.0)
+        }
+        FemLoad::ConcaveDepth(d) => {
+            let r = bem.concave_at_depth(kind, d, 1e-10).unwrap();
+            let g2 = r.gamma2.unwrap();
+            (
+                (state.gamma2.unwrap() - g2).abs() / g2,
+                (state.eps - r.eps).abs(),
+            )
+        }
+        FemLoad::ConcaveForce(f) => {
+            let r = bem.concave_at_force(kind, f, 1e-10).unwrap();
+            let g1 = r.gamma1.unwrap();
+            (
+                (state.gamma1.unwrap() - g1).abs() / g1,
+                (state.eps - r.eps).abs(),
+            )
+        }
+    }
+}
+
+fn check(cases: &[(PunchKind, f64, FemLoad)], tolerance: f64) {
+    for &(kind, eps, load) in cases {
+        let state = fem(kind, eps, load, tolerance);
+        let (force_error, eps_error) = errors(kind, eps, load, &state);
+        let estimate = state.error_estimate.unwrap();
+        println!(
+            "{kind} {load:?}: force error {force_error:.2e}, eps error {eps_error:.2e}, estimate {estimate:.1e}, \
+             {} dofs on {}, {:.2} s",
+            state.dofs, state.mesh, state.wall_s
+        );
+        assert!(
+            force_error <= tolerance && eps_error <= tolerance,
+            "{kind} {load:?}: beyond {tolerance:e}"
+        );
+        assert!(
+            estimate <= tolerance,
+            "{kind} {load:?}: estimate {estimate:e} above the tolerance"
+        );
+        assert!(
+            force_error <= estimate && eps_error <= estimate,
+            "{kind} {load:?}: the estimate {estimate:.1e} does not bound the errors ({force_error:.1e}, {eps_error:.1e})"
+        );
+    }
+}
+
+const FLAT: [(PunchKind, f64, FemLoad); 3] = [
+    (PunchKind::Flat, 0.0, FemLoad::Flat),
+    (PunchKind::FlatAnnulus, 0.5, FemLoad::Flat),
+    (PunchKind::FlatAnnulus, 0.9, FemLoad::Flat),
+];
+
+#[test]
+fn default_settings_agree_with_the_ring_bem_within_1e3() {
+    let mut cases = FLAT.to_vec();
+    for d in [0.5, 2.0, 4.0] {
+        cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(d)));
+    }
+    for d in [0.5, 1.5, 2.8] {
+        cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(d)));
+    }
+    cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveForce(1.0)));
+    check(&cases, solver::DEFAULT_TOLERANCE);
+}
+
+#[test]
+fn sphere_past_full_contact_follows_mdr() {
+    // d >= 3h: F = 2 E* a (d - h/3) (method of dimensionality reduction), full contact.
+    let state = fem(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5), 1e-3);
+    assert_eq!(state.eps, 0.0);
+    let exact = 3.5 - 1.0 / 3.0;
+    assert!((state.gamma2.unwrap() - exact).abs() / exact <= 1e-3);
+}
+
+#[test]
+fn tolerance_1e4_is_met() {
+    // Needs the level-3 meshes (scripts/make_meshes.sh --missing-only; .ci/run does this).
+    let mut cases = FLAT.to_vec();
+    cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)));
+    cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)));
+    check(&cases, 1e-4);
+}
+
+#[test]
+fn linear_elements_converge_toward_the_ring_bem() {
+    let bem = RingBemSolver::new()
+        .flat(0.5, 1e-10)
+        .unwrap()
+        .gamma
+        .unwrap();
+    let dir = solver::mesh_directory();
+    let errors: Vec<f64> = (0..3)
+        .map(|level| {
+            let options = FemOptions {
+                degree: Degree::Linear,
+                tolerance: 1e-3,
+                mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
+                poisson_ratio: 0.3,
+            };
+            let s = solver::solve(PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, &options).unwrap();
+            assert!(s.error_estimate.is_none(), "a single mesh has no estimate");
+            (s.gamma.unwrap() - bem) / bem
+        })
+        .collect();
+    // Too stiff, and each level (sizes halved) cuts the error by more than 3.
+    assert!(errors.iter().all(|&e| e > 0.0), "{errors:?}");
+    assert!(
+        errors[1] < errors[0] / 3.0 && errors[2] < errors[1] / 3.0,
+        "{errors:?}"
+    );
+}
+
+#[test]
+fn the_answer_does_not_depend_on_poisson_ratio() {
+    // The rigid frictionless punch depends on E* only; the FEM must reproduce that.
+    let run = |nu: f64| {
+        let options = FemOptions {
+            degree: Degree::Quadratic,
+            tolerance: 1e-3,
+            mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
+            poisson_ratio: nu,
+        };
+        solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.0), &options).unwrap()
+    };
+    let (a, b) = (run(0.0), run(0.45));
+    assert!((a.gamma2.unwrap() - b.gamma2.unwrap()).abs() / a.gamma2.unwrap() < 1e-3);
+}
+
+#[test]
+fn mismatched_mesh_and_scene_are_errors() {
+    let options = FemOptions {
+        degree: Degree::Quadratic,
+        tolerance: 1e-3,
+        mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),
+        poisson_ratio: 0.0,
+    };
+    let e = solver::solve(PunchKind::FlatAnnulus, 0.9, FemLoad::Flat, &options).unwrap_err();
+    assert!(matches!(e, Error::InvalidMesh { .. }), "{e}");
+    let e = solver::solve(
+        PunchKind::FlatAnnulus,
+        0.3,
+        FemLoad::Flat,
+        &FemOptions {
+            mesh: None,
+            ..options
+        },
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("make_meshes.sh --b 0.3"), "{e}");
+}

@@ -1,0 +1,167 @@
+//! The gmsh reader: a valid file is read with its physical tags; every kind of malformed input is
+//! a clear error naming the file and the problem, never a panic.
+
+use ringcontact::fem::mesh::{tags, Degree};
+use ringcontact::fem::msh::{parse_msh, read_msh};
+
+/// Unit square `[0, 1] x [-1, 0]` in `(r, z)`: two triangles; top = contact (1), right and
+/// bottom = far (3), left = axis (4); solid = 10.
+const VALID: &str = "$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$Entities
+0 3 1 0
+1 0 0 0 1 0 0 1 1 0
+2 0 -1 0 1 0 0 1 3 0
+3 0 -1 0 0 0 0 1 4 0
+1 0 -1 0 1 0 0 1 10 0
+$EndEntities
+$Nodes
+1 4 1 4
+2 1 0 4
+1
+2
+3
+4
+0 0 0
+1 0 0
+1 -1 0
+0 -1 0
+$EndNodes
+$Elements
+4 6 1 6
+1 1 1 1
+1 1 2
+1 2 1 2
+2 2 3
+3 3 4
+1 3 1 1
+4 4 1
+2 1 2 2
+5 1 4 3
+6 1 3 2
+$EndElements
+";
+
+const REQUIRED: [(i32, &str); 3] = [
+    (tags::CONTACT, "contact"),
+    (tags::FAR, "far"),
+    (tags::AXIS, "axis"),
+];
+
+fn error_of(text: &str) -> String {
+    match parse_msh(text.as_bytes(), "test.msh") {
+        Err(e) => e.to_string(),
+        Ok(mesh) => match mesh.validate(&REQUIRED) {
+            Err(e) => e.to_string(),
+            Ok(()) => panic!("accepted a malformed mesh:\n{text}"),
+        },
+    }
+}
+
+#[test]
+fn reads_a_valid_mesh_with_its_tags() {
+    let mesh = parse_msh(VALID.as_bytes(), "test.msh").unwrap();
+    mesh.validate(&REQUIRED).unwrap();
+    assert_eq!(mesh.degree, Degree::Linear);
+    assert_eq!(mesh.nodes.len(), 4);
+    assert_eq!(mesh.cell_count(), 2);
+    assert_eq!(mesh.boundary_nodes(tags::CONTACT).len(), 2);
+    assert_eq!(mesh.boundary_nodes(tags::FAR).len(), 3);
+    let quadratic = mesh.to_quadratic();
+    quadratic.validate(&REQUIRED).unwrap();
+    assert_eq!(quadratic.nodes.len(), 9);
+    assert_eq!(quadratic.to_linear().nodes.len(), 4);
+}
+
+#[test]
+fn a_clockwise_mesh_is_reoriented_consistently() {
+    let clockwise = VALID.replace("5 1 4 3\n6 1 3 2", "5 1 3 4\n6 1 2 3");
+    let mesh = parse_msh(clockwise.as_bytes(), "test.msh").unwrap();
+    mesh.validate(&REQUIRED).unwrap();
+}
+
+#[test]
+fn malformed_meshes_are_errors_that_name_the_problem() {
+    let cases: Vec<(String, &str)> = vec![
+        (
+            VALID
+                .replace("2 2 3\n3 3 4\n", "")
+                .replace("1 2 1 2\n", "1 2 1 0\n")
+                .replace("4 6 1 6", "4 4 1 6"),
+            "physical group 3 (far) is missing",
+        ),
+        (
+            VALID
+                .replace("2 1 2 2\n5 1 4 3\n6 1 3 2", "2 1 3 1\n5 1 4 3 2")
+                .replace("4 6 1 6", "4 5 1 6"),
+            "unsupported element type Qua4",
+        ),
+        (VALID.replace("5 1 4 3\n", "5 1 3 4\n"), "inverted"),
+        (
+            VALID.replace("0 -1 0\n$EndNodes", "-0.5 -1 0\n$EndNodes"),
+            "off the half-plane",
+        ),
+        // Node 3 moved onto the line between nodes 1 and 2: triangle (1, 3, 2) has zero area.
+        (
+            VALID.replace("1 -1 0\n0 -1 0", "0.5 0 0\n0 -1 0"),
+            "degenerate",
+        ),
+        (VALID.replace("6 1 3 2", "6 1 3 99"), "node 99"),
+        (
+            VALID.replace("1 0 -1 0 1 0 0 1 10 0", "1 0 -1 0 1 0 0 0 0"),
+            "surface 1 has no physical tag",
+        ),
+        (
+            VALID.replace("3 0 -1 0 0 0 0 1 4 0", "3 0 -1 0 0 0 0 0 0"),
+            "boundary curve 3 has no physical tag",
+        ),
+        (
+            "this is not a mesh".to_string(),
+            "not a readable gmsh 4.1 mesh",
+        ),
+        (VALID.replace("4.1 0 8", "2.2 0 8"), "test.msh"),
+    ];
+    for (text, needle) in cases {
+        let message = error_of(&text);
+        assert!(
+            message.contains(needle),
+            "expected {needle:?} in {message:?}"
+        );
+        assert!(
+            message.contains("test.msh"),
+            "the file is not named in {message:?}"
+        );
+    }
+}
+
+#[test]
+fn a_missing_file_is_an_error() {
+    let e = read_msh(std::path::Path::new("/nonexistent/mesh.msh"))
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("/nonexistent/mesh.msh") && e.contains("cannot read"),
+        "{e}"
+    );
+}
+
+#[test]
+fn committed_meshes_are_valid() {
+    let dir = ringcontact::fem::solver::mesh_directory();
+    let mut count = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "msh") {
+            let mesh = read_msh(&path).unwrap();
+            mesh.validate(&REQUIRED).unwrap();
+            mesh.to_quadratic().validate(&REQUIRED).unwrap();
+            count += 1;
+        }
+    }
+    assert!(
+        count >= 9,
+        "expected the committed mesh families L0-L2 in {}",
+        dir.display()
+    );
+}
