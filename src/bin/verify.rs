@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use ringcontact::fem::mesh::Degree;
-use ringcontact::harness::comparison;
+use ringcontact::harness::{comparison, fenicsx};
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference;
@@ -26,7 +26,8 @@ Examples:
   verify                                   comparison table of all methods and references
   verify solve --punch flat-annulus --eps 0.5
   verify solve --punch cone --depth 2 --json
-  verify solve --scene verify/scenes/sphere-d2.toml")]
+  verify solve --scene verify/scenes/cone-depth.toml
+  verify fenicsx                           stored FEniCSx results against our FEM")]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
@@ -53,8 +54,27 @@ Examples:
     /// Compare the methods with the analytic references on all punches (the default job).
     #[command(after_help = "Example:\n  verify compare --tol 1e-10 --json > comparison.json")]
     Compare(CompareArgs),
+    /// Compare every stored FEniCSx result (verify/fenicsx/) with our FEM on the identical problem.
+    #[command(after_help = "\
+Each result is re-solved with FEniCSx's model (same mesh, degree, quadrature, supports): the force
+must agree within 1e-8 and the active contact set must be the same. Results whose mesh changed
+since they were stored are reported as stale and not used.
+
+Refresh the stored results (installs FEniCSx from Debian when missing):
+  bash scripts/fenicsx/run_all.sh
+
+Example:
+  verify fenicsx --json")]
+    Fenicsx(JsonArgs),
     /// List the analytic references and the range of eps where each is valid.
     References,
+}
+
+#[derive(Args)]
+struct JsonArgs {
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -113,6 +133,7 @@ fn main() -> ExitCode {
         }),
         Some(Command::Compare(args)) => run_compare(args),
         Some(Command::Solve(args)) => run_solve(args),
+        Some(Command::Fenicsx(args)) => run_fenicsx(args),
         Some(Command::References) => {
             print_references();
             Ok(ExitCode::SUCCESS)
@@ -129,15 +150,40 @@ fn main() -> ExitCode {
 
 fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
+    let external = fenicsx::run().map_err(|e| e.to_string())?;
     if args.json {
+        let both = serde_json::json!({ "comparison": report, "fenicsx": external });
         println!(
             "{}",
-            serde_json::to_string_pretty(&report).map_err(|e| e.to_string())?
+            serde_json::to_string_pretty(&both).map_err(|e| e.to_string())?
         );
     } else {
         print!("{}", comparison::render(&report));
+        print!("{}", fenicsx::render(&external));
+        println!(
+            "\n{} FEniCSx comparisons, {} failed.",
+            external.len(),
+            fenicsx::failures(&external)
+        );
     }
-    Ok(if report.failures() == 0 {
+    Ok(if report.failures() + fenicsx::failures(&external) == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn run_fenicsx(args: JsonArgs) -> Result<ExitCode, String> {
+    let rows = fenicsx::run().map_err(|e| e.to_string())?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", fenicsx::render(&rows));
+    }
+    Ok(if fenicsx::failures(&rows) == 0 {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE

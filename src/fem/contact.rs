@@ -38,6 +38,8 @@ pub struct ContactSolution {
     pub complementarity_residual: f64,
     /// `(r, λ_i)` of the contact-line nodes, ascending in `r` (nodal reaction forces).
     pub reactions: Vec<(f64, f64)>,
+    /// Radii of the contact-line nodes in contact (constrained), ascending.
+    pub active_radii: Vec<f64>,
     /// Nodal displacements.
     pub displacement: Vec<f64>,
 }
@@ -116,6 +118,7 @@ impl<'m> ContactModel<'m> {
         let u = solver.solve(&zero, &constrained, &prescribed)?;
         let reactions = self.reactions(solver, &u, &zero);
         Ok(ContactSolution {
+            active_radii: reactions.iter().map(|r| r.0).collect(),
             force: reactions.iter().map(|r| r.1).sum(),
             inner_radius: self.contact_line_start(),
             inner_node_spacing: 0.0,
@@ -195,8 +198,15 @@ impl<'m> ContactModel<'m> {
                     .filter(|(_, &a)| a)
                     .map(|(r, _)| r.1)
                     .sum();
+                let active_radii = reactions
+                    .iter()
+                    .zip(&active)
+                    .filter(|(_, &a)| a)
+                    .map(|(r, _)| r.0)
+                    .collect();
                 return Ok((
                     ContactSolution {
+                        active_radii,
                         force,
                         inner_radius,
                         inner_node_spacing,

@@ -83,6 +83,8 @@ pub struct FemState {
     pub wall_s: f64,
     /// `(r/a, nodal reaction)` along the contact line.
     pub reactions: Vec<(f64, f64)>,
+    /// Radii of the contact-line nodes in contact, ascending (the active set).
+    pub active_radii: Vec<f64>,
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
 }
@@ -268,6 +270,7 @@ fn finish(
         degree,
         wall_s: start.elapsed().as_secs_f64(),
         reactions: solution.reactions,
+        active_radii: solution.active_radii,
         timings: model.timings,
     }
 }

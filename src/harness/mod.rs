@@ -1,3 +1,4 @@
 //! The verification harness: tables comparing methods with each other and with the references.
 
 pub mod comparison;
+pub mod fenicsx;

@@ -1,0 +1,219 @@
+"""Solve one punch scene with FEniCSx (dolfinx 0.5) on a committed gmsh mesh and store the result.
+
+The discrete problem is the one `verify solve --method fem --mesh M --degree k` solves:
+  * axisymmetric linear elasticity in (r, z), E = 1, nu = 0 (so E* = 1), Lagrange P1 or P2 on the
+    mesh's straight-sided triangles;
+  * weak form  a(u, v) = int sigma(u) : eps(v) 2 pi r dx  with a FIXED quadrature degree (2 for P1,
+    4 for P2: basix's default rules, the same points the Rust code uses);
+  * u = 0 on the far arc (tag 3), u_r = 0 on the axis (tag 4);
+  * flat punches: u_z = -d on the contact line (tag 1); concave punches: u_z <= -d + h g(r) on every
+    contact-line z-dof, solved by PETSc's SNES variational-inequality solver (vinewtonrsls);
+  * force = -(sum of K u over the contact-line z-dofs): the consistent nodal reactions.
+
+Usage: /usr/bin/python3 solve.py --punch cone --mesh meshes/disk-L1.msh --degree 2 --depth 2
+       [--eps B_OVER_A] --out verify/fenicsx/NAME.json      (run from the repository root)
+"""
+
+import argparse
+import datetime
+import hashlib
+import json
+import os
+import sys
+import time
+
+import gmsh
+import numpy as np
+import ufl
+from mpi4py import MPI
+from petsc4py import PETSc
+
+import dolfinx
+from dolfinx import fem
+from dolfinx.fem.petsc import (apply_lifting, assemble_matrix, assemble_vector,
+                               create_matrix, create_vector, set_bc)
+from dolfinx.io import gmshio
+
+CONTACT, FREE, FAR, AXIS, HOLE = 1, 2, 3, 4, 5
+BIG = 1e20
+
+
+def gap_shape(punch, r):
+    if punch == "cone":
+        return 1.0 - r
+    if punch == "sphere":
+        return 1.0 - r * r
+    return 0.0 * r
+
+
+def sha256(path):
+    with open(path, "rb") as f:
+        return hashlib.sha256(f.read()).hexdigest()
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--punch", required=True, choices=["flat", "flat-annulus", "cone", "sphere"])
+    p.add_argument("--mesh", required=True)
+    p.add_argument("--degree", type=int, default=2, choices=[1, 2])
+    p.add_argument("--depth", type=float, default=1.0)
+    p.add_argument("--eps", type=float, default=None, help="b/a of the flat annulus")
+    p.add_argument("--out", required=True)
+    args = p.parse_args()
+
+    start = time.perf_counter()
+    # dolfinx 0.5.2's gmshio.read_from_msh returns an undefined name; do what it meant to do.
+    gmsh.initialize()
+    gmsh.option.setNumber("General.Terminal", 0)
+    gmsh.model.add("mesh")
+    gmsh.merge(args.mesh)
+    mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
+    gmsh.finalize()
+    V = fem.VectorFunctionSpace(mesh, ("Lagrange", args.degree))
+    x = ufl.SpatialCoordinate(mesh)
+    u_trial, v = ufl.TrialFunction(V), ufl.TestFunction(V)
+
+    E, nu = 1.0, 0.0
+    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+    mu = E / (2 * (1 + nu))
+
+    def strain(w):
+        return ufl.sym(ufl.as_tensor([[w[0].dx(0), 0, w[0].dx(1)],
+                                      [0, w[0] / x[0], 0],
+                                      [w[1].dx(0), 0, w[1].dx(1)]]))
+
+    def stress(w):
+        e = strain(w)
+        return lam * ufl.tr(e) * ufl.Identity(3) + 2 * mu * e
+
+    qdeg = 2 if args.degree == 1 else 4
+    dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": qdeg})
+    a = ufl.inner(stress(u_trial), strain(v)) * 2 * np.pi * x[0] * dx
+    a_form = fem.form(a)
+
+    fdim = 1
+    far_dofs = fem.locate_dofs_topological(V, fdim, facet_tags.find(FAR))
+    axis_dofs = fem.locate_dofs_topological(V.sub(0), fdim, facet_tags.find(AXIS))
+    contact_dofs = fem.locate_dofs_topological(V.sub(1), fdim, facet_tags.find(CONTACT))
+    bcs = [fem.dirichletbc(np.zeros(2, dtype=PETSc.ScalarType), far_dofs, V),
+           fem.dirichletbc(PETSc.ScalarType(0.0), axis_dofs, V.sub(0))]
+
+    # Coordinates of the dofs (r of each z-dof on the contact line).
+    coords = V.tabulate_dof_coordinates()
+    bs = V.dofmap.index_map_bs
+    contact_r = np.array([coords[d // bs][0] for d in contact_dofs])
+
+    u = fem.Function(V)
+    K = assemble_matrix(a_form)  # without boundary conditions: K u gives the reactions
+    K.assemble()
+    iterations = 1
+
+    if args.punch in ("flat", "flat-annulus"):
+        bcs_flat = bcs + [fem.dirichletbc(PETSc.ScalarType(-args.depth), contact_dofs, V.sub(1))]
+        A = assemble_matrix(a_form, bcs=bcs_flat)
+        A.assemble()
+        b = u.vector.duplicate()  # no body force: the right side comes from the lifting only
+        with b.localForm() as bl:
+            bl.set(0.0)
+        apply_lifting(b, [a_form], bcs=[bcs_flat])
+        b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+        set_bc(b, bcs_flat)
+        ksp = PETSc.KSP().create(mesh.comm)
+        ksp.setOperators(A)
+        ksp.setType("preonly")
+        ksp.getPC().setType("lu")
+        ksp.solve(b, u.vector)
+        u.x.scatter_forward()
+        active = np.ones(len(contact_dofs), dtype=bool)
+    else:
+        # Residual F(u) = K u with Dirichlet rows, Jacobian K; bounds on the contact z-dofs.
+        residual_form = fem.form(ufl.action(a, u))
+        J = create_matrix(a_form)
+        F = create_vector(residual_form)
+
+        def form_residual(snes, X, B):
+            X.copy(u.vector)
+            u.x.scatter_forward()
+            with B.localForm() as bl:
+                bl.set(0.0)
+            assemble_vector(B, residual_form)
+            apply_lifting(B, [a_form], bcs=[bcs], x0=[X], scale=-1.0)
+            B.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
+            set_bc(B, bcs, X, -1.0)
+
+        def form_jacobian(snes, X, A, P):
+            A.zeroEntries()
+            assemble_matrix(A, a_form, bcs=bcs)
+            A.assemble()
+
+        upper = u.vector.duplicate()
+        lower = u.vector.duplicate()
+        upper.set(BIG)
+        lower.set(-BIG)
+        bound = -args.depth + gap_shape(args.punch, contact_r)
+        upper.array[contact_dofs] = bound
+        snes = PETSc.SNES().create(mesh.comm)
+        snes.setFunction(form_residual, F)
+        snes.setJacobian(form_jacobian, J)
+        snes.setType("vinewtonrsls")
+        snes.setVariableBounds(lower, upper)
+        snes.setTolerances(rtol=1e-14, atol=1e-13, max_it=100)
+        ksp = snes.getKSP()
+        ksp.setType("preonly")
+        ksp.getPC().setType("lu")
+        x0 = u.vector.duplicate()
+        x0.set(0.0)
+        snes.solve(None, x0)
+        if snes.getConvergedReason() <= 0:
+            print(f"SNES did not converge: reason {snes.getConvergedReason()}", file=sys.stderr)
+            return 1
+        x0.copy(u.vector)
+        u.x.scatter_forward()
+        iterations = snes.getIterationNumber()
+        active = u.vector.array[contact_dofs] >= bound - 1e-10 * args.depth
+
+    reaction = u.vector.duplicate()
+    K.mult(u.vector, reaction)
+    force = -float(np.sum(reaction.array[contact_dofs]))
+    wall = time.perf_counter() - start
+
+    root = os.getcwd()
+    mesh_rel = os.path.relpath(os.path.abspath(args.mesh), root)
+    cmd = f"verify solve --punch {args.punch} --method fem --mesh {mesh_rel} --degree {args.degree}"
+    if args.punch == "flat-annulus":
+        cmd += f" --eps {args.eps}"
+    if args.punch in ("cone", "sphere"):
+        cmd += f" --depth {args.depth}"
+    cmd += " --json"
+    active_r = sorted(float(r) for r, a_ in zip(contact_r, active) if a_)
+    result = {
+        "punch": args.punch,
+        "mesh": mesh_rel,
+        "mesh_sha256": sha256(args.mesh),
+        "degree": args.degree,
+        "quadrature_degree": qdeg,
+        "depth": args.depth,
+        "eps": args.eps if args.punch == "flat-annulus" else None,
+        "force": force,
+        "inner_radius": (min(active_r) if active_r else None) if args.punch in ("cone", "sphere") else None,
+        "active_contact_radii": active_r,
+        "dofs": int(V.dofmap.index_map.size_global * bs),
+        "iterations": int(iterations),
+        "wall_s": wall,
+        "dolfinx_version": dolfinx.__version__,
+        "petsc_version": ".".join(str(n) for n in PETSc.Sys.getVersion()),
+        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "reproduce": cmd,
+        "notes": "E = 1, nu = 0 (E* = 1), a = h = 1; force includes the 2 pi of the axisymmetric "
+                 "weak form; inner_radius is the innermost active contact node (not interpolated)",
+    }
+    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
+    with open(args.out, "w") as f:
+        json.dump(result, f, indent=2)
+        f.write("\n")
+    print(f"{args.out}: force {force:.12g}, {result['dofs']} dofs, {iterations} iterations, {wall:.2f} s")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,269 @@
+//! FEniCSx as the external finite-element reference (results stored by `scripts/fenicsx/`).
+//!
+//! Each stored result is re-solved here with exactly FEniCSx's model (same mesh file, element
+//! degree, quadrature, boundary conditions, no truncation correction: `--mesh M --degree k`), and
+//! the two codes must agree to solver tolerance: force within 1e-8 relative and the same active
+//! contact set. A result whose mesh file changed since it was stored (SHA-256 mismatch) is stale:
+//! it is reported and not used. Both codes are also shown against the ring BEM, so discretisation
+//! error and code agreement are seen apart.
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::fem::mesh::Degree;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::punch::PunchKind;
+
+/// Relative force agreement required of two codes solving the identical discrete problem.
+pub const FORCE_AGREEMENT: f64 = 1e-8;
+
+/// One stored FEniCSx result (`verify/fenicsx/*.json`).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+pub struct FenicsxResult {
+    pub punch: PunchKind,
+    pub mesh: String,
+    pub mesh_sha256: String,
+    pub degree: u8,
+    pub depth: f64,
+    pub eps: Option<f64>,
+    pub force: f64,
+    pub inner_radius: Option<f64>,
+    pub active_contact_radii: Vec<f64>,
+    pub dofs: usize,
+    pub iterations: usize,
+    pub wall_s: f64,
+    pub dolfinx_version: String,
+    pub petsc_version: String,
+    pub date: String,
+    pub reproduce: String,
+}
+
+/// What the harness made of one stored result.
+#[derive(Clone, Debug, Serialize)]
+pub struct FenicsxComparison {
+    pub file: String,
+    pub stored: FenicsxResult,
+    /// `current`, `stale` (mesh changed) or `missing-mesh`.
+    pub status: String,
+    pub our_force: Option<f64>,
+    pub relative_difference: Option<f64>,
+    pub same_active_set: Option<bool>,
+    pub our_wall_s: Option<f64>,
+    /// Ours / FEniCSx's wall time on the same problem.
+    pub wall_time_ratio: Option<f64>,
+    /// Ring-BEM force at the same state (the yardstick) and both codes' errors against it.
+    pub ring_bem_force: Option<f64>,
+    pub fenicsx_error: Option<f64>,
+    pub our_error: Option<f64>,
+    pub passed: bool,
+}
+
+/// Root of the repository (where `meshes/` and `verify/` live).
+pub fn repository_root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Directory of the stored FEniCSx results.
+pub fn results_directory() -> PathBuf {
+    repository_root().join("verify").join("fenicsx")
+}
+
+/// SHA-256 of a file, hex.
+pub fn sha256_of(path: &Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|e| Error::InvalidMesh {
+        path: path.display().to_string(),
+        message: format!("cannot read: {e}"),
+    })?;
+    Ok(Sha256::digest(&bytes)
+        .iter()
+        .map(|b| format!("{b:02x}"))
+        .collect())
+}
+
+/// Read every stored result, sorted by file name.
+pub fn load_results(dir: &Path) -> Result<Vec<(String, FenicsxResult)>> {
+    let mut files: Vec<PathBuf> = match std::fs::read_dir(dir) {
+        Ok(entries) => entries
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| p.extension().is_some_and(|x| x == "json"))
+            .collect(),
+        Err(_) => Vec::new(),
+    };
+    files.sort();
+    files
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).map_err(|e| Error::SceneFile {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            })?;
+            let result: FenicsxResult =
+                serde_json::from_str(&text).map_err(|e| Error::SceneFile {
+                    path: path.display().to_string(),
+                    message: format!("not a FEniCSx result: {e}"),
+                })?;
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            Ok((name, result))
+        })
+        .collect()
+}
+
+/// Compare one stored result with our FEM on the identical problem.
+pub fn compare(
+    file: &str,
+    stored: &FenicsxResult,
+    ring: &RingBemSolver,
+) -> Result<FenicsxComparison> {
+    let mesh_path = repository_root().join(&stored.mesh);
+    let mut out = FenicsxComparison {
+        file: file.to_string(),
+        stored: stored.clone(),
+        status: "current".into(),
+        our_force: None,
+        relative_difference: None,
+        same_active_set: None,
+        our_wall_s: None,
+        wall_time_ratio: None,
+        ring_bem_force: None,
+        fenicsx_error: None,
+        our_error: None,
+        passed: false,
+    };
+    if !mesh_path.exists() {
+        out.status = "missing-mesh".into();
+        return Ok(out);
+    }
+    if sha256_of(&mesh_path)? != stored.mesh_sha256 {
+        out.status = "stale".into();
+        return Ok(out);
+    }
+    let degree = Degree::from_number(stored.degree).ok_or_else(|| Error::Unsupported {
+        method: "fenicsx".into(),
+        reason: format!("{file}: degree {}", stored.degree),
+    })?;
+    let (eps, load) = match stored.punch {
+        PunchKind::Flat => (0.0, FemLoad::Flat),
+        PunchKind::FlatAnnulus => (stored.eps.unwrap_or(0.0), FemLoad::Flat),
+        _ => (0.0, FemLoad::ConcaveDepth(stored.depth)),
+    };
+    let options = FemOptions {
+        degree,
+        tolerance: fem_solver::DEFAULT_TOLERANCE,
+        mesh: Some(mesh_path),
+        poisson_ratio: 0.0,
+    };
+    let start = Instant::now();
+    let ours = fem_solver::solve(stored.punch, eps, load, &options)?;
+    let our_wall = start.elapsed().as_secs_f64();
+    // Flat punches: F = 2 γ d; concave (h = 1): F = 2 γ2.
+    let our_force = match load {
+        FemLoad::Flat => 2.0 * ours.gamma.unwrap_or(f64::NAN) * stored.depth,
+        _ => 2.0 * ours.gamma2.unwrap_or(f64::NAN),
+    };
+    let relative = (our_force - stored.force) / stored.force;
+    let same_active = ours.active_radii.len() == stored.active_contact_radii.len()
+        && ours
+            .active_radii
+            .iter()
+            .zip(&stored.active_contact_radii)
+            .all(|(a, b)| (a - b).abs() <= 1e-9);
+    let ring_force = match load {
+        FemLoad::Flat => ring.flat(eps, 1e-10)?.gamma.map(|g| 2.0 * g * stored.depth),
+        _ => ring
+            .concave_at_depth(stored.punch, stored.depth, 1e-10)?
+            .gamma2
+            .map(|g| 2.0 * g),
+    };
+    out.our_force = Some(our_force);
+    out.relative_difference = Some(relative);
+    out.same_active_set = Some(same_active);
+    out.our_wall_s = Some(our_wall);
+    out.wall_time_ratio = Some(our_wall / stored.wall_s);
+    out.ring_bem_force = ring_force;
+    out.fenicsx_error = ring_force.map(|r| (stored.force - r) / r);
+    out.our_error = ring_force.map(|r| (our_force - r) / r);
+    out.passed = relative.abs() <= FORCE_AGREEMENT && same_active;
+    Ok(out)
+}
+
+/// Compare every stored result.
+pub fn run() -> Result<Vec<FenicsxComparison>> {
+    let ring = RingBemSolver::new();
+    load_results(&results_directory())?
+        .iter()
+        .map(|(file, stored)| compare(file, stored, &ring))
+        .collect()
+}
+
+/// Number of failures: disagreements (stale results are reported, not failures).
+pub fn failures(rows: &[FenicsxComparison]) -> usize {
+    rows.iter()
+        .filter(|r| r.status == "current" && !r.passed)
+        .count()
+}
+
+/// Human-readable table.
+pub fn render(rows: &[FenicsxComparison]) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nFEniCSx (stored, verify/fenicsx/) against our FEM on the identical discrete problem \
+         (pass: force within {FORCE_AGREEMENT:.0e}, same active set), both against the ring BEM:"
+    );
+    let _ = writeln!(
+        out,
+        "  {:<34} {:>7} {:>10} {:>7} {:>11} {:>11} {:>7} {:>7} {:>6}",
+        "stored result",
+        "dofs",
+        "rel.diff",
+        "active",
+        "FEniCSx err",
+        "our err",
+        "ours s",
+        "FEniCSx s",
+        "ratio"
+    );
+    for r in rows {
+        if r.status != "current" {
+            let _ = writeln!(
+                out,
+                "  {:<34} {} (mesh {}): not used; refresh with scripts/fenicsx/run_all.sh",
+                r.file,
+                r.status.to_uppercase(),
+                r.stored.mesh
+            );
+            continue;
+        }
+        let _ = writeln!(
+            out,
+            "  {:<34} {:>7} {:>+10.1e} {:>7} {:>+11.2e} {:>+11.2e} {:>7.3} {:>7.3} {:>6.2}  {}",
+            r.file,
+            r.stored.dofs,
+            r.relative_difference.unwrap_or(f64::NAN),
+            if r.same_active_set == Some(true) {
+                "same"
+            } else {
+                "DIFF"
+            },
+            r.fenicsx_error.unwrap_or(f64::NAN),
+            r.our_error.unwrap_or(f64::NAN),
+            r.our_wall_s.unwrap_or(f64::NAN),
+            r.stored.wall_s,
+            r.wall_time_ratio.unwrap_or(f64::NAN),
+            if r.passed { "ok" } else { "FAIL" }
+        );
+    }
+    if rows.is_empty() {
+        let _ = writeln!(out, "  (no stored results; run scripts/fenicsx/run_all.sh)");
+    }
+    out
+}

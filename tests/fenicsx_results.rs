@@ -1,0 +1,78 @@
+//! The stored FEniCSx results (verify/fenicsx/, produced by scripts/fenicsx/run_all.sh with
+//! dolfinx) against our FEM on the identical discrete problem: every committed result must belong
+//! to the committed meshes (SHA-256), agree in force within 1e-8 and have the same active contact
+//! set. A result whose mesh changed is caught as stale and not used.
+
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::harness::fenicsx::{
+    self, compare, load_results, results_directory, FORCE_AGREEMENT,
+};
+
+#[test]
+fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
+    let rows = fenicsx::run().unwrap();
+    assert!(
+        rows.len() >= 10,
+        "expected the default suite of stored results, found {}",
+        rows.len()
+    );
+    for row in &rows {
+        assert_eq!(
+            row.status, "current",
+            "{}: mesh {} changed since the result was stored",
+            row.file, row.stored.mesh
+        );
+        let diff = row.relative_difference.unwrap();
+        assert!(
+            diff.abs() <= FORCE_AGREEMENT,
+            "{}: force differs by {diff:e}",
+            row.file
+        );
+        assert_eq!(
+            row.same_active_set,
+            Some(true),
+            "{}: active sets differ",
+            row.file
+        );
+        assert!(
+            row.stored.reproduce.starts_with("verify solve --punch"),
+            "{}: no reproduce line",
+            row.file
+        );
+        assert!(!row.stored.dolfinx_version.is_empty() && !row.stored.petsc_version.is_empty());
+    }
+}
+
+#[test]
+fn a_result_whose_mesh_changed_is_stale_and_not_used() {
+    let (file, mut stored) = load_results(&results_directory())
+        .unwrap()
+        .into_iter()
+        .next()
+        .unwrap();
+    stored.mesh_sha256 = "0".repeat(64);
+    let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
+    assert_eq!(row.status, "stale");
+    assert!(row.our_force.is_none() && !row.passed);
+    assert_eq!(
+        fenicsx::failures(std::slice::from_ref(&row)),
+        0,
+        "stale results are reported, not compared"
+    );
+    assert!(fenicsx::render(&[row]).contains("STALE"));
+}
+
+#[test]
+fn a_disagreeing_result_fails() {
+    // The check must be able to fail: a force off by 1e-6 is a disagreement.
+    let (file, mut stored) = load_results(&results_directory())
+        .unwrap()
+        .into_iter()
+        .next()
+        .unwrap();
+    stored.force *= 1.0 + 1e-6;
+    let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
+    assert_eq!(row.status, "current");
+    assert!(!row.passed);
+    assert_eq!(fenicsx::failures(&[row]), 1);
+}
