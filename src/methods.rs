@@ -10,6 +10,8 @@ use serde::Serialize;
 
 use std::path::PathBuf;
 
+use crate::bem::grid::GridLoad;
+use crate::bem::grid_contact;
 use crate::bem::ring_contact::{self, RingBemSolver, RingState};
 use crate::error::{Error, Result};
 use crate::fem::mesh::Degree;
@@ -30,6 +32,8 @@ pub enum Method {
     Reference,
     /// Axisymmetric finite elements (P1/P2 triangles) on committed gmsh meshes.
     Fem,
+    /// The paper's 3-D FFT BEM on a square grid (Polonsky-Keer), `--grid N`.
+    GridBem,
 }
 
 impl Method {
@@ -39,6 +43,7 @@ impl Method {
             Method::RingBem => ring_contact::METHOD,
             Method::Reference => "reference",
             Method::Fem => fem_solver::METHOD,
+            Method::GridBem => crate::bem::grid::METHOD,
         }
     }
 }
@@ -50,6 +55,8 @@ pub struct MethodOptions {
     pub mesh: Option<PathBuf>,
     /// FEM: element degree (default quadratic).
     pub degree: Option<Degree>,
+    /// Grid BEM: cells per side (default 256).
+    pub grid: Option<usize>,
 }
 
 /// Solve `scene` with `method`.
@@ -65,11 +72,81 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
             reason: "--mesh and --degree apply to --method fem only".into(),
         });
     }
+    if method != Method::GridBem && options.grid.is_some() {
+        return Err(Error::Unsupported {
+            method: method.name().into(),
+            reason: "--grid applies to --method grid-bem only".into(),
+        });
+    }
     match method {
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
         Method::Fem => solve_fem(scene, options),
+        Method::GridBem => solve_grid_bem(scene, options.grid.unwrap_or(DEFAULT_GRID)),
     }
+}
+
+/// Default cells per side of the grid BEM.
+pub const DEFAULT_GRID: usize = 256;
+
+/// Solve with the square-grid FFT BEM on an `n x n` grid. Its convergence criterion is the
+/// complementarity residual (tolerance 1e-10, or the scene's if tighter); it has no estimate of
+/// its discretisation error (run `verify convergence --method grid-bem` for one).
+pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
+    let kind = scene.punch.kind;
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let h = scene.punch.hole_depth;
+    let load = match (kind, scene.load) {
+        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => GridLoad::Depth(1.0),
+        (_, Load::Depth(d)) => GridLoad::Depth(d / h),
+        (_, Load::Force(f)) => GridLoad::Force(f / (2.0 * es * h * a)),
+        (_, Load::ContactRatio(_)) => {
+            return Err(Error::Unsupported {
+                method: crate::bem::grid::METHOD.into(),
+                reason: "the grid BEM takes a depth or a force (use the ring BEM for --eps)".into(),
+            })
+        }
+    };
+    let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
+    let state = grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?;
+    let (depth, force) = match state.gamma {
+        Some(gamma) => flat_depth_force(scene, gamma)?,
+        None => (
+            h * state.gamma1.unwrap_or(f64::NAN),
+            2.0 * es * h * a * state.gamma2.unwrap_or(f64::NAN),
+        ),
+    };
+    Ok(Solution {
+        punch: kind,
+        method: crate::bem::grid::METHOD.to_string(),
+        eps: state.eps,
+        depth,
+        force,
+        inner_radius: state.eps * a,
+        rim_radius: a,
+        gamma: state.gamma,
+        gamma1: state.gamma1,
+        gamma2: state.gamma2,
+        stress_intensity_rim: None,
+        stress_intensity_inner: None,
+        error_estimate: None,
+        wall_s: state.wall_s,
+        unknowns: n * n,
+        iterations: state.iterations,
+        dofs: None,
+        mesh: None,
+        degree: None,
+        complementarity_residual: Some(state.residual),
+        grid: Some(n),
+        pressure: Vec::new(),
+        provenance: format!(
+            "square-grid FFT BEM (Love kernel, 2N zero padding, Polonsky-Keer CG), {n} x {n} cells on \
+             [-a, a]^2, {} contact cells, {} iterations, complementarity residual {:.1e}; no \
+             discretisation error estimate on a single grid",
+            state.contact_cells, state.iterations, state.residual
+        ),
+    })
 }
 
 /// Solve with the finite-element method.
@@ -127,6 +204,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         mesh: Some(state.mesh.clone()),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
+        grid: None,
         pressure: Vec::new(),
         provenance: format!(
             "axisymmetric FEM, P{} triangles, {} dofs on {}, domain radius 1e5 a (truncation bias \
@@ -218,6 +296,7 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Solu
         mesh: None,
         degree: None,
         complementarity_residual: None,
+        grid: None,
         pressure: state
             .pressure
             .iter()
@@ -282,6 +361,7 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
         mesh: None,
         degree: None,
         complementarity_residual: None,
+        grid: None,
         pressure: Vec::new(),
         provenance: String::new(),
     };

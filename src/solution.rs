@@ -67,9 +67,12 @@ pub struct Solution {
     /// Element degree, 1 or 2 (FEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub degree: Option<u8>,
-    /// Complementarity residual of the contact solution (FEM, concave punches).
+    /// Complementarity residual of the contact solution (FEM concave punches, grid BEM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub complementarity_residual: Option<f64>,
+    /// Cells per side of the square grid (grid BEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub grid: Option<usize>,
     /// Pressure profile, ascending in `r` (empty for references without one).
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.

@@ -1,4 +1,6 @@
 //! Boundary-element methods for the half-space.
 
+pub mod grid;
+pub mod grid_contact;
 pub mod ring;
 pub mod ring_contact;

@@ -9,7 +9,7 @@ use std::process::ExitCode;
 use clap::{Args, Parser, Subcommand};
 
 use ringcontact::fem::mesh::Degree;
-use ringcontact::harness::{comparison, fenicsx};
+use ringcontact::harness::{comparison, convergence, fenicsx, peers, svg};
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference;
@@ -49,6 +49,7 @@ Examples:
   verify solve --punch cone --depth 2 --method fem --json        FEM, P2, tolerance 1e-3
   verify solve --punch sphere --depth 1 --method fem --tol 1e-4  (needs scripts/make_meshes.sh)
   verify solve --punch flat --method fem --mesh meshes/disk-L1.msh --degree 1
+  verify solve --punch sphere --depth 1.5 --method grid-bem --grid 256 --json
   verify solve --scene verify/scenes/cone-depth.toml --json")]
     Solve(SolveArgs),
     /// Compare the methods with the analytic references on all punches (the default job).
@@ -66,8 +67,44 @@ Refresh the stored results (installs FEniCSx from Debian when missing):
 Example:
   verify fenicsx --json")]
     Fenicsx(JsonArgs),
+    /// Mesh-convergence study of one method: error against the ring BEM, observed order,
+    /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
+    #[command(after_help = "\
+Levels: grid-bem 64, 128, 256, ... cells per side; fem the committed mesh levels L0, L1, ...
+(P2); ring-bem 6, 8, 10, ... collocation nodes (flat punches).
+
+Examples:
+  verify convergence --punch flat --method grid-bem --levels 5          64 .. 1024
+  verify convergence --punch sphere --depth 1.5 --method fem --levels 4
+  verify convergence --punch flat-annulus --eps 0.5 --method ring-bem --levels 6 --json")]
+    Convergence(ConvergenceArgs),
     /// List the analytic references and the range of eps where each is valid.
     References,
+}
+
+#[derive(Args)]
+struct ConvergenceArgs {
+    /// Punch shape.
+    #[arg(long, value_enum)]
+    punch: PunchKind,
+    /// Method to refine.
+    #[arg(long, value_enum)]
+    method: Method,
+    /// Number of refinement levels.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(2..=8))]
+    levels: u64,
+    /// b/a of the flat annulus.
+    #[arg(long, default_value_t = 0.5)]
+    eps: f64,
+    /// d/h of a concave punch.
+    #[arg(long, default_value_t = 1.5)]
+    depth: f64,
+    /// Directory for the CSV and SVG files.
+    #[arg(long, default_value = "reports/convergence")]
+    out: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -109,6 +146,9 @@ struct SolveArgs {
     /// FEM only: element degree, 1 (linear) or 2 (quadratic) [default: 2].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
     degree: Option<u8>,
+    /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=4096))]
+    grid: Option<u64>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
@@ -134,6 +174,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => run_compare(args),
         Some(Command::Solve(args)) => run_solve(args),
         Some(Command::Fenicsx(args)) => run_fenicsx(args),
+        Some(Command::Convergence(args)) => run_convergence(args),
         Some(Command::References) => {
             print_references();
             Ok(ExitCode::SUCCESS)
@@ -151,8 +192,10 @@ fn main() -> ExitCode {
 fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
     let external = fenicsx::run().map_err(|e| e.to_string())?;
+    let peer_rows = peers::run(256).map_err(|e| e.to_string())?;
     if args.json {
-        let both = serde_json::json!({ "comparison": report, "fenicsx": external });
+        let both =
+            serde_json::json!({ "comparison": report, "fenicsx": external, "peers": peer_rows });
         println!(
             "{}",
             serde_json::to_string_pretty(&both).map_err(|e| e.to_string())?
@@ -160,17 +203,87 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     } else {
         print!("{}", comparison::render(&report));
         print!("{}", fenicsx::render(&external));
+        print!("{}", peers::render(&peer_rows));
         println!(
-            "\n{} FEniCSx comparisons, {} failed.",
+            "\n{} FEniCSx comparisons, {} failed; {} peer comparisons, {} failed.",
             external.len(),
-            fenicsx::failures(&external)
+            fenicsx::failures(&external),
+            peer_rows.len(),
+            peers::failures(&peer_rows)
         );
     }
-    Ok(if report.failures() + fenicsx::failures(&external) == 0 {
-        ExitCode::SUCCESS
+    Ok(
+        if report.failures() + fenicsx::failures(&external) + peers::failures(&peer_rows) == 0 {
+            ExitCode::SUCCESS
+        } else {
+            ExitCode::FAILURE
+        },
+    )
+}
+
+fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
+    use std::io::IsTerminal;
+    let eps = if args.punch == PunchKind::FlatAnnulus {
+        args.eps
     } else {
-        ExitCode::FAILURE
+        0.0
+    };
+    if !(0.0..1.0).contains(&eps) {
+        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
+    }
+    if !(args.depth.is_finite() && args.depth > 0.0) {
+        return Err(format!("--depth {}: need a positive d/h", args.depth));
+    }
+    let case = convergence::StudyCase {
+        punch: args.punch,
+        eps,
+        depth: args.depth,
+    };
+    let show = std::io::stderr().is_terminal();
+    let study = convergence::run(case, args.method, args.levels as usize, |level| {
+        if show {
+            eprintln!(
+                "  level {} done: {} unknowns, {:.2} s",
+                level.label, level.unknowns, level.wall_s
+            );
+        }
     })
+    .map_err(|e| e.to_string())?;
+    std::fs::create_dir_all(&args.out)
+        .map_err(|e| format!("cannot create {}: {e}", args.out.display()))?;
+    let stem = format!("{}-{}", args.punch.name(), args.method.name());
+    let csv_path = args.out.join(format!("{stem}.csv"));
+    let svg_path = args.out.join(format!("{stem}.svg"));
+    std::fs::write(&csv_path, convergence::csv(&study)).map_err(|e| e.to_string())?;
+    let series = vec![svg::Series {
+        name: args.method.name().to_string(),
+        points: study
+            .levels
+            .iter()
+            .map(|l| (l.size, l.error.abs()))
+            .collect(),
+    }];
+    let chart = svg::log_log_chart(
+        &format!(
+            "{} {}: |relative error| against the ring BEM",
+            args.punch.name(),
+            study.quantity
+        ),
+        "size h",
+        "|relative error|",
+        &series,
+    );
+    std::fs::write(&svg_path, chart).map_err(|e| e.to_string())?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&study).map_err(|e| e.to_string())?
+        );
+    } else {
+        print!("{}", convergence::render(&study));
+        println!("  wrote {} and {}", csv_path.display(), svg_path.display());
+    }
+    Ok(ExitCode::SUCCESS)
 }
 
 fn run_fenicsx(args: JsonArgs) -> Result<ExitCode, String> {
@@ -233,6 +346,7 @@ fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {
     let options = methods::MethodOptions {
         mesh: args.mesh.clone(),
         degree: args.degree.and_then(Degree::from_number),
+        grid: args.grid.map(|g| g as usize),
     };
     let solution = methods::solve_with(&scene, args.method, &options).map_err(|e| e.to_string())?;
     if args.json {

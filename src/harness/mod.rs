@@ -1,4 +1,7 @@
 //! The verification harness: tables comparing methods with each other and with the references.
 
 pub mod comparison;
+pub mod convergence;
 pub mod fenicsx;
+pub mod peers;
+pub mod svg;

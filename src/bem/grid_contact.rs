@@ -1,0 +1,124 @@
+//! The punch problems on the square-grid BEM ([`super::grid`]), dimensionless (`a = 1`,
+//! `E* = 1`, `d = 1` or `h = 1`).
+//!
+//! The grid spans the punch's bounding square `[-a, a]²` with `N x N` cells; a cell belongs to the
+//! punch when its centre lies in `b <= r <= a` (flat annulus) or `r <= a` (the others), which is the
+//! staircase approximation of the edges that limits the method's convergence. The concave
+//! punches' contact ratio is read off the contact area:
+//! `eps = sqrt(1 - (cells in contact)/(cells under the punch))`.
+
+use std::time::Instant;
+
+use super::grid::{solve_contact, GridLoad, GridOperator};
+use crate::error::{Error, Result};
+use crate::punch::PunchKind;
+
+/// Largest grid accepted (memory: about 100 N² bytes).
+pub const MAX_GRID: usize = 4096;
+
+/// A grid solve of a punch state.
+#[derive(Clone, Debug)]
+pub struct GridState {
+    pub grid: usize,
+    pub eps: f64,
+    pub gamma: Option<f64>,
+    pub gamma1: Option<f64>,
+    pub gamma2: Option<f64>,
+    pub force: f64,
+    pub depth: f64,
+    pub iterations: usize,
+    pub residual: f64,
+    pub contact_cells: usize,
+    pub wall_s: f64,
+}
+
+/// The discretised punch: which cells it covers and its gap there.
+pub struct GridPunch {
+    pub allowed: Vec<bool>,
+    pub profile: Vec<f64>,
+    pub disk_cells: usize,
+}
+
+/// Cell-centre coordinates of an `n x n` grid on `[-1, 1]²`.
+pub fn cell_centre(n: usize, index: usize) -> f64 {
+    let cell = 2.0 / n as f64;
+    (index as f64 + 0.5) * cell - 1.0
+}
+
+/// Discretise an axisymmetric punch on an `n x n` grid.
+pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
+    let mut allowed = vec![false; n * n];
+    let mut profile = vec![0.0; n * n];
+    let mut disk_cells = 0;
+    for i in 0..n {
+        for j in 0..n {
+            let r = cell_centre(n, i).hypot(cell_centre(n, j));
+            if r <= 1.0 {
+                disk_cells += 1;
+                let inside = kind != PunchKind::FlatAnnulus || r >= eps;
+                allowed[i * n + j] = inside;
+                profile[i * n + j] = kind.gap_shape(r);
+            }
+        }
+    }
+    GridPunch {
+        allowed,
+        profile,
+        disk_cells,
+    }
+}
+
+/// Solve a punch state on an `n x n` grid. `load`: depth `d` (flat: 1; concave: `d/h`) or force
+/// `F/(2 E* h a)` for concave punches.
+pub fn solve(
+    kind: PunchKind,
+    eps: f64,
+    n: usize,
+    load: GridLoad,
+    tolerance: f64,
+) -> Result<GridState> {
+    if !(8..=MAX_GRID).contains(&n) {
+        return Err(Error::OutOfRange {
+            method: super::grid::METHOD.into(),
+            reason: format!("grid {n} outside 8..={MAX_GRID} cells per side"),
+        });
+    }
+    let start = Instant::now();
+    let op = GridOperator::new(n, 2.0 / n as f64);
+    let punch = discretise(kind, eps, n);
+    let load = match load {
+        GridLoad::Force(f) => GridLoad::Force(2.0 * f),
+        other => other,
+    };
+    let max_iterations = 50 + 20 * n;
+    let c = solve_contact(
+        &op,
+        &punch.allowed,
+        &punch.profile,
+        load,
+        tolerance,
+        max_iterations,
+    )?;
+    let wall_s = start.elapsed().as_secs_f64();
+    let concave = kind.is_concave();
+    let eps_out = if concave {
+        (1.0 - c.contact_cells as f64 / punch.disk_cells as f64)
+            .max(0.0)
+            .sqrt()
+    } else {
+        eps
+    };
+    Ok(GridState {
+        grid: n,
+        eps: eps_out,
+        gamma: (!concave).then(|| c.force / (2.0 * c.depth)),
+        gamma1: concave.then_some(c.depth),
+        gamma2: concave.then_some(0.5 * c.force),
+        force: c.force,
+        depth: c.depth,
+        iterations: c.iterations,
+        residual: c.residual,
+        contact_cells: c.contact_cells,
+        wall_s,
+    })
+}

@@ -1,0 +1,350 @@
+//! Mesh-convergence studies (solution verification, `shared/docs/VERIFICATION.md`).
+//!
+//! For a sequence of refinements of one method: size `h`, unknowns, value, error against the
+//! yardstick (the ring BEM at 1e-11), the observed order from each consecutive triple,
+//! `p = |ln|ε32/ε21| + q(p)| / ln r21`, `q(p) = ln((r21^p - s)/(r32^p - s))`, `s = sign(ε32/ε21)`
+//! (Celik et al. 2008, solved by fixed-point iteration; for a constant ratio this is
+//! `ln((f3 - f2)/(f2 - f1)) / ln r`), the Richardson extrapolate of the three finest,
+//! `f_ext = f1 + (f1 - f2)/(r21^p - 1)`, the fine-grid convergence index
+//! `GCI = 1.25 |(f1 - f2)/f1| / (r21^p - 1)` and the asymptotic-range check: the order of the
+//! finest triple divided by the order of the previous one (close to 1 in the asymptotic range;
+//! needs four levels; with `p` from the same three solutions the textbook ratio
+//! `GCI_23 / (r^p GCI_12)` would be 1 by construction).
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::bem::grid::GridLoad;
+use crate::bem::grid_contact;
+use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::fem::mesh::Degree;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::methods::Method;
+use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
+
+/// One refinement level.
+#[derive(Clone, Debug, Serialize)]
+pub struct Level {
+    pub label: String,
+    /// Representative size: cell side (grid BEM), `1/sqrt(dofs)` (FEM), `1/N` (ring BEM).
+    pub size: f64,
+    pub unknowns: usize,
+    /// `γ` (flat punches) or `γ2` (concave punches, depth control).
+    pub value: f64,
+    pub error: f64,
+    pub wall_s: f64,
+    /// Observed order from this level and the two coarser ones.
+    pub observed_order: Option<f64>,
+}
+
+/// A convergence study.
+#[derive(Clone, Debug, Serialize)]
+pub struct Study {
+    pub punch: PunchKind,
+    pub method: String,
+    pub quantity: String,
+    pub yardstick: f64,
+    pub levels: Vec<Level>,
+    pub richardson: Option<f64>,
+    pub richardson_error: Option<f64>,
+    pub gci_fine: Option<f64>,
+    /// Observed order of the finest triple over that of the previous triple.
+    pub asymptotic_ratio: Option<f64>,
+}
+
+/// Observed order of three solutions `f1` (finest), `f2`, `f3` with refinement ratios
+/// `r21 = h2/h1`, `r32 = h3/h2` (Celik et al. 2008). `None` when the differences vanish or the
+/// iteration does not settle.
+pub fn observed_order(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<f64> {
+    let (e21, e32) = (f2 - f1, f3 - f2);
+    // Differences at rounding level carry no order (the sequence has converged).
+    let floor = 1e-13 * f1.abs().max(f64::MIN_POSITIVE);
+    if e21.abs() <= floor || e32.abs() <= floor {
+        return None;
+    }
+    let s = (e32 / e21).signum();
+    let mut p = ((e32 / e21).abs().ln() / r21.ln()).abs();
+    for _ in 0..200 {
+        let q = ((r21.powf(p) - s) / (r32.powf(p) - s)).ln();
+        let next = ((e32 / e21).abs().ln() + q).abs() / r21.ln();
+        if !next.is_finite() {
+            return None;
+        }
+        if (next - p).abs() < 1e-12 {
+            return Some(next);
+        }
+        p = next;
+    }
+    None
+}
+
+/// `(f_ext, GCI_fine, asymptotic ratio)` from the three finest levels (finest first).
+pub fn richardson(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<(f64, f64, f64)> {
+    let p = observed_order(f1, f2, f3, r21, r32)?;
+    let extrapolate = f1 + (f1 - f2) / (r21.powf(p) - 1.0);
+    let gci12 = 1.25 * ((f1 - f2) / f1).abs() / (r21.powf(p) - 1.0);
+    let gci23 = 1.25 * ((f2 - f3) / f2).abs() / (r32.powf(p) - 1.0);
+    Some((extrapolate, gci12, gci23 / (r21.powf(p) * gci12)))
+}
+
+/// What to study.
+#[derive(Clone, Copy, Debug)]
+pub struct StudyCase {
+    pub punch: PunchKind,
+    /// `b/a` of the flat annulus.
+    pub eps: f64,
+    /// `d/h` of a concave punch.
+    pub depth: f64,
+}
+
+/// Run a study of `levels` refinements with `method`; `progress` is called after each level.
+pub fn run(
+    case: StudyCase,
+    method: Method,
+    levels: usize,
+    mut progress: impl FnMut(&Level),
+) -> Result<Study> {
+    let concave = case.punch.is_concave();
+    let ring = RingBemSolver::new();
+    let yardstick = if concave {
+        ring.concave_at_depth(case.punch, case.depth, 1e-11)?
+            .gamma2
+            .unwrap_or(f64::NAN)
+    } else {
+        ring.flat(case.eps, 1e-11)?.gamma.unwrap_or(f64::NAN)
+    };
+    let mut out: Vec<Level> = Vec::new();
+    for k in 0..levels {
+        let start = Instant::now();
+        let (label, size, unknowns, value) = match method {
+            Method::GridBem => {
+                let n = 64usize << k;
+                let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
+                let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
+                let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+                (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
+            }
+            Method::Fem => {
+                let family = fem_solver::family(case.punch, case.eps)?;
+                let path = fem_solver::mesh_directory().join(format!("{family}-L{k}.msh"));
+                if !path.exists() {
+                    return Err(Error::OutOfRange {
+                        method: "fem".into(),
+                        reason: format!(
+                            "{} does not exist (scripts/make_meshes.sh --levels {})",
+                            path.display(),
+                            k + 1
+                        ),
+                    });
+                }
+                let load = if concave {
+                    FemLoad::ConcaveDepth(case.depth)
+                } else {
+                    FemLoad::Flat
+                };
+                let options = FemOptions {
+                    degree: Degree::Quadratic,
+                    tolerance: 1e-3,
+                    mesh: Some(path),
+                    poisson_ratio: 0.0,
+                };
+                let s = fem_solver::solve(case.punch, case.eps, load, &options)?;
+                let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+                (
+                    format!("{family}-L{k} P2"),
+                    1.0 / (s.dofs as f64).sqrt(),
+                    s.dofs,
+                    value,
+                )
+            }
+            Method::RingBem => {
+                let n = 6 + 2 * k;
+                let rule = TanhSinhRule::new(1.0 / 16.0);
+                let region = if case.eps > 0.0 {
+                    ContactRegion::Annulus { eps: case.eps }
+                } else {
+                    ContactRegion::Disk
+                };
+                if concave {
+                    return Err(Error::Unsupported {
+                        method: "ring-bem".into(),
+                        reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
+                    });
+                }
+                let system = RingSystem::assemble(
+                    region,
+                    RingBemSettings {
+                        nodes: n,
+                        quadrature_step: 1.0 / 16.0,
+                    },
+                    &rule,
+                );
+                let field = system
+                    .solve(&vec![1.0; n])
+                    .ok_or_else(|| Error::NoConvergence {
+                        method: "ring-bem".into(),
+                        reason: "singular system".into(),
+                    })?;
+                (format!("N = {n}"), 1.0 / n as f64, n, 0.5 * field.force)
+            }
+            Method::Reference => {
+                return Err(Error::Unsupported {
+                    method: "reference".into(),
+                    reason: "a closed form has no refinement".into(),
+                })
+            }
+        };
+        let level = Level {
+            label,
+            size,
+            unknowns,
+            value,
+            error: (value - yardstick) / yardstick,
+            wall_s: start.elapsed().as_secs_f64(),
+            observed_order: None,
+        };
+        out.push(level);
+        let m = out.len();
+        if m >= 3 {
+            let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
+            let (r21, r32) = (
+                out[m - 2].size / out[m - 1].size,
+                out[m - 3].size / out[m - 2].size,
+            );
+            out[m - 1].observed_order = observed_order(f1, f2, f3, r21, r32);
+        }
+        progress(&out[m - 1]);
+    }
+    let m = out.len();
+    let (richardson, gci) = if m >= 3 {
+        let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
+        let (r21, r32) = (
+            out[m - 2].size / out[m - 1].size,
+            out[m - 3].size / out[m - 2].size,
+        );
+        match richardson(f1, f2, f3, r21, r32) {
+            Some((e, g, _)) => (Some(e), Some(g)),
+            None => (None, None),
+        }
+    } else {
+        (None, None)
+    };
+    let ratio = match (m >= 4).then(|| (out[m - 1].observed_order, out[m - 2].observed_order)) {
+        Some((Some(p1), Some(p2))) => Some(p1 / p2),
+        _ => None,
+    };
+    Ok(Study {
+        punch: case.punch,
+        method: method.name().to_string(),
+        quantity: if concave {
+            format!("gamma2 at d/h = {}", case.depth)
+        } else {
+            format!("gamma at b/a = {}", case.eps)
+        },
+        yardstick,
+        richardson_error: richardson.map(|e| (e - yardstick) / yardstick),
+        levels: out,
+        richardson,
+        gci_fine: gci,
+        asymptotic_ratio: ratio,
+    })
+}
+
+/// Table for the terminal.
+pub fn render(study: &Study) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "{} {} convergence of {} (yardstick: ring BEM {:.12})",
+        study.punch, study.method, study.quantity, study.yardstick
+    );
+    let _ = writeln!(
+        out,
+        "  {:<22} {:>11} {:>10} {:>17} {:>11} {:>7} {:>9}",
+        "level", "size h", "unknowns", "value", "rel.error", "order", "s"
+    );
+    for l in &study.levels {
+        let _ = writeln!(
+            out,
+            "  {:<22} {:>11.4e} {:>10} {:>17.12} {:>+11.3e} {:>7} {:>9.3}",
+            l.label,
+            l.size,
+            l.unknowns,
+            l.value,
+            l.error,
+            l.observed_order
+                .map_or("-".to_string(), |p| format!("{p:.2}")),
+            l.wall_s
+        );
+    }
+    match (study.richardson, study.gci_fine) {
+        (Some(e), Some(g)) => {
+            let range = match study.asymptotic_ratio {
+                Some(r) if (r - 1.0).abs() < 0.1 => format!("order ratio of the last two triples {r:.3}: in the asymptotic range"),
+                Some(r) => format!(
+                    "order ratio of the last two triples {r:.3}: NOT in the asymptotic range, the error bar is not to be trusted"
+                ),
+                None => "asymptotic range not checked (needs four levels with settled orders)".to_string(),
+            };
+            let _ = writeln!(
+                out,
+                "  Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of the finest {g:.2e}; {range}",
+                study.richardson_error.unwrap_or(f64::NAN),
+            );
+        }
+        _ => {
+            let _ = writeln!(
+                out,
+                "  no Richardson extrapolate (fewer than three levels, differences at rounding level, or no settled order)"
+            );
+        }
+    }
+    out
+}
+
+/// CSV of the levels.
+pub fn csv(study: &Study) -> String {
+    let mut out = String::from("label,size,unknowns,value,relative_error,observed_order,wall_s\n");
+    for l in &study.levels {
+        out += &format!(
+            "{},{:e},{},{:.15e},{:e},{},{:e}\n",
+            l.label,
+            l.size,
+            l.unknowns,
+            l.value,
+            l.error,
+            l.observed_order.map_or(String::new(), |p| format!("{p}")),
+            l.wall_s
+        );
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn order_and_extrapolate_of_a_known_sequence() {
+        // f(h) = 1 + 0.3 h^2 + 0.1 h^3 on h = 0.4, 0.2, 0.1 (ratio 2) and on a non-constant
+        // ratio: the observed order tends to 2 and Richardson removes most of the error.
+        let f = |h: f64| 1.0 + 0.3 * h * h + 0.1 * h.powi(3);
+        let p = observed_order(f(0.1), f(0.2), f(0.4), 2.0, 2.0).unwrap();
+        assert!((p - 2.0).abs() < 0.2, "{p}");
+        let (e, gci, _) = richardson(f(0.1), f(0.2), f(0.4), 2.0, 2.0).unwrap();
+        assert!((e - 1.0).abs() < 0.1 * (f(0.1) - 1.0));
+        assert!(
+            gci >= (f(0.1) - 1.0).abs() / f(0.1),
+            "GCI {gci} must bound the error"
+        );
+        let p = observed_order(f(0.1), f(0.15), f(0.3), 1.5, 2.0).unwrap();
+        assert!((p - 2.0).abs() < 0.3, "{p}");
+        // Converged to rounding: no order.
+        assert!(observed_order(1.0, 1.0 + 1e-16, 1.0 + 2e-16, 2.0, 2.0).is_none());
+    }
+}

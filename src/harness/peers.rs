@@ -1,0 +1,180 @@
+//! Tamaas and ContactMechanics (stored results of `scripts/peers/run_peers.sh`) against our
+//! square-grid BEM on identical grids and profiles: the force at the same depth must agree within
+//! 1e-6 relative (same discretisation: piecewise-constant pressure on square cells, Love kernel,
+//! 2N zero padding).
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+use crate::bem::grid::GridLoad;
+use crate::bem::grid_contact;
+use crate::error::{Error, Result};
+use crate::punch::PunchKind;
+
+/// Relative force agreement required on the same grid.
+pub const PEER_AGREEMENT: f64 = 1e-6;
+
+/// One stored peer result (`verify/peers/*.json`).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+pub struct PeerResult {
+    pub package: String,
+    pub package_version: String,
+    pub punch: PunchKind,
+    pub eps: Option<f64>,
+    pub grid: usize,
+    pub depth: f64,
+    pub force: f64,
+    pub wall_s: f64,
+    pub date: String,
+    pub reproduce: String,
+}
+
+/// One comparison.
+#[derive(Clone, Debug, Serialize)]
+pub struct PeerComparison {
+    pub file: String,
+    pub stored: PeerResult,
+    pub our_force: f64,
+    pub our_iterations: usize,
+    pub our_wall_s: f64,
+    pub relative_difference: f64,
+    pub passed: bool,
+}
+
+/// Directory of the stored peer results.
+pub fn results_directory() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("verify")
+        .join("peers")
+}
+
+/// Load every stored peer result, sorted by file name.
+pub fn load_results() -> Result<Vec<(String, PeerResult)>> {
+    let mut files: Vec<PathBuf> = std::fs::read_dir(results_directory())
+        .map(|entries| {
+            entries
+                .filter_map(|e| e.ok().map(|e| e.path()))
+                .filter(|p| p.extension().is_some_and(|x| x == "json"))
+                .collect()
+        })
+        .unwrap_or_default();
+    files.sort();
+    files
+        .into_iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(&path).map_err(|e| Error::SceneFile {
+                path: path.display().to_string(),
+                message: e.to_string(),
+            })?;
+            let result = serde_json::from_str(&text).map_err(|e| Error::SceneFile {
+                path: path.display().to_string(),
+                message: format!("not a peer result: {e}"),
+            })?;
+            let name = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            Ok((name, result))
+        })
+        .collect()
+}
+
+/// `(punch, b/a bits, grid, depth bits)`: one state of the grid BEM.
+type StateKey = (PunchKind, u64, usize, u64);
+/// `(force, iterations, wall seconds)` of a solved state.
+type Solved = (f64, usize, f64);
+
+/// Compare every stored result with our grid BEM on the same grid (each distinct state solved
+/// once). `max_grid` skips larger grids (to keep quick runs quick).
+pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
+    let mut cache: Vec<(StateKey, Solved)> = Vec::new();
+    let mut rows = Vec::new();
+    for (file, stored) in load_results()? {
+        if stored.grid > max_grid {
+            continue;
+        }
+        let eps = stored.eps.unwrap_or(0.0);
+        let key = (
+            stored.punch,
+            eps.to_bits(),
+            stored.grid,
+            stored.depth.to_bits(),
+        );
+        let (force, iterations, wall) = match cache.iter().find(|(k, _)| *k == key) {
+            Some((_, v)) => *v,
+            None => {
+                let depth = if stored.punch.is_concave() {
+                    stored.depth
+                } else {
+                    1.0
+                };
+                let s = grid_contact::solve(
+                    stored.punch,
+                    eps,
+                    stored.grid,
+                    GridLoad::Depth(depth),
+                    1e-11,
+                )?;
+                // Flat punches are linear in the depth.
+                let force = if stored.punch.is_concave() {
+                    s.force
+                } else {
+                    s.force * stored.depth
+                };
+                let v = (force, s.iterations, s.wall_s);
+                cache.push((key, v));
+                v
+            }
+        };
+        let relative = (force - stored.force) / stored.force;
+        rows.push(PeerComparison {
+            file,
+            stored,
+            our_force: force,
+            our_iterations: iterations,
+            our_wall_s: wall,
+            relative_difference: relative,
+            passed: relative.abs() <= PEER_AGREEMENT,
+        });
+    }
+    Ok(rows)
+}
+
+/// Number of disagreements.
+pub fn failures(rows: &[PeerComparison]) -> usize {
+    rows.iter().filter(|r| !r.passed).count()
+}
+
+/// Human-readable table.
+pub fn render(rows: &[PeerComparison]) -> String {
+    use std::fmt::Write;
+    let mut out = String::new();
+    let _ = writeln!(
+        out,
+        "\nTamaas and ContactMechanics (stored, verify/peers/) against our grid BEM on the same grids \
+         (pass: force within {PEER_AGREEMENT:.0e}):"
+    );
+    let _ = writeln!(
+        out,
+        "  {:<48} {:>6} {:>16} {:>10} {:>8} {:>9}",
+        "stored result", "grid", "peer force", "rel.diff", "ours s", "peer s"
+    );
+    for r in rows {
+        let _ = writeln!(
+            out,
+            "  {:<48} {:>6} {:>16.10} {:>+10.1e} {:>8.3} {:>9.3}  {}",
+            r.file,
+            r.stored.grid,
+            r.stored.force,
+            r.relative_difference,
+            r.our_wall_s,
+            r.stored.wall_s,
+            if r.passed { "ok" } else { "FAIL" }
+        );
+    }
+    if rows.is_empty() {
+        let _ = writeln!(out, "  (no stored results; run scripts/peers/run_peers.sh)");
+    }
+    out
+}

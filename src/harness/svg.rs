@@ -1,0 +1,94 @@
+//! Minimal log-log line charts as standalone SVG (no system libraries, no fonts to ship).
+
+/// One named series of `(x, y)` points (both positive).
+pub struct Series {
+    pub name: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+const COLOURS: [&str; 6] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
+];
+
+/// A log-log chart of the series with decade grid lines and a legend.
+pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+    let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+        .collect();
+    if all.is_empty() {
+        return format!("<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}'><text x='20' y='40'>{title}: no positive data</text></svg>");
+    }
+    let decade = |v: f64, up: bool| {
+        if up {
+            10f64.powf(v.log10().ceil())
+        } else {
+            10f64.powf(v.log10().floor())
+        }
+    };
+    let (x0, x1) = (
+        decade(all.iter().map(|p| p.0).fold(f64::INFINITY, f64::min), false),
+        decade(all.iter().map(|p| p.0).fold(0.0, f64::max), true),
+    );
+    let (y0, y1) = (
+        decade(all.iter().map(|p| p.1).fold(f64::INFINITY, f64::min), false),
+        decade(all.iter().map(|p| p.1).fold(0.0, f64::max), true),
+    );
+    let (x1, y1) = (
+        if x1 <= x0 { x0 * 10.0 } else { x1 },
+        if y1 <= y0 { y0 * 10.0 } else { y1 },
+    );
+    let px =
+        |x: f64| left + (x.log10() - x0.log10()) / (x1.log10() - x0.log10()) * (w - left - right);
+    let py = |y: f64| {
+        h - bottom - (y.log10() - y0.log10()) / (y1.log10() - y0.log10()) * (h - top - bottom)
+    };
+    let mut svg = format!(
+        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
+         <rect width='100%' height='100%' fill='white'/>\n<text x='{}' y='24' font-size='15'>{title}</text>\n",
+        left
+    );
+    let mut e = x0.log10().round() as i32;
+    while (e as f64) <= x1.log10().round() {
+        let x = px(10f64.powi(e));
+        svg += &format!("<line x1='{x}' y1='{top}' x2='{x}' y2='{}' stroke='#ddd'/><text x='{x}' y='{}' text-anchor='middle'>1e{e}</text>\n", h - bottom, h - bottom + 16.0);
+        e += 1;
+    }
+    let mut e = y0.log10().round() as i32;
+    while (e as f64) <= y1.log10().round() {
+        let y = py(10f64.powi(e));
+        svg += &format!("<line x1='{left}' y1='{y}' x2='{}' y2='{y}' stroke='#ddd'/><text x='{}' y='{}' text-anchor='end'>1e{e}</text>\n", w - right, left - 6.0, y + 4.0);
+        e += 1;
+    }
+    svg += &format!(
+        "<text x='{}' y='{}' text-anchor='middle'>{x_label}</text>\n",
+        (left + w - right) / 2.0,
+        h - 16.0
+    );
+    svg += &format!(
+        "<text transform='translate(18,{}) rotate(-90)' text-anchor='middle'>{y_label}</text>\n",
+        (top + h - bottom) / 2.0
+    );
+    for (k, s) in series.iter().enumerate() {
+        let colour = COLOURS[k % COLOURS.len()];
+        let pts: Vec<String> = s
+            .points
+            .iter()
+            .filter(|p| p.0 > 0.0 && p.1 > 0.0)
+            .map(|&(x, y)| format!("{:.1},{:.1}", px(x), py(y)))
+            .collect();
+        svg += &format!(
+            "<polyline fill='none' stroke='{colour}' stroke-width='2' points='{}'/>\n",
+            pts.join(" ")
+        );
+        for p in &pts {
+            let (cx, cy) = p.split_once(',').unwrap_or(("0", "0"));
+            svg += &format!("<circle cx='{cx}' cy='{cy}' r='3.5' fill='{colour}'/>\n");
+        }
+        let ly = top + 20.0 + 18.0 * k as f64;
+        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, s.name);
+    }
+    svg + "</svg>\n"
+}
