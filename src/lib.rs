@@ -13,6 +13,7 @@
 //! A [`scene::Scene`] goes in, a [`solution::Solution`] comes out; every solver is a
 //! [`methods::Method`] behind that one interface.
 
+pub mod adhesion;
 pub mod bem;
 pub mod error;
 pub mod fem;

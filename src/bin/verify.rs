@@ -8,6 +8,7 @@ use std::process::ExitCode;
 
 use clap::{Args, Parser, Subcommand};
 
+use ringcontact::adhesion;
 use ringcontact::fem::mesh::Degree;
 use ringcontact::harness::{comparison, convergence, fenicsx, peers, svg};
 use ringcontact::methods::{self, Method};
@@ -78,8 +79,35 @@ Examples:
   verify convergence --punch sphere --depth 1.5 --method fem --levels 4
   verify convergence --punch flat-annulus --eps 0.5 --method ring-bem --levels 6 --json")]
     Convergence(ConvergenceArgs),
+    /// JKR adhesion from the converged non-adhesive solutions: detachment of the flat annulus,
+    /// pull-off of the concave punches under fixed load and fixed grips.
+    #[command(after_help = "\
+Units: depths in d0 = sqrt(2 pi a dw / E*) (and d/h), forces in F0 = sqrt(8 pi a^3 E* dw)
+(Kendall's flat punch of radius a); negative = tensile.
+
+Examples:
+  verify jkr --punch flat-annulus --eps 0.5 --json
+  verify jkr --punch sphere --d0h 1
+  verify jkr --punch cone --d0h 10 --json")]
+    Jkr(JkrArgs),
     /// List the analytic references and the range of eps where each is valid.
     References,
+}
+
+#[derive(Args)]
+struct JkrArgs {
+    /// Punch shape: flat-annulus, cone or sphere.
+    #[arg(long, value_enum)]
+    punch: PunchKind,
+    /// b/a of the flat annulus.
+    #[arg(long)]
+    eps: Option<f64>,
+    /// Dimensionless work of adhesion d0/h of a concave punch.
+    #[arg(long)]
+    d0h: Option<f64>,
+    /// Print JSON.
+    #[arg(long)]
+    json: bool,
 }
 
 #[derive(Args)]
@@ -175,6 +203,7 @@ fn main() -> ExitCode {
         Some(Command::Solve(args)) => run_solve(args),
         Some(Command::Fenicsx(args)) => run_fenicsx(args),
         Some(Command::Convergence(args)) => run_convergence(args),
+        Some(Command::Jkr(args)) => run_jkr(args),
         Some(Command::References) => {
             print_references();
             Ok(ExitCode::SUCCESS)
@@ -283,6 +312,80 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
         print!("{}", convergence::render(&study));
         println!("  wrote {} and {}", csv_path.display(), svg_path.display());
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
+    let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
+    let text = match args.punch {
+        PunchKind::FlatAnnulus => {
+            let eps = args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?;
+            let r = adhesion::flat_annulus(&solver, eps).map_err(|e| e.to_string())?;
+            if args.json {
+                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
+            } else {
+                let mut t = format!(
+                    "flat annulus b/a = {eps}: gamma = {:.12}, gamma' = {:.9}\n  outer edge: d_c/d0 = {:.9}, F_c/F0 = {:.9}\n  inner edge: d_c/d0 = {:.9}, F_c/F0 = {:.9}\n  governing: {} edge (smaller |d_c|); kappa from the field vs from gamma': {:.1e}\n",
+                    r.gamma, r.gamma_prime, r.dc_outer, r.fc_outer, r.dc_inner, r.fc_inner, r.governing_edge, r.kappa_consistency
+                );
+                if let Some(c) = r.collins {
+                    t += &format!(
+                        "  Collins' series in (16)-(17): d_c/d0 = {:.9}, F_c/F0 = {:.9}\n",
+                        c.depth, c.force
+                    );
+                }
+                if let Some(c) = r.argatov {
+                    t += &format!(
+                        "  Argatov's asymptote (22): d_c/d0 = {:.9}, F_c/F0 = {:.9}\n",
+                        c.depth, c.force
+                    );
+                }
+                t
+            }
+        }
+        PunchKind::Cone | PunchKind::Sphere => {
+            let s = args.d0h.ok_or("cone and sphere need --d0h D0_OVER_H")?;
+            let r = adhesion::concave(&solver, args.punch, s).map_err(|e| e.to_string())?;
+            if args.json {
+                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
+            } else {
+                let show = |name: &str, c: &Option<adhesion::Critical>, note: &Option<String>| {
+                    match c {
+                    Some(c) => format!(
+                        "  {name:<11} eps = {:.6}, d/h = {:+.6}, F/F0 = {:+.6}, governing edge: {}\n",
+                        c.eps, c.depth, c.force, c.governing_edge
+                    ),
+                    None => format!("  {name:<11} {}\n", note.clone().unwrap_or_default()),
+                }
+                };
+                let paper = |name: &str, c: &Option<adhesion::Critical>| {
+                    match c {
+                    Some(c) => format!("  {name:<11} (inner edge only, the paper's route) eps = {:.6}, F/F0 = {:+.6}\n", c.eps, c.force),
+                    None => String::new(),
+                }
+                };
+                let f = &r.full_contact;
+                format!(
+                    "{} d0/h = {s}: pull-off from the annular contact\n{}{}  full contact (reached when pressed past d/h = {:.4}): pull-off at d/h = {:+.6}, F/F0 = {:+.6} (rim)\n  direct check at the fixed-load critical state: G_inner/dw = {:.9}, rim intensity difference {:.1e}\n",
+                    args.punch,
+                    show("fixed load", &r.fixed_load, &r.fixed_load_note)
+                        + &paper("fixed load", &r.inner_edge_only_fixed_load),
+                    show("fixed grips", &r.fixed_grips, &r.fixed_grips_note) + &paper("fixed grips", &r.inner_edge_only_fixed_grips),
+                    f.closing_depth.unwrap_or(f64::NAN),
+                    f.pulloff.depth,
+                    f.pulloff.force,
+                    r.direct_inner_energy_ratio.unwrap_or(f64::NAN),
+                    r.direct_rim_difference.unwrap_or(f64::NAN)
+                )
+            }
+        }
+        PunchKind::Flat => {
+            return Err(
+                "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)".into(),
+            )
+        }
+    };
+    println!("{text}");
     Ok(ExitCode::SUCCESS)
 }
 

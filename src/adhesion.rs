@@ -1,0 +1,505 @@
+//! JKR adhesion built on the ring BEM's converged non-adhesive solutions (paper section 3).
+//!
+//! Units: depths in `d0 = sqrt(2π a Δw / E*)`, forces in `F0 = sqrt(8π a³ E* Δw) = 2 E* a d0`
+//! (Kendall's flat punch). Stress intensities `K = E* L κ / sqrt(π a)` with `L` the depth (flat)
+//! or `h` (concave); an edge of the adhesive contact is in equilibrium when `G = K²/(2E*) = Δw`,
+//! i.e. `|κ| L = d0`.
+//!
+//! **Flat annulus** (fixed contact): `κ_out² = γ - eps γ'` (rim), `κ_in² = -γ'/eps` (inner edge);
+//! detachment at the outer edge at `d_c/d0 = -1/κ_out`, `F_c/F0 = -γ/κ_out` (paper 16-17), at the
+//! inner edge at `d_c/d0 = -1/κ_in`, `F_c/F0 = -γ/κ_in` (paper 20); the smaller `|d_c|` governs.
+//!
+//! **Concave punches**, contact `[b, a]`, `eps = b/a`: the adhesive state adds to the non-adhesive
+//! one a flat-annulus displacement `-Δl` at fixed contact; the inner edge is in equilibrium for
+//! `Δl = d0/κ_in(eps)` (paper 27-28, simplified with `γ2' = γ γ1'`), so
+//! `d/h = γ1 - (d0/h)/κ_in`, `F/F0 = (h/d0) γ2 - γ/κ_in`.
+//! The branch is stable under fixed grips where `dd/deps < 0` and under fixed load where
+//! `dF/deps < 0` (the energy release rate at the inner edge falls as it advances); the critical
+//! states (paper 29-30) are the minima of `d` and `F` along the stable branch. The sharp rim
+//! detaches when its stress intensity, `κ_rim = (h/d0) κ_out^na - κ_out/κ_in` in units of
+//! `d0`, reaches `-1` (tensile, `G = Δw`): the rim criterion, checked along the branch.
+//! The **full-contact branch** (no hole; the disk with `w = d - h ĝ(r)`) has only the rim as an
+//! edge: pull-off at `d_c = h κ_h - d0`, `F_c/F0 = (h/d0)(κ_h - c_F) - 1` with `κ_h` the rim
+//! intensity of the profile and `F = 2 E* a (d - c_F h)` in full contact.
+
+use serde::Serialize;
+
+use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
+use crate::reference::asymptotic::collins_series;
+
+const TOL: f64 = 1e-11;
+const ROOT_PI: f64 = 1.772_453_850_905_516;
+
+/// Fourth-order central difference of `f` at `x` with step `h`.
+fn derivative(f: impl Fn(f64) -> Result<f64>, x: f64, h: f64) -> Result<f64> {
+    Ok((-f(x + 2.0 * h)? + 8.0 * f(x + h)? - 8.0 * f(x - h)? + f(x - 2.0 * h)?) / (12.0 * h))
+}
+
+/// Flat-annulus quantities at `eps`: `γ`, `γ'` (difference of converged values), and the edge
+/// intensities `κ` both from the force derivative (fact 7) and read directly off the BEM pressure.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct AnnulusEdges {
+    pub eps: f64,
+    pub gamma: f64,
+    pub gamma_prime: f64,
+    pub kappa_out: f64,
+    pub kappa_in: f64,
+    pub kappa_out_direct: f64,
+    pub kappa_in_direct: f64,
+}
+
+/// `γ`, `γ'` and the edge intensities of the flat annulus at `eps`.
+pub fn annulus_edges(solver: &RingBemSolver, eps: f64) -> Result<AnnulusEdges> {
+    let gamma = |e: f64| -> Result<f64> { Ok(solver.flat(e, TOL)?.gamma.unwrap_or(f64::NAN)) };
+    let step = 1e-3 * eps.min(1.0 - eps);
+    let gamma_prime = derivative(gamma, eps, step)?;
+    let state = solver.flat(eps, TOL)?;
+    let g = state.gamma.unwrap_or(f64::NAN);
+    Ok(AnnulusEdges {
+        eps,
+        gamma: g,
+        gamma_prime,
+        kappa_out: (g - eps * gamma_prime).sqrt(),
+        kappa_in: (-gamma_prime / eps).sqrt(),
+        kappa_out_direct: state.rim_stress_intensity * ROOT_PI,
+        kappa_in_direct: state.inner_stress_intensity * ROOT_PI,
+    })
+}
+
+/// Critical depth and force of one edge (units `d0`, `F0`).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct EdgeCritical {
+    pub depth: f64,
+    pub force: f64,
+}
+
+/// JKR detachment of the flat annulus (paper Fig. 7-8 recomputed).
+#[derive(Clone, Debug, Serialize)]
+pub struct FlatAnnulusJkr {
+    pub eps: f64,
+    pub gamma: f64,
+    pub gamma_prime: f64,
+    /// `d_c/d0` and `F_c/F0` for detachment at `r = a`.
+    pub dc_outer: f64,
+    pub fc_outer: f64,
+    /// `d_c/d0` and `F_c/F0` for detachment at `r = b`.
+    pub dc_inner: f64,
+    pub fc_inner: f64,
+    /// `outer` or `inner`: the edge with the smaller `|d_c|`.
+    pub governing_edge: String,
+    /// Relative difference of `κ_out`, `κ_in` read off the pressure field and from `γ'`.
+    pub kappa_consistency: f64,
+    /// Collins' series (paper 21) in (16)-(17), where valid (`eps <= 0.3`).
+    pub collins: Option<EdgeCritical>,
+    /// Argatov's narrow-ring asymptote (paper 22), where valid (`eps >= 0.85`).
+    pub argatov: Option<EdgeCritical>,
+}
+
+/// JKR detachment of the flat annulus at `eps` from the ring BEM's `γ` and `γ'`.
+pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> {
+    if !(0.0 < eps && eps < 1.0) {
+        return Err(Error::invalid(
+            "eps",
+            format!("must satisfy 0 < b/a < 1 for an annulus (got {eps})"),
+        ));
+    }
+    let e = annulus_edges(solver, eps)?;
+    let consistency = ((e.kappa_out_direct - e.kappa_out) / e.kappa_out)
+        .abs()
+        .max(((e.kappa_in_direct - e.kappa_in) / e.kappa_in).abs());
+    let collins = (eps <= 0.3).then(|| {
+        let pi2 = std::f64::consts::PI.powi(2);
+        let g = collins_series(eps).value;
+        let gp = -4.0 * eps * eps / pi2
+            - 8.0 * eps.powi(4) / (3.0 * pi2)
+            - 32.0 * eps.powi(5) / (9.0 * pi2 * pi2);
+        let k = (g - eps * gp).sqrt();
+        EdgeCritical {
+            depth: -1.0 / k,
+            force: -g / k,
+        }
+    });
+    let argatov = (eps >= 0.85).then(|| {
+        let delta = (1.0 - eps) / (1.0 + eps);
+        let log = (16.0 / delta).ln();
+        let pi = std::f64::consts::PI;
+        EdgeCritical {
+            depth: -std::f64::consts::SQRT_2 * log * ((1.0 + eps) * delta).sqrt() / pi,
+            force: -pi * ((1.0 + eps).powi(3) * delta).sqrt() / (2.0 * std::f64::consts::SQRT_2),
+        }
+    });
+    Ok(FlatAnnulusJkr {
+        eps,
+        gamma: e.gamma,
+        gamma_prime: e.gamma_prime,
+        dc_outer: -1.0 / e.kappa_out,
+        fc_outer: -e.gamma / e.kappa_out,
+        dc_inner: -1.0 / e.kappa_in,
+        fc_inner: -e.gamma / e.kappa_in,
+        governing_edge: if e.kappa_out >= e.kappa_in {
+            "outer"
+        } else {
+            "inner"
+        }
+        .into(),
+        kappa_consistency: consistency,
+        collins,
+        argatov,
+    })
+}
+
+/// The non-adhesive and flat-annulus quantities at one contact ratio (h = 1, a = 1, E* = 1).
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct BranchPoint {
+    pub eps: f64,
+    pub gamma1: f64,
+    pub gamma2: f64,
+    pub gamma: f64,
+    /// Rim intensity of the non-adhesive concave state per unit `h`.
+    pub kappa_out_na: f64,
+    pub kappa_out: f64,
+    pub kappa_in: f64,
+}
+
+impl BranchPoint {
+    /// `d/h` on the adhesive branch with `s = d0/h`.
+    pub fn depth(&self, s: f64) -> f64 {
+        self.gamma1 - s / self.kappa_in
+    }
+    /// `F/F0` on the adhesive branch.
+    pub fn force(&self, s: f64) -> f64 {
+        self.gamma2 / s - self.gamma / self.kappa_in
+    }
+    /// Rim intensity in units of `d0` (the rim holds while it is above `-1`).
+    pub fn rim_intensity(&self, s: f64) -> f64 {
+        self.kappa_out_na / s - self.kappa_out / self.kappa_in
+    }
+}
+
+/// Ring-BEM quantities at `eps` for a concave punch.
+pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
+    let concave = solver.concave_at_ratio(kind, eps, 1e-10)?;
+    let flat = solver.flat(eps, 1e-10)?;
+    Ok(BranchPoint {
+        eps,
+        gamma1: concave.gamma1.unwrap_or(f64::NAN),
+        gamma2: concave.gamma2.unwrap_or(f64::NAN),
+        gamma: flat.gamma.unwrap_or(f64::NAN),
+        kappa_out_na: concave.rim_stress_intensity * ROOT_PI,
+        kappa_out: flat.rim_stress_intensity * ROOT_PI,
+        kappa_in: flat.inner_stress_intensity * ROOT_PI,
+    })
+}
+
+/// A critical (pull-off) state.
+#[derive(Clone, Debug, Serialize)]
+pub struct Critical {
+    pub eps: f64,
+    /// `d/h`.
+    pub depth: f64,
+    /// `d/d0`.
+    pub depth_over_d0: f64,
+    /// `F/F0`.
+    pub force: f64,
+    /// `inner` (the hole's edge), `rim` (the sharp outer edge), or `rim (full contact)`.
+    pub governing_edge: String,
+}
+
+/// Full-contact branch: the disk with `w = d - h ĝ(r)`.
+#[derive(Clone, Debug, Serialize)]
+pub struct FullContactBranch {
+    /// `F = 2 E* a (d - c_F h)` in full contact.
+    pub force_offset: f64,
+    /// Rim intensity of the profile part per unit `h` (`κ_rim = d/d0 + (h/d0) κ_h`).
+    pub kappa_h: f64,
+    /// Depth `d/h` at which the hole of the annular branch closes (its maximum depth).
+    pub closing_depth: Option<f64>,
+    /// Pull-off from full contact (rim criterion), the same under fixed load and fixed grips.
+    pub pulloff: Critical,
+}
+
+/// The JKR analysis of a concave punch for one `d0/h`.
+#[derive(Clone, Debug, Serialize)]
+pub struct ConcaveJkr {
+    pub punch: PunchKind,
+    pub d0_over_h: f64,
+    /// Pull-off from the annular contact under fixed load (`dF/deps = 0` or rim), if a stable
+    /// annular branch with the rim attached exists.
+    pub fixed_load: Option<Critical>,
+    /// Pull-off from the annular contact under fixed grips (`dd/deps = 0` or rim).
+    pub fixed_grips: Option<Critical>,
+    /// Why there is no annular pull-off state (fixed load), if there is none.
+    pub fixed_load_note: Option<String>,
+    /// Why there is no annular pull-off state (fixed grips), if there is none.
+    pub fixed_grips_note: Option<String>,
+    /// The paper's route (inner edge only, the rim ignored): fixed load and fixed grips.
+    pub inner_edge_only_fixed_load: Option<Critical>,
+    pub inner_edge_only_fixed_grips: Option<Critical>,
+    /// The stable annular branch under fixed load, `[eps_lo, eps_hi]`.
+    pub stable_branch_fixed_load: Option<(f64, f64)>,
+    pub full_contact: FullContactBranch,
+    /// Direct check at the fixed-load critical state: `G_in/Δw` from a fresh BEM solve of the
+    /// adhesive contact (1 if the formula route is right).
+    pub direct_inner_energy_ratio: Option<f64>,
+    /// Direct check: rim intensity from the fresh solve minus the formula's (units `d0`).
+    pub direct_rim_difference: Option<f64>,
+}
+
+fn golden_minimum(
+    mut f: impl FnMut(f64) -> Result<f64>,
+    mut lo: f64,
+    mut hi: f64,
+) -> Result<(f64, f64)> {
+    let phi = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut x1, mut x2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    while hi - lo > 1e-9 {
+        if f1 < f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - phi * (hi - lo);
+            f1 = f(x1)?;
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + phi * (hi - lo);
+            f2 = f(x2)?;
+        }
+    }
+    Ok(if f1 < f2 { (x1, f1) } else { (x2, f2) })
+}
+
+fn bisect(mut f: impl FnMut(f64) -> Result<f64>, mut lo: f64, mut hi: f64) -> Result<f64> {
+    let f_lo = f(lo)?;
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if (f(mid)? > 0.0) == (f_lo > 0.0) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
+
+/// Contact ratios of the branch scan: cosine-clustered on `[0.004, 0.99]`, then logarithmic in
+/// `1 - eps` up to the ring BEM's limit 0.9999 (weak adhesion pulls off from narrow rings).
+fn scan_ratios() -> Vec<f64> {
+    let mut ratios: Vec<f64> = (0..160)
+        .map(|k| {
+            let t = k as f64 / 160.0;
+            0.004 + 0.986 * 0.5 * (1.0 - (std::f64::consts::PI * t).cos())
+        })
+        .collect();
+    ratios.extend((0..=40).map(|k| 1.0 - 10f64.powf(-2.0 - 2.0 * k as f64 / 40.0)));
+    ratios
+}
+
+/// The pull-off state and the stable branch `(eps_lo, eps_hi)`, or why there is none.
+type AnnularOutcome = std::result::Result<(Critical, (f64, f64)), String>;
+
+/// Pull-off on the annular branch for one quantity (`F/F0` or `d/h`): the stable part runs from
+/// the maximum to the following minimum; unloading along it, the rim may fail first.
+fn annular_pulloff(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    s: f64,
+    points: &[BranchPoint],
+    value: fn(&BranchPoint, f64) -> f64,
+    check_rim: bool,
+) -> Result<AnnularOutcome> {
+    let values: Vec<f64> = points.iter().map(|p| value(p, s)).collect();
+    // Interior maximum, then the first interior minimum after it.
+    let Some(max_k) =
+        (1..values.len() - 1).find(|&k| values[k] >= values[k - 1] && values[k] >= values[k + 1])
+    else {
+        return Ok(Err(
+            "no stable annular branch in 0.004 <= eps <= 0.9999".into()
+        ));
+    };
+    let Some(min_k) = (max_k + 1..values.len() - 1)
+        .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
+    else {
+        return Ok(Err(format!(
+            "the stable branch runs beyond eps = {:.4} (the ring BEM's limit): pull-off from a ring narrower than 1e-4 a, with |F|/F0 below {:.2e}",
+            points[points.len() - 1].eps,
+            value(&points[points.len() - 1], s).abs()
+        )));
+    };
+    let eval = |e: f64| -> Result<f64> { Ok(value(&branch_point(solver, kind, e)?, s)) };
+    let (eps_min, value_min) = golden_minimum(eval, points[min_k - 1].eps, points[min_k + 1].eps)?;
+    let (eps_max, _) = golden_minimum(
+        |e| Ok(-eval(e)?),
+        points[max_k - 1].eps,
+        points[max_k + 1].eps,
+    )?;
+    // Rim along the stable branch (unloading: eps grows from eps_max to eps_min).
+    let rim_margin =
+        |e: f64| -> Result<f64> { Ok(branch_point(solver, kind, e)?.rim_intensity(s) + 1.0) };
+    let mut critical_eps = eps_min;
+    let mut edge = "inner";
+    if check_rim && rim_margin(eps_max)? < 0.0 {
+        return Ok(Err(format!(
+            "the rim is already detached at the start of the stable branch (eps = {eps_max:.4}): no annular state with the rim attached"
+        )));
+    }
+    let rim_fails = (max_k..=min_k).find(|&k| points[k].rim_intensity(s) + 1.0 < 0.0);
+    if let Some(k) = rim_fails.filter(|_| check_rim) {
+        let lo = if k > max_k {
+            points[k - 1].eps.max(eps_max)
+        } else {
+            eps_max
+        };
+        let e = bisect(rim_margin, lo, points[k].eps.min(eps_min))?;
+        if e < eps_min {
+            critical_eps = e;
+            edge = "rim";
+        }
+    }
+    let p = branch_point(solver, kind, critical_eps)?;
+    let _ = value_min;
+    Ok(Ok((
+        Critical {
+            eps: critical_eps,
+            depth: p.depth(s),
+            depth_over_d0: p.depth(s) / s,
+            force: p.force(s),
+            governing_edge: edge.into(),
+        },
+        (eps_max, eps_min),
+    )))
+}
+
+/// Full-contact constants of a concave punch by the method of dimensionality reduction: with
+/// the profile `w = d - h ĝ(r)` on the whole disk, `F = 2 E* a (d - c_F h)` and the rim intensity
+/// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (sphere) and `c_F = 1 - π/4`,
+/// `κ_h = π/2 - 1` (cone). (The disk BEM reproduces the sphere's to 1e-12; the cone's profile has a
+/// kink on the axis, where the disk basis converges slowly.)
+pub fn full_contact_constants(kind: PunchKind) -> (f64, f64) {
+    match kind {
+        PunchKind::Cone => (
+            1.0 - std::f64::consts::FRAC_PI_4,
+            std::f64::consts::FRAC_PI_2 - 1.0,
+        ),
+        _ => (1.0 / 3.0, 1.0),
+    }
+}
+
+/// Full-contact branch of a concave punch (MDR constants).
+fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<FullContactBranch> {
+    let (force_offset, kappa_h) = full_contact_constants(kind);
+    // Rim: κ = d/d0 + (h/d0) κ_h reaches -1 at d = -d0 - h κ_h.
+    let depth = -s - kappa_h;
+    Ok(FullContactBranch {
+        force_offset,
+        kappa_h,
+        closing_depth,
+        pulloff: Critical {
+            eps: 0.0,
+            depth,
+            depth_over_d0: depth / s,
+            force: (depth - force_offset) / s,
+            governing_edge: "rim (full contact)".into(),
+        },
+    })
+}
+
+/// JKR analysis of a concave punch for `d0/h = s`.
+pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
+    if !kind.is_concave() {
+        return Err(Error::invalid(
+            "punch",
+            "the concave JKR analysis applies to cone and sphere",
+        ));
+    }
+    if !(s.is_finite() && s > 0.0) {
+        return Err(Error::invalid(
+            "d0h",
+            format!("must be a positive number (got {s})"),
+        ));
+    }
+    let points: Vec<BranchPoint> = scan_ratios()
+        .into_iter()
+        .map(|e| branch_point(solver, kind, e))
+        .collect::<Result<_>>()?;
+    let split = |r: AnnularOutcome| match r {
+        Ok(v) => (Some(v), None),
+        Err(note) => (None, Some(note)),
+    };
+    let (load, load_note) = split(annular_pulloff(
+        solver,
+        kind,
+        s,
+        &points,
+        |p, s| p.force(s),
+        true,
+    )?);
+    let (grips, grips_note) = split(annular_pulloff(
+        solver,
+        kind,
+        s,
+        &points,
+        |p, s| p.depth(s),
+        true,
+    )?);
+    let paper_load = annular_pulloff(solver, kind, s, &points, |p, s| p.force(s), false)?
+        .ok()
+        .map(|(c, _)| c);
+    let paper_grips = annular_pulloff(solver, kind, s, &points, |p, s| p.depth(s), false)?
+        .ok()
+        .map(|(c, _)| c);
+    let closing = points
+        .iter()
+        .map(|p| p.depth(s))
+        .fold(f64::NEG_INFINITY, f64::max);
+    let full = full_contact(kind, s, closing.is_finite().then_some(closing))?;
+    // Direct route at the fixed-load critical state: solve the adhesive contact itself.
+    let (ratio, rim_diff) = match &load {
+        Some((c, _)) => {
+            let rule = TanhSinhRule::new(1.0 / 16.0);
+            let n = 40;
+            let system = RingSystem::assemble(
+                ContactRegion::Annulus { eps: c.eps },
+                RingBemSettings {
+                    nodes: n,
+                    quadrature_step: 1.0 / 16.0,
+                },
+                &rule,
+            );
+            let target: Vec<f64> = system
+                .radii()
+                .iter()
+                .map(|&r| c.depth - kind.gap_shape(r))
+                .collect();
+            let field = system.solve(&target).ok_or_else(|| Error::NoConvergence {
+                method: "ring-bem".into(),
+                reason: "singular system".into(),
+            })?;
+            let kin = system.inner_stress_intensity(&field) * ROOT_PI / s;
+            let krim = system.rim_stress_intensity(&field) * ROOT_PI / s;
+            let formula = branch_point(solver, kind, c.eps)?.rim_intensity(s);
+            (Some(kin * kin), Some(krim - formula))
+        }
+        None => (None, None),
+    };
+    Ok(ConcaveJkr {
+        punch: kind,
+        d0_over_h: s,
+        stable_branch_fixed_load: load.as_ref().map(|(_, b)| *b),
+        fixed_load: load.map(|(c, _)| c),
+        fixed_grips: grips.map(|(c, _)| c),
+        fixed_load_note: load_note,
+        fixed_grips_note: grips_note,
+        inner_edge_only_fixed_load: paper_load,
+        inner_edge_only_fixed_grips: paper_grips,
+        full_contact: full,
+        direct_inner_energy_ratio: ratio,
+        direct_rim_difference: rim_diff,
+    })
+}
