@@ -238,6 +238,10 @@ pub struct ConcaveJkr {
     pub fixed_grips_note: Option<String>,
     /// The paper's route (inner edge only, the rim ignored): fixed load and fixed grips.
     pub inner_edge_only_fixed_load: Option<Critical>,
+    /// The paper's route evaluated with the paper's fitted formulas, `(eps, F/F0)`: fixed load.
+    pub paper_fits_fixed_load: Option<(f64, f64)>,
+    /// The same, fixed grips.
+    pub paper_fits_fixed_grips: Option<(f64, f64)>,
     pub inner_edge_only_fixed_grips: Option<Critical>,
     /// The stable annular branch under fixed load, `[eps_lo, eps_hi]`.
     pub stable_branch_fixed_load: Option<(f64, f64)>,
@@ -458,6 +462,7 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
         .iter()
         .map(|p| p.depth(s))
         .fold(f64::NEG_INFINITY, f64::max);
+    let paper_fits = paper_fit_route(kind, s);
     let full = full_contact(kind, s, closing.is_finite().then_some(closing))?;
     // Direct route at the fixed-load critical state: solve the adhesive contact itself.
     let (ratio, rim_diff) = match &load {
@@ -497,9 +502,53 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
         fixed_load_note: load_note,
         fixed_grips_note: grips_note,
         inner_edge_only_fixed_load: paper_load,
+        paper_fits_fixed_load: paper_fits.0,
+        paper_fits_fixed_grips: paper_fits.1,
         inner_edge_only_fixed_grips: paper_grips,
         full_contact: full,
         direct_inner_energy_ratio: ratio,
         direct_rim_difference: rim_diff,
     })
+}
+
+/// `(eps, F/F0)` of a critical state.
+pub type EpsForce = (f64, f64);
+
+/// The paper's route evaluated with the paper's own fitted `γ1`, `γ2` (eqs. 8-11), as the paper
+/// did: `Δl_c = d0 sqrt(eps γ1'² / (γ1''γ2' - γ2''γ1'))` (28), `k/(2E*a) = γ2'/γ1'` (25), inner edge
+/// only; the critical states are the interior minima of `F(eps)` (29, fixed load) and `d(eps)`
+/// (30, fixed grips). Derivatives by central differences of the fits. Returns
+/// `(fixed load, fixed grips)` as `(eps, F/F0)`, each `None` where the fitted branch has no
+/// interior minimum.
+pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<EpsForce>) {
+    use crate::reference::paper_fits::{cone_gamma, sphere_gamma};
+    let g = |i: usize, e: f64| match kind {
+        PunchKind::Cone => cone_gamma(i, e),
+        _ => sphere_gamma(i, e),
+    };
+    let d1 = |i: usize, e: f64| {
+        let h = 1e-6 * e.min(1.0 - e);
+        (g(i, e + h) - g(i, e - h)) / (2.0 * h)
+    };
+    let d2 = |i: usize, e: f64| {
+        let h = 1e-4 * e.min(1.0 - e);
+        (g(i, e + h) - 2.0 * g(i, e) + g(i, e - h)) / (h * h)
+    };
+    // (d/h, F/F0) on the fitted adhesive branch.
+    let state = |e: f64| -> (f64, f64) {
+        let (g1p, g2p) = (d1(1, e), d1(2, e));
+        let shift = s * (e * g1p * g1p / (d2(1, e) * g2p - d2(2, e) * g1p)).sqrt();
+        (g(1, e) - shift, g(2, e) / s - (g2p / g1p) * shift / s)
+    };
+    let ratios: Vec<f64> = (1..2000)
+        .map(|k| 0.01 + 0.985 * k as f64 / 2000.0)
+        .collect();
+    let first_minimum = |pick: fn((f64, f64)) -> f64| -> Option<(f64, f64)> {
+        let v: Vec<f64> = ratios.iter().map(|&e| pick(state(e))).collect();
+        let k =
+            (1..v.len() - 1).find(|&k| v[k].is_finite() && v[k] <= v[k - 1] && v[k] <= v[k + 1])?;
+        let (e, _) = golden_minimum(|e| Ok(pick(state(e))), ratios[k - 1], ratios[k + 1]).ok()?;
+        Some((e, state(e).1))
+    };
+    (first_minimum(|(_, f)| f), first_minimum(|(d, _)| d))
 }

@@ -90,6 +90,10 @@ Examples:
   verify jkr --punch sphere --d0h 1
   verify jkr --punch cone --d0h 10 --json")]
     Jkr(JkrArgs),
+    /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
+    /// 0.05 <= eps <= 0.99 and propose better forms.
+    #[command(after_help = "Example:\n  verify fit --json")]
+    Fit(JsonArgs),
     /// List the analytic references and the range of eps where each is valid.
     References,
 }
@@ -105,6 +109,13 @@ struct JkrArgs {
     /// Dimensionless work of adhesion d0/h of a concave punch.
     #[arg(long)]
     d0h: Option<f64>,
+    /// Concave punches: sweep d0/h from 0.1 to 100 (the paper's Fig. 10), writing CSV and SVG
+    /// into --out.
+    #[arg(long)]
+    sweep: bool,
+    /// Directory for the sweep's CSV and SVG.
+    #[arg(long, default_value = "reports/jkr")]
+    out: PathBuf,
     /// Print JSON.
     #[arg(long)]
     json: bool,
@@ -204,6 +215,7 @@ fn main() -> ExitCode {
         Some(Command::Fenicsx(args)) => run_fenicsx(args),
         Some(Command::Convergence(args)) => run_convergence(args),
         Some(Command::Jkr(args)) => run_jkr(args),
+        Some(Command::Fit(args)) => run_fit(args),
         Some(Command::References) => {
             print_references();
             Ok(ExitCode::SUCCESS)
@@ -318,8 +330,11 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
 fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
     let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
     let text = match args.punch {
+        PunchKind::FlatAnnulus if args.sweep => flat_annulus_sweep(&solver, &args.out, args.json)?,
         PunchKind::FlatAnnulus => {
-            let eps = args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?;
+            let eps = args
+                .eps
+                .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
             let r = adhesion::flat_annulus(&solver, eps).map_err(|e| e.to_string())?;
             if args.json {
                 serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
@@ -343,8 +358,13 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 t
             }
         }
+        PunchKind::Cone | PunchKind::Sphere if args.sweep => {
+            jkr_sweep(&solver, args.punch, &args.out, args.json)?
+        }
         PunchKind::Cone | PunchKind::Sphere => {
-            let s = args.d0h.ok_or("cone and sphere need --d0h D0_OVER_H")?;
+            let s = args
+                .d0h
+                .ok_or("cone and sphere need --d0h D0_OVER_H (or --sweep)")?;
             let r = adhesion::concave(&solver, args.punch, s).map_err(|e| e.to_string())?;
             if args.json {
                 serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
@@ -364,13 +384,22 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                     None => String::new(),
                 }
                 };
+                let fits = |name: &str, c: Option<(f64, f64)>| {
+                    match c {
+                    Some((e, f)) => format!("  {name:<11} (the paper's route on the paper's fitted formulas) eps = {e:.6}, F/F0 = {f:+.6}\n"),
+                    None => format!("  {name:<11} (the paper's route on the paper's fitted formulas) no critical state\n"),
+                }
+                };
                 let f = &r.full_contact;
                 format!(
                     "{} d0/h = {s}: pull-off from the annular contact\n{}{}  full contact (reached when pressed past d/h = {:.4}): pull-off at d/h = {:+.6}, F/F0 = {:+.6} (rim)\n  direct check at the fixed-load critical state: G_inner/dw = {:.9}, rim intensity difference {:.1e}\n",
                     args.punch,
                     show("fixed load", &r.fixed_load, &r.fixed_load_note)
-                        + &paper("fixed load", &r.inner_edge_only_fixed_load),
-                    show("fixed grips", &r.fixed_grips, &r.fixed_grips_note) + &paper("fixed grips", &r.inner_edge_only_fixed_grips),
+                        + &paper("fixed load", &r.inner_edge_only_fixed_load)
+                        + &fits("fixed load", r.paper_fits_fixed_load),
+                    show("fixed grips", &r.fixed_grips, &r.fixed_grips_note)
+                        + &paper("fixed grips", &r.inner_edge_only_fixed_grips)
+                        + &fits("fixed grips", r.paper_fits_fixed_grips),
                     f.closing_depth.unwrap_or(f64::NAN),
                     f.pulloff.depth,
                     f.pulloff.force,
@@ -386,6 +415,195 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
         }
     };
     println!("{text}");
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Flat annulus: critical depths and forces of both edges against `eps` (the paper's Fig. 7-8).
+fn flat_annulus_sweep(
+    solver: &ringcontact::bem::ring_contact::RingBemSolver,
+    out: &std::path::Path,
+    json: bool,
+) -> Result<String, String> {
+    let ratios: Vec<f64> = (1..=40)
+        .map(|k| 1.0 - 10f64.powf(-2.0 * k as f64 / 40.0 - 0.0) * 0.99)
+        .collect();
+    let mut rows = Vec::new();
+    for &e in ratios.iter().filter(|&&e| e > 0.0 && e < 1.0) {
+        rows.push(adhesion::flat_annulus(solver, e).map_err(|e| e.to_string())?);
+    }
+    let mut csv = String::from("eps,dc_outer,fc_outer,dc_inner,fc_inner,governing_edge,collins_dc,collins_fc,argatov_dc,argatov_fc\n");
+    let mut table = format!(
+        "flat annulus: critical depths (units d0) and forces (units F0)\n  {:>7} {:>10} {:>10} {:>10} {:>10} {:>8} {:>10} {:>10}\n",
+        "eps", "dc_outer", "fc_outer", "dc_inner", "fc_inner", "governs", "Collins fc", "Argatov fc"
+    );
+    for r in &rows {
+        let opt = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
+        csv += &format!(
+            "{},{},{},{},{},{},{},{},{},{}\n",
+            r.eps,
+            r.dc_outer,
+            r.fc_outer,
+            r.dc_inner,
+            r.fc_inner,
+            r.governing_edge,
+            opt(r.collins.map(|c| c.depth)),
+            opt(r.collins.map(|c| c.force)),
+            opt(r.argatov.map(|c| c.depth)),
+            opt(r.argatov.map(|c| c.force))
+        );
+        let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.5}"));
+        table += &format!(
+            "  {:>7.4} {:>10.5} {:>10.5} {:>10.5} {:>10.5} {:>8} {:>10} {:>10}\n",
+            r.eps,
+            r.dc_outer,
+            r.fc_outer,
+            r.dc_inner,
+            r.fc_inner,
+            r.governing_edge,
+            cell(r.collins.map(|c| c.force)),
+            cell(r.argatov.map(|c| c.force))
+        );
+    }
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let series = |name: &str, f: &dyn Fn(&adhesion::FlatAnnulusJkr) -> Option<f64>| svg::Series {
+        name: name.to_string(),
+        points: rows
+            .iter()
+            .filter_map(|r| f(r).map(|v| (1.0 - r.eps, v.abs())))
+            .collect(),
+    };
+    let chart = svg::log_log_chart(
+        "flat annulus: |critical force| / F0 against 1 - b/a",
+        "1 - eps",
+        "|F_c| / F0",
+        &[
+            series("outer edge", &|r| Some(r.fc_outer)),
+            series("inner edge", &|r| Some(r.fc_inner)),
+            series("Collins (21)", &|r| r.collins.map(|c| c.force)),
+            series("Argatov (22)", &|r| r.argatov.map(|c| c.force)),
+        ],
+    );
+    let stem = out.join("critical-flat-annulus");
+    std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
+    std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
+    if json {
+        return serde_json::to_string_pretty(&rows).map_err(|e| e.to_string());
+    }
+    Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
+}
+
+/// `F_pulloff/F0` against `d0/h` by every route (table, CSV, SVG).
+fn jkr_sweep(
+    solver: &ringcontact::bem::ring_contact::RingBemSolver,
+    kind: PunchKind,
+    out: &std::path::Path,
+    json: bool,
+) -> Result<String, String> {
+    let values: Vec<f64> = (0..=24)
+        .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 24.0))
+        .collect();
+    let mut rows = Vec::new();
+    for &s in &values {
+        rows.push(adhesion::concave(solver, kind, s).map_err(|e| e.to_string())?);
+    }
+    let pick = |c: &Option<adhesion::Critical>| c.as_ref().map(|c| -c.force);
+    let mut csv = String::from("d0_over_h,fixed_load,fixed_grips,paper_fits_fixed_load,paper_fits_fixed_grips,full_contact\n");
+    let mut table = format!(
+        "{kind}: pull-off force -F/F0 against d0/h (F0 = Kendall's flat punch of radius a)\n  {:>8} {:>11} {:>11} {:>13} {:>13} {:>12}\n",
+        "d0/h", "fixed load", "fixed grips", "paper fits FL", "paper fits FG", "full contact"
+    );
+    let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+    for r in &rows {
+        let (fl, fg) = (pick(&r.fixed_load), pick(&r.fixed_grips));
+        let (pl, pg) = (
+            r.paper_fits_fixed_load.map(|p| -p.1),
+            r.paper_fits_fixed_grips.map(|p| -p.1),
+        );
+        let full = -r.full_contact.pulloff.force;
+        csv += &format!(
+            "{},{},{},{},{},{}\n",
+            r.d0_over_h,
+            fl.map_or(String::new(), |v| v.to_string()),
+            fg.map_or(String::new(), |v| v.to_string()),
+            pl.map_or(String::new(), |v| v.to_string()),
+            pg.map_or(String::new(), |v| v.to_string()),
+            full
+        );
+        table += &format!(
+            "  {:>8.3} {:>11} {:>11} {:>13} {:>13} {:>12.4}\n",
+            r.d0_over_h,
+            cell(fl),
+            cell(fg),
+            cell(pl),
+            cell(pg),
+            full
+        );
+    }
+    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
+    let series = |name: &str, f: &dyn Fn(&adhesion::ConcaveJkr) -> Option<f64>| svg::Series {
+        name: name.to_string(),
+        points: rows
+            .iter()
+            .filter_map(|r| f(r).map(|v| (r.d0_over_h, v)))
+            .collect(),
+    };
+    let chart = svg::log_log_chart(
+        &format!("{kind}: pull-off force / F0 against d0/h"),
+        "d0/h",
+        "-F_pulloff / F0",
+        &[
+            series("fixed load", &|r| pick(&r.fixed_load)),
+            series("fixed grips", &|r| pick(&r.fixed_grips)),
+            series("paper fits, FL", &|r| r.paper_fits_fixed_load.map(|p| -p.1)),
+            series("full contact", &|r| Some(-r.full_contact.pulloff.force)),
+        ],
+    );
+    let stem = out.join(format!("pulloff-{}", kind.name()));
+    std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
+    std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
+    if json {
+        return serde_json::to_string_pretty(&rows).map_err(|e| e.to_string());
+    }
+    Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
+}
+
+fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
+    let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
+    let reports = ringcontact::fit::run(&solver).map_err(|e| e.to_string())?;
+    if args.json {
+        println!(
+            "{}",
+            serde_json::to_string_pretty(&reports).map_err(|e| e.to_string())?
+        );
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!("Refits on ring-BEM data, 0.05 <= eps <= 0.99 (max relative error on 301 points, and where):");
+    for r in &reports {
+        println!("{}: {}", r.name, r.paper_form);
+        println!(
+            "  paper params {:?}: max rel. err {:.2e} at eps = {:.3}",
+            r.paper_params, r.paper_max_rel_err, r.paper_max_rel_err_eps
+        );
+        println!(
+            "  refit params {:?}: max rel. err {:.2e} at eps = {:.3}",
+            r.params
+                .iter()
+                .map(|p| (p * 1e4).round() / 1e4)
+                .collect::<Vec<_>>(),
+            r.max_rel_err,
+            r.max_rel_err_eps
+        );
+        println!(
+            "  best form {}\n    params {:?}: max rel. err {:.2e} at eps = {:.3}",
+            r.best_form,
+            r.best_params
+                .iter()
+                .map(|p| (p * 1e6).round() / 1e6)
+                .collect::<Vec<_>>(),
+            r.best_max_rel_err,
+            r.best_max_rel_err_eps
+        );
+    }
     Ok(ExitCode::SUCCESS)
 }
 
