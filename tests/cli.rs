@@ -131,3 +131,49 @@ fn bad_input_exits_non_zero_with_a_message_naming_the_problem() {
         assert!(!stderr.contains("panicked"), "{args:?} panicked");
     }
 }
+
+#[test]
+fn fit_and_jkr_json_carry_the_documented_keys() {
+    let v = json(&["fit", "--json"]);
+    for name in [
+        "flat",
+        "cone_gamma1",
+        "cone_gamma2",
+        "sphere_gamma1",
+        "sphere_gamma2",
+    ] {
+        let entry = &v[name];
+        for key in [
+            "params",
+            "paper_params",
+            "max_rel_err",
+            "paper_max_rel_err",
+            "best_form",
+            "best_max_rel_err",
+        ] {
+            assert!(entry.get(key).is_some(), "fit {name}: missing {key}");
+        }
+    }
+    let v = json(&["jkr", "--punch", "flat-annulus", "--eps", "0.5", "--json"]);
+    for key in [
+        "dc_outer",
+        "dc_inner",
+        "fc_outer",
+        "fc_inner",
+        "governing_edge",
+    ] {
+        assert!(v.get(key).is_some(), "jkr flat-annulus: missing {key}");
+    }
+    assert_eq!(v["governing_edge"], "outer");
+    let v = json(&["jkr", "--punch", "cone", "--d0h", "1", "--json"]);
+    for regime in ["fixed_load", "fixed_grips"] {
+        for key in ["force", "depth", "eps", "governing_edge"] {
+            assert!(
+                v[regime].get(key).is_some(),
+                "jkr cone {regime}: missing {key}"
+            );
+        }
+    }
+    let out = verify(&["jkr", "--punch", "sphere"]);
+    assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("--d0h"));
+}

@@ -558,6 +558,53 @@ fn jkr_sweep(
             series("full contact", &|r| Some(-r.full_contact.pulloff.force)),
         ],
     );
+    // Fig. 9 analogue: the adhesive branches F/(2E*ha) against d/h for a few d0/h.
+    let mut branch_csv =
+        String::from("d0_over_h,eps,depth_over_h,force_over_2eha,force_over_f0,rim_attached\n");
+    let mut curves = Vec::new();
+    for s in [0.1, 0.3, 1.0, 3.0] {
+        let mut points = Vec::new();
+        for k in 0..=120 {
+            let e = 0.02 + 0.9799 * (k as f64 / 120.0).powf(0.5);
+            let p = adhesion::branch_point(solver, kind, e).map_err(|e| e.to_string())?;
+            let (d, f) = (p.depth(s), p.force(s) * s);
+            let rim_ok = p.rim_intensity(s) >= -1.0;
+            branch_csv += &format!("{s},{e},{d},{f},{},{rim_ok}\n", p.force(s));
+            if d > -4.0 {
+                points.push((d, f));
+            }
+        }
+        curves.push(svg::Series {
+            name: format!("d0/h = {s}"),
+            points,
+        });
+    }
+    curves.push(svg::Series {
+        name: "non-adhesive".into(),
+        points: (0..=120)
+            .map(|k| 0.02 + 0.9799 * (k as f64 / 120.0).powf(0.5))
+            .filter_map(|e| {
+                adhesion::branch_point(solver, kind, e)
+                    .ok()
+                    .map(|p| (p.gamma1, p.gamma2))
+            })
+            .collect(),
+    });
+    std::fs::write(
+        out.join(format!("branches-{}.csv", kind.name())),
+        branch_csv,
+    )
+    .map_err(|e| e.to_string())?;
+    std::fs::write(
+        out.join(format!("branches-{}.svg", kind.name())),
+        svg::linear_chart(
+            &format!("{kind}: adhesive branches (inner edge in equilibrium)"),
+            "d/h",
+            "F/(2 E* h a)",
+            &curves,
+        ),
+    )
+    .map_err(|e| e.to_string())?;
     let stem = out.join(format!("pulloff-{}", kind.name()));
     std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
     std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
@@ -571,9 +618,19 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
     let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
     let reports = ringcontact::fit::run(&solver).map_err(|e| e.to_string())?;
     if args.json {
+        // One entry per function, keyed by its name.
+        let map: serde_json::Map<String, serde_json::Value> = reports
+            .iter()
+            .map(|r| {
+                Ok((
+                    r.name.clone(),
+                    serde_json::to_value(r).map_err(|e| e.to_string())?,
+                ))
+            })
+            .collect::<Result<_, String>>()?;
         println!(
             "{}",
-            serde_json::to_string_pretty(&reports).map_err(|e| e.to_string())?
+            serde_json::to_string_pretty(&map).map_err(|e| e.to_string())?
         );
         return Ok(ExitCode::SUCCESS);
     }

@@ -92,3 +92,88 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
     }
     svg + "</svg>\n"
 }
+
+/// A chart with linear axes (values of either sign), grid lines at "nice" steps.
+pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+    let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
+    let all: Vec<(f64, f64)> = series
+        .iter()
+        .flat_map(|s| s.points.iter().copied())
+        .filter(|p| p.0.is_finite() && p.1.is_finite())
+        .collect();
+    if all.is_empty() {
+        return format!("<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}'><text x='20' y='40'>{title}: no data</text></svg>");
+    }
+    let bounds = |v: &mut dyn Iterator<Item = f64>| {
+        v.fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| {
+            (a.min(x), b.max(x))
+        })
+    };
+    let (mut x0, mut x1) = bounds(&mut all.iter().map(|p| p.0));
+    let (mut y0, mut y1) = bounds(&mut all.iter().map(|p| p.1));
+    let step = |lo: f64, hi: f64| {
+        let raw = ((hi - lo) / 8.0).max(1e-12);
+        let mag = 10f64.powf(raw.log10().floor());
+        [1.0, 2.0, 5.0, 10.0]
+            .iter()
+            .map(|m| m * mag)
+            .find(|s| *s >= raw)
+            .unwrap_or(10.0 * mag)
+    };
+    let (sx, sy) = (step(x0, x1), step(y0, y1));
+    x0 = (x0 / sx).floor() * sx;
+    x1 = (x1 / sx).ceil() * sx;
+    y0 = (y0 / sy).floor() * sy;
+    y1 = (y1 / sy).ceil() * sy;
+    let px = |x: f64| left + (x - x0) / (x1 - x0) * (w - left - right);
+    let py = |y: f64| h - bottom - (y - y0) / (y1 - y0) * (h - top - bottom);
+    let mut svg = format!(
+        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
+         <rect width='100%' height='100%' fill='white'/>\n<text x='{left}' y='24' font-size='15'>{title}</text>\n"
+    );
+    let mut x = x0;
+    while x <= x1 + 1e-9 * sx {
+        svg += &format!("<line x1='{0}' y1='{top}' x2='{0}' y2='{1}' stroke='{2}'/><text x='{0}' y='{3}' text-anchor='middle'>{4}</text>\n", px(x), h - bottom, if x.abs() < 1e-9 * sx { "#999" } else { "#ddd" }, h - bottom + 16.0, format_tick(x));
+        x += sx;
+    }
+    let mut y = y0;
+    while y <= y1 + 1e-9 * sy {
+        svg += &format!("<line x1='{left}' y1='{0}' x2='{1}' y2='{0}' stroke='{2}'/><text x='{3}' y='{4}' text-anchor='end'>{5}</text>\n", py(y), w - right, if y.abs() < 1e-9 * sy { "#999" } else { "#ddd" }, left - 6.0, py(y) + 4.0, format_tick(y));
+        y += sy;
+    }
+    svg += &format!(
+        "<text x='{}' y='{}' text-anchor='middle'>{x_label}</text>\n",
+        (left + w - right) / 2.0,
+        h - 16.0
+    );
+    svg += &format!(
+        "<text transform='translate(18,{}) rotate(-90)' text-anchor='middle'>{y_label}</text>\n",
+        (top + h - bottom) / 2.0
+    );
+    for (k, s) in series.iter().enumerate() {
+        let colour = COLOURS[k % COLOURS.len()];
+        let pts: Vec<String> = s
+            .points
+            .iter()
+            .filter(|p| p.0.is_finite() && p.1.is_finite())
+            .map(|&(x, y)| format!("{:.1},{:.1}", px(x), py(y)))
+            .collect();
+        svg += &format!(
+            "<polyline fill='none' stroke='{colour}' stroke-width='2' points='{}'/>\n",
+            pts.join(" ")
+        );
+        let ly = top + 20.0 + 18.0 * k as f64;
+        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, s.name);
+    }
+    svg + "</svg>\n"
+}
+
+fn format_tick(v: f64) -> String {
+    let s = format!("{v:.3}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
