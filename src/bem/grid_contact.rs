@@ -13,6 +13,9 @@ use super::grid::{solve_contact, GridLoad, GridOperator};
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
+/// Fewest cells across the contact ring for a result (fewer: an error, not a number).
+pub const MIN_CELLS_ACROSS: f64 = 2.0;
+
 /// Largest grid accepted (memory: about 100 N² bytes).
 pub const MAX_GRID: usize = 4096;
 
@@ -83,8 +86,22 @@ pub fn solve(
             reason: format!("grid {n} outside 8..={MAX_GRID} cells per side"),
         });
     }
+    // A ring narrower than two cells is not resolved: the staircase would carry most of the error
+    // and the number would look plausible. Refuse it instead.
+    let cell = 2.0 / n as f64;
+    if kind == PunchKind::FlatAnnulus && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
+        return Err(Error::OutOfRange {
+            method: super::grid::METHOD.into(),
+            reason: format!(
+                "the ring b/a = {eps} is {:.2} cells wide on a {n} x {n} grid; at least {MIN_CELLS_ACROSS} cells are needed \
+                 (use --grid {} or more, or the ring BEM)",
+                (1.0 - eps) / cell,
+                (2.0 * MIN_CELLS_ACROSS / (1.0 - eps)).ceil() as usize
+            ),
+        });
+    }
     let start = Instant::now();
-    let op = GridOperator::new(n, 2.0 / n as f64);
+    let op = GridOperator::new(n, cell);
     let punch = discretise(kind, eps, n);
     let load = match load {
         GridLoad::Force(f) => GridLoad::Force(2.0 * f),
@@ -108,6 +125,16 @@ pub fn solve(
     } else {
         eps
     };
+    if concave && (1.0 - eps_out) < MIN_CELLS_ACROSS * cell {
+        return Err(Error::OutOfRange {
+            method: super::grid::METHOD.into(),
+            reason: format!(
+                "the contact ring (b/a = {eps_out:.4}) is {:.2} cells wide on a {n} x {n} grid; at least \
+                 {MIN_CELLS_ACROSS} cells are needed (refine the grid or use the ring BEM)",
+                (1.0 - eps_out) / cell
+            ),
+        });
+    }
     Ok(GridState {
         grid: n,
         eps: eps_out,

@@ -10,7 +10,7 @@ use clap::{Args, Parser, Subcommand};
 
 use ringcontact::adhesion;
 use ringcontact::fem::mesh::Degree;
-use ringcontact::harness::{comparison, convergence, fenicsx, peers, svg};
+use ringcontact::harness::{comparison, convergence, fenicsx, peers, report, svg};
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference;
@@ -201,6 +201,12 @@ struct CompareArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     json: bool,
+    /// Report directory (Markdown, JSON, SVG charts).
+    #[arg(long, default_value = "reports/latest")]
+    report: PathBuf,
+    /// Skip the report directory (tables only).
+    #[arg(long)]
+    no_report: bool,
 }
 
 fn main() -> ExitCode {
@@ -209,6 +215,8 @@ fn main() -> ExitCode {
         None => run_compare(CompareArgs {
             tol: DEFAULT_TOLERANCE,
             json: false,
+            report: PathBuf::from("reports/latest"),
+            no_report: false,
         }),
         Some(Command::Compare(args)) => run_compare(args),
         Some(Command::Solve(args)) => run_solve(args),
@@ -234,6 +242,16 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
     let external = fenicsx::run().map_err(|e| e.to_string())?;
     let peer_rows = peers::run(256).map_err(|e| e.to_string())?;
+    if !args.no_report {
+        use std::io::IsTerminal;
+        let show = std::io::stderr().is_terminal();
+        report::write_report(&args.report, &report, &external, &peer_rows, |stage| {
+            if show {
+                eprintln!("  report: {stage} ...");
+            }
+        })
+        .map_err(|e| e.to_string())?;
+    }
     if args.json {
         let both =
             serde_json::json!({ "comparison": report, "fenicsx": external, "peers": peer_rows });
@@ -252,6 +270,12 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
             peer_rows.len(),
             peers::failures(&peer_rows)
         );
+        if !args.no_report {
+            println!(
+                "Report (Markdown, JSON, SVG charts): {}/report.md",
+                args.report.display()
+            );
+        }
     }
     Ok(
         if report.failures() + fenicsx::failures(&external) + peers::failures(&peer_rows) == 0 {

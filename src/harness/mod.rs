@@ -4,4 +4,5 @@ pub mod comparison;
 pub mod convergence;
 pub mod fenicsx;
 pub mod peers;
+pub mod report;
 pub mod svg;

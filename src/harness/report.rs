@@ -1,0 +1,678 @@
+//! The report directory of a `verify` run: Markdown for people, JSON for scripts, SVG charts.
+//!
+//! Charts: the dimensionless functions against `eps` by every method and reference; error
+//! against wall time per problem (log-log, Pareto front marked); convergence of the grid BEM and
+//! the FEM; pressure profiles of one state; pull-off against `d0/h`.
+
+use std::fmt::Write as _;
+use std::path::Path;
+use std::time::Instant;
+
+use serde::Serialize;
+
+use super::comparison::ComparisonReport;
+use super::convergence::{self, StudyCase};
+use super::fenicsx::FenicsxComparison;
+use super::peers::PeerComparison;
+use super::svg::{linear_chart, log_log_chart, Series};
+use crate::adhesion;
+use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
+use crate::bem::grid_contact::{self, cell_centre, discretise};
+use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::fem::mesh::Degree;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::methods::Method;
+use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
+use crate::reference::paper_fits;
+
+/// One (time, error) point of a method on a problem.
+#[derive(Clone, Debug, Serialize)]
+pub struct CostPoint {
+    pub method: String,
+    pub resolution: String,
+    pub wall_s: f64,
+    /// `|value - yardstick| / |yardstick|`, floored at 1e-16.
+    pub error: f64,
+    pub on_pareto_front: bool,
+}
+
+/// Speed against accuracy on one problem.
+#[derive(Clone, Debug, Serialize)]
+pub struct SpeedAccuracy {
+    pub problem: String,
+    pub yardstick: f64,
+    pub points: Vec<CostPoint>,
+}
+
+/// Everything the report holds beyond the comparison tables.
+#[derive(Clone, Debug, Serialize)]
+pub struct ReportExtras {
+    pub speed_accuracy: Vec<SpeedAccuracy>,
+    pub convergence: Vec<convergence::Study>,
+    pub pulloff: Vec<(String, f64, Option<f64>, Option<f64>, f64)>,
+    pub wall_s: f64,
+}
+
+fn floor(e: f64) -> f64 {
+    e.abs().max(1e-16)
+}
+
+fn mark_pareto(points: &mut [CostPoint]) {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| points[a].wall_s.total_cmp(&points[b].wall_s));
+    let mut best = f64::INFINITY;
+    for i in order {
+        if points[i].error < best {
+            best = points[i].error;
+            points[i].on_pareto_front = true;
+        }
+    }
+}
+
+fn timed<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, f64)> {
+    let start = Instant::now();
+    let v = f()?;
+    Ok((v, start.elapsed().as_secs_f64()))
+}
+
+fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f64) -> CostPoint {
+    CostPoint {
+        method: method.into(),
+        resolution,
+        wall_s,
+        error: floor((value - yardstick) / yardstick),
+        on_pareto_front: false,
+    }
+}
+
+/// Error against wall time for the flat annulus (`eps = 0.5`, `γ`) and the sphere (`d = 1.5 h`,
+/// `γ2`): ring BEM at several node counts or tolerances, FEM at the committed levels (P1, P2),
+/// grid BEM at 64-256 cells per side.
+pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
+    let rule = TanhSinhRule::new(1.0 / 16.0);
+    let mut out = Vec::new();
+    // Flat annulus.
+    let yardstick = ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN);
+    let mut points = Vec::new();
+    for n in [3usize, 4, 5, 6, 8] {
+        let (g, t) = timed(|| {
+            let system = RingSystem::assemble(
+                ContactRegion::Annulus { eps: 0.5 },
+                RingBemSettings {
+                    nodes: n,
+                    quadrature_step: 1.0 / 16.0,
+                },
+                &rule,
+            );
+            system
+                .solve(&vec![1.0; n])
+                .map(|f| 0.5 * f.force)
+                .ok_or_else(|| Error::NoConvergence {
+                    method: "ring-bem".into(),
+                    reason: "singular".into(),
+                })
+        })?;
+        points.push(point("ring-bem", format!("N = {n}"), t, g, yardstick));
+    }
+    for degree in [Degree::Linear, Degree::Quadratic] {
+        for level in 0..3 {
+            let options = FemOptions {
+                degree,
+                tolerance: 1e-3,
+                mesh: Some(fem_solver::mesh_directory().join(format!("annulus-0.5-L{level}.msh"))),
+                poisson_ratio: 0.0,
+            };
+            let (s, t) =
+                timed(|| fem_solver::solve(PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, &options))?;
+            points.push(point(
+                if degree == Degree::Linear {
+                    "fem P1"
+                } else {
+                    "fem P2"
+                },
+                format!("L{level}"),
+                t,
+                s.gamma.unwrap_or(f64::NAN),
+                yardstick,
+            ));
+        }
+    }
+    for n in [64usize, 128, 256] {
+        let (s, t) = timed(|| {
+            grid_contact::solve(PunchKind::FlatAnnulus, 0.5, n, GridLoad::Depth(1.0), 1e-10)
+        })?;
+        points.push(point(
+            "grid-bem",
+            format!("{n}²"),
+            t,
+            s.gamma.unwrap_or(f64::NAN),
+            yardstick,
+        ));
+    }
+    mark_pareto(&mut points);
+    out.push(SpeedAccuracy {
+        problem: "flat annulus b/a = 0.5, gamma".into(),
+        yardstick,
+        points,
+    });
+    // Sphere, depth control.
+    let yardstick = ring
+        .concave_at_depth(PunchKind::Sphere, 1.5, 1e-11)?
+        .gamma2
+        .unwrap_or(f64::NAN);
+    let mut points = Vec::new();
+    for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
+        let (s, t) = timed(|| ring.concave_at_depth(PunchKind::Sphere, 1.5, tol))?;
+        points.push(point(
+            "ring-bem",
+            format!("tol {tol:.0e}"),
+            t,
+            s.gamma2.unwrap_or(f64::NAN),
+            yardstick,
+        ));
+    }
+    for degree in [Degree::Linear, Degree::Quadratic] {
+        for level in 0..3 {
+            let options = FemOptions {
+                degree,
+                tolerance: 1e-3,
+                mesh: Some(fem_solver::mesh_directory().join(format!("disk-L{level}.msh"))),
+                poisson_ratio: 0.0,
+            };
+            let (s, t) = timed(|| {
+                fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)
+            })?;
+            points.push(point(
+                if degree == Degree::Linear {
+                    "fem P1"
+                } else {
+                    "fem P2"
+                },
+                format!("L{level}"),
+                t,
+                s.gamma2.unwrap_or(f64::NAN),
+                yardstick,
+            ));
+        }
+    }
+    for n in [64usize, 128, 256] {
+        let (s, t) =
+            timed(|| grid_contact::solve(PunchKind::Sphere, 0.0, n, GridLoad::Depth(1.5), 1e-10))?;
+        points.push(point(
+            "grid-bem",
+            format!("{n}²"),
+            t,
+            s.gamma2.unwrap_or(f64::NAN),
+            yardstick,
+        ));
+    }
+    mark_pareto(&mut points);
+    out.push(SpeedAccuracy {
+        problem: "sphere d/h = 1.5, gamma2".into(),
+        yardstick,
+        points,
+    });
+    Ok(out)
+}
+
+fn speed_chart(sa: &SpeedAccuracy) -> String {
+    let mut methods: Vec<String> = sa.points.iter().map(|p| p.method.clone()).collect();
+    methods.dedup();
+    let mut series: Vec<Series> = methods
+        .iter()
+        .map(|m| Series {
+            name: m.clone(),
+            points: sa
+                .points
+                .iter()
+                .filter(|p| &p.method == m)
+                .map(|p| (p.wall_s, p.error))
+                .collect(),
+        })
+        .collect();
+    let mut front: Vec<(f64, f64)> = sa
+        .points
+        .iter()
+        .filter(|p| p.on_pareto_front)
+        .map(|p| (p.wall_s, p.error))
+        .collect();
+    front.sort_by(|a, b| a.0.total_cmp(&b.0));
+    series.push(Series {
+        name: "Pareto front".into(),
+        points: front,
+    });
+    log_log_chart(
+        &format!("{}: error against wall time", sa.problem),
+        "wall time [s]",
+        "relative error",
+        &series,
+    )
+}
+
+/// The dimensionless functions against eps: ring BEM curves, references, other methods' points.
+fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Path) -> Result<()> {
+    let ratios: Vec<f64> = (0..=60).map(|k| 0.99 * k as f64 / 60.0).collect();
+    let flat: Vec<(f64, f64)> = ratios
+        .iter()
+        .map(|&e| Ok((e, ring.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN))))
+        .collect::<Result<_>>()?;
+    let fem_points: Vec<(f64, f64)> = comparison
+        .fem
+        .iter()
+        .filter(|c| !c.punch.is_concave())
+        .map(|c| (c.fem_eps, c.fem_value))
+        .collect();
+    let mut grid_points = Vec::new();
+    for e in [0.0, 0.5, 0.9] {
+        if let Ok(s) = grid_contact::solve(
+            if e == 0.0 {
+                PunchKind::Flat
+            } else {
+                PunchKind::FlatAnnulus
+            },
+            e,
+            128,
+            GridLoad::Depth(1.0),
+            1e-10,
+        ) {
+            grid_points.push((e, s.gamma.unwrap_or(f64::NAN)));
+        }
+    }
+    let chart = linear_chart(
+        "flat annulus: gamma = F/(2 E* d a) against b/a",
+        "eps = b/a",
+        "gamma",
+        &[
+            Series {
+                name: "ring BEM".into(),
+                points: flat,
+            },
+            Series {
+                name: "paper fit (3)".into(),
+                points: ratios
+                    .iter()
+                    .map(|&e| (e, paper_fits::flat_gamma(e)))
+                    .collect(),
+            },
+            Series {
+                name: "FEM P2 (points)".into(),
+                points: fem_points,
+            },
+            Series {
+                name: "grid BEM 128² (points)".into(),
+                points: grid_points,
+            },
+        ],
+    );
+    write(dir, "gamma-flat-annulus.svg", &chart)?;
+    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+        let ratios: Vec<f64> = (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect();
+        let mut g1 = Vec::new();
+        let mut g2 = Vec::new();
+        for &e in &ratios {
+            let s = ring.concave_at_ratio(kind, e, 1e-10)?;
+            g1.push((e, s.gamma1.unwrap_or(f64::NAN)));
+            g2.push((e, s.gamma2.unwrap_or(f64::NAN)));
+        }
+        let fit = |i: usize| -> Vec<(f64, f64)> {
+            ratios
+                .iter()
+                .map(|&e| {
+                    (
+                        e,
+                        if kind == PunchKind::Cone {
+                            paper_fits::cone_gamma(i, e)
+                        } else {
+                            paper_fits::sphere_gamma(i, e)
+                        },
+                    )
+                })
+                .collect()
+        };
+        let fem: Vec<(f64, f64)> = comparison
+            .fem
+            .iter()
+            .filter(|c| c.punch == kind && c.fem_eps > 0.0)
+            .map(|c| (c.fem_eps, c.fem_value))
+            .collect();
+        let chart = linear_chart(
+            &format!("{kind}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a"),
+            "eps = b/a",
+            "gamma1, gamma2",
+            &[
+                Series {
+                    name: "gamma1 ring BEM".into(),
+                    points: g1,
+                },
+                Series {
+                    name: "gamma2 ring BEM".into(),
+                    points: g2,
+                },
+                Series {
+                    name: "gamma1 paper fit".into(),
+                    points: fit(1),
+                },
+                Series {
+                    name: "gamma2 paper fit".into(),
+                    points: fit(2),
+                },
+                Series {
+                    name: "gamma2 FEM P2".into(),
+                    points: fem,
+                },
+            ],
+        );
+        write(dir, &format!("gammas-{}.svg", kind.name()), &chart)?;
+    }
+    Ok(())
+}
+
+/// Pressure profiles of the sphere at `d = 1.5 h`: ring BEM and azimuthally averaged grid BEM.
+fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
+    let state = ring.concave_at_depth(PunchKind::Sphere, 1.5, 1e-10)?;
+    let bem: Vec<(f64, f64)> = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
+    let n = 256;
+    let op = GridOperator::new(n, 2.0 / n as f64);
+    let punch = discretise(PunchKind::Sphere, 0.0, n);
+    let c = solve_contact(
+        &op,
+        &punch.allowed,
+        &punch.profile,
+        GridLoad::Depth(1.5),
+        1e-10,
+        10_000,
+    )?;
+    let bins = 64;
+    let mut sum = vec![0.0; bins];
+    let mut count = vec![0usize; bins];
+    for i in 0..n {
+        for j in 0..n {
+            let r = cell_centre(n, i).hypot(cell_centre(n, j));
+            if r < 1.0 {
+                let b = ((r * bins as f64) as usize).min(bins - 1);
+                sum[b] += c.pressure[i * n + j];
+                count[b] += 1;
+            }
+        }
+    }
+    let grid: Vec<(f64, f64)> = (0..bins)
+        .filter(|&b| count[b] > 0)
+        .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
+        .collect();
+    let chart = linear_chart(
+        "sphere d/h = 1.5: contact pressure p/(E* h/a) against r/a",
+        "r/a",
+        "p a / (E* h)",
+        &[
+            Series {
+                name: "ring BEM (nodes)".into(),
+                points: bem,
+            },
+            Series {
+                name: "grid BEM 256², ring-averaged".into(),
+                points: grid,
+            },
+        ],
+    );
+    write(dir, "pressure-sphere.svg", &chart)
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
+    std::fs::write(dir.join(name), text).map_err(|e| Error::SceneFile {
+        path: dir.join(name).display().to_string(),
+        message: e.to_string(),
+    })
+}
+
+/// Write the report directory; returns the extras (also in report.json).
+pub fn write_report(
+    dir: &Path,
+    comparison: &ComparisonReport,
+    fenicsx: &[FenicsxComparison],
+    peers: &[PeerComparison],
+    mut progress: impl FnMut(&str),
+) -> Result<ReportExtras> {
+    let start = Instant::now();
+    std::fs::create_dir_all(dir).map_err(|e| Error::SceneFile {
+        path: dir.display().to_string(),
+        message: e.to_string(),
+    })?;
+    let ring = RingBemSolver::new();
+    progress("functions against eps");
+    function_charts(&ring, comparison, dir)?;
+    progress("speed against accuracy");
+    let speed = speed_accuracy(&ring)?;
+    for (k, sa) in speed.iter().enumerate() {
+        write(dir, &format!("speed-accuracy-{k}.svg"), &speed_chart(sa))?;
+    }
+    progress("convergence studies");
+    let mut studies = Vec::new();
+    for (method, levels) in [(Method::GridBem, 3), (Method::Fem, 3)] {
+        let study = convergence::run(
+            StudyCase {
+                punch: PunchKind::Sphere,
+                eps: 0.0,
+                depth: 1.5,
+            },
+            method,
+            levels,
+            |_| {},
+        )?;
+        let chart = log_log_chart(
+            &format!("sphere d/h = 1.5, {}: |error| against size", method.name()),
+            "size h",
+            "|relative error|",
+            &[Series {
+                name: method.name().into(),
+                points: study
+                    .levels
+                    .iter()
+                    .map(|l| (l.size, l.error.abs()))
+                    .collect(),
+            }],
+        );
+        write(dir, &format!("convergence-{}.svg", method.name()), &chart)?;
+        studies.push(study);
+    }
+    progress("pressure profiles");
+    pressure_chart(&ring, dir)?;
+    progress("adhesion");
+    let mut pulloff = Vec::new();
+    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+        let mut series = vec![
+            Series {
+                name: "fixed load".into(),
+                points: vec![],
+            },
+            Series {
+                name: "paper fits".into(),
+                points: vec![],
+            },
+            Series {
+                name: "full contact".into(),
+                points: vec![],
+            },
+        ];
+        for k in 0..=8 {
+            let s = 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0);
+            let r = adhesion::concave(&ring, kind, s)?;
+            let fl = r.fixed_load.as_ref().map(|c| -c.force);
+            let pf = r.paper_fits_fixed_load.map(|p| -p.1);
+            let full = -r.full_contact.pulloff.force;
+            if let Some(v) = fl {
+                series[0].points.push((s, v));
+            }
+            if let Some(v) = pf {
+                series[1].points.push((s, v));
+            }
+            series[2].points.push((s, full));
+            pulloff.push((kind.name().to_string(), s, fl, pf, full));
+        }
+        write(
+            dir,
+            &format!("pulloff-{}.svg", kind.name()),
+            &log_log_chart(
+                &format!("{kind}: pull-off / F0 against d0/h"),
+                "d0/h",
+                "-F/F0",
+                &series,
+            ),
+        )?;
+    }
+    let extras = ReportExtras {
+        speed_accuracy: speed,
+        convergence: studies,
+        pulloff,
+        wall_s: start.elapsed().as_secs_f64(),
+    };
+    let json = serde_json::json!({ "comparison": comparison, "fenicsx": fenicsx, "peers": peers, "extras": extras });
+    write(
+        dir,
+        "report.json",
+        &serde_json::to_string_pretty(&json).unwrap_or_default(),
+    )?;
+    write(
+        dir,
+        "report.md",
+        &markdown(comparison, fenicsx, peers, &extras),
+    )?;
+    Ok(extras)
+}
+
+fn markdown(
+    comparison: &ComparisonReport,
+    fenicsx: &[FenicsxComparison],
+    peers: &[PeerComparison],
+    extras: &ReportExtras,
+) -> String {
+    let mut md = String::from("# ringcontact verification report\n\n");
+    let bounded = comparison
+        .rows
+        .iter()
+        .flat_map(|r| &r.comparisons)
+        .filter(|c| c.agrees.is_some())
+        .count();
+    let failed =
+        comparison.failures() + super::fenicsx::failures(fenicsx) + super::peers::failures(peers);
+    let _ = writeln!(
+        md,
+        "**{} checks, {failed} failed.** Ring BEM against bounded references: {bounded}; consistency identities: {}; FEM against the ring BEM: {}; stored FEniCSx results: {}; stored peer results: {}.\n",
+        bounded + comparison.identities.len() + comparison.fem.len() + fenicsx.len() + peers.len(),
+        comparison.identities.len(),
+        comparison.fem.len(),
+        fenicsx.len(),
+        peers.len()
+    );
+    md += "## Methods and references\n\n| quantity | eps | ring BEM | est. error | references (rel. difference, verdict) |\n|---|---|---|---|---|\n";
+    for r in &comparison.rows {
+        let refs: Vec<String> = r
+            .comparisons
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} {:+.1e} {}",
+                    c.reference,
+                    c.relative_difference,
+                    match c.agrees {
+                        Some(true) => "ok",
+                        Some(false) => "**FAIL**",
+                        None => "",
+                    }
+                )
+            })
+            .collect();
+        let _ = writeln!(
+            md,
+            "| {:?} | {} | {:.12} | {:.0e} | {} |",
+            r.quantity,
+            r.eps,
+            r.value,
+            r.error_estimate,
+            refs.join("; ")
+        );
+    }
+    md += "\n## Consistency checks\n\n| check | eps | residual | allowed | verdict |\n|---|---|---|---|---|\n";
+    for c in &comparison.identities {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:.1e} | {:.0e} | {} |",
+            c.name,
+            c.eps,
+            c.relative_residual,
+            c.tolerance,
+            if c.passed { "ok" } else { "**FAIL**" }
+        );
+    }
+    md += "\n## FEM against the ring BEM (default tolerance)\n\n| punch | state | rel. diff | eps diff | FEM estimate | dofs | s | verdict |\n|---|---|---|---|---|---|---|---|\n";
+    for c in &comparison.fem {
+        let _ = writeln!(
+            md,
+            "| {} | {} | {:+.2e} | {:+.2e} | {:.1e} | {} | {:.2} | {} |",
+            c.punch,
+            c.prescribed,
+            c.relative_difference,
+            c.eps_difference,
+            c.fem_error_estimate,
+            c.dofs,
+            c.fem_wall_s,
+            if c.agrees { "ok" } else { "**FAIL**" }
+        );
+    }
+    md += "\n## External codes (stored results)\n\n| result | rel. diff to ours | verdict |\n|---|---|---|\n";
+    for r in fenicsx {
+        let _ = writeln!(
+            md,
+            "| FEniCSx {} ({}) | {} | {} |",
+            r.file,
+            r.status,
+            r.relative_difference
+                .map_or("-".into(), |d| format!("{d:+.1e}")),
+            if r.passed {
+                "ok"
+            } else if r.status == "current" {
+                "**FAIL**"
+            } else {
+                "stale, not used"
+            }
+        );
+    }
+    for r in peers {
+        let _ = writeln!(
+            md,
+            "| {} | {:+.1e} | {} |",
+            r.file,
+            r.relative_difference,
+            if r.passed { "ok" } else { "**FAIL**" }
+        );
+    }
+    md += "\n## Speed against accuracy\n\n";
+    for (k, sa) in extras.speed_accuracy.iter().enumerate() {
+        let _ = writeln!(md, "### {}\n\n![](speed-accuracy-{k}.svg)\n\n| method | resolution | wall s | rel. error | Pareto |\n|---|---|---|---|---|", sa.problem);
+        for p in &sa.points {
+            let _ = writeln!(
+                md,
+                "| {} | {} | {:.4} | {:.1e} | {} |",
+                p.method,
+                p.resolution,
+                p.wall_s,
+                p.error,
+                if p.on_pareto_front { "yes" } else { "" }
+            );
+        }
+        md += "\n";
+    }
+    md += "## Convergence (sphere, d/h = 1.5)\n\n";
+    for s in &extras.convergence {
+        let _ = writeln!(
+            md,
+            "![](convergence-{}.svg)\n\n```\n{}```\n",
+            s.method,
+            convergence::render(s)
+        );
+    }
+    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n";
+    md
+}
