@@ -47,12 +47,25 @@ pub struct SpeedAccuracy {
     pub points: Vec<CostPoint>,
 }
 
+/// Pull-off force `-F/F0` of a concave punch at one `d0/h` by each route.
+#[derive(Clone, Debug, Serialize)]
+pub struct PulloffPoint {
+    pub punch: String,
+    pub d0_over_h: f64,
+    /// Converged solutions, annular branch, fixed load (absent: no stable annular state).
+    pub fixed_load: Option<f64>,
+    /// The paper's route on the paper's fitted formulas.
+    pub paper_fits: Option<f64>,
+    /// From full contact (rim criterion).
+    pub full_contact: f64,
+}
+
 /// Everything the report holds beyond the comparison tables.
 #[derive(Clone, Debug, Serialize)]
 pub struct ReportExtras {
     pub speed_accuracy: Vec<SpeedAccuracy>,
     pub convergence: Vec<convergence::Study>,
-    pub pulloff: Vec<(String, f64, Option<f64>, Option<f64>, f64)>,
+    pub pulloff: Vec<PulloffPoint>,
     pub wall_s: f64,
 }
 
@@ -509,7 +522,13 @@ pub fn write_report(
                 series[1].points.push((s, v));
             }
             series[2].points.push((s, full));
-            pulloff.push((kind.name().to_string(), s, fl, pf, full));
+            pulloff.push(PulloffPoint {
+                punch: kind.name().to_string(),
+                d0_over_h: s,
+                fixed_load: fl,
+                paper_fits: pf,
+                full_contact: full,
+            });
         }
         write(
             dir,
