@@ -73,6 +73,9 @@ pub struct Solution {
     /// Cells per side of the square grid (grid BEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<usize>,
+    /// Why this method was chosen (`--method auto`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub selection: Option<String>,
     /// Pressure profile, ascending in `r` (empty for references without one).
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.

@@ -51,6 +51,8 @@ Examples:
   verify solve --punch sphere --depth 1 --method fem --tol 1e-4  (needs scripts/make_meshes.sh)
   verify solve --punch flat --method fem --mesh meshes/disk-L1.msh --degree 1
   verify solve --punch sphere --depth 1.5 --method grid-bem --grid 256 --json
+  verify solve --punch cone --depth 2 --method auto --tol 1e-6   cheapest method meeting 1e-6
+  verify solve --punch sphere --depth 1 --method fem --vtu sphere.vtu   field for ParaView
   verify solve --scene verify/scenes/cone-depth.toml --json")]
     Solve(SolveArgs),
     /// Compare the methods with the analytic references on all punches (the default job).
@@ -94,8 +96,38 @@ Examples:
     /// 0.05 <= eps <= 0.99 and propose better forms.
     #[command(after_help = "Example:\n  verify fit --json")]
     Fit(JsonArgs),
+    /// Drive every method toward its limits; report where each meets its tolerance, how it fails
+    /// outside, and any wrong number returned without an error (exit status 1 if one is found).
+    #[command(after_help = "Example:\n  verify stability --json > stability.json")]
+    Stability(JsonArgs),
+    /// Append a report's headline figures to the history file, compare with the previous run
+    /// (accuracy beyond tolerance, or time > 1.5x, is a regression: exit status 1) and write the
+    /// trend into the report directory. Used by scripts/nightly.sh.
+    #[command(
+        after_help = "Example:\n  verify history --report reports/2026-11-22 --history reports/history.jsonl"
+    )]
+    History(HistoryArgs),
     /// List the analytic references and the range of eps where each is valid.
     References,
+}
+
+#[derive(Args)]
+struct HistoryArgs {
+    /// Report directory written by `verify compare --report DIR` (and `stability.json` in it).
+    #[arg(long)]
+    report: PathBuf,
+    /// JSON-lines history file.
+    #[arg(long, default_value = "reports/history.jsonl")]
+    history: PathBuf,
+    /// Whether the FEniCSx results were refreshed (`fresh`) or read from the repository (`stored`).
+    #[arg(long, default_value = "stored")]
+    fenicsx: String,
+    /// The same for the Tamaas/ContactMechanics results.
+    #[arg(long, default_value = "stored")]
+    peers: String,
+    /// Date label of this run [default: the report directory's name].
+    #[arg(long)]
+    date: Option<String>,
 }
 
 #[derive(Args)]
@@ -185,6 +217,9 @@ struct SolveArgs {
     /// FEM only: element degree, 1 (linear) or 2 (quadratic) [default: 2].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
     degree: Option<u8>,
+    /// FEM only: write the displacement field of the finest model as VTK (.vtu) for ParaView.
+    #[arg(long)]
+    vtu: Option<PathBuf>,
     /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
     #[arg(long, value_parser = clap::value_parser!(u64).range(8..=4096))]
     grid: Option<u64>,
@@ -224,6 +259,31 @@ fn main() -> ExitCode {
         Some(Command::Convergence(args)) => run_convergence(args),
         Some(Command::Jkr(args)) => run_jkr(args),
         Some(Command::Fit(args)) => run_fit(args),
+        Some(Command::History(args)) => run_history(args),
+        Some(Command::Stability(args)) => {
+            use std::io::IsTerminal;
+            let show = std::io::stderr().is_terminal();
+            let probes = ringcontact::harness::stability::run(|p| {
+                if show {
+                    eprintln!("  {} {}: {}", p.method, p.probe, p.outcome);
+                }
+            });
+            if args.json {
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&probes).unwrap_or_default()
+                );
+            } else {
+                print!("{}", ringcontact::harness::stability::render(&probes));
+            }
+            Ok(
+                if ringcontact::harness::stability::wrong_numbers(&probes) == 0 {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::FAILURE
+                },
+            )
+        }
         Some(Command::References) => {
             print_references();
             Ok(ExitCode::SUCCESS)
@@ -638,6 +698,50 @@ fn jkr_sweep(
     Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
 }
 
+fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {
+    use ringcontact::harness::history;
+    let date = args.date.clone().unwrap_or_else(|| {
+        args.report
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "run".into())
+    });
+    let current = history::headline(&args.report, &date, &args.fenicsx, &args.peers)
+        .map_err(|e| e.to_string())?;
+    let previous = history::append(&args.history, &current).map_err(|e| e.to_string())?;
+    let found = history::regressions(&current, previous.as_ref());
+    std::fs::write(
+        args.report.join("trend.md"),
+        history::trend(&args.history, 30),
+    )
+    .map_err(|e| e.to_string())?;
+    println!(
+        "history: {} ({} runs recorded); FEniCSx {}, peers {}",
+        args.history.display(),
+        std::fs::read_to_string(&args.history)
+            .map(|t| t.lines().count())
+            .unwrap_or(0),
+        current.fenicsx,
+        current.peers
+    );
+    if found.is_empty() {
+        println!(
+            "no regression against the tolerances{}",
+            if previous.is_some() {
+                " or the previous run"
+            } else {
+                " (first run)"
+            }
+        );
+        Ok(ExitCode::SUCCESS)
+    } else {
+        for r in &found {
+            println!("REGRESSION: {r}");
+        }
+        Ok(ExitCode::FAILURE)
+    }
+}
+
 fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
     let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
     let reports = ringcontact::fit::run(&solver).map_err(|e| e.to_string())?;
@@ -749,6 +853,7 @@ fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {
         mesh: args.mesh.clone(),
         degree: args.degree.and_then(Degree::from_number),
         grid: args.grid.map(|g| g as usize),
+        vtu: args.vtu.clone(),
     };
     let solution = methods::solve_with(&scene, args.method, &options).map_err(|e| e.to_string())?;
     if args.json {
@@ -814,6 +919,9 @@ fn describe(scene: &ringcontact::scene::Scene, s: &Solution) -> String {
     }
     out += &format!("wall time        {:.3} ms\n", s.wall_s * 1e3);
     out += &format!("provenance       {}\n", s.provenance);
+    if let Some(why) = &s.selection {
+        out += &format!("selection        {why}\n");
+    }
     out
 }
 

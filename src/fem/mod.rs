@@ -9,3 +9,4 @@ pub mod msh;
 pub mod norms;
 pub mod quadrature;
 pub mod solver;
+pub mod vtu;

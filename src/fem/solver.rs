@@ -85,8 +85,17 @@ pub struct FemState {
     pub reactions: Vec<(f64, f64)>,
     /// Radii of the contact-line nodes in contact, ascending (the active set).
     pub active_radii: Vec<f64>,
+    /// The final model's mesh and nodal displacement (for VTK output).
+    pub field: FemField,
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
+}
+
+/// Mesh and displacement `(u_r, u_z)` per node of a solved model.
+#[derive(Clone, Debug)]
+pub struct FemField {
+    pub mesh: Mesh,
+    pub displacement: Vec<f64>,
 }
 
 /// Where the time of one solve went (seconds).
@@ -271,6 +280,10 @@ fn finish(
         wall_s: start.elapsed().as_secs_f64(),
         reactions: solution.reactions,
         active_radii: solution.active_radii,
+        field: FemField {
+            mesh: model.mesh.clone(),
+            displacement: solution.displacement,
+        },
         timings: model.timings,
     }
 }

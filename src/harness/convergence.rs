@@ -191,10 +191,12 @@ pub fn run(
                     })?;
                 (format!("N = {n}"), 1.0 / n as f64, n, 0.5 * field.force)
             }
-            Method::Reference => {
+            Method::Reference | Method::Auto => {
                 return Err(Error::Unsupported {
-                    method: "reference".into(),
-                    reason: "a closed form has no refinement".into(),
+                    method: method.name().into(),
+                    reason:
+                        "convergence studies refine one method: choose ring-bem, fem or grid-bem"
+                            .into(),
                 })
             }
         };

@@ -3,6 +3,8 @@
 pub mod comparison;
 pub mod convergence;
 pub mod fenicsx;
+pub mod history;
 pub mod peers;
 pub mod report;
+pub mod stability;
 pub mod svg;

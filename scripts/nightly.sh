@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Nightly verification run: the full suite, the report in reports/<date>/, headline figures
+# appended to reports/history.jsonl and compared with the previous run (accuracy beyond its
+# tolerance or a time more than 1.5x slower is a regression: exit status 1).
+# FEniCSx and the FFT-BEM peers are re-run when installed (scripts/fenicsx/setup.sh,
+# scripts/peers/run_peers.sh); otherwise their stored results are used and marked as stored.
+set -uo pipefail
+cd "$(dirname "$0")/.."
+day=$(date -u +%F)
+out="reports/$day"
+mkdir -p "$out"
+cargo build --release --quiet || exit 1
+fenicsx=stored
+peers=stored
+if /usr/bin/python3 -c "import dolfinx" 2>/dev/null; then
+  if bash scripts/fenicsx/run_all.sh > "$out/fenicsx.log" 2>&1; then fenicsx=fresh; fi
+fi
+if [ -x .venv-peers/bin/python ] && .venv-peers/bin/python -c "import tamaas, ContactMechanics" 2>/dev/null; then
+  if bash scripts/peers/run_peers.sh > "$out/peers.log" 2>&1; then peers=fresh; fi
+fi
+status=0
+./target/release/verify compare --report "$out" > "$out/summary.txt" || status=1
+./target/release/verify stability --json > "$out/stability.json" || status=1
+./target/release/verify stability > "$out/stability.txt" || true
+./target/release/verify history --report "$out" --history reports/history.jsonl --fenicsx "$fenicsx" --peers "$peers" || status=1
+tail -n 3 "$out/summary.txt"
+echo "report: $out/report.md (trend: $out/trend.md)"
+exit $status

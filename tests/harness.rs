@@ -1,0 +1,110 @@
+//! The harness around the solvers: stability sweep, automatic method choice, VTK output and the
+//! report directory of the default run.
+
+use std::process::Command;
+
+use ringcontact::harness::stability;
+use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::punch::PunchKind;
+use ringcontact::scene::SceneSpec;
+
+#[test]
+fn no_method_returns_a_wrong_number_without_an_error() {
+    let probes = stability::run(|_| {});
+    assert!(probes.len() >= 30);
+    let wrong: Vec<_> = probes.iter().filter(|p| p.outcome == "WRONG").collect();
+    assert!(
+        wrong.is_empty(),
+        "wrong numbers without an error: {wrong:?}"
+    );
+    // Each method is driven past its limits at least once and declines there.
+    for method in ["ring-bem", "fem", "grid-bem"] {
+        assert!(
+            probes
+                .iter()
+                .any(|p| p.method == method && p.outcome == "error"),
+            "{method} never declined"
+        );
+    }
+}
+
+#[test]
+fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
+    let scene = SceneSpec::default()
+        .shape(PunchKind::Cone)
+        .depth(2.0)
+        .tolerance(1e-6)
+        .validate()
+        .unwrap();
+    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    assert_eq!(s.method, "ring-bem");
+    assert!(s.selection.unwrap().contains("cheapest"));
+    // Where the ring BEM declines (the cone's contact nearly closed), the FEM is chosen.
+    let scene = SceneSpec::default()
+        .shape(PunchKind::Cone)
+        .depth(60.0)
+        .tolerance(1e-3)
+        .validate()
+        .unwrap();
+    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    assert_eq!(s.method, "fem");
+    assert!(s.error_estimate.unwrap() <= 1e-3);
+}
+
+#[test]
+fn fem_fields_are_written_as_vtk() {
+    let dir = std::env::temp_dir().join(format!("ringcontact-vtu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("flat.vtu");
+    let scene = SceneSpec::default()
+        .shape(PunchKind::Flat)
+        .validate()
+        .unwrap();
+    let options = MethodOptions {
+        vtu: Some(path.clone()),
+        ..MethodOptions::default()
+    };
+    let s = methods::solve_with(&scene, Method::Fem, &options).unwrap();
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        text.starts_with("<?xml")
+            && text.contains("UnstructuredGrid")
+            && text.contains("Name=\"displacement\"")
+    );
+    assert!(text.contains(&format!("NumberOfPoints=\"{}\"", s.dofs.unwrap() / 2)));
+    let e = methods::solve_with(&scene, Method::RingBem, &options).unwrap_err();
+    assert!(e.to_string().contains("--vtu"));
+}
+
+#[test]
+fn the_default_run_writes_a_report_directory() {
+    let dir = std::env::temp_dir().join(format!("ringcontact-report-{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(["compare", "--report", dir.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(String::from_utf8_lossy(&out.stdout).contains("report.md"));
+    for file in [
+        "report.md",
+        "report.json",
+        "speed-accuracy-0.svg",
+        "speed-accuracy-1.svg",
+        "gamma-flat-annulus.svg",
+        "pressure-sphere.svg",
+        "pulloff-sphere.svg",
+        "convergence-fem.svg",
+    ] {
+        assert!(dir.join(file).exists(), "missing {file}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let points = json["extras"]["speed_accuracy"][0]["points"]
+        .as_array()
+        .unwrap();
+    assert!(points.iter().any(|p| p["on_pareto_front"] == true));
+}
