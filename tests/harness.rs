@@ -11,7 +11,11 @@ use ringcontact::scene::SceneSpec;
 #[test]
 fn no_method_returns_a_wrong_number_without_an_error() {
     let probes = stability::run(|_| {});
-    assert!(probes.len() >= 30);
+    assert_eq!(
+        probes.len(),
+        stability::PROBES,
+        "update PROBES (the progress bar length)"
+    );
     let wrong: Vec<_> = probes.iter().filter(|p| p.outcome == "WRONG").collect();
     assert!(
         wrong.is_empty(),

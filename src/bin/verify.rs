@@ -261,12 +261,12 @@ fn main() -> ExitCode {
         Some(Command::Fit(args)) => run_fit(args),
         Some(Command::History(args)) => run_history(args),
         Some(Command::Stability(args)) => {
-            use std::io::IsTerminal;
-            let show = std::io::stderr().is_terminal();
+            let mut bar = ringcontact::harness::progress::Progress::new(
+                "stability",
+                ringcontact::harness::stability::PROBES,
+            );
             let probes = ringcontact::harness::stability::run(|p| {
-                if show {
-                    eprintln!("  {} {}: {}", p.method, p.probe, p.outcome);
-                }
+                bar.tick(&format!("{} {}", p.method, p.probe))
             });
             if args.json {
                 println!(
@@ -303,12 +303,9 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     let external = fenicsx::run().map_err(|e| e.to_string())?;
     let peer_rows = peers::run(256).map_err(|e| e.to_string())?;
     if !args.no_report {
-        use std::io::IsTerminal;
-        let show = std::io::stderr().is_terminal();
+        let mut bar = ringcontact::harness::progress::Progress::new("report", report::STAGES);
         report::write_report(&args.report, &report, &external, &peer_rows, |stage| {
-            if show {
-                eprintln!("  report: {stage} ...");
-            }
+            bar.tick(stage)
         })
         .map_err(|e| e.to_string())?;
     }
@@ -587,8 +584,10 @@ fn jkr_sweep(
         .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 24.0))
         .collect();
     let mut rows = Vec::new();
+    let mut bar = ringcontact::harness::progress::Progress::new("sweep", values.len());
     for &s in &values {
         rows.push(adhesion::concave(solver, kind, s).map_err(|e| e.to_string())?);
+        bar.tick(&format!("d0/h = {s:.3}"));
     }
     let pick = |c: &Option<adhesion::Critical>| c.as_ref().map(|c| -c.force);
     let mut csv = String::from("d0_over_h,fixed_load,fixed_grips,paper_fits_fixed_load,paper_fits_fixed_grips,full_contact\n");

@@ -369,3 +369,50 @@ impl<'m> ContactModel<'m> {
             .collect()
     }
 }
+
+/// Nodal pressure estimates along the contact line: the consistent reaction `λ_i` divided by the
+/// node's weight `∫ N_i 2π r ds` over the contact edges (exact for a uniform pressure; for
+/// quadratic elements an estimate). Returns `(r, p)` ascending in `r`.
+pub fn nodal_pressure(mesh: &Mesh, reactions: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let nodes = {
+        let mut n = mesh.boundary_nodes(tags::CONTACT);
+        n.sort_by(|&a, &b| mesh.nodes[a][0].total_cmp(&mesh.nodes[b][0]));
+        n
+    };
+    let position: std::collections::HashMap<usize, usize> =
+        nodes.iter().enumerate().map(|(i, &n)| (n, i)).collect();
+    let mut weights = vec![0.0; nodes.len()];
+    let root = 0.6f64.sqrt();
+    let gauss = [
+        (0.5 - 0.5 * root, 5.0 / 18.0),
+        (0.5, 8.0 / 18.0),
+        (0.5 + 0.5 * root, 5.0 / 18.0),
+    ];
+    for edge in mesh.boundary.iter().filter(|e| e.tag == tags::CONTACT) {
+        let (a, b) = (mesh.nodes[edge.nodes[0]], mesh.nodes[edge.nodes[1]]);
+        let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+        for &(t, w) in &gauss {
+            let r = a[0] + t * (b[0] - a[0]);
+            let shape = if edge.nodes.len() == 2 {
+                vec![1.0 - t, t]
+            } else {
+                vec![
+                    (1.0 - t) * (1.0 - 2.0 * t),
+                    t * (2.0 * t - 1.0),
+                    4.0 * t * (1.0 - t),
+                ]
+            };
+            for (k, &node) in edge.nodes.iter().enumerate() {
+                if let Some(&i) = position.get(&node) {
+                    weights[i] += w * length * shape[k] * 2.0 * std::f64::consts::PI * r;
+                }
+            }
+        }
+    }
+    reactions
+        .iter()
+        .zip(&weights)
+        .filter(|(_, &w)| w > 1e-12)
+        .map(|(&(r, lambda), &w)| (r, lambda / w))
+        .collect()
+}

@@ -5,6 +5,7 @@ pub mod convergence;
 pub mod fenicsx;
 pub mod history;
 pub mod peers;
+pub mod progress;
 pub mod report;
 pub mod stability;
 pub mod svg;

@@ -126,6 +126,9 @@ fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<
     }
 }
 
+/// Number of probes [`run`] makes (for progress display).
+pub const PROBES: usize = 35;
+
 /// Run all probes.
 pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
     let ring = RingBemSolver::new();

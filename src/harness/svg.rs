@@ -1,5 +1,14 @@
 //! Minimal log-log line charts as standalone SVG (no system libraries, no fonts to ship).
 
+/// Escape text for XML (`&`, `<`, `>`, quotes).
+pub fn escape(text: &str) -> String {
+    text.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('\'', "&apos;")
+        .replace('"', "&quot;")
+}
+
 /// One named series of `(x, y)` points (both positive).
 pub struct Series {
     pub name: String,
@@ -12,6 +21,7 @@ const COLOURS: [&str; 6] = [
 
 /// A log-log chart of the series with decade grid lines and a legend.
 pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+    let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
     let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -88,13 +98,14 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
             svg += &format!("<circle cx='{cx}' cy='{cy}' r='3.5' fill='{colour}'/>\n");
         }
         let ly = top + 20.0 + 18.0 * k as f64;
-        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, s.name);
+        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, escape(&s.name));
     }
     svg + "</svg>\n"
 }
 
 /// A chart with linear axes (values of either sign), grid lines at "nice" steps.
 pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+    let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
     let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
     let all: Vec<(f64, f64)> = series
         .iter()
@@ -163,7 +174,7 @@ pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]
             pts.join(" ")
         );
         let ly = top + 20.0 + 18.0 * k as f64;
-        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, s.name);
+        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, escape(&s.name));
     }
     svg + "</svg>\n"
 }
@@ -175,5 +186,26 @@ fn format_tick(v: f64) -> String {
         "0".to_string()
     } else {
         s.to_string()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn text_is_escaped() {
+        let svg = linear_chart(
+            "a < b & c",
+            "x",
+            "y",
+            &[Series {
+                name: "<s>".into(),
+                points: vec![(0.0, 1.0), (1.0, 2.0)],
+            }],
+        );
+        assert!(
+            svg.contains("a &lt; b &amp; c") && svg.contains("&lt;s&gt;") && !svg.contains("<s>")
+        );
     }
 }
