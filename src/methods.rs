@@ -158,13 +158,7 @@ pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
     };
     let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
     let state = grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?;
-    let (depth, force) = match state.gamma {
-        Some(gamma) => flat_depth_force(scene, gamma)?,
-        None => (
-            h * state.gamma1.unwrap_or(f64::NAN),
-            2.0 * es * h * a * state.gamma2.unwrap_or(f64::NAN),
-        ),
-    };
+    let (depth, force) = depth_force(scene, state.gamma, state.gamma1, state.gamma2)?;
     Ok(Solution {
         punch: kind,
         method: crate::bem::grid::METHOD.to_string(),
@@ -228,13 +222,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
     if let Some(path) = &options.vtu {
         crate::fem::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
     }
-    let (depth, force) = match state.gamma {
-        Some(gamma) => flat_depth_force(scene, gamma)?,
-        None => (
-            h * state.gamma1.unwrap_or(f64::NAN),
-            2.0 * es * h * a * state.gamma2.unwrap_or(f64::NAN),
-        ),
-    };
+    let (depth, force) = depth_force(scene, state.gamma, state.gamma1, state.gamma2)?;
     Ok(Solution {
         punch: kind,
         method: fem_solver::METHOD.to_string(),
@@ -293,6 +281,30 @@ pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution>
     };
     let wall_s = start.elapsed().as_secs_f64();
     Ok(ring_state_to_solution(scene, &state, wall_s))
+}
+
+/// Physical depth and force from the dimensionless results: flat punches by
+/// [`flat_depth_force`], concave punches by `d = h γ1`, `F = 2 E* h a γ2`.
+fn depth_force(
+    scene: &Scene,
+    gamma: Option<f64>,
+    gamma1: Option<f64>,
+    gamma2: Option<f64>,
+) -> Result<(f64, f64)> {
+    match gamma {
+        Some(gamma) => flat_depth_force(scene, gamma),
+        None => {
+            let (h, a, es) = (
+                scene.punch.hole_depth,
+                scene.punch.rim_radius,
+                scene.material.effective_modulus,
+            );
+            Ok((
+                h * gamma1.unwrap_or(f64::NAN),
+                2.0 * es * h * a * gamma2.unwrap_or(f64::NAN),
+            ))
+        }
+    }
 }
 
 /// Physical depth and force of a flat punch with `F = 2 E* d a γ`, under the scene's load.

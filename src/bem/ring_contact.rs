@@ -400,10 +400,14 @@ impl RingBemSolver {
         }
     }
 
-    /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
-    pub fn sphere_full_contact(&self, depth_over_hole: f64, tolerance: f64) -> Result<RingState> {
-        Self::check_tolerance(tolerance)?;
-        let (sample, n, estimate, solves) = self.refine(
+    /// The disk with `w = d - h (1 - r²)` refined to `tolerance`: `((system, field), N, estimate,
+    /// factorisations)`.
+    fn sphere_disk(
+        &self,
+        depth_over_hole: f64,
+        tolerance: f64,
+    ) -> Result<((RingSystem, RingField), usize, f64, usize)> {
+        self.refine(
             tolerance,
             |n| {
                 let system = self.system(ContactRegion::Disk, n);
@@ -418,8 +422,14 @@ impl RingBemSolver {
                 Ok((system, field))
             },
             |(_, field)| vec![0.5 * field.force],
-        )?;
-        let (system, field) = sample;
+        )
+    }
+
+    /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
+    pub fn sphere_full_contact(&self, depth_over_hole: f64, tolerance: f64) -> Result<RingState> {
+        Self::check_tolerance(tolerance)?;
+        let ((system, field), n, estimate, solves) =
+            self.sphere_disk(depth_over_hole, tolerance)?;
         let pressure = pressure_profile(&system, &field);
         check_compressive(&pressure, 0.0)?;
         Ok(RingState {
@@ -439,32 +449,13 @@ impl RingBemSolver {
     /// Spherical punch in full contact under force control. In full contact the force is linear
     /// in the depth, `F(d) = F(0) + d F'`, so two disk solves give the depth exactly.
     fn sphere_full_contact_at_force(&self, target: f64, tolerance: f64) -> Result<RingState> {
-        let at_zero = self.sphere_full_contact_unchecked(0.0, tolerance)?;
-        let at_one = self.sphere_full_contact_unchecked(1.0, tolerance)?;
+        let gamma2 =
+            |d: f64| -> Result<f64> { Ok(0.5 * self.sphere_disk(d, tolerance)?.0 .1.force) };
+        let (at_zero, at_one) = (gamma2(0.0)?, gamma2(1.0)?);
         let depth = (target - at_zero) / (at_one - at_zero);
         let mut state = self.sphere_full_contact(depth, tolerance)?;
         state.solves += 4;
         Ok(state)
-    }
-
-    fn sphere_full_contact_unchecked(&self, depth_over_hole: f64, tolerance: f64) -> Result<f64> {
-        let (gamma2, _, _, _) = self.refine(
-            tolerance,
-            |n| {
-                let system = self.system(ContactRegion::Disk, n);
-                let target: Vec<f64> = system
-                    .radii()
-                    .iter()
-                    .map(|&r| depth_over_hole - PunchKind::Sphere.gap_shape(r))
-                    .collect();
-                system
-                    .solve(&target)
-                    .map(|f| 0.5 * f.force)
-                    .ok_or_else(|| no_convergence("singular collocation matrix".into()))
-            },
-            |g| vec![*g],
-        )?;
-        Ok(gamma2)
     }
 }
 

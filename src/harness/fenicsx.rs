@@ -87,33 +87,7 @@ pub fn sha256_of(path: &Path) -> Result<String> {
 
 /// Read every stored result, sorted by file name.
 pub fn load_results(dir: &Path) -> Result<Vec<(String, FenicsxResult)>> {
-    let mut files: Vec<PathBuf> = match std::fs::read_dir(dir) {
-        Ok(entries) => entries
-            .filter_map(|e| e.ok().map(|e| e.path()))
-            .filter(|p| p.extension().is_some_and(|x| x == "json"))
-            .collect(),
-        Err(_) => Vec::new(),
-    };
-    files.sort();
-    files
-        .into_iter()
-        .map(|path| {
-            let text = std::fs::read_to_string(&path).map_err(|e| Error::SceneFile {
-                path: path.display().to_string(),
-                message: e.to_string(),
-            })?;
-            let result: FenicsxResult =
-                serde_json::from_str(&text).map_err(|e| Error::SceneFile {
-                    path: path.display().to_string(),
-                    message: format!("not a FEniCSx result: {e}"),
-                })?;
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            Ok((name, result))
-        })
-        .collect()
+    super::stored::load_json_dir(dir, "FEniCSx result")
 }
 
 /// Compare one stored result with our FEM on the identical problem.

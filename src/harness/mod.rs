@@ -8,4 +8,5 @@ pub mod peers;
 pub mod progress;
 pub mod report;
 pub mod stability;
+pub mod stored;
 pub mod svg;

@@ -9,7 +9,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
-use crate::error::{Error, Result};
+use crate::error::Result;
 use crate::punch::PunchKind;
 
 /// Relative force agreement required on the same grid.
@@ -51,33 +51,7 @@ pub fn results_directory() -> PathBuf {
 
 /// Load every stored peer result, sorted by file name.
 pub fn load_results() -> Result<Vec<(String, PeerResult)>> {
-    let mut files: Vec<PathBuf> = std::fs::read_dir(results_directory())
-        .map(|entries| {
-            entries
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .filter(|p| p.extension().is_some_and(|x| x == "json"))
-                .collect()
-        })
-        .unwrap_or_default();
-    files.sort();
-    files
-        .into_iter()
-        .map(|path| {
-            let text = std::fs::read_to_string(&path).map_err(|e| Error::SceneFile {
-                path: path.display().to_string(),
-                message: e.to_string(),
-            })?;
-            let result = serde_json::from_str(&text).map_err(|e| Error::SceneFile {
-                path: path.display().to_string(),
-                message: format!("not a peer result: {e}"),
-            })?;
-            let name = path
-                .file_name()
-                .map(|n| n.to_string_lossy().into_owned())
-                .unwrap_or_default();
-            Ok((name, result))
-        })
-        .collect()
+    super::stored::load_json_dir(&results_directory(), "peer result")
 }
 
 /// `(punch, b/a bits, grid, depth bits)`: one state of the grid BEM.
