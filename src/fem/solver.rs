@@ -155,6 +155,8 @@ fn display_path(path: &Path) -> String {
 struct PreparedModel {
     mesh: Mesh,
     path: String,
+    /// Domain radius `R/a`: the largest distance of a far-boundary node from the origin.
+    domain_radius: f64,
     stiffness: nalgebra_sparse::CscMatrix<f64>,
     timings: FemTimings,
 }
@@ -174,8 +176,14 @@ fn prepare(path: &Path, degree: Degree, poisson_ratio: f64) -> Result<PreparedMo
     let rule = stiffness_rule(degree);
     let stiffness = assemble_stiffness(&mesh, &material, &rule)?;
     let assembly = start.elapsed().as_secs_f64();
+    let domain_radius = mesh
+        .boundary_nodes(tags::FAR)
+        .iter()
+        .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
+        .fold(0.0, f64::max);
     Ok(PreparedModel {
         mesh,
+        domain_radius,
         path: display_path(path),
         stiffness,
         timings: FemTimings {
@@ -253,6 +261,30 @@ fn solve_model(
     Ok(result)
 }
 
+/// Relative stiffening of the force by truncating the half-space at radius `R` (units of `a`),
+/// about `1.2 a/R` (PEERS.md; the committed meshes' finest results sit at this bias).
+pub fn truncation_bias(domain_radius: f64) -> f64 {
+    1.2 / domain_radius
+}
+
+/// A domain too small for the tolerance is a detectable failure: decline it.
+fn check_domain(model: &PreparedModel, tolerance: f64) -> Result<()> {
+    let bias = truncation_bias(model.domain_radius);
+    if bias > tolerance {
+        return Err(Error::OutOfRange {
+            method: METHOD.into(),
+            reason: format!(
+                "mesh {} ends at R = {:.3} a: truncating the half-space there stiffens the force by about \
+                 1.2 a/R = {bias:.1e}, above the tolerance {tolerance:.1e} (use a mesh with R >= {:.0} a)",
+                model.path,
+                model.domain_radius,
+                1.2 / tolerance
+            ),
+        });
+    }
+    Ok(())
+}
+
 /// `(eps, γ, γ1, γ2)` of a solved state.
 type StateValues = (f64, Option<f64>, Option<f64>, Option<f64>);
 
@@ -310,6 +342,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         };
     if let Some(path) = &options.mesh {
         let mut model = prepare(path, options.degree, options.poisson_ratio)?;
+        check_domain(&model, options.tolerance)?;
         let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
         let state = state_of(&s, x, y);
         let iterations = s.iterations;
@@ -335,6 +368,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             break;
         }
         let mut model = prepare(&path, options.degree, options.poisson_ratio)?;
+        check_domain(&model, options.tolerance)?;
         // The previous level's contact radius (and depth) start the iterations.
         let guess = previous.map(|p: (f64, f64, f64)| p.2);
         let depth_guess = previous.map(|p: (f64, f64, f64)| p.0);
@@ -375,7 +409,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let estimate = relative(values.0, prev.0)
                 .max(relative(values.1, prev.1))
                 .max(eps_estimate)
-                + TRUNCATION_BIAS;
+                + truncation_bias(model.domain_radius);
             if estimate <= options.tolerance {
                 let state = (eps_out, gamma, gamma1, gamma2);
                 return Ok(finish(

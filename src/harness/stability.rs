@@ -127,7 +127,7 @@ fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<
 }
 
 /// Number of probes [`run`] makes (for progress display).
-pub const PROBES: usize = 35;
+pub const PROBES: usize = 37;
 
 /// Run all probes.
 pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
@@ -230,6 +230,18 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         flat_reference(&ring, 0.0),
     );
     push(p, &mut probes);
+    let small = MethodOptions {
+        mesh: Some(crate::fem::solver::mesh_directory().join("small-domain-R5.msh")),
+        ..MethodOptions::default()
+    };
+    let p = probe(
+        Method::Fem,
+        &small,
+        "flat, small domain R = 5a (single mesh)".into(),
+        flat_scene(0.0),
+        flat_reference(&ring, 0.0),
+    );
+    push(p, &mut probes);
     // Grid BEM: rings narrower than the cells, coarse grids, near full contact.
     for (eps, n) in [(0.9, 64), (0.97, 64), (0.99, 64), (0.99, 512)] {
         let options = MethodOptions {
@@ -261,6 +273,35 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             concave_scene(kind, depth, None),
             concave_reference(&ring, kind, depth),
         );
+        push(p, &mut probes);
+    }
+    // Iteration caps: Polonsky-Keer stopped after 3 iterations must be an error, not a number.
+    {
+        use crate::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
+        let op = GridOperator::new(64, 2.0 / 64.0);
+        let punch = crate::bem::grid_contact::discretise(PunchKind::Sphere, 0.0, 64);
+        let outcome = solve_contact(
+            &op,
+            &punch.allowed,
+            &punch.profile,
+            Load::Depth(1.5),
+            1e-10,
+            3,
+        );
+        let p = Probe {
+            method: "grid-bem".into(),
+            probe: "sphere d/h = 1.5, 64², iteration cap 3".into(),
+            outcome: if outcome.is_err() {
+                "error".into()
+            } else {
+                "WRONG".into()
+            },
+            value: outcome.as_ref().ok().map(|c| c.force),
+            reference: None,
+            relative_error: None,
+            error_estimate: None,
+            message: outcome.err().map(|e| e.to_string()),
+        };
         push(p, &mut probes);
     }
     // References outside their ranges.
@@ -309,6 +350,26 @@ pub fn render(probes: &[Probe]) -> String {
                 .unwrap_or_default()
         );
     }
+    let _ = writeln!(
+        out,
+        "\nPer method: where it met its tolerance, and how it declined outside:"
+    );
+    for method in ["ring-bem", "fem", "grid-bem", "reference"] {
+        let of = |outcome: &str| -> Vec<&str> {
+            probes
+                .iter()
+                .filter(|p| p.method == method && p.outcome.starts_with(outcome))
+                .map(|p| p.probe.as_str())
+                .collect()
+        };
+        let _ = writeln!(
+            out,
+            "  {method}: ok on {}; declined on {}; uncertified numbers on {}",
+            list(&of("ok")),
+            list(&of("error")),
+            list(&of("no estimate"))
+        );
+    }
     let wrong = wrong_numbers(probes);
     let _ = writeln!(
         out,
@@ -318,4 +379,12 @@ pub fn render(probes: &[Probe]) -> String {
         wrong
     );
     out
+}
+
+fn list(items: &[&str]) -> String {
+    if items.is_empty() {
+        "none".into()
+    } else {
+        items.join(", ")
+    }
 }
