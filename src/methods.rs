@@ -158,37 +158,24 @@ pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
     };
     let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
     let state = grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?;
-    let (depth, force) = depth_force(scene, state.gamma, state.gamma1, state.gamma2)?;
     Ok(Solution {
-        punch: kind,
-        method: crate::bem::grid::METHOD.to_string(),
-        eps: state.eps,
-        depth,
-        force,
-        inner_radius: state.eps * a,
-        rim_radius: a,
-        gamma: state.gamma,
-        gamma1: state.gamma1,
-        gamma2: state.gamma2,
-        stress_intensity_rim: None,
-        stress_intensity_inner: None,
-        error_estimate: None,
-        wall_s: state.wall_s,
         unknowns: n * n,
         iterations: state.iterations,
-        dofs: None,
-        mesh: None,
-        degree: None,
         complementarity_residual: Some(state.residual),
         grid: Some(n),
-        selection: None,
-        pressure: Vec::new(),
         provenance: format!(
             "square-grid FFT BEM (Love kernel, 2N zero padding, Polonsky-Keer CG), {n} x {n} cells on \
              [-a, a]^2, {} contact cells, {} iterations, complementarity residual {:.1e}; no \
              discretisation error estimate on a single grid",
             state.contact_cells, state.iterations, state.residual
         ),
+        ..base(
+            scene,
+            crate::bem::grid::METHOD,
+            state.eps,
+            (state.gamma, state.gamma1, state.gamma2),
+            state.wall_s,
+        )?
     })
 }
 
@@ -222,44 +209,35 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
     if let Some(path) = &options.vtu {
         crate::fem::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
     }
-    let (depth, force) = depth_force(scene, state.gamma, state.gamma1, state.gamma2)?;
     Ok(Solution {
-        punch: kind,
-        method: fem_solver::METHOD.to_string(),
-        eps: state.eps,
-        depth,
-        force,
-        inner_radius: state.eps * a,
-        rim_radius: a,
-        gamma: state.gamma,
-        gamma1: state.gamma1,
-        gamma2: state.gamma2,
-        stress_intensity_rim: None,
-        stress_intensity_inner: None,
         error_estimate: state.error_estimate,
-        wall_s: state.wall_s,
         unknowns: state.dofs,
         iterations: state.iterations,
         dofs: Some(state.dofs),
         mesh: Some(state.mesh.clone()),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
-        grid: None,
-        selection: None,
-        pressure: Vec::new(),
         provenance: format!(
-            "axisymmetric FEM, P{} triangles, {} dofs on {}, domain radius 1e5 a (truncation bias \
-             {:.1e} included in the estimate){}",
+            "axisymmetric FEM, P{} triangles, {} dofs on {}, domain radius {:.3e} a (truncation bias \
+             1.2 a/R = {:.1e} included in the estimate){}",
             state.degree as u8,
             state.dofs,
             state.mesh,
-            fem_solver::TRUNCATION_BIAS,
+            state.domain_radius,
+            fem_solver::truncation_bias(state.domain_radius),
             if state.error_estimate.is_some() {
                 ", estimate from the previous refinement level"
             } else {
                 ", single mesh: no error estimate"
             }
         ),
+        ..base(
+            scene,
+            fem_solver::METHOD,
+            state.eps,
+            (state.gamma, state.gamma1, state.gamma2),
+            state.wall_s,
+        )?
     })
 }
 
@@ -280,7 +258,46 @@ pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution>
         (_, Load::Force(f)) => solver.concave_at_force(kind, f / (2.0 * es * h * a), tol)?,
     };
     let wall_s = start.elapsed().as_secs_f64();
-    Ok(ring_state_to_solution(scene, &state, wall_s))
+    ring_state_to_solution(scene, &state, wall_s)
+}
+
+/// A solution of `scene` by `method` with the physical state filled in from the dimensionless
+/// results and every method-specific field empty (to be overridden with struct-update syntax).
+fn base(
+    scene: &Scene,
+    method: &str,
+    eps: f64,
+    (gamma, gamma1, gamma2): (Option<f64>, Option<f64>, Option<f64>),
+    wall_s: f64,
+) -> Result<Solution> {
+    let (depth, force) = depth_force(scene, gamma, gamma1, gamma2)?;
+    let a = scene.punch.rim_radius;
+    Ok(Solution {
+        punch: scene.punch.kind,
+        method: method.to_string(),
+        eps,
+        depth,
+        force,
+        inner_radius: eps * a,
+        rim_radius: a,
+        gamma,
+        gamma1,
+        gamma2,
+        stress_intensity_rim: None,
+        stress_intensity_inner: None,
+        error_estimate: None,
+        wall_s,
+        unknowns: 0,
+        iterations: 0,
+        dofs: None,
+        mesh: None,
+        degree: None,
+        complementarity_residual: None,
+        grid: None,
+        selection: None,
+        pressure: Vec::new(),
+        provenance: String::new(),
+    })
 }
 
 /// Physical depth and force from the dimensionless results: flat punches by
@@ -321,48 +338,30 @@ fn flat_depth_force(scene: &Scene, gamma: f64) -> Result<(f64, f64)> {
     }
 }
 
-fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Solution {
+fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Result<Solution> {
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
-    let kind = scene.punch.kind;
-    let (depth, force, length) = match state.gamma {
-        Some(gamma) => {
-            // Validated scenes never carry a contact ratio for flat punches.
-            let (d, f) = flat_depth_force(scene, gamma).unwrap_or((f64::NAN, f64::NAN));
-            (d, f, d)
-        }
-        None => {
-            let h = scene.punch.hole_depth;
-            let g1 = state.gamma1.unwrap_or(f64::NAN);
-            let g2 = state.gamma2.unwrap_or(f64::NAN);
-            (h * g1, 2.0 * es * h * a * g2, h)
-        }
+    let base = base(
+        scene,
+        ring_contact::METHOD,
+        state.eps,
+        (state.gamma, state.gamma1, state.gamma2),
+        wall_s,
+    )?;
+    // Pressures and intensities scale with the depth (flat punches) or the hole depth (concave).
+    let length = if state.gamma.is_some() {
+        base.depth
+    } else {
+        scene.punch.hole_depth
     };
     let pressure_scale = es * length / a;
     let k_scale = es * length / a.sqrt();
-    Solution {
-        punch: kind,
-        method: ring_contact::METHOD.to_string(),
-        eps: state.eps,
-        depth,
-        force,
-        inner_radius: state.eps * a,
-        rim_radius: a,
-        gamma: state.gamma,
-        gamma1: state.gamma1,
-        gamma2: state.gamma2,
+    Ok(Solution {
         stress_intensity_rim: Some(state.rim_stress_intensity * k_scale),
         stress_intensity_inner: Some(state.inner_stress_intensity * k_scale),
         error_estimate: Some(state.error_estimate),
-        wall_s,
         unknowns: state.unknowns,
         iterations: state.solves,
-        dofs: None,
-        mesh: None,
-        degree: None,
-        complementarity_residual: None,
-        grid: None,
-        selection: None,
         pressure: state
             .pressure
             .iter()
@@ -376,7 +375,8 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Solu
              self-convergence estimate against the previous ladder rung",
             state.unknowns, state.solves
         ),
-    }
+        ..base
+    })
 }
 
 /// The most trusted reference for `quantity` at `eps`, or an out-of-range error.
@@ -406,32 +406,8 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
     let h = scene.punch.hole_depth;
-    let mut solution = Solution {
-        punch: kind,
-        method: String::new(),
-        eps: 0.0,
-        depth: 0.0,
-        force: 0.0,
-        inner_radius: 0.0,
-        rim_radius: a,
-        gamma: None,
-        gamma1: None,
-        gamma2: None,
-        stress_intensity_rim: None,
-        stress_intensity_inner: None,
-        error_estimate: None,
-        wall_s: 0.0,
-        unknowns: 0,
-        iterations: 0,
-        dofs: None,
-        mesh: None,
-        degree: None,
-        complementarity_residual: None,
-        grid: None,
-        selection: None,
-        pressure: Vec::new(),
-        provenance: String::new(),
-    };
+    // Every field below is set from the reference that applies.
+    let mut solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
     match kind {
         PunchKind::Flat | PunchKind::FlatAnnulus => {
             let eps = scene.punch.inner_ratio();

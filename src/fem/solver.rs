@@ -87,6 +87,8 @@ pub struct FemState {
     pub active_radii: Vec<f64>,
     /// The final model's mesh and nodal displacement (for VTK output).
     pub field: FemField,
+    /// Domain radius `R/a` of the final model's mesh.
+    pub domain_radius: f64,
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
 }
@@ -316,6 +318,7 @@ fn finish(
             mesh: model.mesh.clone(),
             displacement: solution.displacement,
         },
+        domain_radius: model.domain_radius,
         timings: model.timings,
     }
 }
