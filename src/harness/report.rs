@@ -106,21 +106,17 @@ fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f
 /// grid BEM at 64-256 cells per side.
 pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
     let rule = TanhSinhRule::new(1.0 / 16.0);
-    let mut out = Vec::new();
-    // Flat annulus.
+    // Flat annulus: the ring BEM at a few node counts (it converges geometrically).
     let yardstick = ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN);
     let mut points = Vec::new();
     for n in [3usize, 4, 5, 6, 8] {
         let (g, t) = timed(|| {
-            let system = RingSystem::assemble(
-                ContactRegion::Annulus { eps: 0.5 },
-                RingBemSettings {
-                    nodes: n,
-                    quadrature_step: 1.0 / 16.0,
-                },
-                &rule,
-            );
-            system
+            let region = ContactRegion::Annulus { eps: 0.5 };
+            let settings = RingBemSettings {
+                nodes: n,
+                quadrature_step: 1.0 / 16.0,
+            };
+            RingSystem::assemble(region, settings, &rule)
                 .solve(&vec![1.0; n])
                 .map(|f| 0.5 * f.force)
                 .ok_or_else(|| Error::NoConvergence {
@@ -130,48 +126,20 @@ pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
         })?;
         points.push(point("ring-bem", format!("N = {n}"), t, g, yardstick));
     }
-    for degree in [Degree::Linear, Degree::Quadratic] {
-        for level in 0..3 {
-            let options = FemOptions {
-                degree,
-                tolerance: 1e-3,
-                mesh: Some(fem_solver::mesh_directory().join(format!("annulus-0.5-L{level}.msh"))),
-                poisson_ratio: 0.0,
-            };
-            let (s, t) =
-                timed(|| fem_solver::solve(PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, &options))?;
-            points.push(point(
-                if degree == Degree::Linear {
-                    "fem P1"
-                } else {
-                    "fem P2"
-                },
-                format!("L{level}"),
-                t,
-                s.gamma.unwrap_or(f64::NAN),
-                yardstick,
-            ));
-        }
-    }
-    for n in [64usize, 128, 256] {
-        let (s, t) = timed(|| {
-            grid_contact::solve(PunchKind::FlatAnnulus, 0.5, n, GridLoad::Depth(1.0), 1e-10)
-        })?;
-        points.push(point(
-            "grid-bem",
-            format!("{n}²"),
-            t,
-            s.gamma.unwrap_or(f64::NAN),
-            yardstick,
-        ));
-    }
+    let flat = CostProblem {
+        kind: PunchKind::FlatAnnulus,
+        eps: 0.5,
+        family: "annulus-0.5",
+        load: FemLoad::Flat,
+    };
+    points.extend(fem_and_grid_points(&flat, yardstick)?);
     mark_pareto(&mut points);
-    out.push(SpeedAccuracy {
+    let mut out = vec![SpeedAccuracy {
         problem: "flat annulus b/a = 0.5, gamma".into(),
         yardstick,
         points,
-    });
-    // Sphere, depth control.
+    }];
+    // Sphere under depth control: the ring BEM at a few tolerances.
     let yardstick = ring
         .concave_at_depth(PunchKind::Sphere, 1.5, 1e-11)?
         .gamma2
@@ -187,41 +155,13 @@ pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
             yardstick,
         ));
     }
-    for degree in [Degree::Linear, Degree::Quadratic] {
-        for level in 0..3 {
-            let options = FemOptions {
-                degree,
-                tolerance: 1e-3,
-                mesh: Some(fem_solver::mesh_directory().join(format!("disk-L{level}.msh"))),
-                poisson_ratio: 0.0,
-            };
-            let (s, t) = timed(|| {
-                fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)
-            })?;
-            points.push(point(
-                if degree == Degree::Linear {
-                    "fem P1"
-                } else {
-                    "fem P2"
-                },
-                format!("L{level}"),
-                t,
-                s.gamma2.unwrap_or(f64::NAN),
-                yardstick,
-            ));
-        }
-    }
-    for n in [64usize, 128, 256] {
-        let (s, t) =
-            timed(|| grid_contact::solve(PunchKind::Sphere, 0.0, n, GridLoad::Depth(1.5), 1e-10))?;
-        points.push(point(
-            "grid-bem",
-            format!("{n}²"),
-            t,
-            s.gamma2.unwrap_or(f64::NAN),
-            yardstick,
-        ));
-    }
+    let sphere = CostProblem {
+        kind: PunchKind::Sphere,
+        eps: 0.0,
+        family: "disk",
+        load: FemLoad::ConcaveDepth(1.5),
+    };
+    points.extend(fem_and_grid_points(&sphere, yardstick)?);
     mark_pareto(&mut points);
     out.push(SpeedAccuracy {
         problem: "sphere d/h = 1.5, gamma2".into(),
@@ -229,6 +169,56 @@ pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
         points,
     });
     Ok(out)
+}
+
+/// A problem of the speed-accuracy study, as the FEM and the grid BEM see it.
+struct CostProblem {
+    kind: PunchKind,
+    eps: f64,
+    family: &'static str,
+    load: FemLoad,
+}
+
+/// The FEM (P1 and P2 on levels L0-L2) and the grid BEM (64² to 256²) on one problem; the value
+/// is `γ` (flat) or `γ2` (concave).
+fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<CostPoint>> {
+    let mut points = Vec::new();
+    for (degree, name) in [(Degree::Linear, "fem P1"), (Degree::Quadratic, "fem P2")] {
+        for level in 0..3 {
+            let mesh =
+                fem_solver::mesh_directory().join(format!("{}-L{level}.msh", problem.family));
+            let options = FemOptions {
+                degree,
+                tolerance: 1e-3,
+                mesh: Some(mesh),
+                poisson_ratio: 0.0,
+            };
+            let (s, t) =
+                timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options))?;
+            points.push(point(
+                name,
+                format!("L{level}"),
+                t,
+                s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+                yardstick,
+            ));
+        }
+    }
+    let grid_load = match problem.load {
+        FemLoad::ConcaveDepth(d) => GridLoad::Depth(d),
+        _ => GridLoad::Depth(1.0),
+    };
+    for n in [64usize, 128, 256] {
+        let (s, t) = timed(|| grid_contact::solve(problem.kind, problem.eps, n, grid_load, 1e-10))?;
+        points.push(point(
+            "grid-bem",
+            format!("{n}²"),
+            t,
+            s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+            yardstick,
+        ));
+    }
+    Ok(points)
 }
 
 fn speed_chart(sa: &SpeedAccuracy) -> String {
