@@ -108,7 +108,8 @@ Examples:
     )]
     History(HistoryArgs),
     /// List the analytic references and the range of eps where each is valid.
-    References,
+    #[command(after_help = "Examples:\n  verify references\n  verify references --json")]
+    References(JsonArgs),
 }
 
 #[derive(Args)]
@@ -284,8 +285,27 @@ fn main() -> ExitCode {
                 },
             )
         }
-        Some(Command::References) => {
-            print_references();
+        Some(Command::References(args)) => {
+            if args.json {
+                let list: Vec<serde_json::Value> = reference::catalogue()
+                    .iter()
+                    .map(|r| {
+                        serde_json::json!({
+                            "name": r.name,
+                            "quantity": r.quantity,
+                            "kind": r.kind,
+                            "eps_range": [r.eps_range.0, r.eps_range.1],
+                            "source": r.source,
+                        })
+                    })
+                    .collect();
+                println!(
+                    "{}",
+                    serde_json::to_string_pretty(&list).unwrap_or_default()
+                );
+            } else {
+                print_references();
+            }
             Ok(ExitCode::SUCCESS)
         }
     };
