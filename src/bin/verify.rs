@@ -261,53 +261,8 @@ fn main() -> ExitCode {
         Some(Command::Jkr(args)) => run_jkr(args),
         Some(Command::Fit(args)) => run_fit(args),
         Some(Command::History(args)) => run_history(args),
-        Some(Command::Stability(args)) => {
-            let mut bar = ringcontact::harness::progress::Progress::new(
-                "stability",
-                ringcontact::harness::stability::PROBES,
-            );
-            let probes = ringcontact::harness::stability::run(|p| {
-                bar.tick(&format!("{} {}", p.method, p.probe))
-            });
-            if args.json {
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&probes).unwrap_or_default()
-                );
-            } else {
-                print!("{}", ringcontact::harness::stability::render(&probes));
-            }
-            Ok(
-                if ringcontact::harness::stability::wrong_numbers(&probes) == 0 {
-                    ExitCode::SUCCESS
-                } else {
-                    ExitCode::FAILURE
-                },
-            )
-        }
-        Some(Command::References(args)) => {
-            if args.json {
-                let list: Vec<serde_json::Value> = reference::catalogue()
-                    .iter()
-                    .map(|r| {
-                        serde_json::json!({
-                            "name": r.name,
-                            "quantity": r.quantity,
-                            "kind": r.kind,
-                            "eps_range": [r.eps_range.0, r.eps_range.1],
-                            "source": r.source,
-                        })
-                    })
-                    .collect();
-                println!(
-                    "{}",
-                    serde_json::to_string_pretty(&list).unwrap_or_default()
-                );
-            } else {
-                print_references();
-            }
-            Ok(ExitCode::SUCCESS)
-        }
+        Some(Command::Stability(args)) => run_stability(args),
+        Some(Command::References(args)) => run_references(args),
     };
     match outcome {
         Ok(code) => code,
@@ -316,6 +271,48 @@ fn main() -> ExitCode {
             ExitCode::FAILURE
         }
     }
+}
+
+/// Pretty JSON of `value` (the `--json` output of every subcommand).
+fn to_json<T: serde::Serialize>(value: &T) -> Result<String, String> {
+    serde_json::to_string_pretty(value).map_err(|e| e.to_string())
+}
+
+fn run_stability(args: JsonArgs) -> Result<ExitCode, String> {
+    use ringcontact::harness::stability;
+    let mut bar = ringcontact::harness::progress::Progress::new("stability", stability::PROBES);
+    let probes = stability::run(|p| bar.tick(&format!("{} {}", p.method, p.probe)));
+    if args.json {
+        println!("{}", to_json(&probes)?);
+    } else {
+        print!("{}", stability::render(&probes));
+    }
+    Ok(if stability::wrong_numbers(&probes) == 0 {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn run_references(args: JsonArgs) -> Result<ExitCode, String> {
+    if !args.json {
+        print_references();
+        return Ok(ExitCode::SUCCESS);
+    }
+    let list: Vec<serde_json::Value> = reference::catalogue()
+        .iter()
+        .map(|r| {
+            serde_json::json!({
+                "name": r.name,
+                "quantity": r.quantity,
+                "kind": r.kind,
+                "eps_range": [r.eps_range.0, r.eps_range.1],
+                "source": r.source,
+            })
+        })
+        .collect();
+    println!("{}", to_json(&list)?);
+    Ok(ExitCode::SUCCESS)
 }
 
 fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
@@ -332,10 +329,7 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     if args.json {
         let both =
             serde_json::json!({ "comparison": report, "fenicsx": external, "peers": peer_rows });
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&both).map_err(|e| e.to_string())?
-        );
+        println!("{}", to_json(&both)?);
     } else {
         print!("{}", comparison::render(&report));
         print!("{}", fenicsx::render(&external));
@@ -417,10 +411,7 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
     );
     std::fs::write(&svg_path, chart).map_err(|e| e.to_string())?;
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&study).map_err(|e| e.to_string())?
-        );
+        println!("{}", to_json(&study)?);
     } else {
         print!("{}", convergence::render(&study));
         println!("  wrote {} and {}", csv_path.display(), svg_path.display());
@@ -438,7 +429,7 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
             let r = adhesion::flat_annulus(&solver, eps).map_err(|e| e.to_string())?;
             if args.json {
-                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
+                to_json(&r)?
             } else {
                 let mut t = format!(
                     "flat annulus b/a = {eps}: gamma = {:.12}, gamma' = {:.9}\n  outer edge: d_c/d0 = {:.9}, F_c/F0 = {:.9}\n  inner edge: d_c/d0 = {:.9}, F_c/F0 = {:.9}\n  governing: {} edge (smaller |d_c|); kappa from the field vs from gamma': {:.1e}\n",
@@ -468,7 +459,7 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 .ok_or("cone and sphere need --d0h D0_OVER_H (or --sweep)")?;
             let r = adhesion::concave(&solver, args.punch, s).map_err(|e| e.to_string())?;
             if args.json {
-                serde_json::to_string_pretty(&r).map_err(|e| e.to_string())?
+                to_json(&r)?
             } else {
                 let show = |name: &str, c: &Option<adhesion::Critical>, note: &Option<String>| {
                     match c {
@@ -588,7 +579,7 @@ fn flat_annulus_sweep(
     std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
     std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
     if json {
-        return serde_json::to_string_pretty(&rows).map_err(|e| e.to_string());
+        return to_json(&rows);
     }
     Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
 }
@@ -712,7 +703,7 @@ fn jkr_sweep(
     std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
     std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
     if json {
-        return serde_json::to_string_pretty(&rows).map_err(|e| e.to_string());
+        return to_json(&rows);
     }
     Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
 }
@@ -775,10 +766,7 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
                 ))
             })
             .collect::<Result<_, String>>()?;
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&map).map_err(|e| e.to_string())?
-        );
+        println!("{}", to_json(&map)?);
         return Ok(ExitCode::SUCCESS);
     }
     println!("Refits on ring-BEM data, 0.05 <= eps <= 0.99 (max relative error on 301 points, and where):");
@@ -814,10 +802,7 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
 fn run_fenicsx(args: JsonArgs) -> Result<ExitCode, String> {
     let rows = fenicsx::run().map_err(|e| e.to_string())?;
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&rows).map_err(|e| e.to_string())?
-        );
+        println!("{}", to_json(&rows)?);
     } else {
         print!("{}", fenicsx::render(&rows));
     }
@@ -876,10 +861,7 @@ fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {
     };
     let solution = methods::solve_with(&scene, args.method, &options).map_err(|e| e.to_string())?;
     if args.json {
-        println!(
-            "{}",
-            serde_json::to_string_pretty(&solution).map_err(|e| e.to_string())?
-        );
+        println!("{}", to_json(&solution)?);
     } else {
         print!("{}", describe(&scene, &solution));
     }

@@ -19,10 +19,76 @@ const COLOURS: [&str; 6] = [
     "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
 ];
 
+/// Chart geometry: width, height and the left, right, top and bottom margins (pixels).
+const FRAME: (f64, f64, f64, f64, f64, f64) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
+
+/// The SVG header, white background and title (text already escaped).
+fn open(title: &str) -> String {
+    let (w, h, left, ..) = FRAME;
+    format!(
+        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
+         <rect width='100%' height='100%' fill='white'/>\n<text x='{left}' y='24' font-size='15'>{title}</text>\n"
+    )
+}
+
+/// Axis labels (text already escaped).
+fn axis_labels(x_label: &str, y_label: &str) -> String {
+    let (w, h, left, right, top, bottom) = FRAME;
+    format!(
+        "<text x='{}' y='{}' text-anchor='middle'>{x_label}</text>\n\
+         <text transform='translate(18,{}) rotate(-90)' text-anchor='middle'>{y_label}</text>\n",
+        (left + w - right) / 2.0,
+        h - 16.0,
+        (top + h - bottom) / 2.0
+    )
+}
+
+/// Each series as a polyline (points passing `keep`, mapped by `px`, `py`), with point markers
+/// if `markers`, and the legend.
+fn draw_series(
+    series: &[Series],
+    keep: impl Fn(&(f64, f64)) -> bool,
+    px: impl Fn(f64) -> f64,
+    py: impl Fn(f64) -> f64,
+    markers: bool,
+) -> String {
+    let (w, _, _, right, top, _) = FRAME;
+    let mut svg = String::new();
+    for (k, s) in series.iter().enumerate() {
+        let colour = COLOURS[k % COLOURS.len()];
+        let pts: Vec<(f64, f64)> = s
+            .points
+            .iter()
+            .filter(|p| keep(p))
+            .map(|&(x, y)| (px(x), py(y)))
+            .collect();
+        let joined: Vec<String> = pts.iter().map(|(x, y)| format!("{x:.1},{y:.1}")).collect();
+        svg += &format!(
+            "<polyline fill='none' stroke='{colour}' stroke-width='2' points='{}'/>\n",
+            joined.join(" ")
+        );
+        if markers {
+            for (x, y) in &pts {
+                svg += &format!("<circle cx='{x:.1}' cy='{y:.1}' r='3.5' fill='{colour}'/>\n");
+            }
+        }
+        let ly = top + 20.0 + 18.0 * k as f64;
+        svg += &format!(
+            "<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n",
+            w - right + 12.0,
+            ly - 4.0,
+            w - right + 32.0,
+            ly,
+            escape(&s.name)
+        );
+    }
+    svg
+}
+
 /// A log-log chart of the series with decade grid lines and a legend.
 pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
     let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
-    let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
+    let (w, h, left, right, top, bottom) = FRAME;
     let all: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
@@ -55,11 +121,7 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
     let py = |y: f64| {
         h - bottom - (y.log10() - y0.log10()) / (y1.log10() - y0.log10()) * (h - top - bottom)
     };
-    let mut svg = format!(
-        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
-         <rect width='100%' height='100%' fill='white'/>\n<text x='{}' y='24' font-size='15'>{title}</text>\n",
-        left
-    );
+    let mut svg = open(&title);
     let mut e = x0.log10().round() as i32;
     while (e as f64) <= x1.log10().round() {
         let x = px(10f64.powi(e));
@@ -72,41 +134,15 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
         svg += &format!("<line x1='{left}' y1='{y}' x2='{}' y2='{y}' stroke='#ddd'/><text x='{}' y='{}' text-anchor='end'>1e{e}</text>\n", w - right, left - 6.0, y + 4.0);
         e += 1;
     }
-    svg += &format!(
-        "<text x='{}' y='{}' text-anchor='middle'>{x_label}</text>\n",
-        (left + w - right) / 2.0,
-        h - 16.0
-    );
-    svg += &format!(
-        "<text transform='translate(18,{}) rotate(-90)' text-anchor='middle'>{y_label}</text>\n",
-        (top + h - bottom) / 2.0
-    );
-    for (k, s) in series.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
-        let pts: Vec<String> = s
-            .points
-            .iter()
-            .filter(|p| p.0 > 0.0 && p.1 > 0.0)
-            .map(|&(x, y)| format!("{:.1},{:.1}", px(x), py(y)))
-            .collect();
-        svg += &format!(
-            "<polyline fill='none' stroke='{colour}' stroke-width='2' points='{}'/>\n",
-            pts.join(" ")
-        );
-        for p in &pts {
-            let (cx, cy) = p.split_once(',').unwrap_or(("0", "0"));
-            svg += &format!("<circle cx='{cx}' cy='{cy}' r='3.5' fill='{colour}'/>\n");
-        }
-        let ly = top + 20.0 + 18.0 * k as f64;
-        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, escape(&s.name));
-    }
+    svg += &axis_labels(&x_label, &y_label);
+    svg += &draw_series(series, |p| p.0 > 0.0 && p.1 > 0.0, px, py, true);
     svg + "</svg>\n"
 }
 
 /// A chart with linear axes (values of either sign), grid lines at "nice" steps.
 pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
     let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
-    let (w, h, left, right, top, bottom) = (720.0, 480.0, 80.0, 200.0, 40.0, 60.0);
+    let (w, h, left, right, top, bottom) = FRAME;
     let all: Vec<(f64, f64)> = series
         .iter()
         .flat_map(|s| s.points.iter().copied())
@@ -138,10 +174,7 @@ pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]
     y1 = (y1 / sy).ceil() * sy;
     let px = |x: f64| left + (x - x0) / (x1 - x0) * (w - left - right);
     let py = |y: f64| h - bottom - (y - y0) / (y1 - y0) * (h - top - bottom);
-    let mut svg = format!(
-        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
-         <rect width='100%' height='100%' fill='white'/>\n<text x='{left}' y='24' font-size='15'>{title}</text>\n"
-    );
+    let mut svg = open(&title);
     let mut x = x0;
     while x <= x1 + 1e-9 * sx {
         svg += &format!("<line x1='{0}' y1='{top}' x2='{0}' y2='{1}' stroke='{2}'/><text x='{0}' y='{3}' text-anchor='middle'>{4}</text>\n", px(x), h - bottom, if x.abs() < 1e-9 * sx { "#999" } else { "#ddd" }, h - bottom + 16.0, format_tick(x));
@@ -152,30 +185,14 @@ pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]
         svg += &format!("<line x1='{left}' y1='{0}' x2='{1}' y2='{0}' stroke='{2}'/><text x='{3}' y='{4}' text-anchor='end'>{5}</text>\n", py(y), w - right, if y.abs() < 1e-9 * sy { "#999" } else { "#ddd" }, left - 6.0, py(y) + 4.0, format_tick(y));
         y += sy;
     }
-    svg += &format!(
-        "<text x='{}' y='{}' text-anchor='middle'>{x_label}</text>\n",
-        (left + w - right) / 2.0,
-        h - 16.0
+    svg += &axis_labels(&x_label, &y_label);
+    svg += &draw_series(
+        series,
+        |p| p.0.is_finite() && p.1.is_finite(),
+        px,
+        py,
+        false,
     );
-    svg += &format!(
-        "<text transform='translate(18,{}) rotate(-90)' text-anchor='middle'>{y_label}</text>\n",
-        (top + h - bottom) / 2.0
-    );
-    for (k, s) in series.iter().enumerate() {
-        let colour = COLOURS[k % COLOURS.len()];
-        let pts: Vec<String> = s
-            .points
-            .iter()
-            .filter(|p| p.0.is_finite() && p.1.is_finite())
-            .map(|&(x, y)| format!("{:.1},{:.1}", px(x), py(y)))
-            .collect();
-        svg += &format!(
-            "<polyline fill='none' stroke='{colour}' stroke-width='2' points='{}'/>\n",
-            pts.join(" ")
-        );
-        let ly = top + 20.0 + 18.0 * k as f64;
-        svg += &format!("<rect x='{}' y='{}' width='14' height='4' fill='{colour}'/><text x='{}' y='{}'>{}</text>\n", w - right + 12.0, ly - 4.0, w - right + 32.0, ly, escape(&s.name));
-    }
     svg + "</svg>\n"
 }
 
