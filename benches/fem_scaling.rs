@@ -41,7 +41,7 @@ fn main() {
         let start = Instant::now();
         let mut solver = ConstrainedCholesky::new(&k).expect("symbolic");
         let symbolic = start.elapsed().as_secs_f64();
-        let model = ContactModel::new(&mesh).expect("contact model");
+        let model = ContactModel::new(&mesh, k.nrows()).expect("contact model");
         // One plain flat-punch solve: numeric factorisation + triangular solves.
         let start = Instant::now();
         model.flat(&mut solver, 0.01).expect("flat solve");

@@ -11,12 +11,15 @@
 //
 // Mesh size: min(hmin + grading * distance to the edges, hline + grading * distance to the contact
 // line): graded toward the rim r = a (and r = b), hline along the contact line, growing linearly
-// away from it, so that a domain of R = 1e5 a costs only a few dozen element layers.
+// away from it, so that a domain of R = 1e5 a costs only a few dozen element layers. With
+// bref >= 0, also hb + grading * distance to the point (bref, 0): refinement around the free inner
+// edge of a concave punch located on a coarser solve. Sizes are capped at hmax (0: no cap).
 //
 // Parameters (override with gmsh -setnumber NAME VALUE):
 DefineConstant[
   a = 1, b = 0, R = 1e5,
   hmin = 2e-3, hline = 2e-2, grading = 0.25,
+  bref = -1, hb = 1e-3,
   order = 1
 ];
 
@@ -65,7 +68,13 @@ Field[3].F = Sprintf("%g + %g * F1", hmin, grading);
 Field[4] = MathEval;
 Field[4].F = Sprintf("%g + %g * F2", hline, grading);
 Field[5] = Min;
-Field[5].FieldsList = {3, 4};
+If (bref >= 0)
+  Field[6] = MathEval;
+  Field[6].F = Sprintf("%g + %g * sqrt((x - %g)^2 + y^2)", hb, grading, bref);
+  Field[5].FieldsList = {3, 4, 6};
+Else
+  Field[5].FieldsList = {3, 4};
+EndIf
 Background Field = 5;
 
 Mesh.MeshSizeExtendFromBoundary = 0;

@@ -204,6 +204,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         tolerance: scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE),
         mesh: options.mesh.clone(),
         poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
+        far_field: crate::fem::far_field::FarField::Boussinesq,
     };
     let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
     if let Some(path) = &options.vtu {
@@ -215,16 +216,31 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         iterations: state.iterations,
         dofs: Some(state.dofs),
         mesh: Some(state.mesh.clone()),
+        mesh_sha256: Some(state.mesh_sha256.clone()),
+        mesh_origin: Some(state.mesh_origin),
+        gmsh_version: state.gmsh_version.clone(),
+        far_field: Some(state.far_field),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
         provenance: format!(
-            "axisymmetric FEM, P{} triangles, {} dofs on {}, domain radius {:.3e} a (truncation bias \
-             1.2 a/R = {:.1e} included in the estimate){}",
+            "axisymmetric FEM, P{} triangles, {} dofs on {} ({}{}, sha256 {}), domain radius {:.3e} a with {} far field \
+             (truncation bias {:.1e} included in the estimate){}",
             state.degree as u8,
             state.dofs,
             state.mesh,
+            serde_json::to_value(state.mesh_origin)
+                .ok()
+                .and_then(|v| v.as_str().map(str::to_string))
+                .unwrap_or_default(),
+            state
+                .gmsh_version
+                .as_ref()
+                .map(|v| format!(" by gmsh {v}"))
+                .unwrap_or_default(),
+            &state.mesh_sha256[..16.min(state.mesh_sha256.len())],
             state.domain_radius,
-            fem_solver::truncation_bias(state.domain_radius),
+            state.far_field.describe(),
+            state.truncation_bias,
             if state.error_estimate.is_some() {
                 ", estimate from the previous refinement level"
             } else {
@@ -291,6 +307,10 @@ fn base(
         iterations: 0,
         dofs: None,
         mesh: None,
+        mesh_sha256: None,
+        mesh_origin: None,
+        gmsh_version: None,
+        far_field: None,
         degree: None,
         complementarity_residual: None,
         grid: None,

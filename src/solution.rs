@@ -64,6 +64,18 @@ pub struct Solution {
     /// Mesh used, relative to the repository root (FEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub mesh: Option<String>,
+    /// SHA-256 of that mesh file (FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh_sha256: Option<String>,
+    /// Where the mesh came from: `committed`, `cache`, `gmsh` (made for this run) or `user`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh_origin: Option<crate::fem::mesh_provider::MeshOrigin>,
+    /// Version of the gmsh that made the mesh (generated meshes only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gmsh_version: Option<String>,
+    /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub far_field: Option<crate::fem::far_field::FarField>,
     /// Element degree, 1 or 2 (FEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub degree: Option<u8>,

@@ -14,6 +14,7 @@ fn fem(kind: PunchKind, eps: f64, load: FemLoad, tolerance: f64) -> FemState {
         tolerance,
         mesh: None,
         poisson_ratio: 0.0,
+        far_field: ringcontact::fem::far_field::FarField::Boussinesq,
     };
     solver::solve(kind, eps, load, &options).unwrap_or_else(|e| panic!("{kind} {load:?}: {e}"))
 }
@@ -98,9 +99,27 @@ fn sphere_past_full_contact_follows_mdr() {
     assert!((state.gamma2.unwrap() - exact).abs() / exact <= 1e-3);
 }
 
+/// Whether gmsh is there; when it is not, the tests that need generated meshes are skipped with
+/// a message, unless `RINGCONTACT_REQUIRE_GMSH=1` (set by `.ci/run` after it installs gmsh).
+fn gmsh_available(test: &str) -> bool {
+    let root = ringcontact::fem::mesh_provider::project_root();
+    if ringcontact::fem::gmsh::Gmsh::find(&root).is_some() {
+        return true;
+    }
+    assert!(
+        std::env::var("RINGCONTACT_REQUIRE_GMSH").as_deref() != Ok("1"),
+        "{test}: RINGCONTACT_REQUIRE_GMSH=1 but gmsh was not found"
+    );
+    eprintln!("{test}: skipped, gmsh not found (bash scripts/install_gmsh.sh)");
+    false
+}
+
 #[test]
 fn tolerance_1e4_is_met() {
-    // Needs the level-3 meshes (scripts/make_meshes.sh --missing-only; .ci/run does this).
+    // Climbs past the committed levels into meshes made by gmsh.
+    if !gmsh_available("tolerance_1e4_is_met") {
+        return;
+    }
     let mut cases = FLAT.to_vec();
     cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)));
     cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)));
@@ -122,6 +141,7 @@ fn linear_elements_converge_toward_the_ring_bem() {
                 tolerance: 1e-3,
                 mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
                 poisson_ratio: 0.3,
+                far_field: ringcontact::fem::far_field::FarField::Boussinesq,
             };
             let s = solver::solve(PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, &options).unwrap();
             assert!(s.error_estimate.is_none(), "a single mesh has no estimate");
@@ -145,6 +165,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
             tolerance: 1e-3,
             mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
             poisson_ratio: nu,
+            far_field: ringcontact::fem::far_field::FarField::Boussinesq,
         };
         solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.0), &options).unwrap()
     };
@@ -159,18 +180,62 @@ fn mismatched_mesh_and_scene_are_errors() {
         tolerance: 1e-3,
         mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),
         poisson_ratio: 0.0,
+        far_field: ringcontact::fem::far_field::FarField::Boussinesq,
     };
     let e = solver::solve(PunchKind::FlatAnnulus, 0.9, FemLoad::Flat, &options).unwrap_err();
     assert!(matches!(e, Error::InvalidMesh { .. }), "{e}");
-    let e = solver::solve(
-        PunchKind::FlatAnnulus,
-        0.3,
-        FemLoad::Flat,
-        &FemOptions {
-            mesh: None,
-            ..options
-        },
-    )
-    .unwrap_err();
-    assert!(e.to_string().contains("make_meshes.sh --b 0.3"), "{e}");
+}
+
+#[test]
+fn any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes() {
+    // b/a without a committed family, and tolerances past the committed levels: gmsh makes the
+    // meshes (graded toward r = a, r = b and the located free edge); the ring BEM is the reference.
+    if !gmsh_available("any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes") {
+        return;
+    }
+    let mut cases = Vec::new();
+    for eps in [0.1, 0.3, 0.7, 0.97] {
+        cases.push((PunchKind::FlatAnnulus, eps, FemLoad::Flat));
+    }
+    check(&cases, 1e-3);
+    cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(0.5)));
+    cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(4.0)));
+    cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(2.8)));
+    cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(0.7)));
+    check(&cases, 1e-4);
+    let generated = fem(PunchKind::FlatAnnulus, 0.3, FemLoad::Flat, 1e-3);
+    assert!(generated.gmsh_version.is_some() && generated.mesh_sha256.len() == 64);
+    check(
+        &[
+            (PunchKind::FlatAnnulus, 0.3, FemLoad::Flat),
+            (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
+        ],
+        1e-6,
+    );
+}
+
+#[test]
+fn a_missing_gmsh_is_one_clear_error() {
+    // With gmsh pointed at nothing, a scene that needs a generated mesh names the install command.
+    let dir = std::env::temp_dir().join(format!("ringcontact-no-gmsh-{}", std::process::id()));
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args([
+            "solve",
+            "--punch",
+            "flat-annulus",
+            "--eps",
+            "0.37",
+            "--method",
+            "fem",
+        ])
+        .env("RINGCONTACT_GMSH", "/nonexistent/gmsh")
+        .env("RINGCONTACT_MESH_CACHE", &dir)
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(!output.status.success());
+    assert!(
+        stderr.contains("gmsh was not found") && stderr.contains("bash scripts/install_gmsh.sh"),
+        "{stderr}"
+    );
 }

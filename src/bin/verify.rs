@@ -48,7 +48,8 @@ Examples:
   verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
   verify solve --punch flat-annulus --eps 0.5 --method reference
   verify solve --punch cone --depth 2 --method fem --json        FEM, P2, tolerance 1e-3
-  verify solve --punch sphere --depth 1 --method fem --tol 1e-4  (needs scripts/make_meshes.sh)
+  verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
+  verify solve --punch flat-annulus --eps 0.3 --method fem       any b/a (gmsh; cached in .mesh-cache/)
   verify solve --punch flat --method fem --mesh meshes/disk-L1.msh --degree 1
   verify solve --punch sphere --depth 1.5 --method grid-bem --grid 256 --json
   verify solve --punch cone --depth 2 --method auto --tol 1e-6   cheapest method meeting 1e-6
@@ -73,7 +74,8 @@ Example:
     /// Mesh-convergence study of one method: error against the ring BEM, observed order,
     /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
     #[command(after_help = "\
-Levels: grid-bem 64, 128, 256, ... cells per side; fem the committed mesh levels L0, L1, ...
+Levels: grid-bem 64, 128, 256, ... cells per side; fem the committed mesh levels L0-L2, then the
+adapted levels made by gmsh (graded toward the edges, refined at the located free edge)
 (P2); ring-bem 6, 8, 10, ... collocation nodes (flat punches).
 
 Examples:
@@ -208,7 +210,9 @@ struct SolveArgs {
     #[arg(long)]
     scene: Option<PathBuf>,
     /// Relative tolerance wanted in the dimensionless results [default: the scene's, else the
-    /// method's: 1e-9 ring-bem, 1e-3 fem]. The FEM picks the smallest committed mesh that meets it.
+    /// method's: 1e-9 ring-bem, 1e-3 fem]. The FEM climbs the committed meshes, then meshes gmsh
+    /// makes for the scene (found at run time: `bash scripts/install_gmsh.sh` installs it), until
+    /// the change between levels meets it.
     #[arg(long)]
     tol: Option<f64>,
     /// FEM only: a gmsh .msh file (units of a; physical groups as in meshes/half_space.geo)

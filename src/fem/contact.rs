@@ -61,7 +61,9 @@ fn fem_error(reason: String) -> Error {
 
 impl<'m> ContactModel<'m> {
     /// Set up supports and the contact line; the mesh must be in units of the rim radius.
-    pub fn new(mesh: &'m Mesh) -> Result<Self> {
+    /// `dofs` is the size of the system: `2 × nodes`, plus any extra dofs appended after the
+    /// nodal ones (the far-field amplitude), which are left free.
+    pub fn new(mesh: &'m Mesh, dofs: usize) -> Result<Self> {
         let mut contact_nodes = mesh.boundary_nodes(tags::CONTACT);
         contact_nodes.sort_by(|&a, &b| mesh.nodes[a][0].total_cmp(&mesh.nodes[b][0]));
         let rim = contact_nodes
@@ -74,7 +76,7 @@ impl<'m> ContactModel<'m> {
                 message: format!("the contact line ends at r = {rim}; meshes must be in units of the rim radius (a = 1)"),
             });
         }
-        let mut supports = vec![false; 2 * mesh.nodes.len()];
+        let mut supports = vec![false; dofs.max(2 * mesh.nodes.len())];
         for node in mesh.boundary_nodes(tags::FAR) {
             supports[2 * node] = true;
             supports[2 * node + 1] = true;

@@ -3,8 +3,11 @@
 pub mod assembly;
 pub mod contact;
 pub mod element;
+pub mod far_field;
+pub mod gmsh;
 pub mod linear_solver;
 pub mod mesh;
+pub mod mesh_provider;
 pub mod msh;
 pub mod norms;
 pub mod quadrature;

@@ -19,8 +19,10 @@ use std::time::Instant;
 use super::assembly::assemble_stiffness;
 use super::contact::{ContactModel, ContactSolution};
 use super::element::Lame;
+use super::far_field::{FarField, FarFieldCondition};
 use super::linear_solver::ConstrainedCholesky;
 use super::mesh::{tags, Degree, Mesh};
+use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh};
 use super::msh::read_msh;
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
@@ -30,19 +32,17 @@ use crate::punch::PunchKind;
 pub const METHOD: &str = "fem";
 /// Default relative tolerance of the FEM.
 pub const DEFAULT_TOLERANCE: f64 = 1e-3;
-/// Radius of the committed meshes' domain, in units of `a`.
-pub const DOMAIN_RADIUS: f64 = 1e5;
-/// Truncation bias of the force, relative: about `1.2 a / R` (PEERS.md; measured in tests).
-pub const TRUNCATION_BIAS: f64 = 1.2 / DOMAIN_RADIUS;
+/// Smallest tolerance the FEM accepts: below it, rounding in the located free edge and the
+/// solves competes with the discretisation error.
+pub const MIN_TOLERANCE: f64 = 1e-9;
+/// Below this tolerance the committed family is skipped and the adapted family starts directly.
+pub const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
 
 /// Bound on the error of the located inner radius, as a fraction of the contact-node spacing
 /// there. The force is stationary in `b` (Barber), so the discrete free edge converges more slowly
 /// than the force: against the ring BEM the committed meshes show errors up to 0.12 of the node
 /// spacing (P2, 12 states, levels 1-3); the bound takes 0.2.
 pub const INNER_RADIUS_BOUND: f64 = 0.2;
-
-/// Highest committed level of each family.
-pub const MAX_LEVEL: usize = 3;
 
 /// What to solve.
 #[derive(Clone, Copy, Debug)]
@@ -64,6 +64,8 @@ pub struct FemOptions {
     pub mesh: Option<PathBuf>,
     /// Poisson's ratio of the solid.
     pub poisson_ratio: f64,
+    /// Treatment of the far arc (default: Boussinesq's point-force field, bias `O((a/R)²)`).
+    pub far_field: FarField,
 }
 
 /// A solved FEM state.
@@ -89,6 +91,16 @@ pub struct FemState {
     pub field: FemField,
     /// Domain radius `R/a` of the final model's mesh.
     pub domain_radius: f64,
+    /// Relative force bias left by truncating the half-space there (in the estimate).
+    pub truncation_bias: f64,
+    /// Far-field treatment of the final model.
+    pub far_field: FarField,
+    /// SHA-256 of the final model's mesh file.
+    pub mesh_sha256: String,
+    /// Where that mesh came from (committed, cache, gmsh, user).
+    pub mesh_origin: MeshOrigin,
+    /// Version of the gmsh that made it (generated meshes).
+    pub gmsh_version: Option<String>,
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
 }
@@ -117,37 +129,56 @@ fn fem_error(reason: String) -> Error {
     }
 }
 
-/// Directory of the committed meshes.
+/// Directory of the committed meshes (see [`mesh_provider::mesh_directory`]).
 pub fn mesh_directory() -> PathBuf {
-    std::env::var_os("RINGCONTACT_MESHES")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes"))
+    mesh_provider::mesh_directory()
 }
 
-/// Name of the mesh family for a punch (and `b/a` for the flat annulus).
-pub fn family(kind: PunchKind, eps: f64) -> Result<String> {
+/// Where the contact line of the punch's mesh starts: `b/a` for the flat annulus, else 0.
+pub fn contact_start(kind: PunchKind, eps: f64) -> f64 {
     match kind {
-        PunchKind::FlatAnnulus if eps > 0.0 => {
-            let name = format!("annulus-{eps}");
-            if mesh_directory().join(format!("{name}-L0.msh")).exists() {
-                Ok(name)
-            } else {
-                Err(Error::Unsupported {
-                    method: METHOD.into(),
-                    reason: format!(
-                        "no committed mesh family for b/a = {eps} (families: b/a = 0.5, 0.9); \
-                         generate one with scripts/make_meshes.sh --b {eps} or pass --mesh PATH"
-                    ),
-                })
-            }
-        }
-        _ => Ok("disk".into()),
+        PunchKind::FlatAnnulus => eps,
+        _ => 0.0,
     }
 }
 
+/// The sequence of meshes climbed for a scene and tolerance: the committed family (when one
+/// exists for this contact line and the tolerance is at least [`COMMITTED_TOLERANCE_FLOOR`]),
+/// continued by the adapted family made by gmsh; otherwise the adapted family alone, from the
+/// level whose predicted error (about `3.5e-4 · 0.13^k` for P2) is within 100 x the tolerance.
+pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
+    let start_line = contact_start(kind, eps);
+    let mut sequence = Vec::new();
+    let mut first_adapted = 0;
+    if tolerance >= COMMITTED_TOLERANCE_FLOOR {
+        if let Some(family) = mesh_provider::committed_family(start_line) {
+            for level in 0..=mesh_provider::COMMITTED_MAX_LEVEL {
+                sequence.push(MeshRequest::Committed {
+                    family: family.clone(),
+                    level,
+                });
+            }
+            first_adapted = 3;
+        }
+    }
+    if sequence.is_empty() {
+        while first_adapted < 3 && 3.5e-4 * 0.13f64.powi(first_adapted as i32) > 100.0 * tolerance {
+            first_adapted += 1;
+        }
+    }
+    for level in first_adapted..=mesh_provider::ADAPTED_MAX_LEVEL {
+        sequence.push(MeshRequest::Adapted {
+            contact_start: start_line,
+            level,
+            free_edge: None,
+        });
+    }
+    sequence
+}
+
 fn display_path(path: &Path) -> String {
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    path.strip_prefix(root)
+    let root = mesh_provider::project_root();
+    path.strip_prefix(&root)
         .unwrap_or(path)
         .display()
         .to_string()
@@ -157,14 +188,25 @@ fn display_path(path: &Path) -> String {
 struct PreparedModel {
     mesh: Mesh,
     path: String,
+    provided: ProvidedMesh,
     /// Domain radius `R/a`: the largest distance of a far-boundary node from the origin.
     domain_radius: f64,
+    /// Largest far-arc edge over `R`: the grading of the far field.
+    arc_grading: f64,
     stiffness: nalgebra_sparse::CscMatrix<f64>,
+    /// The far-field condition, when the arc is slaved to Boussinesq's field.
+    far_field: Option<FarFieldCondition>,
     timings: FemTimings,
 }
 
-fn prepare(path: &Path, degree: Degree, poisson_ratio: f64) -> Result<PreparedModel> {
+fn prepare(
+    provided: &ProvidedMesh,
+    degree: Degree,
+    poisson_ratio: f64,
+    far_field: FarField,
+) -> Result<PreparedModel> {
     let start = Instant::now();
+    let path = provided.path.as_path();
     let raw = read_msh(path)?;
     let mesh = raw.with_degree(degree);
     mesh.validate(&[
@@ -177,16 +219,35 @@ fn prepare(path: &Path, degree: Degree, poisson_ratio: f64) -> Result<PreparedMo
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
     let rule = stiffness_rule(degree);
     let stiffness = assemble_stiffness(&mesh, &material, &rule)?;
-    let assembly = start.elapsed().as_secs_f64();
     let domain_radius = mesh
         .boundary_nodes(tags::FAR)
         .iter()
         .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
         .fold(0.0, f64::max);
+    let arc_grading = mesh
+        .boundary
+        .iter()
+        .filter(|e| e.tag == tags::FAR)
+        .map(|e| {
+            let (p, q) = (mesh.nodes[e.nodes[0]], mesh.nodes[e.nodes[1]]);
+            (p[0] - q[0]).hypot(p[1] - q[1]) / domain_radius
+        })
+        .fold(0.0, f64::max);
+    let (stiffness, far_field) = match far_field {
+        FarField::Fixed => (stiffness, None),
+        FarField::Boussinesq => {
+            let condition = FarFieldCondition::new(&mesh, &material, domain_radius);
+            (condition.extend(&stiffness), Some(condition))
+        }
+    };
+    let assembly = start.elapsed().as_secs_f64();
     Ok(PreparedModel {
         mesh,
         domain_radius,
+        arc_grading,
+        far_field,
         path: display_path(path),
+        provided: provided.clone(),
         stiffness,
         timings: FemTimings {
             read,
@@ -219,7 +280,7 @@ fn solve_model(
     let mut solver = ConstrainedCholesky::new(&model.stiffness)?;
     model.timings.symbolic = start.elapsed().as_secs_f64();
     let start = Instant::now();
-    let contact = ContactModel::new(&model.mesh)?;
+    let contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
     if kind == PunchKind::FlatAnnulus || kind == PunchKind::Flat {
         let start_line = contact.contact_line_start();
         if (start_line - eps).abs() > 1e-9 {
@@ -263,24 +324,34 @@ fn solve_model(
     Ok(result)
 }
 
-/// Relative stiffening of the force by truncating the half-space at radius `R` (units of `a`),
-/// about `1.2 a/R` (PEERS.md; the committed meshes' finest results sit at this bias).
-pub fn truncation_bias(domain_radius: f64) -> f64 {
-    1.2 / domain_radius
+impl PreparedModel {
+    /// Relative force bias of truncating the half-space at this model's `R` with its far-field
+    /// treatment ([`FarField::truncation_bias`]).
+    fn truncation_bias(&self) -> f64 {
+        self.far_field_kind()
+            .truncation_bias(self.domain_radius, self.arc_grading)
+    }
+
+    fn far_field_kind(&self) -> FarField {
+        if self.far_field.is_some() {
+            FarField::Boussinesq
+        } else {
+            FarField::Fixed
+        }
+    }
 }
 
 /// A domain too small for the tolerance is a detectable failure: decline it.
 fn check_domain(model: &PreparedModel, tolerance: f64) -> Result<()> {
-    let bias = truncation_bias(model.domain_radius);
+    let bias = model.truncation_bias();
     if bias > tolerance {
         return Err(Error::OutOfRange {
             method: METHOD.into(),
             reason: format!(
-                "mesh {} ends at R = {:.3} a: truncating the half-space there stiffens the force by about \
-                 1.2 a/R = {bias:.1e}, above the tolerance {tolerance:.1e} (use a mesh with R >= {:.0} a)",
+                "mesh {} ends at R = {:.3} a: truncating the half-space there biases the force by about \
+                 {bias:.1e}, above the tolerance {tolerance:.1e} (use a larger domain)",
                 model.path,
-                model.domain_radius,
-                1.2 / tolerance
+                model.domain_radius
             ),
         });
     }
@@ -316,9 +387,17 @@ fn finish(
         active_radii: solution.active_radii,
         field: FemField {
             mesh: model.mesh.clone(),
-            displacement: solution.displacement,
+            displacement: match &model.far_field {
+                Some(condition) => condition.expand(&solution.displacement),
+                None => solution.displacement,
+            },
         },
         domain_radius: model.domain_radius,
+        truncation_bias: model.truncation_bias(),
+        far_field: model.far_field_kind(),
+        mesh_sha256: model.provided.sha256.clone(),
+        mesh_origin: model.provided.origin,
+        gmsh_version: model.provided.gmsh_version.clone(),
         timings: model.timings,
     }
 }
@@ -326,12 +405,12 @@ fn finish(
 /// Solve a punch problem with the FEM.
 pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> Result<FemState> {
     let start = Instant::now();
-    if options.tolerance < 1e-6 {
+    if options.tolerance.is_nan() || options.tolerance < MIN_TOLERANCE {
         return Err(Error::OutOfRange {
             method: METHOD.into(),
             reason: format!(
-                "tolerance {:e} is below what the committed meshes reach (the truncation bias alone \
-                 is {TRUNCATION_BIAS:.1e}); use >= 1e-5, or the ring BEM",
+                "tolerance {:e} is below the FEM's floor {MIN_TOLERANCE:e} (rounding in the solves \
+                 and the located free edge); use the ring BEM for tighter tolerances",
                 options.tolerance
             ),
         });
@@ -344,7 +423,18 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             }
         };
     if let Some(path) = &options.mesh {
-        let mut model = prepare(path, options.degree, options.poisson_ratio)?;
+        let provided = ProvidedMesh {
+            sha256: mesh_provider::sha256_file(path)?,
+            path: path.clone(),
+            origin: MeshOrigin::User,
+            gmsh_version: None,
+        };
+        let mut model = prepare(
+            &provided,
+            options.degree,
+            options.poisson_ratio,
+            options.far_field,
+        )?;
         check_domain(&model, options.tolerance)?;
         let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
         let state = state_of(&s, x, y);
@@ -359,18 +449,30 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             start,
         ));
     }
-    let family = family(kind, eps)?;
-    let path_of = |level: usize| mesh_directory().join(format!("{family}-L{level}.msh"));
+    let why = format!(
+        "the FEM for the {kind} at tolerance {:e}",
+        options.tolerance
+    );
     let mut previous: Option<(f64, f64, f64)> = None;
     let mut previous_spacing = 0.0;
     let mut last_estimate = f64::INFINITY;
     let mut iterations = 0;
-    for level in 0..=MAX_LEVEL {
-        let path = path_of(level);
-        if !path.exists() {
-            break;
-        }
-        let mut model = prepare(&path, options.degree, options.poisson_ratio)?;
+    let mut last_mesh = String::new();
+    for request in mesh_sequence(kind, eps, options.tolerance) {
+        // The adapted family refines around the free edge located on the previous (coarser) solve.
+        let request = if kind.is_concave() {
+            request.with_free_edge(previous.map(|p| p.2))
+        } else {
+            request
+        };
+        let provided = mesh_provider::provide(&request, &why)?;
+        let mut model = prepare(
+            &provided,
+            options.degree,
+            options.poisson_ratio,
+            options.far_field,
+        )?;
+        last_mesh = model.path.clone();
         check_domain(&model, options.tolerance)?;
         // The previous level's contact radius (and depth) start the iterations.
         let guess = previous.map(|p: (f64, f64, f64)| p.2);
@@ -412,7 +514,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let estimate = relative(values.0, prev.0)
                 .max(relative(values.1, prev.1))
                 .max(eps_estimate)
-                + truncation_bias(model.domain_radius);
+                + model.truncation_bias();
             if estimate <= options.tolerance {
                 let state = (eps_out, gamma, gamma1, gamma2);
                 return Ok(finish(
@@ -431,8 +533,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         previous_spacing = s.inner_node_spacing;
     }
     Err(fem_error(format!(
-        "the finest committed mesh of family `{family}` reaches an estimated error of {last_estimate:.1e}, \
-         above the tolerance {:.1e}; refine with scripts/make_meshes.sh --levels N or loosen --tol",
+        "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above the \
+         tolerance {:.1e}; loosen --tol or use the ring BEM",
         options.tolerance
     )))
 }

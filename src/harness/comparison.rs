@@ -201,6 +201,7 @@ pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Cr
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: None,
         poisson_ratio: 0.0,
+        far_field: crate::fem::far_field::FarField::Boussinesq,
     };
     let mut checks = Vec::new();
     let cases = [

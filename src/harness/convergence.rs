@@ -21,6 +21,7 @@ use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::mesh::Degree;
+use crate::fem::mesh_provider;
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::methods::Method;
 use crate::numerics::tanh_sinh::TanhSinhRule;
@@ -118,6 +119,7 @@ pub fn run(
         ring.flat(case.eps, 1e-11)?.gamma.unwrap_or(f64::NAN)
     };
     let mut out: Vec<Level> = Vec::new();
+    let mut previous_edge: Option<f64> = None;
     for k in 0..levels {
         let start = Instant::now();
         let (label, size, unknowns, value) = match method {
@@ -129,18 +131,18 @@ pub fn run(
                 (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
             }
             Method::Fem => {
-                let family = fem_solver::family(case.punch, case.eps)?;
-                let path = fem_solver::mesh_directory().join(format!("{family}-L{k}.msh"));
-                if !path.exists() {
+                let sequence = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3);
+                let Some(request) = sequence.get(k).cloned() else {
                     return Err(Error::OutOfRange {
                         method: "fem".into(),
-                        reason: format!(
-                            "{} does not exist (scripts/make_meshes.sh --levels {})",
-                            path.display(),
-                            k + 1
-                        ),
+                        reason: format!("the FEM has {} mesh levels", sequence.len()),
                     });
-                }
+                };
+                // Concave punches: refine around the free edge of the previous level's solve.
+                let request = request.with_free_edge(previous_edge);
+                let label = request.label();
+                let provided = mesh_provider::provide(&request, "the FEM convergence study")?;
+                let path = provided.path;
                 let load = if concave {
                     FemLoad::ConcaveDepth(case.depth)
                 } else {
@@ -151,11 +153,13 @@ pub fn run(
                     tolerance: 1e-3,
                     mesh: Some(path),
                     poisson_ratio: 0.0,
+                    far_field: crate::fem::far_field::FarField::Boussinesq,
                 };
                 let s = fem_solver::solve(case.punch, case.eps, load, &options)?;
+                previous_edge = concave.then_some(s.eps);
                 let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
                 (
-                    format!("{family}-L{k} P2"),
+                    format!("{label} P2"),
                     1.0 / (s.dofs as f64).sqrt(),
                     s.dofs,
                     value,

@@ -133,6 +133,7 @@ pub fn compare(
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),
         poisson_ratio: 0.0,
+        far_field: crate::fem::far_field::FarField::Fixed,
     };
     let start = Instant::now();
     let ours = fem_solver::solve(stored.punch, eps, load, &options)?;

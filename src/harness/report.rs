@@ -284,6 +284,7 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
                 tolerance: 1e-3,
                 mesh: Some(mesh),
                 poisson_ratio: 0.0,
+                far_field: crate::fem::far_field::FarField::Boussinesq,
             };
             let (s, t) =
                 timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options))?;
@@ -502,6 +503,7 @@ fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
         tolerance: 1e-3,
         mesh: None,
         poisson_ratio: 0.0,
+        far_field: crate::fem::far_field::FarField::Boussinesq,
     };
     let fem_state =
         fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;

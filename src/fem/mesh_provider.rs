@@ -1,0 +1,254 @@
+//! Meshes made for the scene: the FEM asks for "level k of the model for this contact line", and
+//! the provider answers from the committed meshes, a content-addressed cache, or gmsh, in that
+//! order, and says which (with the file's SHA-256 and the gmsh version) for the provenance.
+//!
+//! **Committed families** (`meshes/{disk,annulus-0.5,annulus-0.9}-L{0,1,2}.msh`): the embedded
+//! default, enough for the default tolerance with neither gmsh nor network.
+//!
+//! **Adapted family** (generated from `meshes/half_space.geo`): geometric grading toward the
+//! singular edges, `h(x) = min(hmin + g |x - a|, hmin + g |x - b|)` (the inner edge only for the flat
+//! annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by the FEM's
+//! own coarser solve; no uniform size along the contact line. Level `k` has `g_k = 0.32 · 0.6^k`
+//! and `hmin_k = 10^-3 · 10^-k`: for quadratic elements the force error of the graded zone falls
+//! like `g⁴` (a factor 7.7 per level) and that of the innermost element like `hmin`. The domain
+//! radius is `R = min(1e7, 1e11 hmin)` (see [`adapted_domain_radius`]).
+//!
+//! The cache lives in `<project>/.mesh-cache/` (ignored by git; `RINGCONTACT_MESH_CACHE`
+//! overrides), keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
+
+use std::path::{Path, PathBuf};
+
+use sha2::{Digest, Sha256};
+
+use super::gmsh::Gmsh;
+use crate::error::{Error, Result};
+
+/// Largest domain radius of the adapted family, in units of `a`.
+pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
+
+/// Domain radius for a smallest element `hmin`: `min(1e7, 1e11 hmin)`. gmsh 4.15 stalls when the
+/// smallest element is below about 1e-13 of the domain size (measured: `hmin = 1e-7` in
+/// `R = 1e7` does not finish in 30 s, `hmin = 1e-6` in `R = 1e6` takes 1.2 s); with the Boussinesq
+/// far field the smaller domain costs nothing in accuracy (bias `< 1e-8` down to `R = 1e4`).
+pub fn adapted_domain_radius(hmin: f64) -> f64 {
+    (1e11 * hmin).min(ADAPTED_DOMAIN_RADIUS)
+}
+/// Highest level of the adapted family.
+pub const ADAPTED_MAX_LEVEL: usize = 7;
+/// Highest committed level.
+pub const COMMITTED_MAX_LEVEL: usize = 2;
+
+/// A mesh the FEM asks for.
+#[derive(Clone, Debug, PartialEq)]
+pub enum MeshRequest {
+    /// `meshes/{family}-L{level}.msh`.
+    Committed { family: String, level: usize },
+    /// Level `level` of the adapted family for a contact line starting at `contact_start = b/a`
+    /// (0 for the disk), refined around `free_edge` when given.
+    Adapted {
+        contact_start: f64,
+        level: usize,
+        free_edge: Option<f64>,
+    },
+}
+
+impl MeshRequest {
+    /// Short name for tables: `disk-L1`, `adapted-0.3-L4`.
+    pub fn label(&self) -> String {
+        match self {
+            MeshRequest::Committed { family, level } => format!("{family}-L{level}"),
+            MeshRequest::Adapted {
+                contact_start,
+                level,
+                ..
+            } => format!("adapted-{contact_start}-L{level}"),
+        }
+    }
+
+    /// The same request refined around a free edge at `b/a` (adapted family only).
+    pub fn with_free_edge(self, edge: Option<f64>) -> MeshRequest {
+        match self {
+            MeshRequest::Adapted {
+                contact_start,
+                level,
+                ..
+            } => MeshRequest::Adapted {
+                contact_start,
+                level,
+                free_edge: edge.filter(|&b| b > 0.0),
+            },
+            other => other,
+        }
+    }
+}
+
+/// Where a provided mesh came from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum MeshOrigin {
+    Committed,
+    Cache,
+    Gmsh,
+    /// Given by the user (`--mesh`).
+    User,
+}
+
+/// A mesh file ready to read, with its provenance.
+#[derive(Clone, Debug)]
+pub struct ProvidedMesh {
+    pub path: PathBuf,
+    pub origin: MeshOrigin,
+    pub sha256: String,
+    /// Version of the gmsh that made it (generated meshes only).
+    pub gmsh_version: Option<String>,
+}
+
+/// The project's root directory: `RINGCONTACT_DATA_DIR`, else the first directory upward from the
+/// current one that holds `meshes/half_space.geo`, else the checkout the binary was built in.
+pub fn project_root() -> PathBuf {
+    if let Some(dir) = std::env::var_os("RINGCONTACT_DATA_DIR") {
+        return PathBuf::from(dir);
+    }
+    if let Ok(cwd) = std::env::current_dir() {
+        for dir in cwd.ancestors() {
+            if dir.join("meshes/half_space.geo").is_file() {
+                return dir.to_path_buf();
+            }
+        }
+    }
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Directory of the committed meshes (`RINGCONTACT_MESHES` overrides).
+pub fn mesh_directory() -> PathBuf {
+    std::env::var_os("RINGCONTACT_MESHES")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| project_root().join("meshes"))
+}
+
+/// Directory of generated meshes.
+pub fn cache_directory() -> PathBuf {
+    std::env::var_os("RINGCONTACT_MESH_CACHE")
+        .map(PathBuf::from)
+        .unwrap_or_else(|| project_root().join(".mesh-cache"))
+}
+
+/// Committed family for a contact line starting at `b/a` (`disk` for 0), if there is one.
+pub fn committed_family(contact_start: f64) -> Option<String> {
+    let name = if contact_start == 0.0 {
+        "disk".to_string()
+    } else {
+        format!("annulus-{contact_start}")
+    };
+    mesh_directory()
+        .join(format!("{name}-L0.msh"))
+        .exists()
+        .then_some(name)
+}
+
+/// `gmsh -setnumber` parameters of level `level` of the adapted family (module documentation).
+pub fn adapted_parameters(
+    contact_start: f64,
+    level: usize,
+    free_edge: Option<f64>,
+) -> Vec<(String, f64)> {
+    let grading = 0.32 * 0.6f64.powi(level as i32);
+    let hmin = 1e-3 * 0.1f64.powi(level as i32);
+    let mut p = vec![
+        ("a".to_string(), 1.0),
+        ("b".to_string(), contact_start),
+        ("R".to_string(), adapted_domain_radius(hmin)),
+        ("hmin".to_string(), hmin),
+        // No uniform size along the contact line: the line field never binds.
+        ("hline".to_string(), 10.0),
+        ("grading".to_string(), grading),
+        ("order".to_string(), 1.0),
+    ];
+    if let Some(b) = free_edge.filter(|&b| b > 0.0) {
+        p.push(("bref".to_string(), b));
+        p.push(("hb".to_string(), 10.0 * hmin));
+    }
+    p
+}
+
+/// SHA-256 of a file, hex.
+pub fn sha256_file(path: &Path) -> Result<String> {
+    let bytes = std::fs::read(path).map_err(|e| Error::InvalidMesh {
+        path: path.display().to_string(),
+        message: format!("cannot read: {e}"),
+    })?;
+    Ok(hex(&Sha256::digest(&bytes)))
+}
+
+fn hex(bytes: &[u8]) -> String {
+    bytes.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+/// Provide the mesh of `request` (committed file, cache, or gmsh); `why` names the scene for the
+/// error when gmsh is needed and missing.
+pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
+    match request {
+        MeshRequest::Committed { family, level } => {
+            let path = mesh_directory().join(format!("{family}-L{level}.msh"));
+            Ok(ProvidedMesh {
+                sha256: sha256_file(&path)?,
+                path,
+                origin: MeshOrigin::Committed,
+                gmsh_version: None,
+            })
+        }
+        MeshRequest::Adapted {
+            contact_start,
+            level,
+            free_edge,
+        } => {
+            let parameters = adapted_parameters(*contact_start, *level, *free_edge);
+            generate(&parameters, why)
+        }
+    }
+}
+
+/// Mesh `meshes/half_space.geo` with `parameters`, through the cache.
+pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
+    let root = project_root();
+    let geo = mesh_directory().join("half_space.geo");
+    let geo_bytes = std::fs::read(&geo).map_err(|e| Error::InvalidMesh {
+        path: geo.display().to_string(),
+        message: format!("cannot read the geometry file: {e}"),
+    })?;
+    let gmsh = Gmsh::get(&root, why)?;
+    let mut hasher = Sha256::new();
+    hasher.update(&geo_bytes);
+    for (name, value) in parameters {
+        hasher.update(format!("{name}={value:e};").as_bytes());
+    }
+    hasher.update(format!("gmsh {}", gmsh.version).as_bytes());
+    let key = hex(&hasher.finalize());
+    let dir = cache_directory();
+    let path = dir.join(format!("{}.msh", &key[..24]));
+    if path.exists() {
+        return Ok(ProvidedMesh {
+            sha256: sha256_file(&path)?,
+            path,
+            origin: MeshOrigin::Cache,
+            gmsh_version: Some(gmsh.version),
+        });
+    }
+    std::fs::create_dir_all(&dir).map_err(|e| Error::InvalidMesh {
+        path: dir.display().to_string(),
+        message: format!("cannot create the mesh cache: {e}"),
+    })?;
+    // Write under a unique name, then rename: concurrent runs never see a half-written file.
+    let partial = dir.join(format!("{}.{}.partial.msh", &key[..24], std::process::id()));
+    gmsh.mesh(&geo, parameters, &partial)?;
+    std::fs::rename(&partial, &path).map_err(|e| Error::InvalidMesh {
+        path: path.display().to_string(),
+        message: format!("cannot store the generated mesh: {e}"),
+    })?;
+    Ok(ProvidedMesh {
+        sha256: sha256_file(&path)?,
+        path,
+        origin: MeshOrigin::Gmsh,
+        gmsh_version: Some(gmsh.version),
+    })
+}
