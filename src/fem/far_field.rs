@@ -74,10 +74,10 @@ pub fn boussinesq_displacement(material: &Lame, r: f64, z: f64) -> [f64; 2] {
     ]
 }
 
-/// Strain energy coefficient of the exterior `ρ > R` under the unit Boussinesq field:
-/// `k_ext = -∫_arc (σ(G) ρ̂)·G 2π r R dφ` over the quarter arc `r = R cos φ`, `z = -R sin φ`
-/// (Gauss-Legendre in `φ`; strains by central differences of the closed form).
-pub fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
+/// `∫_arc f(t, G) 2π r R dφ` over the quarter arc `r = R cos φ`, `z = -R sin φ`, where
+/// `t = σ(G) ρ̂` is the traction of the unit Boussinesq field on the arc (Gauss-Legendre in `φ`;
+/// strains by central differences of the closed form).
+pub fn arc_integral(material: &Lame, radius: f64, f: impl Fn([f64; 2], [f64; 2]) -> f64) -> f64 {
     let (x, w) = gauss_legendre(48);
     let half_pi = 0.5 * std::f64::consts::PI;
     let step = 1e-5 * radius;
@@ -103,11 +103,15 @@ pub fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
             stress[0] * nr + stress[3] * nz,
             stress[3] * nr + stress[1] * nz,
         ];
-        let integrand =
-            -(traction[0] * g[0] + traction[1] * g[1]) * 2.0 * std::f64::consts::PI * r * radius;
-        total += wt * half_pi * integrand;
+        total += wt * half_pi * f(traction, g) * 2.0 * std::f64::consts::PI * r * radius;
     }
     total
+}
+
+/// Strain energy coefficient of the exterior `ρ > R` under the unit Boussinesq field:
+/// `k_ext = -∫_arc (σ(G) ρ̂)·G dA` ([`arc_integral`]).
+pub fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
+    arc_integral(material, radius, |t, g| -(t[0] * g[0] + t[1] * g[1]))
 }
 
 /// The stiffness matrix extended by the far-field amplitude `α` (dof index `n = K.nrows()`):
@@ -215,29 +219,7 @@ mod tests {
         // arc's traction `σ ρ̂` must push up: ∫ (σ ρ̂)_z 2π r R dφ = +1 for any R and ν.
         for nu in [0.0, 0.3, 0.45] {
             let material = Lame::from_young_poisson(1.0, nu);
-            let radius = 7.0;
-            let (x, w) = gauss_legendre(48);
-            let half_pi = 0.5 * std::f64::consts::PI;
-            let step = 1e-5 * radius;
-            let mut total = 0.0;
-            for (&t, &wt) in x.iter().zip(&w) {
-                let phi = t * half_pi;
-                let (r, z) = (radius * phi.cos(), -radius * phi.sin());
-                let d = |dr: f64, dz: f64, k: usize| {
-                    (boussinesq_displacement(&material, r + dr, z + dz)[k]
-                        - boussinesq_displacement(&material, r - dr, z - dz)[k])
-                        / (2.0 * step)
-                };
-                let g = boussinesq_displacement(&material, r, z);
-                let stress = material.stress([
-                    d(step, 0.0, 0),
-                    d(0.0, step, 1),
-                    g[0] / r,
-                    d(0.0, step, 0) + d(step, 0.0, 1),
-                ]);
-                let traction_z = stress[3] * r / radius + stress[1] * z / radius;
-                total += wt * half_pi * traction_z * 2.0 * std::f64::consts::PI * r * radius;
-            }
+            let total = arc_integral(&material, 7.0, |t, _| t[1]);
             assert!((total - 1.0).abs() < 1e-8, "nu = {nu}: {total}");
         }
     }
