@@ -20,8 +20,12 @@ DefineConstant[
   a = 1, b = 0, R = 1e5,
   hmin = 2e-3, hline = 2e-2, grading = 0.25,
   bref = -1, hb = 1e-3,
+  split = 0,
   order = 1
 ];
+// split > 0: the free surface is cut at r = split * a into two curves (both in group 2). gmsh
+// integrates the size along each curve's parameter; a single curve from a to R with elements of
+// 1e-7 at one end and R/10 at the other stalls it, two curves do not.
 
 Point(1) = {0, 0, 0};
 Point(3) = {a, 0, 0};
@@ -34,12 +38,22 @@ If (b > 0)
 Else
   Line(2) = {1, 3};
 EndIf
-Line(3) = {3, 4};
+If (split > 0)
+  Point(6) = {split * a, 0, 0};
+  Line(3) = {3, 6};
+  Line(6) = {6, 4};
+Else
+  Line(3) = {3, 4};
+EndIf
 Circle(4) = {4, 1, 5};
 Line(5) = {5, 1};
 // Counter-clockwise in (r, z), so that triangles are positively oriented.
-If (b > 0)
+If (b > 0 && split > 0)
+  Curve Loop(1) = {-5, -4, -6, -3, -2, -1};
+ElseIf (b > 0)
   Curve Loop(1) = {-5, -4, -3, -2, -1};
+ElseIf (split > 0)
+  Curve Loop(1) = {-5, -4, -6, -3, -2};
 Else
   Curve Loop(1) = {-5, -4, -3, -2};
 EndIf
@@ -49,7 +63,11 @@ Physical Curve("contact", 1) = {2};
 If (b > 0)
   Physical Curve("hole", 5) = {1};
 EndIf
-Physical Curve("free", 2) = {3};
+If (split > 0)
+  Physical Curve("free", 2) = {3, 6};
+Else
+  Physical Curve("free", 2) = {3};
+EndIf
 Physical Curve("far", 3) = {4};
 Physical Curve("axis", 4) = {5};
 Physical Surface("solid", 10) = {1};

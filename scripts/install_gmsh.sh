@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Install gmsh from PyPI into the project's own environment .venv-gmsh (ignored by git), where the
 # FEM finds it at run time (src/fem/gmsh.rs). Idempotent; needs python3 with venv and PyPI access
-# the first time. Prints the installed version.
+# the first time. Pinned: generated meshes are cached and compared by content, and stored
+# FEniCSx results on generated meshes name their SHA-256. Prints the installed version.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 venv=.venv-gmsh
@@ -19,6 +20,6 @@ if [ ! -x "$venv/bin/python" ]; then
   fi
 fi
 if ! "$venv/bin/python" -c "import gmsh" 2>/dev/null; then
-  "$venv/bin/pip" install --quiet "gmsh>=4.11"
+  "$venv/bin/pip" install --quiet "gmsh==4.15.2"
 fi
 "$venv/bin/python" "$venv/bin/gmsh" --version

@@ -59,6 +59,7 @@ fn solve_with(
     let rule = match degree {
         Degree::Linear => TriangleRule::degree2(),
         Degree::Quadratic => TriangleRule::degree4(),
+        Degree::Cubic => TriangleRule::degree6(),
     };
     let k = assemble_stiffness(&mesh, material, &rule).unwrap();
     // Body force integrated with a high-order rule so that its quadrature error is negligible.
@@ -126,6 +127,11 @@ fn linear_triangles_converge_at_orders_two_and_one() {
 #[test]
 fn quadratic_triangles_converge_at_orders_three_and_two() {
     check_orders(Degree::Quadratic, &[8, 16, 32], 3.0, 2.0);
+}
+
+#[test]
+fn cubic_triangles_converge_at_orders_four_and_three() {
+    check_orders(Degree::Cubic, &[4, 8, 16], 4.0, 3.0);
 }
 
 #[test]

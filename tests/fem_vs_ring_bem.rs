@@ -9,8 +9,18 @@ use ringcontact::punch::PunchKind;
 use ringcontact::Error;
 
 fn fem(kind: PunchKind, eps: f64, load: FemLoad, tolerance: f64) -> FemState {
+    fem_of_degree(Degree::Quadratic, kind, eps, load, tolerance)
+}
+
+fn fem_of_degree(
+    degree: Degree,
+    kind: PunchKind,
+    eps: f64,
+    load: FemLoad,
+    tolerance: f64,
+) -> FemState {
     let options = FemOptions {
-        degree: Degree::Quadratic,
+        degree,
         tolerance,
         mesh: None,
         poisson_ratio: 0.0,
@@ -47,8 +57,12 @@ fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f
 }
 
 fn check(cases: &[(PunchKind, f64, FemLoad)], tolerance: f64) {
+    check_degree(Degree::Quadratic, cases, tolerance)
+}
+
+fn check_degree(degree: Degree, cases: &[(PunchKind, f64, FemLoad)], tolerance: f64) {
     for &(kind, eps, load) in cases {
-        let state = fem(kind, eps, load, tolerance);
+        let state = fem_of_degree(degree, kind, eps, load, tolerance);
         let (force_error, eps_error) = errors(kind, eps, load, &state);
         let estimate = state.error_estimate.unwrap();
         println!(
@@ -209,6 +223,15 @@ fn any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes() {
         &[
             (PunchKind::FlatAnnulus, 0.3, FemLoad::Flat),
             (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
+        ],
+        1e-6,
+    );
+    // Cubic elements on the same ladder.
+    check_degree(
+        Degree::Cubic,
+        &[
+            (PunchKind::FlatAnnulus, 0.3, FemLoad::Flat),
+            (PunchKind::FlatAnnulus, 0.7, FemLoad::Flat),
         ],
         1e-6,
     );

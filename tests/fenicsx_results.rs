@@ -16,7 +16,20 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
         "expected the default suite of stored results, found {}",
         rows.len()
     );
+    let gmsh = ringcontact::fem::gmsh::Gmsh::find(&ringcontact::fem::mesh_provider::project_root())
+        .is_some();
     for row in &rows {
+        if row.status == "needs-gmsh" {
+            // Results on meshes made by gmsh are remade before the comparison; without gmsh
+            // (a fresh clone) they are reported, not compared. CI installs gmsh and requires them.
+            assert!(
+                !gmsh && std::env::var("RINGCONTACT_REQUIRE_GMSH").as_deref() != Ok("1"),
+                "{}: could not remake its mesh",
+                row.file
+            );
+            eprintln!("{}: skipped, needs gmsh", row.file);
+            continue;
+        }
         assert_eq!(
             row.status, "current",
             "{}: mesh {} changed since the result was stored",

@@ -16,3 +16,4 @@ for degree in 1 2; do
 done
 # One finer state, so the report shows FEniCSx on the mesh the default tolerance picks.
 run --punch cone --depth 2 --mesh meshes/disk-L2.msh --degree 2 --out $out/cone-d2-disk-L2-P2.json
+bash scripts/fenicsx/run_generated.sh

@@ -55,10 +55,13 @@ def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     p.add_argument("--punch", required=True, choices=["flat", "flat-annulus", "cone", "sphere"])
     p.add_argument("--mesh", required=True)
-    p.add_argument("--degree", type=int, default=2, choices=[1, 2])
+    p.add_argument("--degree", type=int, default=2, choices=[1, 2, 3])
     p.add_argument("--depth", type=float, default=1.0)
     p.add_argument("--eps", type=float, default=None, help="b/a of the flat annulus")
     p.add_argument("--out", required=True)
+    p.add_argument("--mesh-parameters", default=None,
+                   help="JSON list of [name, value]: the gmsh parameters that remake a generated "
+                        "mesh (printed by `verify mesh`); stored with the result")
     args = p.parse_args()
 
     start = time.perf_counter()
@@ -86,7 +89,10 @@ def main():
         e = strain(w)
         return lam * ufl.tr(e) * ufl.Identity(3) + 2 * mu * e
 
-    qdeg = 2 if args.degree == 1 else 4
+    # Degree 2p: basix's default rules for 2, 4, 6 are the 3-, 6- and 12-point rules the Rust
+    # code uses (for P3 the Lagrange variant of dolfinx places the edge dofs differently, which
+    # spans the same space: identical for flat punches, not for node-wise contact).
+    qdeg = 2 * args.degree
     dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": qdeg})
     a = ufl.inner(stress(u_trial), strain(v)) * 2 * np.pi * x[0] * dx
     a_form = fem.form(a)
@@ -190,6 +196,7 @@ def main():
         "punch": args.punch,
         "mesh": mesh_rel,
         "mesh_sha256": sha256(args.mesh),
+        **({"mesh_parameters": json.loads(args.mesh_parameters)} if args.mesh_parameters else {}),
         "degree": args.degree,
         "quadrature_degree": qdeg,
         "depth": args.depth,

@@ -71,6 +71,17 @@ Refresh the stored results (installs FEniCSx from Debian when missing):
 Example:
   verify fenicsx --json")]
     Fenicsx(JsonArgs),
+    /// Make (or find in the cache) a mesh of the adapted family with gmsh and print where it is.
+    #[command(after_help = "\
+The adapted family is what the FEM climbs past the committed meshes: level k is graded toward the
+rim (and r = b), with g = 0.32 * 0.6^k; --free-edge refines around a located inner contact radius.
+Prints one JSON object: path, sha256, origin (cache or gmsh), gmsh_version, parameters (the gmsh
+-setnumber values, which reproduce the mesh from meshes/half_space.geo).
+
+Examples:
+  verify mesh --eps 0.3 --level 2                 flat annulus b/a = 0.3, level 2
+  verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a")]
+    Mesh(MeshArgs),
     /// Mesh-convergence study of one method: error against the ring BEM, observed order,
     /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
     #[command(after_help = "\
@@ -182,6 +193,19 @@ struct ConvergenceArgs {
 }
 
 #[derive(Args)]
+struct MeshArgs {
+    /// Start of the contact line `b/a` (the flat annulus' inner radius; 0 for the disk).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    eps: f64,
+    /// Level of the adapted family (0 to 7).
+    #[arg(long, default_value_t = 1)]
+    level: usize,
+    /// Refine around this inner contact radius `b/a` (concave punches).
+    #[arg(long, allow_negative_numbers = true)]
+    free_edge: Option<f64>,
+}
+
+#[derive(Args)]
 struct JsonArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
@@ -219,8 +243,8 @@ struct SolveArgs {
     /// instead of the committed mesh family. No error estimate is made on a single mesh.
     #[arg(long)]
     mesh: Option<PathBuf>,
-    /// FEM only: element degree, 1 (linear) or 2 (quadratic) [default: 2].
-    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=2))]
+    /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 2].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
     degree: Option<u8>,
     /// FEM only: write the displacement field of the finest model as VTK (.vtu) for ParaView.
     #[arg(long)]
@@ -261,6 +285,7 @@ fn main() -> ExitCode {
         Some(Command::Compare(args)) => run_compare(args),
         Some(Command::Solve(args)) => run_solve(args),
         Some(Command::Fenicsx(args)) => run_fenicsx(args),
+        Some(Command::Mesh(args)) => run_mesh(args),
         Some(Command::Convergence(args)) => run_convergence(args),
         Some(Command::Jkr(args)) => run_jkr(args),
         Some(Command::Fit(args)) => run_fit(args),
@@ -800,6 +825,42 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
             r.best_max_rel_err_eps
         );
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
+    use ringcontact::fem::mesh_provider::{self, MeshRequest};
+    if !(0.0..1.0).contains(&args.eps) {
+        return Err(format!("--eps {}: need 0 <= b/a < 1", args.eps));
+    }
+    if args.level > mesh_provider::ADAPTED_MAX_LEVEL {
+        return Err(format!(
+            "--level {}: the adapted family has levels 0 to {}",
+            args.level,
+            mesh_provider::ADAPTED_MAX_LEVEL
+        ));
+    }
+    if let Some(b) = args.free_edge {
+        if !(0.0..1.0).contains(&b) {
+            return Err(format!("--free-edge {b}: need 0 <= b/a < 1"));
+        }
+    }
+    let request = MeshRequest::Adapted {
+        contact_start: args.eps,
+        level: args.level,
+        free_edge: args.free_edge.filter(|&b| b > 0.0),
+    };
+    let provided = mesh_provider::provide(&request, "verify mesh").map_err(|e| e.to_string())?;
+    let parameters = mesh_provider::adapted_parameters(args.eps, args.level, args.free_edge);
+    let out = serde_json::json!({
+        "path": provided.path.display().to_string(),
+        "sha256": provided.sha256,
+        "origin": provided.origin,
+        "gmsh_version": provided.gmsh_version,
+        "label": request.label(),
+        "parameters": parameters,
+    });
+    println!("{}", to_json(&out)?);
     Ok(ExitCode::SUCCESS)
 }
 

@@ -172,12 +172,26 @@ impl<'m> ContactModel<'m> {
                 .zip(&bound)
                 .map(|(&n, &b)| b - u[2 * n + 1])
                 .collect();
-            let next: Vec<bool> = active
+            let mut next: Vec<bool> = active
                 .iter()
                 .zip(&reactions)
                 .zip(&gaps)
                 .map(|((&a, &(_, lambda)), &gap)| if a { lambda > 0.0 } else { gap < 0.0 })
                 .collect();
+            // Nodes at the singular rim stay in contact: P2/P3 vertices next to the rim carry
+            // negative consistent reactions on very small elements, and releasing them one per
+            // iteration cost 11 factorisations on one model (measured). The protected zone is
+            // 1 % of the ring's width; what negative reaction remains there is reported in the
+            // complementarity residual.
+            if let Some(first) = next.iter().position(|&a| a) {
+                let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+                let zone = 1.0 - 0.01 * (1.0 - r(first));
+                for (i, a) in next.iter_mut().enumerate().skip(first) {
+                    if r(i) >= zone {
+                        *a = true;
+                    }
+                }
+            }
             if next == active {
                 let lambda_scale = reactions
                     .iter()
@@ -395,14 +409,20 @@ pub fn nodal_pressure(mesh: &Mesh, reactions: &[(f64, f64)]) -> Vec<(f64, f64)> 
         let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
         for &(t, w) in &gauss {
             let r = a[0] + t * (b[0] - a[0]);
-            let shape = if edge.nodes.len() == 2 {
-                vec![1.0 - t, t]
-            } else {
-                vec![
+            let shape = match edge.nodes.len() {
+                2 => vec![1.0 - t, t],
+                3 => vec![
                     (1.0 - t) * (1.0 - 2.0 * t),
                     t * (2.0 * t - 1.0),
                     4.0 * t * (1.0 - t),
-                ]
+                ],
+                // Cubic edge: ends, then the nodes at 1/3 and 2/3.
+                _ => vec![
+                    0.5 * (1.0 - t) * (2.0 - 3.0 * t) * (1.0 - 3.0 * t),
+                    0.5 * t * (3.0 * t - 1.0) * (3.0 * t - 2.0),
+                    4.5 * t * (1.0 - t) * (2.0 - 3.0 * t),
+                    4.5 * t * (1.0 - t) * (3.0 * t - 1.0),
+                ],
             };
             for (k, &node) in edge.nodes.iter().enumerate() {
                 if let Some(&i) = position.get(&node) {

@@ -38,42 +38,66 @@ impl Lame {
     }
 }
 
-/// Shape functions and their reference gradients at `(ξ, η)`.
+/// Shape functions and their reference gradients at `(ξ, η)`, with barycentric coordinates
+/// `L1 = 1 - ξ - η`, `L2 = ξ`, `L3 = η`:
+/// P1 `N_i = L_i`; P2 `L_i (2 L_i - 1)` and `4 L_i L_j`; P3 `½ L_i (3 L_i - 1)(3 L_i - 2)`,
+/// `9/2 L_i L_j (3 L_i - 1)` (edge node nearer `i`) and `27 L1 L2 L3`.
 pub fn shape(degree: Degree, xi: f64, eta: f64, n: &mut [f64], dxi: &mut [f64], deta: &mut [f64]) {
-    let l1 = 1.0 - xi - eta;
+    let l = [1.0 - xi - eta, xi, eta];
+    // dL/dξ and dL/dη.
+    const DXI: [f64; 3] = [-1.0, 1.0, 0.0];
+    const DETA: [f64; 3] = [-1.0, 0.0, 1.0];
+    // A shape function as f(L) with its gradient in L; chain rule to (ξ, η).
+    let mut put = |k: usize, value: f64, grad: [f64; 3]| {
+        n[k] = value;
+        dxi[k] = (0..3).map(|i| grad[i] * DXI[i]).sum();
+        deta[k] = (0..3).map(|i| grad[i] * DETA[i]).sum();
+    };
+    let unit = |i: usize, v: f64| {
+        let mut g = [0.0; 3];
+        g[i] = v;
+        g
+    };
     match degree {
         Degree::Linear => {
-            n[..3].copy_from_slice(&[l1, xi, eta]);
-            dxi[..3].copy_from_slice(&[-1.0, 1.0, 0.0]);
-            deta[..3].copy_from_slice(&[-1.0, 0.0, 1.0]);
+            for (i, &li) in l.iter().enumerate() {
+                put(i, li, unit(i, 1.0));
+            }
         }
         Degree::Quadratic => {
-            let (l2, l3) = (xi, eta);
-            n[..6].copy_from_slice(&[
-                l1 * (2.0 * l1 - 1.0),
-                l2 * (2.0 * l2 - 1.0),
-                l3 * (2.0 * l3 - 1.0),
-                4.0 * l1 * l2,
-                4.0 * l2 * l3,
-                4.0 * l3 * l1,
-            ]);
-            // d/dξ: dl1 = -1, dl2 = 1, dl3 = 0; d/dη: dl1 = -1, dl2 = 0, dl3 = 1.
-            dxi[..6].copy_from_slice(&[
-                -(4.0 * l1 - 1.0),
-                4.0 * l2 - 1.0,
-                0.0,
-                4.0 * (l1 - l2),
-                4.0 * l3,
-                -4.0 * l3,
-            ]);
-            deta[..6].copy_from_slice(&[
-                -(4.0 * l1 - 1.0),
-                0.0,
-                4.0 * l3 - 1.0,
-                -4.0 * l2,
-                4.0 * l2,
-                4.0 * (l1 - l3),
-            ]);
+            for (i, &li) in l.iter().enumerate() {
+                put(i, li * (2.0 * li - 1.0), unit(i, 4.0 * li - 1.0));
+            }
+            for (k, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                let mut g = [0.0; 3];
+                g[i] = 4.0 * l[j];
+                g[j] = 4.0 * l[i];
+                put(3 + k, 4.0 * l[i] * l[j], g);
+            }
+        }
+        Degree::Cubic => {
+            for (i, &li) in l.iter().enumerate() {
+                put(
+                    i,
+                    0.5 * li * (3.0 * li - 1.0) * (3.0 * li - 2.0),
+                    unit(i, 0.5 * (27.0 * li * li - 18.0 * li + 2.0)),
+                );
+            }
+            for (e, (i, j)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                // Node nearer i, then nearer j: 9/2 L_i L_j (3 L_near - 1).
+                for (slot, (near, far)) in [(i, j), (j, i)].into_iter().enumerate() {
+                    let (a, b) = (l[near], l[far]);
+                    let mut g = [0.0; 3];
+                    g[near] = 4.5 * b * (6.0 * a - 1.0);
+                    g[far] = 4.5 * a * (3.0 * a - 1.0);
+                    put(3 + 2 * e + slot, 4.5 * a * b * (3.0 * a - 1.0), g);
+                }
+            }
+            put(
+                9,
+                27.0 * l[0] * l[1] * l[2],
+                [27.0 * l[1] * l[2], 27.0 * l[0] * l[2], 27.0 * l[0] * l[1]],
+            );
         }
     }
 }
@@ -139,9 +163,9 @@ pub fn stiffness(
     let size = 2 * k;
     out[..size * size].iter_mut().for_each(|v| *v = 0.0);
     let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
-    let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
     // Strain of each unit dof: b[dof] = ε vector.
-    let mut b = [[0.0; 4]; 12];
+    let mut b = [[0.0; 4]; 20];
     for (p, &w) in rule.points.iter().zip(&rule.weights) {
         shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
         let r = tri.map(p[0], p[1])[0];

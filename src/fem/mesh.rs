@@ -29,6 +29,7 @@ pub mod tags {
 pub enum Degree {
     Linear = 1,
     Quadratic = 2,
+    Cubic = 3,
 }
 
 impl Degree {
@@ -37,6 +38,7 @@ impl Degree {
         match self {
             Degree::Linear => 3,
             Degree::Quadratic => 6,
+            Degree::Cubic => 10,
         }
     }
 
@@ -45,6 +47,7 @@ impl Degree {
         match self {
             Degree::Linear => 2,
             Degree::Quadratic => 3,
+            Degree::Cubic => 4,
         }
     }
 
@@ -53,13 +56,14 @@ impl Degree {
         match n {
             1 => Some(Degree::Linear),
             2 => Some(Degree::Quadratic),
+            3 => Some(Degree::Cubic),
             _ => None,
         }
     }
 }
 
-/// A boundary edge with its physical tag; `nodes` has 2 (linear) or 3 (quadratic: ends, then
-/// middle) entries.
+/// A boundary edge with its physical tag; `nodes` has 2 (linear), 3 (quadratic: ends, then
+/// middle) or 4 (cubic: ends, then the nodes at 1/3 and 2/3 from the first end) entries.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BoundaryEdge {
     pub nodes: Vec<usize>,
@@ -142,11 +146,6 @@ impl Mesh {
                 ));
             }
         }
-        let scale = self
-            .nodes
-            .iter()
-            .map(|p| p[0].abs().max(p[1].abs()))
-            .fold(0.0, f64::max);
         for c in 0..self.cell_count() {
             let cell = self.cell(c);
             if let Some(&bad) = cell.iter().find(|&&v| v >= n) {
@@ -164,7 +163,12 @@ impl Mesh {
             let edge =
                 |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
             let longest = edge(p0, p1).max(edge(p1, p2)).max(edge(p2, p0));
-            if twice_area.abs() <= 1e-14 * longest * longest.max(1e-300) || longest <= 1e-15 * scale
+            // Degenerate: flat relative to its own size, or so small that its vertices' coordinates
+            // cannot resolve it (relative to their magnitude, not the domain's: graded meshes have
+            // elements of 1e-10 a next to ones of 1e6 a).
+            let magnitude = p0[0].abs().max(p0[1].abs());
+            if twice_area.abs() <= 1e-14 * longest * longest.max(1e-300)
+                || longest <= 1e-13 * magnitude
             {
                 return Err(mesh_error(
                     src,
@@ -180,21 +184,24 @@ impl Mesh {
                     ),
                 ));
             }
-            if self.degree == Degree::Quadratic {
-                for (k, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+            // Edge nodes of higher-order triangles: at the fractions k/p of straight edges.
+            let per_edge = self.degree as usize - 1;
+            for (e, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+                for j in 0..per_edge {
+                    let t = (j + 1) as f64 / self.degree as usize as f64;
                     let (pa, pb, pm) = (
                         self.nodes[cell[a]],
                         self.nodes[cell[b]],
-                        self.nodes[cell[3 + k]],
+                        self.nodes[cell[3 + per_edge * e + j]],
                     );
-                    let mid = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
-                    if edge(mid, pm) > 1e-9 * edge(pa, pb) {
+                    let expected = [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
+                    if edge(expected, pm) > 1e-9 * edge(pa, pb) {
                         return Err(mesh_error(
                             src,
                             format!(
-                                "triangle {c} has a curved edge (mid node {} off the chord); only \
-                                 straight-sided quadratic elements are supported (Mesh.SecondOrderLinear = 1)",
-                                cell[3 + k]
+                                "triangle {c} has a curved edge (node {} off the chord); only \
+                                 straight-sided elements are supported (Mesh.SecondOrderLinear = 1)",
+                                cell[3 + per_edge * e + j]
                             ),
                         ));
                     }
@@ -300,11 +307,72 @@ impl Mesh {
         }
     }
 
-    /// The mesh with elements of `degree`.
+    /// The same mesh with cubic (10-node) triangles on its vertices: two nodes on every edge at
+    /// 1/3 and 2/3, one at the centroid; cell order as gmsh's and VTK's: vertices, edge 0-1 (from
+    /// vertex 0), edge 1-2, edge 2-0, centre.
+    pub fn to_cubic(&self) -> Mesh {
+        if self.degree == Degree::Cubic {
+            return self.clone();
+        }
+        let linear = self.to_linear();
+        let mut nodes = linear.nodes.clone();
+        // Edge (min, max) -> the nodes at 1/3 and 2/3 from min.
+        let mut thirds: HashMap<(usize, usize), [usize; 2]> = HashMap::new();
+        let mut edge_nodes = |a: usize, b: usize, nodes: &mut Vec<[f64; 2]>| -> [usize; 2] {
+            let key = (a.min(b), a.max(b));
+            let pair = *thirds.entry(key).or_insert_with(|| {
+                let (p, q) = (nodes[key.0], nodes[key.1]);
+                let at = |t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
+                nodes.push(at(1.0 / 3.0));
+                nodes.push(at(2.0 / 3.0));
+                [nodes.len() - 2, nodes.len() - 1]
+            });
+            if a < b {
+                pair
+            } else {
+                [pair[1], pair[0]]
+            }
+        };
+        let mut cells = Vec::with_capacity(linear.cell_count() * 10);
+        for c in 0..linear.cell_count() {
+            let t = linear.cell(c);
+            let e01 = edge_nodes(t[0], t[1], &mut nodes);
+            let e12 = edge_nodes(t[1], t[2], &mut nodes);
+            let e20 = edge_nodes(t[2], t[0], &mut nodes);
+            let (p0, p1, p2) = (nodes[t[0]], nodes[t[1]], nodes[t[2]]);
+            nodes.push([(p0[0] + p1[0] + p2[0]) / 3.0, (p0[1] + p1[1] + p2[1]) / 3.0]);
+            let centre = nodes.len() - 1;
+            cells.extend_from_slice(&[
+                t[0], t[1], t[2], e01[0], e01[1], e12[0], e12[1], e20[0], e20[1], centre,
+            ]);
+        }
+        let boundary = linear
+            .boundary
+            .iter()
+            .map(|e| {
+                let [m1, m2] = edge_nodes(e.nodes[0], e.nodes[1], &mut nodes);
+                BoundaryEdge {
+                    nodes: vec![e.nodes[0], e.nodes[1], m1, m2],
+                    tag: e.tag,
+                }
+            })
+            .collect();
+        Mesh {
+            nodes,
+            cells,
+            degree: Degree::Cubic,
+            boundary,
+            source: format!("{} (cubic elements on its vertices)", self.source),
+        }
+    }
+
+    /// The mesh with elements of `degree` (always on the vertices of this mesh).
     pub fn with_degree(&self, degree: Degree) -> Mesh {
-        match degree {
-            Degree::Linear => self.to_linear(),
-            Degree::Quadratic => self.to_quadratic(),
+        match (self.degree, degree) {
+            (a, b) if a == b => self.clone(),
+            (_, Degree::Linear) => self.to_linear(),
+            (_, Degree::Quadratic) => self.to_linear().to_quadratic(),
+            (_, Degree::Cubic) => self.to_cubic(),
         }
     }
 }

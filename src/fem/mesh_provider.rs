@@ -8,10 +8,10 @@
 //! **Adapted family** (generated from `meshes/half_space.geo`): geometric grading toward the
 //! singular edges, `h(x) = min(hmin + g |x - a|, hmin + g |x - b|)` (the inner edge only for the flat
 //! annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by the FEM's
-//! own coarser solve; no uniform size along the contact line. Level `k` has `g_k = 0.32 · 0.6^k`
-//! and `hmin_k = 10^-3 · 10^-k`: for quadratic elements the force error of the graded zone falls
-//! like `g⁴` (a factor 7.7 per level) and that of the innermost element like `hmin`. The domain
-//! radius is `R = min(1e7, 1e11 hmin)` (see [`adapted_domain_radius`]).
+//! own coarser solve; no uniform size along the contact line. Level `k` has `g_k = 0.32 · 0.6^k`,
+//! `hmin_k` from [`adapted_rim_size`] and `hb_k = 10^-3 · 10^-k`: for quadratic elements the
+//! force error of the graded zone falls like `g⁴` (a factor 7.7 per level), for cubic like `g⁶`,
+//! and that of the innermost element like `hmin`. The domain radius is `R = 1e7 a`.
 //!
 //! The cache lives in `<project>/.mesh-cache/` (ignored by git; `RINGCONTACT_MESH_CACHE`
 //! overrides), keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
@@ -23,15 +23,16 @@ use sha2::{Digest, Sha256};
 use super::gmsh::Gmsh;
 use crate::error::{Error, Result};
 
-/// Largest domain radius of the adapted family, in units of `a`.
+/// Domain radius of the adapted family, in units of `a`.
 pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 
-/// Domain radius for a smallest element `hmin`: `min(1e7, 1e11 hmin)`. gmsh 4.15 stalls when the
-/// smallest element is below about 1e-13 of the domain size (measured: `hmin = 1e-7` in
-/// `R = 1e7` does not finish in 30 s, `hmin = 1e-6` in `R = 1e6` takes 1.2 s); with the Boussinesq
-/// far field the smaller domain costs nothing in accuracy (bias `< 1e-8` down to `R = 1e4`).
-pub fn adapted_domain_radius(hmin: f64) -> f64 {
-    (1e11 * hmin).min(ADAPTED_DOMAIN_RADIUS)
+/// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k`, floored at 1e-10.
+/// The innermost element's force error is about `0.16 hmin` (P2, measured), and each decade of
+/// `hmin` costs only `ln(10)/g` more element layers, so the rim is refined well past the graded
+/// zone's error. (The free surface is cut at `r = 2a`: gmsh 4.15 stalls meshing one curve from
+/// `a` to `R = 1e7 a` with elements of 1e-7 at one end.)
+pub fn adapted_rim_size(level: usize) -> f64 {
+    (1e-4 * 0.01f64.powi(level as i32)).max(1e-10)
 }
 /// Highest level of the adapted family.
 pub const ADAPTED_MAX_LEVEL: usize = 7;
@@ -153,11 +154,13 @@ pub fn adapted_parameters(
     free_edge: Option<f64>,
 ) -> Vec<(String, f64)> {
     let grading = 0.32 * 0.6f64.powi(level as i32);
-    let hmin = 1e-3 * 0.1f64.powi(level as i32);
+    let hmin = adapted_rim_size(level);
+    let hb = 1e-3 * 0.1f64.powi(level as i32);
     let mut p = vec![
         ("a".to_string(), 1.0),
         ("b".to_string(), contact_start),
-        ("R".to_string(), adapted_domain_radius(hmin)),
+        ("R".to_string(), ADAPTED_DOMAIN_RADIUS),
+        ("split".to_string(), 2.0),
         ("hmin".to_string(), hmin),
         // No uniform size along the contact line: the line field never binds.
         ("hline".to_string(), 10.0),
@@ -166,7 +169,7 @@ pub fn adapted_parameters(
     ];
     if let Some(b) = free_edge.filter(|&b| b > 0.0) {
         p.push(("bref".to_string(), b));
-        p.push(("hb".to_string(), 10.0 * hmin));
+        p.push(("hb".to_string(), hb));
     }
     p
 }

@@ -16,7 +16,7 @@ pub fn body_force_vector(
     body: impl Fn(f64, f64) -> [f64; 2],
 ) -> Vec<f64> {
     let mut f = vec![0.0; 2 * mesh.nodes.len()];
-    let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
     for c in 0..mesh.cell_count() {
         let cell = mesh.cell(c);
         let tri = AffineTriangle::new(
@@ -48,7 +48,7 @@ pub trait ExactField {
 pub fn errors(mesh: &Mesh, u: &[f64], exact: &impl ExactField, material: &Lame) -> (f64, f64) {
     let rule = TriangleRule::collapsed_gauss(8);
     let (mut l2, mut energy) = (0.0, 0.0);
-    let (mut n, mut dxi, mut deta) = ([0.0; 6], [0.0; 6], [0.0; 6]);
+    let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
     for c in 0..mesh.cell_count() {
         let cell = mesh.cell(c);
         let tri = AffineTriangle::new(

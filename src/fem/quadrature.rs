@@ -44,6 +44,39 @@ impl TriangleRule {
         }
     }
 
+    /// Degree-6, 12-point symmetric rule (Dunavant 1985, rule 6): orbits `(a, a, 1 - 2a)` with
+    /// `a = 0.249286745170910` and `0.063089014491502`, and the six permutations of
+    /// `(0.053145049844817, 0.310352451033784, 0.636502499121399)`.
+    pub fn degree6() -> Self {
+        let orbits3 = [
+            (0.249_286_745_170_910, 0.116_786_275_726_379),
+            (0.063_089_014_491_502, 0.050_844_906_370_207),
+        ];
+        let (p, q, w6) = (
+            0.053_145_049_844_817,
+            0.310_352_451_033_784,
+            0.082_851_075_618_374,
+        );
+        let mut points = Vec::new();
+        let mut weights = Vec::new();
+        for (a, w) in orbits3 {
+            for pt in [[a, a], [1.0 - 2.0 * a, a], [a, 1.0 - 2.0 * a]] {
+                points.push(pt);
+                weights.push(w / 2.0);
+            }
+        }
+        let r = 1.0 - p - q;
+        for pt in [[p, q], [q, p], [p, r], [r, p], [q, r], [r, q]] {
+            points.push(pt);
+            weights.push(w6 / 2.0);
+        }
+        Self {
+            points,
+            weights,
+            degree: 6,
+        }
+    }
+
     /// Collapsed Gauss-Legendre product rule with `n x n` points (Duffy transform), exact for
     /// degree `2n - 2`; used for error norms, where accuracy matters more than cost.
     pub fn collapsed_gauss(n: usize) -> Self {
@@ -114,6 +147,7 @@ mod tests {
         for rule in [
             TriangleRule::degree2(),
             TriangleRule::degree4(),
+            TriangleRule::degree6(),
             TriangleRule::collapsed_gauss(5),
         ] {
             for i in 0..=rule.degree as u32 {

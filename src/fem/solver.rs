@@ -258,11 +258,13 @@ fn prepare(
 }
 
 /// The quadrature rule of the stiffness: degree 2 (3 points) for linear, degree 4 (6 points)
-/// for quadratic elements.
+/// for quadratic, degree 6 (12 points) for cubic elements (degree `2p`: exact for the
+/// polynomial part `∇N·∇N r` of the integrand up to one degree of the `r` factor).
 pub fn stiffness_rule(degree: Degree) -> TriangleRule {
     match degree {
         Degree::Linear => TriangleRule::degree2(),
         Degree::Quadratic => TriangleRule::degree4(),
+        Degree::Cubic => TriangleRule::degree6(),
     }
 }
 

@@ -1,6 +1,6 @@
 //! VTK unstructured-grid output (`.vtu`, ASCII XML) of a finite-element displacement field for
-//! ParaView: points `(r, z, 0)`, linear (VTK type 5) or quadratic (type 22, same node order as
-//! gmsh) triangles, point data `displacement = (u_r, u_z, 0)`.
+//! ParaView: points `(r, z, 0)`, linear (VTK type 5), quadratic (type 22, same node order as
+//! gmsh) or cubic (Lagrange type 69) triangles, point data `displacement = (u_r, u_z, 0)`.
 
 use std::fmt::Write as _;
 use std::path::Path;
@@ -14,6 +14,8 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, u: &[f64]) -> Result<()> {
     let cell_type = match mesh.degree {
         Degree::Linear => 5,
         Degree::Quadratic => 22,
+        // VTK_LAGRANGE_TRIANGLE: vertices, edge nodes edge by edge, then the centre (our order).
+        Degree::Cubic => 69,
     };
     let mut s = String::new();
     let _ = writeln!(s, "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>");
