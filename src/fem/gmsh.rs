@@ -12,6 +12,10 @@ use std::sync::OnceLock;
 
 use crate::error::{Error, Result};
 
+/// Longest a single gmsh run may take before it is stopped (the finest adapted level takes
+/// about 5 s on 2 cores).
+pub const MESHING_TIME_LIMIT_S: u64 = 300;
+
 /// The command that installs gmsh for this project (quoted in errors).
 pub const INSTALL_COMMAND: &str = "bash scripts/install_gmsh.sh";
 
@@ -101,9 +105,36 @@ impl Gmsh {
             command.args(["-setnumber", name, &format!("{value:e}")]);
         }
         command.arg("-o").arg(out);
-        let output = command
-            .output()
+        // stdout is not read (a full pipe would block gmsh); -v 1 keeps stderr to errors.
+        command
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::piped());
+        let mut child = command
+            .spawn()
             .map_err(|e| gmsh_error(format!("cannot run gmsh: {e}")))?;
+        // gmsh can stall on extreme size ratios instead of failing: never wait forever.
+        let limit = std::time::Duration::from_secs(MESHING_TIME_LIMIT_S);
+        let start = std::time::Instant::now();
+        loop {
+            match child.try_wait() {
+                Ok(Some(_)) => break,
+                Ok(None) if start.elapsed() > limit => {
+                    let _ = child.kill();
+                    let _ = child.wait();
+                    let _ = std::fs::remove_file(out);
+                    return Err(gmsh_error(format!(
+                        "gmsh did not finish meshing {} within {MESHING_TIME_LIMIT_S} s \
+                         (parameters {parameters:?}); stopped",
+                        geo.display()
+                    )));
+                }
+                Ok(None) => std::thread::sleep(std::time::Duration::from_millis(20)),
+                Err(e) => return Err(gmsh_error(format!("cannot wait for gmsh: {e}"))),
+            }
+        }
+        let output = child
+            .wait_with_output()
+            .map_err(|e| gmsh_error(format!("cannot read gmsh's output: {e}")))?;
         if !output.status.success() || !out.exists() {
             return Err(gmsh_error(format!(
                 "gmsh failed on {} ({}): {}",
