@@ -240,9 +240,14 @@ pub fn render(rows: &[FenicsxComparison]) -> String {
     );
     for r in rows {
         if r.status != "current" {
+            let remedy = if r.status == "needs-gmsh" {
+                "install gmsh (bash scripts/install_gmsh.sh) to remake it"
+            } else {
+                "refresh with scripts/fenicsx/run_all.sh"
+            };
             let _ = writeln!(
                 out,
-                "  {:<34} {} (mesh {}): not used; refresh with scripts/fenicsx/run_all.sh",
+                "  {:<34} {} (mesh {}): not used; {remedy}",
                 r.file,
                 r.status.to_uppercase(),
                 r.stored.mesh
