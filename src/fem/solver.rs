@@ -1,14 +1,15 @@
 //! The finite-element method behind the common interface: picks a mesh, solves, estimates the
 //! error, and returns a dimensionless state (`a = 1`, `E* = 1`, `d = 1` or `h = 1`).
 //!
-//! **Meshes.** Committed gmsh meshes in `meshes/` (see `meshes/half_space.geo`), families
-//! `disk` (flat punch, cone, sphere) and `annulus-<b/a>` (flat annulus), refinement levels
-//! `L0, L1, ...` of one size function. `--mesh PATH` uses one given file instead.
+//! **Meshes.** A sequence of models for the scene and tolerance ([`mesh_sequence`]): the committed
+//! families in `meshes/` (`disk`, `annulus-0.5`, `annulus-0.9`, levels L0-L2), continued by the
+//! adapted family made by gmsh at run time ([`super::mesh_provider`]); `--mesh PATH` uses one
+//! given file instead.
 //!
-//! **Error estimate and model choice.** Levels are climbed from `L1` until the change of the
-//! result from the previous level meets the tolerance: the smallest model that meets it. The
-//! estimate of the finer result is that change (conservative under convergence) plus the domain
-//! truncation bias `1.2 a/R` (the meshes use `R = 1e5 a`; the bias is measured in the tests).
+//! **Error estimate and model choice.** Levels are climbed until the change of the result from
+//! the previous level meets the tolerance: the smallest model that meets it. The estimate of the
+//! finer result is that change (conservative under convergence) plus the far-field truncation
+//! bias ([`FarField::truncation_bias`]) and the [`unresolved_component`].
 //!
 //! **Material.** The frictionless rigid-punch response depends on `E*` only; the solid is given
 //! `E = E* (1 - nu²)` with the scene's `nu` (default 0).
