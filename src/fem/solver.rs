@@ -357,6 +357,18 @@ impl PreparedModel {
     }
 }
 
+/// [`prepare`] with the options' degree, material and far field, then [`check_domain`].
+fn prepare_checked(provided: &ProvidedMesh, options: &FemOptions) -> Result<PreparedModel> {
+    let model = prepare(
+        provided,
+        options.degree,
+        options.poisson_ratio,
+        options.far_field,
+    )?;
+    check_domain(&model, options.tolerance)?;
+    Ok(model)
+}
+
 /// A domain too small for the tolerance is a detectable failure: decline it.
 fn check_domain(model: &PreparedModel, tolerance: f64) -> Result<()> {
     let bias = model.truncation_bias();
@@ -445,13 +457,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             origin: MeshOrigin::User,
             gmsh_version: None,
         };
-        let mut model = prepare(
-            &provided,
-            options.degree,
-            options.poisson_ratio,
-            options.far_field,
-        )?;
-        check_domain(&model, options.tolerance)?;
+        let mut model = prepare_checked(&provided, options)?;
         let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
         let state = state_of(&s, x, y);
         let iterations = s.iterations;
@@ -482,14 +488,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             request
         };
         let provided = mesh_provider::provide(&request, &why)?;
-        let mut model = prepare(
-            &provided,
-            options.degree,
-            options.poisson_ratio,
-            options.far_field,
-        )?;
+        let mut model = prepare_checked(&provided, options)?;
         last_mesh = model.path.clone();
-        check_domain(&model, options.tolerance)?;
         // The previous level's contact radius (and depth) start the iterations.
         let guess = previous.map(|p: (f64, f64, f64)| p.2);
         let depth_guess = previous.map(|p: (f64, f64, f64)| p.0);
