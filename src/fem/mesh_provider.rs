@@ -34,6 +34,7 @@ pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 pub fn adapted_rim_size(level: usize) -> f64 {
     (1e-4 * 0.01f64.powi(level as i32)).max(1e-10)
 }
+
 /// Highest level of the adapted family.
 pub const ADAPTED_MAX_LEVEL: usize = 7;
 /// Highest committed level.

@@ -11,7 +11,6 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
-use sha2::{Digest, Sha256};
 
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
@@ -69,26 +68,15 @@ pub struct FenicsxComparison {
     pub passed: bool,
 }
 
-/// Root of the repository (where `meshes/` and `verify/` live).
+/// Root of the repository (where `meshes/` and `verify/` live): the project root the mesh
+/// provider uses ([`crate::fem::mesh_provider::project_root`]).
 pub fn repository_root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    crate::fem::mesh_provider::project_root()
 }
 
 /// Directory of the stored FEniCSx results.
 pub fn results_directory() -> PathBuf {
     repository_root().join("verify").join("fenicsx")
-}
-
-/// SHA-256 of a file, hex.
-pub fn sha256_of(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|e| Error::InvalidMesh {
-        path: path.display().to_string(),
-        message: format!("cannot read: {e}"),
-    })?;
-    Ok(Sha256::digest(&bytes)
-        .iter()
-        .map(|b| format!("{b:02x}"))
-        .collect())
 }
 
 /// Read every stored result, sorted by file name.
@@ -134,7 +122,7 @@ pub fn compare(
             return Ok(out);
         }
     };
-    if sha256_of(&mesh_path)? != stored.mesh_sha256 {
+    if crate::fem::mesh_provider::sha256_file(&mesh_path)? != stored.mesh_sha256 {
         out.status = "stale".into();
         return Ok(out);
     }
