@@ -104,7 +104,10 @@ pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> 
     if !(0.0 < eps && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
-            format!("must satisfy 0 < b/a < 1 for an annulus (got {eps})"),
+            format!(
+                "must satisfy 0 < b/a < 1 for an annulus (got {})",
+                crate::error::show(eps)
+            ),
         ));
     }
     let e = annulus_edges(solver, eps)?;
@@ -425,7 +428,7 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
     if !(s.is_finite() && s > 0.0) {
         return Err(Error::invalid(
             "d0h",
-            format!("must be a positive number (got {s})"),
+            format!("must be a positive number (got {})", crate::error::show(s)),
         ));
     }
     let points: Vec<BranchPoint> = scan_ratios()

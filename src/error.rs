@@ -13,6 +13,23 @@ pub enum Error {
     #[error("cannot read scene file `{path}`: {message}")]
     SceneFile { path: String, message: String },
 
+    /// A file other than a scene could not be read, parsed or written.
+    #[error("cannot {action} `{path}`: {message}")]
+    File {
+        action: String,
+        path: String,
+        message: String,
+    },
+
+    /// A computed state is not physically possible (non-finite, `eps` outside `[0, 1)`, force and
+    /// depth of opposite signs): a defect or an input beyond the method's range, never printed.
+    #[error("method `{method}` produced an impossible state ({state}): {reason}")]
+    Implausible {
+        method: String,
+        state: String,
+        reason: String,
+    },
+
     /// A mesh file is unreadable or breaks a rule the solver relies on.
     #[error("mesh `{path}`: {message}")]
     InvalidMesh { path: String, message: String },
@@ -30,10 +47,35 @@ pub enum Error {
     NoConvergence { method: String, reason: String },
 }
 
+/// A number for a message: plain up to 10 significant digits where that is short, else
+/// scientific with 7 (never 300 digits).
+pub fn show(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let magnitude = x.abs();
+    if (1e-4..1e9).contains(&magnitude) {
+        let text = format!("{x:.10}");
+        let text = text.trim_end_matches('0').trim_end_matches('.');
+        text.to_string()
+    } else {
+        format!("{x:.6e}")
+    }
+}
+
 /// Shorthand for results in this crate.
 pub type Result<T> = std::result::Result<T, Error>;
 
 impl Error {
+    /// Helper for [`Error::File`]: `action` is what was attempted (`read`, `parse`, `write`).
+    pub fn file(action: &str, path: &std::path::Path, message: impl std::fmt::Display) -> Self {
+        Error::File {
+            action: action.to_string(),
+            path: path.display().to_string(),
+            message: message.to_string(),
+        }
+    }
+
     /// Helper for [`Error::InvalidScene`].
     pub fn invalid(field: &str, rule: impl Into<String>) -> Self {
         Error::InvalidScene {

@@ -17,6 +17,7 @@ pub mod adhesion;
 pub mod bem;
 pub mod error;
 pub mod fem;
+pub mod finite;
 pub mod fit;
 pub mod harness;
 pub mod methods;

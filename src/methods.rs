@@ -89,13 +89,16 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
             reason: "--grid applies to --method grid-bem only".into(),
         });
     }
-    match method {
+    let solution = match method {
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
         Method::Fem => solve_fem(scene, options),
         Method::GridBem => solve_grid_bem(scene, options.grid.unwrap_or(DEFAULT_GRID)),
         Method::Auto => solve_auto(scene, options),
-    }
+    }?;
+    // Every state is checked before anyone sees it (never a number that cannot exist).
+    solution.check_plausible()?;
+    Ok(solution)
 }
 
 /// Methods in order of cost for an axisymmetric scene (measured: ring BEM ~1 ms, FEM 0.1-5 s;
@@ -220,6 +223,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         mesh_origin: Some(state.mesh_origin),
         gmsh_version: state.gmsh_version.clone(),
         far_field: Some(state.far_field),
+        fem_timings: Some(state.timings),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
         provenance: format!(
@@ -311,6 +315,7 @@ fn base(
         mesh_origin: None,
         gmsh_version: None,
         far_field: None,
+        fem_timings: None,
         degree: None,
         complementarity_residual: None,
         grid: None,

@@ -113,9 +113,25 @@ pub struct SceneSpec {
 impl SceneSpec {
     /// Parse a TOML scene; unknown keys and wrong types are errors naming the key.
     pub fn from_toml(text: &str, origin: &str) -> Result<Self> {
-        toml::from_str(text).map_err(|e| Error::SceneFile {
-            path: origin.to_string(),
-            message: e.message().to_string(),
+        toml::from_str(text).map_err(|e| {
+            // Line and column of the offending text (1-based), from the error's byte span.
+            let place = e.span().map(|span| {
+                let before = &text.as_bytes()[..span.start.min(text.len())];
+                let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+                let column = before.iter().rev().take_while(|&&b| b != b'\n').count() + 1;
+                let snippet: String = text
+                    .lines()
+                    .nth(line - 1)
+                    .unwrap_or("")
+                    .chars()
+                    .take(80)
+                    .collect();
+                format!("line {line}, column {column} (`{}`): ", snippet.trim())
+            });
+            Error::SceneFile {
+                path: origin.to_string(),
+                message: format!("{}{}", place.unwrap_or_default(), e.message().trim()),
+            }
         })
     }
 
@@ -182,7 +198,10 @@ fn finite(field: &str, value: f64) -> Result<f64> {
     } else {
         Err(Error::invalid(
             field,
-            format!("must be a finite number (got {value})"),
+            format!(
+                "must be a finite number (got {})",
+                crate::error::show(value)
+            ),
         ))
     }
 }
@@ -193,7 +212,10 @@ fn positive(field: &str, value: f64) -> Result<f64> {
     if v > 0.0 {
         Ok(v)
     } else {
-        Err(Error::invalid(field, format!("must be > 0 (got {v})")))
+        Err(Error::invalid(
+            field,
+            format!("must be > 0 (got {})", crate::error::show(v)),
+        ))
     }
 }
 
@@ -241,8 +263,10 @@ impl SceneSpec {
             return Err(Error::invalid(
                 "punch.inner_radius",
                 format!(
-                    "must satisfy 0 <= b < a (got b = {inner_radius}, a = {rim_radius}; \
-                     b >= a leaves no contact)"
+                    "must satisfy 0 <= b < a (got b = {}, a = {}; b >= a leaves no contact, \
+                     b < 0 is no radius)",
+                    crate::error::show(inner_radius),
+                    crate::error::show(rim_radius)
                 ),
             ));
         }
@@ -266,7 +290,10 @@ impl SceneSpec {
                 if t >= 1.0 {
                     return Err(Error::invalid(
                         "accuracy.tolerance",
-                        format!("is a relative error and must be < 1 (got {t})"),
+                        format!(
+                            "is a relative error and must be < 1 (got {})",
+                            crate::error::show(t)
+                        ),
                     ));
                 }
                 Some(t)
@@ -309,7 +336,10 @@ impl RawMaterial {
                 if !(nu > -1.0 && nu < 0.5) {
                     return Err(Error::invalid(
                         "material.poisson_ratio",
-                        format!("must lie in the open interval (-1, 0.5) (got {nu})"),
+                        format!(
+                            "must lie in the open interval (-1, 0.5) (got {})",
+                            crate::error::show(nu)
+                        ),
                     ));
                 }
                 Ok(Material {
@@ -371,7 +401,7 @@ impl RawLoad {
             if !(eps > 0.0 && eps < 1.0) {
                 return Err(Error::invalid(
                     "load.contact_ratio",
-                    format!("must satisfy 0 < b/a < 1 (got {eps})"),
+                    format!("must satisfy 0 < b/a < 1 (got {})", crate::error::show(eps)),
                 ));
             }
             return Ok(Load::ContactRatio(eps));

@@ -76,7 +76,10 @@ pub struct Solution {
     /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub far_field: Option<crate::fem::far_field::FarField>,
-    /// Element degree, 1 or 2 (FEM only).
+    /// Where the finest FEM model's time went (FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub fem_timings: Option<crate::fem::solver::FemTimings>,
+    /// Element degree, 1, 2 or 3 (FEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub degree: Option<u8>,
     /// Complementarity residual of the contact solution (FEM concave punches, grid BEM).
@@ -92,4 +95,103 @@ pub struct Solution {
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.
     pub provenance: String,
+}
+
+impl Solution {
+    /// Refuse a state that cannot exist before anyone sees it: every number finite, `0 <= eps < 1`,
+    /// depth and force positive (the punch presses), the dimensionless functions positive and
+    /// consistent with the scene's `eps`, full contact (`eps = 0`) only for the flat punch and the
+    /// spherical punch at `d >= 3h` (PHYSICS.md facts 4-5: the cone never reaches it), a
+    /// non-negative error estimate, finite pressures.
+    pub fn check_plausible(&self) -> crate::error::Result<()> {
+        let fail = |reason: String| {
+            Err(crate::error::Error::Implausible {
+                method: self.method.clone(),
+                state: format!(
+                    "{} at eps = {:.6e}, d = {:.6e}, F = {:.6e}",
+                    self.punch, self.eps, self.depth, self.force
+                ),
+                reason,
+            })
+        };
+        let named = [
+            ("eps", Some(self.eps)),
+            ("depth", Some(self.depth)),
+            ("force", Some(self.force)),
+            ("inner radius", Some(self.inner_radius)),
+            ("gamma", self.gamma),
+            ("gamma1", self.gamma1),
+            ("gamma2", self.gamma2),
+            ("rim stress intensity", self.stress_intensity_rim),
+            ("inner stress intensity", self.stress_intensity_inner),
+            ("error estimate", self.error_estimate),
+        ];
+        for (name, value) in named {
+            if let Some(v) = value {
+                if !v.is_finite() {
+                    return fail(format!("{name} is {v} (overflow or a failed solve)"));
+                }
+            }
+        }
+        if !(0.0..1.0).contains(&self.eps) {
+            return fail(format!(
+                "the contact ratio b/a = {} is outside [0, 1)",
+                self.eps
+            ));
+        }
+        if self.depth <= 0.0 || self.force <= 0.0 {
+            return fail(format!(
+                "a pressing punch needs depth > 0 and force > 0 (got d = {}, F = {})",
+                self.depth, self.force
+            ));
+        }
+        for (name, value) in [
+            ("gamma", self.gamma),
+            ("gamma1", self.gamma1),
+            ("gamma2", self.gamma2),
+        ] {
+            if let Some(v) = value {
+                if v <= 0.0 {
+                    return fail(format!("{name} = {v} must be positive"));
+                }
+            }
+        }
+        if let Some(e) = self.error_estimate {
+            if e < 0.0 {
+                return fail(format!("negative error estimate {e}"));
+            }
+        }
+        if self.eps == 0.0 {
+            match self.punch {
+                PunchKind::Cone => {
+                    return fail(
+                        "full contact: the conical punch never reaches it at finite depth".into(),
+                    )
+                }
+                PunchKind::Sphere => {
+                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
+                    // Allow the method's own error in the depth.
+                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
+                    if depth_over_hole.is_nan() || depth_over_hole < 3.0 * (1.0 - slack) {
+                        return fail(format!(
+                            "full contact at d/h = {depth_over_hole}: the spherical punch reaches \
+                             it only at d/h >= 3"
+                        ));
+                    }
+                }
+                PunchKind::FlatAnnulus => {
+                    return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
+                }
+                PunchKind::Flat => {}
+            }
+        }
+        if let Some(p) = self
+            .pressure
+            .iter()
+            .find(|p| !p.r.is_finite() || !p.p.is_finite())
+        {
+            return fail(format!("pressure sample p({}) = {}", p.r, p.p));
+        }
+        Ok(())
+    }
 }

@@ -72,11 +72,13 @@ fn a_result_whose_mesh_changed_is_stale_and_not_used() {
     let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
     assert_eq!(row.status, "stale");
     assert!(row.our_force.is_none() && !row.passed);
+    // Not compared is a failure (issue 11): the stale row, and a run that compared nothing.
     assert_eq!(
         fenicsx::failures(std::slice::from_ref(&row)),
-        0,
-        "stale results are reported, not compared"
+        2,
+        "a stale result is a failure, and so is comparing nothing"
     );
+    assert!(fenicsx::coverage(std::slice::from_ref(&row)).contains("not compared"));
     assert!(fenicsx::render(&[row]).contains("STALE"));
 }
 

@@ -136,6 +136,46 @@ fn malformed_meshes_are_errors_that_name_the_problem() {
 }
 
 #[test]
+fn nodes_are_read_by_tag_in_any_order() {
+    // The same nodes listed in the order 2, 1, 4, 3: mshio treats tags 1..4 as dense and drops
+    // them; the reader must still place every node by its tag.
+    let shuffled = VALID.replace(
+        "1\n2\n3\n4\n0 0 0\n1 0 0\n1 -1 0\n0 -1 0\n",
+        "2\n1\n4\n3\n1 0 0\n0 0 0\n0 -1 0\n1 -1 0\n",
+    );
+    assert_ne!(shuffled, VALID);
+    let a = parse_msh(VALID.as_bytes(), "test.msh").unwrap();
+    let b = parse_msh(shuffled.as_bytes(), "test.msh").unwrap();
+    b.validate(&REQUIRED).unwrap();
+    let area = |m: &ringcontact::fem::mesh::Mesh| -> Vec<[f64; 2]> {
+        let mut cells: Vec<[f64; 2]> = (0..m.cell_count())
+            .map(|c| {
+                let cell = m.cell(c);
+                let (cr, cz) = cell.iter().fold((0.0, 0.0), |(r, z), &n| {
+                    (r + m.nodes[n][0], z + m.nodes[n][1])
+                });
+                [cr, cz]
+            })
+            .collect();
+        cells.sort_by(|x, y| x.partial_cmp(y).unwrap());
+        cells
+    };
+    assert_eq!(
+        area(&a),
+        area(&b),
+        "the cells differ: nodes were placed by position"
+    );
+}
+
+#[test]
+fn a_duplicated_node_tag_is_an_error_naming_tag_and_line() {
+    let duplicated = VALID.replace("1\n2\n3\n4\n0 0 0", "1\n2\n3\n2\n0 0 0");
+    let message = error_of(&duplicated);
+    assert!(message.contains("node tag 2 appears twice"), "{message}");
+    assert!(message.contains("line 17"), "{message}");
+}
+
+#[test]
 fn a_missing_file_is_an_error() {
     let e = read_msh(std::path::Path::new("/nonexistent/mesh.msh"))
         .unwrap_err()

@@ -258,7 +258,17 @@ pub fn solve_contact(
     let mut r = vec![0.0; cells];
     let (mut delta, mut g_old) = (0.0_f64, 1.0_f64);
     let mut residual = f64::INFINITY;
+    // Long solves (large grids) say where they are on standard error every 10 s.
+    let started = std::time::Instant::now();
+    let mut reported = started;
     for iteration in 1..=max_iterations {
+        if reported.elapsed().as_secs_f64() >= 10.0 {
+            reported = std::time::Instant::now();
+            eprintln!(
+                "grid-bem {n} x {n}: iteration {iteration}, residual {residual:.1e}, {:.0} s",
+                started.elapsed().as_secs_f64()
+            );
+        }
         op.apply(&p, &mut u);
         // Gap: u - (d - g); under force control d is eliminated by the mean over the contact set.
         let mut contact = 0usize;

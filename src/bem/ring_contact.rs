@@ -463,12 +463,19 @@ impl RingBemSolver {
 fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Controlled) -> Error {
     match e {
         RootError::NotBracketed { f_lo, f_hi, .. } => out_of_range(format!(
-            "{} {} = {target} needs a contact ratio outside [{MIN_CONTACT_RATIO}, {MAX_CONTACT_RATIO}] \
-             (the value ranges over [{:.6}, {:.6}] there){}",
+            "{} {} = {} needs a contact ratio outside [{MIN_CONTACT_RATIO}, {MAX_CONTACT_RATIO}]{}{}",
             kind,
             controlled.symbol(),
-            f_hi + target,
-            f_lo + target,
+            crate::error::show(target),
+            if target.abs() < 1e12 {
+                format!(
+                    " (the value ranges over [{}, {}] there)",
+                    crate::error::show(f_hi + target),
+                    crate::error::show(f_lo + target)
+                )
+            } else {
+                String::new()
+            },
             match (kind, f_lo < 0.0) {
                 (PunchKind::Cone, true) => "; the cone's contact closes only as d -> infinity",
                 (PunchKind::Sphere, true) => "; this is within a hair of full contact (d = 3h)",

@@ -6,7 +6,7 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use clap::{Args, Parser, Subcommand};
+use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
 use ringcontact::adhesion;
 use ringcontact::fem::mesh::Degree;
@@ -32,6 +32,10 @@ Examples:
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,
+    /// The project's data directory (holding meshes/ and verify/) [default: found upward from the
+    /// current directory; RINGCONTACT_DATA_DIR also sets it].
+    #[arg(long, global = true, value_name = "DIR")]
+    data_dir: Option<PathBuf>,
 }
 
 #[derive(Subcommand)]
@@ -203,6 +207,10 @@ struct MeshArgs {
     /// Refine around this inner contact radius `b/a` (concave punches).
     #[arg(long, allow_negative_numbers = true)]
     free_edge: Option<f64>,
+    /// How well that radius is known (the coarser solve's error estimate): elements at the free
+    /// edge are kept at least a quarter of it.
+    #[arg(long, default_value_t = 0.0)]
+    edge_uncertainty: f64,
 }
 
 #[derive(Args)]
@@ -250,7 +258,7 @@ struct SolveArgs {
     #[arg(long)]
     vtu: Option<PathBuf>,
     /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=4096))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
     grid: Option<u64>,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -273,8 +281,77 @@ struct CompareArgs {
     no_report: bool,
 }
 
+/// `print!` that never panics: see [`emit`].
+macro_rules! out {
+    ($($arg:tt)*) => {
+        emit(format_args!($($arg)*), false)
+    };
+}
+
+/// `println!` that never panics: see [`emit`].
+macro_rules! outln {
+    () => {
+        emit(format_args!(""), true)
+    };
+    ($($arg:tt)*) => {
+        emit(format_args!($($arg)*), true)
+    };
+}
+
+/// Write to standard output and flush. A reader that went away (`verify ... | head`) ends the
+/// program quietly with status 141 (as if by SIGPIPE); any other write error (a full device) is
+/// reported on standard error with status 1. Output errors are never a panic.
+fn emit(args: std::fmt::Arguments, newline: bool) {
+    use std::io::Write;
+    let mut stdout = std::io::stdout().lock();
+    let written = stdout
+        .write_fmt(args)
+        .and_then(|()| {
+            if newline {
+                stdout.write_all(b"\n")
+            } else {
+                Ok(())
+            }
+        })
+        .and_then(|()| stdout.flush());
+    if let Err(e) = written {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(141);
+        }
+        eprintln!("error: cannot write to standard output: {e}");
+        std::process::exit(1);
+    }
+}
+
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
+    // unknown flag).
+    let command = Cli::command()
+        .allow_negative_numbers(true)
+        .mut_subcommands(|sub| sub.allow_negative_numbers(true));
+    let cli = match Cli::from_arg_matches(&command.get_matches()) {
+        Ok(cli) => cli,
+        Err(e) => e.exit(),
+    };
+    if let Some(dir) = &cli.data_dir {
+        // Read by the data lookups of the library (mesh_provider::find_project_root); set once,
+        // before any thread starts.
+        std::env::set_var(ringcontact::fem::mesh_provider::DATA_DIR_VARIABLE, dir);
+    }
+    let needs_data = matches!(
+        cli.command,
+        None | Some(Command::Compare(_))
+            | Some(Command::Fenicsx(_))
+            | Some(Command::Mesh(_))
+            | Some(Command::Convergence(_))
+            | Some(Command::Stability(_))
+    );
+    if needs_data {
+        if let Err(e) = ringcontact::fem::mesh_provider::find_project_root() {
+            eprintln!("error: {e}");
+            return ExitCode::FAILURE;
+        }
+    }
     let outcome = match cli.command {
         None => run_compare(CompareArgs {
             tol: DEFAULT_TOLERANCE,
@@ -307,14 +384,25 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, String> {
     serde_json::to_string_pretty(value).map_err(|e| e.to_string())
 }
 
+/// A result with a non-finite number is an error naming the field, never `inf` or `null` on
+/// standard output with exit 0.
+fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), String> {
+    ringcontact::finite::check_finite(value).map_err(|field| {
+        format!(
+            "{what} produced a non-finite result ({field}): the input is beyond the range where \
+             the numbers are representable"
+        )
+    })
+}
+
 fn run_stability(args: JsonArgs) -> Result<ExitCode, String> {
     use ringcontact::harness::stability;
     let mut bar = ringcontact::harness::progress::Progress::new("stability", stability::PROBES);
     let probes = stability::run(|p| bar.tick(&format!("{} {}", p.method, p.probe)));
     if args.json {
-        println!("{}", to_json(&probes)?);
+        outln!("{}", to_json(&probes)?);
     } else {
-        print!("{}", stability::render(&probes));
+        out!("{}", stability::render(&probes));
     }
     Ok(if stability::wrong_numbers(&probes) == 0 {
         ExitCode::SUCCESS
@@ -340,7 +428,7 @@ fn run_references(args: JsonArgs) -> Result<ExitCode, String> {
             })
         })
         .collect();
-    println!("{}", to_json(&list)?);
+    outln!("{}", to_json(&list)?);
     Ok(ExitCode::SUCCESS)
 }
 
@@ -358,12 +446,12 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     if args.json {
         let both =
             serde_json::json!({ "comparison": report, "fenicsx": external, "peers": peer_rows });
-        println!("{}", to_json(&both)?);
+        outln!("{}", to_json(&both)?);
     } else {
-        print!("{}", comparison::render(&report));
-        print!("{}", fenicsx::render(&external));
-        print!("{}", peers::render(&peer_rows));
-        println!(
+        out!("{}", comparison::render(&report));
+        out!("{}", fenicsx::render(&external));
+        out!("{}", peers::render(&peer_rows));
+        outln!(
             "\n{} FEniCSx comparisons, {} failed; {} peer comparisons, {} failed.",
             external.len(),
             fenicsx::failures(&external),
@@ -371,7 +459,7 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
             peers::failures(&peer_rows)
         );
         if !args.no_report {
-            println!(
+            outln!(
                 "Report (Markdown, JSON, SVG charts): {}/report.md",
                 args.report.display()
             );
@@ -440,10 +528,10 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
     );
     std::fs::write(&svg_path, chart).map_err(|e| e.to_string())?;
     if args.json {
-        println!("{}", to_json(&study)?);
+        outln!("{}", to_json(&study)?);
     } else {
-        print!("{}", convergence::render(&study));
-        println!("  wrote {} and {}", csv_path.display(), svg_path.display());
+        out!("{}", convergence::render(&study));
+        outln!("  wrote {} and {}", csv_path.display(), svg_path.display());
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -457,6 +545,7 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 .eps
                 .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
             let r = adhesion::flat_annulus(&solver, eps).map_err(|e| e.to_string())?;
+            refuse_non_finite(&format!("jkr flat-annulus --eps {eps}"), &r)?;
             if args.json {
                 to_json(&r)?
             } else {
@@ -487,6 +576,7 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 .d0h
                 .ok_or("cone and sphere need --d0h D0_OVER_H (or --sweep)")?;
             let r = adhesion::concave(&solver, args.punch, s).map_err(|e| e.to_string())?;
+            refuse_non_finite(&format!("jkr {} --d0h {s:e}", args.punch), &r)?;
             if args.json {
                 to_json(&r)?
             } else {
@@ -535,7 +625,7 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
             )
         }
     };
-    println!("{text}");
+    outln!("{text}");
     Ok(ExitCode::SUCCESS)
 }
 
@@ -751,10 +841,10 @@ fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {
     let found = history::regressions(&current, previous.as_ref());
     std::fs::write(
         args.report.join("trend.md"),
-        history::trend(&args.history, 30),
+        history::trend(&args.history, 30).map_err(|e| e.to_string())?,
     )
     .map_err(|e| e.to_string())?;
-    println!(
+    outln!(
         "history: {} ({} runs recorded); FEniCSx {}, peers {}",
         args.history.display(),
         std::fs::read_to_string(&args.history)
@@ -764,7 +854,7 @@ fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {
         current.peers
     );
     if found.is_empty() {
-        println!(
+        outln!(
             "no regression against the tolerances{}",
             if previous.is_some() {
                 " or the previous run"
@@ -775,7 +865,7 @@ fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {
         Ok(ExitCode::SUCCESS)
     } else {
         for r in &found {
-            println!("REGRESSION: {r}");
+            outln!("REGRESSION: {r}");
         }
         Ok(ExitCode::FAILURE)
     }
@@ -795,17 +885,19 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
                 ))
             })
             .collect::<Result<_, String>>()?;
-        println!("{}", to_json(&map)?);
+        outln!("{}", to_json(&map)?);
         return Ok(ExitCode::SUCCESS);
     }
-    println!("Refits on ring-BEM data, 0.05 <= eps <= 0.99 (max relative error on 301 points, and where):");
+    outln!("Refits on ring-BEM data, 0.05 <= eps <= 0.99 (max relative error on 301 points, and where):");
     for r in &reports {
-        println!("{}: {}", r.name, r.paper_form);
-        println!(
+        outln!("{}: {}", r.name, r.paper_form);
+        outln!(
             "  paper params {:?}: max rel. err {:.2e} at eps = {:.3}",
-            r.paper_params, r.paper_max_rel_err, r.paper_max_rel_err_eps
+            r.paper_params,
+            r.paper_max_rel_err,
+            r.paper_max_rel_err_eps
         );
-        println!(
+        outln!(
             "  refit params {:?}: max rel. err {:.2e} at eps = {:.3}",
             r.params
                 .iter()
@@ -814,7 +906,7 @@ fn run_fit(args: JsonArgs) -> Result<ExitCode, String> {
             r.max_rel_err,
             r.max_rel_err_eps
         );
-        println!(
+        outln!(
             "  best form {}\n    params {:?}: max rel. err {:.2e} at eps = {:.3}",
             r.best_form,
             r.best_params
@@ -840,6 +932,12 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
             mesh_provider::ADAPTED_MAX_LEVEL
         ));
     }
+    if !(args.edge_uncertainty >= 0.0 && args.edge_uncertainty < 1.0) {
+        return Err(format!(
+            "--edge-uncertainty {}: need 0 <= uncertainty < 1 (units of a)",
+            args.edge_uncertainty
+        ));
+    }
     if let Some(b) = args.free_edge {
         if !(0.0..1.0).contains(&b) {
             return Err(format!("--free-edge {b}: need 0 <= b/a < 1"));
@@ -849,9 +947,15 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
         contact_start: args.eps,
         level: args.level,
         free_edge: args.free_edge.filter(|&b| b > 0.0),
+        edge_uncertainty: args.edge_uncertainty,
     };
     let provided = mesh_provider::provide(&request, "verify mesh").map_err(|e| e.to_string())?;
-    let parameters = mesh_provider::adapted_parameters(args.eps, args.level, args.free_edge);
+    let parameters = mesh_provider::adapted_parameters(
+        args.eps,
+        args.level,
+        args.free_edge,
+        args.edge_uncertainty,
+    );
     let out = serde_json::json!({
         "path": provided.path.display().to_string(),
         "sha256": provided.sha256,
@@ -860,16 +964,16 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
         "label": request.label(),
         "parameters": parameters,
     });
-    println!("{}", to_json(&out)?);
+    outln!("{}", to_json(&out)?);
     Ok(ExitCode::SUCCESS)
 }
 
 fn run_fenicsx(args: JsonArgs) -> Result<ExitCode, String> {
     let rows = fenicsx::run().map_err(|e| e.to_string())?;
     if args.json {
-        println!("{}", to_json(&rows)?);
+        outln!("{}", to_json(&rows)?);
     } else {
-        print!("{}", fenicsx::render(&rows));
+        out!("{}", fenicsx::render(&rows));
     }
     Ok(if fenicsx::failures(&rows) == 0 {
         ExitCode::SUCCESS
@@ -926,9 +1030,9 @@ fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {
     };
     let solution = methods::solve_with(&scene, args.method, &options).map_err(|e| e.to_string())?;
     if args.json {
-        println!("{}", to_json(&solution)?);
+        outln!("{}", to_json(&solution)?);
     } else {
-        print!("{}", describe(&scene, &solution));
+        out!("{}", describe(&scene, &solution));
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -992,12 +1096,15 @@ fn describe(scene: &ringcontact::scene::Scene, s: &Solution) -> String {
 }
 
 fn print_references() {
-    println!(
+    outln!(
         "{:<22} {:<14} {:<10} {:<24} source",
-        "name", "quantity", "kind", "valid eps"
+        "name",
+        "quantity",
+        "kind",
+        "valid eps"
     );
     for r in reference::catalogue() {
-        println!(
+        outln!(
             "{:<22} {:<14} {:<10} [{}, {}]{:<8} {}",
             r.name,
             format!("{:?}", r.quantity),

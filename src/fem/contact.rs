@@ -13,10 +13,24 @@
 //! The force is the sum of the nodal reactions of the contact line (consistent, since the element
 //! stiffness carries the `2π r` factor).
 
+use super::contact_band::BandedSystem;
 use super::linear_solver::ConstrainedCholesky;
 use super::mesh::{tags, Mesh};
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
+
+/// Times a banded solve whose core was released is retried with a higher core before the
+/// factorisation-per-iteration loop takes over.
+pub const BAND_RETRIES: usize = 2;
+
+/// An active-set iteration that changes at most this many nodes is creeping: the hybrid loop
+/// hands over to the banded solve. Cold starts change about half as many nodes per iteration as
+/// the one before (measured: 266, 48, 20, 10, 4, 2 on a 7e4-unknown cone model).
+pub const CREEP_CHANGES: usize = 12;
+
+/// Fewest nodes above the inner edge left in the band when the hybrid loop hands over (at least
+/// twice the last iteration's changes, plus four).
+pub const CREEP_BAND_NODES: usize = 8;
 
 /// Iteration cap of the active-set loop.
 pub const MAX_ACTIVE_SET_ITERATIONS: usize = 100;
@@ -42,6 +56,17 @@ pub struct ContactSolution {
     pub active_radii: Vec<f64>,
     /// Nodal displacements.
     pub displacement: Vec<f64>,
+}
+
+/// How a banded contact solve ended.
+pub enum BandOutcome {
+    /// Converged, with its active set.
+    Solved(ContactSolution, Vec<bool>),
+    /// The solution releases a core node (the band was too narrow): the largest radius released,
+    /// and the active set reached.
+    CoreReleased(f64, Vec<bool>),
+    /// The band holds more than [`super::contact_band::MAX_BAND_NODES`] nodes.
+    TooWide,
 }
 
 /// The model: mesh, contact-line nodes and the fixed supports.
@@ -133,7 +158,8 @@ impl<'m> ContactModel<'m> {
 
     /// Concave punch pressed to `depth` (units of `h`, with `h = 1`): unilateral contact by the
     /// primal-dual active-set method, starting from `initial_active` if given (else from the
-    /// nodes where the rigid punch would penetrate the undeformed surface).
+    /// nodes where the rigid punch would penetrate the undeformed surface). Every iteration with a
+    /// new active set is one numeric factorisation; [`Self::concave_banded`] needs one in all.
     pub fn concave(
         &self,
         solver: &mut ConstrainedCholesky,
@@ -142,11 +168,7 @@ impl<'m> ContactModel<'m> {
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>)> {
         let dofs = self.supports.len();
-        let bound: Vec<f64> = self
-            .contact_nodes
-            .iter()
-            .map(|&n| -depth + kind.gap_shape(self.mesh.nodes[n][0]))
-            .collect();
+        let bound = self.bound(kind, depth);
         let mut active = initial_active.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
         if !active.iter().any(|&a| a) {
             // The rim node always touches for d > 0.
@@ -166,84 +188,264 @@ impl<'m> ContactModel<'m> {
             }
             let u = solver.solve(&zero, &constrained, &prescribed)?;
             let reactions = self.reactions(solver, &u, &zero);
-            let gaps: Vec<f64> = self
-                .contact_nodes
-                .iter()
-                .zip(&bound)
-                .map(|(&n, &b)| b - u[2 * n + 1])
-                .collect();
-            let mut next: Vec<bool> = active
-                .iter()
-                .zip(&reactions)
-                .zip(&gaps)
-                .map(|((&a, &(_, lambda)), &gap)| if a { lambda > 0.0 } else { gap < 0.0 })
-                .collect();
-            // Nodes at the singular rim stay in contact: P2/P3 vertices next to the rim carry
-            // negative consistent reactions on very small elements, and releasing them one per
-            // iteration cost 11 factorisations on one model (measured). The protected zone is
-            // 1 % of the ring's width; what negative reaction remains there is reported in the
-            // complementarity residual.
-            if let Some(first) = next.iter().position(|&a| a) {
-                let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
-                let zone = 1.0 - 0.01 * (1.0 - r(first));
-                for (i, a) in next.iter_mut().enumerate().skip(first) {
-                    if r(i) >= zone {
-                        *a = true;
-                    }
-                }
-            }
+            let gaps = self.gaps(&bound, &u);
+            let next = self.next_active(&active, &reactions, &gaps)?;
             if next == active {
-                let lambda_scale = reactions
-                    .iter()
-                    .map(|r| r.1.abs())
-                    .fold(f64::MIN_POSITIVE, f64::max);
-                let mut residual: f64 = 0.0;
-                for ((&a, &(_, lambda)), &gap) in active.iter().zip(&reactions).zip(&gaps) {
-                    residual = residual.max(if a {
-                        (-lambda).max(0.0) / lambda_scale
-                    } else {
-                        (-gap).max(0.0) / depth
-                    });
-                }
-                let inner_radius = self.locate_inner_radius(&active, &gaps);
-                let inner_node_spacing = self.spacing_at(&active);
-
-                let force = reactions
-                    .iter()
-                    .zip(&active)
-                    .filter(|(_, &a)| a)
-                    .map(|(r, _)| r.1)
-                    .sum();
-                let active_radii = reactions
-                    .iter()
-                    .zip(&active)
-                    .filter(|(_, &a)| a)
-                    .map(|(r, _)| r.0)
-                    .collect();
-                return Ok((
-                    ContactSolution {
-                        active_radii,
-                        force,
-                        inner_radius,
-                        inner_node_spacing,
-                        iterations: iteration,
-                        complementarity_residual: residual,
-                        reactions,
-                        displacement: u,
-                    },
-                    active,
-                ));
-            }
-            if !next.iter().any(|&a| a) {
-                return Err(fem_error(format!(
-                    "the active set emptied at iteration {iteration}: no contact at d/h = {depth}"
-                )));
+                let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
+                return Ok((solution, active));
             }
             active = next;
         }
         Err(fem_error(format!(
             "the primal-dual active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations"
         )))
+    }
+
+    /// [`Self::concave`] that hands over to the banded solve once the active set only creeps:
+    /// when an iteration changes at most [`CREEP_CHANGES`] nodes, the nodes from
+    /// [`CREEP_BAND_NODES`] (or more) above the inner edge up are held as the core (one more factorisation)
+    /// and the remaining steps cost unit responses instead of factorisations. Near a free edge the
+    /// primal-dual iteration otherwise releases one node per factorisation (measured: 4-7 such
+    /// steps per model).
+    pub fn concave_hybrid(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Option<Vec<bool>>,
+    ) -> Result<(ContactSolution, Vec<bool>)> {
+        let dofs = self.supports.len();
+        let bound = self.bound(kind, depth);
+        let mut active = initial_active.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
+        if !active.iter().any(|&a| a) {
+            if let Some(last) = active.last_mut() {
+                *last = true;
+            }
+        }
+        let zero = vec![0.0; dofs];
+        let mut handed_over = false;
+        for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
+            let mut constrained = self.supports.clone();
+            let mut prescribed = vec![0.0; dofs];
+            for ((&n, &b), &a) in self.contact_nodes.iter().zip(&bound).zip(&active) {
+                if a {
+                    constrained[2 * n + 1] = true;
+                    prescribed[2 * n + 1] = b;
+                }
+            }
+            let u = system.solver.solve(&zero, &constrained, &prescribed)?;
+            let reactions = self.reactions(system.solver, &u, &zero);
+            let gaps = self.gaps(&bound, &u);
+            let next = self.next_active(&active, &reactions, &gaps)?;
+            if next == active {
+                let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
+                return Ok((solution, active));
+            }
+            let changes = next.iter().zip(&active).filter(|(a, b)| a != b).count();
+            if !handed_over && changes <= CREEP_CHANGES {
+                handed_over = true;
+                if let Some(first) = next.iter().position(|&a| a) {
+                    // The remaining steps release about as many nodes as this one did, in all.
+                    let band_nodes = CREEP_BAND_NODES.max(2 * changes + 4);
+                    let above = (first + band_nodes).min(next.len() - 1);
+                    let core_radius = self.mesh.nodes[self.contact_nodes[above]][0];
+                    system.set_core(self.core_for(core_radius), core_radius);
+                    match self.concave_banded(system, kind, depth, next.clone())? {
+                        BandOutcome::Solved(mut solution, active) => {
+                            solution.iterations += iteration;
+                            return Ok((solution, active));
+                        }
+                        BandOutcome::CoreReleased(_, reached) => {
+                            active = reached;
+                            continue;
+                        }
+                        BandOutcome::TooWide => {}
+                    }
+                }
+            }
+            active = next;
+        }
+        Err(fem_error(format!(
+            "the primal-dual active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations"
+        )))
+    }
+
+    /// [`Self::concave`] at the cost of one factorisation, for a warm start that places the free
+    /// edge within a band: the contact nodes at `r >= core_radius` (the core) are held in
+    /// contact in the factorised matrix, and the active-set iteration runs on the nodes below
+    /// through their unit responses ([`BandedSystem`]). Returns `None` when the solution releases
+    /// a core node (the band was too narrow) or the band needs more than [`super::contact_band::MAX_BAND_NODES`]
+    /// responses; the caller then falls back to [`Self::concave`].
+    pub fn concave_banded(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Vec<bool>,
+    ) -> Result<BandOutcome> {
+        let bound = self.bound(kind, depth);
+        let mut active: Vec<bool> = initial_active
+            .iter()
+            .zip(&system.core)
+            .map(|(&a, &c)| a || c)
+            .collect();
+        let zero = vec![0.0; self.supports.len()];
+        for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
+            let Some(u) = system.solve(&active, depth, 1.0, false)? else {
+                return Ok(BandOutcome::TooWide);
+            };
+            let reactions = self.reactions(system.solver, &u, &zero);
+            let gaps = self.gaps(&bound, &u);
+            let next = self.next_active(&active, &reactions, &gaps)?;
+            let released = next
+                .iter()
+                .zip(&system.core)
+                .enumerate()
+                .filter(|(_, (&a, &c))| c && !a)
+                .map(|(i, _)| self.mesh.nodes[self.contact_nodes[i]][0])
+                .fold(f64::NEG_INFINITY, f64::max);
+            if released.is_finite() {
+                return Ok(BandOutcome::CoreReleased(released, next));
+            }
+            if next == active {
+                // The converged set once more with a step of iterative refinement.
+                let Some(u) = system.solve(&active, depth, 1.0, true)? else {
+                    return Ok(BandOutcome::TooWide);
+                };
+                let reactions = self.reactions(system.solver, &u, &zero);
+                let gaps = self.gaps(&bound, &u);
+                let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
+                return Ok(BandOutcome::Solved(solution, active));
+            }
+            active = next;
+        }
+        Ok(BandOutcome::TooWide)
+    }
+
+    /// Prescribed `u_z` of each contact node if in contact: `-d + g(r)`.
+    fn bound(&self, kind: PunchKind, depth: f64) -> Vec<f64> {
+        self.contact_nodes
+            .iter()
+            .map(|&n| -depth + kind.gap_shape(self.mesh.nodes[n][0]))
+            .collect()
+    }
+
+    /// Gap `bound - u_z` of each contact node (negative: penetration).
+    fn gaps(&self, bound: &[f64], u: &[f64]) -> Vec<f64> {
+        self.contact_nodes
+            .iter()
+            .zip(bound)
+            .map(|(&n, &b)| b - u[2 * n + 1])
+            .collect()
+    }
+
+    /// The primal-dual active-set update: a node in contact stays if its reaction is compressive,
+    /// a free node enters if it penetrates.
+    fn next_active(
+        &self,
+        active: &[bool],
+        reactions: &[(f64, f64)],
+        gaps: &[f64],
+    ) -> Result<Vec<bool>> {
+        let mut next: Vec<bool> = active
+            .iter()
+            .zip(reactions)
+            .zip(gaps)
+            .map(|((&a, &(_, lambda)), &gap)| if a { lambda > 0.0 } else { gap < 0.0 })
+            .collect();
+        // Nodes at the singular rim stay in contact: P2/P3 vertices next to the rim carry
+        // negative consistent reactions on very small elements, and releasing them one per
+        // iteration cost 11 factorisations on one model (measured). The protected zone is
+        // 1 % of the ring's width; what negative reaction remains there is reported in the
+        // complementarity residual.
+        if let Some(first) = next.iter().position(|&a| a) {
+            let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+            let zone = 1.0 - 0.01 * (1.0 - r(first));
+            for (i, a) in next.iter_mut().enumerate().skip(first) {
+                if r(i) >= zone {
+                    *a = true;
+                }
+            }
+        }
+        if !next.iter().any(|&a| a) {
+            return Err(fem_error(
+                "the active set emptied: no contact at this depth".into(),
+            ));
+        }
+        Ok(next)
+    }
+
+    /// Package a converged active set: force, located inner radius, complementarity residual.
+    fn converged(
+        &self,
+        active: &[bool],
+        reactions: Vec<(f64, f64)>,
+        gaps: &[f64],
+        depth: f64,
+        u: Vec<f64>,
+        iterations: usize,
+    ) -> ContactSolution {
+        let lambda_scale = reactions
+            .iter()
+            .map(|r| r.1.abs())
+            .fold(f64::MIN_POSITIVE, f64::max);
+        let mut residual: f64 = 0.0;
+        for ((&a, &(_, lambda)), &gap) in active.iter().zip(&reactions).zip(gaps) {
+            residual = residual.max(if a {
+                (-lambda).max(0.0) / lambda_scale
+            } else {
+                (-gap).max(0.0) / depth
+            });
+        }
+        let inner_radius = self.locate_inner_radius(active, gaps);
+        let inner_node_spacing = self.spacing_at(active);
+        let force = reactions
+            .iter()
+            .zip(active)
+            .filter(|(_, &a)| a)
+            .map(|(r, _)| r.1)
+            .sum();
+        let active_radii = reactions
+            .iter()
+            .zip(active)
+            .filter(|(_, &a)| a)
+            .map(|(r, _)| r.0)
+            .collect();
+        ContactSolution {
+            active_radii,
+            force,
+            inner_radius,
+            inner_node_spacing,
+            iterations,
+            complementarity_residual: residual,
+            reactions,
+            displacement: u,
+        }
+    }
+
+    /// The banded system of this model for a core of contact nodes at `r >= core_radius`
+    /// (see [`Self::concave_banded`]).
+    pub fn banded_system<'s, 'a>(
+        &self,
+        solver: &'s mut ConstrainedCholesky<'a>,
+        kind: PunchKind,
+        core_radius: f64,
+    ) -> BandedSystem<'s, 'a> {
+        let core = self.core_for(core_radius);
+        let contact_dofs = self.contact_nodes.iter().map(|&n| 2 * n + 1).collect();
+        let shape = self
+            .contact_nodes
+            .iter()
+            .map(|&n| kind.gap_shape(self.mesh.nodes[n][0]))
+            .collect();
+        BandedSystem::new(
+            solver,
+            self.supports.clone(),
+            contact_dofs,
+            shape,
+            core,
+            core_radius,
+        )
     }
 
     /// Inner contact radius from the free side: near a non-adhesive edge the gap grows like
@@ -321,13 +523,53 @@ impl<'m> ContactModel<'m> {
         r(first) - r(first - 1)
     }
 
+    /// Concave punch at `depth`: [`Self::concave_banded`] on `system` when its band holds the free
+    /// edge, else [`Self::concave`] (one factorisation per active-set change).
+    pub fn concave_with(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Option<Vec<bool>>,
+    ) -> Result<(ContactSolution, Vec<bool>, bool)> {
+        let mut warm = initial_active;
+        if let Some(start) = warm.clone() {
+            let mut start = start;
+            for _ in 0..=BAND_RETRIES {
+                match self.concave_banded(system, kind, depth, start)? {
+                    BandOutcome::Solved(solution, active) => return Ok((solution, active, true)),
+                    BandOutcome::TooWide => break,
+                    BandOutcome::CoreReleased(radius, reached) => {
+                        // Move the core above the released node by the band's width, refactorise.
+                        let width = (system.core_radius - radius).max(0.0);
+                        let core_radius = radius + 2.0 * width.max(f64::EPSILON);
+                        system.set_core(self.core_for(core_radius), core_radius);
+                        warm = Some(reached.clone());
+                        start = reached;
+                    }
+                }
+            }
+        }
+        let (solution, active) = self.concave_hybrid(system, kind, depth, warm)?;
+        Ok((solution, active, false))
+    }
+
+    /// Contact nodes at `r >= radius`.
+    fn core_for(&self, radius: f64) -> Vec<bool> {
+        self.contact_nodes
+            .iter()
+            .map(|&n| self.mesh.nodes[n][0] >= radius)
+            .collect()
+    }
+
     /// Concave punch under force control: Newton on the depth. At a fixed active set the force is
-    /// affine in the depth, `F(d) = F(d0) + k (d - d0)`, with `k` from one back-substitution
-    /// (same constraint set, unit depth increment); each step re-solves the contact at the new
-    /// depth, until the depth and the active set settle.
+    /// affine in the depth, `F(d) = F(d0) + k (d - d0)`, with `k` from one more solve (same
+    /// constraint set, unit depth increment); each step re-solves the contact at the new depth,
+    /// until the depth and the active set settle. Solves go through `system` (one factorisation
+    /// for every depth while its core holds).
     pub fn concave_at_force(
         &self,
-        solver: &mut ConstrainedCholesky,
+        system: &mut BandedSystem,
         kind: PunchKind,
         target_force: f64,
         depth_guess: f64,
@@ -340,26 +582,35 @@ impl<'m> ContactModel<'m> {
         let mut warm = initial_active;
         let mut iterations = 0;
         for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
-            let (solution, active) = self.concave(solver, kind, depth, warm.take())?;
+            let (solution, active, banded) = self.concave_with(system, kind, depth, warm.take())?;
             iterations += solution.iterations;
             // Force per unit depth at this active set: prescribed u_z = -1 on active nodes.
-            let mut constrained = self.supports.clone();
-            let mut prescribed = vec![0.0; dofs];
-            for (&n, &a) in self.contact_nodes.iter().zip(&active) {
-                if a {
-                    constrained[2 * n + 1] = true;
-                    prescribed[2 * n + 1] = -1.0;
+            let unit = match banded {
+                true => system.solve(&active, 1.0, 0.0, true)?,
+                false => None,
+            };
+            let unit = match unit {
+                Some(u) => u,
+                None => {
+                    let mut constrained = self.supports.clone();
+                    let mut prescribed = vec![0.0; dofs];
+                    for (&n, &a) in self.contact_nodes.iter().zip(&active) {
+                        if a {
+                            constrained[2 * n + 1] = true;
+                            prescribed[2 * n + 1] = -1.0;
+                        }
+                    }
+                    system.solver.solve(&zero, &constrained, &prescribed)?
                 }
-            }
-            let unit = solver.solve(&zero, &constrained, &prescribed)?;
+            };
             let stiffness: f64 = self
-                .reactions(solver, &unit, &zero)
+                .reactions(system.solver, &unit, &zero)
                 .iter()
                 .zip(&active)
                 .filter(|(_, &a)| a)
                 .map(|(r, _)| r.1)
                 .sum();
-            if stiffness <= 0.0 {
+            if stiffness.is_nan() || stiffness <= 0.0 {
                 return Err(fem_error(
                     "non-positive contact stiffness under force control".into(),
                 ));

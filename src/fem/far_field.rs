@@ -19,7 +19,7 @@
 //! of the far field itself (about `7e-4 a/R` at grading 0.1): measured 2e-4 at `R = 4 a` where the
 //! fixed arc is 29 % off.
 
-use nalgebra_sparse::{CooMatrix, CscMatrix};
+use nalgebra_sparse::CscMatrix;
 
 use super::element::Lame;
 use super::mesh::{tags, Mesh};
@@ -145,7 +145,7 @@ impl FarFieldCondition {
     }
 
     /// The extended matrix `K̃` (see the type's documentation).
-    pub fn extend(&self, k: &CscMatrix<f64>) -> CscMatrix<f64> {
+    pub fn extend(&self, k: &CscMatrix<f64>) -> crate::error::Result<CscMatrix<f64>> {
         let n = k.nrows();
         let mut is_arc = vec![false; n];
         let mut value = vec![0.0; n];
@@ -169,20 +169,35 @@ impl FarFieldCondition {
                 }
             }
         }
-        let mut coo = CooMatrix::new(n + 1, n + 1);
+        // Built column by column: the extra row n is last in every column, so rows stay sorted.
+        let coupled: Vec<usize> = (0..n).filter(|&row| coupling[row] != 0.0).collect();
+        let nnz = k.nnz() + 2 * coupled.len() + 1;
+        let mut new_offsets = Vec::with_capacity(n + 2);
+        let mut new_rows = Vec::with_capacity(nnz);
+        let mut new_values = Vec::with_capacity(nnz);
+        new_offsets.push(0);
         for col in 0..n {
-            for p in offsets[col]..offsets[col + 1] {
-                coo.push(rows[p], col, values[p]);
+            new_rows.extend_from_slice(&rows[offsets[col]..offsets[col + 1]]);
+            new_values.extend_from_slice(&values[offsets[col]..offsets[col + 1]]);
+            if coupling[col] != 0.0 {
+                new_rows.push(n);
+                new_values.push(coupling[col]);
             }
+            new_offsets.push(new_rows.len());
         }
-        for (row, &c) in coupling.iter().enumerate() {
-            if c != 0.0 {
-                coo.push(row, n, c);
-                coo.push(n, row, c);
+        for &row in &coupled {
+            new_rows.push(row);
+            new_values.push(coupling[row]);
+        }
+        new_rows.push(n);
+        new_values.push(diagonal);
+        new_offsets.push(new_rows.len());
+        CscMatrix::try_from_csc_data(n + 1, n + 1, new_offsets, new_rows, new_values).map_err(|e| {
+            crate::error::Error::InvalidMesh {
+                path: String::new(),
+                message: format!("internal: the far-field extended pattern was rejected: {e}"),
             }
-        }
-        coo.push(n, n, diagonal);
-        CscMatrix::from(&coo)
+        })
     }
 
     /// Full nodal displacement (`2 × nodes`) from the extended solution: arc dofs `α g`.

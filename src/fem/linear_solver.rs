@@ -26,6 +26,8 @@ pub struct ConstrainedCholesky<'a> {
     last: Option<(Vec<bool>, Llt<usize, f64>)>,
     /// Number of numeric factorisations done.
     pub factorisations: usize,
+    /// Wall time spent in numeric factorisations (seconds).
+    pub factorisation_seconds: f64,
 }
 
 fn solver_error(message: String) -> Error {
@@ -33,6 +35,15 @@ fn solver_error(message: String) -> Error {
         method: "fem".into(),
         reason: message,
     }
+}
+
+fn finite(u: Vec<f64>) -> Result<Vec<f64>> {
+    if u.iter().any(|v| !v.is_finite()) {
+        return Err(solver_error(
+            "the linear solve produced non-finite values".into(),
+        ));
+    }
+    Ok(u)
 }
 
 impl<'a> ConstrainedCholesky<'a> {
@@ -71,6 +82,7 @@ impl<'a> ConstrainedCholesky<'a> {
             scratch: vec![0.0; matrix.nnz()],
             last: None,
             factorisations: 0,
+            factorisation_seconds: 0.0,
         })
     }
 
@@ -81,11 +93,32 @@ impl<'a> ConstrainedCholesky<'a> {
         constrained: &[bool],
         prescribed: &[f64],
     ) -> Result<Vec<f64>> {
+        self.solve_with(force, constrained, prescribed, true)
+    }
+
+    /// [`Self::solve`] without its step of iterative refinement: for intermediate solutions that
+    /// a later refinement corrects (half the triangular solves).
+    pub fn solve_unrefined(
+        &mut self,
+        force: &[f64],
+        constrained: &[bool],
+        prescribed: &[f64],
+    ) -> Result<Vec<f64>> {
+        self.solve_with(force, constrained, prescribed, false)
+    }
+
+    fn solve_with(
+        &mut self,
+        force: &[f64],
+        constrained: &[bool],
+        prescribed: &[f64],
+        refine: bool,
+    ) -> Result<Vec<f64>> {
         let n = self.matrix.nrows();
         let offsets = self.matrix.col_offsets();
         let rows = self.matrix.row_indices();
         let values = self.matrix.values();
-        let reuse = matches!(&self.last, Some((mask, _)) if mask.as_slice() == constrained);
+        let reuse = self.is_factorised_for(constrained);
         let mut rhs = force.to_vec();
         for col in 0..n {
             for k in offsets[col]..offsets[col + 1] {
@@ -101,25 +134,7 @@ impl<'a> ConstrainedCholesky<'a> {
             }
         }
         if !reuse {
-            for col in 0..n {
-                for k in offsets[col]..offsets[col + 1] {
-                    let row = rows[k];
-                    self.scratch[k] = if constrained[row] || constrained[col] {
-                        if row == col {
-                            values[k]
-                        } else {
-                            0.0
-                        }
-                    } else {
-                        values[k]
-                    };
-                }
-            }
-            let matrix = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.scratch);
-            let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), matrix, Side::Lower)
-                .map_err(|e| solver_error(format!("the stiffness matrix is not positive definite ({e:?}): is the body held against rigid motion?")))?;
-            self.factorisations += 1;
-            self.last = Some((constrained.to_vec(), llt));
+            self.factorise(constrained)?;
         }
         if let Some((_, llt)) = &self.last {
             // One step of iterative refinement with the same factor: the graded meshes span
@@ -127,6 +142,9 @@ impl<'a> ConstrainedCholesky<'a> {
             // 4e-9 in the force of 10^6-unknown models (measured against the ring BEM).
             let b = rhs.clone();
             llt.solve_in_place(MatMut::from_column_major_slice_mut(&mut rhs, n, 1));
+            if !refine {
+                return finite(rhs);
+            }
             let mut residual = b;
             for col in 0..n {
                 let x = rhs[col];
@@ -139,12 +157,79 @@ impl<'a> ConstrainedCholesky<'a> {
                 *x += dx;
             }
         }
-        if rhs.iter().any(|v| !v.is_finite()) {
+        finite(rhs)
+    }
+
+    /// Whether the current numeric factor belongs to this constraint set.
+    fn is_factorised_for(&self, constrained: &[bool]) -> bool {
+        matches!(&self.last, Some((mask, _)) if mask.as_slice() == constrained)
+    }
+
+    /// Numeric factorisation of the matrix with the rows and columns of `constrained` replaced by
+    /// their diagonal (the symbolic analysis is reused).
+    fn factorise(&mut self, constrained: &[bool]) -> Result<()> {
+        let start = std::time::Instant::now();
+        let n = self.matrix.nrows();
+        let offsets = self.matrix.col_offsets();
+        let rows = self.matrix.row_indices();
+        let values = self.matrix.values();
+        for col in 0..n {
+            for k in offsets[col]..offsets[col + 1] {
+                let row = rows[k];
+                self.scratch[k] = if constrained[row] || constrained[col] {
+                    if row == col {
+                        values[k]
+                    } else {
+                        0.0
+                    }
+                } else {
+                    values[k]
+                };
+            }
+        }
+        let matrix = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.scratch);
+        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), matrix, Side::Lower)
+            .map_err(|e| solver_error(format!("the stiffness matrix is not positive definite ({e:?}): is the body held against rigid motion?")))?;
+        self.factorisations += 1;
+        self.factorisation_seconds += start.elapsed().as_secs_f64();
+        self.last = Some((constrained.to_vec(), llt));
+        Ok(())
+    }
+
+    /// Columns `w_j = K_C⁻¹ e_j` of the inverse of the constrained matrix `K_C` (constraint set
+    /// `constrained`) for free dofs `j`: the responses to unit forces at those dofs with the
+    /// constrained dofs held at zero. One factorisation (reused if current) and one blocked
+    /// triangular solve with `dofs.len()` right-hand sides.
+    pub fn unit_responses(
+        &mut self,
+        constrained: &[bool],
+        dofs: &[usize],
+    ) -> Result<Vec<Vec<f64>>> {
+        let n = self.matrix.nrows();
+        if let Some(&j) = dofs.iter().find(|&&j| j >= n || constrained[j]) {
+            return Err(solver_error(format!(
+                "internal: unit response asked for dof {j}, which is constrained or out of range"
+            )));
+        }
+        if !self.is_factorised_for(constrained) {
+            self.factorise(constrained)?;
+        }
+        let mut block = faer::Mat::<f64>::zeros(n, dofs.len());
+        for (c, &j) in dofs.iter().enumerate() {
+            block[(j, c)] = 1.0;
+        }
+        if let Some((_, llt)) = &self.last {
+            llt.solve_in_place(block.as_mut());
+        }
+        let columns: Vec<Vec<f64>> = (0..dofs.len())
+            .map(|c| (0..n).map(|i| block[(i, c)]).collect())
+            .collect();
+        if columns.iter().flatten().any(|v| !v.is_finite()) {
             return Err(solver_error(
-                "the linear solve produced non-finite values".into(),
+                "the unit responses contain non-finite values".into(),
             ));
         }
-        Ok(rhs)
+        Ok(columns)
     }
 
     /// Residual `K u - f`: the reaction forces at constrained dofs (zero elsewhere, to rounding).

@@ -219,6 +219,136 @@ impl Mesh {
         Ok(())
     }
 
+    /// Check that every physical group lies where its role says (`meshes/half_space.geo`), for a
+    /// contact line that must start at `contact_start` (`b/a` of the flat annulus, 0 otherwise):
+    ///
+    /// * axis (4) on `r = 0`; contact (1), free (2) and hole (5) on `z = 0`; every node in
+    ///   `r >= 0`, `z <= 0`;
+    /// * contact over exactly `[contact_start, 1]` (units of the rim radius); free surface at
+    ///   `r >= 1`, hole at `r <= contact_start`;
+    /// * far boundary (3) on one arc `r² + z² = R²` with `R > 1`;
+    /// * the triangles tile the domain: their areas sum to the area enclosed by the boundary
+    ///   (`Σ_far ½ |p × q|`, the other boundaries pass through the origin) to 1e-9, so none overlap
+    ///   and none is missing.
+    pub fn validate_geometry(&self, contact_start: f64) -> Result<()> {
+        let src = &self.source;
+        let radius = self
+            .boundary_nodes(tags::FAR)
+            .iter()
+            .map(|&n| self.nodes[n][0].hypot(self.nodes[n][1]))
+            .fold(0.0, f64::max);
+        let tolerance = 1e-9 * radius.max(1.0);
+        if let Some((i, p)) = self
+            .nodes
+            .iter()
+            .enumerate()
+            .find(|(_, p)| p[1] > tolerance)
+        {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "node {i} at z = {} lies above the surface z = 0 (the solid is z <= 0)",
+                    p[1]
+                ),
+            ));
+        }
+        let role_of = |tag: i32| match tag {
+            tags::CONTACT => "contact",
+            tags::FREE => "free surface",
+            tags::FAR => "far boundary",
+            tags::AXIS => "axis",
+            tags::HOLE => "hole",
+            _ => "other",
+        };
+        let contact_range = self
+            .boundary_nodes(tags::CONTACT)
+            .iter()
+            .map(|&n| self.nodes[n][0])
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), r| {
+                (lo.min(r), hi.max(r))
+            });
+        if (contact_range.0 - contact_start).abs() > 1e-9 || (contact_range.1 - 1.0).abs() > 1e-9 {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "the contact line spans r/a in [{}, {}]; this punch needs [{contact_start}, 1] \
+                     (a concave or flat punch needs a disk mesh, the flat annulus one whose \
+                     contact line starts at b/a)",
+                    contact_range.0, contact_range.1
+                ),
+            ));
+        }
+        for edge in &self.boundary {
+            for &n in &edge.nodes {
+                let [r, z] = self.nodes[n];
+                let misplaced = match edge.tag {
+                    tags::AXIS => (r.abs() > tolerance).then(|| "r = 0".to_string()),
+                    tags::CONTACT | tags::FREE | tags::HOLE if z.abs() > tolerance => {
+                        Some("z = 0".to_string())
+                    }
+                    tags::FREE => (r < 1.0 - 1e-9).then(|| "r >= a".to_string()),
+                    tags::HOLE => {
+                        (r > contact_start + 1e-9).then(|| format!("r <= b = {contact_start}"))
+                    }
+                    tags::FAR => ((r.hypot(z) - radius).abs() > 1e-6 * radius)
+                        .then(|| format!("the arc of radius R = {radius}")),
+                    _ => None,
+                };
+                if let Some(place) = misplaced {
+                    return Err(mesh_error(
+                        src,
+                        format!(
+                            "a node of the {} group ({}) lies at (r, z) = ({r}, {z}), not on {place}: \
+                             are the physical tags swapped?",
+                            role_of(edge.tag),
+                            edge.tag
+                        ),
+                    ));
+                }
+            }
+        }
+        if radius <= 1.0 {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "the far boundary has radius R = {radius}, inside the punch (R > a needed)"
+                ),
+            ));
+        }
+        let enclosed: f64 = self
+            .boundary
+            .iter()
+            .filter(|e| e.tag == tags::FAR)
+            .map(|e| {
+                let (p, q) = (self.nodes[e.nodes[0]], self.nodes[e.nodes[1]]);
+                0.5 * (p[0] * q[1] - p[1] * q[0]).abs()
+            })
+            .sum();
+        let tiled: f64 = (0..self.cell_count())
+            .map(|c| {
+                let cell = self.cell(c);
+                let [p0, p1, p2] = [
+                    self.nodes[cell[0]],
+                    self.nodes[cell[1]],
+                    self.nodes[cell[2]],
+                ];
+                0.5 * ((p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1])).abs()
+            })
+            .sum();
+        if (tiled - enclosed).abs() > 1e-9 * enclosed {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "the triangles cover an area of {tiled:.12e}, the boundary encloses {enclosed:.12e}: \
+                     elements {} (relative difference {:.1e})",
+                    if tiled > enclosed { "overlap" } else { "leave gaps" },
+                    (tiled - enclosed).abs() / enclosed
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// The same mesh with quadratic triangles: a node is added at the midpoint of every edge.
     /// A quadratic mesh is returned unchanged.
     pub fn to_quadratic(&self) -> Mesh {

@@ -46,11 +46,13 @@ pub enum MeshRequest {
     /// `meshes/{family}-L{level}.msh`.
     Committed { family: String, level: usize },
     /// Level `level` of the adapted family for a contact line starting at `contact_start = b/a`
-    /// (0 for the disk), refined around `free_edge` when given.
+    /// (0 for the disk), refined around `free_edge` when given, with elements there no smaller
+    /// than a quarter of `edge_uncertainty` (the coarser model's error of that radius).
     Adapted {
         contact_start: f64,
         level: usize,
         free_edge: Option<f64>,
+        edge_uncertainty: f64,
     },
 }
 
@@ -67,8 +69,9 @@ impl MeshRequest {
         }
     }
 
-    /// The same request refined around a free edge at `b/a` (adapted family only).
-    pub fn with_free_edge(self, edge: Option<f64>) -> MeshRequest {
+    /// The same request refined around a free edge at `b/a`, known to within `uncertainty`
+    /// (adapted family only).
+    pub fn with_free_edge(self, edge: Option<f64>, uncertainty: f64) -> MeshRequest {
         match self {
             MeshRequest::Adapted {
                 contact_start,
@@ -78,6 +81,7 @@ impl MeshRequest {
                 contact_start,
                 level,
                 free_edge: edge.filter(|&b| b > 0.0),
+                edge_uncertainty: uncertainty,
             },
             other => other,
         }
@@ -105,20 +109,46 @@ pub struct ProvidedMesh {
     pub gmsh_version: Option<String>,
 }
 
-/// The project's root directory: `RINGCONTACT_DATA_DIR`, else the first directory upward from the
-/// current one that holds `meshes/half_space.geo`, else the checkout the binary was built in.
-pub fn project_root() -> PathBuf {
-    if let Some(dir) = std::env::var_os("RINGCONTACT_DATA_DIR") {
-        return PathBuf::from(dir);
-    }
-    if let Ok(cwd) = std::env::current_dir() {
-        for dir in cwd.ancestors() {
-            if dir.join("meshes/half_space.geo").is_file() {
-                return dir.to_path_buf();
-            }
+/// Environment variable naming the project's data directory (`verify --data-dir` sets it).
+pub const DATA_DIR_VARIABLE: &str = "RINGCONTACT_DATA_DIR";
+
+/// The project's data directory (the one holding `meshes/half_space.geo` and `verify/`):
+/// `RINGCONTACT_DATA_DIR` (or `verify --data-dir`), else the first directory upward from the
+/// current one that holds `meshes/half_space.geo`. Never a path compiled into the binary: a copy
+/// of the checkout, a moved one or an installed binary reads the data of where it runs.
+pub fn find_project_root() -> Result<PathBuf> {
+    let marker = "meshes/half_space.geo";
+    if let Some(dir) = std::env::var_os(DATA_DIR_VARIABLE) {
+        let dir = PathBuf::from(dir);
+        if dir.join(marker).is_file() {
+            return Ok(dir);
         }
+        return Err(Error::file(
+            "use as the data directory",
+            &dir,
+            format!("it has no {marker} (set by --data-dir or {DATA_DIR_VARIABLE})"),
+        ));
     }
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+    let cwd = std::env::current_dir().map_err(|e| Error::file("find", Path::new("."), e))?;
+    cwd.ancestors()
+        .find(|dir| dir.join(marker).is_file())
+        .map(Path::to_path_buf)
+        .ok_or_else(|| {
+            Error::file(
+                "find the project's data from",
+                &cwd,
+                format!(
+                    "no {marker} here or in any parent directory; run inside a checkout of the \
+                     project, or pass --data-dir DIR (or set {DATA_DIR_VARIABLE}) to one"
+                ),
+            )
+        })
+}
+
+/// [`find_project_root`], or the current directory when there is none (the error then surfaces
+/// where a file is missing).
+pub fn project_root() -> PathBuf {
+    find_project_root().unwrap_or_else(|_| std::env::current_dir().unwrap_or_default())
 }
 
 /// Directory of the committed meshes (`RINGCONTACT_MESHES` overrides).
@@ -153,10 +183,12 @@ pub fn adapted_parameters(
     contact_start: f64,
     level: usize,
     free_edge: Option<f64>,
+    edge_uncertainty: f64,
 ) -> Vec<(String, f64)> {
     let grading = 0.32 * 0.6f64.powi(level as i32);
     let hmin = adapted_rim_size(level);
-    let hb = 1e-3 * 0.1f64.powi(level as i32);
+    // Finer than a quarter of the edge's uncertainty is wasted: the edge may be anywhere in it.
+    let hb = (1e-3 * 0.1f64.powi(level as i32)).max(0.25 * edge_uncertainty);
     let mut p = vec![
         ("a".to_string(), 1.0),
         ("b".to_string(), contact_start),
@@ -193,6 +225,10 @@ fn hex(bytes: &[u8]) -> String {
 pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
     match request {
         MeshRequest::Committed { family, level } => {
+            if std::env::var_os("RINGCONTACT_MESHES").is_none() {
+                // A missing data directory is named as such, not as a missing mesh.
+                find_project_root()?;
+            }
             let path = mesh_directory().join(format!("{family}-L{level}.msh"));
             Ok(ProvidedMesh {
                 sha256: sha256_file(&path)?,
@@ -205,8 +241,10 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
             contact_start,
             level,
             free_edge,
+            edge_uncertainty,
         } => {
-            let parameters = adapted_parameters(*contact_start, *level, *free_edge);
+            let parameters =
+                adapted_parameters(*contact_start, *level, *free_edge, *edge_uncertainty);
             generate(&parameters, why)
         }
     }

@@ -2,6 +2,7 @@
 
 pub mod assembly;
 pub mod contact;
+pub mod contact_band;
 pub mod element;
 pub mod far_field;
 pub mod gmsh;

@@ -21,6 +21,144 @@ fn err(path: &str, message: impl Into<String>) -> Error {
     }
 }
 
+/// Check the `$MeshFormat` line ourselves: `4.1`, file type 0 (ASCII) or 1 (binary), data size 8.
+fn check_format_line(bytes: &[u8], name: &str) -> Result<()> {
+    let head = &bytes[..bytes.len().min(256)];
+    let text = String::from_utf8_lossy(head);
+    let mut lines = text.lines();
+    if lines.next().map(str::trim) != Some("$MeshFormat") {
+        return Err(err(
+            name,
+            "not a readable gmsh 4.1 mesh: line 1 is not `$MeshFormat`",
+        ));
+    }
+    let format = lines.next().unwrap_or("");
+    let fields: Vec<&str> = format.split_whitespace().collect();
+    match fields.as_slice() {
+        ["4.1", "0" | "1", "8"] => Ok(()),
+        [version, ..] if *version != "4.1" => Err(err(
+            name,
+            format!("line 2: format version `{version}`; this reader takes gmsh 4.1 (gmsh -format msh41)"),
+        )),
+        _ => Err(err(
+            name,
+            format!(
+                "line 2: `{}` is not `4.1 <0 ascii|1 binary> 8`",
+                format.chars().take(60).collect::<String>()
+            ),
+        )),
+    }
+}
+
+/// ` at line N` for ASCII files (0: unknown, binary).
+fn at_line(line: usize) -> String {
+    if line > 0 {
+        format!(" at line {line}")
+    } else {
+        String::new()
+    }
+}
+
+/// The node tags of the `$Nodes` section in file order, each with its line (ASCII; 0 for binary).
+fn node_tags_in_file_order(bytes: &[u8], name: &str) -> Result<Vec<(u64, usize)>> {
+    let marker = b"$Nodes";
+    let start = bytes
+        .windows(marker.len() + 1)
+        .position(|w| {
+            &w[..marker.len()] == marker && (w[marker.len()] == b'\n' || w[marker.len()] == b'\r')
+        })
+        .ok_or_else(|| err(name, "no $Nodes section"))?;
+    let binary = String::from_utf8_lossy(&bytes[..bytes.len().min(64)])
+        .lines()
+        .nth(1)
+        .is_some_and(|l| l.split_whitespace().nth(1) == Some("1"));
+    let mut body = start + marker.len();
+    while body < bytes.len() && (bytes[body] == b'\n' || bytes[body] == b'\r') {
+        body += 1;
+    }
+    let truncated = || err(name, "the $Nodes section ends early (truncated file?)");
+    if binary {
+        let mut at = body;
+        let mut take = |n: usize| -> Result<&[u8]> {
+            let slice = bytes.get(at..at + n).ok_or_else(truncated)?;
+            at += n;
+            Ok(slice)
+        };
+        let size = |b: &[u8]| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+        let blocks = size(take(8)?);
+        let _total = take(8)?;
+        let _min_max = take(16)?;
+        let mut tags = Vec::new();
+        for _ in 0..blocks {
+            let _dim_entity_parametric = take(12)?;
+            let count = size(take(8)?);
+            let tag_bytes = take(
+                usize::try_from(count)
+                    .map_err(|_| truncated())?
+                    .checked_mul(8)
+                    .ok_or_else(truncated)?,
+            )?;
+            tags.extend(tag_bytes.chunks_exact(8).map(|c| (size(c), 0)));
+            let coordinate_bytes = usize::try_from(count)
+                .ok()
+                .and_then(|c| c.checked_mul(24))
+                .ok_or_else(truncated)?;
+            take(coordinate_bytes)?;
+        }
+        return Ok(tags);
+    }
+    let text = std::str::from_utf8(&bytes[body..])
+        .map_err(|_| err(name, "the $Nodes section is not text"))?;
+    let first_line = bytes[..body].iter().filter(|&&b| b == b'\n').count() + 1;
+    let mut lines = text.lines().enumerate().map(|(i, l)| (first_line + i, l));
+    let mut next_numbers = |what: &str| -> Result<(usize, Vec<u64>)> {
+        let (line, content) = lines.next().ok_or_else(truncated)?;
+        if what == "node coordinates" {
+            return Ok((line, Vec::new()));
+        }
+        let numbers = content
+            .split_whitespace()
+            .map(|w| w.parse::<u64>())
+            .collect::<std::result::Result<Vec<_>, _>>()
+            .map_err(|_| {
+                err(
+                    name,
+                    format!(
+                        "line {line}: expected {what}, found `{}`",
+                        content.chars().take(60).collect::<String>()
+                    ),
+                )
+            })?;
+        Ok((line, numbers))
+    };
+    let (line, header) = next_numbers("the $Nodes header (blocks, nodes, min tag, max tag)")?;
+    let blocks = *header
+        .first()
+        .ok_or_else(|| err(name, format!("line {line}: empty $Nodes header")))?;
+    let mut tags = Vec::new();
+    for _ in 0..blocks {
+        let (line, block) =
+            next_numbers("a node block header (dimension, entity, parametric, count)")?;
+        let count = *block.get(3).ok_or_else(|| {
+            err(
+                name,
+                format!("line {line}: a node block header has 4 numbers"),
+            )
+        })?;
+        for _ in 0..count {
+            let (line, tag) = next_numbers("a node tag")?;
+            match tag.as_slice() {
+                [t] => tags.push((*t, line)),
+                _ => return Err(err(name, format!("line {line}: expected one node tag"))),
+            }
+        }
+        for _ in 0..count {
+            next_numbers("node coordinates").ok();
+        }
+    }
+    Ok(tags)
+}
+
 /// Read and parse a `.msh` file (format 4.1, ASCII or binary).
 pub fn read_msh(path: &Path) -> Result<Mesh> {
     let name = path.display().to_string();
@@ -30,15 +168,33 @@ pub fn read_msh(path: &Path) -> Result<Mesh> {
 
 /// Parse `.msh` 4.1 bytes; `name` is used in error messages.
 pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
-    let file = mshio::parse_msh_bytes(bytes).map_err(|e| {
-        err(
-            name,
-            format!(
-                "not a readable gmsh 4.1 mesh: {}",
-                first_line(&format!("{e}"))
-            ),
-        )
-    })?;
+    check_format_line(bytes, name)?;
+    // mshio unwraps in places (e.g. header numbers that overflow): a panic inside it is turned
+    // into an error naming the file, never a crash.
+    let parsed = {
+        let quiet = std::panic::take_hook();
+        std::panic::set_hook(Box::new(|_| {}));
+        let parsed = std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes));
+        std::panic::set_hook(quiet);
+        parsed
+    };
+    let file = match parsed {
+        Ok(result) => result.map_err(|e| {
+            err(
+                name,
+                format!(
+                    "not a readable gmsh 4.1 mesh: {}",
+                    describe_parse_error(bytes, &format!("{e}"))
+                ),
+            )
+        })?,
+        Err(_) => {
+            return Err(err(
+                name,
+                "not a readable gmsh 4.1 mesh: the parser (mshio) failed on malformed content",
+            ))
+        }
+    };
     if (file.header.version - 4.1).abs() > 1e-9 {
         return Err(err(
             name,
@@ -54,33 +210,46 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
         .elements
         .ok_or_else(|| err(name, "no $Elements section"))?;
 
-    // Node coordinates by tag.
-    let min_tag = nodes_section.min_node_tag;
+    // Node coordinates by tag. mshio drops the tags when they look dense (max - min = count - 1)
+    // and then only the position is known, so the tags are read here, in file order, and paired
+    // with mshio's coordinates (same order): nodes are found by their tag, in any order, and a
+    // tag given twice is an error.
+    let tags = node_tags_in_file_order(bytes, name)?;
     let mut index_of_tag: HashMap<u64, usize> = HashMap::new();
-    let mut coords: Vec<[f64; 2]> = Vec::with_capacity(nodes_section.num_nodes as usize);
-    let mut dense_next = min_tag;
-    for block in &nodes_section.node_blocks {
-        match &block.node_tags {
-            Some(map) => {
-                let mut by_index: Vec<(usize, u64)> = map.iter().map(|(&t, &i)| (i, t)).collect();
-                by_index.sort_unstable();
-                for (i, tag) in by_index {
-                    let node = block
-                        .nodes
-                        .get(i)
-                        .ok_or_else(|| err(name, format!("node tag {tag} has no coordinates")))?;
-                    index_of_tag.insert(tag, coords.len());
-                    coords.push([node.x, node.y]);
-                }
-            }
-            None => {
-                for node in &block.nodes {
-                    index_of_tag.insert(dense_next, coords.len());
-                    coords.push([node.x, node.y]);
-                    dense_next += 1;
-                }
-            }
+    // Never sized from the header's count: a file may claim 2^60 nodes (it is compared with the
+    // nodes actually read below).
+    let mut coords: Vec<[f64; 2]> = Vec::new();
+    for node in nodes_section
+        .node_blocks
+        .iter()
+        .flat_map(|b| b.nodes.iter())
+    {
+        let Some(&(tag, line)) = tags.get(coords.len()) else {
+            return Err(err(
+                name,
+                "the $Nodes section has more coordinates than node tags",
+            ));
+        };
+        if index_of_tag.insert(tag, coords.len()).is_some() {
+            return Err(err(
+                name,
+                format!(
+                    "node tag {tag} appears twice (second time{})",
+                    at_line(line)
+                ),
+            ));
         }
+        coords.push([node.x, node.y]);
+    }
+    if coords.len() != tags.len() {
+        return Err(err(
+            name,
+            format!(
+                "{} node tags but {} node coordinates",
+                tags.len(),
+                coords.len()
+            ),
+        ));
     }
     if coords.len() as u64 != nodes_section.num_nodes {
         return Err(err(
@@ -245,6 +414,32 @@ fn compact(mesh: Mesh) -> Mesh {
         boundary,
         ..mesh
     }
+}
+
+/// mshio's message in one line: the section and the block or entry where parsing stopped, then
+/// what was wrong (its hex dump dropped). A file cut short says so.
+fn describe_parse_error(bytes: &[u8], message: &str) -> String {
+    let mut parts: Vec<String> = Vec::new();
+    for line in message.lines().map(str::trim) {
+        if line.is_empty() || line.starts_with("During parsing") {
+            continue;
+        }
+        if line.starts_with("Hex dump") {
+            break;
+        }
+        parts.push(line.trim_end_matches(',').to_string());
+    }
+    let mut text = parts.join(", ").replace(", an error occurred:", ":");
+    if text.is_empty() {
+        text = first_line(message);
+    }
+    let ends_cleanly = String::from_utf8_lossy(&bytes[bytes.len().saturating_sub(64)..])
+        .trim_end()
+        .ends_with("$EndElements");
+    if !ends_cleanly && !bytes.windows(12).any(|w| w == b"$EndElements") {
+        text.push_str(" (the file ends before `$EndElements`: truncated?)");
+    }
+    text.chars().take(400).collect()
 }
 
 fn first_line(s: &str) -> String {

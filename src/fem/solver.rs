@@ -126,14 +126,28 @@ pub struct FemField {
     pub displacement: Vec<f64>,
 }
 
-/// Where the time of one solve went (seconds).
-#[derive(Clone, Copy, Debug, Default)]
+/// Where the time of the finest model's solve went (seconds; JSON key `fem_timings`).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
 pub struct FemTimings {
+    /// Reading the mesh and raising its degree.
+    #[serde(rename = "read_s")]
     pub read: f64,
+    /// Assembling the stiffness (and the far-field condition).
+    #[serde(rename = "assembly_s")]
     pub assembly: f64,
+    /// Symbolic Cholesky analysis (ordering, elimination tree).
+    #[serde(rename = "symbolic_s")]
     pub symbolic: f64,
+    /// The contact solve: factorisations, band responses, iterations.
+    #[serde(rename = "contact_s")]
     pub solve: f64,
+    /// Numeric factorisations done by the contact solve.
     pub factorisations: usize,
+    /// Part of `contact_s` spent in them.
+    #[serde(rename = "factorisation_s")]
+    pub factorisation: f64,
+    /// Unit responses of band nodes computed by the banded contact solve.
+    pub band_responses: usize,
 }
 
 fn fem_error(reason: String) -> Error {
@@ -185,6 +199,7 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
             contact_start: start_line,
             level,
             free_edge: None,
+            edge_uncertainty: 0.0,
         });
     }
     sequence
@@ -218,6 +233,7 @@ fn prepare(
     degree: Degree,
     poisson_ratio: f64,
     far_field: FarField,
+    contact_start: f64,
 ) -> Result<PreparedModel> {
     let start = Instant::now();
     let path = provided.path.as_path();
@@ -228,6 +244,7 @@ fn prepare(
         (tags::FAR, "far"),
         (tags::AXIS, "axis"),
     ])?;
+    raw.validate_geometry(contact_start)?;
     let read = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
@@ -251,7 +268,7 @@ fn prepare(
         FarField::Fixed => (stiffness, None),
         FarField::Boussinesq => {
             let condition = FarFieldCondition::new(&mesh, &material, domain_radius);
-            (condition.extend(&stiffness), Some(condition))
+            (condition.extend(&stiffness)?, Some(condition))
         }
     };
     let assembly = start.elapsed().as_secs_f64();
@@ -282,13 +299,29 @@ pub fn stiffness_rule(degree: Degree) -> TriangleRule {
     }
 }
 
+/// What a coarser model tells the next one about a concave punch's free edge.
+#[derive(Clone, Copy, Debug)]
+pub struct WarmStart {
+    /// Inner contact radius located on the coarser model.
+    pub inner_radius: f64,
+    /// Half-width of the band around it where the finer model's edge is expected: twice the
+    /// coarser model's estimated error of the inner radius.
+    pub band: f64,
+}
+
+/// Core of the banded contact solve: the contact nodes above the band are held in the
+/// factorisation (none without a warm start).
+fn core_radius(warm: Option<WarmStart>) -> f64 {
+    warm.map_or(f64::INFINITY, |w| w.inner_radius + w.band)
+}
+
 /// Solve one prepared model.
 fn solve_model(
     model: &mut PreparedModel,
     kind: PunchKind,
     eps: f64,
     load: FemLoad,
-    inner_radius_guess: Option<f64>,
+    warm: Option<WarmStart>,
     depth_guess: Option<f64>,
     tolerance: f64,
 ) -> Result<(ContactSolution, f64, f64)> {
@@ -315,28 +348,33 @@ fn solve_model(
             (s, gamma, f64::NAN)
         }
         FemLoad::ConcaveDepth(depth) => {
-            let warm = inner_radius_guess.map(|b| contact.active_set_for_radius(b));
-            let (s, _) = contact.concave(&mut solver, kind, depth, warm)?;
+            let initial = warm.map(|w| contact.active_set_for_radius(w.inner_radius));
+            let mut system = contact.banded_system(&mut solver, kind, core_radius(warm));
+            let (s, _, _) = contact.concave_with(&mut system, kind, depth, initial)?;
+            model.timings.band_responses = system.responses_computed();
             let g2 = 0.5 * s.force;
             (s, depth, g2)
         }
         FemLoad::ConcaveForce(target) => {
-            let warm = inner_radius_guess.map(|b| contact.active_set_for_radius(b));
+            let initial = warm.map(|w| contact.active_set_for_radius(w.inner_radius));
+            let mut system = contact.banded_system(&mut solver, kind, core_radius(warm));
             // F = 2 E* h a γ2 with h = a = E* = 1.
             let (s, depth) = contact.concave_at_force(
-                &mut solver,
+                &mut system,
                 kind,
                 2.0 * target,
                 depth_guess.unwrap_or(target),
-                warm,
+                initial,
                 tolerance,
             )?;
+            model.timings.band_responses = system.responses_computed();
             let g2 = 0.5 * s.force;
             (s, depth, g2)
         }
     };
     model.timings.solve = start.elapsed().as_secs_f64();
     model.timings.factorisations = solver.factorisations;
+    model.timings.factorisation = solver.factorisation_seconds;
     Ok(result)
 }
 
@@ -358,12 +396,17 @@ impl PreparedModel {
 }
 
 /// [`prepare`] with the options' degree, material and far field, then [`check_domain`].
-fn prepare_checked(provided: &ProvidedMesh, options: &FemOptions) -> Result<PreparedModel> {
+fn prepare_checked(
+    provided: &ProvidedMesh,
+    options: &FemOptions,
+    contact_start: f64,
+) -> Result<PreparedModel> {
     let model = prepare(
         provided,
         options.degree,
         options.poisson_ratio,
         options.far_field,
+        contact_start,
     )?;
     check_domain(&model, options.tolerance)?;
     Ok(model)
@@ -430,6 +473,27 @@ fn finish(
     }
 }
 
+/// One line per model on standard error (`RINGCONTACT_TRACE=1`): size, phase times, contact cost.
+fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
+    let t = &model.timings;
+    eprintln!(
+        "fem: {} ({} unknowns): read {:.3} s, assembly {:.3} s, symbolic {:.3} s, contact {:.3} s \
+         ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10}, force {:.12}",
+        model.path,
+        model.stiffness.nrows(),
+        t.read,
+        t.assembly,
+        t.symbolic,
+        t.solve,
+        t.factorisations,
+        t.factorisation,
+        t.band_responses,
+        solution.iterations,
+        solution.inner_radius,
+        solution.force
+    );
+}
+
 /// Solve a punch problem with the FEM.
 pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> Result<FemState> {
     let start = Instant::now();
@@ -457,8 +521,11 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             origin: MeshOrigin::User,
             gmsh_version: None,
         };
-        let mut model = prepare_checked(&provided, options)?;
+        let mut model = prepare_checked(&provided, options, contact_start(kind, eps))?;
         let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
+        if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+            trace_level(&model, &s);
+        }
         let state = state_of(&s, x, y);
         let iterations = s.iterations;
         return Ok(finish(
@@ -471,27 +538,33 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             start,
         ));
     }
+    // The mesh families live in the project's data directory: say so if it cannot be found.
+    mesh_provider::find_project_root()?;
     let why = format!(
         "the FEM for the {kind} at tolerance {:e}",
         options.tolerance
     );
     let mut previous: Option<(f64, f64, f64)> = None;
     let mut previous_spacing = 0.0;
+    let mut previous_eps_error = 0.0;
     let mut last_estimate = f64::INFINITY;
     let mut iterations = 0;
     let mut last_mesh = String::new();
     for request in mesh_sequence(kind, eps, options.tolerance) {
         // The adapted family refines around the free edge located on the previous (coarser) solve.
         let request = if kind.is_concave() {
-            request.with_free_edge(previous.map(|p| p.2))
+            request.with_free_edge(previous.map(|p| p.2), previous_eps_error)
         } else {
             request
         };
         let provided = mesh_provider::provide(&request, &why)?;
-        let mut model = prepare_checked(&provided, options)?;
+        let mut model = prepare_checked(&provided, options, contact_start(kind, eps))?;
         last_mesh = model.path.clone();
         // The previous level's contact radius (and depth) start the iterations.
-        let guess = previous.map(|p: (f64, f64, f64)| p.2);
+        let guess = previous.map(|p: (f64, f64, f64)| WarmStart {
+            inner_radius: p.2,
+            band: previous_eps_error,
+        });
         let depth_guess = previous.map(|p: (f64, f64, f64)| p.0);
         let (s, x, y) = solve_model(
             &mut model,
@@ -503,6 +576,10 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             options.tolerance,
         )?;
         iterations += s.iterations;
+        if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+            trace_level(&model, &s);
+        }
+        let mut eps_error = INNER_RADIUS_BOUND * s.inner_node_spacing;
         let (eps_out, gamma, gamma1, gamma2) = state_of(&s, x, y);
         let values = (
             gamma.or(gamma1).unwrap_or(f64::NAN),
@@ -522,11 +599,15 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             // (Richardson), never taken below the element-size bound.
             let ratio = previous_spacing / s.inner_node_spacing;
             let eps_change = (values.2 - prev.2).abs();
-            let eps_estimate = if s.inner_node_spacing > 0.0 && ratio > 1.5 {
+            // Cubic elements: the located edge was seen to converge irregularly (P3 nodes at
+            // thirds of an edge), so the full change is kept, without the Richardson reduction.
+            let richardson = options.degree != Degree::Cubic;
+            let eps_estimate = if richardson && s.inner_node_spacing > 0.0 && ratio > 1.5 {
                 (eps_change / (ratio - 1.0)).max(INNER_RADIUS_BOUND * s.inner_node_spacing)
             } else {
                 eps_change.max(INNER_RADIUS_BOUND * s.inner_node_spacing)
             };
+            eps_error = eps_estimate;
             let estimate = relative(values.0, prev.0)
                 .max(relative(values.1, prev.1))
                 .max(eps_estimate)
@@ -548,6 +629,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         }
         previous = Some(values);
         previous_spacing = s.inner_node_spacing;
+        previous_eps_error = eps_error;
     }
     Err(fem_error(format!(
         "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above the \

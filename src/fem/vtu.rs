@@ -47,8 +47,5 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, u: &[f64]) -> Result<()> {
         let _ = writeln!(s, "{:e} {:e} 0", u[2 * n], u[2 * n + 1]);
     }
     s += "</DataArray></PointData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-    std::fs::write(path, s).map_err(|e| Error::SceneFile {
-        path: path.display().to_string(),
-        message: format!("cannot write VTK file: {e}"),
-    })
+    std::fs::write(path, s).map_err(|e| Error::file("write the VTK file", path, e))
 }

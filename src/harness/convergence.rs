@@ -109,6 +109,27 @@ pub fn run(
     levels: usize,
     mut progress: impl FnMut(&Level),
 ) -> Result<Study> {
+    // Refuse a study whose finest level cannot be run, before running the coarser ones.
+    if method == Method::GridBem && (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
+        return Err(Error::OutOfRange {
+            method: "grid-bem".into(),
+            reason: format!(
+                "{levels} levels would end at a {0} x {0} grid; at most {1} levels (64 .. {2})",
+                64usize << (levels - 1),
+                (grid_contact::MAX_GRID / 64).trailing_zeros() + 1,
+                grid_contact::MAX_GRID
+            ),
+        });
+    }
+    if method == Method::Fem {
+        let available = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3).len();
+        if levels > available {
+            return Err(Error::OutOfRange {
+                method: "fem".into(),
+                reason: format!("the FEM has {available} mesh levels; asked for {levels}"),
+            });
+        }
+    }
     let concave = case.punch.is_concave();
     let ring = RingBemSolver::new();
     let yardstick = if concave {
@@ -139,7 +160,7 @@ pub fn run(
                     });
                 };
                 // Concave punches: refine around the free edge of the previous level's solve.
-                let request = request.with_free_edge(previous_edge);
+                let request = request.with_free_edge(previous_edge, 0.0);
                 let label = request.label();
                 let provided = mesh_provider::provide(&request, "the FEM convergence study")?;
                 let path = provided.path;

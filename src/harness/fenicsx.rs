@@ -197,11 +197,42 @@ pub fn run() -> Result<Vec<FenicsxComparison>> {
         .collect()
 }
 
-/// Number of failures: disagreements (stale results are reported, not failures).
+/// Number of failures: disagreements, results that could not be compared because their mesh
+/// changed or vanished (`stale`, `missing-mesh`), and a run that compared nothing at all (one
+/// failure). Results waiting for gmsh (`needs-gmsh`) are listed with the command that installs it,
+/// not failures: a fresh clone has no gmsh.
 pub fn failures(rows: &[FenicsxComparison]) -> usize {
-    rows.iter()
+    let disagreements = rows
+        .iter()
         .filter(|r| r.status == "current" && !r.passed)
-        .count()
+        .count();
+    let uncompared = rows
+        .iter()
+        .filter(|r| r.status == "stale" || r.status == "missing-mesh")
+        .count();
+    let compared = rows.iter().filter(|r| r.status == "current").count();
+    disagreements + uncompared + usize::from(compared == 0)
+}
+
+/// One line on what was and was not compared: `compared N of M stored; not compared: files`.
+pub fn coverage(rows: &[FenicsxComparison]) -> String {
+    let compared = rows.iter().filter(|r| r.status == "current").count();
+    let missed: Vec<String> = rows
+        .iter()
+        .filter(|r| r.status != "current")
+        .map(|r| format!("{} ({})", r.file, r.status))
+        .collect();
+    let mut line = format!(
+        "compared {compared} of {} stored FEniCSx results",
+        rows.len()
+    );
+    if compared == 0 {
+        line.push_str(": NOTHING COMPARED (a failure)");
+    }
+    if !missed.is_empty() {
+        line.push_str(&format!("; not compared: {}", missed.join(", ")));
+    }
+    line
 }
 
 /// Human-readable table.
@@ -264,5 +295,6 @@ pub fn render(rows: &[FenicsxComparison]) -> String {
     if rows.is_empty() {
         let _ = writeln!(out, "  (no stored results; run scripts/fenicsx/run_all.sh)");
     }
+    let _ = writeln!(out, "  {}", coverage(rows));
     out
 }

@@ -37,16 +37,30 @@ fn get<'a>(v: &'a serde_json::Value, path: &[&str]) -> Option<&'a serde_json::Va
 pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<Headline> {
     let read = |name: &str| -> Result<serde_json::Value> {
         let path = dir.join(name);
-        let text = std::fs::read_to_string(&path).map_err(|e| Error::SceneFile {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })?;
-        serde_json::from_str(&text).map_err(|e| Error::SceneFile {
-            path: path.display().to_string(),
-            message: e.to_string(),
-        })
+        let text = std::fs::read_to_string(&path).map_err(|e| Error::file("read", &path, e))?;
+        serde_json::from_str(&text).map_err(|e| Error::file("parse the report", &path, e))
     };
     let report = read("report.json")?;
+    // A report of `verify compare` has these sections; anything else (`{}`, another JSON file) is
+    // an error, never "no failures".
+    for section in [
+        &["comparison", "rows"][..],
+        &["comparison", "fem"],
+        &["comparison", "identities"],
+        &["fenicsx"],
+        &["peers"],
+    ] {
+        if !get(&report, section).is_some_and(|v| v.is_array()) {
+            return Err(Error::file(
+                "take the headline figures of",
+                &dir.join("report.json"),
+                format!(
+                    "it has no `{}` list: not a report written by `verify compare`",
+                    section.join(".")
+                ),
+            ));
+        }
+    }
     let max_abs = |items: Option<&serde_json::Value>, key: &str| -> f64 {
         items.and_then(|v| v.as_array()).map_or(0.0, |a| {
             a.iter()
@@ -160,16 +174,26 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
     if let Some(t) = get(&report, &["extras", "wall_s"]).and_then(|v| v.as_f64()) {
         times.insert("report extras total".into(), t);
     }
-    let stability_wrong_numbers = read("stability.json")
-        .ok()
-        .and_then(|v| {
-            v.as_array().map(|a| {
-                a.iter()
-                    .filter(|p| p.get("outcome").and_then(|o| o.as_str()) == Some("WRONG"))
-                    .count()
-            })
-        })
-        .unwrap_or(0);
+    // stability.json is optional (a run without `verify stability`); if present it must be the
+    // probe list that command writes, every probe with an outcome.
+    let stability_wrong_numbers = if dir.join("stability.json").exists() {
+        let probes = read("stability.json")?;
+        let outcomes: Option<Vec<&str>> = probes.as_array().and_then(|a| {
+            a.iter()
+                .map(|p| p.get("outcome").and_then(|o| o.as_str()))
+                .collect()
+        });
+        match outcomes {
+            Some(list) if !list.is_empty() => list.iter().filter(|&&o| o == "WRONG").count(),
+            _ => return Err(Error::file(
+                "count the wrong numbers of",
+                &dir.join("stability.json"),
+                "not a list of probes with an `outcome` each (as `verify stability --json` writes)",
+            )),
+        }
+    } else {
+        0
+    };
     Ok(Headline {
         date: date.into(),
         failures,
@@ -217,16 +241,9 @@ pub fn regressions(current: &Headline, previous: Option<&Headline>) -> Vec<Strin
 
 /// Append `current` to the history file and return the previous entry.
 pub fn append(history: &Path, current: &Headline) -> Result<Option<Headline>> {
-    let previous = std::fs::read_to_string(history).ok().and_then(|text| {
-        text.lines()
-            .rev()
-            .find(|l| !l.trim().is_empty())
-            .and_then(|l| serde_json::from_str(l).ok())
-    });
-    let line = serde_json::to_string(current).map_err(|e| Error::SceneFile {
-        path: history.display().to_string(),
-        message: e.to_string(),
-    })?;
+    let previous = read_history(history)?.pop();
+    let line = serde_json::to_string(current)
+        .map_err(|e| Error::file("serialise a record for", history, e))?;
     if let Some(parent) = history.parent() {
         let _ = std::fs::create_dir_all(parent);
     }
@@ -235,24 +252,37 @@ pub fn append(history: &Path, current: &Headline) -> Result<Option<Headline>> {
         .create(true)
         .append(true)
         .open(history)
-        .map_err(|e| Error::SceneFile {
-            path: history.display().to_string(),
-            message: e.to_string(),
-        })?;
-    writeln!(file, "{line}").map_err(|e| Error::SceneFile {
-        path: history.display().to_string(),
-        message: e.to_string(),
-    })?;
+        .map_err(|e| Error::file("open for appending", history, e))?;
+    writeln!(file, "{line}").map_err(|e| Error::file("append to", history, e))?;
     Ok(previous)
 }
 
+/// Every record of a history file (none if it does not exist yet). A line that is not a record
+/// (a truncated write, an edit) is an error naming the line: it is never skipped.
+pub fn read_history(history: &Path) -> Result<Vec<Headline>> {
+    let text = match std::fs::read_to_string(history) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
+        Err(e) => return Err(Error::file("read", history, e)),
+    };
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .map(|(i, l)| {
+            serde_json::from_str(l).map_err(|e| {
+                Error::file(
+                    "read the history",
+                    history,
+                    format!("line {} is not a record ({e}): truncated or edited?", i + 1),
+                )
+            })
+        })
+        .collect()
+}
+
 /// Trend of the last runs as a Markdown table.
-pub fn trend(history: &Path, last: usize) -> String {
-    let runs: Vec<Headline> = std::fs::read_to_string(history)
-        .unwrap_or_default()
-        .lines()
-        .filter_map(|l| serde_json::from_str(l).ok())
-        .collect();
+pub fn trend(history: &Path, last: usize) -> Result<String> {
+    let runs = read_history(history)?;
     let mut md = String::from("# Trend\n\n| date | failures | wrong numbers | FEM vs ring BEM | FEniCSx vs FEM | peers vs grid BEM | extras s | FEniCSx | peers |\n|---|---|---|---|---|---|---|---|---|\n");
     for r in runs.iter().rev().take(last).rev() {
         let acc = |k: &str| {
@@ -275,7 +305,7 @@ pub fn trend(history: &Path, last: usize) -> String {
             r.peers
         );
     }
-    md
+    Ok(md)
 }
 
 #[cfg(test)]

@@ -89,7 +89,14 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                     stored.grid,
                     GridLoad::Depth(depth),
                     1e-11,
-                )?;
+                )
+                .map_err(|e| {
+                    crate::error::Error::file(
+                        "compare the stored peer result",
+                        &results_directory().join(&file),
+                        e,
+                    )
+                })?;
                 // Flat punches are linear in the depth.
                 let force = if stored.punch.is_concave() {
                     s.force
@@ -115,9 +122,9 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
     Ok(rows)
 }
 
-/// Number of disagreements.
+/// Number of disagreements, plus one if nothing was compared.
 pub fn failures(rows: &[PeerComparison]) -> usize {
-    rows.iter().filter(|r| !r.passed).count()
+    rows.iter().filter(|r| !r.passed).count() + usize::from(rows.is_empty())
 }
 
 /// Human-readable table.

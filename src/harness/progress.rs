@@ -1,7 +1,11 @@
-//! A plain text progress bar on standard error, drawn only when standard error is a terminal
-//! (quiet in pipes, CI logs and scripts).
+//! Progress on standard error: a bar redrawn in place on a terminal; elsewhere (pipes, CI logs,
+//! scripts) a plain line at most every [`PLAIN_INTERVAL_S`] seconds, so that long runs are never
+//! silent.
 
 use std::io::{IsTerminal, Write};
+
+/// Seconds between plain progress lines when standard error is not a terminal.
+pub const PLAIN_INTERVAL_S: f64 = 10.0;
 
 /// Progress of a sweep of known length.
 pub struct Progress {
@@ -9,6 +13,8 @@ pub struct Progress {
     total: usize,
     done: usize,
     enabled: bool,
+    started: std::time::Instant,
+    reported: std::time::Instant,
 }
 
 impl Progress {
@@ -19,6 +25,8 @@ impl Progress {
             total: total.max(1),
             done: 0,
             enabled: std::io::stderr().is_terminal(),
+            started: std::time::Instant::now(),
+            reported: std::time::Instant::now(),
         }
     }
 
@@ -26,6 +34,17 @@ impl Progress {
     pub fn tick(&mut self, what: &str) {
         self.done = (self.done + 1).min(self.total);
         if !self.enabled {
+            if self.reported.elapsed().as_secs_f64() >= PLAIN_INTERVAL_S && self.done < self.total {
+                self.reported = std::time::Instant::now();
+                eprintln!(
+                    "{}: {}/{} done after {:.0} s ({})",
+                    self.label,
+                    self.done,
+                    self.total,
+                    self.started.elapsed().as_secs_f64(),
+                    what.chars().take(60).collect::<String>()
+                );
+            }
             return;
         }
         let width = 30;

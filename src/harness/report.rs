@@ -539,10 +539,7 @@ fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
 }
 
 fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
-    std::fs::write(dir.join(name), text).map_err(|e| Error::SceneFile {
-        path: dir.join(name).display().to_string(),
-        message: e.to_string(),
-    })
+    std::fs::write(dir.join(name), text).map_err(|e| Error::file("write", &dir.join(name), e))
 }
 
 /// Number of progress stages of [`write_report`].
@@ -557,10 +554,7 @@ pub fn write_report(
     mut progress: impl FnMut(&str),
 ) -> Result<ReportExtras> {
     let start = Instant::now();
-    std::fs::create_dir_all(dir).map_err(|e| Error::SceneFile {
-        path: dir.display().to_string(),
-        message: e.to_string(),
-    })?;
+    std::fs::create_dir_all(dir).map_err(|e| Error::file("create the directory", dir, e))?;
     let ring = RingBemSolver::new();
     progress("functions against eps");
     function_charts(&ring, comparison, dir)?;

@@ -105,6 +105,57 @@ fn probe(
     p
 }
 
+/// A probe whose only right answer is an error (an overflowing load, a mesh that does not model
+/// the scene): any number is `WRONG`.
+fn must_decline(
+    method: Method,
+    options: &MethodOptions,
+    name: &str,
+    scene: Result<Scene>,
+) -> Probe {
+    let solution = scene.and_then(|s| methods::solve_with(&s, method, options));
+    Probe {
+        method: method.name().to_string(),
+        probe: name.to_string(),
+        outcome: if solution.is_err() { "error" } else { "WRONG" }.into(),
+        value: solution
+            .as_ref()
+            .ok()
+            .map(|s| s.gamma.or(s.gamma2).unwrap_or(f64::NAN)),
+        reference: None,
+        relative_error: None,
+        error_estimate: solution.as_ref().ok().and_then(|s| s.error_estimate),
+        message: solution.err().map(|e| e.to_string()),
+    }
+}
+
+/// The committed `small-domain-R5.msh` with the physical tags of its arc (3) and axis (4)
+/// swapped, written to a temporary file.
+fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
+    let text =
+        std::fs::read_to_string(crate::fem::solver::mesh_directory().join("small-domain-R5.msh"))
+            .ok()?;
+    let swapped: Vec<String> = text
+        .lines()
+        .map(|line| {
+            let mut words: Vec<&str> = line.split_whitespace().collect();
+            // Curve entities: tag, 6 bounds, 1 physical tag, the tag, ...
+            if words.len() >= 9 && words[7] == "1" && (words[8] == "3" || words[8] == "4") {
+                words[8] = if words[8] == "3" { "4" } else { "3" };
+                words.join(" ")
+            } else {
+                line.to_string()
+            }
+        })
+        .collect();
+    let path = std::env::temp_dir().join(format!(
+        "ringcontact-stability-swapped-{}.msh",
+        std::process::id()
+    ));
+    std::fs::write(&path, swapped.join("\n")).ok()?;
+    Some(path)
+}
+
 fn flat_scene(eps: f64) -> Result<Scene> {
     let spec = SceneSpec::default().shape(if eps == 0.0 {
         PunchKind::Flat
@@ -127,7 +178,7 @@ fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<
 }
 
 /// Number of probes [`run`] makes (for progress display).
-pub const PROBES: usize = 37;
+pub const PROBES: usize = 43;
 
 /// Run all probes.
 pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
@@ -304,6 +355,47 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         };
         push(p, &mut probes);
     }
+    // Loads whose results overflow, and meshes that do not model the scene: only an error is
+    // right.
+    for (kind, depth) in [
+        (PunchKind::Flat, 1e308),
+        (PunchKind::Cone, 1e308),
+        (PunchKind::Sphere, 1e308),
+    ] {
+        let scene = SceneSpec::default().shape(kind).depth(depth).validate();
+        let p = must_decline(Method::RingBem, &none, &format!("{kind} d = 1e308"), scene);
+        push(p, &mut probes);
+    }
+    let mesh_options = |path: std::path::PathBuf| MethodOptions {
+        mesh: Some(path),
+        ..MethodOptions::default()
+    };
+    let swapped = swapped_tag_mesh();
+    let p = must_decline(
+        Method::Fem,
+        &mesh_options(swapped.clone().unwrap_or_default()),
+        "flat on a mesh with far and axis tags swapped",
+        flat_scene(0.0),
+    );
+    push(p, &mut probes);
+    if let Some(path) = swapped {
+        let _ = std::fs::remove_file(path);
+    }
+    let annulus = crate::fem::solver::mesh_directory().join("annulus-0.5-L0.msh");
+    let p = must_decline(
+        Method::Fem,
+        &mesh_options(annulus.clone()),
+        "cone on an annulus mesh (contact line from r = b)",
+        concave_scene(PunchKind::Cone, 2.0, None),
+    );
+    push(p, &mut probes);
+    let p = must_decline(
+        Method::Fem,
+        &mesh_options(annulus),
+        "flat punch on an annulus mesh",
+        flat_scene(0.0),
+    );
+    push(p, &mut probes);
     // References outside their ranges.
     for eps in [0.5, 0.95] {
         let p = probe(

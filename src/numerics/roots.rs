@@ -99,14 +99,16 @@ where
                 }
             }
             None => {
-                if !next.is_finite() {
-                    return Err(RootError::NoConvergence {
-                        iterations: evaluations,
-                        last_step,
-                    });
-                }
-                next = next.clamp(lo, hi);
-                if next == xb {
+                // A flat or overflowing secant (e.g. a target of 1e308, where f(x0) and f(x1)
+                // round to the same value) cannot step: the interval's ends decide whether a
+                // root exists at all.
+                let stuck = !next.is_finite() || next.clamp(lo, hi) == xb;
+                next = if next.is_finite() {
+                    next.clamp(lo, hi)
+                } else {
+                    xb
+                };
+                if stuck {
                     // Stuck at an end of the admissible interval: check whether it brackets.
                     let f_lo = eval(lo, &mut evaluations)?;
                     let f_hi = eval(hi, &mut evaluations)?;

@@ -1,0 +1,99 @@
+//! The banded contact solve (one factorisation, the band condensed through unit responses)
+//! against the primal-dual active-set loop that refactorises at every iteration: both solve the
+//! same discrete problem, so they must agree to rounding (the reference is the independent
+//! factorisation-per-iteration route), whatever side of the true free edge the warm start lies.
+
+use ringcontact::fem::assembly::assemble_stiffness;
+use ringcontact::fem::contact::ContactModel;
+use ringcontact::fem::element::Lame;
+use ringcontact::fem::linear_solver::ConstrainedCholesky;
+use ringcontact::fem::mesh::Degree;
+use ringcontact::fem::msh::read_msh;
+use ringcontact::fem::quadrature::TriangleRule;
+use ringcontact::fem::solver;
+use ringcontact::punch::PunchKind;
+
+fn committed(level: usize) -> ringcontact::fem::mesh::Mesh {
+    read_msh(&solver::mesh_directory().join(format!("disk-L{level}.msh")))
+        .unwrap()
+        .with_degree(Degree::Quadratic)
+}
+
+#[test]
+fn the_banded_solve_equals_the_refactorising_loop_with_one_factorisation() {
+    let mesh = committed(1);
+    let k = assemble_stiffness(
+        &mesh,
+        &Lame::from_young_poisson(1.0, 0.0),
+        &TriangleRule::degree4(),
+    )
+    .unwrap();
+    let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
+    for (kind, depth) in [(PunchKind::Cone, 2.0), (PunchKind::Sphere, 1.5)] {
+        let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+        let (reference, _) = contact
+            .concave(&mut reference_solver, kind, depth, None)
+            .unwrap();
+        // Warm starts on both sides of the edge, within a band of 0.03 a.
+        for offset in [-0.02, -0.005, 0.004, 0.015] {
+            let guess = reference.inner_radius + offset;
+            let mut solver = ConstrainedCholesky::new(&k).unwrap();
+            let mut system = contact.banded_system(&mut solver, kind, guess + 0.03);
+            let (banded, _, was_banded) = contact
+                .concave_with(
+                    &mut system,
+                    kind,
+                    depth,
+                    Some(contact.active_set_for_radius(guess)),
+                )
+                .unwrap();
+            let responses = system.responses_computed();
+            let relative = (banded.force / reference.force - 1.0).abs();
+            println!(
+                "{kind} d = {depth}, start {offset:+}: force {relative:.1e}, {} factorisations, \
+                 {responses} responses, banded {was_banded}",
+                solver.factorisations
+            );
+            assert!(was_banded, "the band held the edge, yet it fell back");
+            assert_eq!(solver.factorisations, 1);
+            assert!(relative < 1e-11, "{relative}");
+            assert_eq!(banded.active_radii, reference.active_radii);
+            assert!((banded.inner_radius - reference.inner_radius).abs() < 1e-12);
+        }
+    }
+}
+
+#[test]
+fn a_band_that_misses_the_edge_is_moved_or_replaced_never_wrong() {
+    let mesh = committed(0);
+    let k = assemble_stiffness(
+        &mesh,
+        &Lame::from_young_poisson(1.0, 0.0),
+        &TriangleRule::degree4(),
+    )
+    .unwrap();
+    let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
+    let (kind, depth) = (PunchKind::Cone, 2.0);
+    let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+    let (reference, _) = contact
+        .concave(&mut reference_solver, kind, depth, None)
+        .unwrap();
+    // A core that starts below the true edge (the warm start is far too low, the band narrow):
+    // core nodes must be released, and the answer must still be the reference.
+    for guess in [0.1, 0.3, 0.44] {
+        let mut solver = ConstrainedCholesky::new(&k).unwrap();
+        let mut system = contact.banded_system(&mut solver, kind, guess + 1e-3);
+        let (solution, _, _) = contact
+            .concave_with(
+                &mut system,
+                kind,
+                depth,
+                Some(contact.active_set_for_radius(guess)),
+            )
+            .unwrap();
+        let relative = (solution.force / reference.force - 1.0).abs();
+        println!("start {guess}: force {relative:.1e}");
+        assert!(relative < 1e-11, "{relative}");
+        assert_eq!(solution.active_radii, reference.active_radii);
+    }
+}
