@@ -22,6 +22,8 @@ status=0
 ./target/release/verify compare --report "$out" > "$out/summary.txt" || status=1
 ./target/release/verify stability --json > "$out/stability.json" || status=1
 ./target/release/verify stability > "$out/stability.txt" || true
+# The long fuzzing run (the default test run makes 20 000 inputs): 400 000 mutated meshes and scenes.
+RINGCONTACT_FUZZ_CASES=400000 cargo test --release --quiet --test fuzz_inputs > "$out/fuzz.txt" 2>&1 || status=1
 ./target/release/verify history --report "$out" --history reports/history.jsonl --fenicsx "$fenicsx" --peers "$peers" || status=1
 tail -n 3 "$out/summary.txt"
 echo "report: $out/report.md (trend: $out/trend.md)"

@@ -177,3 +177,138 @@ fn fit_and_jkr_json_carry_the_documented_keys() {
     let out = verify(&["jkr", "--punch", "sphere"]);
     assert!(!out.status.success() && String::from_utf8_lossy(&out.stderr).contains("--d0h"));
 }
+
+/// Run `verify` from `dir` with `args`.
+fn verify_in(dir: &std::path::Path, args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_verify"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("run verify")
+}
+
+fn stderr_of(out: &std::process::Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+#[test]
+fn overflowing_and_hostile_values_are_errors_not_numbers() {
+    // Issue 11, classes 2, 5 and 6: every case exits non-zero with a message naming the problem,
+    // never a panic, never `inf`/`null` with exit 0, never 300 digits.
+    let cases: [(&[&str], &str); 9] = [
+        (
+            &["solve", "--punch", "flat", "--depth", "1e308"],
+            "impossible state",
+        ),
+        (
+            &["solve", "--punch", "cone", "--depth", "1e308"],
+            "1.000000e308",
+        ),
+        (
+            &["solve", "--punch", "sphere", "--depth", "1e308", "--json"],
+            "impossible state",
+        ),
+        (&["jkr", "--punch", "cone", "--d0h", "1e-310"], "non-finite"),
+        (
+            &["solve", "--punch", "cone", "--depth", "2", "--tol", "-1"],
+            "tolerance",
+        ),
+        (&["jkr", "--punch", "sphere", "--d0h", "-2"], "d0h"),
+        (
+            &[
+                "solve", "--punch", "flat", "--method", "grid-bem", "--grid", "4096",
+            ],
+            "2048",
+        ),
+        (
+            &[
+                "convergence",
+                "--punch",
+                "flat",
+                "--method",
+                "grid-bem",
+                "--levels",
+                "8",
+            ],
+            "at most 6 levels",
+        ),
+        (
+            &["solve", "--punch", "flat-annulus", "--eps", "1e300"],
+            "1.000000e300",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = verify(args);
+        let err = stderr_of(&out);
+        assert!(
+            !out.status.success(),
+            "{args:?} succeeded: {}",
+            String::from_utf8_lossy(&out.stdout)
+        );
+        assert!(
+            err.contains(needle),
+            "{args:?}: expected {needle:?} in {err:?}"
+        );
+        assert!(!err.contains("panicked"), "{args:?} panicked: {err}");
+        assert!(err.len() < 600, "{args:?}: message too long: {err}");
+    }
+}
+
+#[test]
+fn output_to_a_closed_pipe_or_a_full_device_is_not_a_panic() {
+    use std::process::Stdio;
+    // A reader that has gone: the child sees EPIPE on its first write.
+    let mut child = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(["solve", "--punch", "cone", "--depth", "2", "--json"])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    assert!(!stderr_of(&out).contains("panicked"), "{}", stderr_of(&out));
+    assert_eq!(out.status.code(), Some(141));
+    if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {
+        let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+            .args(["solve", "--punch", "cone", "--depth", "2", "--json"])
+            .stdout(full)
+            .output()
+            .unwrap();
+        let err = stderr_of(&out);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(err.contains("cannot write to standard output"), "{err}");
+    }
+}
+
+#[test]
+fn the_data_directory_is_found_from_where_the_tool_runs_never_compiled_in() {
+    // Outside any checkout: the commands that need the data say what they need.
+    let outside = std::env::temp_dir();
+    let out = verify_in(&outside, &["fenicsx"]);
+    let err = stderr_of(&out);
+    assert!(!out.status.success());
+    assert!(err.contains("--data-dir"), "{err}");
+    // The ring BEM needs no data and works anywhere.
+    assert!(
+        verify_in(&outside, &["solve", "--punch", "cone", "--depth", "2"])
+            .status
+            .success()
+    );
+    // --data-dir points it at a checkout.
+    let root = env!("CARGO_MANIFEST_DIR");
+    let out = verify_in(&outside, &["--data-dir", root, "fenicsx", "--json"]);
+    assert!(out.status.success(), "{}", stderr_of(&out));
+    // A copy of the data elsewhere is read, not the original: an empty copy compares nothing.
+    let copy = std::env::temp_dir().join(format!("ringcontact-copy-{}", std::process::id()));
+    std::fs::create_dir_all(copy.join("meshes")).unwrap();
+    std::fs::create_dir_all(copy.join("verify/fenicsx")).unwrap();
+    std::fs::copy(
+        std::path::Path::new(root).join("meshes/half_space.geo"),
+        copy.join("meshes/half_space.geo"),
+    )
+    .unwrap();
+    let out = verify_in(&copy, &["fenicsx"]);
+    assert!(!out.status.success(), "compared nothing, yet succeeded");
+    assert!(String::from_utf8_lossy(&out.stdout).contains("NOTHING COMPARED"));
+    let _ = std::fs::remove_dir_all(&copy);
+}

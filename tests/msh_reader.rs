@@ -97,7 +97,10 @@ fn malformed_meshes_are_errors_that_name_the_problem() {
                 .replace("4 6 1 6", "4 5 1 6"),
             "unsupported element type Qua4",
         ),
-        (VALID.replace("5 1 4 3\n", "5 1 3 4\n"), "inverted"),
+        (
+            VALID.replace("5 1 4 3\n", "5 1 3 4\n"),
+            "element tag 5 (node tag 1, node tag 3, node tag 4) is inverted",
+        ),
         (
             VALID.replace("0 -1 0\n$EndNodes", "-0.5 -1 0\n$EndNodes"),
             "off the half-plane",

@@ -324,6 +324,24 @@ fn emit(args: std::fmt::Arguments, newline: bool) {
 }
 
 fn main() -> ExitCode {
+    // A panic is a defect of this program, never the user's input: say so in one line (the fuzz
+    // and CLI tests keep it from happening; RUST_BACKTRACE=1 still gives the trace).
+    if std::env::var_os("RUST_BACKTRACE").is_none() {
+        std::panic::set_hook(Box::new(|info| {
+            let place = info
+                .location()
+                .map(|l| format!(" at {}:{}", l.file(), l.line()))
+                .unwrap_or_default();
+            eprintln!(
+                "error: internal defect in verify{place}: {}; please report it with the command line",
+                info.payload()
+                    .downcast_ref::<&str>()
+                    .map(|s| s.to_string())
+                    .or_else(|| info.payload().downcast_ref::<String>().cloned())
+                    .unwrap_or_default()
+            );
+        }));
+    }
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
     // unknown flag).
     let command = Cli::command()

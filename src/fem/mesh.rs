@@ -81,6 +81,17 @@ pub struct Mesh {
     pub boundary: Vec<BoundaryEdge>,
     /// Where the mesh came from (a path or a generator description).
     pub source: String,
+    /// The file's own node and element tags (read meshes), for messages that the file's author
+    /// can look up.
+    pub file_tags: FileTags,
+}
+
+/// Tags of a mesh file: `nodes[i]` is the file tag of node `i`, `cells[c]` the element tag of
+/// triangle `c`; empty for generated meshes and for nodes added by a degree change.
+#[derive(Clone, Debug, Default)]
+pub struct FileTags {
+    pub nodes: Vec<u64>,
+    pub cells: Vec<u64>,
 }
 
 fn mesh_error(source: &str, message: String) -> Error {
@@ -91,6 +102,22 @@ fn mesh_error(source: &str, message: String) -> Error {
 }
 
 impl Mesh {
+    /// `node tag T` (the file's tag) where known, else `node i` (0-based, internal).
+    pub fn node_name(&self, i: usize) -> String {
+        match self.file_tags.nodes.get(i) {
+            Some(tag) => format!("node tag {tag}"),
+            None => format!("node {i}"),
+        }
+    }
+
+    /// `element tag T` (the file's tag) where known, else `triangle c` (0-based, internal).
+    pub fn cell_name(&self, c: usize) -> String {
+        match self.file_tags.cells.get(c) {
+            Some(tag) => format!("element tag {tag}"),
+            None => format!("triangle {c}"),
+        }
+    }
+
     /// Number of triangles.
     pub fn cell_count(&self) -> usize {
         self.cells.len() / self.degree.nodes_per_cell()
@@ -100,6 +127,14 @@ impl Mesh {
     pub fn cell(&self, c: usize) -> &[usize] {
         let k = self.degree.nodes_per_cell();
         &self.cells[c * k..(c + 1) * k]
+    }
+
+    fn vertex_names(&self, cell: &[usize]) -> String {
+        cell[..3]
+            .iter()
+            .map(|&v| self.node_name(v))
+            .collect::<Vec<_>>()
+            .join(", ")
     }
 
     /// Nodes on boundary edges with `tag`, sorted and without duplicates.
@@ -136,13 +171,17 @@ impl Mesh {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(mesh_error(
                     src,
-                    format!("node {i} has a non-finite coordinate"),
+                    format!("{} has a non-finite coordinate", self.node_name(i)),
                 ));
             }
             if p[0] < -1e-12 * (1.0 + p[1].abs()) {
                 return Err(mesh_error(
                     src,
-                    format!("node {i} at r = {} lies off the half-plane r >= 0", p[0]),
+                    format!(
+                        "{} at r = {} lies off the half-plane r >= 0",
+                        self.node_name(i),
+                        p[0]
+                    ),
                 ));
             }
         }
@@ -151,7 +190,7 @@ impl Mesh {
             if let Some(&bad) = cell.iter().find(|&&v| v >= n) {
                 return Err(mesh_error(
                     src,
-                    format!("triangle {c} refers to missing node {bad}"),
+                    format!("{} refers to missing node {bad}", self.cell_name(c)),
                 ));
             }
             let [p0, p1, p2] = [
@@ -172,15 +211,20 @@ impl Mesh {
             {
                 return Err(mesh_error(
                     src,
-                    format!("triangle {c} (nodes {:?}) is degenerate", &cell[..3]),
+                    format!(
+                        "{} ({}) is degenerate",
+                        self.cell_name(c),
+                        self.vertex_names(cell)
+                    ),
                 ));
             }
             if twice_area < 0.0 {
                 return Err(mesh_error(
                     src,
                     format!(
-                        "triangle {c} (nodes {:?}) is inverted (clockwise in (r, z))",
-                        &cell[..3]
+                        "{} ({}) is inverted (clockwise in (r, z))",
+                        self.cell_name(c),
+                        self.vertex_names(cell)
                     ),
                 ));
             }
@@ -199,9 +243,10 @@ impl Mesh {
                         return Err(mesh_error(
                             src,
                             format!(
-                                "triangle {c} has a curved edge (node {} off the chord); only \
+                                "{} has a curved edge ({} off the chord); only \
                                  straight-sided elements are supported (Mesh.SecondOrderLinear = 1)",
-                                cell[3 + per_edge * e + j]
+                                self.cell_name(c),
+                                self.node_name(cell[3 + per_edge * e + j])
                             ),
                         ));
                     }
@@ -396,6 +441,8 @@ impl Mesh {
                 "{} (edge midpoints added for quadratic elements)",
                 self.source
             ),
+            // Existing nodes keep their indices; the added midpoints have no file tag.
+            file_tags: self.file_tags.clone(),
         }
     }
 
@@ -406,10 +453,12 @@ impl Mesh {
         }
         let mut map = vec![usize::MAX; self.nodes.len()];
         let mut nodes = Vec::new();
+        let mut kept_tags = Vec::new();
         let mut keep = |v: usize, nodes: &mut Vec<[f64; 2]>| -> usize {
             if map[v] == usize::MAX {
                 map[v] = nodes.len();
                 nodes.push(self.nodes[v]);
+                kept_tags.push(self.file_tags.nodes.get(v).copied().unwrap_or(0));
             }
             map[v]
         };
@@ -434,6 +483,14 @@ impl Mesh {
             degree: Degree::Linear,
             boundary,
             source: format!("{} (vertices only, linear elements)", self.source),
+            file_tags: FileTags {
+                nodes: if self.file_tags.nodes.is_empty() {
+                    Vec::new()
+                } else {
+                    kept_tags
+                },
+                cells: self.file_tags.cells.clone(),
+            },
         }
     }
 
@@ -493,6 +550,8 @@ impl Mesh {
             degree: Degree::Cubic,
             boundary,
             source: format!("{} (cubic elements on its vertices)", self.source),
+            // The vertices keep the linear mesh's indices; added nodes have no file tag.
+            file_tags: linear.file_tags.clone(),
         }
     }
 
@@ -568,5 +627,6 @@ pub fn structured_rectangle(
         degree: Degree::Linear,
         boundary,
         source: format!("structured {nr}x{nz} rectangle {width} x {height}"),
+        file_tags: FileTags::default(),
     }
 }

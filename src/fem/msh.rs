@@ -11,7 +11,7 @@ use std::path::Path;
 
 use mshio::mshfile::ElementType;
 
-use super::mesh::{BoundaryEdge, Degree, Mesh};
+use super::mesh::{BoundaryEdge, Degree, FileTags, Mesh};
 use crate::error::{Error, Result};
 
 fn err(path: &str, message: impl Into<String>) -> Error {
@@ -284,6 +284,7 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
     };
     let mut degree: Option<Degree> = None;
     let mut cells = Vec::new();
+    let mut cell_tags = Vec::new();
     let mut boundary = Vec::new();
     for block in &elements.element_blocks {
         let (dim, entity, kind) = (block.entity_dim, block.entity_tag, block.element_type);
@@ -327,6 +328,7 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
                     for &t in &e.nodes {
                         cells.push(node(t, e.element_tag)?);
                     }
+                    cell_tags.push(e.element_tag);
                 }
             }
             (d, k) => {
@@ -358,6 +360,10 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
         degree,
         boundary,
         source: name.to_string(),
+        file_tags: FileTags {
+            nodes: tags.iter().map(|&(tag, _)| tag).collect(),
+            cells: cell_tags,
+        },
     });
     orient_counter_clockwise(&mut mesh);
     Ok(mesh)
@@ -399,6 +405,12 @@ fn compact(mesh: Mesh) -> Mesh {
         }
     }
     let cells = mesh.cells.iter().map(|&v| map[v]).collect();
+    let mut node_tags = vec![0; nodes.len()];
+    for (old, &new) in map.iter().enumerate() {
+        if new != usize::MAX {
+            node_tags[new] = mesh.file_tags.nodes.get(old).copied().unwrap_or(0);
+        }
+    }
     let boundary = mesh
         .boundary
         .into_iter()
@@ -412,6 +424,10 @@ fn compact(mesh: Mesh) -> Mesh {
         nodes,
         cells,
         boundary,
+        file_tags: FileTags {
+            nodes: node_tags,
+            cells: mesh.file_tags.cells,
+        },
         ..mesh
     }
 }

@@ -238,13 +238,16 @@ fn prepare(
     let start = Instant::now();
     let path = provided.path.as_path();
     let raw = read_msh(path)?;
-    let mesh = raw.with_degree(degree);
-    mesh.validate(&[
+    let required = [
         (tags::CONTACT, "contact"),
         (tags::FAR, "far"),
         (tags::AXIS, "axis"),
-    ])?;
+    ];
+    // The file's mesh first (its messages quote the file's tags), then the degree-raised one.
+    raw.validate(&required)?;
     raw.validate_geometry(contact_start)?;
+    let mesh = raw.with_degree(degree);
+    mesh.validate(&required)?;
     let read = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
