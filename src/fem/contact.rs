@@ -169,23 +169,10 @@ impl<'m> ContactModel<'m> {
     ) -> Result<(ContactSolution, Vec<bool>)> {
         let dofs = self.supports.len();
         let bound = self.bound(kind, depth);
-        let mut active = initial_active.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
-        if !active.iter().any(|&a| a) {
-            // The rim node always touches for d > 0.
-            if let Some(last) = active.last_mut() {
-                *last = true;
-            }
-        }
+        let mut active = self.initial_active(initial_active, &bound);
         let zero = vec![0.0; dofs];
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-            let mut constrained = self.supports.clone();
-            let mut prescribed = vec![0.0; dofs];
-            for ((&n, &b), &a) in self.contact_nodes.iter().zip(&bound).zip(&active) {
-                if a {
-                    constrained[2 * n + 1] = true;
-                    prescribed[2 * n + 1] = b;
-                }
-            }
+            let (constrained, prescribed) = self.constraints(&active, &bound);
             let u = solver.solve(&zero, &constrained, &prescribed)?;
             let reactions = self.reactions(solver, &u, &zero);
             let gaps = self.gaps(&bound, &u);
@@ -216,23 +203,11 @@ impl<'m> ContactModel<'m> {
     ) -> Result<(ContactSolution, Vec<bool>)> {
         let dofs = self.supports.len();
         let bound = self.bound(kind, depth);
-        let mut active = initial_active.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
-        if !active.iter().any(|&a| a) {
-            if let Some(last) = active.last_mut() {
-                *last = true;
-            }
-        }
+        let mut active = self.initial_active(initial_active, &bound);
         let zero = vec![0.0; dofs];
         let mut handed_over = false;
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-            let mut constrained = self.supports.clone();
-            let mut prescribed = vec![0.0; dofs];
-            for ((&n, &b), &a) in self.contact_nodes.iter().zip(&bound).zip(&active) {
-                if a {
-                    constrained[2 * n + 1] = true;
-                    prescribed[2 * n + 1] = b;
-                }
-            }
+            let (constrained, prescribed) = self.constraints(&active, &bound);
             let u = system.solver.solve(&zero, &constrained, &prescribed)?;
             let reactions = self.reactions(system.solver, &u, &zero);
             let gaps = self.gaps(&bound, &u);
@@ -320,6 +295,32 @@ impl<'m> ContactModel<'m> {
             active = next;
         }
         Ok(BandOutcome::TooWide)
+    }
+
+    /// The given start, else the nodes where the rigid punch would penetrate the undeformed
+    /// surface; never empty (the rim node always touches for `d > 0`).
+    fn initial_active(&self, given: Option<Vec<bool>>, bound: &[f64]) -> Vec<bool> {
+        let mut active = given.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
+        if !active.iter().any(|&a| a) {
+            if let Some(last) = active.last_mut() {
+                *last = true;
+            }
+        }
+        active
+    }
+
+    /// Constraint set and prescribed values of an active set: supports, and `u_z = bound` on the
+    /// active contact nodes.
+    fn constraints(&self, active: &[bool], bound: &[f64]) -> (Vec<bool>, Vec<f64>) {
+        let mut constrained = self.supports.clone();
+        let mut prescribed = vec![0.0; self.supports.len()];
+        for ((&n, &b), &a) in self.contact_nodes.iter().zip(bound).zip(active) {
+            if a {
+                constrained[2 * n + 1] = true;
+                prescribed[2 * n + 1] = b;
+            }
+        }
+        (constrained, prescribed)
     }
 
     /// Prescribed `u_z` of each contact node if in contact: `-d + g(r)`.
