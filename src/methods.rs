@@ -30,7 +30,7 @@ pub enum Method {
     RingBem,
     /// The most trusted analytic reference valid at the state (exact, series, asymptote, fit).
     Reference,
-    /// Axisymmetric finite elements (P1/P2 triangles) on committed gmsh meshes.
+    /// Axisymmetric finite elements (P1/P2/P3 triangles) on committed meshes, then meshes gmsh makes for the scene.
     Fem,
     /// The paper's 3-D FFT BEM on a square grid (Polonsky-Keer), `--grid N`.
     GridBem,

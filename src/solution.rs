@@ -97,6 +97,9 @@ pub struct Solution {
     pub provenance: String,
 }
 
+/// Depth `d/h` below which a conical punch's hole is certainly resolvable (`b/a > 1e-4`).
+pub const CONE_CLOSED_DEPTH: f64 = 15.0;
+
 impl Solution {
     /// Refuse a state that cannot exist before anyone sees it: every number finite, `0 <= eps < 1`,
     /// depth and force positive (the punch presses), the dimensionless functions positive and
@@ -164,9 +167,18 @@ impl Solution {
         if self.eps == 0.0 {
             match self.punch {
                 PunchKind::Cone => {
-                    return fail(
-                        "full contact: the conical punch never reaches it at finite depth".into(),
-                    )
+                    // The cone never closes exactly, but its hole shrinks fast with depth: a
+                    // discretisation may resolve it as closed, with an estimate, deep enough.
+                    // Below d = 15h the hole is wider than 1e-4 a (γ1(1e-4) = 15.47, ring BEM),
+                    // so a closed contact there is wrong.
+                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
+                    if self.error_estimate.is_none() || !(depth_over_hole >= CONE_CLOSED_DEPTH) {
+                        return fail(format!(
+                            "full contact at d/h = {depth_over_hole}: the conical punch never \
+                             closes, and below d/h = {CONE_CLOSED_DEPTH} its hole is wider than \
+                             1e-4 a"
+                        ));
+                    }
                 }
                 PunchKind::Sphere => {
                     let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
@@ -193,5 +205,77 @@ impl Solution {
             return fail(format!("pressure sample p({}) = {}", p.r, p.p));
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn state(punch: PunchKind, eps: f64, depth: f64, force: f64) -> Solution {
+        Solution {
+            punch,
+            method: "test".into(),
+            eps,
+            depth,
+            force,
+            inner_radius: eps,
+            rim_radius: 1.0,
+            gamma: None,
+            gamma1: Some(depth),
+            gamma2: Some(0.5 * force),
+            stress_intensity_rim: None,
+            stress_intensity_inner: None,
+            error_estimate: Some(1e-4),
+            wall_s: 0.0,
+            unknowns: 0,
+            iterations: 0,
+            dofs: None,
+            mesh: None,
+            mesh_sha256: None,
+            mesh_origin: None,
+            gmsh_version: None,
+            far_field: None,
+            fem_timings: None,
+            degree: None,
+            complementarity_residual: None,
+            grid: None,
+            selection: None,
+            pressure: Vec::new(),
+            provenance: String::new(),
+        }
+    }
+
+    #[test]
+    fn impossible_states_are_refused() {
+        assert!(state(PunchKind::Cone, 0.45, 2.0, 3.6)
+            .check_plausible()
+            .is_ok());
+        // A coarse mesh that lost its whole contact: eps = 1 with a positive force.
+        assert!(state(PunchKind::Cone, 1.0, 2.0, 3.6)
+            .check_plausible()
+            .is_err());
+        // Overflow.
+        assert!(state(PunchKind::Sphere, 0.3, 1.0, f64::INFINITY)
+            .check_plausible()
+            .is_err());
+        // Force and depth of opposite signs.
+        assert!(state(PunchKind::Cone, 0.45, 2.0, -3.6)
+            .check_plausible()
+            .is_err());
+        // Full contact where it cannot exist: the cone below d = 15h (or without an estimate),
+        // and the sphere below d = 3h.
+        assert!(state(PunchKind::Cone, 0.0, 5.0, 10.0)
+            .check_plausible()
+            .is_err());
+        assert!(state(PunchKind::Cone, 0.0, 50.0, 100.0)
+            .check_plausible()
+            .is_ok());
+        assert!(state(PunchKind::Sphere, 0.0, 2.5, 5.0)
+            .check_plausible()
+            .is_err());
+        assert!(state(PunchKind::Sphere, 0.0, 3.5, 6.3)
+            .check_plausible()
+            .is_ok());
     }
 }

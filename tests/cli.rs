@@ -312,3 +312,38 @@ fn the_data_directory_is_found_from_where_the_tool_runs_never_compiled_in() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("NOTHING COMPARED"));
     let _ = std::fs::remove_dir_all(&copy);
 }
+
+#[test]
+fn scene_and_mesh_errors_say_where() {
+    // A scene error names the line, the column and the text there.
+    let dir = std::env::temp_dir().join(format!("ringcontact-where-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let scene = dir.join("bad.toml");
+    std::fs::write(
+        &scene,
+        "[punch]\nshape = \"cone\"\n[load]\ndepth = \"deep\"\n",
+    )
+    .unwrap();
+    let err = stderr_of(&verify(&["solve", "--scene", scene.to_str().unwrap()]));
+    assert!(err.contains("line 4"), "{err}");
+    assert!(err.contains("depth"), "{err}");
+    // A truncated mesh says where parsing stopped and that the file ends early.
+    let original = std::fs::read(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/small-domain-R5.msh"),
+    )
+    .unwrap();
+    let mesh = dir.join("truncated.msh");
+    std::fs::write(&mesh, &original[..original.len() * 3 / 4]).unwrap();
+    let err = stderr_of(&verify(&[
+        "solve",
+        "--punch",
+        "flat",
+        "--method",
+        "fem",
+        "--mesh",
+        mesh.to_str().unwrap(),
+    ]));
+    assert!(err.contains("element section"), "{err}");
+    assert!(err.contains("truncated"), "{err}");
+    let _ = std::fs::remove_dir_all(&dir);
+}

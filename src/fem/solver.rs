@@ -602,10 +602,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             // (Richardson), never taken below the element-size bound.
             let ratio = previous_spacing / s.inner_node_spacing;
             let eps_change = (values.2 - prev.2).abs();
-            // Cubic elements: the located edge was seen to converge irregularly (P3 nodes at
-            // thirds of an edge), so the full change is kept, without the Richardson reduction.
-            let richardson = options.degree != Degree::Cubic;
-            let eps_estimate = if richardson && s.inner_node_spacing > 0.0 && ratio > 1.5 {
+            let eps_estimate = if s.inner_node_spacing > 0.0 && ratio > 1.5 {
                 (eps_change / (ratio - 1.0)).max(INNER_RADIUS_BOUND * s.inner_node_spacing)
             } else {
                 eps_change.max(INNER_RADIUS_BOUND * s.inner_node_spacing)
