@@ -172,7 +172,10 @@ impl Solution {
                     // Below d = 15h the hole is wider than 1e-4 a (γ1(1e-4) = 15.47, ring BEM),
                     // so a closed contact there is wrong.
                     let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
-                    if self.error_estimate.is_none() || !(depth_over_hole >= CONE_CLOSED_DEPTH) {
+                    if self.error_estimate.is_none()
+                        || depth_over_hole.is_nan()
+                        || depth_over_hole < CONE_CLOSED_DEPTH
+                    {
                         return fail(format!(
                             "full contact at d/h = {depth_over_hole}: the conical punch never \
                              closes, and below d/h = {CONE_CLOSED_DEPTH} its hole is wider than \
