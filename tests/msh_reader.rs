@@ -99,7 +99,7 @@ fn malformed_meshes_are_errors_that_name_the_problem() {
         ),
         (
             VALID.replace("5 1 4 3\n", "5 1 3 4\n"),
-            "element tag 5 (node tag 1, node tag 3, node tag 4) is inverted",
+            "element tag 5 (line 33) with node tags 1, 3, 4 is inverted",
         ),
         (
             VALID.replace("0 -1 0\n$EndNodes", "-0.5 -1 0\n$EndNodes"),

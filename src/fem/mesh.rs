@@ -92,6 +92,9 @@ pub struct Mesh {
 pub struct FileTags {
     pub nodes: Vec<u64>,
     pub cells: Vec<u64>,
+    /// Line of each node's tag and of each triangle's definition in an ASCII file (0: unknown).
+    pub node_lines: Vec<usize>,
+    pub cell_lines: Vec<usize>,
 }
 
 fn mesh_error(source: &str, message: String) -> Error {
@@ -104,17 +107,25 @@ fn mesh_error(source: &str, message: String) -> Error {
 impl Mesh {
     /// `node tag T` (the file's tag) where known, else `node i` (0-based, internal).
     pub fn node_name(&self, i: usize) -> String {
-        match self.file_tags.nodes.get(i) {
-            Some(tag) => format!("node tag {tag}"),
-            None => format!("node {i}"),
+        match (
+            self.file_tags.nodes.get(i),
+            self.file_tags.node_lines.get(i),
+        ) {
+            (Some(tag), Some(&line)) if line > 0 => format!("node tag {tag} (line {line})"),
+            (Some(tag), _) => format!("node tag {tag}"),
+            (None, _) => format!("node {i}"),
         }
     }
 
     /// `element tag T` (the file's tag) where known, else `triangle c` (0-based, internal).
     pub fn cell_name(&self, c: usize) -> String {
-        match self.file_tags.cells.get(c) {
-            Some(tag) => format!("element tag {tag}"),
-            None => format!("triangle {c}"),
+        match (
+            self.file_tags.cells.get(c),
+            self.file_tags.cell_lines.get(c),
+        ) {
+            (Some(tag), Some(&line)) if line > 0 => format!("element tag {tag} (line {line})"),
+            (Some(tag), _) => format!("element tag {tag}"),
+            (None, _) => format!("triangle {c}"),
         }
     }
 
@@ -130,11 +141,22 @@ impl Mesh {
     }
 
     fn vertex_names(&self, cell: &[usize]) -> String {
-        cell[..3]
-            .iter()
-            .map(|&v| self.node_name(v))
-            .collect::<Vec<_>>()
-            .join(", ")
+        let known = cell[..3].iter().all(|&v| v < self.file_tags.nodes.len());
+        let list = |f: &dyn Fn(usize) -> String| {
+            cell[..3]
+                .iter()
+                .map(|&v| f(v))
+                .collect::<Vec<_>>()
+                .join(", ")
+        };
+        if known {
+            format!(
+                "node tags {}",
+                list(&|v| self.file_tags.nodes[v].to_string())
+            )
+        } else {
+            format!("nodes {}", list(&|v| v.to_string()))
+        }
     }
 
     /// Nodes on boundary edges with `tag`, sorted and without duplicates.
@@ -212,7 +234,7 @@ impl Mesh {
                 return Err(mesh_error(
                     src,
                     format!(
-                        "{} ({}) is degenerate",
+                        "{} with {} is degenerate",
                         self.cell_name(c),
                         self.vertex_names(cell)
                     ),
@@ -222,7 +244,7 @@ impl Mesh {
                 return Err(mesh_error(
                     src,
                     format!(
-                        "{} ({}) is inverted (clockwise in (r, z))",
+                        "{} with {} is inverted (clockwise in (r, z))",
                         self.cell_name(c),
                         self.vertex_names(cell)
                     ),
@@ -454,11 +476,13 @@ impl Mesh {
         let mut map = vec![usize::MAX; self.nodes.len()];
         let mut nodes = Vec::new();
         let mut kept_tags = Vec::new();
+        let mut kept_lines = Vec::new();
         let mut keep = |v: usize, nodes: &mut Vec<[f64; 2]>| -> usize {
             if map[v] == usize::MAX {
                 map[v] = nodes.len();
                 nodes.push(self.nodes[v]);
                 kept_tags.push(self.file_tags.nodes.get(v).copied().unwrap_or(0));
+                kept_lines.push(self.file_tags.node_lines.get(v).copied().unwrap_or(0));
             }
             map[v]
         };
@@ -489,7 +513,13 @@ impl Mesh {
                 } else {
                     kept_tags
                 },
+                node_lines: if self.file_tags.node_lines.is_empty() {
+                    Vec::new()
+                } else {
+                    kept_lines
+                },
                 cells: self.file_tags.cells.clone(),
+                cell_lines: self.file_tags.cell_lines.clone(),
             },
         }
     }

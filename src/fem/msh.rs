@@ -50,6 +50,46 @@ fn check_format_line(bytes: &[u8], name: &str) -> Result<()> {
     }
 }
 
+/// Line of each element's definition in the `$Elements` section of an ASCII file, by element tag
+/// (empty for binary files). Block header lines have four numbers starting with the dimension;
+/// element lines start with the element tag.
+fn element_lines(bytes: &[u8]) -> HashMap<u64, usize> {
+    let mut lines = HashMap::new();
+    let Ok(text) = std::str::from_utf8(bytes) else {
+        return lines;
+    };
+    let mut inside = false;
+    let mut remaining_in_block = 0u64;
+    let mut header_seen = false;
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line == "$Elements" {
+            inside = true;
+            continue;
+        }
+        if line == "$EndElements" {
+            break;
+        }
+        if !inside {
+            continue;
+        }
+        if !header_seen {
+            header_seen = true;
+            continue;
+        }
+        let mut words = line.split_whitespace().map(|w| w.parse::<u64>().ok());
+        if remaining_in_block == 0 {
+            remaining_in_block = words.nth(3).flatten().unwrap_or(0);
+            continue;
+        }
+        if let Some(Some(tag)) = words.next() {
+            lines.insert(tag, i + 1);
+        }
+        remaining_in_block -= 1;
+    }
+    lines
+}
+
 /// ` at line N` for ASCII files (0: unknown, binary).
 fn at_line(line: usize) -> String {
     if line > 0 {
@@ -362,6 +402,14 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
         source: name.to_string(),
         file_tags: FileTags {
             nodes: tags.iter().map(|&(tag, _)| tag).collect(),
+            node_lines: tags.iter().map(|&(_, line)| line).collect(),
+            cell_lines: {
+                let lines = element_lines(bytes);
+                cell_tags
+                    .iter()
+                    .map(|t| lines.get(t).copied().unwrap_or(0))
+                    .collect()
+            },
             cells: cell_tags,
         },
     });
@@ -406,9 +454,11 @@ fn compact(mesh: Mesh) -> Mesh {
     }
     let cells = mesh.cells.iter().map(|&v| map[v]).collect();
     let mut node_tags = vec![0; nodes.len()];
+    let mut node_lines = vec![0; nodes.len()];
     for (old, &new) in map.iter().enumerate() {
         if new != usize::MAX {
             node_tags[new] = mesh.file_tags.nodes.get(old).copied().unwrap_or(0);
+            node_lines[new] = mesh.file_tags.node_lines.get(old).copied().unwrap_or(0);
         }
     }
     let boundary = mesh
@@ -426,7 +476,9 @@ fn compact(mesh: Mesh) -> Mesh {
         boundary,
         file_tags: FileTags {
             nodes: node_tags,
+            node_lines,
             cells: mesh.file_tags.cells,
+            cell_lines: mesh.file_tags.cell_lines,
         },
         ..mesh
     }
