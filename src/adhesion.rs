@@ -417,6 +417,10 @@ fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<F
     })
 }
 
+/// Range of `d0/h` the concave JKR analysis accepts: six decades either side of the paper's
+/// `d0/h` ~ 1 (its figures span 0.1 to 10).
+pub const D0H_RANGE: (f64, f64) = (1e-6, 1e6);
+
 /// JKR analysis of a concave punch for `d0/h = s`.
 pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
     if !kind.is_concave() {
@@ -429,6 +433,18 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
         return Err(Error::invalid(
             "d0h",
             format!("must be a positive number (got {})", crate::error::show(s)),
+        ));
+    }
+    if !(D0H_RANGE.0..=D0H_RANGE.1).contains(&s) {
+        return Err(Error::invalid(
+            "d0h",
+            format!(
+                "must lie in [{:e}, {:e}] (got {}): the critical depths and forces scale with \
+                 powers of d0/h and lose all meaning, then overflow, beyond",
+                D0H_RANGE.0,
+                D0H_RANGE.1,
+                crate::error::show(s)
+            ),
         ));
     }
     let points: Vec<BranchPoint> = scan_ratios()

@@ -420,7 +420,10 @@ fn best_reference(
         })
         .ok_or_else(|| Error::OutOfRange {
             method: "reference".into(),
-            reason: format!("no analytic reference for {quantity:?} is valid at eps = {eps}"),
+            reason: format!(
+                "no analytic reference for {quantity:?} is valid at eps = {}",
+                crate::error::show(eps)
+            ),
         })
 }
 
@@ -520,6 +523,9 @@ fn invert_reference(quantity: Quantity, target: f64) -> Result<f64> {
     .map(|r| r.x)
     .map_err(|e| Error::OutOfRange {
         method: "reference".into(),
-        reason: format!("cannot invert {quantity:?} = {target} with the references: {e:?}"),
+        reason: format!(
+            "cannot invert {quantity:?} = {} with the references: {e:?}",
+            crate::error::show(target)
+        ),
     })
 }

@@ -139,7 +139,7 @@ impl Solution {
         if !(0.0..1.0).contains(&self.eps) {
             return fail(format!(
                 "the contact ratio b/a = {} is outside [0, 1)",
-                self.eps
+                crate::error::show(self.eps)
             ));
         }
         if self.depth <= 0.0 || self.force <= 0.0 {

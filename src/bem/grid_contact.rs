@@ -99,8 +99,9 @@ pub fn solve(
         return Err(Error::OutOfRange {
             method: super::grid::METHOD.into(),
             reason: format!(
-                "the ring b/a = {eps} is {:.2} cells wide on a {n} x {n} grid; at least {MIN_CELLS_ACROSS} cells are needed \
+                "the ring b/a = {} is {:.2} cells wide on a {n} x {n} grid; at least {MIN_CELLS_ACROSS} cells are needed \
                  (use --grid {} or more, or the ring BEM)",
+                crate::error::show(eps),
                 (1.0 - eps) / cell,
                 (2.0 * MIN_CELLS_ACROSS / (1.0 - eps)).ceil() as usize
             ),

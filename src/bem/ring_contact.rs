@@ -143,8 +143,9 @@ impl RingBemSolver {
     fn check_ratio(eps: f64) -> Result<()> {
         if !(MIN_CONTACT_RATIO..=MAX_CONTACT_RATIO).contains(&eps) {
             return Err(out_of_range(format!(
-                "contact ratio b/a = {eps} is outside the validated range \
-                 [{MIN_CONTACT_RATIO}, {MAX_CONTACT_RATIO}] of the annulus discretisation"
+                "contact ratio b/a = {} is outside the validated range \
+                 [{MIN_CONTACT_RATIO}, {MAX_CONTACT_RATIO}] of the annulus discretisation",
+                crate::error::show(eps)
             )));
         }
         Ok(())

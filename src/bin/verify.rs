@@ -621,8 +621,9 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
                 };
                 let f = &r.full_contact;
                 format!(
-                    "{} d0/h = {s}: pull-off from the annular contact\n{}{}  full contact (reached when pressed past d/h = {:.4}): pull-off at d/h = {:+.6}, F/F0 = {:+.6} (rim)\n  direct check at the fixed-load critical state: G_inner/dw = {:.9}, rim intensity difference {:.1e}\n",
+                    "{} d0/h = {}: pull-off from the annular contact\n{}{}  full contact (reached when pressed past d/h = {:.4}): pull-off at d/h = {:+.6}, F/F0 = {:+.6} (rim)\n  direct check at the fixed-load critical state: G_inner/dw = {:.9}, rim intensity difference {:.1e}\n",
                     args.punch,
+                    ringcontact::error::show(s),
                     show("fixed load", &r.fixed_load, &r.fixed_load_note)
                         + &paper("fixed load", &r.inner_edge_only_fixed_load)
                         + &fits("fixed load", r.paper_fits_fixed_load),

@@ -339,7 +339,9 @@ fn solve_model(
             return Err(Error::InvalidMesh {
                 path: model.path.clone(),
                 message: format!(
-                    "its contact line starts at r/a = {start_line}, the scene needs b/a = {eps}"
+                    "its contact line starts at r/a = {}, the scene needs b/a = {}",
+                    crate::error::show(start_line),
+                    crate::error::show(eps)
                 ),
             });
         }
