@@ -102,6 +102,9 @@ pub struct StudyCase {
     pub depth: f64,
 }
 
+/// Finest adapted mesh level a FEM convergence study runs.
+pub const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
+
 /// Run a study of `levels` refinements with `method`; `progress` is called after each level.
 pub fn run(
     case: StudyCase,
@@ -122,11 +125,24 @@ pub fn run(
         });
     }
     if method == Method::Fem {
-        let available = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3).len();
+        // Levels past adapted level 5 (about 1.7 M unknowns for P2) take more than minutes and
+        // tens of GB; the study stops there.
+        let available = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3)
+            .iter()
+            .filter(|r| match r {
+                mesh_provider::MeshRequest::Adapted { level, .. } => {
+                    *level <= STUDY_MAX_ADAPTED_LEVEL
+                }
+                _ => true,
+            })
+            .count();
         if levels > available {
             return Err(Error::OutOfRange {
                 method: "fem".into(),
-                reason: format!("the FEM has {available} mesh levels; asked for {levels}"),
+                reason: format!(
+                    "the FEM study has {available} mesh levels here (up to adapted level \
+                     {STUDY_MAX_ADAPTED_LEVEL}, about 1.7 M unknowns); asked for {levels}"
+                ),
             });
         }
     }
@@ -141,7 +157,12 @@ pub fn run(
     };
     let mut out: Vec<Level> = Vec::new();
     let mut previous_edge: Option<f64> = None;
+    let quiet_terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
     for k in 0..levels {
+        if !quiet_terminal && k >= 3 {
+            // Off a terminal, say which level is running before the long ones (no bar there).
+            eprintln!("convergence: {method:?} level {} of {levels} ...", k + 1);
+        }
         let start = Instant::now();
         let (label, size, unknowns, value) = match method {
             Method::GridBem => {
