@@ -470,7 +470,8 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
         out!("{}", fenicsx::render(&external));
         out!("{}", peers::render(&peer_rows));
         outln!(
-            "\n{} FEniCSx comparisons, {} failed; {} peer comparisons, {} failed.",
+            "\n{} of {} stored FEniCSx results compared, {} failed; {} peer comparisons, {} failed.",
+            external.iter().filter(|r| r.status == "current").count(),
             external.len(),
             fenicsx::failures(&external),
             peer_rows.len(),
