@@ -61,6 +61,19 @@ const TOKENS: &[&str] = &[
     "true",
 ];
 
+/// Byte range of the line holding position `at`, its newline included.
+fn line_around(text: &[u8], at: usize) -> (usize, usize) {
+    let start = text[..at]
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |p| p + 1);
+    let end = text[at..]
+        .iter()
+        .position(|&b| b == b'\n')
+        .map_or(text.len(), |p| at + p + 1);
+    (start, end)
+}
+
 fn mutate(rng: &mut Rng, input: &[u8]) -> Vec<u8> {
     let mut out = input.to_vec();
     let edits = 1 + rng.below(4);
@@ -121,26 +134,12 @@ fn mutate(rng: &mut Rng, input: &[u8]) -> Vec<u8> {
             3 => out.truncate(at),
             // Delete a line.
             4 => {
-                let start = out[..at]
-                    .iter()
-                    .rposition(|&b| b == b'\n')
-                    .map_or(0, |p| p + 1);
-                let end = out[at..]
-                    .iter()
-                    .position(|&b| b == b'\n')
-                    .map_or(out.len(), |p| at + p + 1);
+                let (start, end) = line_around(&out, at);
                 out.drain(start..end);
             }
             // Duplicate a line.
             5 => {
-                let start = out[..at]
-                    .iter()
-                    .rposition(|&b| b == b'\n')
-                    .map_or(0, |p| p + 1);
-                let end = out[at..]
-                    .iter()
-                    .position(|&b| b == b'\n')
-                    .map_or(out.len(), |p| at + p + 1);
+                let (start, end) = line_around(&out, at);
                 let line = out[start..end].to_vec();
                 out.splice(end..end, line);
             }

@@ -167,25 +167,8 @@ impl<'m> ContactModel<'m> {
         depth: f64,
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>)> {
-        let dofs = self.supports.len();
-        let bound = self.bound(kind, depth);
-        let mut active = self.initial_active(initial_active, &bound);
-        let zero = vec![0.0; dofs];
-        for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-            let (constrained, prescribed) = self.constraints(&active, &bound);
-            let u = solver.solve(&zero, &constrained, &prescribed)?;
-            let reactions = self.reactions(solver, &u, &zero);
-            let gaps = self.gaps(&bound, &u);
-            let next = self.next_active(&active, &reactions, &gaps)?;
-            if next == active {
-                let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
-                return Ok((solution, active));
-            }
-            active = next;
-        }
-        Err(fem_error(format!(
-            "the primal-dual active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations"
-        )))
+        let mut system = self.banded_system(solver, kind, f64::INFINITY);
+        self.active_set_loop(&mut system, kind, depth, initial_active, false)
     }
 
     /// [`Self::concave`] that hands over to the banded solve once the active set only creeps:
@@ -201,11 +184,24 @@ impl<'m> ContactModel<'m> {
         depth: f64,
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>)> {
+        self.active_set_loop(system, kind, depth, initial_active, true)
+    }
+
+    /// The primal-dual active-set loop, one factorisation per new active set, with the hand-over
+    /// to the banded solve of [`Self::concave_hybrid`] when `handover`.
+    fn active_set_loop(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Option<Vec<bool>>,
+        handover: bool,
+    ) -> Result<(ContactSolution, Vec<bool>)> {
         let dofs = self.supports.len();
         let bound = self.bound(kind, depth);
         let mut active = self.initial_active(initial_active, &bound);
         let zero = vec![0.0; dofs];
-        let mut handed_over = false;
+        let mut handed_over = !handover;
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
             let (constrained, prescribed) = self.constraints(&active, &bound);
             let u = system.solver.solve(&zero, &constrained, &prescribed)?;
