@@ -5,7 +5,7 @@
 //! side and bottom are fixed), cold (one factorisation per active-set change) and warm (the banded
 //! solve from an edge guess off by 2 % of the block: one factorisation plus unit responses of the
 //! band nodes). Structured P2 meshes of the unit block, generated in Rust.
-//! Run: `cargo bench --bench fem_scaling` (release build; faer may use both cores).
+//! Run: `cargo bench --bench fem_scaling` (release build; assembly on both cores, `faer` sequential).
 
 use std::time::Instant;
 

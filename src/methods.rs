@@ -202,9 +202,15 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
             })
         }
     };
+    let tolerance = scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE);
     let fem_options = FemOptions {
-        degree: options.degree.unwrap_or(Degree::Quadratic),
-        tolerance: scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE),
+        // A given mesh keeps the quadratic default; the ladder picks by tolerance.
+        degree: options.degree.unwrap_or(if options.mesh.is_some() {
+            Degree::Quadratic
+        } else {
+            fem_solver::default_degree(tolerance)
+        }),
+        tolerance,
         mesh: options.mesh.clone(),
         poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
         far_field: crate::fem::far_field::FarField::Boussinesq,

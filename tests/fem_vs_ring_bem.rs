@@ -219,22 +219,40 @@ fn any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes() {
     check(&cases, 1e-4);
     let generated = fem(PunchKind::FlatAnnulus, 0.3, FemLoad::Flat, 1e-3);
     assert!(generated.gmsh_version.is_some() && generated.mesh_sha256.len() == 64);
-    check(
-        &[
-            (PunchKind::FlatAnnulus, 0.3, FemLoad::Flat),
-            (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
-        ],
-        1e-6,
-    );
-    // Cubic elements on the same ladder.
-    check_degree(
-        Degree::Cubic,
-        &[
-            (PunchKind::FlatAnnulus, 0.3, FemLoad::Flat),
-            (PunchKind::FlatAnnulus, 0.7, FemLoad::Flat),
-        ],
-        1e-6,
-    );
+    // Quadratic elements further down their ladder (levels 2 and 3).
+    check(&[(PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0))], 1e-5);
+}
+
+/// 27 states: the 12 targets (cone at `d/h` 0.5, 2, 4; sphere at 0.5, 1.5, 2.8; flat
+/// annulus at `b/a` 0.1, 0.3, 0.5, 0.7, 0.9, 0.97), and 15 more (other depths, up to the sphere's
+/// full contact at 3h, thinner and thicker rings, the disk, force control).
+fn many_states() -> Vec<(PunchKind, f64, FemLoad)> {
+    let mut cases = Vec::new();
+    for d in [0.1, 0.5, 1.0, 2.0, 3.0, 4.0, 8.0] {
+        cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(d)));
+    }
+    for d in [0.2, 0.5, 1.0, 1.5, 2.5, 2.8, 2.95] {
+        cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(d)));
+    }
+    for eps in [0.02, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.97, 0.99] {
+        cases.push((PunchKind::FlatAnnulus, eps, FemLoad::Flat));
+    }
+    cases.push((PunchKind::Flat, 0.0, FemLoad::Flat));
+    cases.push((PunchKind::Cone, 0.0, FemLoad::ConcaveForce(1.0)));
+    cases.push((PunchKind::Sphere, 0.0, FemLoad::ConcaveForce(0.8)));
+    cases
+}
+
+#[test]
+fn the_estimate_bounds_the_error_at_27_states_at_1e3_and_1e6() {
+    // Meshes made for each scene, the default degree (cubic), against the ring BEM at 1e-10:
+    // every state meets the tolerance in force and eps, and its estimate bounds both errors.
+    if !gmsh_available("the_estimate_bounds_the_error_at_27_states_at_1e3_and_1e6") {
+        return;
+    }
+    for tolerance in [1e-3, 1e-6] {
+        check_degree(solver::default_degree(tolerance), &many_states(), tolerance);
+    }
 }
 
 #[test]

@@ -25,6 +25,12 @@ run_generated flat-annulus-0.3-adapted-L0-P2 "--eps 0.3 --level 0" --punch flat-
 run_generated flat-annulus-0.3-adapted-L1-P2 "--eps 0.3 --level 1" --punch flat-annulus --eps 0.3 --degree 2
 run_generated flat-annulus-0.3-adapted-L1-P3 "--eps 0.3 --level 1" --punch flat-annulus --eps 0.3 --degree 3
 run_generated cone-d2-adapted-L1-P2 "--level 1 --free-edge 0.4505" --punch cone --depth 2 --degree 2
+# The meshes `--tol 1e-6` makes (cubic elements, rim and free-edge sizes from the tolerance): the
+# flat annulus' two models, and the cone's finest one, refined around the free edge its level-0
+# model locates (b/a = 0.4505268590, estimated to 2.9e-5).
+run_generated flat-annulus-0.3-adapted-L0-tol1e-6-P3 "--eps 0.3 --level 0 --tol 1e-6 --degree 3" --punch flat-annulus --eps 0.3 --degree 3
+run_generated flat-annulus-0.3-adapted-L1-tol1e-6-P3 "--eps 0.3 --level 1 --tol 1e-6 --degree 3" --punch flat-annulus --eps 0.3 --degree 3
+run_generated cone-d2-adapted-L1-tol1e-6-P3 "--level 1 --free-edge 0.4505268590 --edge-uncertainty 2.9e-5 --tol 1e-6 --degree 3" --punch cone --depth 2 --degree 3
 if [ "${1:-}" = "--large" ]; then
   run_generated flat-annulus-0.3-adapted-L2-P2 "--eps 0.3 --level 2" --punch flat-annulus --eps 0.3 --degree 2
   run_generated flat-annulus-0.3-adapted-L3-P2 "--eps 0.3 --level 3" --punch flat-annulus --eps 0.3 --degree 2

@@ -51,7 +51,7 @@ Examples:
   verify solve --punch sphere --eps 0.3                  gamma1(0.3), gamma2(0.3)
   verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
   verify solve --punch flat-annulus --eps 0.5 --method reference
-  verify solve --punch cone --depth 2 --method fem --json        FEM, P2, tolerance 1e-3
+  verify solve --punch cone --depth 2 --method fem --json        FEM, tolerance 1e-3
   verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
   verify solve --punch flat-annulus --eps 0.3 --method fem       any b/a (gmsh; cached in .mesh-cache/)
   verify solve --punch flat --method fem --mesh meshes/disk-L1.msh --degree 1
@@ -77,14 +77,16 @@ Example:
     Fenicsx(JsonArgs),
     /// Make (or find in the cache) a mesh of the adapted family with gmsh and print where it is.
     #[command(after_help = "\
-The adapted family is what the FEM climbs past the committed meshes: level k is graded toward the
-rim (and r = b), with g = 0.32 * 0.6^k; --free-edge refines around a located inner contact radius.
+The adapted family is what the FEM climbs: level k (-2 to 7) is graded toward the rim (and r = b),
+with g = 0.32 * 0.6^k; --free-edge refines around a located inner contact radius; --tol and
+--degree make it as `verify solve --method fem --tol X` does (rim and edge sizes follow X).
 Prints one JSON object: path, sha256, origin (cache or gmsh), gmsh_version, parameters (the gmsh
 -setnumber values, which reproduce the mesh from meshes/half_space.geo).
 
 Examples:
   verify mesh --eps 0.3 --level 2                 flat annulus b/a = 0.3, level 2
-  verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a")]
+  verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a
+  verify mesh --level 0 --free-edge 0.4505 --edge-uncertainty 1e-4 --tol 1e-6 --degree 3")]
     Mesh(MeshArgs),
     /// Mesh-convergence study of one method: error against the ring BEM, observed order,
     /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
@@ -201,16 +203,23 @@ struct MeshArgs {
     /// Start of the contact line `b/a` (the flat annulus' inner radius; 0 for the disk).
     #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
     eps: f64,
-    /// Level of the adapted family (0 to 7).
-    #[arg(long, default_value_t = 1)]
-    level: usize,
+    /// Level of the adapted family (-2 to 7; grading g = 0.32 * 0.6^level).
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    level: i32,
     /// Refine around this inner contact radius `b/a` (concave punches).
     #[arg(long, allow_negative_numbers = true)]
     free_edge: Option<f64>,
-    /// How well that radius is known (the coarser solve's error estimate): elements at the free
-    /// edge are kept at least a quarter of it.
+    /// How well that radius is known (the coarser solve's error estimate): the element size at
+    /// the free edge puts about 24 contact nodes between it and that distance.
     #[arg(long, default_value_t = 0.0)]
     edge_uncertainty: f64,
+    /// Make the mesh for a solve at this relative tolerance (rim and edge sizes follow it), as
+    /// `verify solve --method fem --tol X` does.
+    #[arg(long)]
+    tol: Option<f64>,
+    /// Element degree of that solve (with --tol).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
+    degree: u8,
 }
 
 #[derive(Args)]
@@ -242,16 +251,17 @@ struct SolveArgs {
     #[arg(long)]
     scene: Option<PathBuf>,
     /// Relative tolerance wanted in the dimensionless results [default: the scene's, else the
-    /// method's: 1e-9 ring-bem, 1e-3 fem]. The FEM climbs the committed meshes, then meshes gmsh
-    /// makes for the scene (found at run time: `bash scripts/install_gmsh.sh` installs it), until
-    /// the change between levels meets it.
+    /// method's: 1e-9 ring-bem, 1e-3 fem]. The FEM climbs meshes gmsh makes for the scene and
+    /// tolerance (found at run time: `bash scripts/install_gmsh.sh` installs it; without it, the
+    /// committed meshes serve tolerances down to 1e-4) until its error estimate meets it.
     #[arg(long)]
     tol: Option<f64>,
     /// FEM only: a gmsh .msh file (units of a; physical groups as in meshes/half_space.geo)
     /// instead of the committed mesh family. No error estimate is made on a single mesh.
     #[arg(long)]
     mesh: Option<PathBuf>,
-    /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 2].
+    /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
+    /// made by gmsh, 2 on the committed meshes and with --mesh].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
     degree: Option<u8>,
     /// FEM only: write the displacement field of the finest model as VTK (.vtu) for ParaView.
@@ -279,6 +289,10 @@ struct CompareArgs {
     /// Skip the report directory (tables only).
     #[arg(long)]
     no_report: bool,
+    /// Tolerances of the FEM's full solve in the report's speed-against-accuracy charts (meshes
+    /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-7.
+    #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
+    fem_tolerances: Vec<f64>,
 }
 
 /// `print!` that never panics: see [`emit`].
@@ -376,6 +390,7 @@ fn main() -> ExitCode {
             json: false,
             report: PathBuf::from("reports/latest"),
             no_report: false,
+            fem_tolerances: report::DEFAULT_FEM_TOLERANCES.to_vec(),
         }),
         Some(Command::Compare(args)) => run_compare(args),
         Some(Command::Solve(args)) => run_solve(args),
@@ -451,14 +466,29 @@ fn run_references(args: JsonArgs) -> Result<ExitCode, String> {
 }
 
 fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
+    let floor = ringcontact::fem::solver::MIN_TOLERANCE;
+    if let Some(t) = args
+        .fem_tolerances
+        .iter()
+        .find(|&&t| !(t >= floor && t < 1.0))
+    {
+        return Err(format!(
+            "--fem-tolerances: {t} is outside [{floor:e}, 1), the FEM's tolerance range"
+        ));
+    }
     let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
     let external = fenicsx::run().map_err(|e| e.to_string())?;
     let peer_rows = peers::run(256).map_err(|e| e.to_string())?;
     if !args.no_report {
         let mut bar = ringcontact::harness::progress::Progress::new("report", report::STAGES);
-        report::write_report(&args.report, &report, &external, &peer_rows, |stage| {
-            bar.tick(stage)
-        })
+        report::write_report(
+            &args.report,
+            &report,
+            &external,
+            &peer_rows,
+            &args.fem_tolerances,
+            |stage| bar.tick(stage),
+        )
         .map_err(|e| e.to_string())?;
     }
     if args.json {
@@ -945,10 +975,12 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
     if !(0.0..1.0).contains(&args.eps) {
         return Err(format!("--eps {}: need 0 <= b/a < 1", args.eps));
     }
-    if args.level > mesh_provider::ADAPTED_MAX_LEVEL {
+    if !(mesh_provider::ADAPTED_MIN_LEVEL..=mesh_provider::ADAPTED_MAX_LEVEL).contains(&args.level)
+    {
         return Err(format!(
-            "--level {}: the adapted family has levels 0 to {}",
+            "--level {}: the adapted family has levels {} to {}",
             args.level,
+            mesh_provider::ADAPTED_MIN_LEVEL,
             mesh_provider::ADAPTED_MAX_LEVEL
         ));
     }
@@ -963,11 +995,21 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
             return Err(format!("--free-edge {b}: need 0 <= b/a < 1"));
         }
     }
+    if let Some(tol) = args.tol {
+        if !(tol > 0.0 && tol < 1.0) {
+            return Err(format!("--tol {tol}: need 0 < tolerance < 1"));
+        }
+    }
+    let target = args.tol.map(|tolerance| mesh_provider::SizeTarget {
+        tolerance,
+        degree: args.degree as usize,
+    });
     let request = MeshRequest::Adapted {
         contact_start: args.eps,
         level: args.level,
         free_edge: args.free_edge.filter(|&b| b > 0.0),
         edge_uncertainty: args.edge_uncertainty,
+        target,
     };
     let provided = mesh_provider::provide(&request, "verify mesh").map_err(|e| e.to_string())?;
     let parameters = mesh_provider::adapted_parameters(
@@ -975,6 +1017,7 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
         args.level,
         args.free_edge,
         args.edge_uncertainty,
+        target,
     );
     let out = serde_json::json!({
         "path": provided.path.display().to_string(),

@@ -48,7 +48,13 @@ fn finite(u: Vec<f64>) -> Result<Vec<f64>> {
 
 impl<'a> ConstrainedCholesky<'a> {
     /// Symbolic analysis of the pattern of `matrix` (done once).
+    ///
+    /// Sets `faer`'s parallelism to sequential: on the 2-core machine the numeric factorisation
+    /// takes 0.044 s sequential against 0.080 s parallel at 38 k unknowns, 1.47 s against 2.16 s
+    /// at 706 k, and blocked solves of 64 right-hand sides 0.087 s against 0.153 s (the two
+    /// cores are better used by the parallel element assembly and by independent states).
     pub fn new(matrix: &'a CscMatrix<f64>) -> Result<Self> {
+        faer::set_global_parallelism(faer::Par::Seq);
         let n = matrix.nrows();
         let pattern = SymbolicSparseColMat::new_checked(
             n,

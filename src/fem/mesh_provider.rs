@@ -26,17 +26,21 @@ use crate::error::{Error, Result};
 /// Domain radius of the adapted family, in units of `a`.
 pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 
-/// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k`, floored at 1e-10.
+/// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k` for `k >= 0` (1e-4
+/// on the coarse levels `k < 0`), floored at 1e-10.
 /// The innermost element's force error is about `0.16 hmin` (P2, measured), and each decade of
 /// `hmin` costs only `ln(10)/g` more element layers, so the rim is refined well past the graded
 /// zone's error. (The free surface is cut at `r = 2a`: gmsh 4.15 stalls meshing one curve from
 /// `a` to `R = 1e7 a` with elements of 1e-7 at one end.)
-pub fn adapted_rim_size(level: usize) -> f64 {
-    (1e-4 * 0.01f64.powi(level as i32)).max(1e-10)
+pub fn adapted_rim_size(level: i32) -> f64 {
+    (1e-4 * 0.01f64.powi(level.max(0))).max(1e-10)
 }
 
 /// Highest level of the adapted family.
-pub const ADAPTED_MAX_LEVEL: usize = 7;
+pub const ADAPTED_MAX_LEVEL: i32 = 7;
+/// Lowest level of the adapted family: `g = 0.89`, a few thousand unknowns, enough for the
+/// default tolerance with cubic elements.
+pub const ADAPTED_MIN_LEVEL: i32 = -2;
 /// Highest committed level.
 pub const COMMITTED_MAX_LEVEL: usize = 2;
 
@@ -50,11 +54,26 @@ pub enum MeshRequest {
     /// than a quarter of `edge_uncertainty` (the coarser model's error of that radius).
     Adapted {
         contact_start: f64,
-        level: usize,
+        level: i32,
         free_edge: Option<f64>,
         edge_uncertainty: f64,
+        /// The solve the mesh is made for (sizes at the edges follow its tolerance), if any.
+        target: Option<SizeTarget>,
     },
 }
+
+/// What a generated mesh is made for: the relative tolerance and the element degree of the solve.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SizeTarget {
+    pub tolerance: f64,
+    pub degree: usize,
+}
+
+/// Contact nodes the free-edge window `[b̃, b̃ + δ]` may hold on each side of the located edge: the
+/// element size at the edge is chosen so that the graded sizes `hb + g |r - b̃|` put about this
+/// many contact nodes (elements times degree) in it, which keeps the banded contact solve
+/// (at most [`super::contact_band::MAX_BAND_NODES`] nodes) in play.
+pub const EDGE_WINDOW_NODES: f64 = 24.0;
 
 impl MeshRequest {
     /// Short name for tables: `disk-L1`, `adapted-0.3-L4`.
@@ -76,12 +95,14 @@ impl MeshRequest {
             MeshRequest::Adapted {
                 contact_start,
                 level,
+                target,
                 ..
             } => MeshRequest::Adapted {
                 contact_start,
                 level,
                 free_edge: edge.filter(|&b| b > 0.0),
                 edge_uncertainty: uncertainty,
+                target,
             },
             other => other,
         }
@@ -178,17 +199,38 @@ pub fn committed_family(contact_start: f64) -> Option<String> {
         .then_some(name)
 }
 
+/// Grading `g_k = 0.32 · 0.6^k` of level `k` of the adapted family.
+pub fn adapted_grading(level: i32) -> f64 {
+    0.32 * 0.6f64.powi(level)
+}
+
 /// `gmsh -setnumber` parameters of level `level` of the adapted family (module documentation).
+///
+/// Sizes: grading `g` from [`adapted_grading`]; rim size `hmin` from [`adapted_rim_size`], and no
+/// larger than a tenth of the target's tolerance (the innermost element's force error is about
+/// `0.16 hmin` for P2); around a free edge known to within `δ`, the edge size
+/// `hb = g δ / (exp(N g / p) - 1)` puts `N` = [`EDGE_WINDOW_NODES`] contact nodes of degree `p`
+/// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` (which makes the
+/// edge's location bound `0.3 hb / p` under a quarter of the tolerance) or, without a target,
+/// `1e-3 · 10^-k`.
 pub fn adapted_parameters(
     contact_start: f64,
-    level: usize,
+    level: i32,
     free_edge: Option<f64>,
     edge_uncertainty: f64,
+    target: Option<SizeTarget>,
 ) -> Vec<(String, f64)> {
-    let grading = 0.32 * 0.6f64.powi(level as i32);
-    let hmin = adapted_rim_size(level);
-    // Finer than a quarter of the edge's uncertainty is wasted: the edge may be anywhere in it.
-    let hb = (1e-3 * 0.1f64.powi(level as i32)).max(0.25 * edge_uncertainty);
+    let grading = adapted_grading(level);
+    let degree = target.map_or(2.0, |t| t.degree as f64);
+    let (hmin, edge_floor) = match target {
+        Some(t) => (
+            adapted_rim_size(level).min(0.1 * t.tolerance).max(1e-10),
+            0.75 * degree * t.tolerance,
+        ),
+        None => (adapted_rim_size(level), 1e-3 * 0.1f64.powi(level.max(0))),
+    };
+    let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
+    let hb = window.max(edge_floor).min(1e-2);
     let mut p = vec![
         ("a".to_string(), 1.0),
         ("b".to_string(), contact_start),
@@ -242,9 +284,15 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
             level,
             free_edge,
             edge_uncertainty,
+            target,
         } => {
-            let parameters =
-                adapted_parameters(*contact_start, *level, *free_edge, *edge_uncertainty);
+            let parameters = adapted_parameters(
+                *contact_start,
+                *level,
+                *free_edge,
+                *edge_uncertainty,
+                *target,
+            );
             generate(&parameters, why)
         }
     }

@@ -23,7 +23,7 @@ use super::element::Lame;
 use super::far_field::{FarField, FarFieldCondition};
 use super::linear_solver::ConstrainedCholesky;
 use super::mesh::{tags, Degree, Mesh};
-use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh};
+use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
 use super::msh::read_msh;
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
@@ -33,30 +33,42 @@ use crate::punch::PunchKind;
 pub const METHOD: &str = "fem";
 /// Default relative tolerance of the FEM.
 pub const DEFAULT_TOLERANCE: f64 = 1e-3;
-/// Smallest tolerance the FEM accepts: below it, the unresolved component
-/// ([`unresolved_component`]) is not known well enough to bound.
-pub const MIN_TOLERANCE: f64 = 1e-8;
+/// Smallest tolerance the FEM accepts. At 1.5e-8 (twice the disk's [`unresolved_component`])
+/// the sphere at `d = 2.95 h`, next to full contact, located its free edge 1.7e-8 off with an
+/// estimate of 1.4e-8; at 3e-8 every state of the 29 measured that was not declined had its
+/// estimate bound its errors (`cargo bench --bench fem_targets`).
+pub const MIN_TOLERANCE: f64 = 3e-8;
 
 /// An error component that level-to-level changes do not capture, added to every estimate:
-/// `8.6e-8 g^0.77` for a model of grading `g` (the mesh's far-arc edge over `R`).
+/// `5e-9 + 2e-9 a / (a - b)` for a contact ring `b <= r <= a` (the narrower the ring, the larger).
 ///
-/// Measured on the flat annulus `b/a = 0.3` with cubic elements against the ring BEM: the error
-/// is 8.1e-9 at `g = 0.115` and 3.7e-9 at `g = 0.041`, while consecutive levels differ by only
-/// 1.7e-9; it grows by about 7e-10 per decade of the domain radius, and it is neither the
-/// quadrature (a 10 x 10 collapsed Gauss rule changes it by 2e-14) nor the linear solve
-/// (iterative refinement changes it by 2e-11). The bound is twice the fit `4.3e-8 g^0.77`; at the
-/// tolerances of the committed meshes (1e-3, 1e-4) it is negligible. Its cause is open.
-pub fn unresolved_component(grading: f64) -> f64 {
-    8.6e-8 * grading.powf(0.77)
+/// Measured with cubic elements against the ring BEM (converged to 1e-13), once the grading error
+/// is below it the error stops falling (two consecutive levels differ by less than it) and
+/// scatters between meshes: 1.3-2.9e-9 for the flat annulus `b/a` = 0.02 to 0.7 at about 0.6 M
+/// unknowns (1.4 and 2.2e-9 on two meshes differing only in `hmin`; 3.6e-9 at 1.6 M for 0.3);
+/// then, as the ring narrows, 5.3e-9 (`b/a` = 0.8), 7.3e-9 (0.9; 1.3e-8 and 1.5e-8 on the levels
+/// below and above), 1.8e-8 (0.95), 1.4e-8 (0.97) and 5.5e-8 (0.99), about `7e-10 a / (a - b)`;
+/// concave punches 1.5-5.6e-9, and 1.9-2.1e-8 on their narrowest rings (cone at `d = 0.1 h`,
+/// sphere at `0.2 h`). The bound exceeds every one of these by a factor 1.7 or more; the
+/// models it covers are those the ladder may return (at most about 2 M unknowns: a cone model of
+/// 3.9 M showed 1.1e-8 at `b/a = 0.45`, see [`MAX_LADDER_UNKNOWNS`]). It is neither the
+/// quadrature (a 10 x 10 collapsed Gauss rule changes it by 2e-14), nor rounding in the solve
+/// (three steps of iterative refinement with a compensated residual change it by 3e-11), nor the
+/// domain (`R` from 1e7 to 1e8 changes it by 1e-11), nor the reference (the ring BEM at
+/// `b/a = 0.99` is the same to 1e-16 at tolerances 1e-9 to 1e-12). Its cause is open.
+pub fn unresolved_component(contact_ratio: f64) -> f64 {
+    5e-9 + 2e-9 / (1.0 - contact_ratio.clamp(0.0, 0.9999))
 }
+
 /// Below this tolerance the committed family is skipped and the adapted family starts directly.
 pub const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
 
 /// Bound on the error of the located inner radius, as a fraction of the contact-node spacing
 /// there. The force is stationary in `b` (Barber), so the discrete free edge converges more slowly
-/// than the force: against the ring BEM the committed meshes show errors up to 0.12 of the node
-/// spacing (P2, 12 states, levels 1-3); the bound takes 0.2.
-pub const INNER_RADIUS_BOUND: f64 = 0.2;
+/// than the force: against the ring BEM, P2 on the committed meshes showed errors up to 0.12 of
+/// the spacing (12 states, levels 1-3), and P3 on the adapted meshes up to 0.20 (the sphere at
+/// `d = 2.8 h`, `--tol 1e-6`; 0.04-0.14 elsewhere); the bound takes 0.3.
+pub const INNER_RADIUS_BOUND: f64 = 0.3;
 
 /// What to solve.
 #[derive(Clone, Copy, Debug)]
@@ -177,7 +189,7 @@ pub fn contact_start(kind: PunchKind, eps: f64) -> f64 {
 pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
     let start_line = contact_start(kind, eps);
     let mut sequence = Vec::new();
-    let mut first_adapted = 0;
+    let mut first_adapted: i32 = 0;
     if tolerance >= COMMITTED_TOLERANCE_FLOOR {
         if let Some(family) = mesh_provider::committed_family(start_line) {
             for level in 0..=mesh_provider::COMMITTED_MAX_LEVEL {
@@ -190,7 +202,7 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
         }
     }
     if sequence.is_empty() {
-        while first_adapted < 3 && 3.5e-4 * 0.13f64.powi(first_adapted as i32) > 100.0 * tolerance {
+        while first_adapted < 3 && 3.5e-4 * 0.13f64.powi(first_adapted) > 100.0 * tolerance {
             first_adapted += 1;
         }
     }
@@ -200,6 +212,7 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
             level,
             free_edge: None,
             edge_uncertainty: 0.0,
+            target: None,
         });
     }
     sequence
@@ -401,10 +414,13 @@ impl PreparedModel {
 }
 
 /// [`prepare`] with the options' degree, material and far field, then [`check_domain`].
+/// The domain is checked against `domain_tolerance` (the options' tolerance for a model whose
+/// result is returned; the edge locator's result never is).
 fn prepare_checked(
     provided: &ProvidedMesh,
     options: &FemOptions,
     contact_start: f64,
+    domain_tolerance: f64,
 ) -> Result<PreparedModel> {
     let model = prepare(
         provided,
@@ -413,7 +429,7 @@ fn prepare_checked(
         options.far_field,
         contact_start,
     )?;
-    check_domain(&model, options.tolerance)?;
+    check_domain(&model, domain_tolerance)?;
     Ok(model)
 }
 
@@ -483,7 +499,8 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     let t = &model.timings;
     eprintln!(
         "fem: {} ({} unknowns): read {:.3} s, assembly {:.3} s, symbolic {:.3} s, contact {:.3} s \
-         ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10}, force {:.12}",
+         ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10} (node spacing \
+         there {:.2e}), force {:.12}",
         model.path,
         model.stiffness.nrows(),
         t.read,
@@ -495,8 +512,145 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
         t.band_responses,
         solution.iterations,
         solution.inner_radius,
+        solution.inner_node_spacing,
         solution.force
     );
+}
+
+/// Below this tolerance, cubic elements are the default (`--degree` not given): on the adapted
+/// family their force error falls like `g⁶` against `g⁴` for quadratic ones, so they reach 1e-6
+/// on a level whose quadratic model is 1e-4 off (measured: flat annulus 0.3 at `g = 0.19`, 2.2e-7
+/// with P3 and 4.4e-5 with P2 on the same mesh).
+pub const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
+
+/// Element degree when none is asked for: cubic on meshes made for the scene (gmsh found, or a
+/// tolerance below [`CUBIC_BELOW_TOLERANCE`]); quadratic on the committed ladder, whose levels
+/// were made for it.
+pub fn default_degree(tolerance: f64) -> Degree {
+    if tolerance < CUBIC_BELOW_TOLERANCE || gmsh_found() {
+        Degree::Cubic
+    } else {
+        Degree::Quadratic
+    }
+}
+
+/// Whether gmsh can make meshes here (found once per process, see [`super::gmsh::Gmsh::get`]).
+pub fn gmsh_found() -> bool {
+    super::gmsh::Gmsh::get(&mesh_provider::project_root(), "").is_ok()
+}
+
+/// Safety factor on the Richardson estimate between two grading levels (Roache's `F_s = 3` for
+/// two grids).
+pub const RICHARDSON_SAFETY: f64 = 3.0;
+
+/// Largest model after which the ladder still climbs: the next level has about 2.7 times as many
+/// unknowns, so no model beyond about 2 M unknowns is made (P3 at 4e6 needs about 10 GB and half
+/// a minute per factorisation here, and there [`unresolved_component`] was measured above its
+/// bound).
+pub const MAX_LADDER_UNKNOWNS: usize = 750_000;
+
+/// Most refinements of one adapted level around the free edge before the next level.
+pub const MAX_EDGE_REPEATS: usize = 2;
+
+/// Force error of the finer of two consecutive adapted levels per unit change between them:
+/// the force converges like `g^{2p}` asymptotically (a functional, twice the energy norm's order
+/// `p`), but on the coarse levels the measured ratio per level is lower (P3: 12 from `g = 0.89`
+/// to 0.53, 12.5 to 0.32, 18 to 0.19, against `0.6^-6 = 21`), so the order taken is `2p - 1`: the
+/// finer error is `|ΔF| / (0.6^{1-2p} - 1)`, times [`RICHARDSON_SAFETY`].
+pub fn richardson_factor(degree: Degree) -> f64 {
+    let p = degree as i32;
+    RICHARDSON_SAFETY / (0.6f64.powi(1 - 2 * p) - 1.0)
+}
+
+/// Predicted relative force error of adapted level `k` at degree `p`: `C_p 0.6^{2pk}` with
+/// `C_1 = 1e-2`, `C_2 = 3.3e-4`, `C_3 = 3.3e-6` (measured on the flat annulus 0.3 and the cone at
+/// `d = 2h`, level 0).
+fn predicted_force_error(degree: Degree, level: i32) -> f64 {
+    let base = match degree {
+        Degree::Linear => 1e-2,
+        Degree::Quadratic => 3.3e-4,
+        Degree::Cubic => 3.3e-6,
+    };
+    base * 0.6f64.powi(2 * degree as i32 * level)
+}
+
+/// First adapted level climbed without committed meshes: the lowest `k` whose step to `k + 1` is
+/// predicted to meet the tolerance (`richardson_factor · error(k) <= tol`).
+pub fn first_adapted_level(degree: Degree, tolerance: f64) -> i32 {
+    (mesh_provider::ADAPTED_MIN_LEVEL..mesh_provider::ADAPTED_MAX_LEVEL)
+        .find(|&k| richardson_factor(degree) * predicted_force_error(degree, k) <= tolerance)
+        .unwrap_or(mesh_provider::ADAPTED_MAX_LEVEL - 1)
+}
+
+/// The committed levels climbed first: L0-L2 of the family for this contact line, when there is
+/// one, the tolerance is at least [`COMMITTED_TOLERANCE_FLOOR`] and gmsh is not there to make
+/// meshes for the scene (which are smaller for the same accuracy); else none.
+fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
+    if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found() {
+        return Vec::new();
+    }
+    let Some(family) = mesh_provider::committed_family(contact_start(kind, eps)) else {
+        return Vec::new();
+    };
+    (0..=mesh_provider::COMMITTED_MAX_LEVEL)
+        .map(|level| MeshRequest::Committed {
+            family: family.clone(),
+            level,
+        })
+        .collect()
+}
+
+/// A concave punch's first model when no committed ladder is climbed: the committed level 0
+/// of its contact line (a few thousand unknowns), which locates the free edge for the first
+/// adapted mesh to refine around. Its force, whose error is dominated by the unrefined edge, does
+/// not enter a Richardson estimate.
+fn edge_locator(kind: PunchKind, eps: f64) -> Vec<MeshRequest> {
+    mesh_provider::committed_family(contact_start(kind, eps))
+        .map(|family| MeshRequest::Committed { family, level: 0 })
+        .into_iter()
+        .collect()
+}
+
+/// What one model of the ladder found, for the next one's estimate and mesh.
+struct LevelResult {
+    /// `(γ or γ1, γ2, eps)`.
+    values: (f64, f64, f64),
+    /// Contact-node spacing at the located free edge.
+    spacing: f64,
+    /// Estimated error of the located free edge.
+    eps_error: f64,
+    /// Adapted level, `None` for a committed mesh.
+    level: Option<i32>,
+    /// Only locates the free edge for the next mesh ([`edge_locator`]): no estimate against it.
+    locator: bool,
+}
+
+impl LevelResult {
+    /// Largest relative change of the force-like outputs from `previous`.
+    fn force_change(&self, previous: &LevelResult) -> f64 {
+        let relative = |a: f64, b: f64| {
+            if a.is_nan() {
+                0.0
+            } else {
+                (a - b).abs() / a.abs()
+            }
+        };
+        relative(self.values.0, previous.values.0).max(relative(self.values.1, previous.values.1))
+    }
+
+    /// Error of the located inner radius: first order in the node spacing there, which shrank by
+    /// `q` from `previous`, so about `|Δeps| / (q - 1)` (Richardson), never below
+    /// [`INNER_RADIUS_BOUND`] of the spacing.
+    fn eps_estimate(&self, previous: &LevelResult) -> f64 {
+        let ratio = previous.spacing / self.spacing;
+        let eps_change = (self.values.2 - previous.values.2).abs();
+        let bound = INNER_RADIUS_BOUND * self.spacing;
+        if self.spacing > 0.0 && ratio > 1.5 {
+            (eps_change / (ratio - 1.0)).max(bound)
+        } else {
+            eps_change.max(bound)
+        }
+    }
 }
 
 /// Solve a punch problem with the FEM.
@@ -506,9 +660,22 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         return Err(Error::OutOfRange {
             method: METHOD.into(),
             reason: format!(
-                "tolerance {:e} is below the FEM's floor {MIN_TOLERANCE:e} (an error component of a \
-                 few 1e-9 that refinement reduces slowly); use the ring BEM for tighter tolerances",
+                "tolerance {:e} is below the FEM's floor {MIN_TOLERANCE:e} (an error component of \
+                 7e-9 or more that refinement does not reduce); use the ring BEM for tighter \
+                 tolerances",
                 options.tolerance
+            ),
+        });
+    }
+    if matches!(load, FemLoad::Flat) && 2.0 * unresolved_component(eps) > options.tolerance {
+        return Err(Error::OutOfRange {
+            method: METHOD.into(),
+            reason: format!(
+                "tolerance {:e} is below twice the FEM's unresolved error component at b/a = {} \
+                 ({:.1e}, larger on narrow rings); use the ring BEM for tighter tolerances",
+                options.tolerance,
+                crate::error::show(eps),
+                unresolved_component(eps)
             ),
         });
     }
@@ -526,7 +693,12 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             origin: MeshOrigin::User,
             gmsh_version: None,
         };
-        let mut model = prepare_checked(&provided, options, contact_start(kind, eps))?;
+        let mut model = prepare_checked(
+            &provided,
+            options,
+            contact_start(kind, eps),
+            options.tolerance,
+        )?;
         let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
         if std::env::var_os("RINGCONTACT_TRACE").is_some() {
             trace_level(&model, &s);
@@ -549,28 +721,66 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         "the FEM for the {kind} at tolerance {:e}",
         options.tolerance
     );
-    let mut previous: Option<(f64, f64, f64)> = None;
-    let mut previous_spacing = 0.0;
-    let mut previous_eps_error = 0.0;
+    let concave = kind.is_concave();
+    let start_line = contact_start(kind, eps);
+    let target = SizeTarget {
+        tolerance: options.tolerance,
+        degree: options.degree as usize,
+    };
+    let ladder = committed_ladder(kind, eps, options.tolerance);
+    let mut next_level = if ladder.is_empty() {
+        first_adapted_level(options.degree, options.tolerance)
+    } else {
+        mesh_provider::COMMITTED_MAX_LEVEL as i32 + 1
+    };
+    let locating = ladder.is_empty() && concave;
+    let mut committed = if locating {
+        edge_locator(kind, eps)
+    } else {
+        ladder
+    }
+    .into_iter();
+    let mut previous: Option<LevelResult> = None;
+    // The grading part of the force estimate on the current adapted level (Richardson from the
+    // level below), kept when the level is repeated for the free edge.
+    let mut level_force_estimate: Option<f64> = None;
+    let mut repeats = 0;
     let mut last_estimate = f64::INFINITY;
     let mut iterations = 0;
     let mut last_mesh = String::new();
-    for request in mesh_sequence(kind, eps, options.tolerance) {
-        // The adapted family refines around the free edge located on the previous (coarser) solve.
-        let request = if kind.is_concave() {
-            request.with_free_edge(previous.map(|p| p.2), previous_eps_error)
-        } else {
-            request
+    loop {
+        let (request, level) = match committed.next() {
+            Some(request) => (request, None),
+            None if next_level > mesh_provider::ADAPTED_MAX_LEVEL => break,
+            None => {
+                // Concave punches: refine around the free edge located on the previous solve.
+                let edge = previous.as_ref().filter(|_| concave);
+                let request = MeshRequest::Adapted {
+                    contact_start: start_line,
+                    level: next_level,
+                    free_edge: edge.map(|p| p.values.2).filter(|&b| b > 0.0),
+                    edge_uncertainty: edge.map_or(0.0, |p| p.eps_error),
+                    target: Some(target),
+                };
+                (request, Some(next_level))
+            }
         };
         let provided = mesh_provider::provide(&request, &why)?;
-        let mut model = prepare_checked(&provided, options, contact_start(kind, eps))?;
+        // The edge locator only places the next mesh's refinement: its domain need not meet the
+        // tolerance.
+        let domain_tolerance = if locating && level.is_none() {
+            DEFAULT_TOLERANCE.max(options.tolerance)
+        } else {
+            options.tolerance
+        };
+        let mut model = prepare_checked(&provided, options, start_line, domain_tolerance)?;
         last_mesh = model.path.clone();
-        // The previous level's contact radius (and depth) start the iterations.
-        let guess = previous.map(|p: (f64, f64, f64)| WarmStart {
-            inner_radius: p.2,
-            band: previous_eps_error,
+        // The previous model's contact radius (and depth) start the iterations.
+        let guess = previous.as_ref().map(|p| WarmStart {
+            inner_radius: p.values.2,
+            band: p.eps_error,
         });
-        let depth_guess = previous.map(|p: (f64, f64, f64)| p.0);
+        let depth_guess = previous.as_ref().map(|p| p.values.0);
         let (s, x, y) = solve_model(
             &mut model,
             kind,
@@ -584,37 +794,34 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         if std::env::var_os("RINGCONTACT_TRACE").is_some() {
             trace_level(&model, &s);
         }
-        let mut eps_error = INNER_RADIUS_BOUND * s.inner_node_spacing;
         let (eps_out, gamma, gamma1, gamma2) = state_of(&s, x, y);
-        let values = (
-            gamma.or(gamma1).unwrap_or(f64::NAN),
-            gamma2.unwrap_or(f64::NAN),
-            eps_out,
-        );
-        if let Some(prev) = previous {
-            let relative = |a: f64, b: f64| {
-                if a.is_nan() {
-                    0.0
-                } else {
-                    (a - b).abs() / a.abs()
+        let mut current = LevelResult {
+            values: (
+                gamma.or(gamma1).unwrap_or(f64::NAN),
+                gamma2.unwrap_or(f64::NAN),
+                eps_out,
+            ),
+            spacing: s.inner_node_spacing,
+            eps_error: INNER_RADIUS_BOUND * s.inner_node_spacing,
+            level,
+            locator: locating && level.is_none(),
+        };
+        if let Some(prev) = previous.as_ref().filter(|p| !p.locator) {
+            let change = current.force_change(prev);
+            let force_estimate = match (prev.level, level) {
+                // A grading step of the adapted family: Richardson with the known order.
+                (Some(p), Some(c)) if c == p + 1 => {
+                    let estimate = richardson_factor(options.degree) * change;
+                    level_force_estimate = Some(estimate);
+                    estimate
                 }
+                // The same level refined at the free edge: its grading error, plus the change.
+                (Some(p), Some(c)) if c == p => level_force_estimate.unwrap_or(change) + change,
+                _ => change,
             };
-            // The located inner radius converges to first order in the node spacing there, which
-            // shrinks by q between levels: the finer level's error is about |Δeps| / (q - 1)
-            // (Richardson), never taken below the element-size bound.
-            let ratio = previous_spacing / s.inner_node_spacing;
-            let eps_change = (values.2 - prev.2).abs();
-            let eps_estimate = if s.inner_node_spacing > 0.0 && ratio > 1.5 {
-                (eps_change / (ratio - 1.0)).max(INNER_RADIUS_BOUND * s.inner_node_spacing)
-            } else {
-                eps_change.max(INNER_RADIUS_BOUND * s.inner_node_spacing)
-            };
-            eps_error = eps_estimate;
-            let estimate = relative(values.0, prev.0)
-                .max(relative(values.1, prev.1))
-                .max(eps_estimate)
-                + model.truncation_bias()
-                + unresolved_component(model.arc_grading);
+            current.eps_error = current.eps_estimate(prev);
+            let floor = model.truncation_bias() + unresolved_component(eps_out);
+            let estimate = force_estimate.max(current.eps_error) + floor;
             if estimate <= options.tolerance {
                 let state = (eps_out, gamma, gamma1, gamma2);
                 return Ok(finish(
@@ -628,10 +835,42 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 ));
             }
             last_estimate = estimate;
+            let unknowns = model.stiffness.nrows();
+            if floor > 0.5 * options.tolerance || unknowns > MAX_LADDER_UNKNOWNS {
+                // Finer models do not reduce the floor, and past this size the next model (about
+                // 2.7x larger) would take minutes and most of the memory: stop here.
+                let why = if unknowns > MAX_LADDER_UNKNOWNS {
+                    "the next model would have about 2 M unknowns or more".to_string()
+                } else {
+                    format!(
+                        "more than half of the tolerance is taken by the error components finer \
+                         models do not reduce ({floor:.1e}; larger on narrow rings)"
+                    )
+                };
+                return Err(fem_error(format!(
+                    "the model {last_mesh} ({unknowns} unknowns) reaches an estimated error of \
+                     {estimate:.1e}, above the tolerance {:.1e}, and {why}; loosen --tol or use \
+                     the ring BEM",
+                    options.tolerance
+                )));
+            }
+            if let Some(level) = level {
+                // Only the free edge misses: refine there on the same level (at most twice).
+                let edge_only = concave
+                    && level_force_estimate.is_some()
+                    && force_estimate + floor <= options.tolerance
+                    && repeats < MAX_EDGE_REPEATS;
+                if edge_only {
+                    repeats += 1;
+                } else {
+                    next_level = level + 1;
+                    repeats = 0;
+                }
+            }
+        } else if let Some(level) = level {
+            next_level = level + 1;
         }
-        previous = Some(values);
-        previous_spacing = s.inner_node_spacing;
-        previous_eps_error = eps_error;
+        previous = Some(current);
     }
     Err(fem_error(format!(
         "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above the \

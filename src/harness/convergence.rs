@@ -102,8 +102,41 @@ pub struct StudyCase {
     pub depth: f64,
 }
 
-/// Finest adapted mesh level a FEM convergence study runs.
+/// Finest adapted mesh level a FEM convergence study runs with quadratic elements (about 1.7 M
+/// unknowns).
 pub const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
+/// Finest adapted level with cubic elements (level 3: about 0.6 M unknowns, force error near
+/// 2e-9).
+pub const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
+
+/// The FEM study's meshes and degree: with gmsh, the adapted family from its coarsest level
+/// (`g = 0.89`) with cubic elements (errors from about 5e-4 down to a few 1e-9 in six
+/// levels); without, the committed levels with quadratic elements.
+pub fn fem_study_ladder(case: &StudyCase) -> (Vec<mesh_provider::MeshRequest>, Degree) {
+    if fem_solver::gmsh_found() {
+        let start = fem_solver::contact_start(case.punch, case.eps);
+        let ladder = (mesh_provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
+            .map(|level| mesh_provider::MeshRequest::Adapted {
+                contact_start: start,
+                level,
+                free_edge: None,
+                edge_uncertainty: 0.0,
+                target: None,
+            })
+            .collect();
+        return (ladder, Degree::Cubic);
+    }
+    let ladder = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3)
+        .into_iter()
+        .filter(|r| match r {
+            mesh_provider::MeshRequest::Adapted { level, .. } => {
+                *level <= STUDY_MAX_ADAPTED_LEVEL as i32
+            }
+            _ => true,
+        })
+        .collect();
+    (ladder, Degree::Quadratic)
+}
 
 /// Run a study of `levels` refinements with `method`; `progress` is called after each level.
 pub fn run(
@@ -125,23 +158,16 @@ pub fn run(
         });
     }
     if method == Method::Fem {
-        // Levels past adapted level 5 (about 1.7 M unknowns for P2) take more than minutes and
-        // tens of GB; the study stops there.
-        let available = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3)
-            .iter()
-            .filter(|r| match r {
-                mesh_provider::MeshRequest::Adapted { level, .. } => {
-                    *level <= STUDY_MAX_ADAPTED_LEVEL
-                }
-                _ => true,
-            })
-            .count();
+        // Levels past adapted level 5 (P2, about 1.7 M unknowns) or 3 (P3, 0.6 M) take more
+        // than minutes and tens of GB; the study stops there.
+        let available = fem_study_ladder(&case).0.len();
         if levels > available {
             return Err(Error::OutOfRange {
                 method: "fem".into(),
                 reason: format!(
                     "the FEM study has {available} mesh levels here (up to adapted level \
-                     {STUDY_MAX_ADAPTED_LEVEL}, about 1.7 M unknowns); asked for {levels}"
+                     {STUDY_MAX_ADAPTED_LEVEL} with P2, about 1.7 M unknowns, or \
+                     {STUDY_MAX_CUBIC_LEVEL} with P3, 0.6 M); asked for {levels}"
                 ),
             });
         }
@@ -173,7 +199,7 @@ pub fn run(
                 (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
             }
             Method::Fem => {
-                let sequence = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3);
+                let (sequence, degree) = fem_study_ladder(&case);
                 let Some(request) = sequence.get(k).cloned() else {
                     return Err(Error::OutOfRange {
                         method: "fem".into(),
@@ -191,7 +217,7 @@ pub fn run(
                     FemLoad::Flat
                 };
                 let options = FemOptions {
-                    degree: Degree::Quadratic,
+                    degree,
                     tolerance: 1e-3,
                     mesh: Some(path),
                     poisson_ratio: 0.0,
@@ -201,7 +227,7 @@ pub fn run(
                 previous_edge = concave.then_some(s.eps);
                 let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
                 (
-                    format!("{label} P2"),
+                    format!("{label} P{}", degree as u8),
                     1.0 / (s.dofs as f64).sqrt(),
                     s.dofs,
                     value,

@@ -193,10 +193,20 @@ fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f
     }
 }
 
-/// Error against wall time for the flat annulus (`eps = 0.5`, `γ`) and the sphere (`d = 1.5 h`,
-/// `γ2`): ring BEM at several node counts or tolerances, FEM at the committed levels (P1, P2),
-/// grid BEM at 64-256 cells per side.
-pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
+/// Tolerances of the FEM's full solve (meshes made for the scene) in the speed-accuracy study
+/// of the default run; the nightly run adds 1e-7 (`verify compare --fem-tolerances`).
+pub const DEFAULT_FEM_TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-6];
+
+/// Error against wall time for the flat annulus (`eps = 0.5`, `γ`), the sphere (`d = 1.5 h`,
+/// `γ2`), the cone (`d = 2h`, `γ2`) and the flat annulus `eps = 0.3`: ring BEM at several node
+/// counts or tolerances, FEM at the committed levels (P1, P2) where they exist, the FEM's full
+/// solve at each of `fem_tolerances` (with gmsh), grid BEM at 64-256 cells per side, and the
+/// stored FEniCSx results on the same state (their wall time and force, as stored).
+pub fn speed_accuracy(
+    ring: &RingBemSolver,
+    fenicsx: &[FenicsxComparison],
+    fem_tolerances: &[f64],
+) -> Result<Vec<SpeedAccuracy>> {
     let rule = TanhSinhRule::new(1.0 / 16.0);
     // Flat annulus: the ring BEM at a few node counts (it converges geometrically).
     let yardstick = ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN);
@@ -221,10 +231,12 @@ pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
     let flat = CostProblem {
         kind: PunchKind::FlatAnnulus,
         eps: 0.5,
-        family: "annulus-0.5",
+        family: Some("annulus-0.5"),
         load: FemLoad::Flat,
     };
     points.extend(fem_and_grid_points(&flat, yardstick)?);
+    points.extend(fem_ladder_points(&flat, yardstick, fem_tolerances));
+    points.extend(fenicsx_points(&flat, yardstick, fenicsx));
     mark_pareto(&mut points);
     let mut out = vec![SpeedAccuracy {
         problem: "flat annulus b/a = 0.5, gamma".into(),
@@ -250,25 +262,143 @@ pub fn speed_accuracy(ring: &RingBemSolver) -> Result<Vec<SpeedAccuracy>> {
     let sphere = CostProblem {
         kind: PunchKind::Sphere,
         eps: 0.0,
-        family: "disk",
+        family: Some("disk"),
         load: FemLoad::ConcaveDepth(1.5),
     };
     points.extend(fem_and_grid_points(&sphere, yardstick)?);
+    points.extend(fem_ladder_points(&sphere, yardstick, fem_tolerances));
+    points.extend(fenicsx_points(&sphere, yardstick, fenicsx));
     mark_pareto(&mut points);
     out.push(SpeedAccuracy {
         problem: "sphere d/h = 1.5, gamma2".into(),
         yardstick,
         points,
     });
+    // The cone and the flat annulus 0.3: the FEM's full solve against FEniCSx on the meshes the
+    // FEM makes (and the committed ones), with the ring BEM and the grid BEM.
+    let cone = CostProblem {
+        kind: PunchKind::Cone,
+        eps: 0.0,
+        family: None,
+        load: FemLoad::ConcaveDepth(2.0),
+    };
+    let thick = CostProblem {
+        kind: PunchKind::FlatAnnulus,
+        eps: 0.3,
+        family: None,
+        load: FemLoad::Flat,
+    };
+    for (problem, name) in [
+        (cone, "cone d/h = 2, gamma2"),
+        (thick, "flat annulus b/a = 0.3, gamma"),
+    ] {
+        let yardstick = problem.value_of_ring_bem(ring, 1e-11)?;
+        let mut points = Vec::new();
+        for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
+            let (value, t) = timed(|| problem.value_of_ring_bem(ring, tol))?;
+            points.push(point(
+                "ring-bem",
+                format!("tol {tol:.0e}"),
+                t,
+                value,
+                yardstick,
+            ));
+        }
+        points.extend(fem_and_grid_points(&problem, yardstick)?);
+        points.extend(fem_ladder_points(&problem, yardstick, fem_tolerances));
+        points.extend(fenicsx_points(&problem, yardstick, fenicsx));
+        mark_pareto(&mut points);
+        out.push(SpeedAccuracy {
+            problem: name.into(),
+            yardstick,
+            points,
+        });
+    }
     Ok(out)
+}
+
+/// The FEM's full solve (`--method fem --tol X`, default degree, meshes made for the scene) at
+/// each tolerance, when gmsh is there; a tolerance it cannot meet is left out with a note on
+/// standard error.
+fn fem_ladder_points(problem: &CostProblem, yardstick: f64, tolerances: &[f64]) -> Vec<CostPoint> {
+    if !fem_solver::gmsh_found() {
+        return Vec::new();
+    }
+    let mut points = Vec::new();
+    for &tolerance in tolerances {
+        let degree = fem_solver::default_degree(tolerance);
+        let options = FemOptions {
+            degree,
+            tolerance,
+            mesh: None,
+            poisson_ratio: 0.0,
+            far_field: crate::fem::far_field::FarField::Boussinesq,
+        };
+        match timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options)) {
+            Ok((s, t)) => points.push(point(
+                "fem --tol",
+                format!("tol {tolerance:.0e}, P{}", degree as u8),
+                t,
+                s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+                yardstick,
+            )),
+            Err(e) => eprintln!("speed-accuracy: fem at tolerance {tolerance:e} left out: {e}"),
+        }
+    }
+    points
+}
+
+/// The stored FEniCSx results of this state (punch, `b/a` or depth), at their stored wall time
+/// (dolfinx on this machine; the value is `F/2`, i.e. `γ` at unit depth or `γ2` at `h = 1`).
+fn fenicsx_points(
+    problem: &CostProblem,
+    yardstick: f64,
+    fenicsx: &[FenicsxComparison],
+) -> Vec<CostPoint> {
+    fenicsx
+        .iter()
+        .map(|c| &c.stored)
+        .filter(|r| {
+            r.punch == problem.kind
+                && match problem.load {
+                    FemLoad::ConcaveDepth(d) => (r.depth - d).abs() < 1e-12,
+                    _ => {
+                        (r.eps.unwrap_or(0.0) - problem.eps).abs() < 1e-12
+                            && (r.depth - 1.0).abs() < 1e-12
+                    }
+                }
+        })
+        .map(|r| {
+            let mesh = r.mesh.rsplit('/').next().unwrap_or(&r.mesh);
+            point(
+                "FEniCSx (stored)",
+                format!("{mesh} P{}, {} dofs", r.degree, r.dofs),
+                r.wall_s,
+                0.5 * r.force,
+                yardstick,
+            )
+        })
+        .collect()
 }
 
 /// A problem of the speed-accuracy study, as the FEM and the grid BEM see it.
 struct CostProblem {
     kind: PunchKind,
     eps: f64,
-    family: &'static str,
+    /// Committed mesh family, if there is one for this contact line.
+    family: Option<&'static str>,
     load: FemLoad,
+}
+
+impl CostProblem {
+    /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
+    fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
+        let value = match self.load {
+            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(self.kind, d, tolerance)?.gamma2,
+            _ => ring.flat(self.eps, tolerance)?.gamma,
+        };
+        Ok(value.unwrap_or(f64::NAN))
+    }
 }
 
 /// The FEM (P1 and P2 on levels L0-L2) and the grid BEM (64² to 256²) on one problem; the value
@@ -276,9 +406,11 @@ struct CostProblem {
 fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<CostPoint>> {
     let mut points = Vec::new();
     for (degree, name) in [(Degree::Linear, "fem P1"), (Degree::Quadratic, "fem P2")] {
+        let Some(family) = problem.family else {
+            break;
+        };
         for level in 0..3 {
-            let mesh =
-                fem_solver::mesh_directory().join(format!("{}-L{level}.msh", problem.family));
+            let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
             let options = FemOptions {
                 degree,
                 tolerance: 1e-3,
@@ -551,6 +683,7 @@ pub fn write_report(
     comparison: &ComparisonReport,
     fenicsx: &[FenicsxComparison],
     peers: &[PeerComparison],
+    fem_tolerances: &[f64],
     mut progress: impl FnMut(&str),
 ) -> Result<ReportExtras> {
     let start = Instant::now();
@@ -559,7 +692,7 @@ pub fn write_report(
     progress("functions against eps");
     function_charts(&ring, comparison, dir)?;
     progress("speed against accuracy");
-    let speed = speed_accuracy(&ring)?;
+    let speed = speed_accuracy(&ring, fenicsx, fem_tolerances)?;
     for (k, sa) in speed.iter().enumerate() {
         write(dir, &format!("speed-accuracy-{k}.svg"), &speed_chart(sa))?;
     }
