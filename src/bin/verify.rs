@@ -290,7 +290,7 @@ struct CompareArgs {
     #[arg(long)]
     no_report: bool,
     /// Tolerances of the FEM's full solve in the report's speed-against-accuracy charts (meshes
-    /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-7.
+    /// made by gmsh; left out without it), comma-separated. The nightly run adds 3e-8.
     #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
     fem_tolerances: Vec<f64>,
 }

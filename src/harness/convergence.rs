@@ -52,9 +52,14 @@ pub struct Study {
     pub levels: Vec<Level>,
     pub richardson: Option<f64>,
     pub richardson_error: Option<f64>,
+    /// GCI of the finest level, never below `error_floor`.
     pub gci_fine: Option<f64>,
     /// Observed order of the finest triple over that of the previous triple.
     pub asymptotic_ratio: Option<f64>,
+    /// FEM: the unresolved error component of its finest model
+    /// ([`fem_solver::unresolved_component`]), which refinement does not reduce and a GCI from
+    /// level differences cannot see.
+    pub error_floor: Option<f64>,
 }
 
 /// Observed order of three solutions `f1` (finest), `f2`, `f3` with refinement ratios
@@ -307,6 +312,14 @@ pub fn run(
     } else {
         (None, None)
     };
+    let error_floor = (method == Method::Fem).then(|| {
+        fem_solver::unresolved_component(if concave {
+            previous_edge.unwrap_or(0.0)
+        } else {
+            case.eps
+        })
+    });
+    let gci = gci.map(|g| g.max(error_floor.unwrap_or(0.0)));
     let ratio = match (m >= 4).then(|| (out[m - 1].observed_order, out[m - 2].observed_order)) {
         Some((Some(p1), Some(p2))) => Some(p1 / p2),
         _ => None,
@@ -325,6 +338,7 @@ pub fn run(
         richardson,
         gci_fine: gci,
         asymptotic_ratio: ratio,
+        error_floor,
     })
 }
 
@@ -365,9 +379,15 @@ pub fn render(study: &Study) -> String {
                 ),
                 None => "asymptotic range not checked (needs four levels with settled orders)".to_string(),
             };
+            let floor = match study.error_floor {
+                Some(f) if f >= g => {
+                    " (the FEM's unresolved error component, which level differences do not see)"
+                }
+                _ => "",
+            };
             let _ = writeln!(
                 out,
-                "  Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of the finest {g:.2e}; {range}",
+                "  Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of the finest {g:.2e}{floor}; {range}",
                 study.richardson_error.unwrap_or(f64::NAN),
             );
         }
