@@ -212,7 +212,7 @@ pub fn adapted_grading(level: i32) -> f64 {
 /// `hb = g δ / (exp(N g / p) - 1)` puts `N` = [`EDGE_WINDOW_NODES`] contact nodes of degree `p`
 /// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` (which makes the
 /// edge's location bound `0.3 hb / p` under a quarter of the tolerance) or, without a target,
-/// `1e-3 · 10^-k`.
+/// `1e-3 · 10^-k`, unless a quarter of `b̃` is smaller (a small hole keeps a few elements).
 pub fn adapted_parameters(
     contact_start: f64,
     level: i32,
@@ -230,7 +230,10 @@ pub fn adapted_parameters(
         None => (adapted_rim_size(level), 1e-3 * 0.1f64.powi(level.max(0))),
     };
     let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
-    let hb = window.max(edge_floor).min(1e-2);
+    // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
+    // of a quarter of its radius, or the window's size when none was found.
+    let edge_floor = edge_floor.min(0.25 * free_edge.unwrap_or(f64::INFINITY));
+    let hb = window.max(edge_floor).clamp(1e-10, 1e-2);
     let mut p = vec![
         ("a".to_string(), 1.0),
         ("b".to_string(), contact_start),
@@ -242,7 +245,8 @@ pub fn adapted_parameters(
         ("grading".to_string(), grading),
         ("order".to_string(), 1.0),
     ];
-    if let Some(b) = free_edge.filter(|&b| b > 0.0) {
+    // bref = 0: a concave punch found in full contact, refined around the axis point.
+    if let Some(b) = free_edge.filter(|&b| b >= 0.0) {
         p.push(("bref".to_string(), b));
         p.push(("hb".to_string(), hb));
     }

@@ -63,6 +63,12 @@ pub fn unresolved_component(contact_ratio: f64) -> f64 {
 /// Below this tolerance the committed family is skipped and the adapted family starts directly.
 pub const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
 
+/// Fewest free contact nodes in a concave punch's hole for the located edge to be bounded by
+/// [`INNER_RADIUS_BOUND`] of the spacing: the edge is extrapolated from the three free nodes
+/// before the last (P3) or the last three (P1, P2); with fewer the bound is two spacings (the
+/// cone at `d = 12 h`, hole `9.1e-4 a` inside 1-2 nodes, was located 5.9e-4 off).
+pub const MIN_FREE_NODES: usize = 5;
+
 /// Bound on the error of the located inner radius, as a fraction of the contact-node spacing
 /// there. The force is stationary in `b` (Barber), so the discrete free edge converges more slowly
 /// than the force: against the ring BEM, P2 on the committed meshes showed errors up to 0.12 of
@@ -623,6 +629,12 @@ struct LevelResult {
     level: Option<i32>,
     /// Only locates the free edge for the next mesh ([`edge_locator`]): no estimate against it.
     locator: bool,
+    /// A concave punch found in full contact: the located edge `0` is known only to within the
+    /// first contact node off the axis (`spacing`), the whole of which bounds its error.
+    full_contact: bool,
+    /// Bound on the located edge's error as a multiple of `spacing` ([`INNER_RADIUS_BOUND`], or
+    /// more when the hole holds too few nodes to extrapolate from).
+    edge_bound: f64,
 }
 
 impl LevelResult {
@@ -644,7 +656,7 @@ impl LevelResult {
     fn eps_estimate(&self, previous: &LevelResult) -> f64 {
         let ratio = previous.spacing / self.spacing;
         let eps_change = (self.values.2 - previous.values.2).abs();
-        let bound = INNER_RADIUS_BOUND * self.spacing;
+        let bound = self.edge_bound * self.spacing;
         if self.spacing > 0.0 && ratio > 1.5 {
             (eps_change / (ratio - 1.0)).max(bound)
         } else {
@@ -758,7 +770,10 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 let request = MeshRequest::Adapted {
                     contact_start: start_line,
                     level: next_level,
-                    free_edge: edge.map(|p| p.values.2).filter(|&b| b > 0.0),
+                    // Full contact located: refine around the axis (r = 0), where a hole opens.
+                    free_edge: edge
+                        .map(|p| p.values.2)
+                        .filter(|&b| b > 0.0 || edge.is_some_and(|p| p.full_contact)),
                     edge_uncertainty: edge.map_or(0.0, |p| p.eps_error),
                     target: Some(target),
                 };
@@ -805,7 +820,24 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             eps_error: INNER_RADIUS_BOUND * s.inner_node_spacing,
             level,
             locator: locating && level.is_none(),
+            full_contact: false,
+            edge_bound: INNER_RADIUS_BOUND,
         };
+        let free_nodes = s.reactions.len() - s.active_radii.len();
+        if concave && s.active_radii.first() == Some(&0.0) {
+            // Every contact node is in contact: a hole, if any, lies inside the first node off
+            // the axis, and the next mesh refines around r = 0 to find it.
+            let first_off_axis = s.active_radii.get(1).copied().unwrap_or(1.0);
+            current.spacing = first_off_axis;
+            current.eps_error = first_off_axis;
+            current.full_contact = true;
+            current.edge_bound = 1.0;
+        } else if concave && free_nodes < MIN_FREE_NODES {
+            // Too few free nodes in the hole for the edge's extrapolation: bound it by two
+            // spacings (the edge lies between the last free node and the first in contact).
+            current.edge_bound = 2.0;
+            current.eps_error = 2.0 * s.inner_node_spacing;
+        }
         if let Some(prev) = previous.as_ref().filter(|p| !p.locator) {
             let change = current.force_change(prev);
             let force_estimate = match (prev.level, level) {
