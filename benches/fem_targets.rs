@@ -15,79 +15,59 @@ use ringcontact::fem::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions};
 use ringcontact::punch::PunchKind;
 
-/// `(punch, b/a, load, label)` of the target states.
-fn states() -> Vec<(PunchKind, f64, FemLoad, String)> {
-    let mut out = Vec::new();
-    for d in [0.5, 2.0, 4.0] {
-        out.push((
-            PunchKind::Cone,
-            0.0,
-            FemLoad::ConcaveDepth(d),
-            format!("cone d/h={d}"),
-        ));
-    }
-    for d in [0.5, 1.5, 2.8] {
-        out.push((
-            PunchKind::Sphere,
-            0.0,
-            FemLoad::ConcaveDepth(d),
-            format!("sphere d/h={d}"),
-        ));
-    }
-    for eps in [0.1, 0.3, 0.5, 0.7, 0.9, 0.97] {
-        out.push((
-            PunchKind::FlatAnnulus,
-            eps,
-            FemLoad::Flat,
-            format!("flat annulus b/a={eps}"),
-        ));
-    }
-    if std::env::var_os("FEM_TARGETS_EXTRA").is_some() {
-        out.extend(extra_states());
-    }
-    out
+/// A state: `(punch, b/a, load, label)`.
+type State = (PunchKind, f64, FemLoad, String);
+
+/// Depth-controlled states of a concave punch at each `d/h`.
+fn at_depths(kind: PunchKind, depths: &[f64]) -> Vec<State> {
+    depths
+        .iter()
+        .map(|&d| {
+            (
+                kind,
+                0.0,
+                FemLoad::ConcaveDepth(d),
+                format!("{kind} d/h={d}"),
+            )
+        })
+        .collect()
 }
 
-/// States beyond the list (`FEM_TARGETS_EXTRA=1`): other depths, ratios, the disk, and
-/// force control.
-fn extra_states() -> Vec<(PunchKind, f64, FemLoad, String)> {
-    let mut out = vec![(PunchKind::Flat, 0.0, FemLoad::Flat, "flat disk".to_string())];
-    for d in [0.1, 1.0, 3.0, 8.0] {
+/// Flat annuli at each `b/a`.
+fn annuli(ratios: &[f64]) -> Vec<State> {
+    ratios
+        .iter()
+        .map(|&e| {
+            let label = format!("flat annulus b/a={e}");
+            (PunchKind::FlatAnnulus, e, FemLoad::Flat, label)
+        })
+        .collect()
+}
+
+/// The 12 target states, and with `FEM_TARGETS_EXTRA=1` 17 more: other depths, ratios,
+/// the disk, and force control.
+fn states() -> Vec<State> {
+    let mut out = at_depths(PunchKind::Cone, &[0.5, 2.0, 4.0]);
+    out.extend(at_depths(PunchKind::Sphere, &[0.5, 1.5, 2.8]));
+    out.extend(annuli(&[0.1, 0.3, 0.5, 0.7, 0.9, 0.97]));
+    if std::env::var_os("FEM_TARGETS_EXTRA").is_some() {
+        out.push((PunchKind::Flat, 0.0, FemLoad::Flat, "flat disk".to_string()));
+        out.extend(at_depths(PunchKind::Cone, &[0.1, 1.0, 3.0, 8.0]));
+        out.extend(at_depths(PunchKind::Sphere, &[0.2, 1.0, 2.5, 2.95]));
+        out.extend(annuli(&[0.02, 0.2, 0.6, 0.8, 0.95, 0.99]));
         out.push((
             PunchKind::Cone,
             0.0,
-            FemLoad::ConcaveDepth(d),
-            format!("cone d/h={d}"),
+            FemLoad::ConcaveForce(1.0),
+            "cone F/(2E*ha)=1".to_string(),
         ));
-    }
-    for d in [0.2, 1.0, 2.5, 2.95] {
         out.push((
             PunchKind::Sphere,
             0.0,
-            FemLoad::ConcaveDepth(d),
-            format!("sphere d/h={d}"),
+            FemLoad::ConcaveForce(0.8),
+            "sphere F/(2E*ha)=0.8".to_string(),
         ));
     }
-    for eps in [0.02, 0.2, 0.6, 0.8, 0.95, 0.99] {
-        out.push((
-            PunchKind::FlatAnnulus,
-            eps,
-            FemLoad::Flat,
-            format!("flat annulus b/a={eps}"),
-        ));
-    }
-    out.push((
-        PunchKind::Cone,
-        0.0,
-        FemLoad::ConcaveForce(1.0),
-        "cone F/(2E*ha)=1".to_string(),
-    ));
-    out.push((
-        PunchKind::Sphere,
-        0.0,
-        FemLoad::ConcaveForce(0.8),
-        "sphere F/(2E*ha)=0.8".to_string(),
-    ));
     out
 }
 
