@@ -228,12 +228,13 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         mesh_sha256: Some(state.mesh_sha256.clone()),
         mesh_origin: Some(state.mesh_origin),
         gmsh_version: state.gmsh_version.clone(),
+        mesh_refinement: state.mesh_refinement.clone(),
         far_field: Some(state.far_field),
         fem_timings: Some(state.timings),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
         provenance: format!(
-            "axisymmetric FEM, P{} triangles, {} dofs on {} ({}{}, sha256 {}), domain radius {:.3e} a with {} far field \
+            "axisymmetric FEM, P{} triangles, {} dofs on {} ({}{}, sha256 {}){}, domain radius {:.3e} a with {} far field \
              (truncation bias {:.1e} included in the estimate){}",
             state.degree as u8,
             state.dofs,
@@ -248,6 +249,11 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
                 .map(|v| format!(" by gmsh {v}"))
                 .unwrap_or_default(),
             &state.mesh_sha256[..16.min(state.mesh_sha256.len())],
+            state
+                .mesh_refinement
+                .as_ref()
+                .map(|r| format!(" {r}"))
+                .unwrap_or_default(),
             state.domain_radius,
             state.far_field.describe(),
             state.truncation_bias,
@@ -320,6 +326,7 @@ fn base(
         mesh_sha256: None,
         mesh_origin: None,
         gmsh_version: None,
+        mesh_refinement: None,
         far_field: None,
         fem_timings: None,
         degree: None,

@@ -73,6 +73,10 @@ pub struct Solution {
     /// Version of the gmsh that made the mesh (generated meshes only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gmsh_version: Option<String>,
+    /// Refinement applied to that file's mesh when it was read (corner halvings around the
+    /// singular edges below the element sizes gmsh makes well; FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh_refinement: Option<String>,
     /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub far_field: Option<crate::fem::far_field::FarField>,
@@ -238,6 +242,7 @@ mod tests {
             mesh_sha256: None,
             mesh_origin: None,
             gmsh_version: None,
+            mesh_refinement: None,
             far_field: None,
             fem_timings: None,
             degree: None,

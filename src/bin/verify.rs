@@ -80,7 +80,9 @@ Example:
 The adapted family is what the FEM climbs: level k (-2 to 7) is graded toward the rim (and r = b),
 with g = 0.32 * 0.6^k; --free-edge refines around a located inner contact radius; --tol and
 --degree make it as `verify solve --method fem --tol X` does (rim and edge sizes follow X).
-Prints one JSON object: path, sha256, origin (cache or gmsh), gmsh_version, parameters (the gmsh
+Prints one JSON object: path, sha256, origin (cache or gmsh), gmsh_version, corner_refinement (the
+halvings around the singular edges the solver applies to the file when its rim size is below
+1e-8 a, which gmsh does not mesh well; null when none), parameters (the gmsh
 -setnumber values, which reproduce the mesh from meshes/half_space.geo).
 
 Examples:
@@ -290,7 +292,7 @@ struct CompareArgs {
     #[arg(long)]
     no_report: bool,
     /// Tolerances of the FEM's full solve in the report's speed-against-accuracy charts (meshes
-    /// made by gmsh; left out without it), comma-separated. The nightly run adds 3e-8.
+    /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-8.
     #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
     fem_tolerances: Vec<f64>,
 }
@@ -1026,6 +1028,7 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
         "gmsh_version": provided.gmsh_version,
         "label": request.label(),
         "parameters": parameters,
+        "corner_refinement": provided.corner_refinement.as_ref().map(|r| r.describe()),
     });
     outln!("{}", to_json(&out)?);
     Ok(ExitCode::SUCCESS)

@@ -11,7 +11,10 @@
 //! own coarser solve; no uniform size along the contact line. Level `k` has `g_k = 0.32 · 0.6^k`,
 //! `hmin_k` from [`adapted_rim_size`] and `hb_k = 10^-3 · 10^-k`: for quadratic elements the
 //! force error of the graded zone falls like `g⁴` (a factor 7.7 per level), for cubic like `g⁶`,
-//! and that of the innermost element like `hmin`. The domain radius is `R = 1e7 a`.
+//! and that of the innermost element like `hmin`. The domain radius is `R = 1e7 a`. gmsh makes
+//! elements down to [`GMSH_MIN_ELEMENT_SIZE`]; smaller rim sizes are reached by halving the
+//! corner patches in Rust ([`super::corner_refinement`]), which the provided mesh carries as a
+//! request applied when it is read.
 //!
 //! The cache lives in `<project>/.mesh-cache/` (ignored by git; `RINGCONTACT_MESH_CACHE`
 //! overrides), keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
@@ -20,11 +23,24 @@ use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
+use super::corner_refinement::CornerRefinement;
 use super::gmsh::Gmsh;
 use crate::error::{Error, Result};
 
 /// Domain radius of the adapted family, in units of `a`.
 pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
+
+/// Smallest element size (in units of `a`) asked of gmsh. Its 2-D mesher keeps the elements'
+/// shape only down to about `1e-8` of the coordinates' magnitude (here `a`): at a rim size of
+/// `1e-8 a` the worst element at the rim had quality 0.50, at `1e-9 a` 0.013 and at `1e-10 a`
+/// 0.007 (`4 √3 A / Σ l²`; 0.50-0.60 is gmsh's usual), whatever the 2-D algorithm, random factor,
+/// geometric tolerance or domain radius; moving the rim to the origin restored 0.60 at
+/// `1e-10 a`. Smaller rim sizes come from [`CornerRefinement`].
+pub const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
+
+/// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
+/// have vertex coordinates good to `1e-6` of their size.
+pub const MIN_RIM_SIZE: f64 = 1e-10;
 
 /// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k` for `k >= 0` (1e-4
 /// on the coarse levels `k < 0`), floored at 1e-10.
@@ -33,7 +49,38 @@ pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 /// zone's error. (The free surface is cut at `r = 2a`: gmsh 4.15 stalls meshing one curve from
 /// `a` to `R = 1e7 a` with elements of 1e-7 at one end.)
 pub fn adapted_rim_size(level: i32) -> f64 {
-    (1e-4 * 0.01f64.powi(level.max(0))).max(1e-10)
+    (1e-4 * 0.01f64.powi(level.max(0))).max(MIN_RIM_SIZE)
+}
+
+/// Rim size wanted for `level` and `target`: [`adapted_rim_size`], and no larger than a tenth of
+/// the target's tolerance (the innermost element's force error is about `0.16 hmin` for P2, and
+/// `0.5 hmin` for P3 on the flat annulus `b/a = 0.97`).
+pub fn wanted_rim_size(level: i32, target: Option<SizeTarget>) -> f64 {
+    match target {
+        Some(t) => adapted_rim_size(level)
+            .min(0.1 * t.tolerance)
+            .max(MIN_RIM_SIZE),
+        None => adapted_rim_size(level),
+    }
+}
+
+/// The corner refinement that completes the gmsh mesh of `level` and `target`: the singular
+/// edges `r = a` (and `r = b` for `contact_start > 0`) halved down to [`wanted_rim_size`] when
+/// that is below [`GMSH_MIN_ELEMENT_SIZE`].
+pub fn adapted_corner_refinement(
+    contact_start: f64,
+    level: i32,
+    target: Option<SizeTarget>,
+) -> Option<CornerRefinement> {
+    let size = wanted_rim_size(level, target);
+    (size < GMSH_MIN_ELEMENT_SIZE).then(|| CornerRefinement {
+        radii: if contact_start > 0.0 {
+            vec![contact_start, 1.0]
+        } else {
+            vec![1.0]
+        },
+        size,
+    })
 }
 
 /// Highest level of the adapted family.
@@ -128,6 +175,9 @@ pub struct ProvidedMesh {
     pub sha256: String,
     /// Version of the gmsh that made it (generated meshes only).
     pub gmsh_version: Option<String>,
+    /// Refinement around the singular edges applied to the file's mesh when it is read (rim
+    /// sizes below what gmsh makes well, [`GMSH_MIN_ELEMENT_SIZE`]).
+    pub corner_refinement: Option<CornerRefinement>,
 }
 
 /// Environment variable naming the project's data directory (`verify --data-dir` sets it).
@@ -206,9 +256,8 @@ pub fn adapted_grading(level: i32) -> f64 {
 
 /// `gmsh -setnumber` parameters of level `level` of the adapted family (module documentation).
 ///
-/// Sizes: grading `g` from [`adapted_grading`]; rim size `hmin` from [`adapted_rim_size`], and no
-/// larger than a tenth of the target's tolerance (the innermost element's force error is about
-/// `0.16 hmin` for P2); around a free edge known to within `δ`, the edge size
+/// Sizes: grading `g` from [`adapted_grading`]; rim size `hmin` from [`wanted_rim_size`], but
+/// not below [`GMSH_MIN_ELEMENT_SIZE`] (finer is [`adapted_corner_refinement`]'s job); around a free edge known to within `δ`, the edge size
 /// `hb = g δ / (exp(N g / p) - 1)` puts `N` = [`EDGE_WINDOW_NODES`] contact nodes of degree `p`
 /// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` (which makes the
 /// edge's location bound `0.3 hb / p` under a quarter of the tolerance) or, without a target,
@@ -222,12 +271,10 @@ pub fn adapted_parameters(
 ) -> Vec<(String, f64)> {
     let grading = adapted_grading(level);
     let degree = target.map_or(2.0, |t| t.degree as f64);
-    let (hmin, edge_floor) = match target {
-        Some(t) => (
-            adapted_rim_size(level).min(0.1 * t.tolerance).max(1e-10),
-            0.75 * degree * t.tolerance,
-        ),
-        None => (adapted_rim_size(level), 1e-3 * 0.1f64.powi(level.max(0))),
+    let hmin = wanted_rim_size(level, target).max(GMSH_MIN_ELEMENT_SIZE);
+    let edge_floor = match target {
+        Some(t) => 0.75 * degree * t.tolerance,
+        None => 1e-3 * 0.1f64.powi(level.max(0)),
     };
     let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
     // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
@@ -281,6 +328,7 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
                 path,
                 origin: MeshOrigin::Committed,
                 gmsh_version: None,
+                corner_refinement: None,
             })
         }
         MeshRequest::Adapted {
@@ -297,7 +345,9 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
                 *edge_uncertainty,
                 *target,
             );
-            generate(&parameters, why)
+            let mut provided = generate(&parameters, why)?;
+            provided.corner_refinement = adapted_corner_refinement(*contact_start, *level, *target);
+            Ok(provided)
         }
     }
 }
@@ -326,6 +376,7 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
             path,
             origin: MeshOrigin::Cache,
             gmsh_version: Some(gmsh.version),
+            corner_refinement: None,
         });
     }
     std::fs::create_dir_all(&dir).map_err(|e| Error::InvalidMesh {
@@ -344,5 +395,6 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
         path,
         origin: MeshOrigin::Gmsh,
         gmsh_version: Some(gmsh.version),
+        corner_refinement: None,
     })
 }

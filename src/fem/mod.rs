@@ -3,6 +3,7 @@
 pub mod assembly;
 pub mod contact;
 pub mod contact_band;
+pub mod corner_refinement;
 pub mod element;
 pub mod far_field;
 pub mod gmsh;

@@ -215,7 +215,6 @@ pub fn run(
                 let request = request.with_free_edge(previous_edge, 0.0);
                 let label = request.label();
                 let provided = mesh_provider::provide(&request, "the FEM convergence study")?;
-                let path = provided.path;
                 let load = if concave {
                     FemLoad::ConcaveDepth(case.depth)
                 } else {
@@ -224,11 +223,11 @@ pub fn run(
                 let options = FemOptions {
                     degree,
                     tolerance: 1e-3,
-                    mesh: Some(path),
+                    mesh: None,
                     poisson_ratio: 0.0,
                     far_field: crate::fem::far_field::FarField::Boussinesq,
                 };
-                let s = fem_solver::solve(case.punch, case.eps, load, &options)?;
+                let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
                 previous_edge = concave.then_some(s.eps);
                 let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
                 (

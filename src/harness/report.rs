@@ -194,7 +194,7 @@ fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f
 }
 
 /// Tolerances of the FEM's full solve (meshes made for the scene) in the speed-accuracy study
-/// of the default run; the nightly run adds 3e-8 (`verify compare --fem-tolerances`).
+/// of the default run; the nightly run adds 1e-8 (`verify compare --fem-tolerances`).
 pub const DEFAULT_FEM_TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-6];
 
 /// Error against wall time for the flat annulus (`eps = 0.5`, `γ`), the sphere (`d = 1.5 h`,
