@@ -2,28 +2,28 @@
 //!
 //! A constrained dof `i` keeps its row and column in the pattern, with every off-diagonal entry
 //! set to zero and the diagonal kept (`K_ii u_i = K_ii ū_i`); the known values move to the right
-//! side. The pattern is therefore the same for every constraint set, and `faer`'s symbolic
-//! analysis (AMD ordering, supernodal structure) is computed once and reused for each new active
-//! set of the contact iteration: only the numeric factorisation is repeated.
+//! side. The pattern is therefore the same for every constraint set, and the symbolic analysis
+//! (node-graph AMD ordering, supernodal structure: [`super::node_ordered_cholesky`]) is computed
+//! once and reused for each new active set of the contact iteration: only the numeric
+//! factorisation is repeated.
 
-use faer::linalg::solvers::Solve;
-use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
-use faer::{MatMut, Side};
+use faer::MatMut;
 use nalgebra_sparse::CscMatrix;
 
+use super::node_ordered_cholesky::{NumericFactor, SymbolicFactor};
 use crate::error::{Error, Result};
 
 /// Cholesky solver bound to one stiffness matrix.
 pub struct ConstrainedCholesky<'a> {
     matrix: &'a CscMatrix<f64>,
     symbolic_pattern: SymbolicSparseColMat<usize>,
-    symbolic: SymbolicLlt<usize>,
+    symbolic: SymbolicFactor,
     diagonal: Vec<usize>,
     scratch: Vec<f64>,
     /// The last numeric factorisation and the constraint set it belongs to: a solve with the same
     /// set (other prescribed values or forces) is a back-substitution only.
-    last: Option<(Vec<bool>, Llt<usize, f64>)>,
+    last: Option<(Vec<bool>, NumericFactor)>,
     /// Number of numeric factorisations done.
     pub factorisations: usize,
     /// Wall time spent in numeric factorisations (seconds).
@@ -63,8 +63,7 @@ impl<'a> ConstrainedCholesky<'a> {
             None,
             matrix.row_indices().to_vec(),
         );
-        let symbolic = SymbolicLlt::try_new(pattern.as_ref(), Side::Lower)
-            .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
+        let symbolic = SymbolicFactor::new(pattern.as_ref())?;
         let mut diagonal = vec![usize::MAX; n];
         for (col, slot) in diagonal.iter_mut().enumerate() {
             let range = matrix.col_offsets()[col]..matrix.col_offsets()[col + 1];
@@ -194,8 +193,7 @@ impl<'a> ConstrainedCholesky<'a> {
             }
         }
         let matrix = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.scratch);
-        let llt = Llt::try_new_with_symbolic(self.symbolic.clone(), matrix, Side::Lower)
-            .map_err(|e| solver_error(format!("the stiffness matrix is not positive definite ({e:?}): is the body held against rigid motion?")))?;
+        let llt = NumericFactor::new(&self.symbolic, matrix)?;
         self.factorisations += 1;
         self.factorisation_seconds += start.elapsed().as_secs_f64();
         self.last = Some((constrained.to_vec(), llt));

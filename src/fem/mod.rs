@@ -11,6 +11,7 @@ pub mod linear_solver;
 pub mod mesh;
 pub mod mesh_provider;
 pub mod msh;
+pub mod node_ordered_cholesky;
 pub mod norms;
 pub mod quadrature;
 pub mod solver;

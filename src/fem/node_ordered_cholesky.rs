@@ -1,0 +1,203 @@
+//! Sparse Cholesky factorisation (`faer`) with its fill-reducing ordering computed on the node
+//! graph instead of the dof graph.
+//!
+//! The stiffness matrix has two dofs per node (`2i`, `2i + 1`), coupled to the same neighbours:
+//! the minimum-degree ordering of the node graph (a quarter of the entries) expanded to the dofs,
+//! `P = [2 π(0), 2 π(0) + 1, 2 π(1), ...]`, gives the factor the same fill as AMD on the dofs
+//! (`nnz(L)` 4 138 256 both at 61 k P3 unknowns; 24.63 M against 24.65 M at 268 k P2) at less
+//! cost: the symbolic analysis took 0.077 s against 0.130 s, and 0.50 s against 0.61 s. A
+//! trailing odd dof (the far-field amplitude) is a node of its own. Any permutation gives the
+//! same factorisation up to rounding, so this only changes time.
+
+use std::sync::Arc;
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::perm::PermRef;
+use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::{Conj, MatMut, Par, Side};
+
+use crate::error::{Error, Result};
+
+fn solver_error(message: String) -> Error {
+    Error::NoConvergence {
+        method: "fem".into(),
+        reason: message,
+    }
+}
+
+/// Node of dof `d` for `n` dofs: `d / 2`, the trailing odd dof its own node.
+fn node_of(d: usize, n: usize) -> usize {
+    if d < n - n % 2 {
+        d / 2
+    } else {
+        n / 2
+    }
+}
+
+/// Approximate-minimum-degree ordering of the node graph of `pattern`, expanded to the dofs:
+/// `(perm, perm_inverse)`.
+pub fn node_graph_ordering(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+) -> (Vec<usize>, Vec<usize>) {
+    let n = pattern.nrows();
+    let nodes = n / 2 + n % 2;
+    let mut columns: Vec<Vec<usize>> = vec![Vec::new(); nodes];
+    for col in 0..n {
+        let node = node_of(col, n);
+        columns[node].extend(pattern.row_idx_of_col(col).map(|row| node_of(row, n)));
+    }
+    let mut offsets = Vec::with_capacity(nodes + 1);
+    offsets.push(0);
+    let mut rows = Vec::new();
+    for column in &mut columns {
+        column.sort_unstable();
+        column.dedup();
+        rows.extend_from_slice(column);
+        offsets.push(rows.len());
+    }
+    let graph = SymbolicSparseColMat::new_checked(nodes, nodes, offsets, None, rows);
+    let (mut perm, mut perm_inverse) = (vec![0usize; nodes], vec![0usize; nodes]);
+    let mut memory = MemBuffer::new(amd::order_scratch::<usize>(nodes, graph.compute_nnz()));
+    let ordered = amd::order(
+        &mut perm,
+        &mut perm_inverse,
+        graph.as_ref(),
+        Default::default(),
+        MemStack::new(&mut memory),
+    );
+    if ordered.is_err() {
+        // AMD only fails on allocation; the identity is still a valid (slower) ordering.
+        perm = (0..nodes).collect();
+    }
+    let pairs = n / 2;
+    let mut dof_perm = Vec::with_capacity(n);
+    for &node in &perm {
+        if node < pairs {
+            dof_perm.push(2 * node);
+            dof_perm.push(2 * node + 1);
+        } else {
+            dof_perm.push(n - 1);
+        }
+    }
+    let mut dof_inverse = vec![0usize; n];
+    for (i, &d) in dof_perm.iter().enumerate() {
+        dof_inverse[d] = i;
+    }
+    (dof_perm, dof_inverse)
+}
+
+/// Symbolic Cholesky analysis of a symmetric pattern, ordered on its node graph.
+#[derive(Clone, Debug)]
+pub struct SymbolicFactor {
+    inner: Arc<SymbolicCholesky<usize>>,
+}
+
+impl SymbolicFactor {
+    /// Analyse `pattern` (both triangles stored; the lower one is read).
+    pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<Self> {
+        let n = pattern.nrows();
+        let (perm, perm_inverse) = node_graph_ordering(pattern);
+        let ordering = PermRef::new_checked(&perm, &perm_inverse, n);
+        let inner = factorize_symbolic_cholesky(
+            pattern,
+            Side::Lower,
+            SymmetricOrdering::Custom(ordering),
+            Default::default(),
+        )
+        .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
+        Ok(Self {
+            inner: Arc::new(inner),
+        })
+    }
+}
+
+/// Numeric Cholesky factor `A = L Lᵀ` on a [`SymbolicFactor`].
+#[derive(Clone, Debug)]
+pub struct NumericFactor {
+    symbolic: Arc<SymbolicCholesky<usize>>,
+    values: Vec<f64>,
+}
+
+impl NumericFactor {
+    /// Factorise `matrix` (its pattern that of the analysis); fails if it is not positive
+    /// definite.
+    pub fn new(symbolic: &SymbolicFactor, matrix: SparseColMatRef<'_, usize, f64>) -> Result<Self> {
+        let inner = &symbolic.inner;
+        let mut values = vec![0.0; inner.len_val()];
+        let mut memory = MemBuffer::try_new(
+            inner.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
+        )
+        .map_err(|_| solver_error("out of memory for the Cholesky factorisation".into()))?;
+        inner
+            .factorize_numeric_llt(
+                &mut values,
+                matrix,
+                Side::Lower,
+                Default::default(),
+                Par::Seq,
+                MemStack::new(&mut memory),
+                Default::default(),
+            )
+            .map_err(|e| {
+                solver_error(format!(
+                    "the stiffness matrix is not positive definite ({e:?}): is the body held \
+                     against rigid motion?"
+                ))
+            })?;
+        Ok(Self {
+            symbolic: Arc::clone(inner),
+            values,
+        })
+    }
+
+    /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs`.
+    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+        let mut memory = MemBuffer::new(
+            self.symbolic
+                .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq),
+        );
+        LltRef::new(&self.symbolic, &self.values).solve_in_place_with_conj(
+            Conj::No,
+            rhs,
+            Par::Seq,
+            MemStack::new(&mut memory),
+        );
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_ordering_keeps_node_pairs_together_and_the_trailing_dof_alone() {
+        // Path of 3 nodes (6 dofs) plus one extra dof coupled to everything.
+        let n = 7;
+        let mut offsets = vec![0];
+        let mut rows = Vec::new();
+        for col in 0..n {
+            for row in 0..n {
+                let (a, b) = (node_of(row, n), node_of(col, n));
+                if a.abs_diff(b) <= 1 || a == 3 || b == 3 {
+                    rows.push(row);
+                }
+            }
+            offsets.push(rows.len());
+        }
+        let pattern = SymbolicSparseColMat::new_checked(n, n, offsets, None, rows);
+        let (perm, inverse) = node_graph_ordering(pattern.as_ref());
+        let mut sorted = perm.clone();
+        sorted.sort_unstable();
+        assert_eq!(sorted, (0..n).collect::<Vec<_>>());
+        for (i, &d) in perm.iter().enumerate() {
+            assert_eq!(inverse[d], i);
+        }
+        for pair in perm.iter().filter(|&&d| d < 6 && d % 2 == 0) {
+            assert_eq!(perm[inverse[*pair] + 1], pair + 1, "{perm:?}");
+        }
+    }
+}
