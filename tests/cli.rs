@@ -350,3 +350,47 @@ fn scene_and_mesh_errors_say_where() {
     assert!(err.contains("truncated"), "{err}");
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn export_writes_the_three_files_and_refuses_bad_input() {
+    let dir = std::env::temp_dir().join(format!("ringcontact-cli-export-{}", std::process::id()));
+    let out = verify(&[
+        "export",
+        "--mesh",
+        "meshes/small-domain-R5.msh",
+        "--degree",
+        "1",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    for file in ["stiffness.mtx", "load.mtx", "dofs.csv"] {
+        assert!(dir.join(file).exists(), "{file} missing");
+    }
+    let header = std::fs::read_to_string(dir.join("dofs.csv")).unwrap();
+    assert!(header.starts_with("index,node_tag,r,z,component\n"));
+    let missing = verify(&[
+        "export",
+        "--mesh",
+        "/nonexistent.msh",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(!missing.status.success());
+    assert!(String::from_utf8_lossy(&missing.stderr).contains("/nonexistent.msh"));
+    let json_alone = verify(&[
+        "export",
+        "--mesh",
+        "meshes/small-domain-R5.msh",
+        "--out",
+        dir.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(!json_alone.status.success());
+    assert!(String::from_utf8_lossy(&json_alone.stderr).contains("--compare"));
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -10,7 +10,7 @@ use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
 use ringcontact::adhesion;
 use ringcontact::fem::mesh::Degree;
-use ringcontact::harness::{comparison, convergence, fenicsx, peers, report, svg};
+use ringcontact::harness::{comparison, convergence, fenicsx, operator, peers, report, svg};
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference;
@@ -73,8 +73,10 @@ Refresh the stored results (installs FEniCSx from Debian when missing):
   bash scripts/fenicsx/run_all.sh
 
 Example:
-  verify fenicsx --json")]
-    Fenicsx(JsonArgs),
+  verify fenicsx --json
+  verify fenicsx --operators --json   the stored operator comparisons (bash
+                                      scripts/fenicsx/run_operators.sh remakes them)")]
+    Fenicsx(FenicsxArgs),
     /// Make (or find in the cache) a mesh of the adapted family with gmsh and print where it is.
     #[command(after_help = "\
 The adapted family is what the FEM climbs: level k (-2 to 7) is graded toward the rim (and r = b),
@@ -90,6 +92,25 @@ Examples:
   verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a
   verify mesh --level 0 --free-edge 0.4505 --edge-uncertainty 1e-4 --tol 1e-6 --degree 3")]
     Mesh(MeshArgs),
+    /// Write our assembled stiffness matrix, load vector and dof table for a mesh (Matrix Market).
+    #[command(after_help = "\
+Writes into --out: stiffness.mtx (K of the axisymmetric solid, E = 1, nu = 0, no boundary
+conditions), load.mtx (an n x 1 matrix: the consistent nodal forces of a unit pressure on the
+contact line, f_i = -int phi_i e_z 2 pi r dr), dofs.csv (index,node_tag,r,z,component; dof 2n + c
+is component c of node n; node_tag is the file's, empty for nodes added for P2/P3). Matrix Market
+coordinate real general, written with sprs.
+
+FEniCSx writes the same three files for its assembly of the same mesh and degree:
+  /usr/bin/python3 scripts/fenicsx/export.py --mesh M --degree P --out DIR
+and --compare DIR matches the dofs by position and component and prints the largest entry-wise
+difference relative to the largest entry, for the matrix and the load (goal 1e-12; exit status 1
+above it). scripts/fenicsx/run_operators.sh stores such comparisons in verify/fenicsx/operators/,
+which `verify fenicsx` and the report show.
+
+Examples:
+  verify export --mesh meshes/disk-L0.msh --degree 2 --out /tmp/ours
+  verify export --mesh meshes/disk-L0.msh --degree 2 --out /tmp/ours --compare /tmp/fenicsx --json")]
+    Export(ExportArgs),
     /// Mesh-convergence study of one method: error against the ring BEM, observed order,
     /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
     #[command(after_help = "\
@@ -222,6 +243,38 @@ struct MeshArgs {
     /// Element degree of that solve (with --tol).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
     degree: u8,
+}
+
+#[derive(Args)]
+struct ExportArgs {
+    /// gmsh .msh file (physical groups as in meshes/half_space.geo).
+    #[arg(long)]
+    mesh: PathBuf,
+    /// Element degree: 1, 2 or 3.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
+    degree: u8,
+    /// Directory to write stiffness.mtx, load.mtx and dofs.csv into (created if missing).
+    #[arg(long)]
+    out: PathBuf,
+    /// FEniCSx's export of the same mesh and degree (scripts/fenicsx/export.py --out DIR):
+    /// compare the two operators and print the differences (JSON with --json).
+    #[arg(long, value_name = "DIR")]
+    compare: Option<PathBuf>,
+    /// With --compare: print the comparison as JSON.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct FenicsxArgs {
+    /// Print JSON instead of the table (the force comparisons; with --operators, the operator
+    /// comparisons).
+    #[arg(long)]
+    json: bool,
+    /// Show only the stored comparisons of the assembled operator (stiffness matrix and load
+    /// vector, entry by entry, dofs matched by position) with FEniCSx's.
+    #[arg(long)]
+    operators: bool,
 }
 
 #[derive(Args)]
@@ -398,6 +451,7 @@ fn main() -> ExitCode {
         Some(Command::Solve(args)) => run_solve(args),
         Some(Command::Fenicsx(args)) => run_fenicsx(args),
         Some(Command::Mesh(args)) => run_mesh(args),
+        Some(Command::Export(args)) => run_export(args),
         Some(Command::Convergence(args)) => run_convergence(args),
         Some(Command::Jkr(args)) => run_jkr(args),
         Some(Command::Fit(args)) => run_fit(args),
@@ -481,12 +535,14 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
     let report = comparison::run(args.tol).map_err(|e| e.to_string())?;
     let external = fenicsx::run().map_err(|e| e.to_string())?;
     let peer_rows = peers::run(256).map_err(|e| e.to_string())?;
+    let operators = operator::load_records().map_err(|e| e.to_string())?;
     if !args.no_report {
         let mut bar = ringcontact::harness::progress::Progress::new("report", report::STAGES);
         report::write_report(
             &args.report,
             &report,
             &external,
+            &operators,
             &peer_rows,
             &args.fem_tolerances,
             |stage| bar.tick(stage),
@@ -494,12 +550,17 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
         .map_err(|e| e.to_string())?;
     }
     if args.json {
-        let both =
-            serde_json::json!({ "comparison": report, "fenicsx": external, "peers": peer_rows });
+        let both = serde_json::json!({
+            "comparison": report,
+            "fenicsx": external,
+            "fenicsx_operators": operators,
+            "peers": peer_rows
+        });
         outln!("{}", to_json(&both)?);
     } else {
         out!("{}", comparison::render(&report));
         out!("{}", fenicsx::render(&external));
+        out!("{}", operator::render_records(&operators));
         out!("{}", peers::render(&peer_rows));
         outln!(
             "\n{} of {} stored FEniCSx results compared, {} failed; {} peer comparisons, {} failed.",
@@ -517,7 +578,12 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
         }
     }
     Ok(
-        if report.failures() + fenicsx::failures(&external) + peers::failures(&peer_rows) == 0 {
+        if report.failures()
+            + fenicsx::failures(&external)
+            + operator::failures(&operators)
+            + peers::failures(&peer_rows)
+            == 0
+        {
             ExitCode::SUCCESS
         } else {
             ExitCode::FAILURE
@@ -1034,18 +1100,67 @@ fn run_mesh(args: MeshArgs) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-fn run_fenicsx(args: JsonArgs) -> Result<ExitCode, String> {
+fn run_export(args: ExportArgs) -> Result<ExitCode, String> {
+    let degree = ringcontact::fem::mesh::Degree::from_number(args.degree)
+        .ok_or_else(|| format!("--degree {}: need 1, 2 or 3", args.degree))?;
+    let written = ringcontact::fem::export::export_mesh(&args.mesh, degree, &args.out)
+        .map_err(|e| e.to_string())?;
+    if args.json && args.compare.is_none() {
+        return Err("--json prints the comparison: give --compare DIR as well".into());
+    }
+    if !args.json {
+        for path in &written {
+            outln!("wrote {}", path.display());
+        }
+    }
+    let Some(fenicsx_dir) = &args.compare else {
+        return Ok(ExitCode::SUCCESS);
+    };
+    let comparison =
+        ringcontact::harness::operator::compare_operator(&args.mesh, degree, fenicsx_dir)
+            .map_err(|e| e.to_string())?;
+    let met = comparison.meets_goal();
+    if args.json {
+        outln!("{}", to_json(&comparison)?);
+    } else {
+        out!("{}", ringcontact::harness::operator::render(&[comparison]));
+    }
+    Ok(if met {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    })
+}
+
+fn run_fenicsx(args: FenicsxArgs) -> Result<ExitCode, String> {
+    let operators = operator::load_records().map_err(|e| e.to_string())?;
+    if args.operators {
+        if args.json {
+            outln!("{}", to_json(&operators)?);
+        } else {
+            out!("{}", operator::render_records(&operators));
+        }
+        return Ok(exit_code(operator::failures(&operators) == 0));
+    }
     let rows = fenicsx::run().map_err(|e| e.to_string())?;
     if args.json {
         outln!("{}", to_json(&rows)?);
     } else {
         out!("{}", fenicsx::render(&rows));
+        outln!();
+        out!("{}", operator::render_records(&operators));
     }
-    Ok(if fenicsx::failures(&rows) == 0 {
+    Ok(exit_code(
+        fenicsx::failures(&rows) == 0 && operator::failures(&operators) == 0,
+    ))
+}
+
+fn exit_code(success: bool) -> ExitCode {
+    if success {
         ExitCode::SUCCESS
     } else {
         ExitCode::FAILURE
-    })
+    }
 }
 
 fn run_solve(args: SolveArgs) -> Result<ExitCode, String> {

@@ -5,6 +5,7 @@ pub mod contact;
 pub mod contact_band;
 pub mod corner_refinement;
 pub mod element;
+pub mod export;
 pub mod far_field;
 pub mod gmsh;
 pub mod linear_solver;
