@@ -572,7 +572,7 @@ fn run_compare(args: CompareArgs) -> Result<ExitCode, String> {
         );
         if !args.no_report {
             outln!(
-                "Report (Markdown, JSON, SVG charts): {}/report.md",
+                "Report: {}/index.html (web page), report.md, report.json, SVG charts",
                 args.report.display()
             );
         }
@@ -962,6 +962,10 @@ fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {
         history::trend(&args.history, 30).map_err(|e| e.to_string())?,
     )
     .map_err(|e| e.to_string())?;
+    let recorded = history::read_history(&args.history).map_err(|e| e.to_string())?;
+    let page = ringcontact::harness::html::write_index(&args.report, Some(&recorded))
+        .map_err(|e| e.to_string())?;
+    outln!("web page with trend charts: {}", page.display());
     outln!(
         "history: {} ({} runs recorded); FEniCSx {}, peers {}",
         args.history.display(),

@@ -4,6 +4,7 @@ pub mod comparison;
 pub mod convergence;
 pub mod fenicsx;
 pub mod history;
+pub mod html;
 pub mod operator;
 pub mod peers;
 pub mod progress;

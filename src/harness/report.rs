@@ -809,6 +809,7 @@ pub fn write_report(
         "report.md",
         &markdown(comparison, fenicsx, operators, peers, &extras),
     )?;
+    super::html::write_index(dir, None)?;
     Ok(extras)
 }
 

@@ -26,7 +26,7 @@ const FRAME: (f64, f64, f64, f64, f64, f64) = (720.0, 480.0, 80.0, 200.0, 40.0, 
 fn open(title: &str) -> String {
     let (w, h, left, ..) = FRAME;
     format!(
-        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' font-family='sans-serif' font-size='12'>\n\
+        "<svg xmlns='http://www.w3.org/2000/svg' width='{w}' height='{h}' viewBox='0 0 {w} {h}' font-family='sans-serif' font-size='12'>\n\
          <rect width='100%' height='100%' fill='white'/>\n<text x='{left}' y='24' font-size='15'>{title}</text>\n"
     )
 }
@@ -141,6 +141,26 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
 
 /// A chart with linear axes (values of either sign), grid lines at "nice" steps.
 pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+    linear_chart_drawn(title, x_label, y_label, series, false)
+}
+
+/// [`linear_chart`] with a marker at every point (series of one point stay visible).
+pub fn linear_chart_with_markers(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> String {
+    linear_chart_drawn(title, x_label, y_label, series, true)
+}
+
+fn linear_chart_drawn(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+    markers: bool,
+) -> String {
     let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
     let (w, h, left, right, top, bottom) = FRAME;
     let all: Vec<(f64, f64)> = series
@@ -156,8 +176,17 @@ pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]
             (a.min(x), b.max(x))
         })
     };
-    let (mut x0, mut x1) = bounds(&mut all.iter().map(|p| p.0));
-    let (mut y0, mut y1) = bounds(&mut all.iter().map(|p| p.1));
+    // A constant (or single) value still gets an axis: widen a zero range to ±10 % (or ±1).
+    let widen = |(lo, hi): (f64, f64)| {
+        if hi > lo {
+            (lo, hi)
+        } else {
+            let pad = (0.1 * lo.abs()).max(if lo == 0.0 { 1.0 } else { 0.0 });
+            (lo - pad, hi + pad)
+        }
+    };
+    let (mut x0, mut x1) = widen(bounds(&mut all.iter().map(|p| p.0)));
+    let (mut y0, mut y1) = widen(bounds(&mut all.iter().map(|p| p.1)));
     let step = |lo: f64, hi: f64| {
         let raw = ((hi - lo) / 8.0).max(1e-12);
         let mag = 10f64.powf(raw.log10().floor());
@@ -191,7 +220,7 @@ pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]
         |p| p.0.is_finite() && p.1.is_finite(),
         px,
         py,
-        false,
+        markers,
     );
     svg + "</svg>\n"
 }
