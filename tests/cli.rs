@@ -394,3 +394,39 @@ fn export_writes_the_three_files_and_refuses_bad_input() {
     assert!(String::from_utf8_lossy(&json_alone.stderr).contains("--compare"));
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_flat_annulus_sweep_writes_its_csv_with_the_documented_columns() {
+    let dir = std::env::temp_dir().join(format!("ringcontact-sweep-{}", std::process::id()));
+    let out = verify(&[
+        "jkr",
+        "--punch",
+        "flat-annulus",
+        "--sweep",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("critical depths (units d0)"), "{stdout}");
+    let csv = std::fs::read_to_string(dir.join("critical-flat-annulus.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next(),
+        Some("eps,dc_outer,fc_outer,dc_inner,fc_inner,governing_edge,collins_dc,collins_fc,argatov_dc,argatov_fc")
+    );
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 40);
+    for r in &rows {
+        let eps: f64 = r[0].parse().unwrap();
+        let fc_outer: f64 = r[2].parse().unwrap();
+        assert!(eps > 0.0 && eps < 1.0 && fc_outer < 0.0, "{r:?}");
+        assert!(r[5] == "outer" || r[5] == "inner", "{r:?}");
+    }
+    assert!(dir.join("critical-flat-annulus.svg").exists());
+    let _ = std::fs::remove_dir_all(&dir);
+}

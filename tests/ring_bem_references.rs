@@ -296,3 +296,36 @@ fn states_outside_the_validated_range_are_errors_not_numbers() {
         Err(Error::OutOfRange { .. })
     ));
 }
+
+#[test]
+fn the_estimate_of_a_loose_inverse_solve_covers_its_root_search() {
+    // Depth- and force-controlled concave states at loose tolerances: the root search in eps
+    // stops far from the discretisation's accuracy, and the estimate must say so (the sphere at
+    // d = 1.5 h and 1e-2 was 7.2e-10 off with an estimate of 1e-13). Reference: the same states
+    // converged to 1e-11 (the ring BEM matches the closed forms to 1e-13, tests above).
+    let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
+    use ringcontact::punch::PunchKind::{Cone, Sphere};
+    for tolerance in [1e-2, 1e-4, 1e-6] {
+        for (kind, depth) in [(Sphere, 1.5), (Cone, 2.0), (Sphere, 0.5), (Cone, 0.5)] {
+            let loose = solver.concave_at_depth(kind, depth, tolerance).unwrap();
+            let tight = solver.concave_at_depth(kind, depth, 1e-11).unwrap();
+            let error = (loose.gamma2.unwrap() / tight.gamma2.unwrap() - 1.0).abs();
+            let eps_error = (loose.eps - tight.eps).abs();
+            assert!(
+                error <= loose.error_estimate && eps_error <= loose.error_estimate,
+                "{kind} d = {depth}, tol {tolerance:e}: errors {error:.2e}, {eps_error:.2e}, estimate {:.2e}",
+                loose.error_estimate
+            );
+        }
+        for (kind, force) in [(Cone, 1.0), (Sphere, 0.8)] {
+            let loose = solver.concave_at_force(kind, force, tolerance).unwrap();
+            let tight = solver.concave_at_force(kind, force, 1e-11).unwrap();
+            let error = (loose.gamma1.unwrap() / tight.gamma1.unwrap() - 1.0).abs();
+            assert!(
+                error <= loose.error_estimate,
+                "{kind} F = {force}, tol {tolerance:e}: error {error:.2e}, estimate {:.2e}",
+                loose.error_estimate
+            );
+        }
+    }
+}

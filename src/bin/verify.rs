@@ -10,7 +10,9 @@ use clap::{Args, CommandFactory, FromArgMatches, Parser, Subcommand};
 
 use ringcontact::adhesion;
 use ringcontact::fem::mesh::Degree;
-use ringcontact::harness::{comparison, convergence, fenicsx, operator, peers, report, svg};
+use ringcontact::harness::{
+    comparison, convergence, fenicsx, operator, peers, report, svg, sweeps,
+};
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference;
@@ -632,6 +634,7 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
             .iter()
             .map(|l| (l.size, l.error.abs()))
             .collect(),
+        bars: Vec::new(),
     }];
     let chart = svg::log_log_chart(
         &format!(
@@ -656,7 +659,10 @@ fn run_convergence(args: ConvergenceArgs) -> Result<ExitCode, String> {
 fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
     let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
     let text = match args.punch {
-        PunchKind::FlatAnnulus if args.sweep => flat_annulus_sweep(&solver, &args.out, args.json)?,
+        PunchKind::FlatAnnulus if args.sweep => sweep_output(
+            &sweeps::flat_annulus_sweep(&solver, &args.out).map_err(|e| e.to_string())?,
+            args.json,
+        )?,
         PunchKind::FlatAnnulus => {
             let eps = args
                 .eps
@@ -686,7 +692,10 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
             }
         }
         PunchKind::Cone | PunchKind::Sphere if args.sweep => {
-            jkr_sweep(&solver, args.punch, &args.out, args.json)?
+            let mut bar = ringcontact::harness::progress::Progress::new("sweep", 25);
+            let sweep = sweeps::pulloff_sweep(&solver, args.punch, &args.out, |s| bar.tick(s))
+                .map_err(|e| e.to_string())?;
+            sweep_output(&sweep, args.json)?
         }
         PunchKind::Cone | PunchKind::Sphere => {
             let s = args
@@ -747,202 +756,20 @@ fn run_jkr(args: JkrArgs) -> Result<ExitCode, String> {
     Ok(ExitCode::SUCCESS)
 }
 
-/// Flat annulus: critical depths and forces of both edges against `eps` (the paper's Fig. 7-8).
-fn flat_annulus_sweep(
-    solver: &ringcontact::bem::ring_contact::RingBemSolver,
-    out: &std::path::Path,
+/// The sweep's table (or its rows as JSON) and the files it wrote.
+fn sweep_output<R: serde::Serialize>(
+    sweep: &ringcontact::harness::sweeps::Sweep<R>,
     json: bool,
 ) -> Result<String, String> {
-    let ratios: Vec<f64> = (1..=40)
-        .map(|k| 1.0 - 10f64.powf(-2.0 * k as f64 / 40.0 - 0.0) * 0.99)
-        .collect();
-    let mut rows = Vec::new();
-    for &e in ratios.iter().filter(|&&e| e > 0.0 && e < 1.0) {
-        rows.push(adhesion::flat_annulus(solver, e).map_err(|e| e.to_string())?);
-    }
-    let mut csv = String::from("eps,dc_outer,fc_outer,dc_inner,fc_inner,governing_edge,collins_dc,collins_fc,argatov_dc,argatov_fc\n");
-    let mut table = format!(
-        "flat annulus: critical depths (units d0) and forces (units F0)\n  {:>7} {:>10} {:>10} {:>10} {:>10} {:>8} {:>10} {:>10}\n",
-        "eps", "dc_outer", "fc_outer", "dc_inner", "fc_inner", "governs", "Collins fc", "Argatov fc"
-    );
-    for r in &rows {
-        let opt = |v: Option<f64>| v.map_or(String::new(), |v| v.to_string());
-        csv += &format!(
-            "{},{},{},{},{},{},{},{},{},{}\n",
-            r.eps,
-            r.dc_outer,
-            r.fc_outer,
-            r.dc_inner,
-            r.fc_inner,
-            r.governing_edge,
-            opt(r.collins.map(|c| c.depth)),
-            opt(r.collins.map(|c| c.force)),
-            opt(r.argatov.map(|c| c.depth)),
-            opt(r.argatov.map(|c| c.force))
-        );
-        let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.5}"));
-        table += &format!(
-            "  {:>7.4} {:>10.5} {:>10.5} {:>10.5} {:>10.5} {:>8} {:>10} {:>10}\n",
-            r.eps,
-            r.dc_outer,
-            r.fc_outer,
-            r.dc_inner,
-            r.fc_inner,
-            r.governing_edge,
-            cell(r.collins.map(|c| c.force)),
-            cell(r.argatov.map(|c| c.force))
-        );
-    }
-    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-    let series = |name: &str, f: &dyn Fn(&adhesion::FlatAnnulusJkr) -> Option<f64>| svg::Series {
-        name: name.to_string(),
-        points: rows
-            .iter()
-            .filter_map(|r| f(r).map(|v| (1.0 - r.eps, v.abs())))
-            .collect(),
-    };
-    let chart = svg::log_log_chart(
-        "flat annulus: |critical force| / F0 against 1 - b/a",
-        "1 - eps",
-        "|F_c| / F0",
-        &[
-            series("outer edge", &|r| Some(r.fc_outer)),
-            series("inner edge", &|r| Some(r.fc_inner)),
-            series("Collins (21)", &|r| r.collins.map(|c| c.force)),
-            series("Argatov (22)", &|r| r.argatov.map(|c| c.force)),
-        ],
-    );
-    let stem = out.join("critical-flat-annulus");
-    std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
-    std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
     if json {
-        return to_json(&rows);
+        return to_json(&sweep.rows);
     }
-    Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
-}
-
-/// `F_pulloff/F0` against `d0/h` by every route (table, CSV, SVG).
-fn jkr_sweep(
-    solver: &ringcontact::bem::ring_contact::RingBemSolver,
-    kind: PunchKind,
-    out: &std::path::Path,
-    json: bool,
-) -> Result<String, String> {
-    let values: Vec<f64> = (0..=24)
-        .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 24.0))
+    let files: Vec<String> = sweep
+        .files
+        .iter()
+        .map(|f| f.display().to_string())
         .collect();
-    let mut rows = Vec::new();
-    let mut bar = ringcontact::harness::progress::Progress::new("sweep", values.len());
-    for &s in &values {
-        rows.push(adhesion::concave(solver, kind, s).map_err(|e| e.to_string())?);
-        bar.tick(&format!("d0/h = {s:.3}"));
-    }
-    let pick = |c: &Option<adhesion::Critical>| c.as_ref().map(|c| -c.force);
-    let mut csv = String::from("d0_over_h,fixed_load,fixed_grips,paper_fits_fixed_load,paper_fits_fixed_grips,full_contact\n");
-    let mut table = format!(
-        "{kind}: pull-off force -F/F0 against d0/h (F0 = Kendall's flat punch of radius a)\n  {:>8} {:>11} {:>11} {:>13} {:>13} {:>12}\n",
-        "d0/h", "fixed load", "fixed grips", "paper fits FL", "paper fits FG", "full contact"
-    );
-    let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
-    for r in &rows {
-        let (fl, fg) = (pick(&r.fixed_load), pick(&r.fixed_grips));
-        let (pl, pg) = (
-            r.paper_fits_fixed_load.map(|p| -p.1),
-            r.paper_fits_fixed_grips.map(|p| -p.1),
-        );
-        let full = -r.full_contact.pulloff.force;
-        csv += &format!(
-            "{},{},{},{},{},{}\n",
-            r.d0_over_h,
-            fl.map_or(String::new(), |v| v.to_string()),
-            fg.map_or(String::new(), |v| v.to_string()),
-            pl.map_or(String::new(), |v| v.to_string()),
-            pg.map_or(String::new(), |v| v.to_string()),
-            full
-        );
-        table += &format!(
-            "  {:>8.3} {:>11} {:>11} {:>13} {:>13} {:>12.4}\n",
-            r.d0_over_h,
-            cell(fl),
-            cell(fg),
-            cell(pl),
-            cell(pg),
-            full
-        );
-    }
-    std::fs::create_dir_all(out).map_err(|e| format!("cannot create {}: {e}", out.display()))?;
-    let series = |name: &str, f: &dyn Fn(&adhesion::ConcaveJkr) -> Option<f64>| svg::Series {
-        name: name.to_string(),
-        points: rows
-            .iter()
-            .filter_map(|r| f(r).map(|v| (r.d0_over_h, v)))
-            .collect(),
-    };
-    let chart = svg::log_log_chart(
-        &format!("{kind}: pull-off force / F0 against d0/h"),
-        "d0/h",
-        "-F_pulloff / F0",
-        &[
-            series("fixed load", &|r| pick(&r.fixed_load)),
-            series("fixed grips", &|r| pick(&r.fixed_grips)),
-            series("paper fits, FL", &|r| r.paper_fits_fixed_load.map(|p| -p.1)),
-            series("full contact", &|r| Some(-r.full_contact.pulloff.force)),
-        ],
-    );
-    // Fig. 9 analogue: the adhesive branches F/(2E*ha) against d/h for a few d0/h.
-    let mut branch_csv =
-        String::from("d0_over_h,eps,depth_over_h,force_over_2eha,force_over_f0,rim_attached\n");
-    let mut curves = Vec::new();
-    for s in [0.1, 0.3, 1.0, 3.0] {
-        let mut points = Vec::new();
-        for k in 0..=120 {
-            let e = 0.02 + 0.9799 * (k as f64 / 120.0).powf(0.5);
-            let p = adhesion::branch_point(solver, kind, e).map_err(|e| e.to_string())?;
-            let (d, f) = (p.depth(s), p.force(s) * s);
-            let rim_ok = p.rim_intensity(s) >= -1.0;
-            branch_csv += &format!("{s},{e},{d},{f},{},{rim_ok}\n", p.force(s));
-            if d > -4.0 {
-                points.push((d, f));
-            }
-        }
-        curves.push(svg::Series {
-            name: format!("d0/h = {s}"),
-            points,
-        });
-    }
-    curves.push(svg::Series {
-        name: "non-adhesive".into(),
-        points: (0..=120)
-            .map(|k| 0.02 + 0.9799 * (k as f64 / 120.0).powf(0.5))
-            .filter_map(|e| {
-                adhesion::branch_point(solver, kind, e)
-                    .ok()
-                    .map(|p| (p.gamma1, p.gamma2))
-            })
-            .collect(),
-    });
-    std::fs::write(
-        out.join(format!("branches-{}.csv", kind.name())),
-        branch_csv,
-    )
-    .map_err(|e| e.to_string())?;
-    std::fs::write(
-        out.join(format!("branches-{}.svg", kind.name())),
-        svg::linear_chart(
-            &format!("{kind}: adhesive branches (inner edge in equilibrium)"),
-            "d/h",
-            "F/(2 E* h a)",
-            &curves,
-        ),
-    )
-    .map_err(|e| e.to_string())?;
-    let stem = out.join(format!("pulloff-{}", kind.name()));
-    std::fs::write(stem.with_extension("csv"), &csv).map_err(|e| e.to_string())?;
-    std::fs::write(stem.with_extension("svg"), chart).map_err(|e| e.to_string())?;
-    if json {
-        return to_json(&rows);
-    }
-    Ok(table + &format!("  wrote {}.csv and .svg", stem.display()))
+    Ok(sweep.table.to_terminal() + &format!("  wrote {}", files.join(", ")))
 }
 
 fn run_history(args: HistoryArgs) -> Result<ExitCode, String> {

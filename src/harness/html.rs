@@ -141,6 +141,7 @@ fn trend_chart(title: &str, unit: &str, values: &[(usize, f64)], regressed: &[us
         Series {
             name: title.to_string(),
             points: values.iter().map(|&(i, v)| (i as f64 + 1.0, v)).collect(),
+            bars: Vec::new(),
         },
         Series {
             name: "regression".to_string(),
@@ -149,6 +150,7 @@ fn trend_chart(title: &str, unit: &str, values: &[(usize, f64)], regressed: &[us
                 .filter(|(i, _)| regressed.contains(i))
                 .map(|&(i, v)| (i as f64 + 1.0, v))
                 .collect(),
+            bars: Vec::new(),
         },
     ];
     super::svg::linear_chart_with_markers(title, "run", unit, &series)

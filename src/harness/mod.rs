@@ -12,3 +12,5 @@ pub mod report;
 pub mod stability;
 pub mod stored;
 pub mod svg;
+pub mod sweeps;
+pub mod table;

@@ -1,8 +1,10 @@
-//! Progress on standard error: a bar redrawn in place on a terminal; elsewhere (pipes, CI logs,
-//! scripts) a plain line at most every [`PLAIN_INTERVAL_S`] seconds, so that long runs are never
-//! silent.
+//! Progress on standard error: on a terminal an `indicatif` bar with rate and ETA, redrawn in
+//! place; elsewhere (pipes, CI logs, scripts) a plain line at most every [`PLAIN_INTERVAL_S`]
+//! seconds, so that long runs are never silent (indicatif hides its bar there).
 
-use std::io::{IsTerminal, Write};
+use std::io::IsTerminal;
+
+use indicatif::{ProgressBar, ProgressStyle};
 
 /// Seconds between plain progress lines when standard error is not a terminal.
 pub const PLAIN_INTERVAL_S: f64 = 10.0;
@@ -12,19 +14,30 @@ pub struct Progress {
     label: String,
     total: usize,
     done: usize,
-    enabled: bool,
+    bar: Option<ProgressBar>,
     started: std::time::Instant,
     reported: std::time::Instant,
 }
 
 impl Progress {
-    /// A bar for `total` steps, shown only on a terminal.
+    /// A bar for `total` steps (plain lines when standard error is not a terminal).
     pub fn new(label: &str, total: usize) -> Self {
+        let total = total.max(1);
+        let bar = std::io::stderr().is_terminal().then(|| {
+            let bar = ProgressBar::new(total as u64);
+            if let Ok(style) = ProgressStyle::with_template(
+                "{prefix} [{bar:30}] {pos}/{len} ({per_sec}, ETA {eta}) {wide_msg}",
+            ) {
+                bar.set_style(style.progress_chars("#>."));
+            }
+            bar.set_prefix(label.to_string());
+            bar
+        });
         Self {
             label: label.to_string(),
-            total: total.max(1),
+            total,
             done: 0,
-            enabled: std::io::stderr().is_terminal(),
+            bar,
             started: std::time::Instant::now(),
             reported: std::time::Instant::now(),
         }
@@ -33,35 +46,24 @@ impl Progress {
     /// One step done; `what` names it.
     pub fn tick(&mut self, what: &str) {
         self.done = (self.done + 1).min(self.total);
-        if !self.enabled {
-            if self.reported.elapsed().as_secs_f64() >= PLAIN_INTERVAL_S && self.done < self.total {
-                self.reported = std::time::Instant::now();
-                eprintln!(
-                    "{}: {}/{} done after {:.0} s ({})",
-                    self.label,
-                    self.done,
-                    self.total,
-                    self.started.elapsed().as_secs_f64(),
-                    what.chars().take(60).collect::<String>()
-                );
+        if let Some(bar) = &self.bar {
+            bar.set_message(what.chars().take(60).collect::<String>());
+            bar.inc(1);
+            if self.done == self.total {
+                bar.finish();
             }
             return;
         }
-        let width = 30;
-        let filled = width * self.done / self.total;
-        let what: String = what.chars().take(40).collect();
-        eprint!(
-            "\r{} [{}{}] {}/{} {:<40}",
-            self.label,
-            "#".repeat(filled),
-            ".".repeat(width - filled),
-            self.done,
-            self.total,
-            what
-        );
-        let _ = std::io::stderr().flush();
-        if self.done == self.total {
-            eprintln!();
+        if self.reported.elapsed().as_secs_f64() >= PLAIN_INTERVAL_S && self.done < self.total {
+            self.reported = std::time::Instant::now();
+            eprintln!(
+                "{}: {}/{} done after {:.0} s ({})",
+                self.label,
+                self.done,
+                self.total,
+                self.started.elapsed().as_secs_f64(),
+                what.chars().take(60).collect::<String>()
+            );
         }
     }
 }

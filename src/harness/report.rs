@@ -37,6 +37,9 @@ pub struct CostPoint {
     pub wall_s: f64,
     /// `|value - yardstick| / |yardstick|`, floored at 1e-16.
     pub error: f64,
+    /// The method's own estimate of that error, where it makes one (drawn as an error bar from
+    /// the actual error up to the estimate: the point must lie below the bar's top).
+    pub estimate: Option<f64>,
     pub on_pareto_front: bool,
 }
 
@@ -190,7 +193,23 @@ fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f
         resolution,
         wall_s,
         error: floor((value - yardstick) / yardstick),
+        estimate: None,
         on_pareto_front: false,
+    }
+}
+
+/// [`point`] with the method's own error estimate.
+fn estimated_point(
+    method: &str,
+    resolution: String,
+    wall_s: f64,
+    value: f64,
+    yardstick: f64,
+    estimate: Option<f64>,
+) -> CostPoint {
+    CostPoint {
+        estimate,
+        ..point(method, resolution, wall_s, value, yardstick)
     }
 }
 
@@ -252,12 +271,13 @@ pub fn speed_accuracy(
     let mut points = Vec::new();
     for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
         let (s, t) = timed(|| ring.concave_at_depth(PunchKind::Sphere, 1.5, tol))?;
-        points.push(point(
+        points.push(estimated_point(
             "ring-bem",
             format!("tol {tol:.0e}"),
             t,
             s.gamma2.unwrap_or(f64::NAN),
             yardstick,
+            Some(s.error_estimate),
         ));
     }
     let sphere = CostProblem {
@@ -336,12 +356,13 @@ fn fem_ladder_points(problem: &CostProblem, yardstick: f64, tolerances: &[f64]) 
             far_field: crate::fem::far_field::FarField::Boussinesq,
         };
         match timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options)) {
-            Ok((s, t)) => points.push(point(
+            Ok((s, t)) => points.push(estimated_point(
                 "fem --tol",
                 format!("tol {tolerance:.0e}, P{}", degree as u8),
                 t,
                 s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
                 yardstick,
+                s.error_estimate,
             )),
             Err(e) => eprintln!("speed-accuracy: fem at tolerance {tolerance:e} left out: {e}"),
         }
@@ -455,16 +476,17 @@ fn speed_chart(sa: &SpeedAccuracy) -> String {
         .iter()
         .map(|m| {
             // Joined in order of wall time, so that a line reads as "more time, this error".
-            let mut points: Vec<(f64, f64)> = sa
-                .points
-                .iter()
-                .filter(|p| &p.method == m)
-                .map(|p| (p.wall_s, p.error))
-                .collect();
-            points.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let mut of_method: Vec<&CostPoint> =
+                sa.points.iter().filter(|p| &p.method == m).collect();
+            of_method.sort_by(|a, b| a.wall_s.total_cmp(&b.wall_s));
             Series {
                 name: m.clone(),
-                points,
+                points: of_method.iter().map(|p| (p.wall_s, p.error)).collect(),
+                // From the actual error up to the method's own estimate.
+                bars: of_method
+                    .iter()
+                    .map(|p| p.estimate.map(|e| (p.error.min(e), e.max(p.error))))
+                    .collect(),
             }
         })
         .collect();
@@ -478,11 +500,12 @@ fn speed_chart(sa: &SpeedAccuracy) -> String {
     series.push(Series {
         name: "Pareto front".into(),
         points: front,
+        bars: Vec::new(),
     });
     log_log_chart(
         &format!("{}: error against wall time", sa.problem),
         "wall time [s]",
-        "relative error",
+        "relative error (bar: up to the method's own estimate)",
         &series,
     )
 }
@@ -524,6 +547,7 @@ fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Pa
             Series {
                 name: "ring BEM".into(),
                 points: flat,
+                bars: Vec::new(),
             },
             Series {
                 name: "paper fit (3)".into(),
@@ -531,14 +555,17 @@ fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Pa
                     .iter()
                     .map(|&e| (e, paper_fits::flat_gamma(e)))
                     .collect(),
+                bars: Vec::new(),
             },
             Series {
                 name: "FEM P2 (points)".into(),
                 points: fem_points,
+                bars: Vec::new(),
             },
             Series {
                 name: "grid BEM 128² (points)".into(),
                 points: grid_points,
+                bars: Vec::new(),
             },
         ],
     );
@@ -581,22 +608,27 @@ fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Pa
                 Series {
                     name: "gamma1 ring BEM".into(),
                     points: g1,
+                    bars: Vec::new(),
                 },
                 Series {
                     name: "gamma2 ring BEM".into(),
                     points: g2,
+                    bars: Vec::new(),
                 },
                 Series {
                     name: "gamma1 paper fit".into(),
                     points: fit(1),
+                    bars: Vec::new(),
                 },
                 Series {
                     name: "gamma2 paper fit".into(),
                     points: fit(2),
+                    bars: Vec::new(),
                 },
                 Series {
                     name: "gamma2 FEM P2".into(),
                     points: fem,
+                    bars: Vec::new(),
                 },
             ],
         );
@@ -663,14 +695,17 @@ fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
             Series {
                 name: "ring BEM (nodes)".into(),
                 points: clip(bem),
+                bars: Vec::new(),
             },
             Series {
                 name: "grid BEM 256², averaged".into(),
                 points: clip(grid),
+                bars: Vec::new(),
             },
             Series {
                 name: "FEM P2 (nodal)".into(),
                 points: fem,
+                bars: Vec::new(),
             },
         ],
     );
@@ -728,6 +763,7 @@ pub fn write_report(
                     .iter()
                     .map(|l| (l.size, l.error.abs()))
                     .collect(),
+                bars: Vec::new(),
             }],
         );
         write(dir, &format!("convergence-{}.svg", method.name()), &chart)?;
@@ -742,14 +778,17 @@ pub fn write_report(
             Series {
                 name: "fixed load".into(),
                 points: vec![],
+                bars: Vec::new(),
             },
             Series {
                 name: "paper fits".into(),
                 points: vec![],
+                bars: Vec::new(),
             },
             Series {
                 name: "full contact".into(),
                 points: vec![],
+                bars: Vec::new(),
             },
         ];
         for k in 0..=8 {

@@ -13,10 +13,13 @@ pub fn escape(text: &str) -> String {
 pub struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
+    /// Error bars: for point `i`, `bars[i] = Some((low, high))` in data units draws a vertical bar
+    /// with caps from `low` to `high` (an interval from an error estimate); empty for none.
+    pub bars: Vec<Option<(f64, f64)>>,
 }
 
-const COLOURS: [&str; 6] = [
-    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf",
+const COLOURS: [&str; 8] = [
+    "#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#17becf", "#555555", "#8c564b",
 ];
 
 /// Chart geometry: width, height and the left, right, top and bottom margins (pixels).
@@ -56,6 +59,21 @@ fn draw_series(
     let mut svg = String::new();
     for (k, s) in series.iter().enumerate() {
         let colour = COLOURS[k % COLOURS.len()];
+        for (p, bar) in s.points.iter().zip(&s.bars) {
+            let Some((low, high)) = *bar else { continue };
+            if !(keep(p) && keep(&(p.0, low)) && keep(&(p.0, high))) {
+                continue;
+            }
+            let (x, y0, y1) = (px(p.0), py(low), py(high));
+            svg += &format!(
+                "<g class='error-bar' stroke='{colour}' stroke-width='1.2'><line x1='{x:.1}' y1='{y0:.1}' x2='{x:.1}' y2='{y1:.1}'/>\
+                 <line x1='{:.1}' y1='{y0:.1}' x2='{:.1}' y2='{y0:.1}'/><line x1='{:.1}' y1='{y1:.1}' x2='{:.1}' y2='{y1:.1}'/></g>\n",
+                x - 4.0,
+                x + 4.0,
+                x - 4.0,
+                x + 4.0
+            );
+        }
         let pts: Vec<(f64, f64)> = s
             .points
             .iter()
@@ -248,6 +266,7 @@ mod tests {
             &[Series {
                 name: "<s>".into(),
                 points: vec![(0.0, 1.0), (1.0, 2.0)],
+                bars: Vec::new(),
             }],
         );
         assert!(
