@@ -9,6 +9,7 @@ pub mod operator;
 pub mod peers;
 pub mod progress;
 pub mod report;
+pub mod report_tables;
 pub mod stability;
 pub mod stored;
 pub mod svg;

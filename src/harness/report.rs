@@ -15,6 +15,7 @@ use super::convergence::{self, StudyCase};
 use super::fenicsx::FenicsxComparison;
 use super::operator::OperatorStatus;
 use super::peers::PeerComparison;
+use super::report_tables::{report_tables, ReportTable};
 use super::svg::{linear_chart, log_log_chart, Series};
 use crate::adhesion;
 use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
@@ -843,10 +844,14 @@ pub fn write_report(
         "report.json",
         &serde_json::to_string_pretty(&json).unwrap_or_default(),
     )?;
+    let tables = report_tables(comparison, fenicsx, operators, peers, &extras);
+    for t in &tables {
+        write(dir, &format!("table-{}.csv", t.slug), &t.table.to_csv()?)?;
+    }
     write(
         dir,
         "report.md",
-        &markdown(comparison, fenicsx, operators, peers, &extras),
+        &markdown(comparison, fenicsx, operators, peers, &extras, &tables),
     )?;
     super::html::write_index(dir, None)?;
     Ok(extras)
@@ -858,6 +863,7 @@ fn markdown(
     operators: &[OperatorStatus],
     peers: &[PeerComparison],
     extras: &ReportExtras,
+    tables: &[ReportTable],
 ) -> String {
     let mut md = String::from("# ringcontact verification report\n\n");
     let bounded = comparison
@@ -885,129 +891,23 @@ fn markdown(
         operators.len(),
         peers.len()
     );
-    md += "## The paper's claims\n\n| claim | this run | verdict |\n|---|---|---|\n";
-    for v in &extras.verdicts {
-        let _ = writeln!(md, "| {} | {} | {} |", v.claim, v.numbers, v.verdict);
-    }
-    md += "\n## Methods and references\n\n| quantity | eps | ring BEM | est. error | references (rel. difference, verdict) |\n|---|---|---|---|---|\n";
-    for r in &comparison.rows {
-        let refs: Vec<String> = r
-            .comparisons
-            .iter()
-            .map(|c| {
-                format!(
-                    "{} {:+.1e} {}",
-                    c.reference,
-                    c.relative_difference,
-                    match c.agrees {
-                        Some(true) => "ok",
-                        Some(false) => "**FAIL**",
-                        None => "",
-                    }
-                )
-            })
-            .collect();
-        let _ = writeln!(
-            md,
-            "| {:?} | {} | {:.12} | {:.0e} | {} |",
-            r.quantity,
-            r.eps,
-            r.value,
-            r.error_estimate,
-            refs.join("; ")
-        );
-    }
-    md += "\n## Consistency checks\n\n| check | eps | residual | allowed | verdict |\n|---|---|---|---|---|\n";
-    for c in &comparison.identities {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {:.1e} | {:.0e} | {} |",
-            c.name,
-            c.eps,
-            c.relative_residual,
-            c.tolerance,
-            if c.passed { "ok" } else { "**FAIL**" }
-        );
-    }
-    md += "\n## FEM against the ring BEM (default tolerance)\n\n| punch | state | rel. diff | eps diff | FEM estimate | dofs | s | verdict |\n|---|---|---|---|---|---|---|---|\n";
-    for c in &comparison.fem {
-        let _ = writeln!(
-            md,
-            "| {} | {} | {:+.2e} | {:+.2e} | {:.1e} | {} | {:.2} | {} |",
-            c.punch,
-            c.prescribed,
-            c.relative_difference,
-            c.eps_difference,
-            c.fem_error_estimate,
-            c.dofs,
-            c.fem_wall_s,
-            if c.agrees { "ok" } else { "**FAIL**" }
-        );
-    }
-    md += "\n## External codes (stored results)\n\n| result | rel. diff to ours | verdict |\n|---|---|---|\n";
-    for r in fenicsx {
-        let _ = writeln!(
-            md,
-            "| FEniCSx {} ({}) | {} | {} |",
-            r.file,
-            r.status,
-            r.relative_difference
-                .map_or("-".into(), |d| format!("{d:+.1e}")),
-            if r.passed {
-                "ok"
-            } else if r.status == "current" {
-                "**FAIL**"
-            } else {
-                "stale, not used"
-            }
-        );
-    }
-    for r in peers {
-        let _ = writeln!(
-            md,
-            "| {} | {:+.1e} | {} |",
-            r.file,
-            r.relative_difference,
-            if r.passed { "ok" } else { "**FAIL**" }
-        );
-    }
-    md += "\n## Assembled operator against FEniCSx (stored comparisons)\n\nOur stiffness matrix and unit-pressure load vector against FEniCSx's on the same mesh and degree, dofs matched by position (`scripts/fenicsx/run_operators.sh`); goal: largest entry-wise difference over the largest entry <= 1e-12.\n\n| mesh | degree | dofs | nnz | K difference | load difference | FEniCSx | date | mesh | verdict |\n|---|---|---|---|---|---|---|---|---|---|\n";
-    for r in operators {
-        let c = &r.record.comparison;
-        let _ = writeln!(
-            md,
-            "| {} | P{} | {} | {} | {:.1e} | {:.1e} | dolfinx {} | {} | {} | {} |",
-            c.mesh,
-            c.degree,
-            c.dofs,
-            c.nnz_ours,
-            c.stiffness_difference,
-            c.load_difference,
-            r.record.dolfinx_version,
-            r.record.date,
-            r.status,
-            if c.meets_goal() {
-                "ok"
-            } else {
-                "**ABOVE GOAL**"
-            }
-        );
-    }
-    md += "\n## Speed against accuracy\n\n";
-    for (k, sa) in extras.speed_accuracy.iter().enumerate() {
-        let _ = writeln!(md, "### {}\n\n![](speed-accuracy-{k}.svg)\n\n| method | resolution | wall s | rel. error | Pareto |\n|---|---|---|---|---|", sa.problem);
-        for p in &sa.points {
-            let _ = writeln!(
-                md,
-                "| {} | {} | {:.4} | {:.1e} | {} |",
-                p.method,
-                p.resolution,
-                p.wall_s,
-                p.error,
-                if p.on_pareto_front { "yes" } else { "" }
-            );
+    for t in tables {
+        if let Some(section) = &t.section {
+            let _ = writeln!(md, "## {section}\n");
         }
-        md += "\n";
+        if let Some(intro) = &t.intro {
+            let _ = writeln!(md, "{intro}\n");
+        }
+        if let Some(chart) = &t.chart {
+            let _ = writeln!(md, "![]({chart})\n");
+        }
+        let _ = writeln!(
+            md,
+            "**{}** ([CSV](table-{}.csv))\n\n{}",
+            t.table.title,
+            t.slug,
+            t.table.to_markdown_table()
+        );
     }
     md += "## Convergence (sphere, d/h = 1.5)\n\n";
     for s in &extras.convergence {

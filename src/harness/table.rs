@@ -18,6 +18,8 @@ pub enum Format {
     Fixed(usize),
     /// Scientific with this many decimals of the mantissa.
     Scientific(usize),
+    /// Scientific with an explicit sign (differences).
+    SignedScientific(usize),
 }
 
 /// One column: its key (CSV header and JSON key), what people read, its unit.
@@ -61,6 +63,17 @@ pub enum Cell {
     Text(String),
     /// No value (shown `-`, empty in CSV, `null` in JSON).
     Missing,
+    /// A text that must catch the eye (a failed verdict): bold in Markdown and HTML.
+    Flag(String),
+}
+
+/// A verdict cell: `ok` when `passed`, else the flagged `failure` text.
+pub fn verdict(passed: bool, failure: &str) -> Cell {
+    if passed {
+        Cell::Text("ok".into())
+    } else {
+        Cell::Flag(failure.into())
+    }
 }
 
 impl From<f64> for Cell {
@@ -117,8 +130,9 @@ impl Table {
             Cell::Number(v) => match self.columns[column].format {
                 Format::Fixed(d) => format!("{v:.d$}"),
                 Format::Scientific(d) => format!("{v:.d$e}"),
+                Format::SignedScientific(d) => format!("{v:+.d$e}"),
             },
-            Cell::Text(t) => t.clone(),
+            Cell::Text(t) | Cell::Flag(t) => t.clone(),
             Cell::Missing => "-".to_string(),
         }
     }
@@ -164,7 +178,12 @@ impl Table {
 
     /// A Markdown table under a level-3 heading.
     pub fn to_markdown(&self) -> String {
-        let mut out = format!("### {}\n\n|", self.title);
+        format!("### {}\n\n{}", self.title, self.to_markdown_table())
+    }
+
+    /// The Markdown table alone.
+    pub fn to_markdown_table(&self) -> String {
+        let mut out = String::from("|");
         for c in &self.columns {
             let _ = write!(out, " {} |", c.header());
         }
@@ -174,7 +193,15 @@ impl Table {
         for r in &self.rows {
             out.push('|');
             for (c, v) in r.iter().enumerate() {
-                let _ = write!(out, " {} |", self.shown(c, v).replace('|', "\\|"));
+                let text = self.shown(c, v).replace('|', "\\|");
+                match v {
+                    Cell::Flag(_) => {
+                        let _ = write!(out, " **{text}** |");
+                    }
+                    _ => {
+                        let _ = write!(out, " {text} |");
+                    }
+                }
             }
             out.push('\n');
         }
@@ -192,7 +219,7 @@ impl Table {
             writer
                 .write_record(r.iter().map(|v| match v {
                     Cell::Number(x) => x.to_string(),
-                    Cell::Text(t) => t.clone(),
+                    Cell::Text(t) | Cell::Flag(t) => t.clone(),
                     Cell::Missing => String::new(),
                 }))
                 .map_err(fail)?;
@@ -221,7 +248,7 @@ impl Table {
                             Cell::Number(x) => {
                                 serde_json::Number::from_f64(*x).map_or(Value::Null, Value::Number)
                             }
-                            Cell::Text(t) => Value::String(t.clone()),
+                            Cell::Text(t) | Cell::Flag(t) => Value::String(t.clone()),
                             Cell::Missing => Value::Null,
                         };
                         object.insert(self.columns[c].key.clone(), value);
@@ -242,7 +269,15 @@ impl Table {
         for r in &self.rows {
             out.push_str("<tr>");
             for (c, v) in r.iter().enumerate() {
-                let _ = write!(out, "<td>{}</td>", escape(&self.shown(c, v)));
+                let text = escape(&self.shown(c, v));
+                match v {
+                    Cell::Flag(_) => {
+                        let _ = write!(out, "<td><strong>{text}</strong></td>");
+                    }
+                    _ => {
+                        let _ = write!(out, "<td>{text}</td>");
+                    }
+                }
             }
             out.push_str("</tr>\n");
         }

@@ -1,0 +1,308 @@
+//! Every table of the verification report as a [`Table`]: the Markdown report, its web page and
+//! the CSV file behind each table (`table-<slug>.csv`, linked under it) come from the same rows.
+
+use super::comparison::ComparisonReport;
+use super::fenicsx::FenicsxComparison;
+use super::operator::OperatorStatus;
+use super::peers::PeerComparison;
+use super::report::ReportExtras;
+use super::table::{verdict, Cell, Column, Format, Table};
+
+/// One table of the report: the section it opens (if any), a sentence above it, the table, a
+/// chart shown above it, and the file stem of its CSV.
+pub struct ReportTable {
+    pub section: Option<String>,
+    pub intro: Option<String>,
+    pub chart: Option<String>,
+    pub slug: String,
+    pub table: Table,
+}
+
+fn text(key: &str, label: &str) -> Column {
+    Column::number(key, label, Format::Fixed(0))
+}
+
+fn entry(section: Option<&str>, slug: &str, table: Table) -> ReportTable {
+    ReportTable {
+        section: section.map(str::to_string),
+        intro: None,
+        chart: None,
+        slug: slug.to_string(),
+        table,
+    }
+}
+
+/// The paper's claims and this run's verdicts.
+fn claims(extras: &ReportExtras) -> Table {
+    let mut t = Table::new(
+        "The paper's claims against this run",
+        vec![
+            text("claim", "claim"),
+            text("this_run", "this run"),
+            text("verdict", "verdict"),
+        ],
+    );
+    for v in &extras.verdicts {
+        t.push(vec![
+            v.claim.clone().into(),
+            v.numbers.clone().into(),
+            v.verdict.clone().into(),
+        ]);
+    }
+    t
+}
+
+/// The ring BEM against every bounded reference.
+fn references(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Ring BEM against the references",
+        vec![
+            text("quantity", "quantity"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("ring_bem", "ring BEM", Format::Fixed(12)),
+            Column::number("error_estimate", "est. error", Format::Scientific(0)),
+            text("references", "references (rel. difference, verdict)"),
+        ],
+    );
+    for r in &comparison.rows {
+        let refs: Vec<String> = r
+            .comparisons
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} {:+.1e} {}",
+                    c.reference,
+                    c.relative_difference,
+                    match c.agrees {
+                        Some(true) => "ok",
+                        Some(false) => "FAIL",
+                        None => "",
+                    }
+                )
+            })
+            .collect();
+        let failed = r.comparisons.iter().any(|c| c.agrees == Some(false));
+        let refs = refs.join("; ");
+        t.push(vec![
+            format!("{:?}", r.quantity).into(),
+            r.eps.into(),
+            r.value.into(),
+            r.error_estimate.into(),
+            if failed {
+                Cell::Flag(refs)
+            } else {
+                Cell::Text(refs)
+            },
+        ]);
+    }
+    t
+}
+
+fn identities(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Consistency identities",
+        vec![
+            text("check", "check"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("residual", "residual", Format::Scientific(1)),
+            Column::number("allowed", "allowed", Format::Scientific(0)),
+            text("verdict", "verdict"),
+        ],
+    );
+    for c in &comparison.identities {
+        t.push(vec![
+            c.name.clone().into(),
+            c.eps.into(),
+            c.relative_residual.into(),
+            c.tolerance.into(),
+            verdict(c.passed, "FAIL"),
+        ]);
+    }
+    t
+}
+
+fn fem(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "FEM against the ring BEM at the default tolerance",
+        vec![
+            text("punch", "punch"),
+            text("state", "state"),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(2),
+            ),
+            Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
+            Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
+            text("verdict", "verdict"),
+        ],
+    );
+    for c in &comparison.fem {
+        t.push(vec![
+            c.punch.to_string().into(),
+            c.prescribed.clone().into(),
+            c.relative_difference.into(),
+            c.eps_difference.into(),
+            c.fem_error_estimate.into(),
+            (c.dofs as f64).into(),
+            c.fem_wall_s.into(),
+            verdict(c.agrees, "FAIL"),
+        ]);
+    }
+    t
+}
+
+fn external(fenicsx: &[FenicsxComparison], peers: &[PeerComparison]) -> Table {
+    let mut t = Table::new(
+        "Stored results of external codes against ours",
+        vec![
+            text("result", "result"),
+            Column::number(
+                "relative_difference",
+                "rel. diff to ours",
+                Format::SignedScientific(1),
+            ),
+            text("verdict", "verdict"),
+        ],
+    );
+    for r in fenicsx {
+        t.push(vec![
+            format!("FEniCSx {} ({})", r.file, r.status).into(),
+            r.relative_difference.into(),
+            if r.passed {
+                "ok".into()
+            } else if r.status == "current" {
+                Cell::Flag("FAIL".into())
+            } else {
+                "stale, not used".into()
+            },
+        ]);
+    }
+    for r in peers {
+        t.push(vec![
+            r.file.clone().into(),
+            r.relative_difference.into(),
+            verdict(r.passed, "FAIL"),
+        ]);
+    }
+    t
+}
+
+fn operators(rows: &[OperatorStatus]) -> Table {
+    let mut t = Table::new(
+        "Assembled operator against FEniCSx's (stored comparisons)",
+        vec![
+            text("mesh", "mesh"),
+            text("degree", "degree"),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number("nnz", "nnz", Format::Fixed(0)),
+            Column::number(
+                "stiffness_difference",
+                "K difference",
+                Format::Scientific(1),
+            ),
+            Column::number("load_difference", "load difference", Format::Scientific(1)),
+            text("fenicsx", "FEniCSx"),
+            text("date", "date"),
+            text("status", "mesh"),
+            text("verdict", "verdict"),
+        ],
+    );
+    for r in rows {
+        let c = &r.record.comparison;
+        t.push(vec![
+            c.mesh.clone().into(),
+            format!("P{}", c.degree).into(),
+            (c.dofs as f64).into(),
+            (c.nnz_ours as f64).into(),
+            c.stiffness_difference.into(),
+            c.load_difference.into(),
+            format!("dolfinx {}", r.record.dolfinx_version).into(),
+            r.record.date.clone().into(),
+            r.status.clone().into(),
+            verdict(c.meets_goal(), "ABOVE GOAL"),
+        ]);
+    }
+    t
+}
+
+/// Every table of the report, in the report's order (charts of the speed-accuracy study above
+/// their tables).
+pub fn report_tables(
+    comparison: &ComparisonReport,
+    fenicsx: &[FenicsxComparison],
+    operator_rows: &[OperatorStatus],
+    peers: &[PeerComparison],
+    extras: &ReportExtras,
+) -> Vec<ReportTable> {
+    let mut out = vec![
+        entry(Some("The paper's claims"), "claims", claims(extras)),
+        entry(
+            Some("Methods and references"),
+            "references",
+            references(comparison),
+        ),
+        entry(
+            Some("Consistency checks"),
+            "identities",
+            identities(comparison),
+        ),
+        entry(
+            Some("FEM against the ring BEM (default tolerance)"),
+            "fem",
+            fem(comparison),
+        ),
+        entry(
+            Some("External codes (stored results)"),
+            "external",
+            external(fenicsx, peers),
+        ),
+        ReportTable {
+            intro: Some(
+                "Our stiffness matrix and unit-pressure load vector against FEniCSx's on the same \
+                 mesh and degree, dofs matched by position (`scripts/fenicsx/run_operators.sh`); \
+                 goal: largest entry-wise difference over the largest entry <= 1e-12."
+                    .into(),
+            ),
+            ..entry(
+                Some("Assembled operator against FEniCSx (stored comparisons)"),
+                "operators",
+                operators(operator_rows),
+            )
+        },
+    ];
+    for (k, sa) in extras.speed_accuracy.iter().enumerate() {
+        let mut t = Table::new(
+            &sa.problem,
+            vec![
+                text("method", "method"),
+                text("resolution", "resolution"),
+                Column::number("wall_s", "wall time", Format::Fixed(4)).with_unit("s"),
+                Column::number("error", "rel. error", Format::Scientific(1)),
+                Column::number("estimate", "own estimate", Format::Scientific(1)),
+                text("pareto", "Pareto"),
+            ],
+        );
+        for p in &sa.points {
+            t.push(vec![
+                p.method.clone().into(),
+                p.resolution.clone().into(),
+                p.wall_s.into(),
+                p.error.into(),
+                p.estimate.into(),
+                if p.on_pareto_front { "yes" } else { "" }.into(),
+            ]);
+        }
+        out.push(ReportTable {
+            chart: Some(format!("speed-accuracy-{k}.svg")),
+            ..entry(
+                (k == 0).then_some("Speed against accuracy"),
+                &format!("speed-accuracy-{k}"),
+                t,
+            )
+        });
+    }
+    out
+}
