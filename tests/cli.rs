@@ -260,15 +260,17 @@ fn overflowing_and_hostile_values_are_errors_not_numbers() {
 #[test]
 fn output_to_a_closed_pipe_or_a_full_device_is_not_a_panic() {
     use std::process::Stdio;
-    // A reader that has gone: the child sees EPIPE on its first write.
-    let mut child = Command::new(env!("CARGO_BIN_EXE_verify"))
+    // A reader that has gone before the child starts (closed here, not after the spawn: a
+    // loaded machine could let the child finish writing into the pipe's buffer first): the
+    // child sees EPIPE on its first write.
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
         .args(["solve", "--punch", "cone", "--depth", "2", "--json"])
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
     assert!(!stderr_of(&out).contains("panicked"), "{}", stderr_of(&out));
     assert_eq!(out.status.code(), Some(141));
     if let Ok(full) = std::fs::OpenOptions::new().write(true).open("/dev/full") {

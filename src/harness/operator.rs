@@ -16,6 +16,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::table::{verdict, Column, Format, Table};
 use crate::error::{Error, Result};
 use crate::fem::export::{assemble_system, load_mesh, read_dofs, read_matrix, DofRecord};
 use crate::fem::mesh::Degree;
@@ -47,27 +48,42 @@ impl OperatorComparison {
     }
 }
 
-/// A terminal table of comparisons.
-pub fn render(rows: &[OperatorComparison]) -> String {
-    let mut out = format!(
-        "Assembled operator against FEniCSx's (dofs matched by position; goal: max entry-wise \
-         difference / max entry <= {OPERATOR_GOAL:e}):\n  {:<40} {:>6} {:>8} {:>9} {:>9} {:>10} {:>10}  verdict\n",
-        "mesh", "degree", "dofs", "nnz", "nnz FEniCSx", "K diff", "load diff"
+/// The comparisons as a [`Table`] (terminal, Markdown, CSV, JSON, HTML).
+pub fn table(rows: &[OperatorComparison]) -> Table {
+    let mut t = Table::new(
+        &format!(
+            "Assembled operator against FEniCSx's (dofs matched by position; goal: max \
+             entry-wise difference / max entry <= {OPERATOR_GOAL:e}):"
+        ),
+        vec![
+            Column::number("mesh", "mesh", Format::Fixed(0)),
+            Column::number("degree", "degree", Format::Fixed(0)),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number("nnz", "nnz", Format::Fixed(0)),
+            Column::number("nnz_fenicsx", "nnz FEniCSx", Format::Fixed(0)),
+            Column::number("stiffness_difference", "K diff", Format::Scientific(1)),
+            Column::number("load_difference", "load diff", Format::Scientific(1)),
+            Column::number("verdict", "verdict", Format::Fixed(0)),
+        ],
     );
     for r in rows {
-        out.push_str(&format!(
-            "  {:<40} {:>6} {:>8} {:>9} {:>9} {:>10.1e} {:>10.1e}  {}\n",
-            r.mesh,
-            format!("P{}", r.degree),
-            r.dofs,
-            r.nnz_ours,
-            r.nnz_fenicsx,
-            r.stiffness_difference,
-            r.load_difference,
-            if r.meets_goal() { "ok" } else { "ABOVE GOAL" }
-        ));
+        t.push(vec![
+            r.mesh.clone().into(),
+            format!("P{}", r.degree).into(),
+            (r.dofs as f64).into(),
+            (r.nnz_ours as f64).into(),
+            (r.nnz_fenicsx as f64).into(),
+            r.stiffness_difference.into(),
+            r.load_difference.into(),
+            verdict(r.meets_goal(), "ABOVE GOAL"),
+        ]);
     }
-    out
+    t
+}
+
+/// A terminal table of comparisons.
+pub fn render(rows: &[OperatorComparison]) -> String {
+    table(rows).to_terminal()
 }
 
 /// A stored comparison (`scripts/fenicsx/run_operators.sh`): what was compared, FEniCSx's

@@ -160,13 +160,30 @@ impl Table {
                     .unwrap_or(0)
             })
             .collect();
+        // Text columns are left-aligned, numeric ones right-aligned.
+        let textual: Vec<bool> = (0..self.columns.len())
+            .map(|c| {
+                self.rows
+                    .iter()
+                    .map(|r| &r[c])
+                    .find(|v| !matches!(v, Cell::Missing))
+                    .is_some_and(|v| matches!(v, Cell::Text(_) | Cell::Flag(_)))
+            })
+            .collect();
         let line = |items: &[String]| -> String {
             let parts: Vec<String> = items
                 .iter()
                 .zip(&widths)
-                .map(|(s, &w)| format!("{s:>w$}"))
+                .zip(&textual)
+                .map(|((s, &w), &left)| {
+                    if left {
+                        format!("{s:<w$}")
+                    } else {
+                        format!("{s:>w$}")
+                    }
+                })
                 .collect();
-            format!("  {}\n", parts.join(" "))
+            format!("  {}\n", parts.join(" ").trim_end())
         };
         let mut out = format!("{}\n", self.title);
         out.push_str(&line(&headers));
