@@ -280,7 +280,11 @@ pub fn adapted_parameters(
     // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
     // of a quarter of its radius, or the window's size when none was found.
     let edge_floor = edge_floor.min(0.25 * free_edge.unwrap_or(f64::INFINITY));
-    let hb = window.max(edge_floor).clamp(1e-10, 1e-2);
+    // Never below what gmsh meshes well at the edge's radius (GMSH_MIN_ELEMENT_SIZE of the
+    // coordinates' magnitude; the free edge is not singular, so no corner refinement goes
+    // further): binds only on levels 6 and 7 without a target.
+    let smallest = GMSH_MIN_ELEMENT_SIZE * free_edge.unwrap_or(1.0).max(1e-2);
+    let hb = window.max(edge_floor).clamp(smallest, 1e-2);
     let mut p = vec![
         ("a".to_string(), 1.0),
         ("b".to_string(), contact_start),
@@ -397,4 +401,38 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
         gmsh_version: Some(gmsh.version),
         corner_refinement: None,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gmsh_is_never_asked_for_elements_it_cannot_shape() {
+        // Below 1e-8 of the coordinates' magnitude gmsh makes slivers (GMSH_MIN_ELEMENT_SIZE);
+        // smaller rims come from the corner refinement, which must then be requested.
+        for level in ADAPTED_MIN_LEVEL..=ADAPTED_MAX_LEVEL {
+            for target in [None, Some(1e-3), Some(1e-6), Some(1e-8)] {
+                let target = target.map(|tolerance| SizeTarget {
+                    tolerance,
+                    degree: 3,
+                });
+                for free_edge in [None, Some(0.5), Some(0.01)] {
+                    let p = adapted_parameters(0.0, level, free_edge, 1e-4, target);
+                    let get = |name: &str| p.iter().find(|(n, _)| n == name).map(|(_, v)| *v);
+                    assert!(get("hmin").unwrap() >= GMSH_MIN_ELEMENT_SIZE, "{p:?}");
+                    if let (Some(hb), Some(b)) = (get("hb"), free_edge) {
+                        assert!(hb >= GMSH_MIN_ELEMENT_SIZE * b.max(1e-2), "{p:?}");
+                    }
+                    let wanted = wanted_rim_size(level, target);
+                    let refinement = adapted_corner_refinement(0.3, level, target);
+                    assert_eq!(refinement.is_some(), wanted < GMSH_MIN_ELEMENT_SIZE);
+                    if let Some(r) = refinement {
+                        assert_eq!(r.radii, vec![0.3, 1.0]);
+                        assert_eq!(r.size, wanted);
+                    }
+                }
+            }
+        }
+    }
 }
