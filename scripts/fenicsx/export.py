@@ -23,18 +23,17 @@ import time
 
 import basix
 import basix.ufl_wrapper
-import gmsh
 import numpy as np
 import scipy.io
 import scipy.sparse
 import ufl
-from mpi4py import MPI
 from petsc4py import PETSc
 
 import dolfinx
 from dolfinx import fem
 from dolfinx.fem.petsc import assemble_matrix, assemble_vector
-from dolfinx.io import gmshio
+
+from common import read_mesh, stiffness_form
 
 CONTACT = 1
 
@@ -52,33 +51,16 @@ def main():
     args = p.parse_args()
     start = time.perf_counter()
 
-    gmsh.initialize()
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("mesh")
-    gmsh.merge(args.mesh)
-    mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
-    gmsh.finalize()
-
+    mesh, facet_tags = read_mesh(args.mesh)
     element = basix.ufl_wrapper.create_vector_element(
         "P", "triangle", args.degree, lagrange_variant=basix.LagrangeVariant.equispaced)
     V = fem.FunctionSpace(mesh, element)
     x = ufl.SpatialCoordinate(mesh)
-    u, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-
-    def strain(w):
-        return ufl.sym(ufl.as_tensor([[w[0].dx(0), 0, w[0].dx(1)],
-                                      [0, w[0] / x[0], 0],
-                                      [w[1].dx(0), 0, w[1].dx(1)]]))
-
-    def stress(w):
-        e = strain(w)
-        return 2 * 0.5 * e  # E = 1, nu = 0: lambda = 0, mu = 1/2
-
+    v = ufl.TestFunction(V)
     qdeg = 2 * args.degree
-    dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": qdeg})
+    a = stiffness_form(mesh, V, qdeg)
     ds = ufl.Measure("ds", domain=mesh, subdomain_data=facet_tags,
                      metadata={"quadrature_degree": args.degree + 1})
-    a = ufl.inner(stress(u), strain(v)) * 2 * np.pi * x[0] * dx
     L = -v[1] * 2 * np.pi * x[0] * ds(CONTACT)
 
     K = assemble_matrix(fem.form(a))

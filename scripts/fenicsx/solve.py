@@ -22,17 +22,16 @@ import os
 import sys
 import time
 
-import gmsh
 import numpy as np
 import ufl
-from mpi4py import MPI
 from petsc4py import PETSc
 
 import dolfinx
 from dolfinx import fem
 from dolfinx.fem.petsc import (apply_lifting, assemble_matrix, assemble_vector,
                                create_matrix, create_vector, set_bc)
-from dolfinx.io import gmshio
+
+from common import read_mesh, stiffness_form
 
 CONTACT, FREE, FAR, AXIS, HOLE = 1, 2, 3, 4, 5
 BIG = 1e20
@@ -65,36 +64,14 @@ def main():
     args = p.parse_args()
 
     start = time.perf_counter()
-    # dolfinx 0.5.2's gmshio.read_from_msh returns an undefined name; do what it meant to do.
-    gmsh.initialize()
-    gmsh.option.setNumber("General.Terminal", 0)
-    gmsh.model.add("mesh")
-    gmsh.merge(args.mesh)
-    mesh, _, facet_tags = gmshio.model_to_mesh(gmsh.model, MPI.COMM_WORLD, 0, gdim=2)
-    gmsh.finalize()
+    mesh, facet_tags = read_mesh(args.mesh)
     V = fem.VectorFunctionSpace(mesh, ("Lagrange", args.degree))
-    x = ufl.SpatialCoordinate(mesh)
-    u_trial, v = ufl.TrialFunction(V), ufl.TestFunction(V)
-
-    E, nu = 1.0, 0.0
-    lam = E * nu / ((1 + nu) * (1 - 2 * nu))
-    mu = E / (2 * (1 + nu))
-
-    def strain(w):
-        return ufl.sym(ufl.as_tensor([[w[0].dx(0), 0, w[0].dx(1)],
-                                      [0, w[0] / x[0], 0],
-                                      [w[1].dx(0), 0, w[1].dx(1)]]))
-
-    def stress(w):
-        e = strain(w)
-        return lam * ufl.tr(e) * ufl.Identity(3) + 2 * mu * e
 
     # Degree 2p: basix's default rules for 2, 4, 6 are the 3-, 6- and 12-point rules the Rust
     # code uses (for P3 the Lagrange variant of dolfinx places the edge dofs differently, which
     # spans the same space: identical for flat punches, not for node-wise contact).
     qdeg = 2 * args.degree
-    dx = ufl.Measure("dx", domain=mesh, metadata={"quadrature_degree": qdeg})
-    a = ufl.inner(stress(u_trial), strain(v)) * 2 * np.pi * x[0] * dx
+    a = stiffness_form(mesh, V, qdeg)
     a_form = fem.form(a)
 
     fdim = 1
