@@ -673,6 +673,21 @@ impl LevelResult {
     }
 }
 
+/// The state `(eps, γ, γ1, γ2)` of a solved model: the flat punches' `γ = x` at their fixed
+/// `eps`; the concave punches' located inner radius with `γ1 = x`, `γ2 = y`.
+fn state_of(
+    load: FemLoad,
+    eps: f64,
+    s: &ContactSolution,
+    x: f64,
+    y: f64,
+) -> (f64, Option<f64>, Option<f64>, Option<f64>) {
+    match load {
+        FemLoad::Flat => (eps, Some(x), None, None),
+        _ => (s.inner_radius, None, Some(x), Some(y)),
+    }
+}
+
 /// Solve on one provided mesh (`--mesh`, or a level the convergence study picked), with no
 /// error estimate: the mesh's corner refinement, if any, is applied as in the ladder.
 pub fn solve_on_mesh(
@@ -683,13 +698,6 @@ pub fn solve_on_mesh(
     options: &FemOptions,
 ) -> Result<FemState> {
     let start = Instant::now();
-    let state_of =
-        |s: &ContactSolution, x: f64, y: f64| -> (f64, Option<f64>, Option<f64>, Option<f64>) {
-            match load {
-                FemLoad::Flat => (eps, Some(x), None, None),
-                _ => (s.inner_radius, None, Some(x), Some(y)),
-            }
-        };
     let mut model = prepare_checked(
         provided,
         options,
@@ -700,7 +708,7 @@ pub fn solve_on_mesh(
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
         trace_level(&model, &s);
     }
-    let state = state_of(&s, x, y);
+    let state = state_of(load, eps, &s, x, y);
     let iterations = s.iterations;
     Ok(finish(
         &model,
@@ -727,13 +735,6 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             ),
         });
     }
-    let state_of =
-        |s: &ContactSolution, x: f64, y: f64| -> (f64, Option<f64>, Option<f64>, Option<f64>) {
-            match load {
-                FemLoad::Flat => (eps, Some(x), None, None),
-                _ => (s.inner_radius, None, Some(x), Some(y)),
-            }
-        };
     if let Some(path) = &options.mesh {
         let provided = ProvidedMesh {
             sha256: mesh_provider::sha256_file(path)?,
@@ -838,7 +839,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         if std::env::var_os("RINGCONTACT_TRACE").is_some() {
             trace_level(&model, &s);
         }
-        let (eps_out, gamma, gamma1, gamma2) = state_of(&s, x, y);
+        let (eps_out, gamma, gamma1, gamma2) = state_of(load, eps, &s, x, y);
         let mut current = LevelResult {
             values: (
                 gamma.or(gamma1).unwrap_or(f64::NAN),
