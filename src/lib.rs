@@ -15,6 +15,7 @@
 
 pub mod adhesion;
 pub mod bem;
+pub mod cli;
 pub mod error;
 pub mod fem;
 pub mod finite;

@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use super::table::{verdict, Cell, Column, Format, Table};
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
 use crate::fem::mesh::Degree;
@@ -384,103 +385,144 @@ pub fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
     Ok(checks)
 }
 
-/// Human-readable table.
-pub fn render(report: &ComparisonReport) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "Ring BEM (the yardstick) against the analytic references; tolerance {:.0e}.\n\
-         rel.diff = (ring-bem - reference)/reference; verdicts where the reference declares a bound.\n",
-        report.tolerance
+/// The ring BEM against every bounded reference.
+pub fn reference_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Ring BEM against the references",
+        vec![
+            Column::text("quantity", "quantity"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("ring_bem", "ring BEM", Format::Fixed(12)),
+            Column::number("error_estimate", "est. error", Format::Scientific(0)),
+            Column::number("unknowns", "N", Format::Fixed(0)),
+            Column::number("wall_ms", "time", Format::Fixed(3)).with_unit("ms"),
+            Column::text("references", "references (rel. difference, verdict)"),
+        ],
     );
-    let mut current = None;
-    for row in &report.rows {
-        if current != Some(row.quantity) {
-            current = Some(row.quantity);
-            let _ = writeln!(
-                out,
-                "{:?}\n  {:>6}  {:>19}  {:>8}  {:>3}  {:>8}  references",
-                row.quantity, "eps", "ring-bem", "est.err", "N", "ms"
-            );
-        }
-        let refs: Vec<String> = row
+    for r in &comparison.rows {
+        let refs: Vec<String> = r
             .comparisons
             .iter()
             .map(|c| {
-                let verdict = match c.agrees {
-                    Some(true) => " ok",
-                    Some(false) => " FAIL",
-                    None => "",
-                };
-                format!("{} {:+.2e}{}", c.reference, c.relative_difference, verdict)
+                format!(
+                    "{} {:+.1e} {}",
+                    c.reference,
+                    c.relative_difference,
+                    match c.agrees {
+                        Some(true) => "ok",
+                        Some(false) => "FAIL",
+                        None => "",
+                    }
+                )
             })
             .collect();
-        let _ = writeln!(
-            out,
-            "  {:>6}  {:>19.15}  {:>8.1e}  {:>3}  {:>8.3}  {}",
-            row.eps,
-            row.value,
-            row.error_estimate,
-            row.unknowns,
-            row.wall_s * 1e3,
-            refs.join(", ")
-        );
+        let failed = r.comparisons.iter().any(|c| c.agrees == Some(false));
+        let refs = refs.join("; ");
+        t.push(vec![
+            format!("{:?}", r.quantity).into(),
+            r.eps.into(),
+            r.value.into(),
+            r.error_estimate.into(),
+            (r.unknowns as f64).into(),
+            (r.wall_s * 1e3).into(),
+            if failed {
+                Cell::Flag(refs)
+            } else {
+                Cell::Text(refs)
+            },
+        ]);
     }
-    let _ = writeln!(
-        out,
-        "\nConsistency checks (no reference involved): PHYSICS.md facts 6 and 7, full-contact limits:"
+    t
+}
+
+/// The consistency identities (no reference involved).
+pub fn identity_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Consistency identities",
+        vec![
+            Column::text("check", "check"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("residual", "residual", Format::Scientific(1)),
+            Column::number("allowed", "allowed", Format::Scientific(0)),
+            Column::text("verdict", "verdict"),
+        ],
     );
-    for c in &report.identities {
-        let _ = writeln!(
-            out,
-            "  {:<40} eps = {:<4}  residual {:.1e} (allowed {:.0e})  {}",
-            c.name,
-            c.eps,
-            c.relative_residual,
-            c.tolerance,
-            if c.passed { "ok" } else { "FAIL" }
-        );
+    for c in &comparison.identities {
+        t.push(vec![
+            c.name.clone().into(),
+            c.eps.into(),
+            c.relative_residual.into(),
+            c.tolerance.into(),
+            verdict(c.passed, "FAIL"),
+        ]);
     }
-    let _ = writeln!(
-        out,
-        "\nFEM (P2, default tolerance, committed gmsh meshes) against the ring BEM; \
-         agree when |diff| <= U_fem + U_bem (value relative, eps absolute):"
+    t
+}
+
+/// The FEM against the ring BEM.
+pub fn fem_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "FEM against the ring BEM at the default tolerance",
+        vec![
+            Column::text("punch", "punch"),
+            Column::text("state", "state"),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(2),
+            ),
+            Column::number("fem_value", "FEM gamma/gamma2", Format::Fixed(10)),
+            Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
+            Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
+            Column::text("mesh", "mesh"),
+            Column::text("verdict", "verdict"),
+        ],
     );
-    let _ = writeln!(
-        out,
-        "  {:<13} {:<10} {:>17} {:>10} {:>10} {:>8} {:>7} {:>7}  mesh",
-        "punch", "state", "FEM gamma/gamma2", "rel.diff", "eps diff", "U_fem", "dofs", "s"
-    );
-    for c in &report.fem {
-        let _ = writeln!(
-            out,
-            "  {:<13} {:<10} {:>17.10} {:>+10.2e} {:>+10.2e} {:>8.1e} {:>7} {:>7.2}  {} {}",
-            c.punch.name(),
-            c.prescribed,
-            c.fem_value,
-            c.relative_difference,
-            c.eps_difference,
-            c.fem_error_estimate,
-            c.dofs,
-            c.fem_wall_s,
-            c.mesh,
-            if c.agrees { "ok" } else { "FAIL" }
-        );
+    for c in &comparison.fem {
+        t.push(vec![
+            c.punch.to_string().into(),
+            c.prescribed.clone().into(),
+            c.relative_difference.into(),
+            c.fem_value.into(),
+            c.eps_difference.into(),
+            c.fem_error_estimate.into(),
+            (c.dofs as f64).into(),
+            c.fem_wall_s.into(),
+            c.mesh.clone().into(),
+            verdict(c.agrees, "FAIL"),
+        ]);
     }
-    let failures = report.failures();
-    let _ = writeln!(
-        out,
-        "\n{} checks with a verdict, {} failed.",
-        report
-            .rows
-            .iter()
-            .flat_map(|r| &r.comparisons)
-            .filter(|c| c.agrees.is_some())
-            .count()
-            + report.identities.len()
-            + report.fem.len(),
-        failures
+    t
+}
+
+/// Human-readable tables: [`reference_table`], [`identity_table`], [`fem_table`] and the count of
+/// verdicts.
+pub fn render(report: &ComparisonReport) -> String {
+    let mut out = format!(
+        "Ring BEM (the yardstick) against the analytic references; tolerance {:.0e}.\n\
+         rel. difference = (ring-bem - reference)/reference; verdicts where the reference declares \
+         a bound.\n",
+        report.tolerance
+    );
+    out += &reference_table(report).to_terminal();
+    out += "\nNo reference involved: PHYSICS.md facts 6 and 7, full-contact limits.\n";
+    out += &identity_table(report).to_terminal();
+    out += "\nFEM (P2, default tolerance, on the meshes named in the mesh column) against the \
+            ring BEM; agree when |diff| <= U_fem + U_bem (value relative, eps absolute).\n";
+    out += &fem_table(report).to_terminal();
+    let checked = report
+        .rows
+        .iter()
+        .flat_map(|r| &r.comparisons)
+        .filter(|c| c.agrees.is_some())
+        .count()
+        + report.identities.len()
+        + report.fem.len();
+    out += &format!(
+        "\n{checked} checks with a verdict, {} failed.\n",
+        report.failures()
     );
     out
 }

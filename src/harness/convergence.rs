@@ -27,6 +27,9 @@ use crate::methods::Method;
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 
+use super::svg;
+use super::table::{Column, Format, Table};
+
 /// One refinement level.
 #[derive(Clone, Debug, Serialize)]
 pub struct Level {
@@ -341,42 +344,57 @@ pub fn run(
     })
 }
 
-/// Table for the terminal.
-pub fn render(study: &Study) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "{} {} convergence of {} (yardstick: ring BEM {:.12})",
-        study.punch, study.method, study.quantity, study.yardstick
-    );
-    let _ = writeln!(
-        out,
-        "  {:<22} {:>11} {:>10} {:>17} {:>11} {:>7} {:>9}",
-        "level", "size h", "unknowns", "value", "rel.error", "order", "s"
+/// The levels: size, unknowns, value, error against the yardstick, observed order, time.
+pub fn table(study: &Study) -> Table {
+    let mut t = Table::new(
+        &format!(
+            "{} {} convergence of {} (yardstick: ring BEM {:.12})",
+            study.punch, study.method, study.quantity, study.yardstick
+        ),
+        vec![
+            Column::text("label", "level"),
+            Column::number("size", "size h", Format::Scientific(4)),
+            Column::number("unknowns", "unknowns", Format::Fixed(0)),
+            Column::number("value", "value", Format::Fixed(12)),
+            Column::number("relative_error", "rel. error", Format::SignedScientific(3)),
+            Column::number("observed_order", "order", Format::Fixed(2)),
+            Column::number("wall_s", "time", Format::Fixed(3)).with_unit("s"),
+        ],
     );
     for l in &study.levels {
-        let _ = writeln!(
-            out,
-            "  {:<22} {:>11.4e} {:>10} {:>17.12} {:>+11.3e} {:>7} {:>9.3}",
-            l.label,
-            l.size,
-            l.unknowns,
-            l.value,
-            l.error,
-            l.observed_order
-                .map_or("-".to_string(), |p| format!("{p:.2}")),
-            l.wall_s
-        );
+        t.push(vec![
+            l.label.clone().into(),
+            l.size.into(),
+            (l.unknowns as f64).into(),
+            l.value.into(),
+            l.error.into(),
+            l.observed_order.into(),
+            l.wall_s.into(),
+        ]);
     }
+    t
+}
+
+/// Table for the terminal: [`table`] and the [`summary`].
+pub fn render(study: &Study) -> String {
+    format!("{}  {}\n", table(study).to_terminal(), summary(study))
+}
+
+/// One sentence: the Richardson extrapolate, its error against the yardstick, the GCI of the
+/// finest level and whether the levels are in the asymptotic range (or why there is none).
+pub fn summary(study: &Study) -> String {
     match (study.richardson, study.gci_fine) {
         (Some(e), Some(g)) => {
             let range = match study.asymptotic_ratio {
-                Some(r) if (r - 1.0).abs() < 0.1 => format!("order ratio of the last two triples {r:.3}: in the asymptotic range"),
+                Some(r) if (r - 1.0).abs() < 0.1 => {
+                    format!("order ratio of the last two triples {r:.3}: in the asymptotic range")
+                }
                 Some(r) => format!(
-                    "order ratio of the last two triples {r:.3}: NOT in the asymptotic range, the error bar is not to be trusted"
+                    "order ratio of the last two triples {r:.3}: NOT in the asymptotic range, \
+                     the error bar is not to be trusted"
                 ),
-                None => "asymptotic range not checked (needs four levels with settled orders)".to_string(),
+                None => "asymptotic range not checked (needs four levels with settled orders)"
+                    .to_string(),
             };
             let floor = match study.error_floor {
                 Some(f) if f >= g => {
@@ -384,38 +402,61 @@ pub fn render(study: &Study) -> String {
                 }
                 _ => "",
             };
-            let _ = writeln!(
-                out,
-                "  Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of the finest {g:.2e}{floor}; {range}",
+            format!(
+                "Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of \
+                 the finest {g:.2e}{floor}; {range}",
                 study.richardson_error.unwrap_or(f64::NAN),
-            );
+            )
         }
-        _ => {
-            let _ = writeln!(
-                out,
-                "  no Richardson extrapolate (fewer than three levels, differences at rounding level, or no settled order)"
-            );
-        }
+        _ => "no Richardson extrapolate (fewer than three levels, differences at rounding \
+              level, or no settled order)"
+            .to_string(),
     }
-    out
 }
 
-/// CSV of the levels.
-pub fn csv(study: &Study) -> String {
-    let mut out = String::from("label,size,unknowns,value,relative_error,observed_order,wall_s\n");
-    for l in &study.levels {
-        out += &format!(
-            "{},{:e},{},{:.15e},{:e},{},{:e}\n",
-            l.label,
-            l.size,
-            l.unknowns,
-            l.value,
-            l.error,
-            l.observed_order.map_or(String::new(), |p| format!("{p}")),
-            l.wall_s
-        );
-    }
-    out
+/// CSV of the levels ([`table`]'s columns, full precision).
+pub fn csv(study: &Study) -> Result<String> {
+    table(study).to_csv()
+}
+
+/// Write `<punch>-<method>.csv` and a log-log SVG chart of |error| against the size into `dir`;
+/// returns the two paths.
+pub fn write_files(study: &Study, dir: &std::path::Path) -> Result<[std::path::PathBuf; 2]> {
+    let file_error = |path: &std::path::Path, e: std::io::Error| Error::File {
+        action: "write".into(),
+        path: path.display().to_string(),
+        message: e.to_string(),
+    };
+    std::fs::create_dir_all(dir).map_err(|e| file_error(dir, e))?;
+    let stem = format!("{}-{}", study.punch.name(), study.method);
+    let csv_path = dir.join(format!("{stem}.csv"));
+    let svg_path = dir.join(format!("{stem}.svg"));
+    std::fs::write(&csv_path, csv(study)?).map_err(|e| file_error(&csv_path, e))?;
+    std::fs::write(&svg_path, chart(study)).map_err(|e| file_error(&svg_path, e))?;
+    Ok([csv_path, svg_path])
+}
+
+/// Log-log SVG chart of |relative error| against the size `h`.
+pub fn chart(study: &Study) -> String {
+    let series = vec![svg::Series {
+        name: study.method.clone(),
+        points: study
+            .levels
+            .iter()
+            .map(|l| (l.size, l.error.abs()))
+            .collect(),
+        bars: Vec::new(),
+    }];
+    svg::log_log_chart(
+        &format!(
+            "{} {}: |relative error| against the ring BEM",
+            study.punch.name(),
+            study.quantity
+        ),
+        "size h",
+        "|relative error|",
+        &series,
+    )
 }
 
 #[cfg(test)]

@@ -12,6 +12,7 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
+use super::table::{verdict, Cell, Column, Format, Table};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::mesh::Degree;
@@ -246,66 +247,74 @@ pub fn coverage(rows: &[FenicsxComparison]) -> String {
     line
 }
 
-/// Human-readable table.
-pub fn render(rows: &[FenicsxComparison]) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "\nFEniCSx (stored, verify/fenicsx/) against our FEM on the identical discrete problem \
-         (pass: force within {FORCE_AGREEMENT:.0e}, same active set), both against the ring BEM:"
-    );
-    let _ = writeln!(
-        out,
-        "  {:<34} {:>7} {:>10} {:>7} {:>11} {:>11} {:>7} {:>7} {:>6}",
-        "stored result",
-        "dofs",
-        "rel.diff",
-        "active",
-        "FEniCSx err",
-        "our err",
-        "ours s",
-        "FEniCSx s",
-        "ratio"
+/// The stored FEniCSx results against our FEM: one row each (stale ones with the remedy).
+pub fn table(rows: &[FenicsxComparison]) -> Table {
+    let mut t = Table::new(
+        "FEniCSx (stored) against our FEM on the identical discrete problem",
+        vec![
+            Column::text("result", "stored result"),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(1),
+            ),
+            Column::text("active_set", "active set"),
+            Column::number("fenicsx_error", "FEniCSx err", Format::SignedScientific(2)),
+            Column::number("our_error", "our err", Format::SignedScientific(2)),
+            Column::number("our_wall_s", "ours", Format::Fixed(3)).with_unit("s"),
+            Column::number("fenicsx_wall_s", "FEniCSx", Format::Fixed(3)).with_unit("s"),
+            Column::number("wall_time_ratio", "ratio", Format::Fixed(2)),
+            Column::text("verdict", "verdict"),
+        ],
     );
     for r in rows {
-        if r.status != "current" {
-            let remedy = if r.status == "needs-gmsh" {
-                "install gmsh (bash scripts/install_gmsh.sh) to remake it"
-            } else {
-                "refresh with scripts/fenicsx/run_all.sh"
-            };
-            let _ = writeln!(
-                out,
-                "  {:<34} {} (mesh {}): not used; {remedy}",
-                r.file,
+        let current = r.status == "current";
+        let active = match r.same_active_set {
+            Some(true) => Cell::Text("same".into()),
+            Some(false) => Cell::Flag("DIFFERENT".into()),
+            None => Cell::Missing,
+        };
+        let verdict_cell = if current {
+            verdict(r.passed, "FAIL")
+        } else if r.status == "needs-gmsh" {
+            Cell::Text(format!(
+                "NEEDS GMSH (mesh {}): not used; bash scripts/install_gmsh.sh remakes it",
+                r.stored.mesh
+            ))
+        } else {
+            Cell::Text(format!(
+                "{} (mesh {}): not used; refresh with scripts/fenicsx/run_all.sh",
                 r.status.to_uppercase(),
                 r.stored.mesh
-            );
-            continue;
-        }
-        let _ = writeln!(
-            out,
-            "  {:<34} {:>7} {:>+10.1e} {:>7} {:>+11.2e} {:>+11.2e} {:>7.3} {:>7.3} {:>6.2}  {}",
-            r.file,
-            r.stored.dofs,
-            r.relative_difference.unwrap_or(f64::NAN),
-            if r.same_active_set == Some(true) {
-                "same"
-            } else {
-                "DIFF"
-            },
-            r.fenicsx_error.unwrap_or(f64::NAN),
-            r.our_error.unwrap_or(f64::NAN),
-            r.our_wall_s.unwrap_or(f64::NAN),
-            r.stored.wall_s,
-            r.wall_time_ratio.unwrap_or(f64::NAN),
-            if r.passed { "ok" } else { "FAIL" }
-        );
+            ))
+        };
+        t.push(vec![
+            r.file.clone().into(),
+            (r.stored.dofs as f64).into(),
+            r.relative_difference.into(),
+            active,
+            r.fenicsx_error.into(),
+            r.our_error.into(),
+            r.our_wall_s.into(),
+            r.stored.wall_s.into(),
+            r.wall_time_ratio.into(),
+            verdict_cell,
+        ]);
     }
+    t
+}
+
+/// Human-readable: [`table`] under the pass rule, and what was covered.
+pub fn render(rows: &[FenicsxComparison]) -> String {
+    let mut out = format!(
+        "\nPass: force within {FORCE_AGREEMENT:.0e} and the same active set; both against the \
+         ring BEM.\n"
+    );
+    out += &table(rows).to_terminal();
     if rows.is_empty() {
-        let _ = writeln!(out, "  (no stored results; run scripts/fenicsx/run_all.sh)");
+        out += "  (no stored results; run scripts/fenicsx/run_all.sh)\n";
     }
-    let _ = writeln!(out, "  {}", coverage(rows));
+    out += &format!("  {}\n", coverage(rows));
     out
 }

@@ -7,6 +7,7 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
+use super::table::{Cell, Column, Format, Table};
 use crate::error::{Error, Result};
 
 /// Time ratio over the previous run that counts as a regression.
@@ -282,30 +283,48 @@ pub fn read_history(history: &Path) -> Result<Vec<Headline>> {
 
 /// Trend of the last runs as a Markdown table.
 pub fn trend(history: &Path, last: usize) -> Result<String> {
-    let runs = read_history(history)?;
-    let mut md = String::from("# Trend\n\n| date | failures | wrong numbers | FEM vs ring BEM | FEniCSx vs FEM | peers vs grid BEM | extras s | FEniCSx | peers |\n|---|---|---|---|---|---|---|---|---|\n");
+    Ok(format!(
+        "# Trend\n\n{}",
+        trend_table(&read_history(history)?, last).to_markdown_table()
+    ))
+}
+
+/// The last `last` runs: failures, wrong numbers, the headline accuracies and the time of the
+/// report's extras.
+pub fn trend_table(runs: &[Headline], last: usize) -> Table {
+    let mut t = Table::new(
+        "Trend",
+        vec![
+            Column::text("date", "date"),
+            Column::number("failures", "failures", Format::Fixed(0)),
+            Column::number("wrong_numbers", "wrong numbers", Format::Fixed(0)),
+            Column::number("fem_vs_ring_bem", "FEM vs ring BEM", Format::Scientific(1)),
+            Column::number("fenicsx_vs_fem", "FEniCSx vs FEM", Format::Scientific(1)),
+            Column::number(
+                "peers_vs_grid_bem",
+                "peers vs grid BEM",
+                Format::Scientific(1),
+            ),
+            Column::number("extras_s", "extras", Format::Fixed(1)).with_unit("s"),
+            Column::text("fenicsx", "FEniCSx"),
+            Column::text("peers", "peers"),
+        ],
+    );
     for r in runs.iter().rev().take(last).rev() {
-        let acc = |k: &str| {
-            r.accuracy
-                .get(k)
-                .map_or("-".into(), |v| format!("{:.1e}", v.0))
-        };
-        md += &format!(
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-            r.date,
-            r.failures,
-            r.stability_wrong_numbers,
-            acc("fem_vs_ring_bem"),
-            acc("fenicsx_vs_fem"),
-            acc("peers_vs_grid_bem"),
-            r.times
-                .get("report extras total")
-                .map_or("-".into(), |t| format!("{t:.1}")),
-            r.fenicsx,
-            r.peers
-        );
+        let accuracy = |k: &str| Cell::from(r.accuracy.get(k).map(|v| v.0));
+        t.push(vec![
+            r.date.clone().into(),
+            (r.failures as f64).into(),
+            (r.stability_wrong_numbers as f64).into(),
+            accuracy("fem_vs_ring_bem"),
+            accuracy("fenicsx_vs_fem"),
+            accuracy("peers_vs_grid_bem"),
+            r.times.get("report extras total").copied().into(),
+            r.fenicsx.clone().into(),
+            r.peers.clone().into(),
+        ]);
     }
-    Ok(md)
+    t
 }
 
 #[cfg(test)]

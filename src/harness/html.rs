@@ -164,7 +164,7 @@ pub fn trend_section(history: &[Headline]) -> String {
         return String::new();
     }
     let mut html = format!(
-        "<section class=\"trends\"><h2 id=\"trends\">Trends over {} recorded runs ({} to {})</h2>\n<p>Each chart is one headline figure per run; red points are regressions (accuracy beyond its tolerance, or a time over {SLOWDOWN}x the previous run's).</p>\n",
+        "<section class=\"trends\"><h2 id=\"trends\">Trends over {} recorded runs ({} to {})</h2>\n<p>Each chart is one headline figure per run; red points are regressions (accuracy beyond its tolerance, or a time over {SLOWDOWN}x the previous run's). The figures of every run: <a href=\"table-trend.csv\">table-trend.csv</a>.</p>\n",
         history.len(),
         escape(&history[0].date),
         escape(&history[history.len() - 1].date)

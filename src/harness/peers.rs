@@ -7,6 +7,7 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
+use super::table::{verdict, Column, Format, Table};
 use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
 use crate::error::Result;
@@ -127,35 +128,44 @@ pub fn failures(rows: &[PeerComparison]) -> usize {
     rows.iter().filter(|r| !r.passed).count() + usize::from(rows.is_empty())
 }
 
-/// Human-readable table.
-pub fn render(rows: &[PeerComparison]) -> String {
-    use std::fmt::Write;
-    let mut out = String::new();
-    let _ = writeln!(
-        out,
-        "\nTamaas and ContactMechanics (stored, verify/peers/) against our grid BEM on the same grids \
-         (pass: force within {PEER_AGREEMENT:.0e}):"
-    );
-    let _ = writeln!(
-        out,
-        "  {:<48} {:>6} {:>16} {:>10} {:>8} {:>9}",
-        "stored result", "grid", "peer force", "rel.diff", "ours s", "peer s"
+/// The stored peer results against our grid BEM on the same grids.
+pub fn table(rows: &[PeerComparison]) -> Table {
+    let mut t = Table::new(
+        "Tamaas and ContactMechanics (stored) against our grid BEM on the same grids",
+        vec![
+            Column::text("result", "stored result"),
+            Column::number("grid", "grid", Format::Fixed(0)),
+            Column::number("peer_force", "peer force", Format::Fixed(10)),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(1),
+            ),
+            Column::number("our_wall_s", "ours", Format::Fixed(3)).with_unit("s"),
+            Column::number("peer_wall_s", "peer", Format::Fixed(3)).with_unit("s"),
+            Column::text("verdict", "verdict"),
+        ],
     );
     for r in rows {
-        let _ = writeln!(
-            out,
-            "  {:<48} {:>6} {:>16.10} {:>+10.1e} {:>8.3} {:>9.3}  {}",
-            r.file,
-            r.stored.grid,
-            r.stored.force,
-            r.relative_difference,
-            r.our_wall_s,
-            r.stored.wall_s,
-            if r.passed { "ok" } else { "FAIL" }
-        );
+        t.push(vec![
+            r.file.clone().into(),
+            (r.stored.grid as f64).into(),
+            r.stored.force.into(),
+            r.relative_difference.into(),
+            r.our_wall_s.into(),
+            r.stored.wall_s.into(),
+            verdict(r.passed, "FAIL"),
+        ]);
     }
+    t
+}
+
+/// Human-readable: [`table`] under its pass rule.
+pub fn render(rows: &[PeerComparison]) -> String {
+    let mut out = format!("\nPass: force within {PEER_AGREEMENT:.0e}.\n");
+    out += &table(rows).to_terminal();
     if rows.is_empty() {
-        let _ = writeln!(out, "  (no stored results; run scripts/peers/run_peers.sh)");
+        out += "  (no stored results; run scripts/peers/run_peers.sh)\n";
     }
     out
 }

@@ -753,21 +753,16 @@ pub fn write_report(
             levels,
             |_| {},
         )?;
-        let chart = log_log_chart(
-            &format!("sphere d/h = 1.5, {}: |error| against size", method.name()),
-            "size h",
-            "|relative error|",
-            &[Series {
-                name: method.name().into(),
-                points: study
-                    .levels
-                    .iter()
-                    .map(|l| (l.size, l.error.abs()))
-                    .collect(),
-                bars: Vec::new(),
-            }],
-        );
-        write(dir, &format!("convergence-{}.svg", method.name()), &chart)?;
+        write(
+            dir,
+            &format!("convergence-{}.svg", method.name()),
+            &convergence::chart(&study),
+        )?;
+        write(
+            dir,
+            &format!("table-convergence-{}.csv", method.name()),
+            &convergence::csv(&study)?,
+        )?;
         studies.push(study);
     }
     progress("pressure profiles");
@@ -911,11 +906,14 @@ fn markdown(
     }
     md += "## Convergence (sphere, d/h = 1.5)\n\n";
     for s in &extras.convergence {
+        let table = convergence::table(s);
         let _ = writeln!(
             md,
-            "![](convergence-{}.svg)\n\n```\n{}```\n",
+            "![](convergence-{0}.svg)\n\n**{1}** ([CSV](table-convergence-{0}.csv))\n\n{2}\n{3}\n",
             s.method,
-            convergence::render(s)
+            table.title,
+            table.to_markdown_table(),
+            convergence::summary(s)
         );
     }
     md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n";

@@ -1,7 +1,7 @@
 //! Every table of the verification report as a [`Table`]: the Markdown report, its web page and
 //! the CSV file behind each table (`table-<slug>.csv`, linked under it) come from the same rows.
 
-use super::comparison::ComparisonReport;
+use super::comparison::{self, ComparisonReport};
 use super::fenicsx::FenicsxComparison;
 use super::operator::OperatorStatus;
 use super::peers::PeerComparison;
@@ -19,7 +19,7 @@ pub struct ReportTable {
 }
 
 fn text(key: &str, label: &str) -> Column {
-    Column::number(key, label, Format::Fixed(0))
+    Column::text(key, label)
 }
 
 fn entry(section: Option<&str>, slug: &str, table: Table) -> ReportTable {
@@ -47,108 +47,6 @@ fn claims(extras: &ReportExtras) -> Table {
             v.claim.clone().into(),
             v.numbers.clone().into(),
             v.verdict.clone().into(),
-        ]);
-    }
-    t
-}
-
-/// The ring BEM against every bounded reference.
-fn references(comparison: &ComparisonReport) -> Table {
-    let mut t = Table::new(
-        "Ring BEM against the references",
-        vec![
-            text("quantity", "quantity"),
-            Column::number("eps", "eps", Format::Fixed(2)),
-            Column::number("ring_bem", "ring BEM", Format::Fixed(12)),
-            Column::number("error_estimate", "est. error", Format::Scientific(0)),
-            text("references", "references (rel. difference, verdict)"),
-        ],
-    );
-    for r in &comparison.rows {
-        let refs: Vec<String> = r
-            .comparisons
-            .iter()
-            .map(|c| {
-                format!(
-                    "{} {:+.1e} {}",
-                    c.reference,
-                    c.relative_difference,
-                    match c.agrees {
-                        Some(true) => "ok",
-                        Some(false) => "FAIL",
-                        None => "",
-                    }
-                )
-            })
-            .collect();
-        let failed = r.comparisons.iter().any(|c| c.agrees == Some(false));
-        let refs = refs.join("; ");
-        t.push(vec![
-            format!("{:?}", r.quantity).into(),
-            r.eps.into(),
-            r.value.into(),
-            r.error_estimate.into(),
-            if failed {
-                Cell::Flag(refs)
-            } else {
-                Cell::Text(refs)
-            },
-        ]);
-    }
-    t
-}
-
-fn identities(comparison: &ComparisonReport) -> Table {
-    let mut t = Table::new(
-        "Consistency identities",
-        vec![
-            text("check", "check"),
-            Column::number("eps", "eps", Format::Fixed(2)),
-            Column::number("residual", "residual", Format::Scientific(1)),
-            Column::number("allowed", "allowed", Format::Scientific(0)),
-            text("verdict", "verdict"),
-        ],
-    );
-    for c in &comparison.identities {
-        t.push(vec![
-            c.name.clone().into(),
-            c.eps.into(),
-            c.relative_residual.into(),
-            c.tolerance.into(),
-            verdict(c.passed, "FAIL"),
-        ]);
-    }
-    t
-}
-
-fn fem(comparison: &ComparisonReport) -> Table {
-    let mut t = Table::new(
-        "FEM against the ring BEM at the default tolerance",
-        vec![
-            text("punch", "punch"),
-            text("state", "state"),
-            Column::number(
-                "relative_difference",
-                "rel. diff",
-                Format::SignedScientific(2),
-            ),
-            Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
-            Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),
-            Column::number("dofs", "dofs", Format::Fixed(0)),
-            Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
-            text("verdict", "verdict"),
-        ],
-    );
-    for c in &comparison.fem {
-        t.push(vec![
-            c.punch.to_string().into(),
-            c.prescribed.clone().into(),
-            c.relative_difference.into(),
-            c.eps_difference.into(),
-            c.fem_error_estimate.into(),
-            (c.dofs as f64).into(),
-            c.fem_wall_s.into(),
-            verdict(c.agrees, "FAIL"),
         ]);
     }
     t
@@ -242,17 +140,17 @@ pub fn report_tables(
         entry(
             Some("Methods and references"),
             "references",
-            references(comparison),
+            comparison::reference_table(comparison),
         ),
         entry(
             Some("Consistency checks"),
             "identities",
-            identities(comparison),
+            comparison::identity_table(comparison),
         ),
         entry(
             Some("FEM against the ring BEM (default tolerance)"),
             "fem",
-            fem(comparison),
+            comparison::fem_table(comparison),
         ),
         entry(
             Some("External codes (stored results)"),

@@ -19,6 +19,8 @@ use crate::punch::PunchKind;
 use crate::reference::asymptotic::{collins_series, narrow_ring};
 use crate::scene::{Scene, SceneSpec};
 
+use super::table::{Cell, Column, Format, Table};
+
 /// One probe and what happened.
 #[derive(Clone, Debug, Serialize)]
 pub struct Probe {
@@ -415,33 +417,45 @@ pub fn wrong_numbers(probes: &[Probe]) -> usize {
     probes.iter().filter(|p| p.outcome == "WRONG").count()
 }
 
-/// Table for the terminal.
-pub fn render(probes: &[Probe]) -> String {
-    use std::fmt::Write;
-    let mut out = String::from(
-        "Stability: every method toward its limits (outcome: error = declined, ok = within its own estimate, \
-         no estimate = uncertified number, WRONG = wrong number without error)\n",
-    );
-    let _ = writeln!(
-        out,
-        "  {:<10} {:<46} {:<12} {:>11} {:>10}  note",
-        "method", "probe", "outcome", "rel.error", "estimate"
+/// One row per probe: outcome, error against the reference, own estimate, the message.
+pub fn table(probes: &[Probe]) -> Table {
+    let mut t = Table::new(
+        "Stability: every method toward its limits (error = declined, ok = within its own \
+         estimate, no estimate = uncertified number, WRONG = wrong number without error)",
+        vec![
+            Column::text("method", "method"),
+            Column::text("probe", "probe"),
+            Column::text("outcome", "outcome"),
+            Column::number("relative_error", "rel. error", Format::Scientific(1)),
+            Column::number("error_estimate", "estimate", Format::Scientific(0)),
+            Column::text("message", "note"),
+        ],
     );
     for p in probes {
-        let _ = writeln!(
-            out,
-            "  {:<10} {:<46} {:<12} {:>11} {:>10}  {}",
-            p.method,
-            p.probe,
-            p.outcome,
-            p.relative_error.map_or("-".into(), |e| format!("{e:.1e}")),
-            p.error_estimate.map_or("-".into(), |e| format!("{e:.0e}")),
+        t.push(vec![
+            p.method.clone().into(),
+            p.probe.clone().into(),
+            if p.outcome == "WRONG" {
+                Cell::Flag(p.outcome.clone())
+            } else {
+                Cell::Text(p.outcome.clone())
+            },
+            p.relative_error.into(),
+            p.error_estimate.into(),
             p.message
                 .as_deref()
                 .map(|m| m.chars().take(90).collect::<String>())
                 .unwrap_or_default()
-        );
+                .into(),
+        ]);
     }
+    t
+}
+
+/// Table for the terminal: [`table`], then a summary per method.
+pub fn render(probes: &[Probe]) -> String {
+    use std::fmt::Write;
+    let mut out = table(probes).to_terminal();
     let _ = writeln!(
         out,
         "\nPer method: where it met its tolerance, and how it declined outside:"

@@ -103,6 +103,20 @@ fn draw_series(
     svg
 }
 
+/// Label every `n`-th decade so that at most 10 labels share an axis.
+fn label_stride(decades: i32) -> i32 {
+    ((decades + 9) / 10).max(1)
+}
+
+/// The label of the decade `10^e` (`1e-3`), empty where the stride skips it (its grid line stays).
+fn decade_label(e: i32, first: i32, every: i32) -> String {
+    if (e - first) % every == 0 {
+        format!("1e{e}")
+    } else {
+        String::new()
+    }
+}
+
 /// A log-log chart of the series with decade grid lines and a legend.
 pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
     let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
@@ -140,17 +154,19 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
         h - bottom - (y.log10() - y0.log10()) / (y1.log10() - y0.log10()) * (h - top - bottom)
     };
     let mut svg = open(&title);
-    let mut e = x0.log10().round() as i32;
-    while (e as f64) <= x1.log10().round() {
+    let (ex0, ex1) = (x0.log10().round() as i32, x1.log10().round() as i32);
+    let x_every = label_stride(ex1 - ex0);
+    for e in ex0..=ex1 {
         let x = px(10f64.powi(e));
-        svg += &format!("<line x1='{x}' y1='{top}' x2='{x}' y2='{}' stroke='#ddd'/><text x='{x}' y='{}' text-anchor='middle'>1e{e}</text>\n", h - bottom, h - bottom + 16.0);
-        e += 1;
+        let label = decade_label(e, ex0, x_every);
+        svg += &format!("<line x1='{x}' y1='{top}' x2='{x}' y2='{}' stroke='#ddd'/><text x='{x}' y='{}' text-anchor='middle'>{label}</text>\n", h - bottom, h - bottom + 16.0);
     }
-    let mut e = y0.log10().round() as i32;
-    while (e as f64) <= y1.log10().round() {
+    let (ey0, ey1) = (y0.log10().round() as i32, y1.log10().round() as i32);
+    let y_every = label_stride(ey1 - ey0);
+    for e in ey0..=ey1 {
         let y = py(10f64.powi(e));
-        svg += &format!("<line x1='{left}' y1='{y}' x2='{}' y2='{y}' stroke='#ddd'/><text x='{}' y='{}' text-anchor='end'>1e{e}</text>\n", w - right, left - 6.0, y + 4.0);
-        e += 1;
+        let label = decade_label(e, ey0, y_every);
+        svg += &format!("<line x1='{left}' y1='{y}' x2='{}' y2='{y}' stroke='#ddd'/><text x='{}' y='{}' text-anchor='end'>{label}</text>\n", w - right, left - 6.0, y + 4.0);
     }
     svg += &axis_labels(&x_label, &y_label);
     svg += &draw_series(series, |p| p.0 > 0.0 && p.1 > 0.0, px, py, true);
@@ -224,12 +240,12 @@ fn linear_chart_drawn(
     let mut svg = open(&title);
     let mut x = x0;
     while x <= x1 + 1e-9 * sx {
-        svg += &format!("<line x1='{0}' y1='{top}' x2='{0}' y2='{1}' stroke='{2}'/><text x='{0}' y='{3}' text-anchor='middle'>{4}</text>\n", px(x), h - bottom, if x.abs() < 1e-9 * sx { "#999" } else { "#ddd" }, h - bottom + 16.0, format_tick(x));
+        svg += &format!("<line x1='{0}' y1='{top}' x2='{0}' y2='{1}' stroke='{2}'/><text x='{0}' y='{3}' text-anchor='middle'>{4}</text>\n", px(x), h - bottom, if x.abs() < 1e-9 * sx { "#999" } else { "#ddd" }, h - bottom + 16.0, format_tick(x, sx));
         x += sx;
     }
     let mut y = y0;
     while y <= y1 + 1e-9 * sy {
-        svg += &format!("<line x1='{left}' y1='{0}' x2='{1}' y2='{0}' stroke='{2}'/><text x='{3}' y='{4}' text-anchor='end'>{5}</text>\n", py(y), w - right, if y.abs() < 1e-9 * sy { "#999" } else { "#ddd" }, left - 6.0, py(y) + 4.0, format_tick(y));
+        svg += &format!("<line x1='{left}' y1='{0}' x2='{1}' y2='{0}' stroke='{2}'/><text x='{3}' y='{4}' text-anchor='end'>{5}</text>\n", py(y), w - right, if y.abs() < 1e-9 * sy { "#999" } else { "#ddd" }, left - 6.0, py(y) + 4.0, format_tick(y, sy));
         y += sy;
     }
     svg += &axis_labels(&x_label, &y_label);
@@ -243,9 +259,15 @@ fn linear_chart_drawn(
     svg + "</svg>\n"
 }
 
-fn format_tick(v: f64) -> String {
-    let s = format!("{v:.3}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
+/// A tick value with as many decimals as its step needs (step 0.02: two; step 5e-6: six).
+fn format_tick(v: f64, step: f64) -> String {
+    let decimals = (-step.log10().floor()).max(0.0) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = if s.contains('.') {
+        s.trim_end_matches('0').trim_end_matches('.')
+    } else {
+        &s
+    };
     if s == "-0" {
         "0".to_string()
     } else {
@@ -256,6 +278,19 @@ fn format_tick(v: f64) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ticks_are_readable_at_any_scale() {
+        assert_eq!(format_tick(0.04, 0.02), "0.04");
+        assert_eq!(format_tick(1.5e-5, 5e-6), "0.000015");
+        assert_eq!(format_tick(-0.0, 0.5), "0");
+        assert_eq!(format_tick(200.0, 50.0), "200");
+        // Sixteen decades: every second one labelled, the grid line kept.
+        assert_eq!(label_stride(16), 2);
+        assert_eq!(decade_label(-15, -16, 2), "");
+        assert_eq!(decade_label(-14, -16, 2), "1e-14");
+        assert_eq!(label_stride(3), 1);
+    }
 
     #[test]
     fn text_is_escaped() {

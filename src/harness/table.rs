@@ -42,6 +42,11 @@ impl Column {
         }
     }
 
+    /// A column of text (its format applies only if a number lands in it).
+    pub fn text(key: &str, label: &str) -> Self {
+        Self::number(key, label, Format::Fixed(0))
+    }
+
     /// The same column with a unit (shown in the header as `label [unit]`).
     pub fn with_unit(mut self, unit: &str) -> Self {
         self.unit = Some(unit.to_string());

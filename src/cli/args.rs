@@ -1,0 +1,353 @@
+//! The command line's arguments (clap derive): what `verify --help` and each subcommand's
+//! `--help` teach. The binary parses them and hands them to [`super::dispatch`].
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand};
+
+use crate::harness::report;
+use crate::methods::Method;
+use crate::punch::PunchKind;
+use crate::scene::DEFAULT_TOLERANCE;
+
+/// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
+/// half-space (flat annular, conical concave, spherical concave; flat circular as a check).
+///
+/// Without a subcommand: compare every method with the analytic references on all punches.
+#[derive(Parser)]
+#[command(name = "verify", version, about, long_about = None, after_help = "\
+Examples:
+  verify                                   comparison table of all methods and references
+  verify solve --punch flat-annulus --eps 0.5
+  verify solve --punch cone --depth 2 --json
+  verify solve --scene verify/scenes/cone-depth.toml
+  verify fenicsx                           stored FEniCSx results against our FEM")]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// The project's data directory (holding meshes/ and verify/) [default: found upward from the
+    /// current directory; RINGCONTACT_DATA_DIR also sets it].
+    #[arg(long, global = true, value_name = "DIR")]
+    pub data_dir: Option<PathBuf>,
+}
+
+#[derive(Subcommand)]
+pub enum Command {
+    /// Solve one scene with one method and print the state (or JSON).
+    #[command(after_help = "\
+Defaults: a = 1, E* = 1, h = 1, so the outputs are the paper's dimensionless functions
+(flat punches: F = 2 E* d a gamma; concave: d = h gamma1, F = 2 E* h a gamma2).
+
+Examples:
+  verify solve --punch flat-annulus --eps 0.5            gamma(0.5) at unit depth
+  verify solve --punch cone --depth 2 --json             eps and gamma2 at d = 2h
+  verify solve --punch sphere --eps 0.3                  gamma1(0.3), gamma2(0.3)
+  verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
+  verify solve --punch flat-annulus --eps 0.5 --method reference
+  verify solve --punch cone --depth 2 --method fem --json        FEM, tolerance 1e-3
+  verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
+  verify solve --punch flat-annulus --eps 0.3 --method fem       any b/a (gmsh; cached in .mesh-cache/)
+  verify solve --punch flat --method fem --mesh meshes/disk-L1.msh --degree 1
+  verify solve --punch sphere --depth 1.5 --method grid-bem --grid 256 --json
+  verify solve --punch cone --depth 2 --method auto --tol 1e-6   cheapest method meeting 1e-6
+  verify solve --punch sphere --depth 1 --method fem --vtu sphere.vtu   field for ParaView
+  verify solve --scene verify/scenes/cone-depth.toml --json")]
+    Solve(SolveArgs),
+    /// Compare the methods with the analytic references on all punches (the default job).
+    #[command(after_help = "Example:\n  verify compare --tol 1e-10 --json > comparison.json")]
+    Compare(CompareArgs),
+    /// Compare every stored FEniCSx result (verify/fenicsx/) with our FEM on the identical problem.
+    #[command(after_help = "\
+Each result is re-solved with FEniCSx's model (same mesh, degree, quadrature, supports): the force
+must agree within 1e-8 and the active contact set must be the same. Results whose mesh changed
+since they were stored are reported as stale and not used.
+
+Refresh the stored results (installs FEniCSx from Debian when missing):
+  bash scripts/fenicsx/run_all.sh
+
+Example:
+  verify fenicsx --json
+  verify fenicsx --operators --json   the stored operator comparisons (bash
+                                      scripts/fenicsx/run_operators.sh remakes them)")]
+    Fenicsx(FenicsxArgs),
+    /// Make (or find in the cache) a mesh of the adapted family with gmsh and print where it is.
+    #[command(after_help = "\
+The adapted family is what the FEM climbs: level k (-2 to 7) is graded toward the rim (and r = b),
+with g = 0.32 * 0.6^k; --free-edge refines around a located inner contact radius; --tol and
+--degree make it as `verify solve --method fem --tol X` does (rim and edge sizes follow X).
+Prints one JSON object: path, sha256, origin (cache or gmsh), gmsh_version, corner_refinement (the
+halvings around the singular edges the solver applies to the file when its rim size is below
+1e-8 a, which gmsh does not mesh well; null when none), parameters (the gmsh
+-setnumber values, which reproduce the mesh from meshes/half_space.geo).
+
+Examples:
+  verify mesh --eps 0.3 --level 2                 flat annulus b/a = 0.3, level 2
+  verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a
+  verify mesh --level 0 --free-edge 0.4505 --edge-uncertainty 1e-4 --tol 1e-6 --degree 3")]
+    Mesh(MeshArgs),
+    /// Write our assembled stiffness matrix, load vector and dof table for a mesh (Matrix Market).
+    #[command(after_help = "\
+Writes into --out: stiffness.mtx (K of the axisymmetric solid, E = 1, nu = 0, no boundary
+conditions), load.mtx (an n x 1 matrix: the consistent nodal forces of a unit pressure on the
+contact line, f_i = -int phi_i e_z 2 pi r dr), dofs.csv (index,node_tag,r,z,component; dof 2n + c
+is component c of node n; node_tag is the file's, empty for nodes added for P2/P3). Matrix Market
+coordinate real general, written with sprs.
+
+FEniCSx writes the same three files for its assembly of the same mesh and degree:
+  /usr/bin/python3 scripts/fenicsx/export.py --mesh M --degree P --out DIR
+and --compare DIR matches the dofs by position and component and prints the largest entry-wise
+difference relative to the largest entry, for the matrix and the load (goal 1e-12; exit status 1
+above it). scripts/fenicsx/run_operators.sh stores such comparisons in verify/fenicsx/operators/,
+which `verify fenicsx` and the report show.
+
+Examples:
+  verify export --mesh meshes/disk-L0.msh --degree 2 --out /tmp/ours
+  verify export --mesh meshes/disk-L0.msh --degree 2 --out /tmp/ours --compare /tmp/fenicsx --json")]
+    Export(ExportArgs),
+    /// Mesh-convergence study of one method: error against the ring BEM, observed order,
+    /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
+    #[command(after_help = "\
+Levels: grid-bem 64, 128, 256, ... cells per side; fem the committed mesh levels L0-L2, then the
+adapted levels made by gmsh (graded toward the edges, refined at the located free edge)
+(P2); ring-bem 6, 8, 10, ... collocation nodes (flat punches).
+
+Examples:
+  verify convergence --punch flat --method grid-bem --levels 5          64 .. 1024
+  verify convergence --punch sphere --depth 1.5 --method fem --levels 4
+  verify convergence --punch flat-annulus --eps 0.5 --method ring-bem --levels 6 --json")]
+    Convergence(ConvergenceArgs),
+    /// JKR adhesion from the converged non-adhesive solutions: detachment of the flat annulus,
+    /// pull-off of the concave punches under fixed load and fixed grips.
+    #[command(after_help = "\
+Units: depths in d0 = sqrt(2 pi a dw / E*) (and d/h), forces in F0 = sqrt(8 pi a^3 E* dw)
+(Kendall's flat punch of radius a); negative = tensile.
+
+Examples:
+  verify jkr --punch flat-annulus --eps 0.5 --json
+  verify jkr --punch sphere --d0h 1
+  verify jkr --punch cone --d0h 10 --json")]
+    Jkr(JkrArgs),
+    /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
+    /// 0.05 <= eps <= 0.99 and propose better forms.
+    #[command(after_help = "Example:\n  verify fit --json")]
+    Fit(JsonArgs),
+    /// Drive every method toward its limits; report where each meets its tolerance, how it fails
+    /// outside, and any wrong number returned without an error (exit status 1 if one is found).
+    #[command(after_help = "Example:\n  verify stability --json > stability.json")]
+    Stability(JsonArgs),
+    /// Append a report's headline figures to the history file, compare with the previous run
+    /// (accuracy beyond tolerance, or time > 1.5x, is a regression: exit status 1) and write the
+    /// trend into the report directory. Used by scripts/nightly.sh.
+    #[command(
+        after_help = "Example:\n  verify history --report reports/2026-11-22 --history reports/history.jsonl"
+    )]
+    History(HistoryArgs),
+    /// List the analytic references and the range of eps where each is valid.
+    #[command(after_help = "Examples:\n  verify references\n  verify references --json")]
+    References(JsonArgs),
+}
+
+// The arguments of `verify history`.
+#[derive(Args)]
+pub struct HistoryArgs {
+    /// Report directory written by `verify compare --report DIR` (and `stability.json` in it).
+    #[arg(long)]
+    pub report: PathBuf,
+    /// JSON-lines history file.
+    #[arg(long, default_value = "reports/history.jsonl")]
+    pub history: PathBuf,
+    /// Whether the FEniCSx results were refreshed (`fresh`) or read from the repository (`stored`).
+    #[arg(long, default_value = "stored")]
+    pub fenicsx: String,
+    /// The same for the Tamaas/ContactMechanics results.
+    #[arg(long, default_value = "stored")]
+    pub peers: String,
+    /// Date label of this run [default: the report directory's name].
+    #[arg(long)]
+    pub date: Option<String>,
+}
+
+// The arguments of `verify jkr`.
+#[derive(Args)]
+pub struct JkrArgs {
+    /// Punch shape: flat-annulus, cone or sphere.
+    #[arg(long, value_enum)]
+    pub punch: PunchKind,
+    /// b/a of the flat annulus.
+    #[arg(long)]
+    pub eps: Option<f64>,
+    /// Dimensionless work of adhesion d0/h of a concave punch.
+    #[arg(long)]
+    pub d0h: Option<f64>,
+    /// Concave punches: sweep d0/h from 0.1 to 100 (the paper's Fig. 10), writing CSV and SVG
+    /// into --out.
+    #[arg(long)]
+    pub sweep: bool,
+    /// Directory for the sweep's CSV and SVG.
+    #[arg(long, default_value = "reports/jkr")]
+    pub out: PathBuf,
+    /// Print JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify convergence`.
+#[derive(Args)]
+pub struct ConvergenceArgs {
+    /// Punch shape.
+    #[arg(long, value_enum)]
+    pub punch: PunchKind,
+    /// Method to refine.
+    #[arg(long, value_enum)]
+    pub method: Method,
+    /// Number of refinement levels.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(2..=8))]
+    pub levels: u64,
+    /// b/a of the flat annulus.
+    #[arg(long, default_value_t = 0.5)]
+    pub eps: f64,
+    /// d/h of a concave punch.
+    #[arg(long, default_value_t = 1.5)]
+    pub depth: f64,
+    /// Directory for the CSV and SVG files.
+    #[arg(long, default_value = "reports/convergence")]
+    pub out: PathBuf,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify mesh`.
+#[derive(Args)]
+pub struct MeshArgs {
+    /// Start of the contact line `b/a` (the flat annulus' inner radius; 0 for the disk).
+    #[arg(long, default_value_t = 0.0, allow_negative_numbers = true)]
+    pub eps: f64,
+    /// Level of the adapted family (-2 to 7; grading g = 0.32 * 0.6^level).
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true)]
+    pub level: i32,
+    /// Refine around this inner contact radius `b/a` (concave punches).
+    #[arg(long, allow_negative_numbers = true)]
+    pub free_edge: Option<f64>,
+    /// How well that radius is known (the coarser solve's error estimate): the element size at
+    /// the free edge puts about 24 contact nodes between it and that distance.
+    #[arg(long, default_value_t = 0.0)]
+    pub edge_uncertainty: f64,
+    /// Make the mesh for a solve at this relative tolerance (rim and edge sizes follow it), as
+    /// `verify solve --method fem --tol X` does.
+    #[arg(long)]
+    pub tol: Option<f64>,
+    /// Element degree of that solve (with --tol).
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub degree: u8,
+}
+
+// The arguments of `verify export`.
+#[derive(Args)]
+pub struct ExportArgs {
+    /// gmsh .msh file (physical groups as in meshes/half_space.geo).
+    #[arg(long)]
+    pub mesh: PathBuf,
+    /// Element degree: 1, 2 or 3.
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub degree: u8,
+    /// Directory to write stiffness.mtx, load.mtx and dofs.csv into (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// FEniCSx's export of the same mesh and degree (scripts/fenicsx/export.py --out DIR):
+    /// compare the two operators and print the differences (JSON with --json).
+    #[arg(long, value_name = "DIR")]
+    pub compare: Option<PathBuf>,
+    /// With --compare: print the comparison as JSON.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify fenicsx`.
+#[derive(Args)]
+pub struct FenicsxArgs {
+    /// Print JSON instead of the table (the force comparisons; with --operators, the operator
+    /// comparisons).
+    #[arg(long)]
+    pub json: bool,
+    /// Show only the stored comparisons of the assembled operator (stiffness matrix and load
+    /// vector, entry by entry, dofs matched by position) with FEniCSx's.
+    #[arg(long)]
+    pub operators: bool,
+}
+
+// The arguments of the subcommands whose only flag is `--json`.
+#[derive(Args)]
+pub struct JsonArgs {
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify solve`.
+#[derive(Args)]
+pub struct SolveArgs {
+    /// Punch shape.
+    #[arg(long, value_enum)]
+    pub punch: Option<PunchKind>,
+    /// Contact ratio b/a: fixes the flat annulus; for cone and sphere it prescribes the contact
+    /// (depth and force are then computed).
+    #[arg(long, allow_negative_numbers = true)]
+    pub eps: Option<f64>,
+    /// Indentation depth d of the rim (for concave punches with h = 1 this is d/h).
+    #[arg(long, conflicts_with = "force", allow_negative_numbers = true)]
+    pub depth: Option<f64>,
+    /// Normal force F, compression positive.
+    #[arg(long, allow_negative_numbers = true)]
+    pub force: Option<f64>,
+    /// Method.
+    #[arg(long, value_enum, default_value = "ring-bem")]
+    pub method: Method,
+    /// Scene file (TOML, see verify/scenes/); flags given as well override its values.
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// Relative tolerance wanted in the dimensionless results [default: the scene's, else the
+    /// method's: 1e-9 ring-bem, 1e-3 fem]. The FEM climbs meshes gmsh makes for the scene and
+    /// tolerance (found at run time: `bash scripts/install_gmsh.sh` installs it; without it, the
+    /// committed meshes serve tolerances down to 1e-4) until its error estimate meets it.
+    #[arg(long)]
+    pub tol: Option<f64>,
+    /// FEM only: a gmsh .msh file (units of a; physical groups as in meshes/half_space.geo)
+    /// instead of the committed mesh family. No error estimate is made on a single mesh.
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
+    /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
+    /// made by gmsh, 2 on the committed meshes and with --mesh].
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub degree: Option<u8>,
+    /// FEM only: write the displacement field of the finest model as VTK (.vtu) for ParaView.
+    #[arg(long)]
+    pub vtu: Option<PathBuf>,
+    /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
+    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
+    pub grid: Option<u64>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify compare`.
+#[derive(Args)]
+pub struct CompareArgs {
+    /// Relative tolerance of the ring BEM.
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    pub tol: f64,
+    /// Print JSON instead of the table.
+    #[arg(long)]
+    pub json: bool,
+    /// Report directory (Markdown, JSON, SVG charts).
+    #[arg(long, default_value = "reports/latest")]
+    pub report: PathBuf,
+    /// Skip the report directory (tables only).
+    #[arg(long)]
+    pub no_report: bool,
+    /// Tolerances of the FEM's full solve in the report's speed-against-accuracy charts (meshes
+    /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-8.
+    #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
+    pub fem_tolerances: Vec<f64>,
+}

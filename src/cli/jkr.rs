@@ -1,0 +1,233 @@
+//! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
+
+use super::args::JkrArgs;
+use super::{message, refuse_non_finite, to_json, Reply};
+use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::harness::progress::Progress;
+use crate::harness::sweeps::{self, Sweep};
+use crate::harness::table::{Cell, Column, Format, Table};
+use crate::punch::PunchKind;
+
+/// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
+pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
+    let solver = RingBemSolver::new();
+    let text = match args.punch {
+        PunchKind::FlatAnnulus if args.sweep => sweep_output(
+            &sweeps::flat_annulus_sweep(&solver, &args.out).map_err(message)?,
+            args.json,
+        )?,
+        PunchKind::FlatAnnulus => {
+            let eps = args
+                .eps
+                .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
+            let r = adhesion::flat_annulus(&solver, eps).map_err(message)?;
+            refuse_non_finite(&format!("jkr flat-annulus --eps {eps}"), &r)?;
+            if args.json {
+                to_json(&r)?
+            } else {
+                flat_annulus_text(&r)
+            }
+        }
+        PunchKind::Cone | PunchKind::Sphere if args.sweep => {
+            let mut bar = Progress::new("sweep", 25);
+            let sweep = sweeps::pulloff_sweep(&solver, args.punch, &args.out, |s| bar.tick(s))
+                .map_err(message)?;
+            sweep_output(&sweep, args.json)?
+        }
+        PunchKind::Cone | PunchKind::Sphere => {
+            let s = args
+                .d0h
+                .ok_or("cone and sphere need --d0h D0_OVER_H (or --sweep)")?;
+            let r = adhesion::concave(&solver, args.punch, s).map_err(message)?;
+            refuse_non_finite(&format!("jkr {} --d0h {s:e}", args.punch), &r)?;
+            if args.json {
+                to_json(&r)?
+            } else {
+                concave_text(&r)
+            }
+        }
+        PunchKind::Flat => {
+            return Err(
+                "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)".into(),
+            )
+        }
+    };
+    Ok(Reply::ok(text))
+}
+
+/// The sweep's table (or its rows as JSON) and the files it wrote.
+fn sweep_output<R: serde::Serialize>(sweep: &Sweep<R>, json: bool) -> Result<String, String> {
+    if json {
+        return to_json(&sweep.rows);
+    }
+    let files: Vec<String> = sweep
+        .files
+        .iter()
+        .map(|f| f.display().to_string())
+        .collect();
+    Ok(sweep.table.to_terminal() + &format!("  wrote {}\n", files.join(", ")))
+}
+
+fn critical_columns(title: &str) -> Table {
+    Table::new(
+        title,
+        vec![
+            Column::text("edge", "edge / route"),
+            Column::number("eps", "eps", Format::Fixed(6)),
+            Column::number("depth", "d_c", Format::Fixed(9)),
+            Column::number("force", "F_c/F0", Format::Fixed(9)),
+            Column::text("note", "note"),
+        ],
+    )
+}
+
+/// The flat annulus: critical states at each edge, and the asymptotic references.
+fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
+    let mut t = critical_columns(&format!(
+        "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0)",
+        r.eps, r.gamma, r.gamma_prime
+    ));
+    let governs = |edge: &str| {
+        if r.governing_edge == edge {
+            "governs (smaller |d_c|)"
+        } else {
+            ""
+        }
+    };
+    t.push(vec![
+        "outer edge".into(),
+        r.eps.into(),
+        r.dc_outer.into(),
+        r.fc_outer.into(),
+        governs("outer").into(),
+    ]);
+    t.push(vec![
+        "inner edge".into(),
+        r.eps.into(),
+        r.dc_inner.into(),
+        r.fc_inner.into(),
+        governs("inner").into(),
+    ]);
+    let references = [
+        ("Collins' series in (16)-(17)", &r.collins),
+        ("Argatov's asymptote (22)", &r.argatov),
+    ];
+    for (name, critical) in references {
+        if let Some(c) = critical {
+            t.push(vec![
+                name.into(),
+                r.eps.into(),
+                c.depth.into(),
+                c.force.into(),
+                "reference".into(),
+            ]);
+        }
+    }
+    t.to_terminal()
+        + &format!(
+            "  kappa from the field against kappa from gamma': {:.1e}\n",
+            r.kappa_consistency
+        )
+}
+
+/// A concave punch: pull-off under fixed load and fixed grips by three routes, and from full
+/// contact.
+fn concave_text(r: &ConcaveJkr) -> String {
+    let mut t = Table::new(
+        &format!(
+            "{} d0/h = {}: pull-off (d/h; F in F0, negative = tensile)",
+            r.punch,
+            crate::error::show(r.d0_over_h)
+        ),
+        vec![
+            Column::text("control", "control"),
+            Column::text("route", "route"),
+            Column::number("eps", "eps", Format::Fixed(6)),
+            Column::number("depth", "d/h", Format::Fixed(6)),
+            Column::number("force", "F/F0", Format::Fixed(6)),
+            Column::text("edge", "governing edge / note"),
+        ],
+    );
+    let mut critical_row = |control: &str, route: &str, c: &Option<Critical>, note: &str| {
+        let row = match c {
+            Some(c) => vec![
+                control.into(),
+                route.into(),
+                c.eps.into(),
+                Some(c.depth).filter(|d| d.is_finite()).into(),
+                c.force.into(),
+                c.governing_edge.clone().into(),
+            ],
+            None => vec![
+                control.into(),
+                route.into(),
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                note.into(),
+            ],
+        };
+        t.push(row);
+    };
+    let none = "no critical state".to_string();
+    for (control, both, note, inner, fits) in [
+        (
+            "fixed load",
+            &r.fixed_load,
+            &r.fixed_load_note,
+            &r.inner_edge_only_fixed_load,
+            r.paper_fits_fixed_load,
+        ),
+        (
+            "fixed grips",
+            &r.fixed_grips,
+            &r.fixed_grips_note,
+            &r.inner_edge_only_fixed_grips,
+            r.paper_fits_fixed_grips,
+        ),
+    ] {
+        critical_row(
+            control,
+            "both edges (this harness)",
+            both,
+            note.as_ref().unwrap_or(&none),
+        );
+        critical_row(control, "inner edge only (the paper's route)", inner, &none);
+        let fitted = fits.map(|(eps, force)| Critical {
+            eps,
+            depth: f64::NAN,
+            depth_over_d0: f64::NAN,
+            force,
+            governing_edge: "inner".into(),
+        });
+        critical_row(
+            control,
+            "the paper's route on its fitted formulas",
+            &fitted,
+            &none,
+        );
+    }
+    let f = &r.full_contact;
+    critical_row(
+        "either",
+        "from full contact (rim)",
+        &Some(f.pulloff.clone()),
+        &none,
+    );
+    let mut text = t.to_terminal();
+    text += &format!(
+        "  full contact is reached when pressed past d/h = {}\n",
+        f.closing_depth
+            .map_or("- (no closing depth)".to_string(), |d| format!("{d:.4}"))
+    );
+    text += &format!(
+        "  direct check at the fixed-load critical state: G_inner/dw = {}, rim intensity \
+         difference {}\n",
+        r.direct_inner_energy_ratio
+            .map_or("-".to_string(), |v| format!("{v:.9}")),
+        r.direct_rim_difference
+            .map_or("-".to_string(), |v| format!("{v:.1e}"))
+    );
+    text
+}

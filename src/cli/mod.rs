@@ -1,0 +1,98 @@
+//! What each `verify` subcommand does, as library functions: a command takes its parsed
+//! arguments ([`args`]) and returns a [`Reply`] (the text for standard output and whether every
+//! verdict passed). The binary `src/bin/verify.rs` only parses, dispatches and prints.
+//!
+//! Tables come from [`crate::harness::table::Table`]; `--json` prints the typed results.
+
+pub mod args;
+mod jkr;
+mod operators;
+mod solve;
+mod studies;
+
+use args::{Command, CompareArgs};
+
+use crate::harness::report;
+use crate::scene::DEFAULT_TOLERANCE;
+
+/// What a command prints on standard output, and its verdict (exit status 0 when `success`).
+#[derive(Debug, Default)]
+pub struct Reply {
+    pub text: String,
+    pub success: bool,
+}
+
+impl Reply {
+    /// A successful reply printing `text`.
+    pub fn ok(text: String) -> Self {
+        Self {
+            text,
+            success: true,
+        }
+    }
+
+    /// A reply printing `text` whose verdict is `success`.
+    pub fn verdict(text: String, success: bool) -> Self {
+        Self { text, success }
+    }
+}
+
+/// Whether a command reads the project's data directory (meshes/, verify/).
+pub fn needs_data(command: &Option<Command>) -> bool {
+    matches!(
+        command,
+        None | Some(Command::Compare(_))
+            | Some(Command::Fenicsx(_))
+            | Some(Command::Mesh(_))
+            | Some(Command::Convergence(_))
+            | Some(Command::Stability(_))
+    )
+}
+
+/// Run one subcommand (the default job, `verify compare` with its defaults, when none is given).
+/// An `Err` is the message after `error: ` on standard error (exit status 1).
+pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
+    match command {
+        None => studies::compare(CompareArgs {
+            tol: DEFAULT_TOLERANCE,
+            json: false,
+            report: "reports/latest".into(),
+            no_report: false,
+            fem_tolerances: report::DEFAULT_FEM_TOLERANCES.to_vec(),
+        }),
+        Some(Command::Compare(args)) => studies::compare(args),
+        Some(Command::Solve(args)) => solve::solve(args),
+        Some(Command::Fenicsx(args)) => operators::fenicsx(args),
+        Some(Command::Mesh(args)) => operators::mesh(args),
+        Some(Command::Export(args)) => operators::export(args),
+        Some(Command::Convergence(args)) => studies::convergence(args),
+        Some(Command::Jkr(args)) => jkr::jkr(args),
+        Some(Command::Fit(args)) => studies::fit(args),
+        Some(Command::History(args)) => studies::history(args),
+        Some(Command::Stability(args)) => studies::stability(args),
+        Some(Command::References(args)) => studies::references(args),
+    }
+}
+
+/// Pretty JSON of `value` (the `--json` output of every subcommand), with a newline.
+fn to_json<T: serde::Serialize>(value: &T) -> Result<String, String> {
+    serde_json::to_string_pretty(value)
+        .map(|s| s + "\n")
+        .map_err(|e| e.to_string())
+}
+
+/// A result with a non-finite number is an error naming the field, never `inf` or `null` on
+/// standard output with exit 0.
+fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), String> {
+    crate::finite::check_finite(value).map_err(|field| {
+        format!(
+            "{what} produced a non-finite result ({field}): the input is beyond the range where \
+             the numbers are representable"
+        )
+    })
+}
+
+/// Any error of the library as the message of an `Err`.
+fn message(e: impl std::fmt::Display) -> String {
+    e.to_string()
+}

@@ -1,0 +1,123 @@
+//! The commands around meshes and FEniCSx: `fenicsx` (stored results), `export` (the assembled
+//! operator, and its comparison with FEniCSx's) and `mesh` (a gmsh mesh of the adapted family).
+
+use super::args::{ExportArgs, FenicsxArgs, MeshArgs};
+use super::{message, to_json, Reply};
+use crate::fem::export::export_mesh;
+use crate::fem::mesh::Degree;
+use crate::fem::mesh_provider::{self, MeshRequest};
+use crate::harness::{fenicsx, operator};
+
+/// `verify fenicsx`: every stored FEniCSx result against our FEM, and the stored operator
+/// comparisons (`--operators`: those alone).
+pub fn fenicsx(args: FenicsxArgs) -> Result<Reply, String> {
+    let operators = operator::load_records().map_err(message)?;
+    let operators_met = operator::failures(&operators) == 0;
+    if args.operators {
+        let text = if args.json {
+            to_json(&operators)?
+        } else {
+            operator::render_records(&operators)
+        };
+        return Ok(Reply::verdict(text, operators_met));
+    }
+    let rows = fenicsx::run().map_err(message)?;
+    let success = fenicsx::failures(&rows) == 0 && operators_met;
+    let text = if args.json {
+        to_json(&rows)?
+    } else {
+        fenicsx::render(&rows) + "\n" + &operator::render_records(&operators)
+    };
+    Ok(Reply::verdict(text, success))
+}
+
+/// `verify export`: write our assembled system; with `--compare`, compare it with FEniCSx's
+/// (fails above the goal of 1e-12).
+pub fn export(args: ExportArgs) -> Result<Reply, String> {
+    let degree = Degree::from_number(args.degree)
+        .ok_or_else(|| format!("--degree {}: need 1, 2 or 3", args.degree))?;
+    if args.json && args.compare.is_none() {
+        return Err("--json prints the comparison: give --compare DIR as well".into());
+    }
+    let written = export_mesh(&args.mesh, degree, &args.out).map_err(message)?;
+    let mut text = String::new();
+    if !args.json {
+        for path in &written {
+            text += &format!("wrote {}\n", path.display());
+        }
+    }
+    let Some(fenicsx_dir) = &args.compare else {
+        return Ok(Reply::ok(text));
+    };
+    let comparison =
+        operator::compare_operator(&args.mesh, degree, fenicsx_dir).map_err(message)?;
+    let met = comparison.meets_goal();
+    text += &if args.json {
+        to_json(&comparison)?
+    } else {
+        operator::render(&[comparison])
+    };
+    Ok(Reply::verdict(text, met))
+}
+
+/// `verify mesh`: make (or find in the cache) a mesh of the adapted family and print one JSON
+/// object naming it.
+pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
+    if !(0.0..1.0).contains(&args.eps) {
+        return Err(format!("--eps {}: need 0 <= b/a < 1", args.eps));
+    }
+    let levels = mesh_provider::ADAPTED_MIN_LEVEL..=mesh_provider::ADAPTED_MAX_LEVEL;
+    if !levels.contains(&args.level) {
+        return Err(format!(
+            "--level {}: the adapted family has levels {} to {}",
+            args.level,
+            levels.start(),
+            levels.end()
+        ));
+    }
+    if !(args.edge_uncertainty >= 0.0 && args.edge_uncertainty < 1.0) {
+        return Err(format!(
+            "--edge-uncertainty {}: need 0 <= uncertainty < 1 (units of a)",
+            args.edge_uncertainty
+        ));
+    }
+    if let Some(b) = args.free_edge {
+        if !(0.0..1.0).contains(&b) {
+            return Err(format!("--free-edge {b}: need 0 <= b/a < 1"));
+        }
+    }
+    if let Some(tol) = args.tol {
+        if !(tol > 0.0 && tol < 1.0) {
+            return Err(format!("--tol {tol}: need 0 < tolerance < 1"));
+        }
+    }
+    let target = args.tol.map(|tolerance| mesh_provider::SizeTarget {
+        tolerance,
+        degree: args.degree as usize,
+    });
+    let request = MeshRequest::Adapted {
+        contact_start: args.eps,
+        level: args.level,
+        free_edge: args.free_edge.filter(|&b| b > 0.0),
+        edge_uncertainty: args.edge_uncertainty,
+        target,
+    };
+    let provided = mesh_provider::provide(&request, "verify mesh").map_err(message)?;
+    let parameters = mesh_provider::adapted_parameters(
+        args.eps,
+        args.level,
+        args.free_edge,
+        args.edge_uncertainty,
+        target,
+    );
+    let out = serde_json::json!({
+        "path": provided.path.display().to_string(),
+        "sha256": provided.sha256,
+        "origin": provided.origin,
+        "gmsh_version": provided.gmsh_version,
+        "label": request.label(),
+        "parameters": parameters,
+        "corner_refinement": provided.corner_refinement.as_ref().map(|r| r.describe()),
+    });
+    Ok(Reply::ok(to_json(&out)?))
+}

@@ -1,0 +1,143 @@
+//! `verify solve`: one scene, one method.
+
+use super::args::SolveArgs;
+use super::{message, to_json, Reply};
+use crate::fem::mesh::Degree;
+use crate::harness::table::{Column, Table};
+use crate::methods::{self, MethodOptions};
+use crate::punch::PunchKind;
+use crate::scene::{Scene, SceneSpec};
+use crate::solution::Solution;
+
+/// `verify solve`: the scene from `--scene` and the flags (flags override the file), solved by
+/// `--method`; prints the state (or one JSON object).
+pub fn solve(args: SolveArgs) -> Result<Reply, String> {
+    let scene = scene_of(&args)?;
+    let options = MethodOptions {
+        mesh: args.mesh.clone(),
+        degree: args.degree.and_then(Degree::from_number),
+        grid: args.grid.map(|g| g as usize),
+        vtu: args.vtu.clone(),
+    };
+    let solution = methods::solve_with(&scene, args.method, &options).map_err(message)?;
+    Ok(Reply::ok(if args.json {
+        to_json(&solution)?
+    } else {
+        describe(&scene, &solution).to_terminal()
+    }))
+}
+
+/// The validated scene: the file's (or the defaults), then the flags.
+fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
+    let mut spec = match &args.scene {
+        Some(path) => SceneSpec::from_file(path).map_err(message)?,
+        None => SceneSpec::default(),
+    };
+    if let Some(kind) = args.punch {
+        spec = spec.shape(kind);
+    } else if args.scene.is_none() {
+        return Err("give --punch {flat|flat-annulus|cone|sphere} or --scene FILE".into());
+    }
+    // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
+    let kind = args.punch.or_else(|| scene_file_kind(args));
+    if let Some(eps) = args.eps {
+        match kind {
+            Some(PunchKind::Cone | PunchKind::Sphere) => {
+                if args.depth.is_some() || args.force.is_some() {
+                    return Err("--eps prescribes the contact of a concave punch; \
+                                do not combine it with --depth or --force"
+                        .into());
+                }
+                spec = spec.contact_ratio(eps);
+            }
+            Some(PunchKind::Flat) => {
+                return Err("--eps does not apply to the flat circular punch; \
+                            use --punch flat-annulus --eps B_OVER_A"
+                    .into())
+            }
+            _ => spec = spec.inner_ratio(eps),
+        }
+    }
+    if let Some(d) = args.depth {
+        spec = spec.depth(d);
+    }
+    if let Some(f) = args.force {
+        spec = spec.force(f);
+    }
+    if let Some(tol) = args.tol {
+        spec = spec.tolerance(tol);
+    }
+    spec.validate().map_err(message)
+}
+
+/// The punch kind named in the scene file, if any (to interpret `--eps`).
+fn scene_file_kind(args: &SolveArgs) -> Option<PunchKind> {
+    let path = args.scene.as_ref()?;
+    SceneSpec::from_file(path)
+        .ok()?
+        .validate()
+        .ok()
+        .map(|s| s.punch.kind)
+}
+
+/// The solved state as a two-column table: quantity and value (the dimensionless functions
+/// `gamma = F/(2 E* d a)`, `gamma1 = d/h`, `gamma2 = F/(2 E* h a)`, the estimate, the model,
+/// the cost and the provenance).
+pub fn describe(scene: &Scene, s: &Solution) -> Table {
+    let p = &scene.punch;
+    let es = scene.material.effective_modulus;
+    let geometry = match p.kind {
+        PunchKind::Flat => format!("a = {}", p.rim_radius),
+        PunchKind::FlatAnnulus => format!("a = {}, b = {}", p.rim_radius, p.inner_radius),
+        _ => format!("a = {}, h = {}", p.rim_radius, p.hole_depth),
+    };
+    let mut t = Table::new(
+        &format!("{} ({geometry}, E* = {es}) by {}", p.kind, s.method),
+        vec![
+            Column::text("quantity", "quantity"),
+            Column::text("value", "value"),
+        ],
+    );
+    let mut row = |name: &str, value: String| t.push(vec![name.into(), value.into()]);
+    row("contact ratio", format!("eps = b/a = {:.12}", s.eps));
+    row("depth", format!("d = {:.12}", s.depth));
+    row("force", format!("F = {:.12}", s.force));
+    if let Some(g) = s.gamma {
+        row("gamma", format!("F/(2 E* d a) = {g:.15}"));
+    }
+    if let (Some(g1), Some(g2)) = (s.gamma1, s.gamma2) {
+        row("gamma1", format!("d/h = {g1:.15}"));
+        row("gamma2", format!("F/(2 E* h a) = {g2:.15}"));
+    }
+    if let Some(k) = s.stress_intensity_rim {
+        row("K at rim", format!("{k:.12} (stress x sqrt(length))"));
+    }
+    row(
+        "error estimate",
+        match s.error_estimate {
+            Some(e) => format!("{e:.1e} (relative in gamma's, absolute in eps)"),
+            None => "none (see provenance: a fit, or a single mesh)".to_string(),
+        },
+    );
+    if let (Some(dofs), Some(mesh)) = (s.dofs, &s.mesh) {
+        row(
+            "model",
+            format!("{dofs} dofs, P{} on {mesh}", s.degree.unwrap_or(0)),
+        );
+    }
+    if let Some(r) = s.complementarity_residual {
+        row(
+            "contact",
+            format!(
+                "{} active-set iterations, complementarity residual {r:.1e}",
+                s.iterations
+            ),
+        );
+    }
+    row("wall time", format!("{:.3} ms", s.wall_s * 1e3));
+    row("provenance", s.provenance.clone());
+    if let Some(why) = &s.selection {
+        row("selection", why.clone());
+    }
+    t
+}

@@ -1,0 +1,300 @@
+//! The study commands: `compare` (the default job), `convergence`, `stability`, `history`, `fit`
+//! and `references`.
+
+use std::fmt::Write as _;
+
+use super::args::{CompareArgs, ConvergenceArgs, HistoryArgs, JsonArgs};
+use super::{message, to_json, Reply};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::harness::progress::Progress;
+use crate::harness::table::{Column, Format, Table};
+use crate::harness::{
+    comparison, convergence, fenicsx, history, html, operator, peers, report, stability,
+};
+use crate::punch::PunchKind;
+use crate::reference;
+
+/// `verify compare`: the ring BEM against the references, the FEM against the ring BEM, the
+/// stored FEniCSx and peer results, and the report directory (unless `--no-report`).
+pub fn compare(args: CompareArgs) -> Result<Reply, String> {
+    let floor = crate::fem::solver::MIN_TOLERANCE;
+    if let Some(t) = args
+        .fem_tolerances
+        .iter()
+        .find(|&&t| !(t >= floor && t < 1.0))
+    {
+        return Err(format!(
+            "--fem-tolerances: {t} is outside [{floor:e}, 1), the FEM's tolerance range"
+        ));
+    }
+    let comparison = comparison::run(args.tol).map_err(message)?;
+    let external = fenicsx::run().map_err(message)?;
+    let peer_rows = peers::run(256).map_err(message)?;
+    let operators = operator::load_records().map_err(message)?;
+    if !args.no_report {
+        let mut bar = Progress::new("report", report::STAGES);
+        report::write_report(
+            &args.report,
+            &comparison,
+            &external,
+            &operators,
+            &peer_rows,
+            &args.fem_tolerances,
+            |stage| bar.tick(stage),
+        )
+        .map_err(message)?;
+    }
+    let success = comparison.failures()
+        + fenicsx::failures(&external)
+        + operator::failures(&operators)
+        + peers::failures(&peer_rows)
+        == 0;
+    if args.json {
+        let all = serde_json::json!({
+            "comparison": comparison,
+            "fenicsx": external,
+            "fenicsx_operators": operators,
+            "peers": peer_rows
+        });
+        return Ok(Reply::verdict(to_json(&all)?, success));
+    }
+    let mut text = comparison::render(&comparison);
+    text += &fenicsx::render(&external);
+    text += "\n";
+    text += &operator::render_records(&operators);
+    text += &peers::render(&peer_rows);
+    let _ = writeln!(
+        text,
+        "\n{} of {} stored FEniCSx results compared, {} failed; {} peer comparisons, {} failed.",
+        external.iter().filter(|r| r.status == "current").count(),
+        external.len(),
+        fenicsx::failures(&external),
+        peer_rows.len(),
+        peers::failures(&peer_rows)
+    );
+    if !args.no_report {
+        let _ = writeln!(
+            text,
+            "Report: {}/index.html (web page), report.md, report.json, SVG charts",
+            args.report.display()
+        );
+    }
+    Ok(Reply::verdict(text, success))
+}
+
+/// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
+/// and the chart into `--out`.
+pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
+    let eps = if args.punch == PunchKind::FlatAnnulus {
+        args.eps
+    } else {
+        0.0
+    };
+    if !(0.0..1.0).contains(&eps) {
+        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
+    }
+    if !(args.depth.is_finite() && args.depth > 0.0) {
+        return Err(format!("--depth {}: need a positive d/h", args.depth));
+    }
+    let case = convergence::StudyCase {
+        punch: args.punch,
+        eps,
+        depth: args.depth,
+    };
+    let levels = args.levels as usize;
+    let mut bar = Progress::new("convergence", levels);
+    let study = convergence::run(case, args.method, levels, |level| {
+        bar.tick(&format!(
+            "{}: {} unknowns, {:.2} s",
+            level.label, level.unknowns, level.wall_s
+        ))
+    })
+    .map_err(message)?;
+    let [csv_path, svg_path] = convergence::write_files(&study, &args.out).map_err(message)?;
+    if args.json {
+        return Ok(Reply::ok(to_json(&study)?));
+    }
+    Ok(Reply::ok(format!(
+        "{}  wrote {} and {}\n",
+        convergence::render(&study),
+        csv_path.display(),
+        svg_path.display()
+    )))
+}
+
+/// `verify stability`: every method toward its limits; fails if any returned a wrong number
+/// without an error.
+pub fn stability(args: JsonArgs) -> Result<Reply, String> {
+    let mut bar = Progress::new("stability", stability::PROBES);
+    let probes = stability::run(|p| bar.tick(&format!("{} {}", p.method, p.probe)));
+    let success = stability::wrong_numbers(&probes) == 0;
+    let text = if args.json {
+        to_json(&probes)?
+    } else {
+        stability::render(&probes)
+    };
+    Ok(Reply::verdict(text, success))
+}
+
+/// `verify history`: append the report's headline figures to the history, write the trend and
+/// the web page with trend charts; fails on a regression.
+pub fn history(args: HistoryArgs) -> Result<Reply, String> {
+    let date = args.date.clone().unwrap_or_else(|| {
+        args.report
+            .file_name()
+            .map(|n| n.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "run".into())
+    });
+    let current =
+        history::headline(&args.report, &date, &args.fenicsx, &args.peers).map_err(message)?;
+    let previous = history::append(&args.history, &current).map_err(message)?;
+    let found = history::regressions(&current, previous.as_ref());
+    let trend_path = args.report.join("trend.md");
+    std::fs::write(
+        &trend_path,
+        history::trend(&args.history, 30).map_err(message)?,
+    )
+    .map_err(|e| format!("cannot write {}: {e}", trend_path.display()))?;
+    let recorded = history::read_history(&args.history).map_err(message)?;
+    let trend_csv = args.report.join("table-trend.csv");
+    std::fs::write(
+        &trend_csv,
+        history::trend_table(&recorded, recorded.len())
+            .to_csv()
+            .map_err(message)?,
+    )
+    .map_err(|e| format!("cannot write {}: {e}", trend_csv.display()))?;
+    let page = html::write_index(&args.report, Some(&recorded)).map_err(message)?;
+    let mut text = format!("web page with trend charts: {}\n", page.display());
+    let _ = writeln!(
+        text,
+        "history: {} ({} runs recorded); FEniCSx {}, peers {}",
+        args.history.display(),
+        recorded.len(),
+        current.fenicsx,
+        current.peers
+    );
+    if found.is_empty() {
+        let _ = writeln!(
+            text,
+            "no regression against the tolerances{}",
+            if previous.is_some() {
+                " or the previous run"
+            } else {
+                " (first run)"
+            }
+        );
+    }
+    for r in &found {
+        let _ = writeln!(text, "REGRESSION: {r}");
+    }
+    Ok(Reply::verdict(text, found.is_empty()))
+}
+
+/// `verify fit`: the paper's approximations refitted to ring-BEM data, and better forms.
+pub fn fit(args: JsonArgs) -> Result<Reply, String> {
+    let solver = RingBemSolver::new();
+    let reports = crate::fit::run(&solver).map_err(message)?;
+    if args.json {
+        // One entry per function, keyed by its name.
+        let map: serde_json::Map<String, serde_json::Value> = reports
+            .iter()
+            .map(|r| Ok((r.name.clone(), serde_json::to_value(r).map_err(message)?)))
+            .collect::<Result<_, String>>()?;
+        return Ok(Reply::ok(to_json(&map)?));
+    }
+    let mut t = Table::new(
+        "Refits on ring-BEM data, 0.05 <= eps <= 0.99 (max relative error on 301 points, and where)",
+        vec![
+            Column::text("function", "function"),
+            Column::text("variant", "variant"),
+            Column::text("form", "form"),
+            Column::text("params", "parameters"),
+            Column::number("max_rel_err", "max rel. error", Format::Scientific(2)),
+            Column::number("at_eps", "at eps", Format::Fixed(3)),
+        ],
+    );
+    let rounded = |p: &[f64], digits: i32| -> String {
+        let scale = 10f64.powi(digits);
+        let shown: Vec<String> = p
+            .iter()
+            .map(|v| ((v * scale).round() / scale).to_string())
+            .collect();
+        shown.join(", ")
+    };
+    for r in &reports {
+        let variants = [
+            (
+                "paper",
+                &r.paper_form,
+                rounded(&r.paper_params, 6),
+                r.paper_max_rel_err,
+                r.paper_max_rel_err_eps,
+            ),
+            (
+                "refit",
+                &r.paper_form,
+                rounded(&r.params, 4),
+                r.max_rel_err,
+                r.max_rel_err_eps,
+            ),
+            (
+                "best form",
+                &r.best_form,
+                rounded(&r.best_params, 6),
+                r.best_max_rel_err,
+                r.best_max_rel_err_eps,
+            ),
+        ];
+        for (variant, form, params, err, at) in variants {
+            t.push(vec![
+                r.name.clone().into(),
+                variant.into(),
+                form.clone().into(),
+                params.into(),
+                err.into(),
+                at.into(),
+            ]);
+        }
+    }
+    Ok(Reply::ok(t.to_terminal()))
+}
+
+/// `verify references`: the analytic references and where each is valid.
+pub fn references(args: JsonArgs) -> Result<Reply, String> {
+    if args.json {
+        let list: Vec<serde_json::Value> = reference::catalogue()
+            .iter()
+            .map(|r| {
+                serde_json::json!({
+                    "name": r.name,
+                    "quantity": r.quantity,
+                    "kind": r.kind,
+                    "eps_range": [r.eps_range.0, r.eps_range.1],
+                    "source": r.source,
+                })
+            })
+            .collect();
+        return Ok(Reply::ok(to_json(&list)?));
+    }
+    let mut t = Table::new(
+        "Analytic references",
+        vec![
+            Column::text("name", "name"),
+            Column::text("quantity", "quantity"),
+            Column::text("kind", "kind"),
+            Column::text("valid_eps", "valid eps"),
+            Column::text("source", "source"),
+        ],
+    );
+    for r in reference::catalogue() {
+        t.push(vec![
+            r.name.into(),
+            format!("{:?}", r.quantity).into(),
+            format!("{:?}", r.kind).into(),
+            format!("[{}, {}]", r.eps_range.0, r.eps_range.1).into(),
+            r.source.into(),
+        ]);
+    }
+    Ok(Reply::ok(t.to_terminal()))
+}
