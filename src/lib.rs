@@ -16,6 +16,7 @@
 pub mod adhesion;
 pub mod bem;
 pub mod cli;
+pub mod cohesive;
 pub mod error;
 pub mod fem;
 pub mod finite;

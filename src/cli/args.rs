@@ -127,6 +127,28 @@ Examples:
   verify jkr --punch sphere --d0h 1
   verify jkr --punch cone --d0h 10 --json")]
     Jkr(JkrArgs),
+    /// Pull-off by direct simulation: an adhesion law on the FE model's contact line, pressed
+    /// and pulled under displacement control, at decreasing ranges (growing Tabor parameter),
+    /// extrapolated to the JKR limit and set beside `verify jkr`.
+    #[command(after_help = "\
+The law: exponential adhesion, tension (dw/rho) exp(-s/rho) at separation s, work of adhesion dw,
+with non-penetration, on the contact line of the P2 FE model (condensed: the half-space's
+response there is exactly the FE model's). The punch is pressed to 0.5 d0, then pulled under
+displacement control; each branch is followed until it ends (a jump, which is what fixed grips
+see); the pull-off under fixed load is the most tensile force of the unloading branch.
+
+Units: d0 = sqrt(2 pi a dw / E*) = a for the flat punches (the answer depends on rho/d0 only);
+forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The Tabor-like
+parameter is sqrt(a/l), l = pi E* dw / (4 sigma0^2) the cohesive zone's length.
+
+Mesh: level 1 of the adapted family (gmsh; graded toward the edges, so the zone at the rim is
+resolved at every range), else the committed level 1 of the ratio (b/a = 0, 0.5, 0.9).
+
+Examples:
+  verify pulloff --punch flat                          Kendall: the sequence tends to 1
+  verify pulloff --punch flat-annulus --eps 0.5 --json
+  verify pulloff --punch flat --ranges 0.1,0.05,0.025")]
+    Pulloff(PulloffArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
     /// 0.05 <= eps <= 0.99 and propose better forms.
     #[command(after_help = "Example:\n  verify fit --json")]
@@ -165,6 +187,35 @@ pub struct HistoryArgs {
     /// Date label of this run [default: the report directory's name].
     #[arg(long)]
     pub date: Option<String>,
+}
+
+// The arguments of `verify pulloff`.
+#[derive(Args)]
+pub struct PulloffArgs {
+    /// Punch shape (cone and sphere: not yet, their moving inner edge needs a refined path).
+    #[arg(long, value_enum)]
+    pub punch: PunchKind,
+    /// b/a of the flat annulus.
+    #[arg(long, allow_negative_numbers = true)]
+    pub eps: Option<f64>,
+    /// d0/h of a concave punch.
+    #[arg(long, allow_negative_numbers = true)]
+    pub d0h: Option<f64>,
+    /// Ranges rho/d0 of the law, decreasing, comma-separated (the last three are extrapolated).
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
+          default_values_t = ringcontact_default_ranges())]
+    pub ranges: Vec<f64>,
+    /// A gmsh .msh file (units of a; physical groups as in meshes/half_space.geo) instead of the
+    /// default mesh.
+    #[arg(long)]
+    pub mesh: Option<PathBuf>,
+    /// Print one JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+fn ringcontact_default_ranges() -> Vec<f64> {
+    crate::cohesive::study::DEFAULT_RANGES.to_vec()
 }
 
 // The arguments of `verify jkr`.

@@ -7,6 +7,7 @@
 pub mod args;
 mod jkr;
 mod operators;
+mod pulloff;
 mod solve;
 mod studies;
 
@@ -46,6 +47,7 @@ pub fn needs_data(command: &Option<Command>) -> bool {
             | Some(Command::Mesh(_))
             | Some(Command::Convergence(_))
             | Some(Command::Stability(_))
+            | Some(Command::Pulloff(_))
     )
 }
 
@@ -67,6 +69,7 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         Some(Command::Export(args)) => operators::export(args),
         Some(Command::Convergence(args)) => studies::convergence(args),
         Some(Command::Jkr(args)) => jkr::jkr(args),
+        Some(Command::Pulloff(args)) => pulloff::pulloff(args),
         Some(Command::Fit(args)) => studies::fit(args),
         Some(Command::History(args)) => studies::history(args),
         Some(Command::Stability(args)) => studies::stability(args),

@@ -116,6 +116,11 @@ impl<'m> ContactModel<'m> {
         })
     }
 
+    /// The fixed supports (far arc, axis): one flag per dof of the system.
+    pub fn supports(&self) -> &[bool] {
+        &self.supports
+    }
+
     /// Inner end `b/a` of the contact line of the mesh.
     pub fn contact_line_start(&self) -> f64 {
         self.contact_nodes

@@ -16,4 +16,5 @@ pub mod node_ordered_cholesky;
 pub mod norms;
 pub mod quadrature;
 pub mod solver;
+pub mod surface_response;
 pub mod vtu;

@@ -940,3 +940,30 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         options.tolerance
     )))
 }
+
+/// The FE model of `provided` (degree, far field and Poisson's ratio of `options`) condensed onto
+/// its contact line, which starts at `contact_start = b/a` (see
+/// [`super::surface_response::condense`]); with the mesh's display path.
+pub fn surface_response_on_mesh(
+    provided: &ProvidedMesh,
+    options: &FemOptions,
+    contact_start: f64,
+) -> Result<(super::surface_response::SurfaceResponse, String)> {
+    let model = prepare_checked(provided, options, contact_start, options.tolerance)?;
+    let mut solver = ConstrainedCholesky::new(&model.stiffness)?;
+    let contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
+    let start_line = contact.contact_line_start();
+    if (start_line - contact_start).abs() > 1e-9 {
+        return Err(Error::InvalidMesh {
+            path: model.path.clone(),
+            message: format!(
+                "its contact line starts at r/a = {}, the scene needs b/a = {}",
+                crate::error::show(start_line),
+                crate::error::show(contact_start)
+            ),
+        });
+    }
+    let supports = contact.supports().to_vec();
+    let response = super::surface_response::condense(&contact, &mut solver, &supports)?;
+    Ok((response, model.path.clone()))
+}

@@ -1,0 +1,121 @@
+//! `verify pulloff`: the pull-off by direct simulation (cohesive zone on the FE model).
+
+use super::args::PulloffArgs;
+use super::{message, refuse_non_finite, to_json, Reply};
+use crate::cohesive::study::{self, PulloffStudy};
+use crate::fem::mesh_provider::{MeshOrigin, ProvidedMesh};
+use crate::harness::progress::Progress;
+use crate::harness::table::{Column, Format, Table};
+use crate::punch::PunchKind;
+
+/// `verify pulloff`: the sequence at decreasing ranges, its extrapolate and the JKR route's
+/// value.
+pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
+    let eps = match args.punch {
+        PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
+        _ => 0.0,
+    };
+    if args.punch.is_concave() && args.d0h.is_none() {
+        return Err("cone and sphere need --d0h D0_OVER_H".into());
+    }
+    study::supported(args.punch).map_err(message)?;
+    if args
+        .ranges
+        .windows(2)
+        .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Less))
+    {
+        return Err(format!(
+            "--ranges {:?}: give decreasing ranges rho/d0",
+            args.ranges
+        ));
+    }
+    let mesh = match &args.mesh {
+        Some(path) => ProvidedMesh {
+            sha256: crate::fem::mesh_provider::sha256_file(path).map_err(message)?,
+            path: path.clone(),
+            origin: MeshOrigin::User,
+            gmsh_version: None,
+            corner_refinement: None,
+        },
+        None => study::study_mesh(eps, study::STUDY_LEVEL).map_err(message)?,
+    };
+    // The smallest range again one level coarser: the mesh's share of the error bar.
+    let check = match &args.mesh {
+        Some(_) => None,
+        None => Some(study::study_mesh(eps, study::STUDY_LEVEL - 1).map_err(message)?),
+    };
+    let mut bar = Progress::new("pull-off", args.ranges.len() + usize::from(check.is_some()));
+    let result = study::run(
+        args.punch,
+        eps,
+        &args.ranges,
+        &mesh,
+        check.as_ref(),
+        |entry| {
+            bar.tick(&format!(
+                "rho/a = {}: F/F0 = {:.4}",
+                entry.range_over_a, entry.pulloff_over_f0
+            ))
+        },
+    )
+    .map_err(message)?;
+    refuse_non_finite("pulloff", &result.sequence)?;
+    if args.json {
+        return Ok(Reply::ok(to_json(&result)?));
+    }
+    Ok(Reply::ok(render(&result)))
+}
+
+/// The sequence as a table, then the extrapolate beside the JKR route.
+pub fn render(s: &PulloffStudy) -> String {
+    let mut t = Table::new(
+        &format!(
+            "{}{}: pull-off by direct simulation ({} contact nodes, {} unknowns, mesh {})",
+            s.punch,
+            s.eps.map_or(String::new(), |e| format!(" b/a = {e}")),
+            s.contact_nodes,
+            s.unknowns,
+            s.mesh
+        ),
+        vec![
+            Column::number("range_over_a", "range rho/a", Format::Scientific(3)),
+            Column::number("tabor", "Tabor", Format::Fixed(2)),
+            Column::number("pulloff_over_f0", "pull-off F/F0", Format::Fixed(5)),
+            Column::number("pulloff_depth_over_d0", "at d/d0", Format::Fixed(5)),
+            Column::text("maximum", "maximum"),
+            Column::number("jumps", "jumps", Format::Fixed(0)),
+            Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
+        ],
+    );
+    for e in &s.sequence {
+        t.push(vec![
+            e.range_over_a.into(),
+            e.tabor.into(),
+            e.pulloff_over_f0.into(),
+            e.pulloff_depth_over_d0.into(),
+            if e.smooth_maximum {
+                "smooth"
+            } else {
+                "end of branch"
+            }
+            .into(),
+            (e.jumps as f64).into(),
+            e.wall_s.into(),
+        ]);
+    }
+    let mut text = t.to_terminal();
+    text += &match (s.extrapolated_over_f0, s.error_bar) {
+        (Some(x), Some(bar)) => format!(
+            "  extrapolated to zero range (linear in the range): F/F0 = {x:.4} +- {bar:.1e} \
+             (mesh difference at the smallest range: {})\n",
+            s.mesh_difference
+                .map_or("not checked".to_string(), |d| format!("{d:.1e}"))
+        ),
+        _ => "  no extrapolate: it needs three ranges\n".to_string(),
+    };
+    if let Some(j) = s.jkr_fixed_load_over_f0 {
+        text += &format!("  JKR route (verify jkr), fixed load: F/F0 = {j:.4}\n");
+    }
+    text += &format!("  {}\n  law: {}\n", s.note, s.law);
+    text
+}

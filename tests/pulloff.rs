@@ -1,0 +1,168 @@
+//! The direct simulation of adhesive contact (`src/cohesive/`): the FE model condensed onto its
+//! contact line, an exponential adhesion law, displacement control.
+//!
+//! References: Boussinesq's flat punch `F = 2 E* a d` and the ring BEM's non-adhesive cone (an
+//! independent method) for the condensed model without adhesion; Kendall's flat-punch pull-off
+//! `F0 = sqrt(8 π E* Δw a³)` (closed form) and the harness's JKR route for the flat annulus
+//! (`adhesion::flat_annulus`: ring BEM plus the energy balance, no cohesive law) for the limit of
+//! vanishing range.
+
+use std::process::Command;
+
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::cohesive::equilibrium::CohesiveSurface;
+use ringcontact::cohesive::law::ExponentialLaw;
+use ringcontact::cohesive::study;
+use ringcontact::fem::far_field::FarField;
+use ringcontact::fem::mesh::Degree;
+use ringcontact::fem::mesh_provider::{provide, MeshRequest};
+use ringcontact::fem::solver::{surface_response_on_mesh, FemOptions};
+use ringcontact::punch::PunchKind;
+
+fn options() -> FemOptions {
+    FemOptions {
+        degree: Degree::Quadratic,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: FarField::Boussinesq,
+    }
+}
+
+/// Whether gmsh is there (see tests/fem_vs_ring_bem.rs): without it the studies on generated
+/// meshes are skipped, unless `RINGCONTACT_REQUIRE_GMSH=1`.
+fn gmsh_available(test: &str) -> bool {
+    let root = ringcontact::fem::mesh_provider::project_root();
+    if ringcontact::fem::gmsh::Gmsh::find(&root).is_some() {
+        return true;
+    }
+    assert!(
+        std::env::var("RINGCONTACT_REQUIRE_GMSH").as_deref() != Ok("1"),
+        "{test}: RINGCONTACT_REQUIRE_GMSH=1 but gmsh was not found"
+    );
+    eprintln!("{test}: skipped, gmsh not found (bash scripts/install_gmsh.sh)");
+    false
+}
+
+#[test]
+fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
+    let mesh = provide(
+        &MeshRequest::Committed {
+            family: "disk".into(),
+            level: 1,
+        },
+        "test",
+    )
+    .unwrap();
+    let (response, _) = surface_response_on_mesh(&mesh, &options(), 0.0).unwrap();
+    let n = response.radii.len();
+    // The nodal weights integrate the disk's area.
+    let area: f64 = response.weights.iter().sum();
+    assert!((area - std::f64::consts::PI).abs() < 1e-12, "{area}");
+    let negligible = ExponentialLaw {
+        work: 1e-20,
+        range: 1e-3,
+    };
+    // Flat punch at unit depth: Boussinesq's F = 2 E* a d, to the FE model's accuracy.
+    let flat = CohesiveSurface::new(&response, vec![0.0; n], negligible).unwrap();
+    let state = flat.equilibrium(1.0, &vec![0.0; n]).unwrap();
+    assert!((state.force - 2.0).abs() / 2.0 < 1e-3, "{}", state.force);
+    // Cone at d = 2h (h = 1): the ring BEM's force, the free edge found by the bound.
+    let recess: Vec<f64> = response.radii.iter().map(|&r| 1.0 - r).collect();
+    let cone = CohesiveSurface::new(&response, recess.clone(), negligible).unwrap();
+    let state = cone.equilibrium(2.0, &recess).unwrap();
+    let ring = RingBemSolver::new()
+        .concave_at_depth(PunchKind::Cone, 2.0, 1e-10)
+        .unwrap();
+    let expected = 2.0 * ring.gamma2.unwrap();
+    assert!(
+        (state.force - expected).abs() / expected < 2e-3,
+        "cohesive-FEM {} against ring BEM {expected}",
+        state.force
+    );
+    // The hole stays open: no contact at the centre, contact at the rim.
+    assert!(state.separation[0] > 0.1 && state.separation[n - 1] == 0.0);
+}
+
+#[test]
+fn flat_punch_pulloff_tends_to_kendall_from_below() {
+    if !gmsh_available("flat_punch_pulloff_tends_to_kendall_from_below") {
+        return;
+    }
+    let mesh = study::study_mesh(0.0, study::STUDY_LEVEL).unwrap();
+    let check = study::study_mesh(0.0, study::STUDY_LEVEL - 1).unwrap();
+    let s = study::run(
+        PunchKind::Flat,
+        0.0,
+        &study::DEFAULT_RANGES,
+        &mesh,
+        Some(&check),
+        |_| {},
+    )
+    .unwrap();
+    let values: Vec<f64> = s.sequence.iter().map(|e| e.pulloff_over_f0).collect();
+    // Below Kendall at every finite range, growing as the range shrinks.
+    assert!(values.windows(2).all(|w| w[1] > w[0]), "{values:?}");
+    assert!(values.iter().all(|&v| v > 0.85 && v < 1.0), "{values:?}");
+    let (x, bar) = (s.extrapolated_over_f0.unwrap(), s.error_bar.unwrap());
+    assert!(bar < 0.05, "error bar {bar} too wide to check anything");
+    assert!(
+        (x - 1.0).abs() <= bar,
+        "extrapolate {x} +- {bar} misses Kendall's 1"
+    );
+}
+
+#[test]
+fn flat_annulus_pulloff_tends_to_the_jkr_route() {
+    if !gmsh_available("flat_annulus_pulloff_tends_to_the_jkr_route") {
+        return;
+    }
+    let eps = 0.5;
+    let mesh = study::study_mesh(eps, study::STUDY_LEVEL).unwrap();
+    let s = study::run(
+        PunchKind::FlatAnnulus,
+        eps,
+        &study::DEFAULT_RANGES,
+        &mesh,
+        None,
+        |_| {},
+    )
+    .unwrap();
+    let jkr = ringcontact::adhesion::flat_annulus(&RingBemSolver::new(), eps).unwrap();
+    // The outer edge lets go first at b/a = 0.5.
+    assert_eq!(jkr.governing_edge, "outer");
+    let expected = -jkr.fc_outer;
+    assert_eq!(s.jkr_fixed_load_over_f0, Some(expected));
+    let (x, bar) = (s.extrapolated_over_f0.unwrap(), s.error_bar.unwrap());
+    assert!(bar < 0.05, "error bar {bar}");
+    assert!(
+        (x - expected).abs() <= bar,
+        "extrapolate {x} +- {bar} misses the JKR route's {expected}"
+    );
+}
+
+#[test]
+fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
+    let verify = env!("CARGO_BIN_EXE_verify");
+    for (args, expected) in [
+        (
+            vec!["pulloff", "--punch", "cone", "--d0h", "1"],
+            "inner contact edge moves",
+        ),
+        (vec!["pulloff", "--punch", "flat-annulus"], "--eps"),
+        (
+            vec!["pulloff", "--punch", "flat", "--ranges", "0.01,0.02"],
+            "decreasing",
+        ),
+        (
+            vec!["pulloff", "--punch", "flat", "--ranges", "-0.1"],
+            "ranges",
+        ),
+    ] {
+        let out = Command::new(verify).args(&args).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(err.contains(expected), "{args:?}: {err}");
+        assert!(!err.contains("panicked"), "{args:?}: {err}");
+    }
+}
