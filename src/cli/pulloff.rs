@@ -19,6 +19,16 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         return Err("cone and sphere need --d0h D0_OVER_H".into());
     }
     study::supported(args.punch).map_err(message)?;
+    if !(0.0..1.0).contains(&eps) {
+        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
+    }
+    if let Some(r) = args
+        .ranges
+        .iter()
+        .find(|r| !(r.is_finite() && **r > 0.0 && **r < 1.0))
+    {
+        return Err(format!("--ranges: {r} is not a range rho/d0 in (0, 1)"));
+    }
     if args
         .ranges
         .windows(2)
