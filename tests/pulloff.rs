@@ -91,15 +91,12 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
     }
     let mesh = study::study_mesh(0.0, study::STUDY_LEVEL).unwrap();
     let check = study::study_mesh(0.0, study::STUDY_LEVEL - 1).unwrap();
-    let s = study::run(
-        PunchKind::Flat,
-        0.0,
-        &study::DEFAULT_RANGES,
-        &mesh,
-        Some(&check),
-        |_| {},
-    )
-    .unwrap();
+    let case = study::Case {
+        punch: PunchKind::Flat,
+        eps: 0.0,
+        d0_over_h: 0.0,
+    };
+    let s = study::run(case, &study::DEFAULT_RANGES, &mesh, Some(&check), |_| {}).unwrap();
     let values: Vec<f64> = s.sequence.iter().map(|e| e.pulloff_over_f0).collect();
     // Below Kendall at every finite range, growing as the range shrinks.
     assert!(values.windows(2).all(|w| w[1] > w[0]), "{values:?}");
@@ -119,15 +116,12 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
     }
     let eps = 0.5;
     let mesh = study::study_mesh(eps, study::STUDY_LEVEL).unwrap();
-    let s = study::run(
-        PunchKind::FlatAnnulus,
+    let case = study::Case {
+        punch: PunchKind::FlatAnnulus,
         eps,
-        &study::DEFAULT_RANGES,
-        &mesh,
-        None,
-        |_| {},
-    )
-    .unwrap();
+        d0_over_h: 0.0,
+    };
+    let s = study::run(case, &study::DEFAULT_RANGES, &mesh, None, |_| {}).unwrap();
     let jkr = ringcontact::adhesion::flat_annulus(&RingBemSolver::new(), eps).unwrap();
     // The outer edge lets go first at b/a = 0.5.
     assert_eq!(jkr.governing_edge, "outer");
@@ -146,8 +140,8 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
     let verify = env!("CARGO_BIN_EXE_verify");
     for (args, expected) in [
         (
-            vec!["pulloff", "--punch", "cone", "--d0h", "1"],
-            "inner contact edge moves",
+            vec!["pulloff", "--punch", "cone", "--d0h", "-1"],
+            "d0/h > 0",
         ),
         (vec!["pulloff", "--punch", "flat-annulus"], "--eps"),
         (
@@ -165,4 +159,39 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
         assert!(err.contains(expected), "{args:?}: {err}");
         assert!(!err.contains("panicked"), "{args:?}: {err}");
     }
+}
+
+#[test]
+fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() {
+    if !gmsh_available("cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers")
+    {
+        return;
+    }
+    // d0/h = 10: the paper's route on its fitted formulas gives about 1.31 F0 (the disputed
+    // "+50 %" regime); the JKR route from full contact 1 + π h/(4 d0) = 1.0785 F0.
+    let case = study::Case {
+        punch: PunchKind::Cone,
+        eps: 0.0,
+        d0_over_h: 10.0,
+    };
+    let mesh = study::study_mesh(0.0, study::STUDY_LEVEL).unwrap();
+    let check = study::study_mesh(0.0, study::STUDY_LEVEL - 1).unwrap();
+    let s = study::run(case, &study::DEFAULT_RANGES, &mesh, Some(&check), |_| {}).unwrap();
+    assert!(s
+        .sequence
+        .iter()
+        .all(|e| e.hole_closed_at_preload == Some(true)));
+    let full_contact = s.full_contact_over_f0.unwrap();
+    assert!((full_contact - (1.0 + std::f64::consts::PI / 40.0)).abs() < 1e-9);
+    let paper = s.paper_route_over_f0.unwrap();
+    let (x, bar) = (s.extrapolated_over_f0.unwrap(), s.error_bar.unwrap());
+    assert!(bar < 0.06, "error bar {bar}");
+    assert!(
+        (x - full_contact).abs() <= bar,
+        "extrapolate {x} +- {bar} misses the full-contact value {full_contact}"
+    );
+    assert!(
+        (x - paper).abs() > 3.0 * bar,
+        "extrapolate {x} +- {bar} does not separate from the paper's route {paper}"
+    );
 }

@@ -15,10 +15,13 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
         _ => 0.0,
     };
-    if args.punch.is_concave() && args.d0h.is_none() {
-        return Err("cone and sphere need --d0h D0_OVER_H".into());
-    }
-    study::supported(args.punch).map_err(message)?;
+    let d0_over_h = match (args.punch.is_concave(), args.d0h) {
+        (true, None) => return Err("cone and sphere need --d0h D0_OVER_H".into()),
+        (true, Some(s)) if !(s.is_finite() && s > 0.0) => {
+            return Err(format!("--d0h {s}: need d0/h > 0"))
+        }
+        (_, s) => s.unwrap_or(0.0),
+    };
     if !(0.0..1.0).contains(&eps) {
         return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
     }
@@ -55,19 +58,17 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         None => Some(study::study_mesh(eps, study::STUDY_LEVEL - 1).map_err(message)?),
     };
     let mut bar = Progress::new("pull-off", args.ranges.len() + usize::from(check.is_some()));
-    let result = study::run(
-        args.punch,
+    let case = study::Case {
+        punch: args.punch,
         eps,
-        &args.ranges,
-        &mesh,
-        check.as_ref(),
-        |entry| {
-            bar.tick(&format!(
-                "rho/a = {}: F/F0 = {:.4}",
-                entry.range_over_a, entry.pulloff_over_f0
-            ))
-        },
-    )
+        d0_over_h,
+    };
+    let result = study::run(case, &args.ranges, &mesh, check.as_ref(), |entry| {
+        bar.tick(&format!(
+            "rho/a = {}: F/F0 = {:.4}",
+            entry.range_over_a, entry.pulloff_over_f0
+        ))
+    })
     .map_err(message)?;
     refuse_non_finite("pulloff", &result.sequence)?;
     if args.json {
@@ -80,9 +81,13 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
 pub fn render(s: &PulloffStudy) -> String {
     let mut t = Table::new(
         &format!(
-            "{}{}: pull-off by direct simulation ({} contact nodes, {} unknowns, mesh {})",
+            "{}{}{}: pull-off by direct simulation ({} contact nodes, {} unknowns, mesh {})",
             s.punch,
             s.eps.map_or(String::new(), |e| format!(" b/a = {e}")),
+            s.d0_over_h.map_or(String::new(), |x| format!(
+                " d0/h = {x}, preload d = {}",
+                s.preload_over_d0 * x
+            )),
             s.contact_nodes,
             s.unknowns,
             s.mesh
@@ -123,8 +128,21 @@ pub fn render(s: &PulloffStudy) -> String {
         ),
         _ => "  no extrapolate: it needs three ranges\n".to_string(),
     };
-    if let Some(j) = s.jkr_fixed_load_over_f0 {
-        text += &format!("  JKR route (verify jkr), fixed load: F/F0 = {j:.4}\n");
+    match (s.punch.is_concave(), s.jkr_fixed_load_over_f0) {
+        (false, Some(j)) => {
+            text += &format!("  JKR route (verify jkr), fixed load: F/F0 = {j:.4}\n")
+        }
+        (true, j) => {
+            text +=
+                &format!(
+                "  JKR route (verify jkr): from full contact F/F0 = {}; from the annular contact \
+                 (fixed load) {}; the paper's route on its fitted formulas {}\n",
+                s.full_contact_over_f0.map_or("-".into(), |v| format!("{v:.4}")),
+                j.map_or("none (no stable annular state)".into(), |v| format!("{v:.4}")),
+                s.paper_route_over_f0.map_or("-".into(), |v| format!("{v:.4}"))
+            );
+        }
+        _ => {}
     }
     text += &format!("  {}\n  law: {}\n", s.note, s.law);
     text

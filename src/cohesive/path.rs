@@ -42,6 +42,12 @@ pub struct CurvePoint {
     pub contact: Option<(f64, f64)>,
     /// Innermost and outermost node of the cohesive zone (`0 < x <= 3 ρ`), if any.
     pub zone: Option<(f64, f64)>,
+    /// Outermost node separated by more than the zone (`x > 3 ρ`), if any: the edge of an open
+    /// hole of a concave punch (or of the detached part).
+    pub open_to: Option<f64>,
+    /// The innermost node (the centre, for a disk) is separated beyond the zone while some node
+    /// is in contact: an open hole.
+    pub centre_open: bool,
     /// Branch number: 0 from the start, one more after every jump.
     pub branch: usize,
     /// On the way out (after the preload).
@@ -103,6 +109,12 @@ fn describe(
         force: e.force,
         contact: extent(&|x| x <= 0.0),
         zone: extent(&|x| x > 0.0 && x <= ZONE_RANGES * range),
+        open_to: extent(&|x| x > ZONE_RANGES * range).map(|(_, hi)| hi),
+        centre_open: e
+            .separation
+            .first()
+            .is_some_and(|&x| x > ZONE_RANGES * range)
+            && e.separation.iter().any(|&x| x <= 0.0),
         branch,
         unloading,
     }

@@ -8,7 +8,7 @@
 
 use std::time::Instant;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 use super::equilibrium::CohesiveSurface;
 use super::law::ExponentialLaw;
@@ -27,8 +27,45 @@ pub const DEFAULT_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
 /// Preload of the flat punches, in units of `d0`.
 pub const FLAT_PRELOAD: f64 = 0.5;
 
+/// Preload of the concave punches, in units of `h`: past the depth where the sphere's hole closes
+/// without adhesion (`3h`); with adhesion both punches' holes close earlier where `d0/h` is large.
+pub const CONCAVE_PRELOAD: f64 = 3.0;
+
+/// Widest error bar, relative to the extrapolate, that still gives a verdict.
+pub const CONCLUSIVE_BAR: f64 = 0.1;
+
+/// What to simulate.
+#[derive(Clone, Copy, Debug)]
+pub struct Case {
+    pub punch: PunchKind,
+    /// `b/a` of the flat annulus.
+    pub eps: f64,
+    /// `d0/h` of a concave punch.
+    pub d0_over_h: f64,
+}
+
+impl Case {
+    /// Kendall's depth `d0` in units of `a` (`h = 1` for the concave punches).
+    fn d0(&self) -> f64 {
+        if self.punch.is_concave() {
+            self.d0_over_h
+        } else {
+            1.0
+        }
+    }
+
+    /// Preload depth (units of `a`).
+    fn preload(&self) -> f64 {
+        if self.punch.is_concave() {
+            CONCAVE_PRELOAD
+        } else {
+            FLAT_PRELOAD
+        }
+    }
+}
+
 /// One simulation of the sequence.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct SequenceEntry {
     /// Range `ρ/a` of the law.
     pub range_over_a: f64,
@@ -43,11 +80,15 @@ pub struct SequenceEntry {
     /// Jumps along the path (the ends of branches; small ones are the crack front passing nodes).
     pub jumps: usize,
     pub points: usize,
+    /// Concave punches: the hole was closed (every node within the law's range) at the preload.
+    pub hole_closed_at_preload: Option<bool>,
+    /// Concave punches: a hole was open at some point of the pull before the pull-off.
+    pub hole_open_before_pulloff: Option<bool>,
     pub wall_s: f64,
 }
 
 /// The study of one punch.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PulloffStudy {
     pub punch: PunchKind,
     /// `b/a` of the flat annulus.
@@ -67,8 +108,9 @@ pub struct PulloffStudy {
     /// at which the surfaces part is offset by `O(ρ)`; the sequences measured are consistent
     /// with order 1).
     pub extrapolated_over_f0: Option<f64>,
-    /// The change of that extrapolate from the previous pair of ranges, plus the mesh
-    /// difference: how far the order-1 assumption and the mesh are from settled.
+    /// The extrapolation's correction, plus its change from the previous pair of ranges, plus
+    /// the mesh difference: how far the limit, the order-1 assumption and the mesh are from
+    /// settled.
     pub error_bar: Option<f64>,
     /// The smallest range's pull-off on the check mesh minus this mesh's (absolute, in `F0`).
     pub mesh_difference: Option<f64>,
@@ -76,8 +118,37 @@ pub struct PulloffStudy {
     pub jkr_fixed_load_over_f0: Option<f64>,
     /// The JKR route's pull-off from full contact (concave punches).
     pub full_contact_over_f0: Option<f64>,
+    /// The paper's route on its fitted formulas, fixed load (concave punches).
+    pub paper_route_over_f0: Option<f64>,
     pub note: String,
     pub wall_s: f64,
+}
+
+impl PulloffStudy {
+    /// The JKR route's value this simulation tends to: from full contact for a concave punch
+    /// (its hole is closed at the preload), else the fixed-load pull-off.
+    pub fn jkr_reference(&self) -> Option<f64> {
+        if self.punch.is_concave() {
+            self.full_contact_over_f0
+        } else {
+            self.jkr_fixed_load_over_f0
+        }
+    }
+
+    /// Whether the extrapolate meets the JKR route's value within its error bar; `None` (no
+    /// verdict) without one, or when the bar is wider than [`CONCLUSIVE_BAR`] of the value.
+    pub fn agrees_with_jkr(&self) -> Option<bool> {
+        match (
+            self.extrapolated_over_f0,
+            self.error_bar,
+            self.jkr_reference(),
+        ) {
+            (Some(x), Some(bar), Some(r)) if bar <= CONCLUSIVE_BAR * x.abs() => {
+                Some((x - r).abs() <= bar)
+            }
+            _ => None,
+        }
+    }
 }
 
 /// Level of the adapted family the study runs on: graded toward the edges (element size
@@ -111,36 +182,52 @@ pub fn study_mesh(eps: f64, level: i32) -> Result<ProvidedMesh> {
     }
 }
 
-/// The punches the direct simulation covers: the flat ones. A concave punch's inner contact edge
-/// moves during the pull, and the mesh is not yet refined along its path: declined with that
-/// reason.
-pub fn supported(punch: PunchKind) -> Result<()> {
-    if punch.is_concave() {
+/// The cases the direct simulation covers: the flat punches, and the concave ones where the
+/// hole is closed at the preload and stays closed until the pull-off (large `d0/h`). An open
+/// hole's inner edge moves during the pull, and the mesh is not yet refined along its path:
+/// such a case is declined with that reason.
+fn open_hole_declined(case: &Case, entry: &SequenceEntry) -> Result<()> {
+    if entry.hole_closed_at_preload == Some(false) || entry.hole_open_before_pulloff == Some(true) {
         return Err(Error::Unsupported {
             method: "cohesive-fem".into(),
             reason: format!(
-                "the {punch}'s inner contact edge moves during the pull, and the mesh is not yet \
-                 refined along its path; the direct simulation covers flat and flat-annulus"
+                "at d0/h = {} and range rho/d0 = {} the {}'s hole is open at the preload \
+                 d = {CONCAVE_PRELOAD} h or opens before the pull-off: its inner edge moves \
+                 during the pull, and the mesh is not refined along its path (the direct \
+                 simulation covers flat punches and closed holes, large d0/h)",
+                crate::error::show(case.d0_over_h),
+                crate::error::show(entry.range_over_a / case.d0()),
+                case.punch
             ),
         });
     }
     Ok(())
 }
 
-/// Run the study of `punch` (flat, or flat annulus `b/a = eps`) on `mesh` at the ranges
+/// Run the study of `case` on `mesh` (a disk mesh for the concave punches) at the ranges
 /// `ranges` (units of `d0`, decreasing), and the smallest range again on `check_mesh` (a coarser
 /// one) for the mesh's share of the error bar; `progress` is called after each simulation.
 pub fn run(
-    punch: PunchKind,
-    eps: f64,
+    case: Case,
     ranges: &[f64],
     mesh: &ProvidedMesh,
     check_mesh: Option<&ProvidedMesh>,
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
     let start = Instant::now();
-    supported(punch)?;
-    let eps = if punch == PunchKind::Flat { 0.0 } else { eps };
+    let punch = case.punch;
+    let eps = if punch == PunchKind::FlatAnnulus {
+        case.eps
+    } else {
+        0.0
+    };
+    if punch.is_concave() && !(case.d0_over_h.is_finite() && case.d0_over_h > 0.0) {
+        return Err(Error::invalid(
+            "d0_over_h",
+            format!("need d0/h > 0 (got {})", case.d0_over_h),
+        ));
+    }
+    let case = Case { eps, ..case };
     if !(0.0..1.0).contains(&eps) {
         return Err(Error::invalid(
             "eps",
@@ -167,41 +254,54 @@ pub fn run(
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
     let mut sequence = Vec::new();
     for &range in ranges {
-        let entry = simulate(&response, range)?;
+        let entry = simulate(&response, &case, range)?;
         progress(&entry);
+        open_hole_declined(&case, &entry)?;
         sequence.push(entry);
     }
     let mesh_difference = match check_mesh {
         Some(coarser) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
             let smallest = ranges[ranges.len() - 1];
-            let entry = simulate(&response, smallest)?;
+            let entry = simulate(&response, &case, smallest)?;
             progress(&entry);
+            open_hole_declined(&case, &entry)?;
             Some((entry.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs())
         }
         None => None,
     };
     let (extrapolated, error_bar) = extrapolate(&sequence, mesh_difference.unwrap_or(0.0));
-    let jkr = match punch {
-        PunchKind::Flat => Some(1.0),
-        _ => {
-            let r = crate::adhesion::flat_annulus(&RingBemSolver::new(), eps)?;
+    let ring = RingBemSolver::new();
+    let (jkr, full_contact, paper) = match punch {
+        PunchKind::Flat => (Some(1.0), None, None),
+        PunchKind::FlatAnnulus => {
+            let r = crate::adhesion::flat_annulus(&ring, eps)?;
             // The edge that lets go first (smaller |d_c|) sets the pull-off.
-            Some(if r.governing_edge == "outer" {
-                -r.fc_outer
+            let edge = if r.governing_edge == "outer" {
+                r.fc_outer
             } else {
-                -r.fc_inner
-            })
+                r.fc_inner
+            };
+            (Some(-edge), None, None)
+        }
+        PunchKind::Cone | PunchKind::Sphere => {
+            let r = crate::adhesion::concave(&ring, punch, case.d0_over_h)?;
+            (
+                r.fixed_load.map(|c| -c.force),
+                Some(-r.full_contact.pulloff.force),
+                r.paper_fits_fixed_load.map(|(_, f)| -f),
+            )
         }
     };
     Ok(PulloffStudy {
         punch,
         eps: (punch == PunchKind::FlatAnnulus).then_some(eps),
-        d0_over_h: None,
-        law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a), d0 = a; \
-              non-penetration; nodal quadrature on the FE contact line (P2)"
+        d0_over_h: punch.is_concave().then_some(case.d0_over_h),
+        law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (d0 = a for the \
+              flat punches, h = 1 for the concave ones); non-penetration; nodal quadrature on \
+              the FE contact line (P2)"
             .into(),
-        preload_over_d0: FLAT_PRELOAD,
+        preload_over_d0: case.preload() / case.d0(),
         mesh: mesh_name,
         mesh_sha256: mesh.sha256.clone(),
         mesh_gmsh_version: mesh.gmsh_version.clone(),
@@ -212,7 +312,8 @@ pub fn run(
         error_bar,
         mesh_difference,
         jkr_fixed_load_over_f0: jkr,
-        full_contact_over_f0: None,
+        full_contact_over_f0: full_contact,
+        paper_route_over_f0: paper,
         note: "pull-off: the most tensile force of the branch the preload is on, which ends where \
                the crack front first runs (a jump under fixed grips); past it the discrete front \
                is pinned node by node (lattice trapping) and the path is not followed"
@@ -221,27 +322,53 @@ pub fn run(
     })
 }
 
-/// One loading-unloading simulation at range `range` (units of `d0 = a`).
+/// One loading-unloading simulation of `case` at range `range` (units of `d0`).
 fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,
+    case: &Case,
     range: f64,
 ) -> Result<SequenceEntry> {
     let begun = Instant::now();
-    let d0 = 1.0;
+    let d0 = case.d0();
     let work = d0 * d0 / (2.0 * std::f64::consts::PI);
     let f0 = (8.0 * std::f64::consts::PI * work).sqrt();
     let law = ExponentialLaw {
         work,
         range: range * d0,
     };
-    let surface = CohesiveSurface::new(response, vec![0.0; response.radii.len()], law)?;
+    let recess: Vec<f64> = response
+        .radii
+        .iter()
+        .map(|&r| case.punch.gap_shape(r))
+        .collect();
+    let surface = CohesiveSurface::new(response, recess, law)?;
+    // Steps of 0.02 d0 (and of 0.02 h on the way in, where d0 > h).
+    let step = 0.02 * d0.min(1.0);
     let path = PathOptions {
-        preload: FLAT_PRELOAD * d0,
+        preload: case.preload(),
         pull_to: -4.0 * d0,
-        max_step: 0.02 * d0,
+        max_step: step,
         min_step: 1e-7 * d0,
     };
     let curve = follow(&surface, path)?;
+    let concave = case.punch.is_concave();
+    let preload = curve.points.iter().rposition(|p| !p.unloading).unwrap_or(0);
+    let closed_at_preload = !curve.points[preload].centre_open;
+    // Open before the pull-off, or opened by the jump that ends the branch while the punch stays
+    // on (then that jump is the hole's, not the pull-off).
+    let branch = curve.points[preload].branch;
+    let landing = curve
+        .points
+        .iter()
+        .skip(preload)
+        .find(|p| p.branch > branch);
+    let open_before = curve
+        .points
+        .iter()
+        .skip(preload)
+        .take_while(|p| p.depth >= curve.pulloff.depth)
+        .any(|p| p.centre_open)
+        || landing.is_some_and(|p| p.centre_open);
     Ok(SequenceEntry {
         range_over_a: range * d0,
         tabor: law.tabor(),
@@ -250,13 +377,16 @@ fn simulate(
         smooth_maximum: curve.pulloff.smooth,
         jumps: curve.jumps.len(),
         points: curve.points.len(),
+        hole_closed_at_preload: concave.then_some(closed_at_preload),
+        hole_open_before_pulloff: concave.then_some(open_before),
         wall_s: begun.elapsed().as_secs_f64(),
     })
 }
 
 /// Linear extrapolation in the range to zero from the two smallest ranges,
-/// `F∞ = F1 + (F1 - F2) ρ1/(ρ2 - ρ1)`; the error bar is its change from the previous pair plus
-/// `mesh_difference`. Needs three ranges.
+/// `F∞ = F1 + (F1 - F2) ρ1/(ρ2 - ρ1)`. Its error bar adds the correction itself (the sequences
+/// approach their limits no faster than linearly, so what remains may be as large), its change
+/// from the previous pair, and `mesh_difference`. Needs three ranges.
 fn extrapolate(sequence: &[SequenceEntry], mesh_difference: f64) -> (Option<f64>, Option<f64>) {
     let n = sequence.len();
     if n < 3 {
@@ -269,5 +399,9 @@ fn extrapolate(sequence: &[SequenceEntry], mesh_difference: f64) -> (Option<f64>
     };
     let last = linear(&sequence[n - 1], &sequence[n - 2]);
     let previous = linear(&sequence[n - 2], &sequence[n - 3]);
-    (Some(last), Some((last - previous).abs() + mesh_difference))
+    let correction = (last - sequence[n - 1].pulloff_over_f0).abs();
+    (
+        Some(last),
+        Some(correction + (last - previous).abs() + mesh_difference),
+    )
 }

@@ -8,6 +8,7 @@ pub mod html;
 pub mod operator;
 pub mod peers;
 pub mod progress;
+pub mod pulloff_records;
 pub mod report;
 pub mod report_tables;
 pub mod stability;

@@ -171,6 +171,24 @@ pub fn report_tables(
             )
         },
     ];
+    if !extras.pulloff_simulations.is_empty() {
+        out.push(ReportTable {
+            intro: Some(
+                "A second route to the pull-off, with no JKR energy balance: an exponential \
+                 adhesion law on the FE model's contact line, pressed and pulled under \
+                 displacement control at three ranges, extrapolated to zero range \
+                 (`verify pulloff`; stored by `scripts/pulloff/run_all.sh`, which the nightly \
+                 run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
+                 (concave punches, whose hole is closed at the preload)."
+                    .into(),
+            ),
+            ..entry(
+                Some("Pull-off by direct simulation"),
+                "pulloff-simulation",
+                super::pulloff_records::table(&extras.pulloff_simulations),
+            )
+        });
+    }
     for (k, sa) in extras.speed_accuracy.iter().enumerate() {
         let mut t = Table::new(
             &sa.problem,

@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Refresh the stored pull-off simulations (verify/pulloff/*.json): `verify pulloff --json` on the
+# flat punch, two flat annuli and the concave punches at the d0/h where their hole is closed at
+# the preload (large d0/h). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
+# and 2 of the adapted family. Each file holds the result, the date and the command.
+# Cases the simulation declines (an open hole: cone d0/h = 0.3, 1, 3) are recorded with the reason.
+set -uo pipefail
+cd "$(dirname "$0")/../.."
+cargo build --release --quiet || exit 1
+mkdir -p verify/pulloff
+status=0
+run() {
+  local name=$1; shift
+  local cmd="verify pulloff $* --json"
+  echo "== $name: $cmd"
+  local out err
+  err=$(mktemp)
+  if out=$(./target/release/verify pulloff "$@" --json 2> "$err"); then
+    RESULT="$out" CMD="$cmd" /usr/bin/env python3 - "verify/pulloff/$name.json" <<'PY'
+import datetime, json, os, sys
+record = {
+    "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+    "command": os.environ["CMD"],
+    "result": json.loads(os.environ["RESULT"]),
+}
+with open(sys.argv[1], "w") as f:
+    json.dump(record, f, indent=1)
+    f.write("\n")
+PY
+  else
+    echo "declined or failed: $(tail -n 1 "$err")"
+    CMD="$cmd" REASON="$(tail -n 1 "$err")" /usr/bin/env python3 - "verify/pulloff/$name.json" <<'PY'
+import datetime, json, os, sys
+record = {
+    "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+    "command": os.environ["CMD"],
+    "declined": os.environ["REASON"],
+}
+with open(sys.argv[1], "w") as f:
+    json.dump(record, f, indent=1)
+    f.write("\n")
+PY
+  fi
+  rm -f "$err"
+}
+run flat --punch flat
+run flat-annulus-0.5 --punch flat-annulus --eps 0.5
+run flat-annulus-0.9 --punch flat-annulus --eps 0.9
+for x in 0.3 1 3 10; do
+  run "cone-d0h$x" --punch cone --d0h "$x"
+  run "sphere-d0h$x" --punch sphere --d0h "$x"
+done
+exit $status

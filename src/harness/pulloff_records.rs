@@ -1,0 +1,116 @@
+//! The stored pull-off simulations (`verify/pulloff/*.json`, written by
+//! `scripts/pulloff/run_all.sh`, which the nightly run calls): each holds the result of
+//! `verify pulloff --json` (or the reason it declined), its date and its command. They are too
+//! slow for the default run (12-60 s each), so the report shows the stored ones.
+
+use serde::{Deserialize, Serialize};
+
+use super::table::{verdict, Cell, Column, Format, Table};
+use crate::cohesive::study::PulloffStudy;
+use crate::error::{Error, Result};
+
+/// One stored simulation.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PulloffRecord {
+    #[serde(default)]
+    pub file: String,
+    pub date: String,
+    pub command: String,
+    #[serde(default)]
+    pub result: Option<PulloffStudy>,
+    /// Why the simulation declined the case, if it did.
+    #[serde(default)]
+    pub declined: Option<String>,
+}
+
+/// Every stored record, sorted by file name (none when the directory is absent).
+pub fn load() -> Result<Vec<PulloffRecord>> {
+    let dir = crate::fem::mesh_provider::project_root().join("verify/pulloff");
+    let Ok(entries) = std::fs::read_dir(&dir) else {
+        return Ok(Vec::new());
+    };
+    let mut files: Vec<_> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|path| {
+            let text = std::fs::read_to_string(path).map_err(|e| Error::file("read", path, e))?;
+            let mut record: PulloffRecord =
+                serde_json::from_str(&text).map_err(|e| Error::File {
+                    action: "parse".into(),
+                    path: path.display().to_string(),
+                    message: e.to_string(),
+                })?;
+            record.file = path
+                .file_name()
+                .map(|n| n.to_string_lossy().into_owned())
+                .unwrap_or_default();
+            Ok(record)
+        })
+        .collect()
+}
+
+/// The records as a table: the sequence, the extrapolate, the JKR route and the paper's route.
+pub fn table(records: &[PulloffRecord]) -> Table {
+    let mut t = Table::new(
+        "Pull-off by direct simulation (stored; cohesive zone on the FE model)",
+        vec![
+            Column::text("case", "case"),
+            Column::text("sequence", "F/F0 at Tabor 9, 18, 36"),
+            Column::number("extrapolated_over_f0", "extrapolate", Format::Fixed(4)),
+            Column::number("error_bar", "error bar", Format::Scientific(1)),
+            Column::number("jkr_over_f0", "JKR route", Format::Fixed(4)),
+            Column::number("paper_route_over_f0", "paper's route", Format::Fixed(4)),
+            Column::number("wall_s", "time", Format::Fixed(1)).with_unit("s"),
+            Column::text("date", "date"),
+            Column::text("verdict", "verdict"),
+        ],
+    );
+    for r in records {
+        let case = r.file.trim_end_matches(".json").to_string();
+        match &r.result {
+            Some(s) => {
+                let sequence: Vec<String> = s
+                    .sequence
+                    .iter()
+                    .map(|e| format!("{:.4}", e.pulloff_over_f0))
+                    .collect();
+                t.push(vec![
+                    case.into(),
+                    sequence.join(", ").into(),
+                    s.extrapolated_over_f0.into(),
+                    s.error_bar.into(),
+                    s.jkr_reference().into(),
+                    s.paper_route_over_f0.into(),
+                    s.wall_s.into(),
+                    r.date.clone().into(),
+                    match s.agrees_with_jkr() {
+                        Some(ok) => verdict(ok, "OUTSIDE THE ERROR BAR"),
+                        None => Cell::Missing,
+                    },
+                ]);
+            }
+            None => t.push(vec![
+                case.into(),
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                r.date.clone().into(),
+                match r.declined.as_deref() {
+                    Some(reason) if reason.contains("hole is open") => {
+                        "declined: the hole is open (its moving edge is not resolved)".into()
+                    }
+                    Some(reason) => format!("declined: {reason}").into(),
+                    None => "no result".into(),
+                },
+            ]),
+        }
+    }
+    t
+}
