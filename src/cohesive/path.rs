@@ -63,7 +63,7 @@ pub struct Jump {
     pub unloading: bool,
 }
 
-/// The most tensile state of the unloading path.
+/// The most tensile state of the unloading branch the preload is on.
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Pulloff {
     pub depth: f64,

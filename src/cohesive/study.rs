@@ -322,6 +322,42 @@ pub fn run(
     })
 }
 
+/// One simulation of `case` at range `range` (units of `d0`) on `mesh`, condensation included
+/// (the report's live check: a concave case must keep its hole closed, else it is declined).
+pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<LiveSimulation> {
+    let start = Instant::now();
+    let options = FemOptions {
+        degree: Degree::Quadratic,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: FarField::Boussinesq,
+    };
+    let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
+    let entry = simulate(&response, &case, range)?;
+    open_hole_declined(&case, &entry)?;
+    Ok(LiveSimulation {
+        punch: case.punch,
+        d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
+        mesh: mesh_name,
+        contact_nodes: response.radii.len(),
+        entry,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// A single simulation run by the report (the stored studies are too slow for the default run).
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct LiveSimulation {
+    pub punch: PunchKind,
+    pub d0_over_h: Option<f64>,
+    pub mesh: String,
+    pub contact_nodes: usize,
+    pub entry: SequenceEntry,
+    /// Condensation and simulation.
+    pub wall_s: f64,
+}
+
 /// One loading-unloading simulation of `case` at range `range` (units of `d0`).
 fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,

@@ -23,7 +23,19 @@ pub struct PulloffRecord {
     pub declined: Option<String>,
 }
 
-/// Every stored record, sorted by file name (none when the directory is absent).
+/// Sort key of a record's file: the name up to its trailing number, then that number
+/// (`cone-d0h3` before `cone-d0h10`).
+fn natural_key(name: &str) -> (String, f64) {
+    let stem = name.trim_end_matches(".json");
+    let split = stem
+        .rfind(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .map_or(0, |i| i + 1);
+    let value = stem[split..].parse::<f64>().unwrap_or(0.0);
+    (stem[..split].to_string(), value)
+}
+
+/// Every stored record, in the natural order of the file names (none when the directory is
+/// absent).
 pub fn load() -> Result<Vec<PulloffRecord>> {
     let dir = crate::fem::mesh_provider::project_root().join("verify/pulloff");
     let Ok(entries) = std::fs::read_dir(&dir) else {
@@ -33,7 +45,17 @@ pub fn load() -> Result<Vec<PulloffRecord>> {
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|x| x == "json"))
         .collect();
-    files.sort();
+    files.sort_by(|a, b| {
+        let key = |p: &std::path::PathBuf| {
+            natural_key(
+                &p.file_name()
+                    .map(|n| n.to_string_lossy().into_owned())
+                    .unwrap_or_default(),
+            )
+        };
+        let (ka, kb) = (key(a), key(b));
+        ka.0.cmp(&kb.0).then(ka.1.total_cmp(&kb.1))
+    });
     files
         .iter()
         .map(|path| {
@@ -113,4 +135,26 @@ pub fn table(records: &[PulloffRecord]) -> Table {
         }
     }
     t
+}
+
+#[cfg(test)]
+mod tests {
+    use super::natural_key;
+
+    #[test]
+    fn files_sort_by_their_trailing_number() {
+        assert_eq!(
+            natural_key("cone-d0h10.json"),
+            ("cone-d0h".to_string(), 10.0)
+        );
+        assert_eq!(
+            natural_key("cone-d0h0.3.json"),
+            ("cone-d0h".to_string(), 0.3)
+        );
+        assert_eq!(natural_key("flat.json"), ("flat".to_string(), 0.0));
+        assert_eq!(
+            natural_key("flat-annulus-0.9.json"),
+            ("flat-annulus-".to_string(), 0.9)
+        );
+    }
 }

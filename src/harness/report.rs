@@ -75,6 +75,9 @@ pub struct ReportExtras {
     pub verdicts: Vec<Verdict>,
     /// The stored pull-off simulations (`verify/pulloff/`).
     pub pulloff_simulations: Vec<super::pulloff_records::PulloffRecord>,
+    /// This run's single pull-off simulation (cone, `d0/h = 10`, the smallest default range), or
+    /// why it failed.
+    pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
     pub wall_s: f64,
 }
 
@@ -215,6 +218,20 @@ fn verdicts(
         },
     });
     Ok(out)
+}
+
+/// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 36), on the study
+/// mesh (level 3 of the adapted family; the committed disk level 2 without gmsh).
+fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
+    use crate::cohesive::study;
+    let case = study::Case {
+        punch: PunchKind::Cone,
+        eps: 0.0,
+        d0_over_h: 10.0,
+    };
+    let mesh = study::study_mesh(0.0, study::STUDY_LEVEL)?;
+    let smallest = study::DEFAULT_RANGES[study::DEFAULT_RANGES.len() - 1];
+    study::simulate_once(case, smallest, &mesh)
 }
 
 fn floor(e: f64) -> f64 {
@@ -769,7 +786,7 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
 }
 
 /// Number of progress stages of [`write_report`].
-pub const STAGES: usize = 5;
+pub const STAGES: usize = 6;
 
 /// Write the report directory; returns the extras (also in report.json).
 pub fn write_report(
@@ -870,11 +887,15 @@ pub fn write_report(
             ),
         )?;
     }
+    progress("pull-off simulation");
+    // A failure of this one simulation is shown in the report, not a failure of the report.
+    let live = live_pulloff().map_err(|e| e.to_string());
     let simulations = super::pulloff_records::load()?;
     let verdicts = verdicts(&ring, &pulloff, &simulations)?;
     let extras = ReportExtras {
         verdicts,
         pulloff_simulations: simulations,
+        pulloff_live: live,
         speed_accuracy: speed,
         convergence: studies,
         pulloff,

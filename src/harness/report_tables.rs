@@ -171,7 +171,36 @@ pub fn report_tables(
             )
         },
     ];
-    if !extras.pulloff_simulations.is_empty() {
+    {
+        let mut table = super::pulloff_records::table(&extras.pulloff_simulations);
+        match &extras.pulloff_live {
+            Ok(live) => table.push(vec![
+                format!(
+                    "cone-d0h10, this run (Tabor {:.0} only; {} contact nodes, {})",
+                    live.entry.tabor, live.contact_nodes, live.mesh
+                )
+                .into(),
+                format!("{:.4}", live.entry.pulloff_over_f0).into(),
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                live.wall_s.into(),
+                "this run".into(),
+                Cell::Missing,
+            ]),
+            Err(why) => table.push(vec![
+                "cone-d0h10, this run".into(),
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                "this run".into(),
+                Cell::Flag(format!("FAILED: {why}")),
+            ]),
+        }
         out.push(ReportTable {
             intro: Some(
                 "A second route to the pull-off, with no JKR energy balance: an exponential \
@@ -185,7 +214,7 @@ pub fn report_tables(
             ..entry(
                 Some("Pull-off by direct simulation"),
                 "pulloff-simulation",
-                super::pulloff_records::table(&extras.pulloff_simulations),
+                table,
             )
         });
     }
