@@ -133,20 +133,26 @@ Examples:
     #[command(after_help = "\
 The law: exponential adhesion, tension (dw/rho) exp(-s/rho) at separation s, work of adhesion dw,
 with non-penetration, on the contact line of the P2 FE model (condensed: the half-space's
-response there is exactly the FE model's). The punch is pressed to 0.5 d0, then pulled under
-displacement control; each branch is followed until it ends (a jump, which is what fixed grips
-see); the pull-off under fixed load is the most tensile force of the unloading branch.
+response there is exactly the FE model's). The punch is pressed to 0.5 d0 (flat punches) or 3h
+(cone, sphere), then pulled under displacement control; the preload's branch is followed until it
+ends (a jump, which is what fixed grips see); the pull-off is its most tensile force. A concave
+punch whose hole is open at the preload, or opens before the pull-off (small d0/h), is declined
+with that reason: the moving inner edge is not resolved by the mesh.
 
-Units: d0 = sqrt(2 pi a dw / E*) = a for the flat punches (the answer depends on rho/d0 only);
-forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The Tabor-like
-parameter is sqrt(a/l), l = pi E* dw / (4 sigma0^2) the cohesive zone's length.
+Units: d0 = sqrt(2 pi a dw / E*) (= a for the flat punches; h = 1 for the concave ones, so
+d0 = d0/h); forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The
+Tabor-like parameter is sqrt(a/l), l = pi E* dw / (4 sigma0^2) the cohesive zone's length. Beside
+the result: the JKR route (`verify jkr`: fixed-load pull-off; from full contact for concave
+punches) and the paper's route on its fitted formulas.
 
-Mesh: level 1 of the adapted family (gmsh; graded toward the edges, so the zone at the rim is
-resolved at every range), else the committed level 1 of the ratio (b/a = 0, 0.5, 0.9).
+Mesh: level 3 of the adapted family (gmsh; graded toward the edges, so the zone at the rim is
+resolved at every range), level 2 for the mesh check; without gmsh the committed level 2 and 1
+of the ratio (b/a = 0, 0.5, 0.9).
 
 Examples:
   verify pulloff --punch flat                          Kendall: the sequence tends to 1
   verify pulloff --punch flat-annulus --eps 0.5 --json
+  verify pulloff --punch sphere --d0h 3
   verify pulloff --punch flat --ranges 0.1,0.05,0.025")]
     Pulloff(PulloffArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
@@ -192,7 +198,7 @@ pub struct HistoryArgs {
 // The arguments of `verify pulloff`.
 #[derive(Args)]
 pub struct PulloffArgs {
-    /// Punch shape (cone and sphere: not yet, their moving inner edge needs a refined path).
+    /// Punch shape (cone and sphere: where their hole is closed at the preload, large d0/h).
     #[arg(long, value_enum)]
     pub punch: PunchKind,
     /// b/a of the flat annulus.
