@@ -195,3 +195,36 @@ fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() 
         "extrapolate {x} +- {bar} does not separate from the paper's route {paper}"
     );
 }
+
+#[test]
+fn the_surface_model_rejects_a_bad_law_or_start_with_a_reason() {
+    let mesh = provide(
+        &MeshRequest::Committed {
+            family: "disk".into(),
+            level: 0,
+        },
+        "test",
+    )
+    .unwrap();
+    let (response, _) = surface_response_on_mesh(&mesh, &options(), 0.0).unwrap();
+    let n = response.radii.len();
+    for (work, range) in [
+        (-1.0, 0.1),
+        (0.1, 0.0),
+        (f64::NAN, 0.1),
+        (0.1, f64::INFINITY),
+    ] {
+        let law = ExponentialLaw { work, range };
+        let err = CohesiveSurface::new(&response, vec![0.0; n], law)
+            .err()
+            .unwrap_or_else(|| panic!("work {work}, range {range} accepted"));
+        assert!(err.to_string().contains("adhesion law"), "{err}");
+    }
+    let law = ExponentialLaw {
+        work: 0.1,
+        range: 0.05,
+    };
+    let surface = CohesiveSurface::new(&response, vec![0.0; n], law).unwrap();
+    assert!(surface.equilibrium(0.1, &vec![0.0; n - 1]).is_err());
+    assert!(surface.equilibrium(f64::NAN, &vec![0.0; n]).is_err());
+}

@@ -68,6 +68,16 @@ impl CohesiveSurface {
                 recess.len()
             )));
         }
+        let positive = |v: f64| v.is_finite() && v > 0.0;
+        if !(positive(law.work) && positive(law.range)) {
+            return Err(Error::invalid(
+                "adhesion law",
+                format!(
+                    "need a positive finite work of adhesion and range (got work {}, range {})",
+                    law.work, law.range
+                ),
+            ));
+        }
         let compliance = Mat::<f64>::from_fn(n, n, |i, j| response.compliance[(i, j)]);
         let llt = compliance.llt(Side::Lower).map_err(|_| {
             no_convergence("the contact line's compliance is not positive definite".into())
@@ -131,6 +141,15 @@ impl CohesiveSurface {
     /// `Π`).
     pub fn equilibrium(&self, depth: f64, start: &[f64]) -> Result<Equilibrium> {
         let n = self.len();
+        if start.len() != n || !depth.is_finite() || start.iter().any(|v| !v.is_finite()) {
+            return Err(Error::invalid(
+                "equilibrium start",
+                format!(
+                    "need {n} finite separations and a finite depth (got {} values, depth {depth})",
+                    start.len()
+                ),
+            ));
+        }
         let face = self.face(depth);
         let mut x: Vec<f64> = start.iter().map(|v| v.max(0.0)).collect();
         let mut shifted = false;
