@@ -2,6 +2,9 @@
 //! an independent discretisation of the same problem): with default settings the FEM agrees
 //! within 1e-3, with `--tol 1e-4` within 1e-4, and its error estimate bounds its actual error.
 
+mod common;
+use common::gmsh_available;
+
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::fem::mesh::Degree;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
@@ -111,21 +114,6 @@ fn sphere_past_full_contact_follows_mdr() {
     assert_eq!(state.eps, 0.0);
     let exact = 3.5 - 1.0 / 3.0;
     assert!((state.gamma2.unwrap() - exact).abs() / exact <= 1e-3);
-}
-
-/// Whether gmsh is there; when it is not, the tests that need generated meshes are skipped with
-/// a message, unless `RINGCONTACT_REQUIRE_GMSH=1` (set by `.ci/run` after it installs gmsh).
-fn gmsh_available(test: &str) -> bool {
-    let root = ringcontact::fem::mesh_provider::project_root();
-    if ringcontact::fem::gmsh::Gmsh::find(&root).is_some() {
-        return true;
-    }
-    assert!(
-        std::env::var("RINGCONTACT_REQUIRE_GMSH").as_deref() != Ok("1"),
-        "{test}: RINGCONTACT_REQUIRE_GMSH=1 but gmsh was not found"
-    );
-    eprintln!("{test}: skipped, gmsh not found (bash scripts/install_gmsh.sh)");
-    false
 }
 
 #[test]

@@ -7,6 +7,9 @@
 //! (`adhesion::flat_annulus`: ring BEM plus the energy balance, no cohesive law) for the limit of
 //! vanishing range.
 
+mod common;
+use common::gmsh_available;
+
 use std::process::Command;
 
 use ringcontact::bem::ring_contact::RingBemSolver;
@@ -27,21 +30,6 @@ fn options() -> FemOptions {
         poisson_ratio: 0.0,
         far_field: FarField::Boussinesq,
     }
-}
-
-/// Whether gmsh is there (see tests/fem_vs_ring_bem.rs): without it the studies on generated
-/// meshes are skipped, unless `RINGCONTACT_REQUIRE_GMSH=1`.
-fn gmsh_available(test: &str) -> bool {
-    let root = ringcontact::fem::mesh_provider::project_root();
-    if ringcontact::fem::gmsh::Gmsh::find(&root).is_some() {
-        return true;
-    }
-    assert!(
-        std::env::var("RINGCONTACT_REQUIRE_GMSH").as_deref() != Ok("1"),
-        "{test}: RINGCONTACT_REQUIRE_GMSH=1 but gmsh was not found"
-    );
-    eprintln!("{test}: skipped, gmsh not found (bash scripts/install_gmsh.sh)");
-    false
 }
 
 #[test]

@@ -244,13 +244,7 @@ pub fn run(
             format!("need ranges rho/d0 in (0, 1) (got {ranges:?})"),
         ));
     }
-    let options = FemOptions {
-        degree: Degree::Quadratic,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: FarField::Boussinesq,
-    };
+    let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
     let mut sequence = Vec::new();
     for &range in ranges {
@@ -322,17 +316,22 @@ pub fn run(
     })
 }
 
-/// One simulation of `case` at range `range` (units of `d0`) on `mesh`, condensation included
-/// (the report's live check: a concave case must keep its hole closed, else it is declined).
-pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<LiveSimulation> {
-    let start = Instant::now();
-    let options = FemOptions {
+/// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
+fn study_options() -> FemOptions {
+    FemOptions {
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,
         poisson_ratio: 0.0,
         far_field: FarField::Boussinesq,
-    };
+    }
+}
+
+/// One simulation of `case` at range `range` (units of `d0`) on `mesh`, condensation included
+/// (the report's live check: a concave case must keep its hole closed, else it is declined).
+pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<LiveSimulation> {
+    let start = Instant::now();
+    let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
     let entry = simulate(&response, &case, range)?;
     open_hole_declined(&case, &entry)?;
