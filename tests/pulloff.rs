@@ -133,6 +133,10 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
         ),
         (vec!["pulloff", "--punch", "flat-annulus"], "--eps"),
         (
+            vec!["pulloff", "--punch", "flat-annulus", "--eps", "0"],
+            "0 < b/a < 1",
+        ),
+        (
             vec!["pulloff", "--punch", "flat", "--ranges", "0.01,0.02"],
             "decreasing",
         ),

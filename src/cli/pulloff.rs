@@ -22,8 +22,10 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         }
         (_, s) => s.unwrap_or(0.0),
     };
-    if !(0.0..1.0).contains(&eps) {
-        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
+    if args.punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
+        return Err(format!(
+            "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
+        ));
     }
     if let Some(r) = args
         .ranges

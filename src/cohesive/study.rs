@@ -228,10 +228,10 @@ pub fn run(
         ));
     }
     let case = Case { eps, ..case };
-    if !(0.0..1.0).contains(&eps) {
+    if punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
-            format!("need 0 <= b/a < 1 (got {eps})"),
+            format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
         ));
     }
     if ranges.is_empty()
