@@ -248,7 +248,7 @@ pub fn run(
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
     let mut sequence = Vec::new();
     for &range in ranges {
-        let entry = simulate(&response, &case, range)?;
+        let (entry, _) = simulate(&response, &case, range)?;
         progress(&entry);
         open_hole_declined(&case, &entry)?;
         sequence.push(entry);
@@ -257,7 +257,7 @@ pub fn run(
         Some(coarser) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
             let smallest = ranges[ranges.len() - 1];
-            let entry = simulate(&response, &case, smallest)?;
+            let (entry, _) = simulate(&response, &case, smallest)?;
             progress(&entry);
             open_hole_declined(&case, &entry)?;
             Some((entry.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs())
@@ -333,9 +333,10 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     let start = Instant::now();
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
-    let entry = simulate(&response, &case, range)?;
+    let (entry, curve) = simulate(&response, &case, range)?;
     open_hole_declined(&case, &entry)?;
     Ok(LiveSimulation {
+        curve,
         punch: case.punch,
         d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
         mesh: mesh_name,
@@ -345,6 +346,9 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     })
 }
 
+/// One point of a force-displacement curve: `(d/d0, F/F0, unloading)`.
+pub type CurveSample = (f64, f64, bool);
+
 /// A single simulation run by the report (the stored studies are too slow for the default run).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct LiveSimulation {
@@ -353,6 +357,8 @@ pub struct LiveSimulation {
     pub mesh: String,
     pub contact_nodes: usize,
     pub entry: SequenceEntry,
+    /// The force-displacement curve: `(d/d0, F/F0, unloading)`, compression positive.
+    pub curve: Vec<CurveSample>,
     /// Condensation and simulation.
     pub wall_s: f64,
 }
@@ -362,7 +368,7 @@ fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,
     case: &Case,
     range: f64,
-) -> Result<SequenceEntry> {
+) -> Result<(SequenceEntry, Vec<CurveSample>)> {
     let begun = Instant::now();
     let d0 = case.d0();
     let work = d0 * d0 / (2.0 * std::f64::consts::PI);
@@ -404,7 +410,7 @@ fn simulate(
         .take_while(|p| p.depth >= curve.pulloff.depth)
         .any(|p| p.centre_open)
         || landing.is_some_and(|p| p.centre_open);
-    Ok(SequenceEntry {
+    let entry = SequenceEntry {
         range_over_a: range * d0,
         tabor: law.tabor(),
         pulloff_over_f0: -curve.pulloff.force / f0,
@@ -415,7 +421,14 @@ fn simulate(
         hole_closed_at_preload: concave.then_some(closed_at_preload),
         hole_open_before_pulloff: concave.then_some(open_before),
         wall_s: begun.elapsed().as_secs_f64(),
-    })
+    };
+    // The curve in units of d0 and F0: (depth, force, unloading).
+    let points = curve
+        .points
+        .iter()
+        .map(|p| (p.depth / d0, p.force / f0, p.unloading))
+        .collect();
+    Ok((entry, points))
 }
 
 /// Linear extrapolation in the range to zero from the two smallest ranges,

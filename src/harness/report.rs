@@ -220,6 +220,51 @@ fn verdicts(
     Ok(out)
 }
 
+/// File of the live simulation's force-displacement chart.
+pub const PULLOFF_CURVE_CHART: &str = "pulloff-curve.svg";
+
+/// The live simulation's force-displacement curve: pressing, pulling, the pull-off marked.
+fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String {
+    let part = |unloading: bool| -> Vec<(f64, f64)> {
+        live.curve
+            .iter()
+            .filter(|p| p.2 == unloading)
+            .map(|p| (p.0, p.1))
+            .collect()
+    };
+    let series = [
+        Series {
+            name: "pressing".into(),
+            points: part(false),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "pulling".into(),
+            points: part(true),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "pull-off".into(),
+            points: vec![(
+                live.entry.pulloff_depth_over_d0,
+                -live.entry.pulloff_over_f0,
+            )],
+            bars: Vec::new(),
+        },
+    ];
+    super::svg::linear_chart_with_markers(
+        &format!(
+            "{} d0/h = {}, Tabor {:.0}: force against depth (direct simulation)",
+            live.punch,
+            live.d0_over_h.map_or("-".into(), |x| x.to_string()),
+            live.entry.tabor
+        ),
+        "d/d0",
+        "F/F0 (compression positive)",
+        &series,
+    )
+}
+
 /// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 36), on the study
 /// mesh (level 3 of the adapted family; the committed disk level 2 without gmsh).
 fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
@@ -890,6 +935,9 @@ pub fn write_report(
     progress("pull-off simulation");
     // A failure of this one simulation is shown in the report, not a failure of the report.
     let live = live_pulloff().map_err(|e| e.to_string());
+    if let Ok(l) = &live {
+        write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
+    }
     let simulations = super::pulloff_records::load()?;
     let verdicts = verdicts(&ring, &pulloff, &simulations)?;
     let extras = ReportExtras {

@@ -211,6 +211,10 @@ pub fn report_tables(
                  (concave punches, whose hole is closed at the preload)."
                     .into(),
             ),
+            chart: extras
+                .pulloff_live
+                .is_ok()
+                .then(|| super::report::PULLOFF_CURVE_CHART.to_string()),
             ..entry(
                 Some("Pull-off by direct simulation"),
                 "pulloff-simulation",
