@@ -16,21 +16,9 @@ use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::cohesive::equilibrium::CohesiveSurface;
 use ringcontact::cohesive::law::ExponentialLaw;
 use ringcontact::cohesive::study;
-use ringcontact::fem::far_field::FarField;
-use ringcontact::fem::mesh::Degree;
 use ringcontact::fem::mesh_provider::{provide, MeshRequest};
-use ringcontact::fem::solver::{surface_response_on_mesh, FemOptions};
+use ringcontact::fem::solver::surface_response_on_mesh;
 use ringcontact::punch::PunchKind;
-
-fn options() -> FemOptions {
-    FemOptions {
-        degree: Degree::Quadratic,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: FarField::Boussinesq,
-    }
-}
 
 #[test]
 fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
@@ -42,7 +30,7 @@ fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
         "test",
     )
     .unwrap();
-    let (response, _) = surface_response_on_mesh(&mesh, &options(), 0.0).unwrap();
+    let (response, _) = surface_response_on_mesh(&mesh, &study::study_options(), 0.0).unwrap();
     let n = response.radii.len();
     // The nodal weights integrate the disk's area.
     let area: f64 = response.weights.iter().sum();
@@ -198,7 +186,7 @@ fn the_surface_model_rejects_a_bad_law_or_start_with_a_reason() {
         "test",
     )
     .unwrap();
-    let (response, _) = surface_response_on_mesh(&mesh, &options(), 0.0).unwrap();
+    let (response, _) = surface_response_on_mesh(&mesh, &study::study_options(), 0.0).unwrap();
     let n = response.radii.len();
     for (work, range) in [
         (-1.0, 0.1),

@@ -317,7 +317,7 @@ pub fn run(
 }
 
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
-fn study_options() -> FemOptions {
+pub fn study_options() -> FemOptions {
     FemOptions {
         degree: Degree::Quadratic,
         tolerance: 1e-3,

@@ -75,6 +75,15 @@ pub fn load() -> Result<Vec<PulloffRecord>> {
         .collect()
 }
 
+/// A row of [`table`] with no simulation result: the case, the date and the verdict cell.
+pub fn row_without_result(case: String, date: &str, verdict: Cell) -> Vec<Cell> {
+    let mut row = vec![case.into()];
+    row.extend(std::iter::repeat_n(Cell::Missing, 6));
+    row.push(date.into());
+    row.push(verdict);
+    row
+}
+
 /// The records as a table: the sequence, the extrapolate, the JKR route and the paper's route.
 pub fn table(records: &[PulloffRecord]) -> Table {
     let mut t = Table::new(
@@ -115,15 +124,9 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                     },
                 ]);
             }
-            None => t.push(vec![
-                case.into(),
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                r.date.clone().into(),
+            None => t.push(row_without_result(
+                case,
+                &r.date,
                 match r.declined.as_deref() {
                     Some(reason) if reason.contains("hole is open") => {
                         "declined: the hole is open (its moving edge is not resolved)".into()
@@ -131,7 +134,7 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                     Some(reason) => format!("declined: {reason}").into(),
                     None => "no result".into(),
                 },
-            ]),
+            )),
         }
     }
     t

@@ -189,17 +189,11 @@ pub fn report_tables(
                 "this run".into(),
                 Cell::Missing,
             ]),
-            Err(why) => table.push(vec![
+            Err(why) => table.push(super::pulloff_records::row_without_result(
                 "cone-d0h10, this run".into(),
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                "this run".into(),
+                "this run",
                 Cell::Flag(format!("FAILED: {why}")),
-            ]),
+            )),
         }
         out.push(ReportTable {
             intro: Some(
