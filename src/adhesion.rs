@@ -41,7 +41,7 @@ fn derivative(f: impl Fn(f64) -> Result<f64>, x: f64, h: f64) -> Result<f64> {
 
 /// Flat-annulus quantities at `eps`: `γ`, `γ'` (difference of converged values), and the edge
 /// intensities `κ` both from the force derivative (fact 7) and read directly off the BEM pressure.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct AnnulusEdges {
     pub eps: f64,
     pub gamma: f64,
@@ -71,14 +71,14 @@ pub fn annulus_edges(solver: &RingBemSolver, eps: f64) -> Result<AnnulusEdges> {
 }
 
 /// Critical depth and force of one edge (units `d0`, `F0`).
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct EdgeCritical {
     pub depth: f64,
     pub force: f64,
 }
 
 /// JKR detachment of the flat annulus (paper Fig. 7-8 recomputed).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct FlatAnnulusJkr {
     pub eps: f64,
     pub gamma: f64,
@@ -156,7 +156,7 @@ pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> 
 }
 
 /// The non-adhesive and flat-annulus quantities at one contact ratio (h = 1, a = 1, E* = 1).
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct BranchPoint {
     pub eps: f64,
     pub gamma1: f64,
@@ -199,7 +199,7 @@ pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result
 }
 
 /// A critical (pull-off) state.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Critical {
     pub eps: f64,
     /// `d/h`.
@@ -213,7 +213,7 @@ pub struct Critical {
 }
 
 /// Full-contact branch: the disk with `w = d - h ĝ(r)`.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct FullContactBranch {
     /// `F = 2 E* a (d - c_F h)` in full contact.
     pub force_offset: f64,
@@ -226,7 +226,7 @@ pub struct FullContactBranch {
 }
 
 /// The JKR analysis of a concave punch for one `d0/h`.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct ConcaveJkr {
     pub punch: PunchKind,
     pub d0_over_h: f64,

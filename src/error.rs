@@ -45,6 +45,10 @@ pub enum Error {
     /// An iteration or refinement did not reach the requested tolerance.
     #[error("method `{method}` did not converge: {reason}")]
     NoConvergence { method: String, reason: String },
+
+    /// A plan of jobs, a job id or a job's result is malformed, missing or failed.
+    #[error("plan: {0}")]
+    Plan(String),
 }
 
 /// A number for a message: plain up to 10 significant digits where that is short, else

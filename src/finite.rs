@@ -274,7 +274,7 @@ impl ser::SerializeStructVariant for Compound<'_> {
 mod tests {
     use super::*;
 
-    #[derive(serde::Serialize)]
+    #[derive(serde::Serialize, serde::Deserialize)]
     struct Row {
         name: &'static str,
         force: f64,

@@ -101,7 +101,7 @@ pub fn max_relative_error(f: impl Fn(f64) -> f64, xs: &[f64], ys: &[f64]) -> (f6
 }
 
 /// One refitted function.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct FitReport {
     pub name: String,
     pub paper_form: String,

@@ -23,7 +23,7 @@ use crate::scene::{Load, Scene};
 use crate::solution::{PressureSample, Solution};
 
 /// The methods `verify solve --method` accepts.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum Method {
     /// Axisymmetric ring-element BEM, exact elliptic kernel, Gauss-Chebyshev collocation.

@@ -59,7 +59,7 @@ impl std::fmt::Display for PunchKind {
 }
 
 /// Punch geometry in physical units (any consistent length unit).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Punch {
     pub kind: PunchKind,
     /// Outer contact radius `a` = the sharp rim.

@@ -30,7 +30,7 @@ use crate::punch::{Punch, PunchKind};
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
 /// Linear elastic, isotropic half-space; the punch is rigid.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Material {
     /// `E* = E / (1 - nu²)`, stress units.
     pub effective_modulus: f64,
@@ -41,7 +41,7 @@ pub struct Material {
 }
 
 /// What is prescribed.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Load {
     /// Indentation depth `d` of the rim.
@@ -53,7 +53,7 @@ pub enum Load {
 }
 
 /// A validated scene.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Scene {
     pub punch: Punch,
     pub material: Material,

@@ -6,7 +6,7 @@ use serde::Serialize;
 use crate::punch::PunchKind;
 
 /// One sample of the contact pressure.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct PressureSample {
     /// Radius `r` (length units of the scene).
     pub r: f64,
@@ -18,7 +18,7 @@ pub struct PressureSample {
 ///
 /// Dimensionless functions (paper eqs. 1 and 5): flat punches `F = 2 E* d a γ(eps)`; concave
 /// punches `d = h γ1(eps)`, `F = 2 E* h a γ2(eps)`.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Solution {
     /// Punch shape.
     pub punch: PunchKind,

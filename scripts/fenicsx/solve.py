@@ -12,6 +12,8 @@ The discrete problem is the one `verify solve --method fem --mesh M --degree k` 
 
 Usage: /usr/bin/python3 solve.py --punch cone --mesh meshes/disk-L1.msh --degree 2 --depth 2
        [--eps B_OVER_A] --out verify/fenicsx/NAME.json      (run from the repository root)
+Under MPI (PETSc's distributed vectors and matrices, MUMPS's LU), the same problem:
+       mpirun -n 2 /usr/bin/python3 solve.py ...             (scripts/fenicsx/run_mpi.sh)
 """
 
 import argparse
@@ -24,6 +26,7 @@ import time
 
 import numpy as np
 import ufl
+from mpi4py import MPI
 from petsc4py import PETSc
 
 import dolfinx
@@ -35,6 +38,9 @@ from common import read_mesh, stiffness_form
 
 CONTACT, FREE, FAR, AXIS, HOLE = 1, 2, 3, 4, 5
 BIG = 1e20
+# PETSc's own LU is serial; under `mpirun -n K` (K > 1) the factorisation is MUMPS's, distributed
+# (--lu chooses; the stored serial results use PETSc's).
+LU_SOLVER = "mumps" if MPI.COMM_WORLD.size > 1 else "petsc"
 
 
 def gap_shape(punch, r):
@@ -61,8 +67,18 @@ def main():
     p.add_argument("--mesh-parameters", default=None,
                    help="JSON list of [name, value]: the gmsh parameters that remake a generated "
                         "mesh (printed by `verify mesh`); stored with the result")
+    p.add_argument("--lu", choices=["auto", "petsc", "mumps"], default="auto",
+                   help="LU factorisation: PETSc's own (serial only) or MUMPS (distributed); "
+                        "auto: PETSc's in one process, MUMPS under mpirun -n K > 1")
     args = p.parse_args()
+    global LU_SOLVER
+    if args.lu != "auto":
+        if args.lu == "petsc" and MPI.COMM_WORLD.size > 1:
+            p.error("--lu petsc is serial: use mumps (or auto) under mpirun -n K > 1")
+        LU_SOLVER = args.lu
 
+    comm = MPI.COMM_WORLD
+    comm.Barrier()
     start = time.perf_counter()
     mesh, facet_tags = read_mesh(args.mesh)
     V = fem.VectorFunctionSpace(mesh, ("Lagrange", args.degree))
@@ -77,13 +93,18 @@ def main():
     fdim = 1
     far_dofs = fem.locate_dofs_topological(V, fdim, facet_tags.find(FAR))
     axis_dofs = fem.locate_dofs_topological(V.sub(0), fdim, facet_tags.find(AXIS))
-    contact_dofs = fem.locate_dofs_topological(V.sub(1), fdim, facet_tags.find(CONTACT))
+    # Under MPI each process owns part of the dofs and sees some of its neighbours' (ghosts): the
+    # Dirichlet conditions take all of them (contact_dofs_all), the bounds, reactions and active
+    # set the owned ones only (contact_dofs), so each dof counts once.
+    contact_dofs_all = fem.locate_dofs_topological(V.sub(1), fdim, facet_tags.find(CONTACT))
+    bs = V.dofmap.index_map_bs
+    owned = V.dofmap.index_map.size_local * bs
+    contact_dofs = contact_dofs_all[contact_dofs_all < owned]
     bcs = [fem.dirichletbc(np.zeros(2, dtype=PETSc.ScalarType), far_dofs, V),
            fem.dirichletbc(PETSc.ScalarType(0.0), axis_dofs, V.sub(0))]
 
     # Coordinates of the dofs (r of each z-dof on the contact line).
     coords = V.tabulate_dof_coordinates()
-    bs = V.dofmap.index_map_bs
     contact_r = np.array([coords[d // bs][0] for d in contact_dofs])
 
     u = fem.Function(V)
@@ -92,7 +113,7 @@ def main():
     iterations = 1
 
     if args.punch in ("flat", "flat-annulus"):
-        bcs_flat = bcs + [fem.dirichletbc(PETSc.ScalarType(-args.depth), contact_dofs, V.sub(1))]
+        bcs_flat = bcs + [fem.dirichletbc(PETSc.ScalarType(-args.depth), contact_dofs_all, V.sub(1))]
         A = assemble_matrix(a_form, bcs=bcs_flat)
         A.assemble()
         b = u.vector.duplicate()  # no body force: the right side comes from the lifting only
@@ -105,6 +126,7 @@ def main():
         ksp.setOperators(A)
         ksp.setType("preonly")
         ksp.getPC().setType("lu")
+        ksp.getPC().setFactorSolverType(LU_SOLVER)
         ksp.solve(b, u.vector)
         u.x.scatter_forward()
         active = np.ones(len(contact_dofs), dtype=bool)
@@ -144,11 +166,13 @@ def main():
         ksp = snes.getKSP()
         ksp.setType("preonly")
         ksp.getPC().setType("lu")
+        ksp.getPC().setFactorSolverType(LU_SOLVER)
         x0 = u.vector.duplicate()
         x0.set(0.0)
         snes.solve(None, x0)
         if snes.getConvergedReason() <= 0:
-            print(f"SNES did not converge: reason {snes.getConvergedReason()}", file=sys.stderr)
+            if comm.rank == 0:
+                print(f"SNES did not converge: reason {snes.getConvergedReason()}", file=sys.stderr)
             return 1
         x0.copy(u.vector)
         u.x.scatter_forward()
@@ -157,8 +181,13 @@ def main():
 
     reaction = u.vector.duplicate()
     K.mult(u.vector, reaction)
-    force = -float(np.sum(reaction.array[contact_dofs]))
+    force = -comm.allreduce(float(np.sum(reaction.array[contact_dofs])), op=MPI.SUM)
+    comm.Barrier()
     wall = time.perf_counter() - start
+    local_active = [float(r) for r, a_ in zip(contact_r, active) if a_]
+    all_active = comm.gather(local_active, root=0)
+    if comm.rank != 0:
+        return 0
 
     root = os.getcwd()
     mesh_rel = os.path.relpath(os.path.abspath(args.mesh), root)
@@ -168,7 +197,7 @@ def main():
     if args.punch in ("cone", "sphere"):
         cmd += f" --depth {args.depth}"
     cmd += " --json"
-    active_r = sorted(float(r) for r, a_ in zip(contact_r, active) if a_)
+    active_r = sorted(r for part in all_active for r in part)
     result = {
         "punch": args.punch,
         "mesh": mesh_rel,
@@ -184,6 +213,8 @@ def main():
         "dofs": int(V.dofmap.index_map.size_global * bs),
         "iterations": int(iterations),
         "wall_s": wall,
+        "mpi_processes": comm.size,
+        "lu_solver": LU_SOLVER,
         "dolfinx_version": dolfinx.__version__,
         "petsc_version": ".".join(str(n) for n in PETSc.Sys.getVersion()),
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),

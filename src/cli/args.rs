@@ -170,6 +170,52 @@ Examples:
         after_help = "Example:\n  verify history --report reports/2026-11-22 --history reports/history.jsonl"
     )]
     History(HistoryArgs),
+    /// Write the suite as a plan of independent jobs (one line each: id, expected seconds,
+    /// output file, the exact `verify` command), for `verify run --shard` and `verify merge`.
+    #[command(after_help = "\
+Plans (the same arguments give the same plan, byte for byte):
+  verify plan                  the default report (`verify compare --report`), 29 jobs
+  verify plan --nightly        the nightly suite: the report with the FEM down to 1e-8, the
+                               pull-off simulations (verify/pulloff/) and the stability probes
+  verify plan --convergence --punch sphere --depth 1.5 --method fem --levels 4
+                               one job per level of a convergence study
+
+Run on one machine, in three shards, and merge:
+  verify plan --nightly --out nightly.plan
+  for i in 1 2 3; do verify run --plan nightly.plan --shard $i/3 --results results; done
+  verify merge --plan nightly.plan --results results --report reports/nightly
+
+On a Slurm cluster (a job array, the merge a dependent job): scripts/slurm/submit.sh")]
+    Plan(PlanArgs),
+    /// Run one shard of a plan: each of its jobs in its own process, one result file per job
+    /// (an error record when a job fails); exit status 1 when any job failed.
+    #[command(after_help = "\
+Shard I of N gets the jobs a deterministic split gives it: longest expected time first, each to
+the shard with the least expected time so far. Every shard of the same plan and N gets the same
+jobs on every machine, so N independent tasks (a Slurm array) cover the plan exactly once.
+
+Example:
+  verify run --plan nightly.plan --shard 2/3 --results results")]
+    Run(RunArgs),
+    /// Build the report from a plan's result files (the same report as the single-process run);
+    /// fails, naming them, if any job's result is missing or an error.
+    #[command(after_help = "\
+A report plan writes the report directory as `verify compare --report DIR` does (index.html,
+report.md, report.json, CSV tables, SVG charts; with --nightly plans also stability.json and
+the pull-off simulations of this run) and prints the same summary; a convergence plan writes
+each study's CSV and chart. Exit status 1 when a check fails, as `verify compare`.
+
+Example:
+  verify merge --plan nightly.plan --results results --report reports/nightly")]
+    Merge(MergeArgs),
+    /// Run one job of a plan and print its record (JSON); what `verify run` calls for each job.
+    #[command(after_help = "\
+The id names the job and all its parameters (`verify plan` lists them), e.g.
+  verify part comparison:tol=1e-6
+  verify part speed:cone-2:fem-tol=1e-8
+  verify part convergence:sphere:fem:eps=0:depth=1.5:level=2:of=3
+  verify part pulloff:cone:d0h=10")]
+    Part(PartArgs),
     /// List the analytic references and the range of eps where each is valid.
     #[command(after_help = "Examples:\n  verify references\n  verify references --json")]
     References(JsonArgs),
@@ -407,4 +453,79 @@ pub struct CompareArgs {
     /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-8.
     #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
     pub fem_tolerances: Vec<f64>,
+}
+
+// The arguments of `verify plan`.
+#[derive(Args)]
+pub struct PlanArgs {
+    /// The nightly suite (the report with the FEM down to 1e-8, the pull-off simulations, the
+    /// stability probes) instead of the default report.
+    #[arg(long, conflicts_with = "convergence")]
+    pub nightly: bool,
+    /// A convergence study, one job per level (with --punch, --method, --levels, --eps, --depth).
+    #[arg(long, requires_all = ["punch", "method"])]
+    pub convergence: bool,
+    /// Relative tolerance of the ring BEM in the comparison job.
+    #[arg(long, default_value_t = DEFAULT_TOLERANCE)]
+    pub tol: f64,
+    /// Tolerances of the FEM's full solve in the speed-accuracy jobs [default: 1e-3,1e-4,1e-6;
+    /// with --nightly also 1e-8].
+    #[arg(long, value_delimiter = ',')]
+    pub fem_tolerances: Option<Vec<f64>>,
+    /// Convergence plan: punch shape.
+    #[arg(long, value_enum, requires = "convergence")]
+    pub punch: Option<PunchKind>,
+    /// Convergence plan: the method to refine.
+    #[arg(long, value_enum, requires = "convergence")]
+    pub method: Option<Method>,
+    /// Convergence plan: number of levels.
+    #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(2..=8))]
+    pub levels: u64,
+    /// Convergence plan: b/a of the flat annulus.
+    #[arg(long, default_value_t = 0.5)]
+    pub eps: f64,
+    /// Convergence plan: d/h of a concave punch.
+    #[arg(long, default_value_t = 1.5)]
+    pub depth: f64,
+    /// Write the plan to this file instead of standard output.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+// The arguments of `verify run`.
+#[derive(Args)]
+pub struct RunArgs {
+    /// The plan file (`verify plan --out FILE`).
+    #[arg(long)]
+    pub plan: PathBuf,
+    /// Which shard to run, I/N (1 <= I <= N) [default: 1/1, the whole plan].
+    #[arg(long, default_value = "1/1", value_parser = crate::harness::plan::parse_shard)]
+    pub shard: (usize, usize),
+    /// Directory for the jobs' result files (created if absent).
+    #[arg(long)]
+    pub results: PathBuf,
+}
+
+// The arguments of `verify merge`.
+#[derive(Args)]
+pub struct MergeArgs {
+    /// The plan file the results were computed from.
+    #[arg(long)]
+    pub plan: PathBuf,
+    /// Directory of the jobs' result files.
+    #[arg(long)]
+    pub results: PathBuf,
+    /// Report directory to write.
+    #[arg(long)]
+    pub report: PathBuf,
+    /// Print JSON instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify part`.
+#[derive(Args)]
+pub struct PartArgs {
+    /// The job's id (a line of `verify plan`).
+    pub id: String,
 }

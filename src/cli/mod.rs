@@ -7,6 +7,7 @@
 pub mod args;
 mod jkr;
 mod operators;
+mod plan;
 mod pulloff;
 mod solve;
 mod studies;
@@ -48,6 +49,9 @@ pub fn needs_data(command: &Option<Command>) -> bool {
             | Some(Command::Convergence(_))
             | Some(Command::Stability(_))
             | Some(Command::Pulloff(_))
+            | Some(Command::Run(_))
+            | Some(Command::Merge(_))
+            | Some(Command::Part(_))
     )
 }
 
@@ -74,6 +78,10 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         Some(Command::History(args)) => studies::history(args),
         Some(Command::Stability(args)) => studies::stability(args),
         Some(Command::References(args)) => studies::references(args),
+        Some(Command::Plan(args)) => plan::plan(args),
+        Some(Command::Run(args)) => plan::run(args),
+        Some(Command::Merge(args)) => plan::merge(args),
+        Some(Command::Part(args)) => plan::part(args),
     }
 }
 

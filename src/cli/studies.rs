@@ -9,7 +9,7 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::harness::progress::Progress;
 use crate::harness::table::{Column, Format, Table};
 use crate::harness::{
-    comparison, convergence, fenicsx, history, html, operator, peers, report, stability,
+    comparison, convergence, fenicsx, history, html, operator, parts, peers, report, stability,
 };
 use crate::punch::PunchKind;
 use crate::reference;
@@ -27,29 +27,68 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
             "--fem-tolerances: {t} is outside [{floor:e}, 1), the FEM's tolerance range"
         ));
     }
-    let comparison = comparison::run(args.tol).map_err(message)?;
-    let external = fenicsx::run().map_err(message)?;
-    let peer_rows = peers::run(256).map_err(message)?;
-    let operators = operator::load_records().map_err(message)?;
-    if !args.no_report {
-        let mut bar = Progress::new("report", report::STAGES);
-        report::write_report(
-            &args.report,
-            &comparison,
-            &external,
-            &operators,
-            &peer_rows,
-            &args.fem_tolerances,
-            |stage| bar.tick(stage),
-        )
-        .map_err(message)?;
+    if args.no_report {
+        let inputs = CompareInputs {
+            comparison: comparison::run(args.tol).map_err(message)?,
+            fenicsx: fenicsx::run().map_err(message)?,
+            peers: peers::run(parts::PEER_MAX_GRID).map_err(message)?,
+            operators: operator::load_records().map_err(message)?,
+        };
+        return compare_reply(&inputs, None, args.json);
     }
-    let success = comparison.failures()
-        + fenicsx::failures(&external)
-        + operator::failures(&operators)
-        + peers::failures(&peer_rows)
-        == 0;
-    if args.json {
+    let plan = parts::report_parts(args.tol, &args.fem_tolerances);
+    let mut bar = Progress::new("report", plan.len() + report::STAGES);
+    let assembled = parts::compute_all(&plan, |id| bar.tick(id)).map_err(message)?;
+    let parts::Assembled::Report { inputs, .. } = assembled else {
+        return Err("the report's parts did not make a report".into());
+    };
+    report::write_report(&args.report, &inputs, |stage| bar.tick(stage)).map_err(message)?;
+    compare_reply(&CompareInputs::of(&inputs), Some(&args.report), args.json)
+}
+
+/// What `verify compare` prints: the comparison and the stored external results.
+pub(super) struct CompareInputs {
+    pub comparison: comparison::ComparisonReport,
+    pub fenicsx: Vec<fenicsx::FenicsxComparison>,
+    pub peers: Vec<peers::PeerComparison>,
+    pub operators: Vec<operator::OperatorStatus>,
+}
+
+impl CompareInputs {
+    /// The parts of a report's inputs `verify compare` prints.
+    pub fn of(inputs: &report::ReportInputs) -> Self {
+        Self {
+            comparison: inputs.comparison.clone(),
+            fenicsx: inputs.fenicsx.clone(),
+            peers: inputs.peers.clone(),
+            operators: inputs.operators.clone(),
+        }
+    }
+
+    /// Checks that failed.
+    pub fn failures(&self) -> usize {
+        self.comparison.failures()
+            + fenicsx::failures(&self.fenicsx)
+            + operator::failures(&self.operators)
+            + peers::failures(&self.peers)
+    }
+}
+
+/// The reply of `verify compare` (and `verify merge` of a report plan): tables or JSON, the
+/// report's location, success when no check failed.
+pub(super) fn compare_reply(
+    inputs: &CompareInputs,
+    report_dir: Option<&std::path::Path>,
+    json: bool,
+) -> Result<Reply, String> {
+    let success = inputs.failures() == 0;
+    let (comparison, external, operators, peer_rows) = (
+        &inputs.comparison,
+        &inputs.fenicsx,
+        &inputs.operators,
+        &inputs.peers,
+    );
+    if json {
         let all = serde_json::json!({
             "comparison": comparison,
             "fenicsx": external,
@@ -58,25 +97,25 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         });
         return Ok(Reply::verdict(to_json(&all)?, success));
     }
-    let mut text = comparison::render(&comparison);
-    text += &fenicsx::render(&external);
+    let mut text = comparison::render(comparison);
+    text += &fenicsx::render(external);
     text += "\n";
-    text += &operator::render_records(&operators);
-    text += &peers::render(&peer_rows);
+    text += &operator::render_records(operators);
+    text += &peers::render(peer_rows);
     let _ = writeln!(
         text,
         "\n{} of {} stored FEniCSx results compared, {} failed; {} peer comparisons, {} failed.",
         external.iter().filter(|r| r.status == "current").count(),
         external.len(),
-        fenicsx::failures(&external),
+        fenicsx::failures(external),
         peer_rows.len(),
-        peers::failures(&peer_rows)
+        peers::failures(peer_rows)
     );
-    if !args.no_report {
+    if let Some(dir) = report_dir {
         let _ = writeln!(
             text,
             "Report: {}/index.html (web page), report.md, report.json, SVG charts",
-            args.report.display()
+            dir.display()
         );
     }
     Ok(Reply::verdict(text, success))
@@ -85,22 +124,7 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
 /// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
 /// and the chart into `--out`.
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
-    let eps = if args.punch == PunchKind::FlatAnnulus {
-        args.eps
-    } else {
-        0.0
-    };
-    if !(0.0..1.0).contains(&eps) {
-        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
-    }
-    if !(args.depth.is_finite() && args.depth > 0.0) {
-        return Err(format!("--depth {}: need a positive d/h", args.depth));
-    }
-    let case = convergence::StudyCase {
-        punch: args.punch,
-        eps,
-        depth: args.depth,
-    };
+    let case = study_case(args.punch, args.eps, args.depth)?;
     let levels = args.levels as usize;
     let mut bar = Progress::new("convergence", levels);
     let study = convergence::run(case, args.method, levels, |level| {
@@ -120,6 +144,27 @@ pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
         csv_path.display(),
         svg_path.display()
     )))
+}
+
+/// The case of a convergence study from `--punch`, `--eps` (flat annulus only) and `--depth`,
+/// checked.
+pub(super) fn study_case(
+    punch: PunchKind,
+    eps: f64,
+    depth: f64,
+) -> Result<convergence::StudyCase, String> {
+    let eps = if punch == PunchKind::FlatAnnulus {
+        eps
+    } else {
+        0.0
+    };
+    if !(0.0..1.0).contains(&eps) {
+        return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
+    }
+    if !(depth.is_finite() && depth > 0.0) {
+        return Err(format!("--depth {depth}: need a positive d/h"));
+    }
+    Ok(convergence::StudyCase { punch, eps, depth })
 }
 
 /// `verify stability`: every method toward its limits; fails if any returned a wrong number

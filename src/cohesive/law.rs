@@ -6,7 +6,7 @@ use serde::Serialize;
 /// energy per unit area at separation `s >= 0` is `φ(s) = -Δw e^{-s/ρ}`, the tension
 /// `σ(s) = φ'(s) = (Δw/ρ) e^{-s/ρ}` (peak `σ0 = Δw/ρ` in contact), the work of adhesion
 /// `∫σ ds = Δw`. Non-penetration `s >= 0` is a separate constraint.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct ExponentialLaw {
     /// Work of adhesion `Δw` (units `E* a`).
     pub work: f64,

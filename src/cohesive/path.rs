@@ -20,7 +20,7 @@ pub const JUMP_FORCE: f64 = 0.05;
 const ZONE_RANGES: f64 = 3.0;
 
 /// The path: where to press to, how far to pull, the step sizes (units of `a`).
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct PathOptions {
     /// Depth of the preload (positive: pressed in).
     pub preload: f64,
@@ -33,7 +33,7 @@ pub struct PathOptions {
 }
 
 /// One point of the force-displacement curve.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct CurvePoint {
     pub depth: f64,
     /// Compression positive (units `E* a²`).
@@ -55,7 +55,7 @@ pub struct CurvePoint {
 }
 
 /// The end of a branch.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Jump {
     pub depth: f64,
     pub force_before: f64,
@@ -64,7 +64,7 @@ pub struct Jump {
 }
 
 /// The most tensile state of the unloading branch the preload is on.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct Pulloff {
     pub depth: f64,
     /// Negative (tensile).
@@ -75,7 +75,7 @@ pub struct Pulloff {
 }
 
 /// The force-displacement curve with its jumps and pull-off.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Curve {
     pub points: Vec<CurvePoint>,
     pub jumps: Vec<Jump>,

@@ -204,6 +204,18 @@ fn open_hole_declined(case: &Case, entry: &SequenceEntry) -> Result<()> {
     Ok(())
 }
 
+/// [`run`] on the study meshes: level [`STUDY_LEVEL`] of the adapted family for the contact
+/// line, the level below it as the check mesh (what `verify pulloff` does without `--mesh`).
+pub fn run_on_study_meshes(
+    case: Case,
+    ranges: &[f64],
+    progress: impl FnMut(&SequenceEntry),
+) -> Result<PulloffStudy> {
+    let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
+    let check = study_mesh(case.eps, STUDY_LEVEL - 1)?;
+    run(case, ranges, &mesh, Some(&check), progress)
+}
+
 /// Run the study of `case` on `mesh` (a disk mesh for the concave punches) at the ranges
 /// `ranges` (units of `d0`, decreasing), and the smallest range again on `check_mesh` (a coarser
 /// one) for the mesh's share of the error bar; `progress` is called after each simulation.

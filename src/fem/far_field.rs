@@ -26,7 +26,7 @@ use super::mesh::{tags, Mesh};
 use super::quadrature::gauss_legendre;
 
 /// How the boundary at the far arc is treated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum FarField {
     /// `u = 0` on the arc: the classical truncation, force too stiff by about `1.2 a/R`.

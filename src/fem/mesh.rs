@@ -25,7 +25,7 @@ pub mod tags {
 }
 
 /// Polynomial degree of the elements.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 pub enum Degree {
     Linear = 1,
     Quadratic = 2,

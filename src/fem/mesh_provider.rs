@@ -157,7 +157,7 @@ impl MeshRequest {
 }
 
 /// Where a provided mesh came from.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum MeshOrigin {
     Committed,

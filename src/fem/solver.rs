@@ -145,7 +145,7 @@ pub struct FemField {
 }
 
 /// Where the time of the finest model's solve went (seconds; JSON key `fem_timings`).
-#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct FemTimings {
     /// Reading the mesh and raising its degree.
     #[serde(rename = "read_s")]

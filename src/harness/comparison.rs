@@ -24,7 +24,7 @@ pub const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.
 pub const CONCAVE_RATIOS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95];
 
 /// One comparison of a computed value with a reference.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Comparison {
     pub reference: String,
     pub reference_kind: ReferenceKind,
@@ -37,7 +37,7 @@ pub struct Comparison {
 
 /// One row: a quantity at one contact ratio, computed by the ring BEM, against every valid
 /// reference.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Row {
     pub quantity: Quantity,
     pub eps: f64,
@@ -50,7 +50,7 @@ pub struct Row {
 }
 
 /// A consistency check that involves no reference (e.g. `γ2' = γ γ1'`).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct IdentityCheck {
     pub name: String,
     pub eps: f64,
@@ -62,7 +62,7 @@ pub struct IdentityCheck {
 }
 
 /// One state solved by the FEM and by the ring BEM (cross-verification of two discretisations).
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct CrossCheck {
     pub punch: PunchKind,
     /// `b/a` (flat annulus) or `d/h` (concave): what was prescribed.
@@ -84,7 +84,7 @@ pub struct CrossCheck {
 }
 
 /// The whole comparison.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct ComparisonReport {
     pub tolerance: f64,
     pub rows: Vec<Row>,

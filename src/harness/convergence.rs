@@ -31,7 +31,7 @@ use super::svg;
 use super::table::{Column, Format, Table};
 
 /// One refinement level.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Level {
     pub label: String,
     /// Representative size: cell side (grid BEM), `1/sqrt(dofs)` (FEM), `1/N` (ring BEM).
@@ -46,7 +46,7 @@ pub struct Level {
 }
 
 /// A convergence study.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Study {
     pub punch: PunchKind,
     pub method: String,
@@ -146,14 +146,8 @@ pub fn fem_study_ladder(case: &StudyCase) -> (Vec<mesh_provider::MeshRequest>, D
     (ladder, Degree::Quadratic)
 }
 
-/// Run a study of `levels` refinements with `method`; `progress` is called after each level.
-pub fn run(
-    case: StudyCase,
-    method: Method,
-    levels: usize,
-    mut progress: impl FnMut(&Level),
-) -> Result<Study> {
-    // Refuse a study whose finest level cannot be run, before running the coarser ones.
+/// Refuse a study whose finest level cannot be run, before running the coarser ones.
+pub fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<()> {
     if method == Method::GridBem && (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
         return Err(Error::OutOfRange {
             method: "grid-bem".into(),
@@ -168,7 +162,7 @@ pub fn run(
     if method == Method::Fem {
         // Levels past adapted level 5 (P2, about 1.7 M unknowns) or 3 (P3, 0.6 M) take more
         // than minutes and tens of GB; the study stops there.
-        let available = fem_study_ladder(&case).0.len();
+        let available = fem_study_ladder(case).0.len();
         if levels > available {
             return Err(Error::OutOfRange {
                 method: "fem".into(),
@@ -180,15 +174,18 @@ pub fn run(
             });
         }
     }
-    let concave = case.punch.is_concave();
-    let ring = RingBemSolver::new();
-    let yardstick = if concave {
-        ring.concave_at_depth(case.punch, case.depth, 1e-11)?
-            .gamma2
-            .unwrap_or(f64::NAN)
-    } else {
-        ring.flat(case.eps, 1e-11)?.gamma.unwrap_or(f64::NAN)
-    };
+    Ok(())
+}
+
+/// Run a study of `levels` refinements with `method`; `progress` is called after each level.
+pub fn run(
+    case: StudyCase,
+    method: Method,
+    levels: usize,
+    mut progress: impl FnMut(&Level),
+) -> Result<Study> {
+    check_levels(&case, method, levels)?;
+    let yardstick = yardstick(&case)?;
     let mut out: Vec<Level> = Vec::new();
     let mut previous_edge: Option<f64> = None;
     let quiet_terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
@@ -197,108 +194,205 @@ pub fn run(
             // Off a terminal, say which level is running before the long ones (no bar there).
             eprintln!("convergence: {method:?} level {} of {levels} ...", k + 1);
         }
-        let start = Instant::now();
-        let (label, size, unknowns, value) = match method {
-            Method::GridBem => {
-                let n = 64usize << k;
-                let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
-                let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
-                let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-                (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
-            }
-            Method::Fem => {
-                let (sequence, degree) = fem_study_ladder(&case);
-                let Some(request) = sequence.get(k).cloned() else {
-                    return Err(Error::OutOfRange {
-                        method: "fem".into(),
-                        reason: format!("the FEM has {} mesh levels", sequence.len()),
-                    });
-                };
-                // Concave punches: refine around the free edge of the previous level's solve.
-                let request = request.with_free_edge(previous_edge, 0.0);
-                let label = request.label();
-                let provided = mesh_provider::provide(&request, "the FEM convergence study")?;
-                let load = if concave {
-                    FemLoad::ConcaveDepth(case.depth)
-                } else {
-                    FemLoad::Flat
-                };
-                let options = FemOptions {
-                    degree,
-                    tolerance: 1e-3,
-                    mesh: None,
-                    poisson_ratio: 0.0,
-                    far_field: crate::fem::far_field::FarField::Boussinesq,
-                };
-                let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
-                previous_edge = concave.then_some(s.eps);
-                let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-                (
-                    format!("{label} P{}", degree as u8),
-                    1.0 / (s.dofs as f64).sqrt(),
-                    s.dofs,
-                    value,
-                )
-            }
-            Method::RingBem => {
-                let n = 6 + 2 * k;
-                let rule = TanhSinhRule::new(1.0 / 16.0);
-                let region = if case.eps > 0.0 {
-                    ContactRegion::Annulus { eps: case.eps }
-                } else {
-                    ContactRegion::Disk
-                };
-                if concave {
-                    return Err(Error::Unsupported {
-                        method: "ring-bem".into(),
-                        reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
-                    });
-                }
-                let system = RingSystem::assemble(
-                    region,
-                    RingBemSettings {
-                        nodes: n,
-                        quadrature_step: 1.0 / 16.0,
-                    },
-                    &rule,
-                );
-                let field = system
-                    .solve(&vec![1.0; n])
-                    .ok_or_else(|| Error::NoConvergence {
-                        method: "ring-bem".into(),
-                        reason: "singular system".into(),
-                    })?;
-                (format!("N = {n}"), 1.0 / n as f64, n, 0.5 * field.force)
-            }
-            Method::Reference | Method::Auto => {
-                return Err(Error::Unsupported {
-                    method: method.name().into(),
-                    reason:
-                        "convergence studies refine one method: choose ring-bem, fem or grid-bem"
-                            .into(),
-                })
-            }
-        };
-        let level = Level {
-            label,
-            size,
-            unknowns,
-            value,
-            error: (value - yardstick) / yardstick,
-            wall_s: start.elapsed().as_secs_f64(),
-            observed_order: None,
-        };
-        out.push(level);
-        let m = out.len();
-        if m >= 3 {
-            let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
-            let (r21, r32) = (
-                out[m - 2].size / out[m - 1].size,
-                out[m - 3].size / out[m - 2].size,
-            );
-            out[m - 1].observed_order = observed_order(f1, f2, f3, r21, r32);
+        let computed = compute_level(&case, method, k, previous_edge, yardstick)?;
+        previous_edge = computed.free_edge;
+        out.push(computed.level);
+        set_observed_orders(&mut out);
+        progress(&out[out.len() - 1]);
+    }
+    Ok(assemble(&case, method, yardstick, out, previous_edge))
+}
+
+/// The ring BEM's value the study measures against (tolerance 1e-11): `γ2` at the depth of a
+/// concave punch, `γ` of a flat one.
+pub fn yardstick(case: &StudyCase) -> Result<f64> {
+    let ring = RingBemSolver::new();
+    Ok(if case.punch.is_concave() {
+        ring.concave_at_depth(case.punch, case.depth, 1e-11)?
+            .gamma2
+            .unwrap_or(f64::NAN)
+    } else {
+        ring.flat(case.eps, 1e-11)?.gamma.unwrap_or(f64::NAN)
+    })
+}
+
+/// One level of a study and, for the FEM on a concave punch, the free edge `b/a` it located (the
+/// next level refines around it).
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct ComputedLevel {
+    pub level: Level,
+    pub free_edge: Option<f64>,
+}
+
+/// Level `k` (from 0) of a study on its own, as a job of a plan: the FEM on a concave punch
+/// first solves the coarser levels for the free edge each refines around (as [`run`] does),
+/// so the level is the same as in one process.
+pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result<ComputedLevel> {
+    check_levels(&case, method, levels)?;
+    if k >= levels {
+        return Err(Error::OutOfRange {
+            method: method.name().into(),
+            reason: format!("level {k} of a study of {levels} levels (levels count from 0)"),
+        });
+    }
+    let yardstick = yardstick(&case)?;
+    let mut previous_edge = None;
+    if method == Method::Fem && case.punch.is_concave() {
+        for coarser in 0..k {
+            previous_edge =
+                compute_level(&case, method, coarser, previous_edge, yardstick)?.free_edge;
         }
-        progress(&out[m - 1]);
+    }
+    compute_level(&case, method, k, previous_edge, yardstick)
+}
+
+/// Level `k` of a study when level `k - 1` located the free edge `previous_edge` (the FEM on a
+/// concave punch refines around it; other methods ignore it).
+pub fn level_after(
+    case: StudyCase,
+    method: Method,
+    k: usize,
+    levels: usize,
+    previous_edge: Option<f64>,
+) -> Result<ComputedLevel> {
+    check_levels(&case, method, levels)?;
+    compute_level(&case, method, k, previous_edge, yardstick(&case)?)
+}
+
+/// Level `k` of a study, the FEM refining around `previous_edge` (concave punches).
+fn compute_level(
+    case: &StudyCase,
+    method: Method,
+    k: usize,
+    previous_edge: Option<f64>,
+    yardstick: f64,
+) -> Result<ComputedLevel> {
+    let concave = case.punch.is_concave();
+    let mut free_edge = None;
+    let start = Instant::now();
+    let (label, size, unknowns, value) = match method {
+        Method::GridBem => {
+            let n = 64usize << k;
+            let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
+            let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
+            let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+            (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
+        }
+        Method::Fem => {
+            let (sequence, degree) = fem_study_ladder(case);
+            let Some(request) = sequence.get(k).cloned() else {
+                return Err(Error::OutOfRange {
+                    method: "fem".into(),
+                    reason: format!("the FEM has {} mesh levels", sequence.len()),
+                });
+            };
+            // Concave punches: refine around the free edge of the previous level's solve.
+            let request = request.with_free_edge(previous_edge, 0.0);
+            let label = request.label();
+            let provided = mesh_provider::provide(&request, "the FEM convergence study")?;
+            let load = if concave {
+                FemLoad::ConcaveDepth(case.depth)
+            } else {
+                FemLoad::Flat
+            };
+            let options = FemOptions {
+                degree,
+                tolerance: 1e-3,
+                mesh: None,
+                poisson_ratio: 0.0,
+                far_field: crate::fem::far_field::FarField::Boussinesq,
+            };
+            let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
+            free_edge = concave.then_some(s.eps);
+            let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+            (
+                format!("{label} P{}", degree as u8),
+                1.0 / (s.dofs as f64).sqrt(),
+                s.dofs,
+                value,
+            )
+        }
+        Method::RingBem => {
+            let n = 6 + 2 * k;
+            let rule = TanhSinhRule::new(1.0 / 16.0);
+            let region = if case.eps > 0.0 {
+                ContactRegion::Annulus { eps: case.eps }
+            } else {
+                ContactRegion::Disk
+            };
+            if concave {
+                return Err(Error::Unsupported {
+                    method: "ring-bem".into(),
+                    reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
+                });
+            }
+            let system = RingSystem::assemble(
+                region,
+                RingBemSettings {
+                    nodes: n,
+                    quadrature_step: 1.0 / 16.0,
+                },
+                &rule,
+            );
+            let field = system
+                .solve(&vec![1.0; n])
+                .ok_or_else(|| Error::NoConvergence {
+                    method: "ring-bem".into(),
+                    reason: "singular system".into(),
+                })?;
+            (format!("N = {n}"), 1.0 / n as f64, n, 0.5 * field.force)
+        }
+        Method::Reference | Method::Auto => {
+            return Err(Error::Unsupported {
+                method: method.name().into(),
+                reason: "convergence studies refine one method: choose ring-bem, fem or grid-bem"
+                    .into(),
+            })
+        }
+    };
+    let level = Level {
+        label,
+        size,
+        unknowns,
+        value,
+        error: (value - yardstick) / yardstick,
+        wall_s: start.elapsed().as_secs_f64(),
+        observed_order: None,
+    };
+    Ok(ComputedLevel { level, free_edge })
+}
+
+/// The observed order of the last level from it and the two coarser ones.
+fn set_observed_orders(out: &mut [Level]) {
+    let m = out.len();
+    if m >= 3 {
+        let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
+        let (r21, r32) = (
+            out[m - 2].size / out[m - 1].size,
+            out[m - 3].size / out[m - 2].size,
+        );
+        out[m - 1].observed_order = observed_order(f1, f2, f3, r21, r32);
+    }
+}
+
+/// The study from its levels (coarsest first): observed orders, Richardson extrapolate, GCI of
+/// the finest level (never below the FEM's unresolved component at `finest_edge`, the free edge
+/// its finest level located, or `b/a` of a flat annulus).
+pub fn assemble(
+    case: &StudyCase,
+    method: Method,
+    yardstick: f64,
+    levels: Vec<Level>,
+    finest_edge: Option<f64>,
+) -> Study {
+    let concave = case.punch.is_concave();
+    let mut out: Vec<Level> = Vec::new();
+    for level in levels {
+        out.push(Level {
+            observed_order: None,
+            ..level
+        });
+        set_observed_orders(&mut out);
     }
     let m = out.len();
     let (richardson, gci) = if m >= 3 {
@@ -316,7 +410,7 @@ pub fn run(
     };
     let error_floor = (method == Method::Fem).then(|| {
         fem_solver::unresolved_component(if concave {
-            previous_edge.unwrap_or(0.0)
+            finest_edge.unwrap_or(0.0)
         } else {
             case.eps
         })
@@ -326,7 +420,7 @@ pub fn run(
         Some((Some(p1), Some(p2))) => Some(p1 / p2),
         _ => None,
     };
-    Ok(Study {
+    Study {
         punch: case.punch,
         method: method.name().to_string(),
         quantity: if concave {
@@ -341,7 +435,7 @@ pub fn run(
         gci_fine: gci,
         asymptotic_ratio: ratio,
         error_floor,
-    })
+    }
 }
 
 /// The levels: size, unknowns, value, error against the yardstick, observed order, time.

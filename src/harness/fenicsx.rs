@@ -49,7 +49,7 @@ pub struct FenicsxResult {
 }
 
 /// What the harness made of one stored result.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct FenicsxComparison {
     pub file: String,
     pub stored: FenicsxResult,

@@ -223,9 +223,30 @@ pub fn trend_section(history: &[Headline]) -> String {
     html
 }
 
-/// The current UTC time as `YYYY-MM-DD HH:MM UTC` (civil date from days since 1970, Hinnant's
-/// algorithm).
+/// The current UTC time as `YYYY-MM-DD HH:MM UTC`.
 fn utc_now() -> String {
+    let (year, month, day, rem) = utc_civil_now();
+    format!(
+        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
+        rem / 3600,
+        (rem % 3600) / 60
+    )
+}
+
+/// The current UTC time as ISO 8601, `YYYY-MM-DDTHH:MM:SS+00:00` (the stored records' dates).
+pub fn utc_now_iso() -> String {
+    let (year, month, day, rem) = utc_civil_now();
+    format!(
+        "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}+00:00",
+        rem / 3600,
+        (rem % 3600) / 60,
+        rem % 60
+    )
+}
+
+/// Year, month, day and seconds into the day now, UTC (civil date from days since 1970,
+/// Hinnant's algorithm).
+fn utc_civil_now() -> (i64, i64, i64, i64) {
     let secs = std::time::SystemTime::now()
         .duration_since(std::time::UNIX_EPOCH)
         .map_or(0, |d| d.as_secs()) as i64;
@@ -239,11 +260,7 @@ fn utc_now() -> String {
     let day = doy - (153 * mp + 2) / 5 + 1;
     let month = if mp < 10 { mp + 3 } else { mp - 9 };
     let year = yoe + era * 400 + i64::from(month <= 2);
-    format!(
-        "{year:04}-{month:02}-{day:02} {:02}:{:02} UTC",
-        rem / 3600,
-        (rem % 3600) / 60
-    )
+    (year, month, day, rem)
 }
 
 /// Write `dir/index.html` from `dir/report.md` (and the SVG charts it names), with trend charts

@@ -101,7 +101,7 @@ pub struct OperatorRecord {
 }
 
 /// A stored record and whether its mesh is still the one compared.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct OperatorStatus {
     pub file: String,
     #[serde(flatten)]

@@ -32,7 +32,7 @@ pub struct PeerResult {
 }
 
 /// One comparison.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PeerComparison {
     pub file: String,
     pub stored: PeerResult,

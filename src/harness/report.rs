@@ -10,8 +10,10 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+pub use super::speed_accuracy::{CostPoint, SpeedAccuracy, DEFAULT_FEM_TOLERANCES};
+
 use super::comparison::ComparisonReport;
-use super::convergence::{self, StudyCase};
+use super::convergence;
 use super::fenicsx::FenicsxComparison;
 use super::operator::OperatorStatus;
 use super::peers::PeerComparison;
@@ -20,40 +22,15 @@ use super::svg::{linear_chart, log_log_chart, Series};
 use crate::adhesion;
 use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
 use crate::bem::grid_contact::{self, cell_centre, discretise};
-use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::mesh::Degree;
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
-use crate::methods::Method;
-use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::paper_fits;
 
-/// One (time, error) point of a method on a problem.
-#[derive(Clone, Debug, Serialize)]
-pub struct CostPoint {
-    pub method: String,
-    pub resolution: String,
-    pub wall_s: f64,
-    /// `|value - yardstick| / |yardstick|`, floored at 1e-16.
-    pub error: f64,
-    /// The method's own estimate of that error, where it makes one (drawn as an error bar from
-    /// the actual error up to the estimate: the point must lie below the bar's top).
-    pub estimate: Option<f64>,
-    pub on_pareto_front: bool,
-}
-
-/// Speed against accuracy on one problem.
-#[derive(Clone, Debug, Serialize)]
-pub struct SpeedAccuracy {
-    pub problem: String,
-    pub yardstick: f64,
-    pub points: Vec<CostPoint>,
-}
-
 /// Pull-off force `-F/F0` of a concave punch at one `d0/h` by each route.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct PulloffPoint {
     pub punch: String,
     pub d0_over_h: f64,
@@ -66,7 +43,7 @@ pub struct PulloffPoint {
 }
 
 /// Everything the report holds beyond the comparison tables.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct ReportExtras {
     pub speed_accuracy: Vec<SpeedAccuracy>,
     pub convergence: Vec<convergence::Study>,
@@ -82,7 +59,7 @@ pub struct ReportExtras {
 }
 
 /// One claim of the paper, the numbers of this run, and the verdict.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Verdict {
     pub claim: String,
     pub numbers: String,
@@ -267,7 +244,7 @@ fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String 
 
 /// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 36), on the study
 /// mesh (level 3 of the adapted family; the committed disk level 2 without gmsh).
-fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
+pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     use crate::cohesive::study;
     let case = study::Case {
         punch: PunchKind::Cone,
@@ -277,310 +254,6 @@ fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     let mesh = study::study_mesh(0.0, study::STUDY_LEVEL)?;
     let smallest = study::DEFAULT_RANGES[study::DEFAULT_RANGES.len() - 1];
     study::simulate_once(case, smallest, &mesh)
-}
-
-fn floor(e: f64) -> f64 {
-    e.abs().max(1e-16)
-}
-
-fn mark_pareto(points: &mut [CostPoint]) {
-    let mut order: Vec<usize> = (0..points.len()).collect();
-    order.sort_by(|&a, &b| points[a].wall_s.total_cmp(&points[b].wall_s));
-    let mut best = f64::INFINITY;
-    for i in order {
-        if points[i].error < best {
-            best = points[i].error;
-            points[i].on_pareto_front = true;
-        }
-    }
-}
-
-fn timed<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, f64)> {
-    let start = Instant::now();
-    let v = f()?;
-    Ok((v, start.elapsed().as_secs_f64()))
-}
-
-fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f64) -> CostPoint {
-    CostPoint {
-        method: method.into(),
-        resolution,
-        wall_s,
-        error: floor((value - yardstick) / yardstick),
-        estimate: None,
-        on_pareto_front: false,
-    }
-}
-
-/// [`point`] with the method's own error estimate.
-fn estimated_point(
-    method: &str,
-    resolution: String,
-    wall_s: f64,
-    value: f64,
-    yardstick: f64,
-    estimate: Option<f64>,
-) -> CostPoint {
-    CostPoint {
-        estimate,
-        ..point(method, resolution, wall_s, value, yardstick)
-    }
-}
-
-/// Tolerances of the FEM's full solve (meshes made for the scene) in the speed-accuracy study
-/// of the default run; the nightly run adds 1e-8 (`verify compare --fem-tolerances`).
-pub const DEFAULT_FEM_TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-6];
-
-/// Error against wall time for the flat annulus (`eps = 0.5`, `γ`), the sphere (`d = 1.5 h`,
-/// `γ2`), the cone (`d = 2h`, `γ2`) and the flat annulus `eps = 0.3`: ring BEM at several node
-/// counts or tolerances, FEM at the committed levels (P1, P2) where they exist, the FEM's full
-/// solve at each of `fem_tolerances` (with gmsh), grid BEM at 64-256 cells per side, and the
-/// stored FEniCSx results on the same state (their wall time and force, as stored).
-pub fn speed_accuracy(
-    ring: &RingBemSolver,
-    fenicsx: &[FenicsxComparison],
-    fem_tolerances: &[f64],
-) -> Result<Vec<SpeedAccuracy>> {
-    let rule = TanhSinhRule::new(1.0 / 16.0);
-    // Flat annulus: the ring BEM at a few node counts (it converges geometrically).
-    let yardstick = ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN);
-    let mut points = Vec::new();
-    for n in [3usize, 4, 5, 6, 8] {
-        let (g, t) = timed(|| {
-            let region = ContactRegion::Annulus { eps: 0.5 };
-            let settings = RingBemSettings {
-                nodes: n,
-                quadrature_step: 1.0 / 16.0,
-            };
-            RingSystem::assemble(region, settings, &rule)
-                .solve(&vec![1.0; n])
-                .map(|f| 0.5 * f.force)
-                .ok_or_else(|| Error::NoConvergence {
-                    method: "ring-bem".into(),
-                    reason: "singular".into(),
-                })
-        })?;
-        points.push(point("ring-bem", format!("N = {n}"), t, g, yardstick));
-    }
-    let flat = CostProblem {
-        kind: PunchKind::FlatAnnulus,
-        eps: 0.5,
-        family: Some("annulus-0.5"),
-        load: FemLoad::Flat,
-    };
-    points.extend(fem_and_grid_points(&flat, yardstick)?);
-    points.extend(fem_ladder_points(&flat, yardstick, fem_tolerances));
-    points.extend(fenicsx_points(&flat, yardstick, fenicsx));
-    mark_pareto(&mut points);
-    let mut out = vec![SpeedAccuracy {
-        problem: "flat annulus b/a = 0.5, gamma".into(),
-        yardstick,
-        points,
-    }];
-    // Sphere under depth control: the ring BEM at a few tolerances.
-    let yardstick = ring
-        .concave_at_depth(PunchKind::Sphere, 1.5, 1e-11)?
-        .gamma2
-        .unwrap_or(f64::NAN);
-    let mut points = Vec::new();
-    for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
-        let (s, t) = timed(|| ring.concave_at_depth(PunchKind::Sphere, 1.5, tol))?;
-        points.push(estimated_point(
-            "ring-bem",
-            format!("tol {tol:.0e}"),
-            t,
-            s.gamma2.unwrap_or(f64::NAN),
-            yardstick,
-            Some(s.error_estimate),
-        ));
-    }
-    let sphere = CostProblem {
-        kind: PunchKind::Sphere,
-        eps: 0.0,
-        family: Some("disk"),
-        load: FemLoad::ConcaveDepth(1.5),
-    };
-    points.extend(fem_and_grid_points(&sphere, yardstick)?);
-    points.extend(fem_ladder_points(&sphere, yardstick, fem_tolerances));
-    points.extend(fenicsx_points(&sphere, yardstick, fenicsx));
-    mark_pareto(&mut points);
-    out.push(SpeedAccuracy {
-        problem: "sphere d/h = 1.5, gamma2".into(),
-        yardstick,
-        points,
-    });
-    // The cone and the flat annulus 0.3: the FEM's full solve against FEniCSx on the meshes the
-    // FEM makes (and the committed ones), with the ring BEM and the grid BEM.
-    let cone = CostProblem {
-        kind: PunchKind::Cone,
-        eps: 0.0,
-        family: None,
-        load: FemLoad::ConcaveDepth(2.0),
-    };
-    let thick = CostProblem {
-        kind: PunchKind::FlatAnnulus,
-        eps: 0.3,
-        family: None,
-        load: FemLoad::Flat,
-    };
-    for (problem, name) in [
-        (cone, "cone d/h = 2, gamma2"),
-        (thick, "flat annulus b/a = 0.3, gamma"),
-    ] {
-        let yardstick = problem.value_of_ring_bem(ring, 1e-11)?;
-        let mut points = Vec::new();
-        for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
-            let (value, t) = timed(|| problem.value_of_ring_bem(ring, tol))?;
-            points.push(point(
-                "ring-bem",
-                format!("tol {tol:.0e}"),
-                t,
-                value,
-                yardstick,
-            ));
-        }
-        points.extend(fem_and_grid_points(&problem, yardstick)?);
-        points.extend(fem_ladder_points(&problem, yardstick, fem_tolerances));
-        points.extend(fenicsx_points(&problem, yardstick, fenicsx));
-        mark_pareto(&mut points);
-        out.push(SpeedAccuracy {
-            problem: name.into(),
-            yardstick,
-            points,
-        });
-    }
-    Ok(out)
-}
-
-/// The FEM's full solve (`--method fem --tol X`, default degree, meshes made for the scene) at
-/// each tolerance, when gmsh is there; a tolerance it cannot meet is left out with a note on
-/// standard error.
-fn fem_ladder_points(problem: &CostProblem, yardstick: f64, tolerances: &[f64]) -> Vec<CostPoint> {
-    if !fem_solver::gmsh_found() {
-        return Vec::new();
-    }
-    let mut points = Vec::new();
-    for &tolerance in tolerances {
-        let degree = fem_solver::default_degree(tolerance);
-        let options = FemOptions {
-            degree,
-            tolerance,
-            mesh: None,
-            poisson_ratio: 0.0,
-            far_field: crate::fem::far_field::FarField::Boussinesq,
-        };
-        match timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options)) {
-            Ok((s, t)) => points.push(estimated_point(
-                "fem --tol",
-                format!("tol {tolerance:.0e}, P{}", degree as u8),
-                t,
-                s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
-                yardstick,
-                s.error_estimate,
-            )),
-            Err(e) => eprintln!("speed-accuracy: fem at tolerance {tolerance:e} left out: {e}"),
-        }
-    }
-    points
-}
-
-/// The stored FEniCSx results of this state (punch, `b/a` or depth), at their stored wall time
-/// (dolfinx on this machine; the value is `F/2`, i.e. `γ` at unit depth or `γ2` at `h = 1`).
-fn fenicsx_points(
-    problem: &CostProblem,
-    yardstick: f64,
-    fenicsx: &[FenicsxComparison],
-) -> Vec<CostPoint> {
-    fenicsx
-        .iter()
-        .filter(|c| {
-            let r = &c.stored;
-            r.punch == problem.kind
-                && match problem.load {
-                    FemLoad::ConcaveDepth(d) => (r.depth - d).abs() < 1e-12,
-                    _ => {
-                        (r.eps.unwrap_or(0.0) - problem.eps).abs() < 1e-12
-                            && (r.depth - 1.0).abs() < 1e-12
-                    }
-                }
-        })
-        .map(|c| {
-            let r = &c.stored;
-            let name = c.file.trim_end_matches(".json");
-            point(
-                "FEniCSx (stored)",
-                format!("{name}, {} dofs", r.dofs),
-                r.wall_s,
-                0.5 * r.force,
-                yardstick,
-            )
-        })
-        .collect()
-}
-
-/// A problem of the speed-accuracy study, as the FEM and the grid BEM see it.
-struct CostProblem {
-    kind: PunchKind,
-    eps: f64,
-    /// Committed mesh family, if there is one for this contact line.
-    family: Option<&'static str>,
-    load: FemLoad,
-}
-
-impl CostProblem {
-    /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
-    fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
-        let value = match self.load {
-            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(self.kind, d, tolerance)?.gamma2,
-            _ => ring.flat(self.eps, tolerance)?.gamma,
-        };
-        Ok(value.unwrap_or(f64::NAN))
-    }
-}
-
-/// The FEM (P1 and P2 on levels L0-L2) and the grid BEM (64² to 256²) on one problem; the value
-/// is `γ` (flat) or `γ2` (concave).
-fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<CostPoint>> {
-    let mut points = Vec::new();
-    for (degree, name) in [(Degree::Linear, "fem P1"), (Degree::Quadratic, "fem P2")] {
-        let Some(family) = problem.family else {
-            break;
-        };
-        for level in 0..3 {
-            let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
-            let options = FemOptions {
-                degree,
-                tolerance: 1e-3,
-                mesh: Some(mesh),
-                poisson_ratio: 0.0,
-                far_field: crate::fem::far_field::FarField::Boussinesq,
-            };
-            let (s, t) =
-                timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options))?;
-            points.push(point(
-                name,
-                format!("L{level}"),
-                t,
-                s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
-                yardstick,
-            ));
-        }
-    }
-    let grid_load = match problem.load {
-        FemLoad::ConcaveDepth(d) => GridLoad::Depth(d),
-        _ => GridLoad::Depth(1.0),
-    };
-    for n in [64usize, 128, 256] {
-        let (s, t) = timed(|| grid_contact::solve(problem.kind, problem.eps, n, grid_load, 1e-10))?;
-        points.push(point(
-            "grid-bem",
-            format!("{n}²"),
-            t,
-            s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
-            yardstick,
-        ));
-    }
-    Ok(points)
 }
 
 fn speed_chart(sa: &SpeedAccuracy) -> String {
@@ -831,124 +504,139 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
 }
 
 /// Number of progress stages of [`write_report`].
-pub const STAGES: usize = 6;
+pub const STAGES: usize = 5;
 
-/// Write the report directory; returns the extras (also in report.json).
+/// Everything a report is made of: computed in one process ([`super::parts::compute_report`])
+/// or merged from the result files of a plan's jobs ([`super::plan::merge`]).
+#[derive(Clone, Debug)]
+pub struct ReportInputs {
+    pub comparison: ComparisonReport,
+    pub fenicsx: Vec<FenicsxComparison>,
+    pub operators: Vec<OperatorStatus>,
+    pub peers: Vec<PeerComparison>,
+    pub speed_accuracy: Vec<SpeedAccuracy>,
+    /// The grid BEM's and the FEM's studies of the sphere at `d = 1.5 h`.
+    pub convergence: Vec<convergence::Study>,
+    /// Pull-off by the JKR routes against `d0/h`, cone then sphere.
+    pub pulloff: Vec<PulloffPoint>,
+    /// The pull-off simulations shown (the stored ones, or this run's).
+    pub pulloff_simulations: Vec<super::pulloff_records::PulloffRecord>,
+    /// This run's single pull-off simulation, or why it failed.
+    pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
+    /// Wall time of the computations (their sum when merged from jobs), seconds.
+    pub wall_s: f64,
+}
+
+/// `d0/h` of the pull-off charts: nine points from 0.1 to 100.
+pub fn pulloff_scales() -> impl Iterator<Item = f64> {
+    (0..=8).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0))
+}
+
+/// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
+/// load on the annular branch, the paper's route on its fits, from full contact.
+pub fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
+    pulloff_scales()
+        .map(|s| {
+            let r = adhesion::concave(ring, kind, s)?;
+            Ok(PulloffPoint {
+                punch: kind.name().to_string(),
+                d0_over_h: s,
+                fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
+                paper_fits: r.paper_fits_fixed_load.map(|p| -p.1),
+                full_contact: -r.full_contact.pulloff.force,
+            })
+        })
+        .collect()
+}
+
+/// The chart of one punch's pull-off against `d0/h` by each route.
+fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
+    let mine: Vec<&PulloffPoint> = points.iter().filter(|p| p.punch == kind.name()).collect();
+    let series = [
+        Series {
+            name: "fixed load".into(),
+            points: mine
+                .iter()
+                .filter_map(|p| p.fixed_load.map(|v| (p.d0_over_h, v)))
+                .collect(),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "paper fits".into(),
+            points: mine
+                .iter()
+                .filter_map(|p| p.paper_fits.map(|v| (p.d0_over_h, v)))
+                .collect(),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "full contact".into(),
+            points: mine.iter().map(|p| (p.d0_over_h, p.full_contact)).collect(),
+            bars: Vec::new(),
+        },
+    ];
+    log_log_chart(
+        &format!("{kind}: pull-off / F0 against d0/h"),
+        "d0/h",
+        "-F/F0",
+        &series,
+    )
+}
+
+/// Write the report directory from its inputs; returns the extras (also in report.json).
 pub fn write_report(
     dir: &Path,
-    comparison: &ComparisonReport,
-    fenicsx: &[FenicsxComparison],
-    operators: &[OperatorStatus],
-    peers: &[PeerComparison],
-    fem_tolerances: &[f64],
+    inputs: &ReportInputs,
     mut progress: impl FnMut(&str),
 ) -> Result<ReportExtras> {
     let start = Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| Error::file("create the directory", dir, e))?;
     let ring = RingBemSolver::new();
+    let comparison = &inputs.comparison;
+    let (fenicsx, operators, peers) = (&inputs.fenicsx, &inputs.operators, &inputs.peers);
     progress("functions against eps");
     function_charts(&ring, comparison, dir)?;
-    progress("speed against accuracy");
-    let speed = speed_accuracy(&ring, fenicsx, fem_tolerances)?;
-    for (k, sa) in speed.iter().enumerate() {
+    for (k, sa) in inputs.speed_accuracy.iter().enumerate() {
         write(dir, &format!("speed-accuracy-{k}.svg"), &speed_chart(sa))?;
     }
-    progress("convergence studies");
-    let mut studies = Vec::new();
-    for (method, levels) in [(Method::GridBem, 3), (Method::Fem, 3)] {
-        let study = convergence::run(
-            StudyCase {
-                punch: PunchKind::Sphere,
-                eps: 0.0,
-                depth: 1.5,
-            },
-            method,
-            levels,
-            |_| {},
+    for study in &inputs.convergence {
+        write(
+            dir,
+            &format!("convergence-{}.svg", study.method),
+            &convergence::chart(study),
         )?;
         write(
             dir,
-            &format!("convergence-{}.svg", method.name()),
-            &convergence::chart(&study),
+            &format!("table-convergence-{}.csv", study.method),
+            &convergence::csv(study)?,
         )?;
-        write(
-            dir,
-            &format!("table-convergence-{}.csv", method.name()),
-            &convergence::csv(&study)?,
-        )?;
-        studies.push(study);
     }
     progress("pressure profiles");
     pressure_chart(&ring, dir)?;
     progress("adhesion");
-    let mut pulloff = Vec::new();
     for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        let mut series = vec![
-            Series {
-                name: "fixed load".into(),
-                points: vec![],
-                bars: Vec::new(),
-            },
-            Series {
-                name: "paper fits".into(),
-                points: vec![],
-                bars: Vec::new(),
-            },
-            Series {
-                name: "full contact".into(),
-                points: vec![],
-                bars: Vec::new(),
-            },
-        ];
-        for k in 0..=8 {
-            let s = 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0);
-            let r = adhesion::concave(&ring, kind, s)?;
-            let fl = r.fixed_load.as_ref().map(|c| -c.force);
-            let pf = r.paper_fits_fixed_load.map(|p| -p.1);
-            let full = -r.full_contact.pulloff.force;
-            if let Some(v) = fl {
-                series[0].points.push((s, v));
-            }
-            if let Some(v) = pf {
-                series[1].points.push((s, v));
-            }
-            series[2].points.push((s, full));
-            pulloff.push(PulloffPoint {
-                punch: kind.name().to_string(),
-                d0_over_h: s,
-                fixed_load: fl,
-                paper_fits: pf,
-                full_contact: full,
-            });
-        }
         write(
             dir,
             &format!("pulloff-{}.svg", kind.name()),
-            &log_log_chart(
-                &format!("{kind}: pull-off / F0 against d0/h"),
-                "d0/h",
-                "-F/F0",
-                &series,
-            ),
+            &pulloff_chart(kind, &inputs.pulloff),
         )?;
     }
-    progress("pull-off simulation");
-    // A failure of this one simulation is shown in the report, not a failure of the report.
-    let live = live_pulloff().map_err(|e| e.to_string());
-    if let Ok(l) = &live {
+    if let Ok(l) = &inputs.pulloff_live {
         write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
     }
-    let simulations = super::pulloff_records::load()?;
-    let verdicts = verdicts(&ring, &pulloff, &simulations)?;
+    progress("verdicts");
+    let simulations = inputs.pulloff_simulations.clone();
+    let verdicts = verdicts(&ring, &inputs.pulloff, &simulations)?;
     let extras = ReportExtras {
         verdicts,
         pulloff_simulations: simulations,
-        pulloff_live: live,
-        speed_accuracy: speed,
-        convergence: studies,
-        pulloff,
-        wall_s: start.elapsed().as_secs_f64(),
+        pulloff_live: inputs.pulloff_live.clone(),
+        speed_accuracy: inputs.speed_accuracy.clone(),
+        convergence: inputs.convergence.clone(),
+        pulloff: inputs.pulloff.clone(),
+        wall_s: inputs.wall_s + start.elapsed().as_secs_f64(),
     };
+    progress("tables and pages");
     let json = serde_json::json!({
         "comparison": comparison,
         "fenicsx": fenicsx,

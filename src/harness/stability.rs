@@ -22,7 +22,7 @@ use crate::scene::{Scene, SceneSpec};
 use super::table::{Cell, Column, Format, Table};
 
 /// One probe and what happened.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Probe {
     pub method: String,
     pub probe: String,

@@ -11,7 +11,7 @@ pub mod paper_fits;
 use serde::Serialize;
 
 /// A dimensionless function the references approximate.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Quantity {
     /// `γ(eps)` of the flat annulus, `F = 2 E* d a γ`.
@@ -27,7 +27,7 @@ pub enum Quantity {
 }
 
 /// A reference value with its declared accuracy.
-#[derive(Clone, Copy, Debug, Serialize)]
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct ReferenceValue {
     pub value: f64,
     /// Bound on the absolute error, if the source provides one.
@@ -51,7 +51,7 @@ pub struct Reference {
 }
 
 /// How much a reference can be trusted.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum ReferenceKind {
     /// A closed-form exact result.
