@@ -21,7 +21,9 @@ Examples:
   verify solve --punch flat-annulus --eps 0.5
   verify solve --punch cone --depth 2 --json
   verify solve --scene verify/scenes/cone-depth.toml
-  verify fenicsx                           stored FEniCSx results against our FEM")]
+  verify fenicsx                           stored FEniCSx results against our FEM
+  verify plan --nightly --out n.plan       the suite as independent jobs: `verify run --shard I/N`,
+                                           `verify merge` (on Slurm: scripts/slurm/submit.sh)")]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -174,7 +176,7 @@ Examples:
     /// output file, the exact `verify` command), for `verify run --shard` and `verify merge`.
     #[command(after_help = "\
 Plans (the same arguments give the same plan, byte for byte):
-  verify plan                  the default report (`verify compare --report`), 29 jobs
+  verify plan                  the default report (`verify compare --report`), 30 jobs
   verify plan --nightly        the nightly suite: the report with the FEM down to 1e-8, the
                                pull-off simulations (verify/pulloff/) and the stability probes
   verify plan --convergence --punch sphere --depth 1.5 --method fem --levels 4

@@ -103,14 +103,15 @@ pub fn run(args: RunArgs) -> Result<Reply, String> {
     let (index, count) = args.shard;
     let executable = std::env::current_exe()
         .map_err(|e| format!("cannot find this program's own path to run the jobs: {e}"))?;
-    let mut bar = Progress::new("run", the_plan.shard(index, count).map_err(message)?.len());
+    // One line per job on standard error (the shard's log under Slurm): which job, whether it
+    // succeeded, how long it took.
     let done = plan::run_shard(
         &the_plan,
         index,
         count,
         &args.results,
         &executable,
-        |line| bar.tick(line),
+        |line| eprintln!("{line}"),
     )
     .map_err(message)?;
     let mut text = format!(

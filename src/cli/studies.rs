@@ -33,6 +33,7 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
             fenicsx: fenicsx::run().map_err(message)?,
             peers: peers::run(parts::PEER_MAX_GRID).map_err(message)?,
             operators: operator::load_records().map_err(message)?,
+            adhesion_peers: Vec::new(),
         };
         return compare_reply(&inputs, None, args.json);
     }
@@ -52,6 +53,8 @@ pub(super) struct CompareInputs {
     pub fenicsx: Vec<fenicsx::FenicsxComparison>,
     pub peers: Vec<peers::PeerComparison>,
     pub operators: Vec<operator::OperatorStatus>,
+    /// The stored Tamaas pull-offs against our simulations (with a report only).
+    pub adhesion_peers: Vec<crate::harness::adhesion_peers::AdhesionPeerComparison>,
 }
 
 impl CompareInputs {
@@ -62,6 +65,7 @@ impl CompareInputs {
             fenicsx: inputs.fenicsx.clone(),
             peers: inputs.peers.clone(),
             operators: inputs.operators.clone(),
+            adhesion_peers: inputs.adhesion_peers.clone(),
         }
     }
 
@@ -71,6 +75,7 @@ impl CompareInputs {
             + fenicsx::failures(&self.fenicsx)
             + operator::failures(&self.operators)
             + peers::failures(&self.peers)
+            + crate::harness::adhesion_peers::failures(&self.adhesion_peers)
     }
 }
 
@@ -93,7 +98,8 @@ pub(super) fn compare_reply(
             "comparison": comparison,
             "fenicsx": external,
             "fenicsx_operators": operators,
-            "peers": peer_rows
+            "peers": peer_rows,
+            "adhesion_peers": inputs.adhesion_peers
         });
         return Ok(Reply::verdict(to_json(&all)?, success));
     }
@@ -102,6 +108,10 @@ pub(super) fn compare_reply(
     text += "\n";
     text += &operator::render_records(operators);
     text += &peers::render(peer_rows);
+    if !inputs.adhesion_peers.is_empty() {
+        text += "\n";
+        text += &crate::harness::adhesion_peers::table(&inputs.adhesion_peers).to_terminal();
+    }
     let _ = writeln!(
         text,
         "\n{} of {} stored FEniCSx results compared, {} failed; {} peer comparisons, {} failed.",

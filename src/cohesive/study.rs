@@ -358,6 +358,44 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     })
 }
 
+/// One simulation of each of `cases` (contact line from `b/a = 0`: flat and concave punches) at
+/// range `range` (units of `d0`) on `mesh`, the mesh condensed once for all; each as
+/// [`simulate_once`] (a concave case whose hole opens is declined).
+pub fn simulate_cases(
+    cases: &[Case],
+    range: f64,
+    mesh: &ProvidedMesh,
+) -> Result<Vec<LiveSimulation>> {
+    let options = study_options();
+    let start = Instant::now();
+    let (response, mesh_name) = surface_response_on_mesh(mesh, &options, 0.0)?;
+    let condensation_s = start.elapsed().as_secs_f64();
+    cases
+        .iter()
+        .map(|case| {
+            if case.punch == PunchKind::FlatAnnulus {
+                return Err(Error::Unsupported {
+                    method: "cohesive-fem".into(),
+                    reason: "simulate_cases covers contact lines from the axis (flat, cone, \
+                             sphere); the flat annulus needs its own mesh"
+                        .into(),
+                });
+            }
+            let (entry, curve) = simulate(&response, case, range)?;
+            open_hole_declined(case, &entry)?;
+            Ok(LiveSimulation {
+                curve,
+                punch: case.punch,
+                d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
+                mesh: mesh_name.clone(),
+                contact_nodes: response.radii.len(),
+                wall_s: entry.wall_s + condensation_s / cases.len() as f64,
+                entry,
+            })
+        })
+        .collect()
+}
+
 /// One point of a force-displacement curve: `(d/d0, F/F0, unloading)`.
 pub type CurveSample = (f64, f64, bool);
 

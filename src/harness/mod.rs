@@ -1,5 +1,6 @@
 //! The verification harness: tables comparing methods with each other and with the references.
 
+pub mod adhesion_peers;
 pub mod comparison;
 pub mod convergence;
 pub mod fenicsx;

@@ -14,6 +14,7 @@ use std::time::Instant;
 use clap::ValueEnum;
 use serde::{Deserialize, Serialize};
 
+use super::adhesion_peers::{self, AdhesionPeerComparison};
 use super::comparison::{self, ComparisonReport};
 use super::convergence::{self, ComputedLevel, StudyCase};
 use super::fenicsx::{self, FenicsxComparison};
@@ -60,6 +61,8 @@ pub enum Part {
     Adhesion(PunchKind),
     /// The report's single live pull-off simulation.
     PulloffLive,
+    /// Our pull-off simulations against the stored Tamaas ones.
+    AdhesionPeers,
     /// One pull-off simulation of `verify pulloff` (nightly).
     PulloffSimulation {
         punch: PunchKind,
@@ -84,6 +87,7 @@ pub enum PartResult {
     ConvergenceLevel(ComputedLevel),
     Adhesion(Vec<PulloffPoint>),
     PulloffLive(std::result::Result<LiveSimulation, String>),
+    AdhesionPeers(Vec<AdhesionPeerComparison>),
     PulloffSimulation(PulloffRecord),
     Stability(Vec<Probe>),
 }
@@ -132,6 +136,7 @@ impl Part {
             ),
             Part::Adhesion(kind) => format!("adhesion:{}", kind.name()),
             Part::PulloffLive => "pulloff-live".into(),
+            Part::AdhesionPeers => "adhesion-peers".into(),
             Part::PulloffSimulation {
                 punch,
                 eps,
@@ -190,6 +195,7 @@ impl Part {
             "peers" => Part::Peers,
             "operators" => Part::Operators,
             "pulloff-live" => Part::PulloffLive,
+            "adhesion-peers" => Part::AdhesionPeers,
             "stability" => Part::Stability,
             "speed" => {
                 let slug = positional.first().ok_or_else(|| bad("needs a problem"))?;
@@ -291,6 +297,7 @@ impl Part {
             },
             Part::Adhesion(_) => 4.0,
             Part::PulloffLive => 7.0,
+            Part::AdhesionPeers => 8.0,
             // A concave punch with an open hole runs until the hole is seen to open (d0/h = 1:
             // late in the sequence) and is then declined.
             Part::PulloffSimulation {
@@ -346,6 +353,7 @@ impl Part {
             Part::PulloffLive => {
                 PartResult::PulloffLive(report::live_pulloff().map_err(|e| e.to_string()))
             }
+            Part::AdhesionPeers => PartResult::AdhesionPeers(adhesion_peers::run()?),
             Part::PulloffSimulation {
                 punch,
                 eps,
@@ -451,6 +459,7 @@ pub fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
     parts.push(Part::Adhesion(PunchKind::Cone));
     parts.push(Part::Adhesion(PunchKind::Sphere));
     parts.push(Part::PulloffLive);
+    parts.push(Part::AdhesionPeers);
     parts
 }
 
@@ -548,6 +557,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
     let mut studies: Vec<(StudyCase, Method, usize, Vec<ComputedLevel>)> = Vec::new();
     let mut pulloff = Vec::new();
     let mut live = None;
+    let mut adhesion = None;
     let mut simulations = Vec::new();
     let mut stability = None;
     let mut report_parts = 0usize;
@@ -600,6 +610,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
             }
             (Part::Adhesion(_), PartResult::Adhesion(p)) => pulloff.extend(p),
             (Part::PulloffLive, PartResult::PulloffLive(l)) => live = Some(l),
+            (Part::AdhesionPeers, PartResult::AdhesionPeers(a)) => adhesion = Some(a),
             (Part::PulloffSimulation { .. }, PartResult::PulloffSimulation(r)) => {
                 simulations.push(r)
             }
@@ -653,6 +664,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
             pulloff: need((!pulloff.is_empty()).then_some(pulloff), "adhesion")?,
             pulloff_simulations: simulations,
             pulloff_live: need(live, "pulloff-live")?,
+            adhesion_peers: need(adhesion, "adhesion-peers")?,
             wall_s,
         },
         stability,

@@ -55,6 +55,9 @@ pub struct ReportExtras {
     /// This run's single pull-off simulation (cone, `d0/h = 10`, the smallest default range), or
     /// why it failed.
     pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
+    /// Tamaas's pull-off (stored, `verify/peers/adhesion/`) against this run's simulations.
+    #[serde(default)]
+    pub adhesion_peers: Vec<super::adhesion_peers::AdhesionPeerComparison>,
     pub wall_s: f64,
 }
 
@@ -199,6 +202,40 @@ fn verdicts(
 
 /// File of the live simulation's force-displacement chart.
 pub const PULLOFF_CURVE_CHART: &str = "pulloff-curve.svg";
+/// File of the chart of our pull-off curves against Tamaas's.
+pub const ADHESION_PEER_CHART: &str = "pulloff-tamaas.svg";
+
+/// Our force-displacement curves (pulling) against Tamaas's, one pair per stored case.
+fn adhesion_peer_chart(rows: &[super::adhesion_peers::AdhesionPeerComparison]) -> String {
+    let mut series = Vec::new();
+    for r in rows {
+        let case = match r.d0_over_h {
+            Some(x) => format!("{} d0/h = {x}", r.punch),
+            None => r.punch.to_string(),
+        };
+        series.push(Series {
+            name: format!("ours, {case}"),
+            points: r
+                .our_curve
+                .iter()
+                .filter(|p| p.2)
+                .map(|p| (p.0, p.1))
+                .collect(),
+            bars: Vec::new(),
+        });
+        series.push(Series {
+            name: format!("Tamaas, {case}"),
+            points: r.tamaas_curve.iter().map(|p| (p[0], p[1])).collect(),
+            bars: Vec::new(),
+        });
+    }
+    linear_chart(
+        "Pulling: force against approach, ours and Tamaas's (same law and range)",
+        "d/d0",
+        "F/F0 (compression positive)",
+        &series,
+    )
+}
 
 /// The live simulation's force-displacement curve: pressing, pulling, the pull-off marked.
 fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String {
@@ -523,6 +560,8 @@ pub struct ReportInputs {
     pub pulloff_simulations: Vec<super::pulloff_records::PulloffRecord>,
     /// This run's single pull-off simulation, or why it failed.
     pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
+    /// The stored Tamaas pull-offs against this run's simulations.
+    pub adhesion_peers: Vec<super::adhesion_peers::AdhesionPeerComparison>,
     /// Wall time of the computations (their sum when merged from jobs), seconds.
     pub wall_s: f64,
 }
@@ -624,6 +663,13 @@ pub fn write_report(
     if let Ok(l) = &inputs.pulloff_live {
         write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
     }
+    if !inputs.adhesion_peers.is_empty() {
+        write(
+            dir,
+            ADHESION_PEER_CHART,
+            &adhesion_peer_chart(&inputs.adhesion_peers),
+        )?;
+    }
     progress("verdicts");
     let simulations = inputs.pulloff_simulations.clone();
     let verdicts = verdicts(&ring, &inputs.pulloff, &simulations)?;
@@ -631,6 +677,7 @@ pub fn write_report(
         verdicts,
         pulloff_simulations: simulations,
         pulloff_live: inputs.pulloff_live.clone(),
+        adhesion_peers: inputs.adhesion_peers.clone(),
         speed_accuracy: inputs.speed_accuracy.clone(),
         convergence: inputs.convergence.clone(),
         pulloff: inputs.pulloff.clone(),
@@ -680,21 +727,24 @@ fn markdown(
     let failed = comparison.failures()
         + super::fenicsx::failures(fenicsx)
         + super::operator::failures(operators)
-        + super::peers::failures(peers);
+        + super::peers::failures(peers)
+        + super::adhesion_peers::failures(&extras.adhesion_peers);
     let _ = writeln!(
         md,
-        "**{} checks, {failed} failed.** Ring BEM against bounded references: {bounded}; consistency identities: {}; FEM against the ring BEM: {}; stored FEniCSx results: {}; stored FEniCSx operator comparisons: {}; stored peer results: {}.\n",
+        "**{} checks, {failed} failed.** Ring BEM against bounded references: {bounded}; consistency identities: {}; FEM against the ring BEM: {}; stored FEniCSx results: {}; stored FEniCSx operator comparisons: {}; stored peer results: {}; stored Tamaas pull-offs: {}.\n",
         bounded
             + comparison.identities.len()
             + comparison.fem.len()
             + fenicsx.len()
             + operators.len()
-            + peers.len(),
+            + peers.len()
+            + extras.adhesion_peers.len(),
         comparison.identities.len(),
         comparison.fem.len(),
         fenicsx.len(),
         operators.len(),
-        peers.len()
+        peers.len(),
+        extras.adhesion_peers.len()
     );
     for t in tables {
         if let Some(section) = &t.section {

@@ -216,6 +216,24 @@ pub fn report_tables(
             )
         });
     }
+    if !extras.adhesion_peers.is_empty() {
+        out.push(ReportTable {
+            intro: Some(
+                "The same law and range on Tamaas's grid BEM with its exponential adhesion \
+                 functional (`scripts/peers/run_adhesion.py`, stored in `verify/peers/adhesion/`; \
+                 a periodic cell, corrected for its images): agreement within Tamaas's \
+                 uncertainty (images and grid) plus our mesh change. The chart: the pulling \
+                 curves, Tamaas's approach converted to the isolated half-space."
+                    .into(),
+            ),
+            chart: Some(super::report::ADHESION_PEER_CHART.to_string()),
+            ..entry(
+                None,
+                "pulloff-tamaas",
+                super::adhesion_peers::table(&extras.adhesion_peers),
+            )
+        });
+    }
     for (k, sa) in extras.speed_accuracy.iter().enumerate() {
         let mut t = Table::new(
             &sa.problem,

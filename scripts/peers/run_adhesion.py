@@ -1,0 +1,223 @@
+"""Tamaas's grid BEM with its exponential adhesion functional on our punches and law: the peer of
+`verify pulloff` (issue 13, item 5). One JSON per case under verify/peers/adhesion/.
+
+The law is ours: tension (dw/rho) exp(-g/rho) at gap g, i.e. Tamaas's ExponentialAdhesionFunctional
+(potential -dw exp(-g/rho)), with non-penetration; E* = 1 (E = 1, nu = 0), a = 1. Units as
+`verify pulloff`: d0 = sqrt(2 pi a dw / E*); the flat punch has d0 = a (dw = 1/(2 pi)), the concave
+punches h = 1 and d0 = d0/h (dw = d0^2/(2 pi)); forces in Kendall's F0 = sqrt(8 pi E* dw a^3).
+
+Tamaas's adhesion works in its gap formulation, which is periodic only (its non-periodic operator
+is for the pressure formulation): the punch sits in a square cell of side L with its images, the
+surface outside the punch far away (-50 d0). The mean gap controls the approach: with Tamaas's
+zero-mean displacement, the approach against the cell's mean surface is d_per = -(mean gap shift)
+(`curve_shift`: shift / d0, F / F0). The isolated half-space's approach is d_per + F c_img, with
+c_img = 1/(2 E* a) - 1/k_cell measured on the flat punch pressed into full contact in the same
+cell (F = 2 E* a d there, isolated): `curve` holds (d / d0, F / F0) in that approach, comparable
+with ours. The images change the force at pull-off too, by O((a/L)^3) (the curvature of
+their displacement field over the punch): each case is solved on two cells (L = 3 and 6 at the
+same cell size 3/256) and two cell sizes (3/256 and 3/512 at L = 3); the stored value is the
+Richardson extrapolate to L -> infinity (order 3) plus the change to the finer cells; its
+uncertainty the Richardson correction plus that change.
+
+Path: displacement control from compression (a state of full contact, approach 0.08 d0) in steps
+of 0.04 d0, past the most tensile force; the pull-off is found by golden section between the neighbours of the most tensile
+step, to 0.002 d0. Tamaas solves each state on its own (no path history); with the hole closed (the
+cases here) there is one branch.
+
+Usage (from the repository root, in .venv-peers; scripts/peers/run_peers.sh adhesion):
+    python scripts/peers/run_adhesion.py
+"""
+
+import datetime
+import json
+import math
+import os
+import sys
+import time
+
+import numpy as np
+
+RANGE_OVER_D0 = 0.1
+STEP = 0.04  # d0 per step of the path
+REFINE = 0.002  # d0: width at which the golden-section search for the most tensile state stops
+OUTSIDE = -50.0  # heights outside the punch, in units of d0 (far beyond the law's range)
+CASES = [("flat", None), ("cone", 10.0), ("sphere", 10.0)]
+# (cell side L, cells per side N): two cell sizes at L = 3, two cells at dx = 3/256.
+GRIDS = [(3.0, 256), (3.0, 512), (6.0, 512)]
+
+
+def setup(kind, d0_over_h, side, n):
+    import tamaas as tm
+    d0 = 1.0 if d0_over_h is None else d0_over_h
+    dw = d0 * d0 / (2.0 * math.pi)
+    dx = side / n
+    c = (np.arange(n) + 0.5) * dx - side / 2
+    x, y = np.meshgrid(c, c, indexing="ij")
+    r = np.hypot(x, y)
+    inside = r <= 1.0
+    if kind == "cone":
+        g = 1.0 - r
+    elif kind == "sphere":
+        g = 1.0 - r * r
+    else:
+        g = np.zeros_like(r)
+    heights = np.where(inside, -g, OUTSIDE * d0)
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [side, side], [n, n])
+    model.E = 1.0
+    model.nu = 0.0
+    solver = tm.PolonskyKeerRey(model, heights, 1e-9, tm.PolonskyKeerRey.gap,
+                                tm.PolonskyKeerRey.gap)
+    adhesion = tm.ExponentialAdhesionFunctional(heights)
+    adhesion.parameters = {"rho": RANGE_OVER_D0 * d0, "surface_energy": dw}
+    solver.addFunctionalTerm(adhesion)
+    solver.max_iter = 20000
+    base = float(np.mean(-heights))  # mean gap of the undeformed surface touching the rim plane
+    f0 = math.sqrt(8.0 * math.pi * dw)
+
+    def force_at(shift):
+        """Force (compression positive, units of F0) at approach d_per = -shift * d0."""
+        solver.solve(base + shift * d0)
+        return float(np.array(model.traction).sum() * dx * dx) / f0
+
+    # The solver holds the model, surface and functional by reference (C++): keep them alive.
+    force_at.keep = (model, heights, adhesion, solver)
+    return force_at, d0, f0
+
+
+def image_compliance(side, n):
+    """1/(2 E* a) - 1/k_cell: the compliance the images and the zero-mean displacement of the
+    periodic cell take away, from the flat punch pressed into full contact in the same cell
+    (F = k_cell d there; isolated, F = 2 E* a d)."""
+    import tamaas as tm
+    dx = side / n
+    c = (np.arange(n) + 0.5) * dx - side / 2
+    x, y = np.meshgrid(c, c, indexing="ij")
+    heights = np.where(np.hypot(x, y) <= 1.0, 0.0, OUTSIDE)
+    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [side, side], [n, n])
+    model.E = 1.0
+    model.nu = 0.0
+    solver = tm.PolonskyKeerRey(model, heights, 1e-12, tm.PolonskyKeerRey.gap,
+                                tm.PolonskyKeerRey.gap)
+    depth = 0.1
+    solver.solve(float(np.mean(-heights)) - depth)
+    k_cell = float(np.array(model.traction).sum() * dx * dx) / depth
+    return 0.5 - 1.0 / k_cell
+
+
+def pull(kind, d0_over_h, side, n, log):
+    import tamaas as tm
+    tm.set_log_level(tm.LogLevel.error)
+    force_at, d0, f0 = setup(kind, d0_over_h, side, n)
+    start = time.perf_counter()
+    # Compression in full contact (flat punch: F = 2 E* a d; the concave ones pressed past 3 h).
+    first = -0.08
+    curve = []
+    s = first
+    best = None
+    while True:
+        f = force_at(s)
+        curve.append((s, f))
+        log(f"  {kind} L={side} N={n}: shift {s:+.3f} d0, F/F0 {f:+.5f}")
+        if best is None or f < best[1]:
+            best = (s, f)
+        elif f > best[1] + 0.01 and len(curve) > 3:
+            break
+        if s > first + 3.0:
+            raise RuntimeError("no pull-off within 3 d0 of pulling")
+        s = round(s + STEP, 10)
+    # Golden-section search for the most tensile state between the neighbours of the most
+    # tensile step (the force may fall steeply past it, where the branch ends).
+    k = min(range(len(curve)), key=lambda i: curve[i][1])
+    lo, hi = curve[k - 1][0], curve[k + 1][0]
+    ratio = (math.sqrt(5.0) - 1.0) / 2.0
+    x1, x2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
+    f1, f2 = force_at(x1), force_at(x2)
+    refined = [(x1, f1), (x2, f2)]
+    while hi - lo > REFINE:
+        if f1 < f2:
+            hi, x2, f2 = x2, x1, f1
+            x1 = hi - ratio * (hi - lo)
+            f1 = force_at(x1)
+            refined.append((x1, f1))
+        else:
+            lo, x1, f1 = x1, x2, f2
+            x2 = lo + ratio * (hi - lo)
+            f2 = force_at(x2)
+            refined.append((x2, f2))
+    s_best, f_best = min(refined + [curve[k]], key=lambda p: p[1])
+    curve = sorted(curve + refined)
+    pulloff = -f_best
+    wall = time.perf_counter() - start
+    c_img = image_compliance(side, n)
+    # The approach of the isolated half-space, d = d_per + F c_img, in units of d0.
+    isolated = [[-s_ + f * f0 * c_img / d0, f] for s_, f in curve]
+    return {
+        "side": side,
+        "cells": n,
+        "cell_size_over_a": side / n,
+        "pulloff_over_f0": pulloff,
+        "pulloff_shift_over_d0": s_best,
+        "curve_shift": [[s_, f] for s_, f in curve],
+        "image_compliance": c_img,
+        "curve": isolated,
+        "wall_s": wall,
+    }
+
+
+def main():
+    import tamaas
+    out_dir = os.path.join("verify", "peers", "adhesion")
+    os.makedirs(out_dir, exist_ok=True)
+    log = lambda m: print(m, file=sys.stderr, flush=True)
+    only = sys.argv[1:]
+    for kind, d0_over_h in CASES:
+        name = kind if d0_over_h is None else f"{kind}-d0h{d0_over_h:g}"
+        if only and name not in only:
+            continue
+        runs = [pull(kind, d0_over_h, side, n, log) for side, n in GRIDS]
+        coarse, fine, wide = runs
+        # The images act on the punch through the curvature of their displacement field over it
+        # (constant and linear parts are a rigid body and cancel by symmetry): O((a/L)^3), so
+        # Richardson with order 3 from L = 3 and 6 at the same cell size.
+        images = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) * 8.0 / 7.0
+        resolution = fine["pulloff_over_f0"] - coarse["pulloff_over_f0"]
+        richardson_correction = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) / 7.0
+        # Flat punch compressed in full contact: F = 2 E* a d (isolated); the cell's stiffness
+        # gives the image compliance that converts the approach (stored for every case: the same
+        # cell and grid).
+        cmd = f"verify pulloff --punch {kind}"
+        cmd += f" --d0h {d0_over_h:g}" if d0_over_h is not None else ""
+        cmd += f" --ranges {RANGE_OVER_D0}"
+        record = {
+            "package": "tamaas",
+            "package_version": tamaas.__version__,
+            "numpy_version": np.__version__,
+            "punch": kind,
+            "d0_over_h": d0_over_h,
+            "range_over_d0": RANGE_OVER_D0,
+            "law": "exponential: tension (dw/rho) exp(-g/rho), Tamaas ExponentialAdhesionFunctional "
+                   "(rho = range, surface_energy = dw); non-penetration; E* = 1, a = 1",
+            "units": "d0 = sqrt(2 pi a dw / E*) (flat: d0 = a; concave: h = 1, d0 = d0/h); "
+                     "forces / F0 = sqrt(8 pi E* dw a^3), compression positive in the curves",
+            "cell": "periodic square cell of side L centred on the punch; N x N cells; outside "
+                    f"the punch the surface is {OUTSIDE} d0 away",
+            "pulloff_over_f0": coarse["pulloff_over_f0"] + images + resolution,
+            "uncertainty": abs(richardson_correction) + abs(resolution),
+            "image_correction": images,
+            "resolution_change": resolution,
+            "runs": runs,
+            "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "reproduce": "PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_adhesion.py "
+                         + name,
+            "ours": cmd,
+        }
+        path = os.path.join(out_dir, f"tamaas-{name}.json")
+        with open(path, "w") as f:
+            json.dump(record, f, indent=1)
+            f.write("\n")
+        log(f"{path}: pull-off {record['pulloff_over_f0']:.4f} F0 +- {record['uncertainty']:.4f} "
+            f"(images {images:+.4f}, resolution {resolution:+.4f})")
+
+
+if __name__ == "__main__":
+    main()
