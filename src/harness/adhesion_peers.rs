@@ -56,7 +56,7 @@ pub struct AdhesionPeerComparison {
     pub our_mesh_change: f64,
     pub difference: f64,
     pub agrees: bool,
-    /// Our simulation's curve on the study mesh, and Tamaas's on its finest grid.
+    /// Our simulation's curve on the study mesh, and Tamaas's in its largest cell.
     pub our_curve: Vec<(f64, f64, bool)>,
     pub tamaas_curve: Vec<[f64; 2]>,
     pub tamaas_version: String,
@@ -121,11 +121,11 @@ fn compare(
     let mine = ours.entry.pulloff_over_f0;
     let mesh_change = check.entry.pulloff_over_f0 - mine;
     let difference = mine - stored.pulloff_over_f0;
-    let finest = stored
+    // The curve of the largest cell (the images' effect smallest; not corrected for them).
+    let widest = stored
         .runs
         .iter()
-        .filter(|r| (r.side - 3.0).abs() < 1e-12)
-        .max_by_key(|r| r.cells);
+        .max_by(|a, b| a.side.total_cmp(&b.side).then(a.cells.cmp(&b.cells)));
     AdhesionPeerComparison {
         file: file.to_string(),
         punch: stored.punch,
@@ -139,7 +139,7 @@ fn compare(
         difference,
         agrees: difference.abs() <= stored.uncertainty + mesh_change.abs(),
         our_curve: ours.curve,
-        tamaas_curve: finest.map(|r| r.curve.clone()).unwrap_or_default(),
+        tamaas_curve: widest.map(|r| r.curve.clone()).unwrap_or_default(),
         tamaas_version: stored.package_version.clone(),
         our_wall_s: ours.wall_s,
     }

@@ -297,7 +297,7 @@ impl Part {
             },
             Part::Adhesion(_) => 4.0,
             Part::PulloffLive => 7.0,
-            Part::AdhesionPeers => 8.0,
+            Part::AdhesionPeers => 13.0,
             // A concave punch with an open hole runs until the hole is seen to open (d0/h = 1:
             // late in the sequence) and is then declined.
             Part::PulloffSimulation {

@@ -223,7 +223,9 @@ pub fn report_tables(
                  functional (`scripts/peers/run_adhesion.py`, stored in `verify/peers/adhesion/`; \
                  a periodic cell, corrected for its images): agreement within Tamaas's \
                  uncertainty (images and grid) plus our mesh change. The chart: the pulling \
-                 curves, Tamaas's approach converted to the isolated half-space."
+                 curves, Tamaas's in its largest cell (L = 6a, not corrected for the images: \
+                 its maximum sits about 1 % above the extrapolate) with its approach converted \
+                 to the isolated half-space."
                     .into(),
             ),
             chart: Some(super::report::ADHESION_PEER_CHART.to_string()),
