@@ -17,11 +17,13 @@ with ours. The images change the force at pull-off too, by O((a/L)^3) (the curva
 their displacement field over the punch): each case is solved on two cells (L = 3 and 6 at the
 same cell size 3/256) and two cell sizes (3/256 and 3/512 at L = 3); the stored value is the
 Richardson extrapolate to L -> infinity (order 3) plus the change to the finer cells; its
-uncertainty the Richardson correction plus that change.
+uncertainty the Richardson correction plus that change (plus, where the most tensile state is the
+end of the branch and the search could not close in on it, the force change over the last step).
 
 Path: displacement control from compression (a state of full contact, approach 0.08 d0) in steps
-of 0.04 d0, past the most tensile force; the pull-off is found by golden section between the neighbours of the most tensile
-step, to 0.002 d0. Tamaas solves each state on its own (no path history); with the hole closed (the
+of 0.04 d0, to the first step past the most tensile force (or the end of the branch: a state that
+does not converge within MAX_ITER iterations); the pull-off is found by golden section between
+the neighbours of the most tensile step, to 0.002 d0. Tamaas solves each state on its own (no path history); with the hole closed (the
 cases here) there is one branch.
 
 Usage (from the repository root, in .venv-peers; scripts/peers/run_peers.sh adhesion):
@@ -42,6 +44,11 @@ STEP = 0.04  # d0 per step of the path
 REFINE = 0.002  # d0: width at which the golden-section search for the most tensile state stops
 OUTSIDE = -50.0  # heights outside the punch, in units of d0 (far beyond the law's range)
 CASES = [("flat", None), ("cone", 10.0), ("sphere", 10.0)]
+# Tamaas's iteration limit per state, and the error below which a state counts as converged (the
+# solver's tolerance is 1e-9): past the end of a branch there is no state near the last one and
+# the iteration runs to the limit, which marks the end (20000 cost minutes per state there).
+MAX_ITER = 3000
+TOLERANCE_MET = 1e-8
 # (cell side L, cells per side N): two cell sizes at L = 3, two cells at dx = 3/256.
 GRIDS = [(3.0, 256), (3.0, 512), (6.0, 512)]
 
@@ -70,13 +77,16 @@ def setup(kind, d0_over_h, side, n):
     adhesion = tm.ExponentialAdhesionFunctional(heights)
     adhesion.parameters = {"rho": RANGE_OVER_D0 * d0, "surface_energy": dw}
     solver.addFunctionalTerm(adhesion)
-    solver.max_iter = 20000
+    solver.max_iter = MAX_ITER
     base = float(np.mean(-heights))  # mean gap of the undeformed surface touching the rim plane
     f0 = math.sqrt(8.0 * math.pi * dw)
 
     def force_at(shift):
-        """Force (compression positive, units of F0) at approach d_per = -shift * d0."""
-        solver.solve(base + shift * d0)
+        """Force (compression positive, units of F0) at approach d_per = -shift * d0, or None
+        where the solver did not converge (past the end of the branch: no state near the last)."""
+        error = solver.solve(base + shift * d0)
+        if not (error <= TOLERANCE_MET):
+            return None
         return float(np.array(model.traction).sum() * dx * dx) / f0
 
     # The solver holds the model, surface and functional by reference (C++): keep them alive.
@@ -114,36 +124,65 @@ def pull(kind, d0_over_h, side, n, log):
     curve = []
     s = first
     best = None
+    end = None  # first shift with no state on the branch
     while True:
         f = force_at(s)
+        log(f"  {kind} L={side} N={n}: shift {s:+.3f} d0, F/F0 "
+            + ("not converged: end of the branch" if f is None else f"{f:+.5f}"))
+        if f is None:
+            end = s
+            break
         curve.append((s, f))
-        log(f"  {kind} L={side} N={n}: shift {s:+.3f} d0, F/F0 {f:+.5f}")
         if best is None or f < best[1]:
             best = (s, f)
-        elif f > best[1] + 0.01 and len(curve) > 3:
+        elif len(curve) > 3:
+            # Past the most tensile state: stop before the branch ends, so that the search
+            # below starts from a state on it (a solve past the end leaves the solver's state
+            # off the branch, and the next solves from it do not converge).
             break
         if s > first + 3.0:
             raise RuntimeError("no pull-off within 3 d0 of pulling")
         s = round(s + STEP, 10)
     # Golden-section search for the most tensile state between the neighbours of the most
-    # tensile step (the force may fall steeply past it, where the branch ends).
+    # tensile step (the force may fall steeply past it, where the branch ends); a trial with no
+    # converged state lies past the end and counts as no tension. Each trial starts from the
+    # state before it, so the search keeps to the branch where it can.
     k = min(range(len(curve)), key=lambda i: curve[i][1])
-    lo, hi = curve[k - 1][0], curve[k + 1][0]
+    lo = curve[k - 1][0]
+    hi = curve[k + 1][0] if k + 1 < len(curve) else end
     ratio = (math.sqrt(5.0) - 1.0) / 2.0
     x1, x2 = hi - ratio * (hi - lo), lo + ratio * (hi - lo)
-    f1, f2 = force_at(x1), force_at(x2)
-    refined = [(x1, f1), (x2, f2)]
-    while hi - lo > REFINE:
+    # Once a solve has failed, the solver's state is off the branch and every later solve from
+    # it fails too: the search stops there, and where the most tensile state is the last one
+    # before the end of the branch, the force change over the last step bounds how much more
+    # tension the branch reaches before it ends (its slope does not steepen toward the end).
+    refined = []
+    bracket = 0.0
+    if end is not None and k == len(curve) - 1:
+        bracket = abs(curve[k][1] - curve[k - 1][1])
+    failed = False
+
+    def trial(x):
+        nonlocal failed
+        f = None if failed else force_at(x)
+        if f is None:
+            failed = True
+            return float("inf")
+        refined.append((x, f))
+        return f
+
+    f1, f2 = trial(x1), trial(x2)
+    while hi - lo > REFINE and not failed:
         if f1 < f2:
             hi, x2, f2 = x2, x1, f1
             x1 = hi - ratio * (hi - lo)
-            f1 = force_at(x1)
-            refined.append((x1, f1))
+            f1 = trial(x1)
         else:
             lo, x1, f1 = x1, x2, f2
             x2 = lo + ratio * (hi - lo)
-            f2 = force_at(x2)
-            refined.append((x2, f2))
+            f2 = trial(x2)
+    if not failed:
+        bracket = 0.0
     s_best, f_best = min(refined + [curve[k]], key=lambda p: p[1])
     curve = sorted(curve + refined)
     pulloff = -f_best
@@ -161,6 +200,8 @@ def pull(kind, d0_over_h, side, n, log):
         "image_compliance": c_img,
         "curve": isolated,
         "wall_s": wall,
+        "branch_end_shift_over_d0": end,
+        "branch_end_bracket": bracket,
     }
 
 
@@ -202,7 +243,8 @@ def main():
             "cell": "periodic square cell of side L centred on the punch; N x N cells; outside "
                     f"the punch the surface is {OUTSIDE} d0 away",
             "pulloff_over_f0": coarse["pulloff_over_f0"] + images + resolution,
-            "uncertainty": abs(richardson_correction) + abs(resolution),
+            "uncertainty": abs(richardson_correction) + abs(resolution)
+            + max(r["branch_end_bracket"] for r in runs),
             "image_correction": images,
             "resolution_change": resolution,
             "runs": runs,

@@ -1,16 +1,19 @@
 #!/usr/bin/env bash
 # Refresh the stored pull-off simulations (verify/pulloff/*.json): `verify pulloff --json` on the
-# flat punch, two flat annuli and the concave punches at the d0/h where their hole is closed at
-# the preload (large d0/h). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
+# flat punch, two flat annuli and the concave punches at d0/h = 0.3, 1, 3, 10 (pressed until the
+# hole closes; a range whose hole reopens is replaced by a smaller one). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
 # and 2 of the adapted family. Each file holds the result, the date and the command.
-# Cases the simulation declines (an open hole: cone d0/h = 0.3, 1, 3) are recorded with the reason.
+# Cases the simulation declines are recorded with the reason.
+# Usage: run_all.sh [NAME ...]   (e.g. cone-d0h0.3; default: every case)
 set -uo pipefail
 cd "$(dirname "$0")/../.."
 cargo build --release --quiet || exit 1
 mkdir -p verify/pulloff
 status=0
+wanted=("$@")
 run() {
   local name=$1; shift
+  if [ ${#wanted[@]} -gt 0 ] && [[ ! " ${wanted[*]} " == *" $name "* ]]; then return; fi
   local cmd="verify pulloff $* --json"
   echo "== $name: $cmd"
   local out err

@@ -136,10 +136,13 @@ Examples:
 The law: exponential adhesion, tension (dw/rho) exp(-s/rho) at separation s, work of adhesion dw,
 with non-penetration, on the contact line of the P2 FE model (condensed: the half-space's
 response there is exactly the FE model's). The punch is pressed to 0.5 d0 (flat punches) or 3h
-(cone, sphere), then pulled under displacement control; the preload's branch is followed until it
-ends (a jump, which is what fixed grips see); the pull-off is its most tensile force. A concave
-punch whose hole is open at the preload, or opens before the pull-off (small d0/h), is declined
-with that reason: the moving inner edge is not resolved by the mesh.
+(cone, sphere; deeper, in steps of 3h up to 24h, until the hole closes: small d0/h), then pulled
+under displacement control; the preload's branch is followed until it ends (a jump, which is what
+fixed grips see); the pull-off is its most tensile force. A range at which a concave punch's hole
+stays open, or reopens on the way out (the apex's unresolved pinhole is a flaw of the law's
+range), is on the annular branch, whose moving inner edge the mesh does not resolve: it is left
+out with that reason and a range half the smallest replaces it (down to rho/d0 = 0.003), until
+three ranges are on the closed hole's branch.
 
 Units: d0 = sqrt(2 pi a dw / E*) (= a for the flat punches; h = 1 for the concave ones, so
 d0 = d0/h); forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The
@@ -246,7 +249,7 @@ pub struct HistoryArgs {
 // The arguments of `verify pulloff`.
 #[derive(Args)]
 pub struct PulloffArgs {
-    /// Punch shape (cone and sphere: where their hole is closed at the preload, large d0/h).
+    /// Punch shape (cone and sphere: from full contact, pressed until the hole closes).
     #[arg(long, value_enum)]
     pub punch: PunchKind,
     /// b/a of the flat annulus.

@@ -65,10 +65,26 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         eps,
         d0_over_h,
     };
+    let (given, mut simulated, mut usable) = (args.ranges.len(), 0, 0);
     let result = study::run(case, &args.ranges, &mesh, check.as_ref(), |entry| {
+        simulated += 1;
+        let left = study::left_the_branch(&case, entry);
+        usable += usize::from(!left);
+        // The study replaces a range that left the branch by a smaller one once the given
+        // ranges are done and fewer than three are usable.
+        let smaller = entry.range_over_a / case.d0() * 0.5;
+        if left && simulated >= given && usable < 3 && smaller >= study::MIN_RANGE {
+            bar.grow(1);
+        }
         bar.tick(&format!(
-            "rho/a = {}: F/F0 = {:.4}",
-            entry.range_over_a, entry.pulloff_over_f0
+            "rho/a = {}: F/F0 = {:.4}{}",
+            entry.range_over_a,
+            entry.pulloff_over_f0,
+            if left {
+                " (left the branch: excluded)"
+            } else {
+                ""
+            }
         ))
     })
     .map_err(message)?;
@@ -87,7 +103,7 @@ pub fn render(s: &PulloffStudy) -> String {
             s.punch,
             s.eps.map_or(String::new(), |e| format!(" b/a = {e}")),
             s.d0_over_h.map_or(String::new(), |x| format!(
-                " d0/h = {x}, preload d = {}",
+                " d0/h = {x}, pressed to d = {} h or deeper until the hole closes",
                 s.preload_over_d0 * x
             )),
             s.contact_nodes,
@@ -101,6 +117,7 @@ pub fn render(s: &PulloffStudy) -> String {
             Column::number("pulloff_depth_over_d0", "at d/d0", Format::Fixed(5)),
             Column::text("maximum", "maximum"),
             Column::number("jumps", "jumps", Format::Fixed(0)),
+            Column::number("preload_over_d0", "pressed to d/d0", Format::Fixed(3)),
             Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
         ],
     );
@@ -117,10 +134,17 @@ pub fn render(s: &PulloffStudy) -> String {
             }
             .into(),
             (e.jumps as f64).into(),
+            e.preload_over_d0.unwrap_or(s.preload_over_d0).into(),
             e.wall_s.into(),
         ]);
     }
     let mut text = t.to_terminal();
+    for x in &s.excluded {
+        text += &format!(
+            "  left out: rho/a = {:.3e} (Tabor {:.2}), {}\n",
+            x.entry.range_over_a, x.entry.tabor, x.reason
+        );
+    }
     text += &match (s.extrapolated_over_f0, s.error_bar) {
         (Some(x), Some(bar)) => format!(
             "  extrapolated to zero range (linear in the range): F/F0 = {x:.4} +- {bar:.1e} \

@@ -26,10 +26,18 @@ pub struct PathOptions {
     pub preload: f64,
     /// Stop pulling at this depth if the punch is still attached (negative).
     pub pull_to: f64,
-    /// Largest depth step.
+    /// Largest depth step on the way out.
     pub max_step: f64,
+    /// Largest depth step on the way in (0: `max_step`).
+    #[serde(default)]
+    pub max_press_step: f64,
     /// Smallest depth step before a failing step is declared a jump.
     pub min_step: f64,
+    /// Concave punches: where the hole is still open at `preload`, press on in steps of
+    /// `preload` until it is closed (the centre within the law's range), down to this depth at
+    /// most; `None` stops at `preload` whatever the hole does.
+    #[serde(default)]
+    pub press_until_closed: Option<f64>,
 }
 
 /// One point of the force-displacement curve.
@@ -45,8 +53,9 @@ pub struct CurvePoint {
     /// Outermost node separated by more than the zone (`x > 3 ρ`), if any: the edge of an open
     /// hole of a concave punch (or of the detached part).
     pub open_to: Option<f64>,
-    /// The innermost node (the centre, for a disk) is separated beyond the zone while some node
-    /// is in contact: an open hole.
+    /// The two innermost nodes (the centre and the next, for a disk) are separated beyond the
+    /// zone while some node is in contact: an open hole. (A cone's apex alone may stay open by
+    /// less than its first element's slope: a hole the mesh does not resolve, not counted.)
     pub centre_open: bool,
     /// Branch number: 0 from the start, one more after every jump.
     pub branch: usize,
@@ -59,7 +68,8 @@ pub struct CurvePoint {
 pub struct Jump {
     pub depth: f64,
     pub force_before: f64,
-    pub force_after: f64,
+    /// `None` where the state it lands on was not found ([`Curve::unresolved_landing`]).
+    pub force_after: Option<f64>,
     pub unloading: bool,
 }
 
@@ -82,6 +92,10 @@ pub struct Curve {
     pub pulloff: Pulloff,
     /// Newton iterations in all.
     pub iterations: usize,
+    /// Where the unloading branch ended and no state after the jump was found: why (the walk
+    /// stopped there; the pull-off of the branch is still its most tensile state).
+    #[serde(default)]
+    pub unresolved_landing: Option<String>,
 }
 
 fn describe(
@@ -110,10 +124,8 @@ fn describe(
         contact: extent(&|x| x <= 0.0),
         zone: extent(&|x| x > 0.0 && x <= ZONE_RANGES * range),
         open_to: extent(&|x| x > ZONE_RANGES * range).map(|(_, hi)| hi),
-        centre_open: e
-            .separation
-            .first()
-            .is_some_and(|&x| x > ZONE_RANGES * range)
+        centre_open: e.separation.len() >= 2
+            && e.separation[..2].iter().all(|&x| x > ZONE_RANGES * range)
             && e.separation.iter().any(|&x| x <= 0.0),
         branch,
         unloading,
@@ -138,13 +150,19 @@ struct Walker<'s> {
     states: Vec<Equilibrium>,
     branch: usize,
     iterations: usize,
+    unresolved_landing: Option<String>,
 }
 
 impl Walker<'_> {
     /// Walk from the last state to `target` (stopping early once detached when unloading).
     fn walk(&mut self, target: f64, unloading: bool) -> Result<()> {
         let f0 = kendall(self.surface);
-        let mut step = self.options.max_step;
+        let largest = if unloading || self.options.max_press_step <= 0.0 {
+            self.options.max_step
+        } else {
+            self.options.max_press_step.max(self.options.min_step)
+        };
+        let mut step = largest;
         loop {
             let last = self.states.last().expect("a start state").clone();
             if (last.depth - target).abs() <= 1e-15
@@ -173,13 +191,28 @@ impl Walker<'_> {
             let next = if continuous {
                 attempt?
             } else {
-                self.landing(depth, attempt)?
+                match self.landing(depth, attempt) {
+                    Ok(state) => state,
+                    // The unloading branch has ended (its pull-off is behind) but the state it
+                    // jumps to was not found: the walk stops there, and says so.
+                    Err(e) if unloading => {
+                        self.jumps.push(Jump {
+                            depth: last.depth,
+                            force_before: last.force,
+                            force_after: None,
+                            unloading,
+                        });
+                        self.unresolved_landing = Some(e.to_string());
+                        return Ok(());
+                    }
+                    Err(e) => return Err(e),
+                }
             };
             if !continuous {
                 self.jumps.push(Jump {
                     depth: last.depth,
                     force_before: last.force,
-                    force_after: next.force,
+                    force_after: Some(next.force),
                     unloading,
                 });
                 self.branch += 1;
@@ -187,7 +220,7 @@ impl Walker<'_> {
             self.curve
                 .push(describe(self.surface, &next, self.branch, unloading));
             self.states.push(next);
-            step = (1.5 * step).min(self.options.max_step);
+            step = (1.5 * step).min(largest);
         }
     }
 }
@@ -244,16 +277,37 @@ pub fn follow(surface: &CohesiveSurface, options: PathOptions) -> Result<Curve> 
         iterations: start.iterations,
         states: vec![start],
         branch: 0,
+        unresolved_landing: None,
     };
     walker.walk(options.preload, false)?;
+    if let Some(deepest) = options.press_until_closed {
+        let mut depth = options.preload;
+        while walker.curve.last().is_some_and(|p| p.centre_open) && depth < deepest {
+            depth = (depth + options.preload.abs().max(options.max_press_step)).min(deepest);
+            walker.walk(depth, false)?;
+        }
+    }
     let preload_index = walker.states.len() - 1;
     walker.walk(options.pull_to, true)?;
+    let end = walker.states.last().expect("a state");
+    if !walker.jumped_while_unloading() && !detached(surface, end) {
+        return Err(Error::NoConvergence {
+            method: "cohesive-fem".into(),
+            reason: format!(
+                "the punch is still attached at the end of the pull, d = {} (force {}): the \
+                 pull-off lies deeper; pull further",
+                crate::error::show(options.pull_to),
+                crate::error::show(end.force)
+            ),
+        });
+    }
     let pulloff = pulloff(&mut walker, preload_index)?;
     Ok(Curve {
         points: walker.curve,
         jumps: walker.jumps,
         pulloff,
         iterations: walker.iterations,
+        unresolved_landing: walker.unresolved_landing,
     })
 }
 

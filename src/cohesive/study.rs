@@ -31,6 +31,11 @@ pub const FLAT_PRELOAD: f64 = 0.5;
 /// without adhesion (`3h`); with adhesion both punches' holes close earlier where `d0/h` is large.
 pub const CONCAVE_PRELOAD: f64 = 3.0;
 
+/// Deepest preload of a concave punch, in units of `h`: where its hole is still open at
+/// [`CONCAVE_PRELOAD`] (small `d0/h`: the JKR route closes the cone's hole at `d0/h = 0.3` only
+/// past `3.8 h`), it is pressed on in steps of `3h` until the hole closes, down to this depth.
+pub const MAX_CONCAVE_PRELOAD: f64 = 24.0;
+
 /// Widest error bar, relative to the extrapolate, that still gives a verdict.
 pub const CONCLUSIVE_BAR: f64 = 0.1;
 
@@ -46,11 +51,22 @@ pub struct Case {
 
 impl Case {
     /// Kendall's depth `d0` in units of `a` (`h = 1` for the concave punches).
-    fn d0(&self) -> f64 {
+    pub fn d0(&self) -> f64 {
         if self.punch.is_concave() {
             self.d0_over_h
         } else {
             1.0
+        }
+    }
+
+    /// Where the pull stops if the punch is still attached (an error then): `4 d0` out, and for
+    /// a concave punch `2h` more (its pull-off from full contact lies at `d = -(c h + d0 ...)`:
+    /// `-1.3 h` for the sphere at `d0/h = 0.3`).
+    fn pull_to(&self) -> f64 {
+        if self.punch.is_concave() {
+            -4.0 * self.d0() - 2.0
+        } else {
+            -4.0 * self.d0()
         }
     }
 
@@ -80,12 +96,76 @@ pub struct SequenceEntry {
     /// Jumps along the path (the ends of branches; small ones are the crack front passing nodes).
     pub jumps: usize,
     pub points: usize,
+    /// Depth the punch was pressed to, over `d0`: the preload, or deeper where a concave
+    /// punch's hole was still open there ([`MAX_CONCAVE_PRELOAD`]).
+    #[serde(default)]
+    pub preload_over_d0: Option<f64>,
     /// Concave punches: the hole was closed (every node within the law's range) at the preload.
     pub hole_closed_at_preload: Option<bool>,
     /// Concave punches: a hole was open at some point of the pull before the pull-off.
     pub hole_open_before_pulloff: Option<bool>,
+    /// Where the hole (re)opened on the way out: `(d/d0, F/F0)`, compression positive.
+    #[serde(default)]
+    pub hole_reopened_at: Option<(f64, f64)>,
+    /// The unloading branch ended and the state it jumps to was not found: why.
+    #[serde(default)]
+    pub unresolved_landing: Option<String>,
     pub wall_s: f64,
 }
+
+/// Most points of a stored curve.
+pub const STORED_CURVE_POINTS: usize = 300;
+
+/// One simulation's force-displacement curve, thinned for storage.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct StoredCurve {
+    pub range_over_a: f64,
+    pub tabor: f64,
+    /// The simulation left the closed hole's branch ([`ExcludedEntry`]).
+    pub left_the_branch: bool,
+    /// `(d/d0, F/F0, unloading)`, compression positive.
+    pub points: Vec<CurveSample>,
+}
+
+/// `curve` thinned to about `most` points: evenly spaced ones, the turn from loading to
+/// unloading, the ends, and both sides of every step whose force changes by more than a hundredth
+/// of the curve's force span (the jumps).
+pub fn thin(curve: &[CurveSample], most: usize) -> Vec<CurveSample> {
+    let n = curve.len();
+    if n <= most {
+        return curve.to_vec();
+    }
+    let (lo, hi) = curve
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), p| {
+            (lo.min(p.1), hi.max(p.1))
+        });
+    let big = 0.01 * (hi - lo);
+    let mut keep = vec![false; n];
+    let every = (n / (most / 2).max(1)).max(1);
+    for i in 0..n {
+        let jump_after = i + 1 < n && (curve[i + 1].1 - curve[i].1).abs() > big;
+        let jump_before = i > 0 && (curve[i].1 - curve[i - 1].1).abs() > big;
+        let turn = i + 1 < n && curve[i + 1].2 != curve[i].2;
+        keep[i] = i % every == 0 || i + 1 == n || jump_after || jump_before || turn;
+    }
+    curve
+        .iter()
+        .zip(keep)
+        .filter(|(_, k)| *k)
+        .map(|(p, _)| *p)
+        .collect()
+}
+
+/// A simulation left out of the sequence, and why.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ExcludedEntry {
+    pub entry: SequenceEntry,
+    pub reason: String,
+}
+
+/// Smallest range `ρ/d0` a study extends its sequence to when a range is excluded (Tabor 144).
+pub const MIN_RANGE: f64 = 0.003;
 
 /// The study of one punch.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -104,6 +184,16 @@ pub struct PulloffStudy {
     pub contact_nodes: usize,
     pub unknowns: usize,
     pub sequence: Vec<SequenceEntry>,
+    /// Concave punches: simulations left out of the sequence because their hole was open at the
+    /// deepest preload or reopened on the way out (another branch; a smaller range replaces
+    /// each, down to [`MIN_RANGE`]), with the reason.
+    #[serde(default)]
+    pub excluded: Vec<ExcludedEntry>,
+    /// Force-displacement curves (thinned to at most [`STORED_CURVE_POINTS`] points, every
+    /// jump kept) of the smallest range in the sequence and of every range left out: what the
+    /// report charts.
+    #[serde(default)]
+    pub curves: Vec<StoredCurve>,
     /// Extrapolate to zero range from the two smallest ranges, linear in the range (the depth
     /// at which the surfaces part is offset by `O(ρ)`; the sequences measured are consistent
     /// with order 1).
@@ -182,26 +272,60 @@ pub fn study_mesh(eps: f64, level: i32) -> Result<ProvidedMesh> {
     }
 }
 
-/// The cases the direct simulation covers: the flat punches, and the concave ones where the
-/// hole is closed at the preload and stays closed until the pull-off (large `d0/h`). An open
-/// hole's inner edge moves during the pull, and the mesh is not yet refined along its path:
-/// such a case is declined with that reason.
+/// The cases the direct simulation covers: the flat punches, and the concave ones whose hole is
+/// closed at the preload (pressed until it closes, down to [`MAX_CONCAVE_PRELOAD`]) and stays
+/// closed until the pull-off. A hole still open, or reopened on the way out, puts the punch on
+/// the annular branch, whose inner edge moves during the pull and is not resolved along its
+/// path: such a simulation is declined with that reason.
 fn open_hole_declined(case: &Case, entry: &SequenceEntry) -> Result<()> {
-    if entry.hole_closed_at_preload == Some(false) || entry.hole_open_before_pulloff == Some(true) {
-        return Err(Error::Unsupported {
+    match branch_left(case, entry) {
+        None => Ok(()),
+        Some(what) => Err(Error::Unsupported {
             method: "cohesive-fem".into(),
             reason: format!(
-                "at d0/h = {} and range rho/d0 = {} the {}'s hole is open at the preload \
-                 d = {CONCAVE_PRELOAD} h or opens before the pull-off: its inner edge moves \
-                 during the pull, and the mesh is not refined along its path (the direct \
-                 simulation covers flat punches and closed holes, large d0/h)",
+                "at d0/h = {} and range rho/d0 = {} {what}: the {} is then on the annular \
+                 branch, whose inner edge moves during the pull, and the mesh is not refined \
+                 along its path (the direct simulation covers flat punches and closed holes)",
                 crate::error::show(case.d0_over_h),
                 crate::error::show(entry.range_over_a / case.d0()),
                 case.punch
             ),
-        });
+        }),
     }
-    Ok(())
+}
+
+/// How a concave punch's simulation left the branch of the closed hole, if it did: the hole
+/// still open at the deepest preload, reopened on the way out, or an unknown landing.
+fn branch_left(case: &Case, entry: &SequenceEntry) -> Option<String> {
+    let pressed = || crate::error::show(entry.preload_over_d0.unwrap_or(f64::NAN) * case.d0());
+    if entry.hole_closed_at_preload == Some(false) {
+        Some(format!(
+            "the hole is still open at the deepest preload d = {} h",
+            pressed()
+        ))
+    } else if let Some((depth, force)) = entry.hole_reopened_at {
+        Some(format!(
+            "the hole closed on the way in (pressed to d = {} h) and reopened on the way out at \
+             d/d0 = {depth:.4}, F/F0 = {force:.4} (compression positive)",
+            pressed()
+        ))
+    } else if let (true, Some(why)) = (case.punch.is_concave(), &entry.unresolved_landing) {
+        Some(format!(
+            "the branch ended at d/d0 = {:.4}, F/F0 = {:.4} (compression positive) and the state \
+             it jumps to was not found ({why}): whether the hole reopened or the rim let go is \
+             unknown",
+            entry.pulloff_depth_over_d0, -entry.pulloff_over_f0
+        ))
+    } else {
+        None
+    }
+}
+
+/// Whether `entry` left the preload's branch (hole open at the deepest preload, reopened, or an
+/// unknown landing; concave punches): [`run`] then leaves it out and adds a smaller range while
+/// fewer than three are usable.
+pub fn left_the_branch(case: &Case, entry: &SequenceEntry) -> bool {
+    case.punch.is_concave() && branch_left(case, entry).is_some()
 }
 
 /// [`run`] on the study meshes: level [`STUDY_LEVEL`] of the adapted family for the contact
@@ -259,12 +383,59 @@ pub fn run(
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
     let mut sequence = Vec::new();
-    for &range in ranges {
-        let (entry, _) = simulate(&response, &case, range)?;
+    let mut excluded = Vec::new();
+    let mut curves = Vec::new();
+    let mut queue: Vec<f64> = ranges.to_vec();
+    let mut next = 0;
+    loop {
+        if next == queue.len() {
+            // A range whose hole is open or reopens is on another branch: the sequence goes on
+            // to smaller ones (further toward the JKR limit) until three are on the preload's
+            // branch, while that stays affordable.
+            let smaller = queue[queue.len() - 1] * 0.5;
+            if sequence.len() < 3 && !excluded.is_empty() && smaller >= MIN_RANGE {
+                queue.push(smaller);
+            } else {
+                break;
+            }
+        }
+        let range = queue[next];
+        next += 1;
+        let (entry, curve) = simulate(&response, &case, range)?;
         progress(&entry);
-        open_hole_declined(&case, &entry)?;
-        sequence.push(entry);
+        let stored = StoredCurve {
+            range_over_a: entry.range_over_a,
+            tabor: entry.tabor,
+            left_the_branch: false,
+            points: thin(&curve, STORED_CURVE_POINTS),
+        };
+        match branch_left(&case, &entry) {
+            None => {
+                sequence.push(entry);
+                // Only the smallest range's curve of the sequence is kept.
+                curves.retain(|c: &StoredCurve| c.left_the_branch);
+                curves.push(stored);
+            }
+            Some(reason) => {
+                excluded.push(ExcludedEntry { reason, entry });
+                curves.push(StoredCurve {
+                    left_the_branch: true,
+                    ..stored
+                });
+            }
+        }
     }
+    if sequence.is_empty() {
+        let reasons: Vec<&str> = excluded.iter().map(|e| e.reason.as_str()).collect();
+        return Err(Error::Unsupported {
+            method: "cohesive-fem".into(),
+            reason: format!("no range gave a closed hole: {}", reasons.join("; ")),
+        });
+    }
+    let ranges: Vec<f64> = sequence
+        .iter()
+        .map(|e| e.range_over_a / case.d0())
+        .collect();
     let mesh_difference = match check_mesh {
         Some(coarser) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
@@ -314,6 +485,8 @@ pub fn run(
         contact_nodes: response.radii.len(),
         unknowns: response.unknowns,
         sequence,
+        excluded,
+        curves,
         extrapolated_over_f0: extrapolated,
         error_bar,
         mesh_difference,
@@ -433,13 +606,16 @@ fn simulate(
         .map(|&r| case.punch.gap_shape(r))
         .collect();
     let surface = CohesiveSurface::new(response, recess, law)?;
-    // Steps of 0.02 d0 (and of 0.02 h on the way in, where d0 > h).
+    // Steps of 0.02 d0 on the way out (0.02 h where d0 > h), of 0.02 h on the way in to a
+    // concave punch's preload (its hole closes over several h, node by node, whatever the step).
     let step = 0.02 * d0.min(1.0);
     let path = PathOptions {
         preload: case.preload(),
-        pull_to: -4.0 * d0,
+        pull_to: case.pull_to(),
         max_step: step,
+        max_press_step: if case.punch.is_concave() { 0.02 } else { step },
         min_step: 1e-7 * d0,
+        press_until_closed: case.punch.is_concave().then_some(MAX_CONCAVE_PRELOAD),
     };
     let curve = follow(&surface, path)?;
     let concave = case.punch.is_concave();
@@ -453,13 +629,13 @@ fn simulate(
         .iter()
         .skip(preload)
         .find(|p| p.branch > branch);
-    let open_before = curve
+    let reopened = curve
         .points
         .iter()
         .skip(preload)
         .take_while(|p| p.depth >= curve.pulloff.depth)
-        .any(|p| p.centre_open)
-        || landing.is_some_and(|p| p.centre_open);
+        .find(|p| p.centre_open)
+        .or(landing.filter(|p| p.centre_open));
     let entry = SequenceEntry {
         range_over_a: range * d0,
         tabor: law.tabor(),
@@ -468,8 +644,11 @@ fn simulate(
         smooth_maximum: curve.pulloff.smooth,
         jumps: curve.jumps.len(),
         points: curve.points.len(),
+        preload_over_d0: Some(curve.points[preload].depth / d0),
         hole_closed_at_preload: concave.then_some(closed_at_preload),
-        hole_open_before_pulloff: concave.then_some(open_before),
+        hole_open_before_pulloff: concave.then_some(reopened.is_some()),
+        hole_reopened_at: reopened.map(|p| (p.depth / d0, p.force / f0)),
+        unresolved_landing: curve.unresolved_landing.clone(),
         wall_s: begun.elapsed().as_secs_f64(),
     };
     // The curve in units of d0 and F0: (depth, force, unloading).
@@ -502,4 +681,31 @@ fn extrapolate(sequence: &[SequenceEntry], mesh_difference: f64) -> (Option<f64>
         Some(last),
         Some(correction + (last - previous).abs() + mesh_difference),
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thinning_keeps_the_ends_the_turn_and_both_sides_of_every_jump() {
+        // A saw: 2000 points of a slow ramp with a drop of 1 every 400 points, pressing for the
+        // first half, pulling for the second.
+        let curve: Vec<CurveSample> = (0..2000)
+            .map(|i| {
+                let f = i as f64 * 1e-3 - (i / 400) as f64;
+                (i as f64, f, i >= 1000)
+            })
+            .collect();
+        let thinned = thin(&curve, 100);
+        assert!(thinned.len() <= 140, "{} points", thinned.len());
+        assert_eq!(thinned.first(), curve.first());
+        assert_eq!(thinned.last(), curve.last());
+        for jump in [400, 800, 1200, 1600] {
+            assert!(thinned.contains(&curve[jump - 1]) && thinned.contains(&curve[jump]));
+        }
+        assert!(thinned.contains(&curve[999]) && thinned.contains(&curve[1000]));
+        // Short curves are kept whole.
+        assert_eq!(thin(&curve[..50], 100).len(), 50);
+    }
 }

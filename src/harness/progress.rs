@@ -43,6 +43,14 @@ impl Progress {
         }
     }
 
+    /// `extra` more steps than announced (a sweep that found it needs them).
+    pub fn grow(&mut self, extra: usize) {
+        self.total += extra;
+        if let Some(bar) = &self.bar {
+            bar.set_length(self.total as u64);
+        }
+    }
+
     /// One step done; `what` names it.
     pub fn tick(&mut self, what: &str) {
         self.done = (self.done + 1).min(self.total);

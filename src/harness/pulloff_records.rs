@@ -78,7 +78,7 @@ pub fn load() -> Result<Vec<PulloffRecord>> {
 /// A row of [`table`] with no simulation result: the case, the date and the verdict cell.
 pub fn row_without_result(case: String, date: &str, verdict: Cell) -> Vec<Cell> {
     let mut row = vec![case.into()];
-    row.extend(std::iter::repeat_n(Cell::Missing, 6));
+    row.extend(std::iter::repeat_n(Cell::Missing, 7));
     row.push(date.into());
     row.push(verdict);
     row
@@ -90,7 +90,8 @@ pub fn table(records: &[PulloffRecord]) -> Table {
         "Pull-off by direct simulation (stored; cohesive zone on the FE model)",
         vec![
             Column::text("case", "case"),
-            Column::text("sequence", "F/F0 at Tabor 9, 18, 36"),
+            Column::text("sequence", "F/F0 at Tabor (λ: F/F0)"),
+            Column::text("left_out", "left out (another branch)"),
             Column::number("extrapolated_over_f0", "extrapolate", Format::Fixed(4)),
             Column::number("error_bar", "error bar", Format::Scientific(1)),
             Column::number("jkr_over_f0", "JKR route", Format::Fixed(4)),
@@ -107,11 +108,36 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                 let sequence: Vec<String> = s
                     .sequence
                     .iter()
-                    .map(|e| format!("{:.4}", e.pulloff_over_f0))
+                    .map(|e| format!("{:.0}: {:.4}", e.tabor, e.pulloff_over_f0))
+                    .collect();
+                let left_out: Vec<String> = s
+                    .excluded
+                    .iter()
+                    .map(|x| {
+                        let how = match x.entry.hole_reopened_at {
+                            Some((d, f)) => {
+                                format!("hole reopened at F/F0 = {f:.2}, d/d0 = {d:.2}")
+                            }
+                            None if x.entry.hole_closed_at_preload == Some(false) => {
+                                "hole open at the deepest preload".to_string()
+                            }
+                            None => format!(
+                                "branch ended at F/F0 = {:.2}, landing not found",
+                                -x.entry.pulloff_over_f0
+                            ),
+                        };
+                        format!("λ {:.0}: {how}", x.entry.tabor)
+                    })
                     .collect();
                 t.push(vec![
                     case.into(),
                     sequence.join(", ").into(),
+                    if left_out.is_empty() {
+                        "-".to_string()
+                    } else {
+                        left_out.join("; ")
+                    }
+                    .into(),
                     s.extrapolated_over_f0.into(),
                     s.error_bar.into(),
                     s.jkr_reference().into(),
@@ -135,6 +161,65 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                     None => "no result".into(),
                 },
             )),
+        }
+    }
+    t
+}
+
+/// The first stored record with a simulation that left the closed hole's branch and its
+/// curves (the one the report charts), if any.
+pub fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord> {
+    records.iter().find(|r| {
+        r.result
+            .as_ref()
+            .is_some_and(|s| s.curves.iter().any(|c| c.left_the_branch))
+    })
+}
+
+/// Where a stored simulation left the closed hole's branch: one row per left-out range (case,
+/// Tabor, what happened, where), beside the pull-off the smallest range reached on the branch.
+pub fn branches_table(records: &[PulloffRecord]) -> Table {
+    let mut t = Table::new(
+        "Where the closed hole's branch ended early (stored simulations)",
+        vec![
+            Column::text("case", "case"),
+            Column::number("tabor", "Tabor", Format::Fixed(0)),
+            Column::text("what", "what happened"),
+            Column::number("depth_over_d0", "at d/d0", Format::Fixed(3)),
+            Column::number("force_over_f0", "F/F0 there", Format::Fixed(3)),
+            Column::number("pressed_to_over_d0", "pressed to d/d0", Format::Fixed(2)),
+            Column::number(
+                "on_branch_over_f0",
+                "pull-off on the branch",
+                Format::Fixed(4),
+            ),
+        ],
+    );
+    for r in records {
+        let Some(s) = &r.result else { continue };
+        let on_branch = s.sequence.last().map(|e| e.pulloff_over_f0);
+        for x in &s.excluded {
+            let e = &x.entry;
+            let (what, at) = match e.hole_reopened_at {
+                Some(at) => ("the hole reopened on the way out", at),
+                None if e.hole_closed_at_preload == Some(false) => (
+                    "the hole stayed open at the deepest preload",
+                    (f64::NAN, f64::NAN),
+                ),
+                None => (
+                    "the branch ended; no landing state found",
+                    (e.pulloff_depth_over_d0, -e.pulloff_over_f0),
+                ),
+            };
+            t.push(vec![
+                r.file.trim_end_matches(".json").to_string().into(),
+                e.tabor.into(),
+                what.into(),
+                at.0.into(),
+                at.1.into(),
+                e.preload_over_d0.into(),
+                on_branch.into(),
+            ]);
         }
     }
     t

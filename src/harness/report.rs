@@ -202,6 +202,73 @@ fn verdicts(
 
 /// File of the live simulation's force-displacement chart.
 pub const PULLOFF_CURVE_CHART: &str = "pulloff-curve.svg";
+/// File of the chart of a stored study's curves, the ranges that left the branch among them.
+pub const PULLOFF_BRANCHES_CHART: &str = "pulloff-branches.svg";
+
+/// Where each range's pull of `record` ended, against the range: on the closed hole's branch
+/// (the rim's pull-off, extrapolated to zero range beside the JKR route's full-contact value),
+/// or earlier where the hole reopened (the left-out ranges). Compression positive.
+fn pulloff_branches_chart(record: &super::pulloff_records::PulloffRecord) -> String {
+    let Some(s) = &record.result else {
+        return String::new();
+    };
+    let d0 = s.d0_over_h.unwrap_or(1.0);
+    let on_branch: Vec<(f64, f64)> = s
+        .sequence
+        .iter()
+        .map(|e| (e.range_over_a / d0, -e.pulloff_over_f0))
+        .collect();
+    let left: Vec<(f64, f64)> = s
+        .excluded
+        .iter()
+        .map(|x| {
+            let e = &x.entry;
+            let force = e.hole_reopened_at.map_or(-e.pulloff_over_f0, |(_, f)| f);
+            (e.range_over_a / d0, force)
+        })
+        .collect();
+    let widest = on_branch
+        .iter()
+        .chain(&left)
+        .map(|p| p.0)
+        .fold(0.0, f64::max);
+    let mut series = vec![
+        Series {
+            name: "rim let go (on the branch)".into(),
+            points: on_branch,
+            bars: Vec::new(),
+        },
+        Series {
+            name: "hole reopened first".into(),
+            points: left,
+            bars: Vec::new(),
+        },
+    ];
+    if let (Some(x), Some(bar)) = (s.extrapolated_over_f0, s.error_bar) {
+        series.push(Series {
+            name: "extrapolate".into(),
+            points: vec![(0.0, -x)],
+            bars: vec![Some((-x - bar, -x + bar))],
+        });
+    }
+    if let Some(j) = s.jkr_reference() {
+        series.push(Series {
+            name: "JKR, full contact".into(),
+            points: vec![(0.0, -j), (widest, -j)],
+            bars: Vec::new(),
+        });
+    }
+    super::svg::linear_chart_with_markers(
+        &format!(
+            "{}: force where the pull left the preload's branch, by range",
+            record.file.trim_end_matches(".json")
+        ),
+        "range rho/d0",
+        "F/F0 (compression positive)",
+        &series,
+    )
+}
+
 /// File of the chart of our pull-off curves against Tamaas's.
 pub const ADHESION_PEER_CHART: &str = "pulloff-tamaas.svg";
 
@@ -662,6 +729,9 @@ pub fn write_report(
     }
     if let Ok(l) = &inputs.pulloff_live {
         write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
+    }
+    if let Some(record) = super::pulloff_records::with_branches(&inputs.pulloff_simulations) {
+        write(dir, PULLOFF_BRANCHES_CHART, &pulloff_branches_chart(record))?;
     }
     if !inputs.adhesion_peers.is_empty() {
         write(

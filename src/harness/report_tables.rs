@@ -180,7 +180,8 @@ pub fn report_tables(
                     live.entry.tabor, live.contact_nodes, live.mesh
                 )
                 .into(),
-                format!("{:.4}", live.entry.pulloff_over_f0).into(),
+                format!("{:.0}: {:.4}", live.entry.tabor, live.entry.pulloff_over_f0).into(),
+                Cell::Missing,
                 Cell::Missing,
                 Cell::Missing,
                 Cell::Missing,
@@ -202,7 +203,9 @@ pub fn report_tables(
                  displacement control at three ranges, extrapolated to zero range \
                  (`verify pulloff`; stored by `scripts/pulloff/run_all.sh`, which the nightly \
                  run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
-                 (concave punches, whose hole is closed at the preload)."
+                 (concave punches, pressed until their hole closes: 3h, or deeper for small \
+                 d0/h). A range at which the closed hole reopens on the way out is on another \
+                 branch: it is left out (named) and a smaller range replaces it."
                     .into(),
             ),
             chart: extras
@@ -213,6 +216,27 @@ pub fn report_tables(
                 Some("Pull-off by direct simulation"),
                 "pulloff-simulation",
                 table,
+            )
+        });
+    }
+    if let Some(record) = super::pulloff_records::with_branches(&extras.pulloff_simulations) {
+        out.push(ReportTable {
+            intro: Some(format!(
+                "What the formula route does not see: at small Tabor numbers the closed hole of \
+                 a concave punch reopens on the way out (the apex keeps a pinhole of the law's \
+                 range, a flaw the JKR route, with no flaw at the centre, does not have), so \
+                 those ranges end on the annular branch and are left out of the extrapolation; \
+                 from larger Tabor numbers on the hole holds until the rim lets go. Force \
+                 compression positive. The chart: {}, the force at which each range's pull \
+                 left the preload's branch against the range (the rim's pull-off, or the hole \
+                 reopening first), the extrapolate and the JKR route.",
+                record.file.trim_end_matches(".json")
+            )),
+            chart: Some(super::report::PULLOFF_BRANCHES_CHART.to_string()),
+            ..entry(
+                None,
+                "pulloff-branches",
+                super::pulloff_records::branches_table(&extras.pulloff_simulations),
             )
         });
     }
