@@ -217,9 +217,13 @@ fn the_surface_model_rejects_a_bad_law_or_start_with_a_reason() {
 #[test]
 fn tamaas_pulloff_agrees_with_the_simulation_at_the_same_range() {
     let rows = ringcontact::harness::adhesion_peers::run().expect("the comparison runs");
-    // The stored peer results (verify/peers/adhesion/, Tamaas 2.9): the flat punch and the
-    // cone at d0/h = 10 at least.
-    for wanted in ["tamaas-flat.json", "tamaas-cone-d0h10.json"] {
+    // The stored peer results (verify/peers/adhesion/, Tamaas 2.9): the flat punch, the cone
+    // and the sphere at d0/h = 10.
+    for wanted in [
+        "tamaas-flat.json",
+        "tamaas-cone-d0h10.json",
+        "tamaas-sphere-d0h10.json",
+    ] {
         assert!(
             rows.iter().any(|r| r.file == wanted),
             "{wanted} is not compared"
