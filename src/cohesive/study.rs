@@ -113,7 +113,7 @@ pub struct SequenceEntry {
     pub wall_s: f64,
 }
 
-/// Most points of a stored curve.
+/// Points a stored curve is thinned to (about; its jumps are all kept).
 pub const STORED_CURVE_POINTS: usize = 300;
 
 /// One simulation's force-displacement curve, thinned for storage.
@@ -189,7 +189,7 @@ pub struct PulloffStudy {
     /// each, down to [`MIN_RANGE`]), with the reason.
     #[serde(default)]
     pub excluded: Vec<ExcludedEntry>,
-    /// Force-displacement curves (thinned to at most [`STORED_CURVE_POINTS`] points, every
+    /// Force-displacement curves (thinned to about [`STORED_CURVE_POINTS`] points, every
     /// jump kept) of the smallest range in the sequence and of every range left out: what the
     /// report charts.
     #[serde(default)]
