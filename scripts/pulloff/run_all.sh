@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Refresh the stored pull-off simulations (verify/pulloff/*.json): `verify pulloff --json` on the
 # flat punch, two flat annuli and the concave punches at d0/h = 0.3, 1, 3, 10 (pressed until the
-# hole closes; a range whose hole reopens is replaced by a smaller one). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
+# hole closes; a range whose hole reopens is replaced by a smaller one), and the annular branch
+# of both at d0/h = 1 and of the cone at 3 (--branch annular). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
 # and 2 of the adapted family. Each file holds the result, the date and the command.
 # Cases the simulation declines are recorded with the reason.
 # Usage: run_all.sh [NAME ...]   (e.g. cone-d0h0.3; default: every case)
@@ -53,4 +54,9 @@ for x in 0.3 1 3 10; do
   run "cone-d0h$x" --punch cone --d0h "$x"
   run "sphere-d0h$x" --punch sphere --d0h "$x"
 done
+# The annular branch (touched with the hole open, then pulled) where the JKR route has a stable
+# annular contact (d0/h = 1), and where it has none (d0/h = 3: the hole closes, declined).
+run cone-d0h1-annular --punch cone --d0h 1 --branch annular
+run sphere-d0h1-annular --punch sphere --d0h 1 --branch annular
+run cone-d0h3-annular --punch cone --d0h 3 --branch annular
 exit $status

@@ -142,7 +142,15 @@ fixed grips see); the pull-off is its most tensile force. A range at which a con
 stays open, or reopens on the way out (the apex's unresolved pinhole is a flaw of the law's
 range), is on the annular branch, whose moving inner edge the mesh does not resolve: it is left
 out with that reason and a range half the smallest replaces it (down to rho/d0 = 0.003), until
-three ranges are on the closed hole's branch.
+three ranges are on the closed hole's branch (--branch closed, the default).
+
+--branch annular (cone, sphere): touched (the rim plane at the surface; adhesion pulls the rim
+into contact, the hole stays open), then pulled: the inner edge moves outward until the annulus
+lets go; the JKR limit is the annular contact's fixed-load pull-off (the paper's route). The
+contact line is meshed uniformly at a third of the zone length, one gmsh mesh per range (ranges
+rho/d0 >= 0.032: at most 600 line elements); node hops of the inner edge (force steps under
+0.01 F0) continue the branch. Where the hole closes first (no stable annular contact, as at
+d0/h >= 3) the range is left out; where it does at every range, the case is declined.
 
 Units: d0 = sqrt(2 pi a dw / E*) (= a for the flat punches; h = 1 for the concave ones, so
 d0 = d0/h); forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The
@@ -158,6 +166,7 @@ Examples:
   verify pulloff --punch flat                          Kendall: the sequence tends to 1
   verify pulloff --punch flat-annulus --eps 0.5 --json
   verify pulloff --punch sphere --d0h 3
+  verify pulloff --punch cone --d0h 1 --branch annular   about 3 min: the paper's route's branch
   verify pulloff --punch flat --ranges 0.1,0.05,0.025")]
     Pulloff(PulloffArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
@@ -258,10 +267,17 @@ pub struct PulloffArgs {
     /// d0/h of a concave punch.
     #[arg(long, allow_negative_numbers = true)]
     pub d0h: Option<f64>,
-    /// Ranges rho/d0 of the law, decreasing, comma-separated (the last three are extrapolated).
-    #[arg(long, value_delimiter = ',', allow_negative_numbers = true,
-          default_values_t = ringcontact_default_ranges())]
-    pub ranges: Vec<f64>,
+    /// Ranges rho/d0 of the law, decreasing, comma-separated (the last three are extrapolated)
+    /// [default: 0.05,0.025,0.0125; with --branch annular 0.1,0.07,0.05].
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
+    pub ranges: Option<Vec<f64>>,
+    /// Concave punches: the branch to follow. `closed`: pressed until the hole closes, then
+    /// pulled (JKR limit: the pull-off from full contact). `annular`: touched with the hole open,
+    /// then pulled, the inner edge moving outward (JKR limit: the annular contact's fixed-load
+    /// pull-off, the paper's route); its contact line is meshed uniformly at a third of the
+    /// zone per range (gmsh needed).
+    #[arg(long, value_enum, default_value_t = crate::cohesive::study::Branch::Closed)]
+    pub branch: crate::cohesive::study::Branch,
     /// A gmsh .msh file (units of a; physical groups as in meshes/half_space.geo) instead of the
     /// default mesh.
     #[arg(long)]
@@ -269,10 +285,6 @@ pub struct PulloffArgs {
     /// Print one JSON object instead of the table.
     #[arg(long)]
     pub json: bool,
-}
-
-fn ringcontact_default_ranges() -> Vec<f64> {
-    crate::cohesive::study::DEFAULT_RANGES.to_vec()
 }
 
 // The arguments of `verify jkr`.

@@ -27,22 +27,67 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
         ));
     }
-    if let Some(r) = args
-        .ranges
+    let annular = args.branch == study::Branch::Annular;
+    if annular && !args.punch.is_concave() {
+        return Err(format!(
+            "--branch annular: the annular branch is a concave punch's (cone, sphere); the {} \
+             has none",
+            args.punch
+        ));
+    }
+    if annular && args.mesh.is_some() {
+        return Err(
+            "--branch annular makes its own mesh per range (the contact line uniform at \
+                    a third of the zone); --mesh does not apply"
+                .into(),
+        );
+    }
+    let ranges = args.ranges.clone().unwrap_or_else(|| {
+        if annular {
+            study::ANNULAR_RANGES.to_vec()
+        } else {
+            study::DEFAULT_RANGES.to_vec()
+        }
+    });
+    if let Some(r) = ranges
         .iter()
         .find(|r| !(r.is_finite() && **r > 0.0 && **r < 1.0))
     {
         return Err(format!("--ranges: {r} is not a range rho/d0 in (0, 1)"));
     }
-    if args
-        .ranges
+    if ranges
         .windows(2)
         .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Less))
     {
         return Err(format!(
-            "--ranges {:?}: give decreasing ranges rho/d0",
-            args.ranges
+            "--ranges {ranges:?}: give decreasing ranges rho/d0"
         ));
+    }
+    let case = study::Case {
+        punch: args.punch,
+        eps,
+        d0_over_h,
+    };
+    if annular {
+        let mut bar = Progress::new("pull-off (annular branch)", ranges.len() + 1);
+        let result = crate::cohesive::annular::run_annular(case, &ranges, |entry| {
+            bar.tick(&format!(
+                "rho/a = {}: F/F0 = {:.4}{}",
+                entry.range_over_a,
+                entry.pulloff_over_f0,
+                if entry.hole_closed_at.is_some() {
+                    " (the hole closed: excluded)"
+                } else {
+                    ""
+                }
+            ))
+        })
+        .map_err(message)?;
+        refuse_non_finite("pulloff", &result.sequence)?;
+        if args.json {
+            return Ok(Reply::ok(to_json(&result)?));
+        }
+        return Ok(Reply::ok(render(&result)));
     }
     let mesh = match &args.mesh {
         Some(path) => ProvidedMesh {
@@ -59,14 +104,9 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         Some(_) => None,
         None => Some(study::study_mesh(eps, study::STUDY_LEVEL - 1).map_err(message)?),
     };
-    let mut bar = Progress::new("pull-off", args.ranges.len() + usize::from(check.is_some()));
-    let case = study::Case {
-        punch: args.punch,
-        eps,
-        d0_over_h,
-    };
-    let (given, mut simulated, mut usable) = (args.ranges.len(), 0, 0);
-    let result = study::run(case, &args.ranges, &mesh, check.as_ref(), |entry| {
+    let mut bar = Progress::new("pull-off", ranges.len() + usize::from(check.is_some()));
+    let (given, mut simulated, mut usable) = (ranges.len(), 0, 0);
+    let result = study::run(case, &ranges, &mesh, check.as_ref(), |entry| {
         simulated += 1;
         let left = study::left_the_branch(&case, entry);
         usable += usize::from(!left);
@@ -102,10 +142,19 @@ pub fn render(s: &PulloffStudy) -> String {
             "{}{}{}: pull-off by direct simulation ({} contact nodes, {} unknowns, mesh {})",
             s.punch,
             s.eps.map_or(String::new(), |e| format!(" b/a = {e}")),
-            s.d0_over_h.map_or(String::new(), |x| format!(
-                " d0/h = {x}, pressed to d = {} h or deeper until the hole closes",
-                s.preload_over_d0 * x
-            )),
+            s.d0_over_h.map_or(String::new(), |x| {
+                if s.branch == Some(study::Branch::Annular) {
+                    format!(
+                        " d0/h = {x}, annular branch: touched at d = {} h with the hole open",
+                        s.preload_over_d0 * x
+                    )
+                } else {
+                    format!(
+                        " d0/h = {x}, pressed to d = {} h or deeper until the hole closes",
+                        s.preload_over_d0 * x
+                    )
+                }
+            }),
             s.contact_nodes,
             s.unknowns,
             s.mesh

@@ -6,6 +6,7 @@
 //! contact line) and the law. As the law's range shrinks it tends to the JKR solution, which the
 //! harness's other route ([`crate::adhesion`]) builds from the non-adhesive ring-BEM solutions.
 
+pub mod annular;
 pub mod equilibrium;
 pub mod law;
 pub mod path;

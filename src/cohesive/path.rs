@@ -38,6 +38,12 @@ pub struct PathOptions {
     /// most; `None` stops at `preload` whatever the hole does.
     #[serde(default)]
     pub press_until_closed: Option<f64>,
+    /// Largest force change, in units of `F0`, of a step whose state needed a shifted Hessian
+    /// that still counts as the same branch: the crack front hopping a node (lattice trapping,
+    /// an artefact of the nodes) rather than the branch ending. 0 (the default): every shifted
+    /// step is halved down to `min_step` and then is the end of the branch.
+    #[serde(default)]
+    pub hop_force: f64,
 }
 
 /// One point of the force-displacement curve.
@@ -92,6 +98,9 @@ pub struct Curve {
     pub pulloff: Pulloff,
     /// Newton iterations in all.
     pub iterations: usize,
+    /// Steps accepted as node hops of the crack front ([`PathOptions::hop_force`]).
+    #[serde(default)]
+    pub hops: usize,
     /// Where the unloading branch ended and no state after the jump was found: why (the walk
     /// stopped there; the pull-off of the branch is still its most tensile state).
     #[serde(default)]
@@ -150,6 +159,7 @@ struct Walker<'s> {
     states: Vec<Equilibrium>,
     branch: usize,
     iterations: usize,
+    hops: usize,
     unresolved_landing: Option<String>,
 }
 
@@ -177,13 +187,19 @@ impl Walker<'_> {
                 last.depth + direction * step
             };
             let attempt = self.surface.equilibrium(depth, &last.separation);
+            let mut hop = false;
             let continuous = match &attempt {
                 Ok(next) => {
                     self.iterations += next.iterations;
-                    !next.shifted && (next.force - last.force).abs() <= JUMP_FORCE * f0
+                    let change = (next.force - last.force).abs();
+                    hop = next.shifted && change <= self.options.hop_force * f0;
+                    (!next.shifted || hop) && change <= JUMP_FORCE * f0
                 }
                 Err(_) => false,
             };
+            if continuous && hop {
+                self.hops += 1;
+            }
             if !continuous && step > self.options.min_step {
                 step *= 0.5;
                 continue;
@@ -277,6 +293,7 @@ pub fn follow(surface: &CohesiveSurface, options: PathOptions) -> Result<Curve> 
         iterations: start.iterations,
         states: vec![start],
         branch: 0,
+        hops: 0,
         unresolved_landing: None,
     };
     walker.walk(options.preload, false)?;
@@ -307,6 +324,7 @@ pub fn follow(surface: &CohesiveSurface, options: PathOptions) -> Result<Curve> 
         jumps: walker.jumps,
         pulloff,
         iterations: walker.iterations,
+        hops: walker.hops,
         unresolved_landing: walker.unresolved_landing,
     })
 }

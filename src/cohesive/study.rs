@@ -39,6 +39,36 @@ pub const MAX_CONCAVE_PRELOAD: f64 = 24.0;
 /// Widest error bar, relative to the extrapolate, that still gives a verdict.
 pub const CONCLUSIVE_BAR: f64 = 0.1;
 
+/// Which branch of a concave punch's contact a study follows.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum Branch {
+    /// Pressed until the hole closes, then pulled: the rim lets go (JKR: from full contact).
+    #[default]
+    Closed,
+    /// Touched (the rim plane at the undeformed surface, the hole open), then pulled: the inner
+    /// edge moves outward until the annulus lets go (JKR: the fixed-load pull-off of the annular
+    /// contact, the paper's route).
+    Annular,
+}
+
+/// Default ranges `ρ/d0` of the annular branch (Tabor 4.5 to 9): its contact line is uniformly
+/// refined to [`ANNULAR_ELEMENTS_PER_ZONE`] elements per zone length along the inner edge's
+/// whole path, which makes smaller ranges cost `O(ρ⁻⁶)` in the dense condensed model.
+pub const ANNULAR_RANGES: [f64; 3] = [0.1, 0.07, 0.05];
+
+/// Preload of the annular branch, in units of `h`: the rim plane at the undeformed surface
+/// (adhesion alone pulls the rim into contact; the hole stays open).
+pub const ANNULAR_PRELOAD: f64 = 0.0;
+
+/// Elements per cohesive-zone length `ℓ` along the annular branch's contact line (its
+/// uniform size `ℓ / 3`); the mesh check uses half as many.
+pub const ANNULAR_ELEMENTS_PER_ZONE: f64 = 3.0;
+
+/// Largest force step, in `F0`, accepted as the inner edge hopping a node on the annular
+/// branch (measured hops at three elements per zone: 4e-4 F0; the branch's end: 0.25-0.5 F0).
+pub const ANNULAR_HOP_FORCE: f64 = 0.01;
+
 /// What to simulate.
 #[derive(Clone, Copy, Debug)]
 pub struct Case {
@@ -110,6 +140,17 @@ pub struct SequenceEntry {
     /// The unloading branch ended and the state it jumps to was not found: why.
     #[serde(default)]
     pub unresolved_landing: Option<String>,
+    /// Annular branch: where the hole closed between the preload and the pull-off, `(d/d0,
+    /// F/F0)`, compression positive (the punch then left the annular branch).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub hole_closed_at: Option<(f64, f64)>,
+    /// Steps on which the crack front hopped a node and the branch went on
+    /// ([`ANNULAR_HOP_FORCE`]; annular branch only).
+    #[serde(default)]
+    pub node_hops: usize,
+    /// Annular branch: the uniform element size along the contact line (units of `a`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub line_element_size: Option<f64>,
     pub wall_s: f64,
 }
 
@@ -175,6 +216,9 @@ pub struct PulloffStudy {
     pub eps: Option<f64>,
     /// `d0/h` of a concave punch.
     pub d0_over_h: Option<f64>,
+    /// The branch followed (concave punches; absent in older records: the closed hole's).
+    #[serde(default)]
+    pub branch: Option<Branch>,
     pub law: String,
     pub preload_over_d0: f64,
     pub mesh: String,
@@ -216,9 +260,12 @@ pub struct PulloffStudy {
 
 impl PulloffStudy {
     /// The JKR route's value this simulation tends to: from full contact for a concave punch
-    /// (its hole is closed at the preload), else the fixed-load pull-off.
+    /// on the closed hole's branch, else (flat punches, the annular branch) the fixed-load
+    /// pull-off.
     pub fn jkr_reference(&self) -> Option<f64> {
-        if self.punch.is_concave() {
+        if self.branch == Some(Branch::Annular) {
+            self.jkr_fixed_load_over_f0
+        } else if self.punch.is_concave() {
             self.full_contact_over_f0
         } else {
             self.jkr_fixed_load_over_f0
@@ -401,29 +448,15 @@ pub fn run(
         }
         let range = queue[next];
         next += 1;
-        let (entry, curve) = simulate(&response, &case, range)?;
+        let (entry, curve) = simulate(&response, &case, range, Branch::Closed)?;
         progress(&entry);
-        let stored = StoredCurve {
-            range_over_a: entry.range_over_a,
-            tabor: entry.tabor,
-            left_the_branch: false,
-            points: thin(&curve, STORED_CURVE_POINTS),
-        };
-        match branch_left(&case, &entry) {
-            None => {
-                sequence.push(entry);
-                // Only the smallest range's curve of the sequence is kept.
-                curves.retain(|c: &StoredCurve| c.left_the_branch);
-                curves.push(stored);
-            }
-            Some(reason) => {
-                excluded.push(ExcludedEntry { reason, entry });
-                curves.push(StoredCurve {
-                    left_the_branch: true,
-                    ..stored
-                });
-            }
-        }
+        let left = branch_left(&case, &entry);
+        file_simulation(
+            (&mut sequence, &mut excluded, &mut curves),
+            entry,
+            &curve,
+            left,
+        );
     }
     if sequence.is_empty() {
         let reasons: Vec<&str> = excluded.iter().map(|e| e.reason.as_str()).collect();
@@ -440,7 +473,7 @@ pub fn run(
         Some(coarser) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
             let smallest = ranges[ranges.len() - 1];
-            let (entry, _) = simulate(&response, &case, smallest)?;
+            let (entry, _) = simulate(&response, &case, smallest, Branch::Closed)?;
             progress(&entry);
             open_hole_declined(&case, &entry)?;
             Some((entry.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs())
@@ -448,32 +481,12 @@ pub fn run(
         None => None,
     };
     let (extrapolated, error_bar) = extrapolate(&sequence, mesh_difference.unwrap_or(0.0));
-    let ring = RingBemSolver::new();
-    let (jkr, full_contact, paper) = match punch {
-        PunchKind::Flat => (Some(1.0), None, None),
-        PunchKind::FlatAnnulus => {
-            let r = crate::adhesion::flat_annulus(&ring, eps)?;
-            // The edge that lets go first (smaller |d_c|) sets the pull-off.
-            let edge = if r.governing_edge == "outer" {
-                r.fc_outer
-            } else {
-                r.fc_inner
-            };
-            (Some(-edge), None, None)
-        }
-        PunchKind::Cone | PunchKind::Sphere => {
-            let r = crate::adhesion::concave(&ring, punch, case.d0_over_h)?;
-            (
-                r.fixed_load.map(|c| -c.force),
-                Some(-r.full_contact.pulloff.force),
-                r.paper_fits_fixed_load.map(|(_, f)| -f),
-            )
-        }
-    };
+    let (jkr, full_contact, paper) = jkr_values(&case)?;
     Ok(PulloffStudy {
         punch,
         eps: (punch == PunchKind::FlatAnnulus).then_some(eps),
         d0_over_h: punch.is_concave().then_some(case.d0_over_h),
+        branch: punch.is_concave().then_some(Branch::Closed),
         law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (d0 = a for the \
               flat punches, h = 1 for the concave ones); non-penetration; nodal quadrature on \
               the FE contact line (P2)"
@@ -501,6 +514,64 @@ pub fn run(
     })
 }
 
+/// File one simulation: into the sequence (its curve kept as the smallest range's, replacing the
+/// previous one) or, where `left` names how it left the branch, among the excluded (its curve
+/// kept too).
+pub(super) fn file_simulation(
+    (sequence, excluded, curves): (
+        &mut Vec<SequenceEntry>,
+        &mut Vec<ExcludedEntry>,
+        &mut Vec<StoredCurve>,
+    ),
+    entry: SequenceEntry,
+    curve: &[CurveSample],
+    left: Option<String>,
+) {
+    let stored = StoredCurve {
+        range_over_a: entry.range_over_a,
+        tabor: entry.tabor,
+        left_the_branch: left.is_some(),
+        points: thin(curve, STORED_CURVE_POINTS),
+    };
+    match left {
+        None => {
+            sequence.push(entry);
+            // Only the smallest range's curve of the sequence is kept.
+            curves.retain(|c| c.left_the_branch);
+        }
+        Some(reason) => excluded.push(ExcludedEntry { reason, entry }),
+    }
+    curves.push(stored);
+}
+
+/// The JKR route's values for `case` (`verify jkr`), tensile positive: the fixed-load pull-off
+/// (flat punches; the annular contact of a concave one, if it has a stable one), the pull-off
+/// from full contact and the paper's route on its fitted formulas (concave punches).
+pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Option<f64>)> {
+    let ring = RingBemSolver::new();
+    Ok(match case.punch {
+        PunchKind::Flat => (Some(1.0), None, None),
+        PunchKind::FlatAnnulus => {
+            let r = crate::adhesion::flat_annulus(&ring, case.eps)?;
+            // The edge that lets go first (smaller |d_c|) sets the pull-off.
+            let edge = if r.governing_edge == "outer" {
+                r.fc_outer
+            } else {
+                r.fc_inner
+            };
+            (Some(-edge), None, None)
+        }
+        PunchKind::Cone | PunchKind::Sphere => {
+            let r = crate::adhesion::concave(&ring, case.punch, case.d0_over_h)?;
+            (
+                r.fixed_load.map(|c| -c.force),
+                Some(-r.full_contact.pulloff.force),
+                r.paper_fits_fixed_load.map(|(_, f)| -f),
+            )
+        }
+    })
+}
+
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
 pub fn study_options() -> FemOptions {
     FemOptions {
@@ -518,7 +589,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     let start = Instant::now();
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
-    let (entry, curve) = simulate(&response, &case, range)?;
+    let (entry, curve) = simulate(&response, &case, range, Branch::Closed)?;
     open_hole_declined(&case, &entry)?;
     Ok(LiveSimulation {
         curve,
@@ -554,7 +625,7 @@ pub fn simulate_cases(
                         .into(),
                 });
             }
-            let (entry, curve) = simulate(&response, case, range)?;
+            let (entry, curve) = simulate(&response, case, range, Branch::Closed)?;
             open_hole_declined(case, &entry)?;
             Ok(LiveSimulation {
                 curve,
@@ -587,10 +658,11 @@ pub struct LiveSimulation {
 }
 
 /// One loading-unloading simulation of `case` at range `range` (units of `d0`).
-fn simulate(
+pub(super) fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,
     case: &Case,
     range: f64,
+    branch: Branch,
 ) -> Result<(SequenceEntry, Vec<CurveSample>)> {
     let begun = Instant::now();
     let d0 = case.d0();
@@ -609,13 +681,19 @@ fn simulate(
     // Steps of 0.02 d0 on the way out (0.02 h where d0 > h), of 0.02 h on the way in to a
     // concave punch's preload (its hole closes over several h, node by node, whatever the step).
     let step = 0.02 * d0.min(1.0);
+    let annular = branch == Branch::Annular;
     let path = PathOptions {
-        preload: case.preload(),
+        preload: if annular {
+            ANNULAR_PRELOAD
+        } else {
+            case.preload()
+        },
         pull_to: case.pull_to(),
         max_step: step,
         max_press_step: if case.punch.is_concave() { 0.02 } else { step },
         min_step: 1e-7 * d0,
-        press_until_closed: case.punch.is_concave().then_some(MAX_CONCAVE_PRELOAD),
+        press_until_closed: (case.punch.is_concave() && !annular).then_some(MAX_CONCAVE_PRELOAD),
+        hop_force: if annular { ANNULAR_HOP_FORCE } else { 0.0 },
     };
     let curve = follow(&surface, path)?;
     let concave = case.punch.is_concave();
@@ -636,6 +714,17 @@ fn simulate(
         .take_while(|p| p.depth >= curve.pulloff.depth)
         .find(|p| p.centre_open)
         .or(landing.filter(|p| p.centre_open));
+    // The annular branch: the hole closed (some node in contact, the centre not open) before
+    // the pull-off.
+    let closed = annular
+        .then(|| {
+            curve
+                .points
+                .iter()
+                .take_while(|p| !p.unloading || p.depth >= curve.pulloff.depth)
+                .find(|p| p.contact.is_some() && !p.centre_open)
+        })
+        .flatten();
     let entry = SequenceEntry {
         range_over_a: range * d0,
         tabor: law.tabor(),
@@ -649,6 +738,9 @@ fn simulate(
         hole_open_before_pulloff: concave.then_some(reopened.is_some()),
         hole_reopened_at: reopened.map(|p| (p.depth / d0, p.force / f0)),
         unresolved_landing: curve.unresolved_landing.clone(),
+        hole_closed_at: closed.map(|p| (p.depth / d0, p.force / f0)),
+        node_hops: curve.hops,
+        line_element_size: None,
         wall_s: begun.elapsed().as_secs_f64(),
     };
     // The curve in units of d0 and F0: (depth, force, unloading).
@@ -664,7 +756,10 @@ fn simulate(
 /// `F∞ = F1 + (F1 - F2) ρ1/(ρ2 - ρ1)`. Its error bar adds the correction itself (the sequences
 /// approach their limits no faster than linearly, so what remains may be as large), its change
 /// from the previous pair, and `mesh_difference`. Needs three ranges.
-fn extrapolate(sequence: &[SequenceEntry], mesh_difference: f64) -> (Option<f64>, Option<f64>) {
+pub(super) fn extrapolate(
+    sequence: &[SequenceEntry],
+    mesh_difference: f64,
+) -> (Option<f64>, Option<f64>) {
     let n = sequence.len();
     if n < 3 {
         return (None, None);

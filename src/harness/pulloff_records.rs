@@ -75,6 +75,15 @@ pub fn load() -> Result<Vec<PulloffRecord>> {
         .collect()
 }
 
+/// A Tabor number for a table: whole where it is (9, 18, 36), else to one decimal (4.5, 6.4).
+fn tabor_label(tabor: f64) -> String {
+    if (tabor - tabor.round()).abs() < 0.05 {
+        format!("{tabor:.0}")
+    } else {
+        format!("{tabor:.1}")
+    }
+}
+
 /// A row of [`table`] with no simulation result: the case, the date and the verdict cell.
 pub fn row_without_result(case: String, date: &str, verdict: Cell) -> Vec<Cell> {
     let mut row = vec![case.into()];
@@ -108,13 +117,17 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                 let sequence: Vec<String> = s
                     .sequence
                     .iter()
-                    .map(|e| format!("{:.0}: {:.4}", e.tabor, e.pulloff_over_f0))
+                    .map(|e| format!("{}: {:.4}", tabor_label(e.tabor), e.pulloff_over_f0))
                     .collect();
                 let left_out: Vec<String> = s
                     .excluded
                     .iter()
                     .map(|x| {
                         let how = match x.entry.hole_reopened_at {
+                            None if x.entry.hole_closed_at.is_some() => {
+                                let (d, f) = x.entry.hole_closed_at.unwrap_or_default();
+                                format!("hole closed at F/F0 = {f:.2}, d/d0 = {d:.2}")
+                            }
                             Some((d, f)) => {
                                 format!("hole reopened at F/F0 = {f:.2}, d/d0 = {d:.2}")
                             }
@@ -126,7 +139,7 @@ pub fn table(records: &[PulloffRecord]) -> Table {
                                 -x.entry.pulloff_over_f0
                             ),
                         };
-                        format!("λ {:.0}: {how}", x.entry.tabor)
+                        format!("λ {}: {how}", tabor_label(x.entry.tabor))
                     })
                     .collect();
                 t.push(vec![
@@ -170,10 +183,24 @@ pub fn table(records: &[PulloffRecord]) -> Table {
 /// curves (the one the report charts), if any.
 pub fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord> {
     records.iter().find(|r| {
-        r.result
-            .as_ref()
-            .is_some_and(|s| s.curves.iter().any(|c| c.left_the_branch))
+        r.result.as_ref().is_some_and(|s| {
+            s.branch != Some(crate::cohesive::study::Branch::Annular)
+                && s.curves.iter().any(|c| c.left_the_branch)
+        })
     })
+}
+
+/// The stored simulations of the annular branch (`--branch annular`) with a result.
+pub fn annular(records: &[PulloffRecord]) -> Vec<PulloffRecord> {
+    records
+        .iter()
+        .filter(|r| {
+            r.result
+                .as_ref()
+                .is_some_and(|s| s.branch == Some(crate::cohesive::study::Branch::Annular))
+        })
+        .cloned()
+        .collect()
 }
 
 /// Where a stored simulation left the closed hole's branch: one row per left-out range (case,
@@ -197,6 +224,9 @@ pub fn branches_table(records: &[PulloffRecord]) -> Table {
     );
     for r in records {
         let Some(s) = &r.result else { continue };
+        if s.branch == Some(crate::cohesive::study::Branch::Annular) {
+            continue;
+        }
         let on_branch = s.sequence.last().map(|e| e.pulloff_over_f0);
         for x in &s.excluded {
             let e = &x.entry;

@@ -151,7 +151,11 @@ fn verdicts(
     let direct: Vec<&crate::cohesive::study::PulloffStudy> = simulations
         .iter()
         .filter_map(|r| r.result.as_ref())
-        .filter(|s| s.punch.is_concave() && s.d0_over_h.is_some_and(|x| x >= 10.0))
+        .filter(|s| {
+            s.punch.is_concave()
+                && s.d0_over_h.is_some_and(|x| x >= 10.0)
+                && s.branch != Some(crate::cohesive::study::Branch::Annular)
+        })
         .collect();
     let direct_numbers: Vec<String> = direct
         .iter()
@@ -197,6 +201,51 @@ fn verdicts(
             "disagree: reproduced only with the fitted formulas".into()
         },
     });
+    // The paper's own branch (the annular contact under fixed load), simulated directly where
+    // it exists (small d0/h).
+    let annular: Vec<&crate::cohesive::study::PulloffStudy> = simulations
+        .iter()
+        .filter_map(|r| r.result.as_ref())
+        .filter(|s| s.branch == Some(crate::cohesive::study::Branch::Annular))
+        .collect();
+    let annular_numbers: Vec<String> = annular
+        .iter()
+        .filter_map(|s| {
+            Some(format!(
+                "{} d0/h = {}: direct simulation {:.3} +- {:.3} F0, JKR route (converged \
+                 solutions) {:.3}, paper's route on its fits {:.3}",
+                s.punch,
+                s.d0_over_h?,
+                s.extrapolated_over_f0?,
+                s.error_bar?,
+                s.jkr_fixed_load_over_f0?,
+                s.paper_route_over_f0?
+            ))
+        })
+        .collect();
+    if !annular_numbers.is_empty() {
+        let fits_refuted = annular.iter().all(|s| {
+            s.agrees_with_jkr() == Some(true)
+                && match (s.extrapolated_over_f0, s.error_bar, s.paper_route_over_f0) {
+                    (Some(x), Some(bar), Some(p)) => (x - p).abs() > 3.0 * bar,
+                    _ => false,
+                }
+        });
+        out.push(Verdict {
+            claim: "fixed-load pull-off of the annular contact from the fitted formulas \
+                    (the paper's route, small d0/h)"
+                .into(),
+            numbers: annular_numbers.join("; "),
+            verdict: if fits_refuted {
+                "disagree: the direct simulation of the annular branch lets go at the JKR \
+                 route's value from converged solutions, more than three error bars from the \
+                 fits'"
+                    .into()
+            } else {
+                "open: the direct simulation does not separate the two routes".into()
+            },
+        });
+    }
     Ok(out)
 }
 
@@ -264,6 +313,67 @@ fn pulloff_branches_chart(record: &super::pulloff_records::PulloffRecord) -> Str
             record.file.trim_end_matches(".json")
         ),
         "range rho/d0",
+        "F/F0 (compression positive)",
+        &series,
+    )
+}
+
+/// File of the chart of the annular branch: simulated pulls against the JKR route's branch.
+pub const PULLOFF_ANNULAR_CHART: &str = "pulloff-annular.svg";
+
+/// The annular branch of each stored `--branch annular` study: the pull of its smallest range
+/// (force against depth, compression positive) and the JKR route's adhesive annular branch
+/// from the ring BEM at `b/a` = 0.30-0.96 (`d/h = γ1 - (d0/h)/κ_in`,
+/// `F/F0 = (h/d0) γ2 - γ/κ_in`), which ends at its fixed-load pull-off.
+fn pulloff_annular_chart(
+    ring: &RingBemSolver,
+    records: &[super::pulloff_records::PulloffRecord],
+) -> String {
+    let mut series = Vec::new();
+    for record in records {
+        let Some(s) = &record.result else { continue };
+        let Some(x) = s.d0_over_h else { continue };
+        let case = format!("{} {x}", s.punch);
+        if let Some(curve) = s.curves.iter().rev().find(|c| !c.left_the_branch) {
+            series.push(Series {
+                name: format!("{case}: simulation, λ {:.0}", curve.tabor),
+                points: curve
+                    .points
+                    .iter()
+                    .filter(|p| p.2)
+                    .map(|p| (p.0, p.1))
+                    .collect(),
+                bars: Vec::new(),
+            });
+        }
+        // The pulled part of the branch: from its fixed-grips end (the most negative depth)
+        // back toward smaller b/a while the depth rises, up to d = 0.
+        let all: Vec<(f64, f64)> = (0..=66)
+            .filter_map(|k| {
+                let p =
+                    crate::adhesion::branch_point(ring, s.punch, 0.30 + 0.01 * k as f64).ok()?;
+                let point = (p.depth(x) / x, p.force(x));
+                (point.0.is_finite() && point.1.is_finite()).then_some(point)
+            })
+            .collect();
+        let mut jkr: Vec<(f64, f64)> = Vec::new();
+        if let Some(end) = (0..all.len()).min_by(|&i, &j| all[i].0.total_cmp(&all[j].0)) {
+            for point in all[..=end].iter().rev() {
+                if point.0 > 0.0 || jkr.last().is_some_and(|last| point.0 < last.0) {
+                    break;
+                }
+                jkr.push(*point);
+            }
+        }
+        series.push(Series {
+            name: format!("{case}: JKR route"),
+            points: jkr,
+            bars: Vec::new(),
+        });
+    }
+    super::svg::linear_chart(
+        "Annular branch (punch d0/h): touched with the hole open, then pulled",
+        "d/d0",
         "F/F0 (compression positive)",
         &series,
     )
@@ -732,6 +842,14 @@ pub fn write_report(
     }
     if let Some(record) = super::pulloff_records::with_branches(&inputs.pulloff_simulations) {
         write(dir, PULLOFF_BRANCHES_CHART, &pulloff_branches_chart(record))?;
+    }
+    let annular = super::pulloff_records::annular(&inputs.pulloff_simulations);
+    if !annular.is_empty() {
+        write(
+            dir,
+            PULLOFF_ANNULAR_CHART,
+            &pulloff_annular_chart(&ring, &annular),
+        )?;
     }
     if !inputs.adhesion_peers.is_empty() {
         write(

@@ -204,8 +204,10 @@ pub fn report_tables(
                  (`verify pulloff`; stored by `scripts/pulloff/run_all.sh`, which the nightly \
                  run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
                  (concave punches, pressed until their hole closes: 3h, or deeper for small \
-                 d0/h). A range at which the closed hole reopens on the way out is on another \
-                 branch: it is left out (named) and a smaller range replaces it."
+                 d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
+                 contact (touched with the hole open, then pulled). A range at which the closed \
+                 hole reopens on the way out is on another branch: it is left out (named) and a \
+                 smaller range replaces it."
                     .into(),
             ),
             chart: extras
@@ -237,6 +239,27 @@ pub fn report_tables(
                 None,
                 "pulloff-branches",
                 super::pulloff_records::branches_table(&extras.pulloff_simulations),
+            )
+        });
+    }
+    let annular = super::pulloff_records::annular(&extras.pulloff_simulations);
+    if !annular.is_empty() {
+        out.push(ReportTable {
+            intro: Some(
+                "The paper's own route, simulated: the punch touched with its hole open (the \
+                 rim plane at the surface), then pulled; the inner edge moves outward until the \
+                 annulus lets go (`verify pulloff --branch annular`; the contact line meshed \
+                 uniformly at a third of the zone per range). JKR route: the fixed-load \
+                 pull-off of the annular contact from converged ring-BEM solutions. The chart: \
+                 the pull at the smallest range against the JKR route's adhesive annular branch \
+                 (compression positive)."
+                    .into(),
+            ),
+            chart: Some(super::report::PULLOFF_ANNULAR_CHART.to_string()),
+            ..entry(
+                None,
+                "pulloff-annular",
+                super::pulloff_records::table(&annular),
             )
         });
     }
