@@ -336,7 +336,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
     assert!(e.node_hops > 0, "{e:?}");
     let ring = RingBemSolver::new();
     let jkr = ringcontact::adhesion::concave(&ring, PunchKind::Cone, 1.0).unwrap();
-    let fixed_load = -jkr.fixed_load.unwrap().force;
+    let fixed_load = -jkr.fixed_load.as_ref().unwrap().force;
     assert!((fixed_load - 0.5394).abs() < 1e-3, "JKR route {fixed_load}");
     assert_eq!(s.jkr_reference(), Some(fixed_load));
     let f = e.pulloff_over_f0;
@@ -347,6 +347,18 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
     assert!(s.paper_route_over_f0.unwrap() > 1.25 * f);
     // The mesh check (two thirds of the zone per element) moves it by well under 1 %.
     assert!(s.mesh_difference.unwrap() < 5e-3, "{:?}", s.mesh_difference);
+    // The stored curve carries the contact's edges: the inner edge starts in the inner half
+    // and moves outward past the JKR route's pull-off ratio (b/a = 0.782) before it lets go.
+    let jkr_ratio = jkr.fixed_load.unwrap().eps;
+    let c = s.curves.iter().find(|c| !c.left_the_branch).unwrap();
+    assert_eq!(c.edges.len(), c.points.len());
+    let inner: Vec<f64> = c
+        .edges
+        .iter()
+        .filter_map(|e| e.contact.map(|(lo, _)| lo))
+        .collect();
+    let outermost = inner.iter().copied().fold(0.0, f64::max);
+    assert!(inner[0] < 0.5 && outermost > jkr_ratio, "{inner:?}");
 }
 
 /// Where the JKR route has no stable annular contact (the cone at `d0/h = 3`: the hole closes

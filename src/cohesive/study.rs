@@ -166,15 +166,35 @@ pub struct StoredCurve {
     pub left_the_branch: bool,
     /// `(d/d0, F/F0, unloading)`, compression positive.
     pub points: Vec<CurveSample>,
+    /// The contact and cohesive-zone radii at each of `points` (absent in older records).
+    #[serde(default)]
+    pub edges: Vec<CurveEdges>,
+}
+
+/// Where the contact and the cohesive zone are at one point of a curve (units of `a`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CurveEdges {
+    /// Innermost and outermost contact-line node in contact (zero separation), if any.
+    pub contact: Option<(f64, f64)>,
+    /// Innermost and outermost node of the cohesive zone (separation in `(0, 3ρ]`), if any.
+    pub zone: Option<(f64, f64)>,
 }
 
 /// `curve` thinned to about `most` points: evenly spaced ones, the turn from loading to
 /// unloading, the ends, and both sides of every step whose force changes by more than a hundredth
 /// of the curve's force span (the jumps).
 pub fn thin(curve: &[CurveSample], most: usize) -> Vec<CurveSample> {
+    thinned_indices(curve, most)
+        .into_iter()
+        .map(|i| curve[i])
+        .collect()
+}
+
+/// The indices [`thin`] keeps, increasing.
+pub fn thinned_indices(curve: &[CurveSample], most: usize) -> Vec<usize> {
     let n = curve.len();
     if n <= most {
-        return curve.to_vec();
+        return (0..n).collect();
     }
     let (lo, hi) = curve
         .iter()
@@ -190,12 +210,7 @@ pub fn thin(curve: &[CurveSample], most: usize) -> Vec<CurveSample> {
         let turn = i + 1 < n && curve[i + 1].2 != curve[i].2;
         keep[i] = i % every == 0 || i + 1 == n || jump_after || jump_before || turn;
     }
-    curve
-        .iter()
-        .zip(keep)
-        .filter(|(_, k)| *k)
-        .map(|(p, _)| *p)
-        .collect()
+    (0..n).filter(|&i| keep[i]).collect()
 }
 
 /// A simulation left out of the sequence, and why.
@@ -448,13 +463,13 @@ pub fn run(
         }
         let range = queue[next];
         next += 1;
-        let (entry, curve) = simulate(&response, &case, range, Branch::Closed)?;
+        let (entry, curve, edges) = simulate(&response, &case, range, Branch::Closed)?;
         progress(&entry);
         let left = branch_left(&case, &entry);
         file_simulation(
             (&mut sequence, &mut excluded, &mut curves),
             entry,
-            &curve,
+            (&curve, &edges),
             left,
         );
     }
@@ -473,7 +488,7 @@ pub fn run(
         Some(coarser) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
             let smallest = ranges[ranges.len() - 1];
-            let (entry, _) = simulate(&response, &case, smallest, Branch::Closed)?;
+            let (entry, _, _) = simulate(&response, &case, smallest, Branch::Closed)?;
             progress(&entry);
             open_hole_declined(&case, &entry)?;
             Some((entry.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs())
@@ -524,14 +539,16 @@ pub(super) fn file_simulation(
         &mut Vec<StoredCurve>,
     ),
     entry: SequenceEntry,
-    curve: &[CurveSample],
+    (curve, edges): (&[CurveSample], &[CurveEdges]),
     left: Option<String>,
 ) {
+    let kept = thinned_indices(curve, STORED_CURVE_POINTS);
     let stored = StoredCurve {
         range_over_a: entry.range_over_a,
         tabor: entry.tabor,
         left_the_branch: left.is_some(),
-        points: thin(curve, STORED_CURVE_POINTS),
+        points: kept.iter().map(|&i| curve[i]).collect(),
+        edges: kept.iter().filter_map(|&i| edges.get(i).copied()).collect(),
     };
     match left {
         None => {
@@ -589,7 +606,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     let start = Instant::now();
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
-    let (entry, curve) = simulate(&response, &case, range, Branch::Closed)?;
+    let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed)?;
     open_hole_declined(&case, &entry)?;
     Ok(LiveSimulation {
         curve,
@@ -625,7 +642,7 @@ pub fn simulate_cases(
                         .into(),
                 });
             }
-            let (entry, curve) = simulate(&response, case, range, Branch::Closed)?;
+            let (entry, curve, _) = simulate(&response, case, range, Branch::Closed)?;
             open_hole_declined(case, &entry)?;
             Ok(LiveSimulation {
                 curve,
@@ -663,7 +680,7 @@ pub(super) fn simulate(
     case: &Case,
     range: f64,
     branch: Branch,
-) -> Result<(SequenceEntry, Vec<CurveSample>)> {
+) -> Result<(SequenceEntry, Vec<CurveSample>, Vec<CurveEdges>)> {
     let begun = Instant::now();
     let d0 = case.d0();
     let work = d0 * d0 / (2.0 * std::f64::consts::PI);
@@ -749,7 +766,15 @@ pub(super) fn simulate(
         .iter()
         .map(|p| (p.depth / d0, p.force / f0, p.unloading))
         .collect();
-    Ok((entry, points))
+    let edges = curve
+        .points
+        .iter()
+        .map(|p| CurveEdges {
+            contact: p.contact,
+            zone: p.zone,
+        })
+        .collect();
+    Ok((entry, points, edges))
 }
 
 /// Linear extrapolation in the range to zero from the two smallest ranges,
