@@ -4,7 +4,9 @@
 //! Each step starts from the previous equilibrium. A step whose Newton iteration needed a shifted
 //! Hessian (it left the basin of the branch) or whose force changed by more than
 //! [`JUMP_FORCE`]` F0` is halved; when the step is below `min_step` and still does so, the branch
-//! has ended: the jump and the state it lands on are recorded (what fixed grips see). The
+//! has ended: the jump and the state it lands on are recorded (what fixed grips see). With
+//! [`PathOptions::hop_force`] set, a shifted step whose force changes by less than that is the
+//! crack front hopping a node and continues the branch (the annular branch's inner edge). The
 //! pull-off, [`Curve::pulloff`], is the most tensile state of that branch (refined by a
 //! golden-section search where it is a smooth maximum).
 
