@@ -15,8 +15,9 @@ use std::time::Instant;
 
 use super::law::ExponentialLaw;
 use super::study::{
-    extrapolate, file_simulation, jkr_values, simulate, Branch, Case, PulloffStudy, SequenceEntry,
-    ANNULAR_ELEMENTS_PER_ZONE, ANNULAR_HOP_FORCE, ANNULAR_PRELOAD, STUDY_LEVEL,
+    check_d0_over_h, check_ranges, extrapolate, file_simulation, jkr_values, simulate, Branch,
+    Case, PulloffStudy, SequenceEntry, ANNULAR_ELEMENTS_PER_ZONE, ANNULAR_HOP_FORCE,
+    ANNULAR_PRELOAD, STUDY_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::fem::mesh_provider::{self, ProvidedMesh};
@@ -115,22 +116,8 @@ pub fn run_annular(
             ),
         ));
     }
-    if !(case.d0_over_h.is_finite() && case.d0_over_h > 0.0) {
-        return Err(Error::invalid(
-            "d0_over_h",
-            format!("need d0/h > 0 (got {})", case.d0_over_h),
-        ));
-    }
-    if ranges.is_empty()
-        || ranges
-            .iter()
-            .any(|r| !(r.is_finite() && *r > 0.0 && *r < 1.0))
-    {
-        return Err(Error::invalid(
-            "ranges",
-            format!("need ranges rho/d0 in (0, 1) (got {ranges:?})"),
-        ));
-    }
+    check_d0_over_h(&case)?;
+    check_ranges(ranges)?;
     // Every mesh is asked for first: a range too small is refused before any simulation runs.
     let meshes = ranges
         .iter()

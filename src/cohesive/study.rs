@@ -419,11 +419,8 @@ pub fn run(
     } else {
         0.0
     };
-    if punch.is_concave() && !(case.d0_over_h.is_finite() && case.d0_over_h > 0.0) {
-        return Err(Error::invalid(
-            "d0_over_h",
-            format!("need d0/h > 0 (got {})", case.d0_over_h),
-        ));
+    if punch.is_concave() {
+        check_d0_over_h(&case)?;
     }
     let case = Case { eps, ..case };
     if punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
@@ -432,16 +429,7 @@ pub fn run(
             format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
         ));
     }
-    if ranges.is_empty()
-        || ranges
-            .iter()
-            .any(|r| !(r.is_finite() && *r > 0.0 && *r < 1.0))
-    {
-        return Err(Error::invalid(
-            "ranges",
-            format!("need ranges rho/d0 in (0, 1) (got {ranges:?})"),
-        ));
-    }
+    check_ranges(ranges)?;
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
     let mut sequence = Vec::new();
@@ -527,6 +515,33 @@ pub fn run(
             .into(),
         wall_s: start.elapsed().as_secs_f64(),
     })
+}
+
+/// A concave punch's `d0/h` must be finite and positive.
+pub(super) fn check_d0_over_h(case: &Case) -> Result<()> {
+    if case.d0_over_h.is_finite() && case.d0_over_h > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::invalid(
+            "d0_over_h",
+            format!("need d0/h > 0 (got {})", case.d0_over_h),
+        ))
+    }
+}
+
+/// At least one range, each `ρ/d0` in `(0, 1)`.
+pub(super) fn check_ranges(ranges: &[f64]) -> Result<()> {
+    if ranges.is_empty()
+        || ranges
+            .iter()
+            .any(|r| !(r.is_finite() && *r > 0.0 && *r < 1.0))
+    {
+        return Err(Error::invalid(
+            "ranges",
+            format!("need ranges rho/d0 in (0, 1) (got {ranges:?})"),
+        ));
+    }
+    Ok(())
 }
 
 /// File one simulation: into the sequence (its curve kept as the smallest range's, replacing the
