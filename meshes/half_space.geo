@@ -13,13 +13,17 @@
 // line): graded toward the rim r = a (and r = b), hline along the contact line, growing linearly
 // away from it, so that a domain of R = 1e5 a costs only a few dozen element layers. With
 // bref >= 0, also hb + grading * distance to the point (bref, 0): refinement around the free inner
-// edge of a concave punch located on a coarser solve. Sizes are capped at hmax (0: no cap).
+// edge of a concave punch located on a coarser solve. With band > 0, also hband + grading *
+// distance to the surface segment [a - band, a] (a Box field one element thick, its transition
+// layer growing at the same slope): the rim band the pull-off simulation resolves its cohesive
+// zone in. Sizes are capped at hmax (0: no cap).
 //
 // Parameters (override with gmsh -setnumber NAME VALUE):
 DefineConstant[
   a = 1, b = 0, R = 1e5,
   hmin = 2e-3, hline = 2e-2, grading = 0.25,
   bref = -1, hb = 1e-3,
+  band = 0, hband = 1e-3,
   split = 0,
   order = 1
 ];
@@ -85,11 +89,27 @@ Field[3] = MathEval;
 Field[3].F = Sprintf("%g + %g * F1", hmin, grading);
 Field[4] = MathEval;
 Field[4].F = Sprintf("%g + %g * F2", hline, grading);
-Field[5] = Min;
 If (bref >= 0)
   Field[6] = MathEval;
   Field[6].F = Sprintf("%g + %g * sqrt((x - %g)^2 + y^2)", hb, grading, bref);
+EndIf
+If (band > 0)
+  Field[7] = Box;
+  Field[7].VIn = hband;
+  Field[7].VOut = R;
+  Field[7].XMin = a - band;
+  Field[7].XMax = a;
+  Field[7].YMin = -hband;
+  Field[7].YMax = hband;
+  Field[7].Thickness = R / grading;
+EndIf
+Field[5] = Min;
+If (bref >= 0 && band > 0)
+  Field[5].FieldsList = {3, 4, 6, 7};
+ElseIf (bref >= 0)
   Field[5].FieldsList = {3, 4, 6};
+ElseIf (band > 0)
+  Field[5].FieldsList = {3, 4, 7};
 Else
   Field[5].FieldsList = {3, 4};
 EndIf

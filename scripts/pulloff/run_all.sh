@@ -2,8 +2,11 @@
 # Refresh the stored pull-off simulations (verify/pulloff/*.json): `verify pulloff --json` on the
 # flat punch, two flat annuli and the concave punches at d0/h = 0.3, 1, 3, 10 (pressed until the
 # hole closes; a range whose hole reopens is replaced by a smaller one), and the annular branch
-# of both at d0/h = 1 and of the cone at 3 (--branch annular). Needs gmsh (bash scripts/install_gmsh.sh): the study meshes are level 3
-# and 2 of the adapted family. Each file holds the result, the date and the command.
+# of both at d0/h = 1 and of the cone at 3 (--branch annular). Needs gmsh (bash
+# scripts/install_gmsh.sh): each range of the closed branch runs on its own mesh (level 1 of the
+# adapted family with a band at the rim refined to the cohesive zone; the check at level 0), each
+# of the annular branch on level 3 with a uniform contact line. Each file holds the result, the
+# date and the command. About 13 minutes on 2 cores.
 # Cases the simulation declines are recorded with the reason.
 # Usage: run_all.sh [NAME ...]   (e.g. cone-d0h0.3; default: every case)
 set -uo pipefail

@@ -138,11 +138,12 @@ with non-penetration, on the contact line of the P2 FE model (condensed: the hal
 response there is exactly the FE model's). The punch is pressed to 0.5 d0 (flat punches) or 3h
 (cone, sphere; deeper, in steps of 3h up to 24h, until the hole closes: small d0/h), then pulled
 under displacement control; the preload's branch is followed until it ends (a jump, which is what
-fixed grips see); the pull-off is its most tensile force. A range at which a concave punch's hole
-stays open, or reopens on the way out (the apex's unresolved pinhole is a flaw of the law's
-range), is on the annular branch, whose moving inner edge the mesh does not resolve: it is left
-out with that reason and a range half the smallest replaces it (down to rho/d0 = 0.003), until
-three ranges are on the closed hole's branch (--branch closed, the default).
+fixed grips see); the pull-off is its most tensile force while the crack front, running in from
+the rim, lies in the refined rim band (below). A range at which a concave punch's hole stays
+open, or reopens on the way out (the apex's unresolved pinhole is a flaw of the law's range), is
+on the annular branch, whose moving inner edge the mesh does not resolve: it is left out with
+that reason and a range half the smallest replaces it (down to rho/d0 = 0.001), until three
+ranges are on the closed hole's branch (--branch closed, the default).
 
 --branch annular (cone, sphere): touched (the rim plane at the surface; adhesion pulls the rim
 into contact, the hole stays open), then pulled: the inner edge moves outward until the annulus
@@ -158,9 +159,14 @@ Tabor-like parameter is sqrt(a/l), l = pi E* dw / (4 sigma0^2) the cohesive zone
 the result: the JKR route (`verify jkr`: fixed-load pull-off; from full contact for concave
 punches) and the paper's route on its fitted formulas.
 
-Mesh: level 3 of the adapted family (gmsh; graded toward the edges, so the zone at the rim is
-resolved at every range), level 2 for the mesh check; without gmsh the committed level 2 and 1
-of the ratio (b/a = 0, 0.5, 0.9).
+Mesh (closed branch): one gmsh mesh per range, level 1 of the adapted family with the band
+[a - 20 l, a] at the rim meshed uniformly at l/6 (l the zone length): the front runs 3-13 l in
+before the tension peaks, and node hops of the front inside the band (force steps under 1e-3 F0)
+continue the branch; a front that leaves the band while the tension still rises is an error
+(not resolved). The mesh check: the smallest range at l/3 on level 0. Without gmsh: the
+committed meshes of the ratio (b/a = 0, 0.5, 0.9; level 2, level 1 for the check) and no band,
+the pull-off the first end of the branch (2-3 % low at Tabor 36-90). --mesh: that mesh for
+every range, no band, no check.
 
 Examples:
   verify pulloff --punch flat                          Kendall: the sequence tends to 1
@@ -268,7 +274,7 @@ pub struct PulloffArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub d0h: Option<f64>,
     /// Ranges rho/d0 of the law, decreasing, comma-separated (the last three are extrapolated)
-    /// [default: 0.05,0.025,0.0125; with --branch annular 0.1,0.07,0.05].
+    /// [default: 0.05,0.025,0.0125,0.005 (Tabor 9 to 90); with --branch annular 0.1,0.07,0.05].
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub ranges: Option<Vec<f64>>,
     /// Concave punches: the branch to follow. `closed`: pressed until the hole closes, then

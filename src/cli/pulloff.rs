@@ -89,31 +89,27 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         }
         return Ok(Reply::ok(render(&result)));
     }
-    let mesh = match &args.mesh {
-        Some(path) => ProvidedMesh {
-            sha256: crate::fem::mesh_provider::sha256_file(path).map_err(message)?,
-            path: path.clone(),
-            origin: MeshOrigin::User,
-            gmsh_version: None,
-            corner_refinement: None,
-        },
-        None => study::study_mesh(eps, study::STUDY_LEVEL).map_err(message)?,
-    };
-    // The smallest range again one level coarser: the mesh's share of the error bar.
-    let check = match &args.mesh {
-        Some(_) => None,
-        None => Some(study::study_mesh(eps, study::STUDY_LEVEL - 1).map_err(message)?),
-    };
-    let mut bar = Progress::new("pull-off", ranges.len() + usize::from(check.is_some()));
-    let (given, mut simulated, mut usable) = (ranges.len(), 0, 0);
-    let result = study::run(case, &ranges, &mesh, check.as_ref(), |entry| {
-        simulated += 1;
+    // Without --mesh: a mesh per range with a refined band at the rim (gmsh), else the study
+    // meshes; with it, that mesh for every range and no check mesh.
+    let checked = args.mesh.is_none();
+    let mut bar = Progress::new("pull-off", ranges.len() + usize::from(checked));
+    let given = ranges.len();
+    let (mut seen, mut usable, mut any_left) = (Vec::<f64>::new(), Vec::new(), false);
+    let on_entry = |entry: &study::SequenceEntry| {
+        let range = entry.range_over_a / case.d0();
+        // The check mesh's run repeats the smallest usable range (and comes last).
+        let repeat = seen.iter().any(|r| (r - range).abs() <= 1e-12 * range);
+        seen.push(range);
         let left = study::left_the_branch(&case, entry);
-        usable += usize::from(!left);
-        // The study replaces a range that left the branch by a smaller one once the given
-        // ranges are done and fewer than three are usable.
-        let smaller = entry.range_over_a / case.d0() * 0.5;
-        if left && simulated >= given && usable < 3 && smaller >= study::MIN_RANGE {
+        any_left |= left;
+        if !left && !repeat {
+            usable.push(range);
+        }
+        // Once the given ranges are done the study adds smaller ones (study::smaller_range).
+        if !repeat
+            && seen.len() >= given
+            && study::smaller_range(&ranges, range, &usable, any_left).is_some()
+        {
             bar.grow(1);
         }
         bar.tick(&format!(
@@ -126,7 +122,20 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
                 ""
             }
         ))
-    })
+    };
+    let result = match &args.mesh {
+        Some(path) => {
+            let mesh = ProvidedMesh {
+                sha256: crate::fem::mesh_provider::sha256_file(path).map_err(message)?,
+                path: path.clone(),
+                origin: MeshOrigin::User,
+                gmsh_version: None,
+                corner_refinement: None,
+            };
+            study::run(case, &ranges, &mesh, None, on_entry)
+        }
+        None => study::run_on_study_meshes(case, &ranges, on_entry),
+    }
     .map_err(message)?;
     refuse_non_finite("pulloff", &result.sequence)?;
     if args.json {

@@ -128,7 +128,7 @@ pub fn run_annular(
     let mut finest = None;
     for (&range, (mesh, size)) in ranges.iter().zip(&meshes) {
         let (response, name) = surface_response_on_mesh(mesh, &options, 0.0)?;
-        let (mut entry, curve, edges) = simulate(&response, &case, range, Branch::Annular)?;
+        let (mut entry, curve, edges) = simulate(&response, &case, range, Branch::Annular, None)?;
         entry.line_element_size = Some(*size);
         progress(&entry);
         let left = left_the_annular_branch(&case, &entry);
@@ -156,7 +156,7 @@ pub fn run_annular(
     let smallest = sequence[sequence.len() - 1].range_over_a / case.d0();
     let (coarser, _) = annular_mesh(&case, smallest, 0.5 * ANNULAR_ELEMENTS_PER_ZONE)?;
     let (response, _) = surface_response_on_mesh(&coarser, &options, 0.0)?;
-    let (check, _, _) = simulate(&response, &case, smallest, Branch::Annular)?;
+    let (check, _, _) = simulate(&response, &case, smallest, Branch::Annular, None)?;
     progress(&check);
     let mesh_difference = match left_the_annular_branch(&case, &check) {
         None => Some((check.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs()),

@@ -6,9 +6,11 @@
 //! [`JUMP_FORCE`]` F0` is halved; when the step is below `min_step` and still does so, the branch
 //! has ended: the jump and the state it lands on are recorded (what fixed grips see). With
 //! [`PathOptions::hop_force`] set, a shifted step whose force changes by less than that is the
-//! crack front hopping a node and continues the branch (the annular branch's inner edge). The
-//! pull-off, [`Curve::pulloff`], is the most tensile state of that branch (refined by a
-//! golden-section search where it is a smooth maximum).
+//! crack front hopping a node and continues the branch (the annular branch's inner edge); with
+//! [`PathOptions::hop_band`] only hops that start and land with the front in the refined band at
+//! the rim do (the closed branch). The pull-off, [`Curve::pulloff`], is the most tensile state of
+//! that branch, in the band where there is one (refined by a golden-section search where it is a
+//! smooth maximum).
 
 use serde::Serialize;
 
@@ -46,6 +48,11 @@ pub struct PathOptions {
     /// step is halved down to `min_step` and then is the end of the branch.
     #[serde(default)]
     pub hop_force: f64,
+    /// Radius from which outward the mesh resolves the cohesive zone (a refined band at the
+    /// rim): hops are accepted only while the outermost contact node lies there, and the
+    /// pull-off is the most tensile state of the branch there. `None`: hops everywhere.
+    #[serde(default)]
+    pub hop_band: Option<f64>,
 }
 
 /// One point of the force-displacement curve.
@@ -90,6 +97,11 @@ pub struct Pulloff {
     /// `true` where the maximum is smooth (`dF/dd = 0`), `false` where it is the end of the
     /// branch (the grips and the load let go together).
     pub smooth: bool,
+    /// With [`PathOptions::hop_band`]: the most tensile state is the last one whose crack front
+    /// lies in the band, and the branch went on outside it (the maximum is not resolved: the
+    /// force is a lower bound).
+    #[serde(default)]
+    pub at_band_edge: bool,
 }
 
 /// The force-displacement curve with its jumps and pull-off.
@@ -194,7 +206,12 @@ impl Walker<'_> {
                 Ok(next) => {
                     self.iterations += next.iterations;
                     let change = (next.force - last.force).abs();
-                    hop = next.shifted && change <= self.options.hop_force * f0;
+                    // A hop starts and lands in the band: a front that jumps out of it ran
+                    // (the coarser mesh beyond only arrests it).
+                    hop = next.shifted
+                        && change <= self.options.hop_force * f0
+                        && self.in_band(&last)
+                        && self.in_band(next);
                     (!next.shifted || hop) && change <= JUMP_FORCE * f0
                 }
                 Err(_) => false,
@@ -244,6 +261,15 @@ impl Walker<'_> {
 }
 
 impl Walker<'_> {
+    /// Whether the crack front (the outermost node in contact) of `state` lies in
+    /// [`PathOptions::hop_band`] (always, without one).
+    fn in_band(&self, state: &Equilibrium) -> bool {
+        match self.options.hop_band {
+            None => true,
+            Some(band) => front_in_band(self.surface, &state.separation, band),
+        }
+    }
+
     /// The unloading path has left the preload's branch: the pull-off is behind.
     fn jumped_while_unloading(&self) -> bool {
         self.jumps.iter().any(|j| j.unloading)
@@ -269,6 +295,17 @@ impl Walker<'_> {
         }
         Err(error)
     }
+}
+
+/// Whether the outermost node in contact (zero separation) lies at radius `band` or beyond.
+fn front_in_band(surface: &CohesiveSurface, separation: &[f64], band: f64) -> bool {
+    surface
+        .radii
+        .iter()
+        .zip(separation)
+        .rev()
+        .find(|(_, &x)| x <= 0.0)
+        .is_some_and(|(&r, _)| r >= band)
 }
 
 /// Press to the preload, then pull until free (or to `pull_to`), from the undeformed surface at
@@ -338,10 +375,17 @@ pub fn follow(surface: &CohesiveSurface, options: PathOptions) -> Result<Curve> 
 /// resolves.
 fn pulloff(walker: &mut Walker, preload_index: usize) -> Result<Pulloff> {
     let branch = walker.curve[preload_index].branch;
-    let last = (preload_index..walker.states.len())
+    let last_of_branch = (preload_index..walker.states.len())
         .take_while(|&k| walker.curve[k].branch == branch)
         .last()
         .unwrap_or(preload_index);
+    // With a band, only the states whose front lies in it count (the mesh resolves the zone
+    // there only); the front moves inward, so they come first.
+    let last = (preload_index..=last_of_branch)
+        .take_while(|&k| walker.in_band(&walker.states[k]))
+        .last()
+        .unwrap_or(preload_index);
+    let at_band_edge = last < last_of_branch;
     let (best, _) = (preload_index..=last)
         .map(|k| (k, walker.states[k].force))
         .fold((preload_index, f64::INFINITY), |acc, (k, f)| {
@@ -358,6 +402,7 @@ fn pulloff(walker: &mut Walker, preload_index: usize) -> Result<Pulloff> {
             depth: state.depth,
             force: state.force,
             smooth: false,
+            at_band_edge: at_band_edge && best == last,
         });
     }
     // A smooth maximum of the tension between its neighbours: golden-section search, each
@@ -395,5 +440,6 @@ fn pulloff(walker: &mut Walker, preload_index: usize) -> Result<Pulloff> {
         depth,
         force: force.min(state.force),
         smooth: true,
+        at_band_edge: false,
     })
 }

@@ -19,10 +19,29 @@ use crate::fem::far_field::FarField;
 use crate::fem::mesh::Degree;
 use crate::fem::mesh_provider::{self, MeshRequest, ProvidedMesh};
 use crate::fem::solver::{surface_response_on_mesh, FemOptions};
+use crate::fem::surface_response::SurfaceResponse;
 use crate::punch::PunchKind;
 
-/// Default ranges `ρ/d0`: halving, Tabor parameter `λ` from 9 to 36.
-pub const DEFAULT_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
+/// Default ranges `ρ/d0`: Tabor parameter `λ` 9, 18, 36 and 90 (a factor 10).
+pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
+
+/// Width of the refined band at the rim, in cohesive-zone lengths `ℓ`: the crack front runs in
+/// from the rim before the tension peaks (the flat punch: `3.4 ℓ` at Tabor 9, `7.5 ℓ` at 36,
+/// `9-13 ℓ` at 90), and the mesh must resolve the zone all that way.
+pub const RIM_BAND_ZONES: f64 = 20.0;
+
+/// Elements per zone length `ℓ` in the rim band (uniform size `ℓ / 6`); the mesh check uses
+/// half as many on the level below [`RIM_BAND_LEVEL`].
+pub const RIM_BAND_ELEMENTS_PER_ZONE: f64 = 6.0;
+
+/// Level of the adapted family under the rim band (the rest of the contact line and the
+/// body): the band resolves the zone, so the coarse level 1 suffices (the flat punch at Tabor
+/// 90: level 2 under a band gives the same pull-off to 1e-5).
+pub const RIM_BAND_LEVEL: i32 = 1;
+
+/// Largest force step, in `F0`, accepted as the crack front hopping a node inside the rim band
+/// (measured hops there at six elements per zone: 1e-6 to 1e-4 F0).
+pub const RIM_BAND_HOP_FORCE: f64 = 1e-3;
 
 /// Preload of the flat punches, in units of `d0`.
 pub const FLAT_PRELOAD: f64 = 0.5;
@@ -151,7 +170,22 @@ pub struct SequenceEntry {
     /// Annular branch: the uniform element size along the contact line (units of `a`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub line_element_size: Option<f64>,
+    /// Closed branch on its own mesh: the refined band at the rim this range ran on.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rim_band: Option<RimBand>,
     pub wall_s: f64,
+}
+
+/// The band at the rim `[a - width, a]` meshed uniformly for one range, and the mesh.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct RimBand {
+    /// Units of `a`: [`RIM_BAND_ZONES`] zone lengths.
+    pub width: f64,
+    /// Units of `a`: `ℓ /` [`RIM_BAND_ELEMENTS_PER_ZONE`].
+    pub element_size: f64,
+    pub mesh: String,
+    pub mesh_sha256: String,
+    pub contact_nodes: usize,
 }
 
 /// Points a stored curve is thinned to (about; its jumps are all kept).
@@ -220,8 +254,8 @@ pub struct ExcludedEntry {
     pub reason: String,
 }
 
-/// Smallest range `ρ/d0` a study extends its sequence to when a range is excluded (Tabor 144).
-pub const MIN_RANGE: f64 = 0.003;
+/// Smallest range `ρ/d0` a study extends its sequence to when a range is excluded (Tabor 450).
+pub const MIN_RANGE: f64 = 0.001;
 
 /// The study of one punch.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -303,10 +337,11 @@ impl PulloffStudy {
     }
 }
 
-/// Level of the adapted family the study runs on: graded toward the edges (element size
-/// `g |r - a|` near the rim), so that the cohesive zone is resolved by about `1/g` elements at
-/// every range; level 3 (`g = 0.069`) puts the pull-off of the flat punch within 2e-3 of level 5
-/// at Tabor 9-36.
+/// Level of the adapted family the study runs on where it has no rim band ([`run`] on one
+/// mesh, the Tamaas comparison, and without gmsh the committed level closest to it): graded
+/// toward the edges (element size `g |r - a|` near the rim); there the pull-off is the first end
+/// of the branch, a node hop of the crack front, which moves with the mesh (the flat punch at
+/// Tabor 36 on levels 2-5: 0.9768-0.9834; 0.9899 with the rim band).
 pub const STUDY_LEVEL: i32 = 3;
 
 /// The mesh the study runs on (`level` of the adapted family, made by gmsh), else, without
@@ -390,26 +425,151 @@ pub fn left_the_branch(case: &Case, entry: &SequenceEntry) -> bool {
     case.punch.is_concave() && branch_left(case, entry).is_some()
 }
 
-/// [`run`] on the study meshes: level [`STUDY_LEVEL`] of the adapted family for the contact
-/// line, the level below it as the check mesh (what `verify pulloff` does without `--mesh`).
+/// The study as `verify pulloff` runs it without `--mesh`: [`run_rim_band`] (a mesh per range
+/// with a refined band at the rim), else, where gmsh cannot make those, [`run`] on the study
+/// meshes (level [`STUDY_LEVEL`], or the committed level closest to it, and the level below as
+/// the check mesh).
 pub fn run_on_study_meshes(
+    case: Case,
+    ranges: &[f64],
+    mut progress: impl FnMut(&SequenceEntry),
+) -> Result<PulloffStudy> {
+    if mesh_provider::gmsh_available() {
+        return run_rim_band(case, ranges, progress);
+    }
+    let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
+    let check = study_mesh(case.eps, STUDY_LEVEL - 1)?;
+    run(case, ranges, &mesh, Some(&check), &mut progress)
+}
+
+/// The mesh of one range of the closed branch: level `level` of the adapted family with the band
+/// `[a - w, a]`, `w` = [`RIM_BAND_ZONES`] zone lengths (at most the contact line), meshed
+/// uniformly at `ℓ / elements_per_zone` (gmsh; `ℓ = π² (ρ/d0)²/2 a`).
+pub fn rim_band_mesh(
+    case: &Case,
+    range: f64,
+    elements_per_zone: f64,
+    level: i32,
+) -> Result<(ProvidedMesh, f64, f64)> {
+    let zone = super::annular::zone_length(case, range);
+    let width = (RIM_BAND_ZONES * zone).min(1.0 - case.eps);
+    let size = zone / elements_per_zone;
+    if size < mesh_provider::GMSH_MIN_ELEMENT_SIZE {
+        // ℓ = π² ρ²/2 >= per · (the smallest size gmsh meshes well at the rim).
+        let smallest = (2.0 * elements_per_zone * mesh_provider::GMSH_MIN_ELEMENT_SIZE).sqrt()
+            / std::f64::consts::PI;
+        return Err(Error::invalid(
+            "ranges",
+            format!(
+                "range rho/d0 = {range}: the rim band would need elements of {size:.1e} a, below \
+                 what gmsh meshes well at the rim ({:.0e} a); use ranges rho/d0 >= {:.1e}",
+                mesh_provider::GMSH_MIN_ELEMENT_SIZE,
+                smallest * 1.01
+            ),
+        ));
+    }
+    let mut parameters = mesh_provider::adapted_parameters(case.eps, level, None, 0.0, None);
+    parameters.push(("band".to_string(), width));
+    parameters.push(("hband".to_string(), size));
+    let mesh = mesh_provider::generate(&parameters, "the pull-off simulation's rim band")?;
+    Ok((mesh, width, size))
+}
+
+/// Run the study of `case` at the ranges `ranges` (units of `d0`, decreasing), each on its own
+/// [`rim_band_mesh`] ([`RIM_BAND_LEVEL`], [`RIM_BAND_ELEMENTS_PER_ZONE`]), and the smallest
+/// range again with half the band's elements on the level below (the mesh's share of the error
+/// bar); `progress` is called after each simulation.
+pub fn run_rim_band(
     case: Case,
     ranges: &[f64],
     progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
-    let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
-    let check = study_mesh(case.eps, STUDY_LEVEL - 1)?;
-    run(case, ranges, &mesh, Some(&check), progress)
+    run_sequence(case, ranges, None, progress)
 }
 
 /// Run the study of `case` on `mesh` (a disk mesh for the concave punches) at the ranges
 /// `ranges` (units of `d0`, decreasing), and the smallest range again on `check_mesh` (a coarser
 /// one) for the mesh's share of the error bar; `progress` is called after each simulation.
+/// The pull-off is the first end of the branch (no band: the mesh's own resolution).
 pub fn run(
     case: Case,
     ranges: &[f64],
     mesh: &ProvidedMesh,
     check_mesh: Option<&ProvidedMesh>,
+    progress: impl FnMut(&SequenceEntry),
+) -> Result<PulloffStudy> {
+    run_sequence(case, ranges, Some((mesh, check_mesh)), progress)
+}
+
+/// The range a study adds once the given `ranges` (decreasing) are done, if any: where some
+/// were left out (another branch), half the smallest simulated so far (`smallest`), while
+/// fewer than three are usable (`usable`, decreasing) or their Tabor span falls short of the
+/// given ranges' (at most 10), and not below [`MIN_RANGE`].
+pub fn smaller_range(
+    ranges: &[f64],
+    smallest: f64,
+    usable: &[f64],
+    any_excluded: bool,
+) -> Option<f64> {
+    let span = |r: &[f64]| match (r.first(), r.last()) {
+        (Some(first), Some(last)) => first / last,
+        _ => 1.0,
+    };
+    let wanted_span = span(ranges).min(10.0);
+    let smaller = 0.5 * smallest;
+    let short = usable.len() < 3 || span(usable) < 0.99 * wanted_span;
+    (any_excluded && short && smaller >= MIN_RANGE).then_some(smaller)
+}
+
+/// What one range ran on: the condensed model's provenance.
+struct ModelInfo {
+    mesh: String,
+    sha256: String,
+    gmsh_version: Option<String>,
+    contact_nodes: usize,
+    unknowns: usize,
+}
+
+impl ModelInfo {
+    fn of(mesh: &ProvidedMesh, name: String, response: &SurfaceResponse) -> Self {
+        ModelInfo {
+            mesh: name,
+            sha256: mesh.sha256.clone(),
+            gmsh_version: mesh.gmsh_version.clone(),
+            contact_nodes: response.radii.len(),
+            unknowns: response.unknowns,
+        }
+    }
+}
+
+/// One closed-branch simulation of `case` at `range` on its own [`rim_band_mesh`] (`per`
+/// elements per zone on `level`), the entry naming its band and mesh.
+fn simulate_in_rim_band(
+    case: &Case,
+    range: f64,
+    per: f64,
+    level: i32,
+) -> Result<(SequenceEntry, Vec<CurveSample>, Vec<CurveEdges>, ModelInfo)> {
+    let (mesh, width, size) = rim_band_mesh(case, range, per, level)?;
+    let (response, name) = surface_response_on_mesh(&mesh, &study_options(), case.eps)?;
+    let (mut entry, curve, edges) =
+        simulate(&response, case, range, Branch::Closed, Some(1.0 - width))?;
+    entry.rim_band = Some(RimBand {
+        width,
+        element_size: size,
+        mesh: name.clone(),
+        mesh_sha256: mesh.sha256.clone(),
+        contact_nodes: response.radii.len(),
+    });
+    Ok((entry, curve, edges, ModelInfo::of(&mesh, name, &response)))
+}
+
+/// The study's loop: `fixed` = one mesh (and a check mesh) for every range, `None` = a rim-band
+/// mesh per range.
+fn run_sequence(
+    case: Case,
+    ranges: &[f64],
+    fixed: Option<(&ProvidedMesh, Option<&ProvidedMesh>)>,
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
     let start = Instant::now();
@@ -431,29 +591,58 @@ pub fn run(
     }
     check_ranges(ranges)?;
     let options = study_options();
-    let (response, mesh_name) = surface_response_on_mesh(mesh, &options, eps)?;
+    let shared = match fixed {
+        Some((mesh, _)) => {
+            let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
+            Some((ModelInfo::of(mesh, name, &response), response))
+        }
+        None => None,
+    };
+    // One range on its model: the shared one, or its own rim band (`per` elements per zone on
+    // `level`).
+    let simulate_range = |range: f64, per: f64, level: i32| -> Result<_> {
+        match &shared {
+            Some((_, response)) => {
+                let (entry, curve, edges) = simulate(response, &case, range, Branch::Closed, None)?;
+                Ok((entry, curve, edges, None))
+            }
+            None => {
+                let (entry, curve, edges, model) = simulate_in_rim_band(&case, range, per, level)?;
+                Ok((entry, curve, edges, Some(model)))
+            }
+        }
+    };
     let mut sequence = Vec::new();
     let mut excluded = Vec::new();
     let mut curves = Vec::new();
+    let mut smallest_model = None;
     let mut queue: Vec<f64> = ranges.to_vec();
     let mut next = 0;
     loop {
         if next == queue.len() {
-            // A range whose hole is open or reopens is on another branch: the sequence goes on
-            // to smaller ones (further toward the JKR limit) until three are on the preload's
-            // branch, while that stays affordable.
-            let smaller = queue[queue.len() - 1] * 0.5;
-            if sequence.len() < 3 && !excluded.is_empty() && smaller >= MIN_RANGE {
-                queue.push(smaller);
-            } else {
-                break;
+            let usable: Vec<f64> = sequence
+                .iter()
+                .map(|e: &SequenceEntry| e.range_over_a / case.d0())
+                .collect();
+            match smaller_range(
+                ranges,
+                queue[queue.len() - 1],
+                &usable,
+                !excluded.is_empty(),
+            ) {
+                Some(smaller) => queue.push(smaller),
+                None => break,
             }
         }
         let range = queue[next];
         next += 1;
-        let (entry, curve, edges) = simulate(&response, &case, range, Branch::Closed)?;
+        let (entry, curve, edges, model) =
+            simulate_range(range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL)?;
         progress(&entry);
         let left = branch_left(&case, &entry);
+        if left.is_none() && model.is_some() {
+            smallest_model = model;
+        }
         file_simulation(
             (&mut sequence, &mut excluded, &mut curves),
             entry,
@@ -468,15 +657,24 @@ pub fn run(
             reason: format!("no range gave a closed hole: {}", reasons.join("; ")),
         });
     }
-    let ranges: Vec<f64> = sequence
-        .iter()
-        .map(|e| e.range_over_a / case.d0())
-        .collect();
-    let mesh_difference = match check_mesh {
-        Some(coarser) => {
+    let smallest = sequence[sequence.len() - 1].range_over_a / case.d0();
+    let check = match fixed {
+        Some((_, Some(coarser))) => {
             let (response, _) = surface_response_on_mesh(coarser, &options, eps)?;
-            let smallest = ranges[ranges.len() - 1];
-            let (entry, _, _) = simulate(&response, &case, smallest, Branch::Closed)?;
+            Some(simulate(&response, &case, smallest, Branch::Closed, None)?.0)
+        }
+        Some((_, None)) => None,
+        None => Some(
+            simulate_range(
+                smallest,
+                0.5 * RIM_BAND_ELEMENTS_PER_ZONE,
+                RIM_BAND_LEVEL - 1,
+            )?
+            .0,
+        ),
+    };
+    let mesh_difference = match check {
+        Some(entry) => {
             progress(&entry);
             open_hole_declined(&case, &entry)?;
             Some((entry.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs())
@@ -485,6 +683,10 @@ pub fn run(
     };
     let (extrapolated, error_bar) = extrapolate(&sequence, mesh_difference.unwrap_or(0.0));
     let (jkr, full_contact, paper) = jkr_values(&case)?;
+    let model = match shared {
+        Some((model, _)) => model,
+        None => smallest_model.expect("a rim-band model for every range in the sequence"),
+    };
     Ok(PulloffStudy {
         punch,
         eps: (punch == PunchKind::FlatAnnulus).then_some(eps),
@@ -495,11 +697,11 @@ pub fn run(
               the FE contact line (P2)"
             .into(),
         preload_over_d0: case.preload() / case.d0(),
-        mesh: mesh_name,
-        mesh_sha256: mesh.sha256.clone(),
-        mesh_gmsh_version: mesh.gmsh_version.clone(),
-        contact_nodes: response.radii.len(),
-        unknowns: response.unknowns,
+        mesh: model.mesh,
+        mesh_sha256: model.sha256,
+        mesh_gmsh_version: model.gmsh_version,
+        contact_nodes: model.contact_nodes,
+        unknowns: model.unknowns,
         sequence,
         excluded,
         curves,
@@ -509,10 +711,23 @@ pub fn run(
         jkr_fixed_load_over_f0: jkr,
         full_contact_over_f0: full_contact,
         paper_route_over_f0: paper,
-        note: "pull-off: the most tensile force of the branch the preload is on, which ends where \
-               the crack front first runs (a jump under fixed grips); past it the discrete front \
-               is pinned node by node (lattice trapping) and the path is not followed"
-            .into(),
+        note: if fixed.is_some() {
+            "pull-off: the most tensile force of the branch the preload is on, which ends where \
+             the crack front first runs (a jump under fixed grips); past it the discrete front \
+             is pinned node by node (lattice trapping) and the path is not followed"
+                .into()
+        } else {
+            format!(
+                "pull-off: the most tensile force of the branch the preload is on while its crack \
+                 front lies in the rim band (each range on its own mesh: the band [a - w, a], w = \
+                 {RIM_BAND_ZONES} zone lengths, meshed at 1/{RIM_BAND_ELEMENTS_PER_ZONE} of the \
+                 zone on level {RIM_BAND_LEVEL} of the adapted family; rim_band in each entry); \
+                 node hops of the front there (force steps under {RIM_BAND_HOP_FORCE} F0) \
+                 continue the branch; the check: the smallest range with half the band's \
+                 elements on level {}; mesh and contact_nodes: the smallest range's",
+                RIM_BAND_LEVEL - 1
+            )
+        },
         wall_s: start.elapsed().as_secs_f64(),
     })
 }
@@ -621,7 +836,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     let start = Instant::now();
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
-    let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed)?;
+    let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed, None)?;
     open_hole_declined(&case, &entry)?;
     Ok(LiveSimulation {
         curve,
@@ -629,6 +844,29 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
         d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
         mesh: mesh_name,
         contact_nodes: response.radii.len(),
+        entry,
+        wall_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// One closed-branch simulation of `case` at range `range` (units of `d0`) as the study makes
+/// it: on its own [`rim_band_mesh`] where gmsh is available, else [`simulate_once`] on the
+/// study mesh (the committed level closest to it without gmsh). A concave case whose hole opens
+/// is declined.
+pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
+    if !mesh_provider::gmsh_available() {
+        return simulate_once(case, range, &study_mesh(case.eps, STUDY_LEVEL)?);
+    }
+    let start = Instant::now();
+    let (entry, curve, _, model) =
+        simulate_in_rim_band(&case, range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL)?;
+    open_hole_declined(&case, &entry)?;
+    Ok(LiveSimulation {
+        curve,
+        punch: case.punch,
+        d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
+        mesh: model.mesh,
+        contact_nodes: model.contact_nodes,
         entry,
         wall_s: start.elapsed().as_secs_f64(),
     })
@@ -657,7 +895,7 @@ pub fn simulate_cases(
                         .into(),
                 });
             }
-            let (entry, curve, _) = simulate(&response, case, range, Branch::Closed)?;
+            let (entry, curve, _) = simulate(&response, case, range, Branch::Closed, None)?;
             open_hole_declined(case, &entry)?;
             Ok(LiveSimulation {
                 curve,
@@ -690,11 +928,16 @@ pub struct LiveSimulation {
 }
 
 /// One loading-unloading simulation of `case` at range `range` (units of `d0`).
+///
+/// `band`: the radius from which outward the mesh resolves the zone (a rim band,
+/// [`rim_band_mesh`]): node hops of the crack front there continue the branch, and the pull-off
+/// is the branch's most tensile state there (an error if that is the band's inner edge).
 pub(super) fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,
     case: &Case,
     range: f64,
     branch: Branch,
+    band: Option<f64>,
 ) -> Result<(SequenceEntry, Vec<CurveSample>, Vec<CurveEdges>)> {
     let begun = Instant::now();
     let d0 = case.d0();
@@ -725,9 +968,29 @@ pub(super) fn simulate(
         max_press_step: if case.punch.is_concave() { 0.02 } else { step },
         min_step: 1e-7 * d0,
         press_until_closed: (case.punch.is_concave() && !annular).then_some(MAX_CONCAVE_PRELOAD),
-        hop_force: if annular { ANNULAR_HOP_FORCE } else { 0.0 },
+        hop_force: if annular {
+            ANNULAR_HOP_FORCE
+        } else if band.is_some() {
+            RIM_BAND_HOP_FORCE
+        } else {
+            0.0
+        },
+        hop_band: if annular { None } else { band },
     };
     let curve = follow(&surface, path)?;
+    if curve.pulloff.at_band_edge {
+        return Err(Error::NoConvergence {
+            method: "cohesive-fem".into(),
+            reason: format!(
+                "range rho/d0 = {}: the tension still rises where the crack front leaves the \
+                 refined band at the rim (r >= {} a, {RIM_BAND_ZONES} zone lengths): the \
+                 pull-off is not resolved there (a larger range, or --mesh with a finer \
+                 contact line)",
+                crate::error::show(range),
+                crate::error::show(band.unwrap_or(f64::NAN))
+            ),
+        });
+    }
     let concave = case.punch.is_concave();
     let preload = curve.points.iter().rposition(|p| !p.unloading).unwrap_or(0);
     let closed_at_preload = !curve.points[preload].centre_open;
@@ -773,6 +1036,7 @@ pub(super) fn simulate(
         hole_closed_at: closed.map(|p| (p.depth / d0, p.force / f0)),
         node_hops: curve.hops,
         line_element_size: None,
+        rim_band: None,
         wall_s: begun.elapsed().as_secs_f64(),
     };
     // The curve in units of d0 and F0: (depth, force, unloading).
@@ -821,6 +1085,34 @@ pub(super) fn extrapolate(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_sequence_that_lost_ranges_is_extended_to_three_over_the_given_span() {
+        let given = DEFAULT_RANGES;
+        // Nothing left out: the given ranges are the sequence, whatever their span.
+        assert_eq!(
+            smaller_range(&given, 0.005, &[0.025, 0.0125, 0.005], false),
+            None
+        );
+        // Tabor 9 left out: three usable spanning 5 of the wanted 10, so half the smallest.
+        assert_eq!(
+            smaller_range(&given, 0.005, &[0.025, 0.0125, 0.005], true),
+            Some(0.0025)
+        );
+        // Then the span is 10: done.
+        let usable = [0.025, 0.0125, 0.005, 0.0025];
+        assert_eq!(smaller_range(&given, 0.0025, &usable, true), None);
+        // Fewer than three usable: on, from the smallest simulated (a left-out one too).
+        assert_eq!(smaller_range(&given, 0.0025, &[0.005], true), Some(0.00125));
+        // Never below MIN_RANGE.
+        assert_eq!(smaller_range(&given, 1.5 * MIN_RANGE, &[0.005], true), None);
+        // Given ranges spanning 4 (the user's): three usable spanning 4 are enough.
+        let given = [0.1, 0.05, 0.025];
+        assert_eq!(
+            smaller_range(&given, 0.0125, &[0.05, 0.025, 0.0125], true),
+            None
+        );
+    }
 
     #[test]
     fn thinning_keeps_the_ends_the_turn_and_both_sides_of_every_jump() {

@@ -222,6 +222,11 @@ pub fn project_root() -> PathBuf {
     find_project_root().unwrap_or_else(|_| std::env::current_dir().unwrap_or_default())
 }
 
+/// Whether gmsh can be found ([`Gmsh::get`]): the meshes made per scene are available.
+pub fn gmsh_available() -> bool {
+    Gmsh::get(&project_root(), "").is_ok()
+}
+
 /// Directory of the committed meshes (`RINGCONTACT_MESHES` overrides).
 pub fn mesh_directory() -> PathBuf {
     std::env::var_os("RINGCONTACT_MESHES")

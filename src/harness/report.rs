@@ -456,8 +456,8 @@ fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String 
     )
 }
 
-/// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 36), on the study
-/// mesh (level 3 of the adapted family; the committed disk level 2 without gmsh).
+/// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 90) as the study
+/// runs it (its own rim-band mesh; without gmsh the committed disk level 2).
 pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     use crate::cohesive::study;
     let case = study::Case {
@@ -465,9 +465,8 @@ pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
         eps: 0.0,
         d0_over_h: 10.0,
     };
-    let mesh = study::study_mesh(0.0, study::STUDY_LEVEL)?;
     let smallest = study::DEFAULT_RANGES[study::DEFAULT_RANGES.len() - 1];
-    study::simulate_once(case, smallest, &mesh)
+    study::simulate_as_studied(case, smallest)
 }
 
 fn speed_chart(sa: &SpeedAccuracy) -> String {

@@ -200,9 +200,10 @@ pub fn report_tables(
             intro: Some(
                 "A second route to the pull-off, with no JKR energy balance: an exponential \
                  adhesion law on the FE model's contact line, pressed and pulled under \
-                 displacement control at three ranges, extrapolated to zero range \
-                 (`verify pulloff`; stored by `scripts/pulloff/run_all.sh`, which the nightly \
-                 run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
+                 displacement control at ranges spanning a factor 10 in the Tabor parameter \
+                 (the closed branch: each on its own mesh, a band at the rim refined to the \
+                 cohesive zone), extrapolated to zero range (`verify pulloff`; stored by \
+                 `scripts/pulloff/run_all.sh`, which the nightly run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
                  (concave punches, pressed until their hole closes: 3h, or deeper for small \
                  d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
                  contact (touched with the hole open, then pulled). A range at which the closed \
