@@ -19,7 +19,7 @@ if [ -x .venv-peers/bin/python ] && .venv-peers/bin/python -c "import tamaas, Co
   if bash scripts/peers/run_peers.sh > "$out/peers.log" 2>&1; then peers=fresh; fi
 fi
 status=0
-# The pull-off simulations (verify/pulloff/, 20 s to 3.5 min each, ~13 min; need gmsh), shown by the report.
+# The pull-off simulations (verify/pulloff/, 20 s to 3.5 min each, ~16 min; need gmsh), shown by the report.
 if bash scripts/pulloff/run_all.sh > "$out/pulloff.log" 2>&1; then :; else status=1; fi
 # The speed-accuracy charts run the FEM's full solve down to 1e-8 (7-17 s per state with gmsh meshing).
 ./target/release/verify compare --report "$out" --fem-tolerances 1e-3,1e-4,1e-6,1e-8 > "$out/summary.txt" || status=1

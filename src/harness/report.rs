@@ -160,16 +160,17 @@ fn verdicts(
     let direct_numbers: Vec<String> = direct
         .iter()
         .filter_map(|s| {
+            let digits = bar_digits(s.error_bar?);
             Some(format!(
-                "{} d0/h = {}: direct simulation {:.3} +- {:.3} F0 (full contact {:.3}, paper's \
-                 route {})",
+                "{} d0/h = {}: direct simulation {:.digits$} +- {:.digits$} F0 (full contact \
+                 {:.digits$}, paper's route {})",
                 s.punch,
                 s.d0_over_h?,
                 s.extrapolated_over_f0?,
                 s.error_bar?,
                 s.full_contact_over_f0?,
                 s.paper_route_over_f0
-                    .map_or("-".into(), |v| format!("{v:.3}"))
+                    .map_or("-".into(), |v| format!("{v:.digits$}"))
             ))
         })
         .collect();
@@ -211,9 +212,10 @@ fn verdicts(
     let annular_numbers: Vec<String> = annular
         .iter()
         .filter_map(|s| {
+            let digits = bar_digits(s.error_bar?);
             Some(format!(
-                "{} d0/h = {}: direct simulation {:.3} +- {:.3} F0, JKR route (converged \
-                 solutions) {:.3}, paper's route on its fits {:.3}",
+                "{} d0/h = {}: direct simulation {:.digits$} +- {:.digits$} F0, JKR route \
+                 (converged solutions) {:.digits$}, paper's route on its fits {:.digits$}",
                 s.punch,
                 s.d0_over_h?,
                 s.extrapolated_over_f0?,
@@ -323,7 +325,7 @@ pub const PULLOFF_ANNULAR_CHART: &str = "pulloff-annular.svg";
 
 /// The annular branch of each stored `--branch annular` study: the pull of its smallest range
 /// (force against depth, compression positive) and the JKR route's adhesive annular branch
-/// from the ring BEM at `b/a` = 0.30-0.96 (`d/h = γ1 - (d0/h)/κ_in`,
+/// from the ring BEM at `b/a` = 0.30-0.995 (`d/h = γ1 - (d0/h)/κ_in`,
 /// `F/F0 = (h/d0) γ2 - γ/κ_in`), which ends at its fixed-load pull-off.
 fn pulloff_annular_chart(
     ring: &RingBemSolver,
@@ -348,10 +350,14 @@ fn pulloff_annular_chart(
         }
         // The pulled part of the branch: from its fixed-grips end (the most negative depth)
         // back toward smaller b/a while the depth rises, up to d = 0.
-        let all: Vec<(f64, f64)> = (0..=66)
-            .filter_map(|k| {
-                let p =
-                    crate::adhesion::branch_point(ring, s.punch, 0.30 + 0.01 * k as f64).ok()?;
+        // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets
+        // go near the rim: the cone at d0/h = 0.3 at b/a = 0.98).
+        let ratios = (0..=66)
+            .map(|k| 0.30 + 0.01 * k as f64)
+            .chain((1..=7).map(|k| 0.96 + 0.005 * k as f64));
+        let all: Vec<(f64, f64)> = ratios
+            .filter_map(|ratio| {
+                let p = crate::adhesion::branch_point(ring, s.punch, ratio).ok()?;
                 let point = (p.depth(x) / x, p.force(x));
                 (point.0.is_finite() && point.1.is_finite()).then_some(point)
             })
@@ -467,6 +473,15 @@ pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     };
     let smallest = study::DEFAULT_RANGES[study::DEFAULT_RANGES.len() - 1];
     study::simulate_as_studied(case, smallest)
+}
+
+/// Decimals that show an error bar `bar` to two significant digits (at least three).
+fn bar_digits(bar: f64) -> usize {
+    if bar.is_finite() && bar > 0.0 {
+        ((-bar.log10()).ceil() as i64 + 1).clamp(3, 12) as usize
+    } else {
+        3
+    }
 }
 
 fn speed_chart(sa: &SpeedAccuracy) -> String {
