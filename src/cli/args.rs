@@ -164,9 +164,9 @@ Mesh (closed branch): one gmsh mesh per range, level 1 of the adapted family wit
 before the tension peaks, and node hops of the front inside the band (force steps under 1e-3 F0)
 continue the branch; a front that leaves the band while the tension still rises is an error
 (not resolved). The mesh check: the smallest range at l/3 on level 0. Without gmsh: the
-committed meshes of the ratio (b/a = 0, 0.5, 0.9; level 2, level 1 for the check) and no band,
-the pull-off the first end of the branch (2-3 % low at Tabor 36-90). --mesh: that mesh for
-every range, no band, no check.
+committed meshes of the ratio (b/a = 0, 0.5, 0.9; level 2, level 1 for the check), no band, the
+pull-off the first end of the branch (about 2 % low at Tabor 36), and the ranges 0.05, 0.025,
+0.0125 by default. --mesh: that mesh for every range, no band, no check.
 
 Examples:
   verify pulloff --punch flat                          Kendall: the sequence tends to 1
@@ -274,7 +274,8 @@ pub struct PulloffArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub d0h: Option<f64>,
     /// Ranges rho/d0 of the law, decreasing, comma-separated (the last three are extrapolated)
-    /// [default: 0.05,0.025,0.0125,0.005 (Tabor 9 to 90); with --branch annular 0.1,0.07,0.05].
+    /// [default: 0.05,0.025,0.0125,0.005 (Tabor 9 to 90); without gmsh 0.05,0.025,0.0125; with
+    /// --branch annular 0.1,0.07,0.05].
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub ranges: Option<Vec<f64>>,
     /// Concave punches: the branch to follow. `closed`: pressed until the hole closes, then

@@ -45,8 +45,10 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     let ranges = args.ranges.clone().unwrap_or_else(|| {
         if annular {
             study::ANNULAR_RANGES.to_vec()
-        } else {
+        } else if args.mesh.is_some() {
             study::DEFAULT_RANGES.to_vec()
+        } else {
+            study::default_ranges()
         }
     });
     if let Some(r) = ranges

@@ -25,6 +25,22 @@ use crate::punch::PunchKind;
 /// Default ranges `ρ/d0`: Tabor parameter `λ` 9, 18, 36 and 90 (a factor 10).
 pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
 
+/// Default ranges without gmsh (no rim band, the committed meshes): Tabor 9 to 36. Smaller
+/// ranges there end at a mesh-dependent node hop or find no equilibrium (the cone at
+/// `d0/h = 10`, Tabor 90, on the committed disk level 2: none at touch after 300 Newton
+/// iterations).
+pub const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
+
+/// The default ranges where the study runs: [`DEFAULT_RANGES`] with gmsh (rim bands), else
+/// [`COMMITTED_MESH_RANGES`].
+pub fn default_ranges() -> Vec<f64> {
+    if mesh_provider::gmsh_available() {
+        DEFAULT_RANGES.to_vec()
+    } else {
+        COMMITTED_MESH_RANGES.to_vec()
+    }
+}
+
 /// Width of the refined band at the rim, in cohesive-zone lengths `ℓ`: the crack front runs in
 /// from the rim before the tension peaks (the flat punch: `3.4 ℓ` at Tabor 9, `7.5 ℓ` at 36,
 /// `9-13 ℓ` at 90), and the mesh must resolve the zone all that way.
@@ -439,7 +455,13 @@ pub fn run_on_study_meshes(
     }
     let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
     let check = study_mesh(case.eps, STUDY_LEVEL - 1)?;
-    run(case, ranges, &mesh, Some(&check), &mut progress)
+    let mut study = run(case, ranges, &mesh, Some(&check), &mut progress)?;
+    study.note += &format!(
+        " (gmsh not found: the committed meshes, no rim band; `{}` installs it for the banded \
+         study)",
+        crate::fem::gmsh::INSTALL_COMMAND
+    );
+    Ok(study)
 }
 
 /// The mesh of one range of the closed branch: level `level` of the adapted family with the band

@@ -419,7 +419,7 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
         eps,
         d0_over_h,
     };
-    let outcome = study::run_on_study_meshes(case, &study::DEFAULT_RANGES, |_| {});
+    let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
     let file = match punch {
         PunchKind::FlatAnnulus => format!("flat-annulus-{eps}.json"),
         p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.name()),

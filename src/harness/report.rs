@@ -462,8 +462,8 @@ fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String 
     )
 }
 
-/// The cone at `d0/h = 10` (hole closed) at the smallest default range (Tabor 90) as the study
-/// runs it (its own rim-band mesh; without gmsh the committed disk level 2).
+/// The cone at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
+/// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
 pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     use crate::cohesive::study;
     let case = study::Case {
@@ -471,8 +471,8 @@ pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
         eps: 0.0,
         d0_over_h: 10.0,
     };
-    let smallest = study::DEFAULT_RANGES[study::DEFAULT_RANGES.len() - 1];
-    study::simulate_as_studied(case, smallest)
+    let ranges = study::default_ranges();
+    study::simulate_as_studied(case, ranges[ranges.len() - 1])
 }
 
 /// Decimals that show an error bar `bar` to two significant digits (at least three).
