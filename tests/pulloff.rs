@@ -254,6 +254,38 @@ fn a_front_that_leaves_the_band_before_the_peak_is_flagged_not_reported() {
     assert!(-whole.pulloff.force > -banded.pulloff.force);
 }
 
+/// A flat annulus has no hole: its inner edge letting go before the outer one (a narrow
+/// annulus, b/a = 0.99 at Tabor 90, where the separated inner part looks like an open "hole")
+/// is one of its detachments, never a reason to leave a range out or to decline the study (the
+/// check run declined `verify pulloff --punch flat-annulus --eps 0.99` that way: both go through
+/// the same test, which `left_the_branch` exposes). The entry is a stored one
+/// (verify/pulloff/flat-annulus-0.9.json) with such a reopening written in.
+#[test]
+fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
+    let text = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("verify/pulloff/flat-annulus-0.9.json"),
+    )
+    .unwrap();
+    let record: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let mut entry: study::SequenceEntry =
+        serde_json::from_value(record["result"]["sequence"][0].clone()).unwrap();
+    entry.hole_reopened_at = Some((-0.34, -0.19));
+    let annulus = study::Case {
+        punch: PunchKind::FlatAnnulus,
+        eps: 0.9,
+        d0_over_h: 0.0,
+    };
+    assert!(!study::left_the_branch(&annulus, &entry));
+    // The same entry for a concave punch is on another branch.
+    let cone = study::Case {
+        punch: PunchKind::Cone,
+        eps: 0.0,
+        d0_over_h: 1.0,
+    };
+    assert!(study::left_the_branch(&cone, &entry));
+}
+
 /// Tamaas's grid BEM with its exponential adhesion functional (stored by
 /// scripts/peers/run_adhesion.py: an independent code, periodic cell corrected for its images) and
 /// our simulation at the same law and range give the same pull-off within Tamaas's uncertainty

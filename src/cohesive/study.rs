@@ -410,6 +410,10 @@ fn open_hole_declined(case: &Case, entry: &SequenceEntry) -> Result<()> {
 /// How a concave punch's simulation left the branch of the closed hole, if it did: the hole
 /// still open at the deepest preload, reopened on the way out, or an unknown landing.
 fn branch_left(case: &Case, entry: &SequenceEntry) -> Option<String> {
+    // A flat annulus has no hole to close: its inner edge letting go is one of its detachments.
+    if !case.punch.is_concave() {
+        return None;
+    }
     let pressed = || crate::error::show(entry.preload_over_d0.unwrap_or(f64::NAN) * case.d0());
     if entry.hole_closed_at_preload == Some(false) {
         Some(format!(
@@ -422,15 +426,15 @@ fn branch_left(case: &Case, entry: &SequenceEntry) -> Option<String> {
              d/d0 = {depth:.4}, F/F0 = {force:.4} (compression positive)",
             pressed()
         ))
-    } else if let (true, Some(why)) = (case.punch.is_concave(), &entry.unresolved_landing) {
-        Some(format!(
-            "the branch ended at d/d0 = {:.4}, F/F0 = {:.4} (compression positive) and the state \
-             it jumps to was not found ({why}): whether the hole reopened or the rim let go is \
-             unknown",
-            entry.pulloff_depth_over_d0, -entry.pulloff_over_f0
-        ))
     } else {
-        None
+        entry.unresolved_landing.as_ref().map(|why| {
+            format!(
+                "the branch ended at d/d0 = {:.4}, F/F0 = {:.4} (compression positive) and the \
+                 state it jumps to was not found ({why}): whether the hole reopened or the rim \
+                 let go is unknown",
+                entry.pulloff_depth_over_d0, -entry.pulloff_over_f0
+            )
+        })
     }
 }
 
@@ -438,7 +442,7 @@ fn branch_left(case: &Case, entry: &SequenceEntry) -> Option<String> {
 /// unknown landing; concave punches): [`run`] then leaves it out and adds a smaller range while
 /// fewer than three are usable.
 pub fn left_the_branch(case: &Case, entry: &SequenceEntry) -> bool {
-    case.punch.is_concave() && branch_left(case, entry).is_some()
+    branch_left(case, entry).is_some()
 }
 
 /// The study as `verify pulloff` runs it without `--mesh`: [`run_rim_band`] (a mesh per range
@@ -1053,7 +1057,9 @@ pub(super) fn simulate(
         preload_over_d0: Some(curve.points[preload].depth / d0),
         hole_closed_at_preload: concave.then_some(closed_at_preload),
         hole_open_before_pulloff: concave.then_some(reopened.is_some()),
-        hole_reopened_at: reopened.map(|p| (p.depth / d0, p.force / f0)),
+        hole_reopened_at: reopened
+            .filter(|_| concave)
+            .map(|p| (p.depth / d0, p.force / f0)),
         unresolved_landing: curve.unresolved_landing.clone(),
         hole_closed_at: closed.map(|p| (p.depth / d0, p.force / f0)),
         node_hops: curve.hops,
