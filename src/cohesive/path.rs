@@ -128,19 +128,7 @@ fn describe(
     unloading: bool,
 ) -> CurvePoint {
     let range = surface.law.range;
-    let extent = |pick: &dyn Fn(f64) -> bool| {
-        let chosen: Vec<f64> = surface
-            .radii
-            .iter()
-            .zip(&e.separation)
-            .filter(|(_, &x)| pick(x))
-            .map(|(&r, _)| r)
-            .collect();
-        match (chosen.first(), chosen.last()) {
-            (Some(&lo), Some(&hi)) => Some((lo, hi)),
-            _ => None,
-        }
-    };
+    let extent = |pick: &dyn Fn(f64) -> bool| extent(surface, &e.separation, pick);
     CurvePoint {
         depth: e.depth,
         force: e.force,
@@ -153,6 +141,22 @@ fn describe(
         branch,
         unloading,
     }
+}
+
+/// Innermost and outermost node radius whose separation `pick` chooses, if any.
+fn extent(
+    surface: &CohesiveSurface,
+    separation: &[f64],
+    pick: &dyn Fn(f64) -> bool,
+) -> Option<(f64, f64)> {
+    let mut chosen = surface
+        .radii
+        .iter()
+        .zip(separation)
+        .filter(|(_, &x)| pick(x))
+        .map(|(&r, _)| r);
+    let first = chosen.next()?;
+    Some((first, chosen.last().unwrap_or(first)))
 }
 
 /// Kendall's `F0 = sqrt(8 π Δw)` (`E* = a = 1`).
@@ -297,15 +301,10 @@ impl Walker<'_> {
     }
 }
 
-/// Whether the outermost node in contact (zero separation) lies at radius `band` or beyond.
+/// Whether the outermost node in contact (zero separation, [`CurvePoint::contact`]) lies at
+/// radius `band` or beyond.
 fn front_in_band(surface: &CohesiveSurface, separation: &[f64], band: f64) -> bool {
-    surface
-        .radii
-        .iter()
-        .zip(separation)
-        .rev()
-        .find(|(_, &x)| x <= 0.0)
-        .is_some_and(|(&r, _)| r >= band)
+    extent(surface, separation, &|x| x <= 0.0).is_some_and(|(_, outer)| outer >= band)
 }
 
 /// Press to the preload, then pull until free (or to `pull_to`), from the undeformed surface at

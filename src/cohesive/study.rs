@@ -863,16 +863,12 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
     let options = study_options();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
     let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed, None)?;
-    open_hole_declined(&case, &entry)?;
-    Ok(LiveSimulation {
-        curve,
-        punch: case.punch,
-        d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
-        mesh: mesh_name,
-        contact_nodes: response.radii.len(),
-        entry,
-        wall_s: start.elapsed().as_secs_f64(),
-    })
+    LiveSimulation::unless_declined(
+        &case,
+        (entry, curve),
+        (mesh_name, response.radii.len()),
+        start.elapsed().as_secs_f64(),
+    )
 }
 
 /// One closed-branch simulation of `case` at range `range` (units of `d0`) as the study makes
@@ -886,16 +882,12 @@ pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
     let start = Instant::now();
     let (entry, curve, _, model) =
         simulate_in_rim_band(&case, range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL)?;
-    open_hole_declined(&case, &entry)?;
-    Ok(LiveSimulation {
-        curve,
-        punch: case.punch,
-        d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
-        mesh: model.mesh,
-        contact_nodes: model.contact_nodes,
-        entry,
-        wall_s: start.elapsed().as_secs_f64(),
-    })
+    LiveSimulation::unless_declined(
+        &case,
+        (entry, curve),
+        (model.mesh, model.contact_nodes),
+        start.elapsed().as_secs_f64(),
+    )
 }
 
 /// One simulation of each of `cases` (contact line from `b/a = 0`: flat and concave punches) at
@@ -922,16 +914,13 @@ pub fn simulate_cases(
                 });
             }
             let (entry, curve, _) = simulate(&response, case, range, Branch::Closed, None)?;
-            open_hole_declined(case, &entry)?;
-            Ok(LiveSimulation {
-                curve,
-                punch: case.punch,
-                d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
-                mesh: mesh_name.clone(),
-                contact_nodes: response.radii.len(),
-                wall_s: entry.wall_s + condensation_s / cases.len() as f64,
-                entry,
-            })
+            let wall_s = entry.wall_s + condensation_s / cases.len() as f64;
+            LiveSimulation::unless_declined(
+                case,
+                (entry, curve),
+                (mesh_name.clone(), response.radii.len()),
+                wall_s,
+            )
         })
         .collect()
 }
@@ -951,6 +940,28 @@ pub struct LiveSimulation {
     pub curve: Vec<CurveSample>,
     /// Condensation and simulation.
     pub wall_s: f64,
+}
+
+impl LiveSimulation {
+    /// The simulation of `case` that gave `entry` and `curve` on `(mesh, contact_nodes)`, or the
+    /// error saying why it is declined (a concave punch whose hole opened).
+    fn unless_declined(
+        case: &Case,
+        (entry, curve): (SequenceEntry, Vec<CurveSample>),
+        (mesh, contact_nodes): (String, usize),
+        wall_s: f64,
+    ) -> Result<Self> {
+        open_hole_declined(case, &entry)?;
+        Ok(LiveSimulation {
+            punch: case.punch,
+            d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
+            mesh,
+            contact_nodes,
+            entry,
+            curve,
+            wall_s,
+        })
+    }
 }
 
 /// One loading-unloading simulation of `case` at range `range` (units of `d0`).
