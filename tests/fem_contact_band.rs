@@ -96,3 +96,56 @@ fn a_band_that_misses_the_edge_is_moved_or_replaced_never_wrong() {
         assert_eq!(solution.active_radii, reference.active_radii);
     }
 }
+
+#[test]
+fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
+    // `verify solve --mesh M` on a concave punch: the free edge is first located on the linear
+    // model of the same mesh, then the quadratic or cubic model is solved by the banded route.
+    // Reference: the same discrete problem by the refactorising loop from a cold start.
+    use ringcontact::fem::far_field::FarField;
+    use ringcontact::fem::solver::{FemLoad, FemOptions};
+    let path = solver::mesh_directory().join("disk-L1.msh");
+    let cases = [
+        (PunchKind::Cone, 0.5, Degree::Quadratic),
+        (PunchKind::Cone, 2.0, Degree::Cubic),
+        (PunchKind::Cone, 4.0, Degree::Quadratic),
+        (PunchKind::Sphere, 0.5, Degree::Quadratic),
+        (PunchKind::Sphere, 2.8, Degree::Cubic),
+    ];
+    for (kind, depth, degree) in cases {
+        let mesh = read_msh(&path).unwrap().with_degree(degree);
+        let k = assemble_stiffness(
+            &mesh,
+            &Lame::from_young_poisson(1.0, 0.0),
+            &solver::stiffness_rule(degree),
+        )
+        .unwrap();
+        let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
+        let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+        let (reference, _) = contact
+            .concave(&mut reference_solver, kind, depth, None)
+            .unwrap();
+        let options = FemOptions {
+            degree,
+            tolerance: 0.9,
+            mesh: Some(path.clone()),
+            poisson_ratio: 0.0,
+            far_field: FarField::Fixed,
+        };
+        let state = solver::solve(kind, 0.0, FemLoad::ConcaveDepth(depth), &options).unwrap();
+        let force = 2.0 * state.gamma2.unwrap();
+        let relative = (force / reference.force - 1.0).abs();
+        println!(
+            "{kind} d = {depth} {degree:?}: force {relative:.1e}, {} factorisations (reference \
+             {}), linear locator {:.3} s",
+            state.timings.factorisations,
+            reference_solver.factorisations,
+            state.timings.edge_presolve
+        );
+        assert!(relative < 1e-11, "{relative}");
+        assert_eq!(state.active_radii, reference.active_radii);
+        assert_eq!(state.timings.factorisations, 1);
+        assert!(reference_solver.factorisations > 1);
+        assert!(state.timings.edge_presolve > 0.0);
+    }
+}

@@ -544,12 +544,21 @@ impl<'m> ContactModel<'m> {
         if let Some(start) = warm.clone() {
             let mut start = start;
             for _ in 0..=BAND_RETRIES {
+                let lowest = start
+                    .iter()
+                    .position(|&a| a)
+                    .map(|i| self.mesh.nodes[self.contact_nodes[i]][0]);
                 match self.concave_banded(system, kind, depth, start)? {
                     BandOutcome::Solved(solution, active) => return Ok((solution, active, true)),
                     BandOutcome::TooWide => break,
                     BandOutcome::CoreReleased(radius, reached) => {
-                        // Move the core above the released node by the band's width, refactorise.
-                        let width = (system.core_radius - radius).max(0.0);
+                        // Move the core above the released node by twice the band's width (from
+                        // the lowest node the start held to the core), refactorise. (The width
+                        // was once taken from the released node, which lies above the core: it
+                        // was never positive, and the core crept up one released node per
+                        // factorisation.)
+                        let lowest = lowest.unwrap_or(radius);
+                        let width = (system.core_radius - lowest).max(radius - system.core_radius);
                         let core_radius = radius + 2.0 * width.max(f64::EPSILON);
                         system.set_core(self.core_for(core_radius), core_radius);
                         warm = Some(reached.clone());
