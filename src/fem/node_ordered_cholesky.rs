@@ -235,7 +235,9 @@ mod tests {
         let n = 11;
         let couples = |row: usize, col: usize| {
             let (a, b) = (node_of(row, n), node_of(col, n));
-            a.abs_diff(b) <= 1 || (row + 2 * col) % 7 == 0 || (col + 2 * row) % 7 == 0
+            a.abs_diff(b) <= 1
+                || (row + 2 * col).is_multiple_of(7)
+                || (col + 2 * row).is_multiple_of(7)
         };
         let mut offsets = vec![0];
         let mut rows = Vec::new();
