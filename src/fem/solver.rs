@@ -759,6 +759,36 @@ fn state_of(
     }
 }
 
+/// A concave punch whose contact ring holds no contact node but the rim's: the ring is narrower
+/// than the model's last contact-node spacing, so the located edge (`b/a = 1`) and the force are
+/// not resolved, however small the change between models. Declined with the spacing, instead of
+/// returning the rim as the edge.
+fn rim_resolves_the_ring(
+    model: &PreparedModel,
+    kind: PunchKind,
+    s: &ContactSolution,
+) -> Result<()> {
+    if !kind.is_concave() || s.active_radii.len() > 1 {
+        return Ok(());
+    }
+    let spacing = s
+        .reactions
+        .iter()
+        .rev()
+        .nth(1)
+        .map_or(f64::NAN, |&(r, _)| 1.0 - r);
+    Err(Error::OutOfRange {
+        method: METHOD.into(),
+        reason: format!(
+            "only the rim node of {} is in contact: the contact ring is narrower than the \
+             contact-node spacing at the rim ({} a), below what the model resolves (the ring BEM \
+             declines rings narrower than 1e-4 a); press deeper or use a mesh refined at r = a",
+            model.path,
+            crate::error::show(spacing)
+        ),
+    })
+}
+
 /// Solve on one provided mesh (`--mesh`, or a level the convergence study picked), with no
 /// error estimate: the mesh's corner refinement, if any, is applied as in the ladder.
 pub fn solve_on_mesh(
@@ -779,6 +809,7 @@ pub fn solve_on_mesh(
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
         trace_level(&model, &s);
     }
+    rim_resolves_the_ring(&model, kind, &s)?;
     let state = state_of(load, eps, &s, x, y);
     let iterations = s.iterations;
     Ok(finish(
@@ -956,6 +987,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let floor = model.truncation_bias() + unresolved_component(eps_out);
             let estimate = force_estimate.max(current.eps_error) + floor;
             if estimate <= options.tolerance {
+                rim_resolves_the_ring(&model, kind, &s)?;
                 let state = (eps_out, gamma, gamma1, gamma2);
                 return Ok(finish(
                     &model,
