@@ -464,12 +464,7 @@ fn linear_edge_locator(
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
         trace_level(&linear, &s);
     }
-    let spacing = if s.active_radii.first() == Some(&0.0) {
-        // Full contact: a hole, if any, lies inside the first node off the axis.
-        s.active_radii.get(1).copied().unwrap_or(1.0)
-    } else {
-        s.inner_node_spacing
-    };
+    let spacing = full_contact_spacing(&s).unwrap_or(s.inner_node_spacing);
     let warm = WarmStart {
         inner_radius: s.inner_radius,
         band: LINEAR_LOCATOR_BAND_SPACINGS * spacing,
@@ -759,6 +754,12 @@ fn state_of(
     }
 }
 
+/// Every contact node in contact, the axis node included: a hole, if any, lies inside the first
+/// node off the axis, whose radius is returned (the located edge's uncertainty); else `None`.
+fn full_contact_spacing(s: &ContactSolution) -> Option<f64> {
+    (s.active_radii.first() == Some(&0.0)).then(|| s.active_radii.get(1).copied().unwrap_or(1.0))
+}
+
 /// A concave punch whose contact ring holds no contact node but the rim's: the ring is narrower
 /// than the model's last contact-node spacing, so the located edge (`b/a = 1`) and the force are
 /// not resolved, however small the change between models. Declined with the spacing, instead of
@@ -771,12 +772,8 @@ fn rim_resolves_the_ring(
     if !kind.is_concave() || s.active_radii.len() > 1 {
         return Ok(());
     }
-    let spacing = s
-        .reactions
-        .iter()
-        .rev()
-        .nth(1)
-        .map_or(f64::NAN, |&(r, _)| 1.0 - r);
+    // The spacing between the rim and the last free node.
+    let spacing = s.inner_node_spacing;
     Err(Error::OutOfRange {
         method: METHOD.into(),
         reason: format!(
@@ -956,10 +953,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             edge_bound: INNER_RADIUS_BOUND,
         };
         let free_nodes = s.reactions.len() - s.active_radii.len();
-        if concave && s.active_radii.first() == Some(&0.0) {
-            // Every contact node is in contact: a hole, if any, lies inside the first node off
-            // the axis, and the next mesh refines around r = 0 to find it.
-            let first_off_axis = s.active_radii.get(1).copied().unwrap_or(1.0);
+        if let Some(first_off_axis) = full_contact_spacing(&s).filter(|_| concave) {
+            // The next mesh refines around r = 0 to find the hole, if any.
             current.spacing = first_off_axis;
             current.eps_error = first_off_axis;
             current.full_contact = true;
