@@ -23,6 +23,8 @@ status=0
 if bash scripts/pulloff/run_all.sh > "$out/pulloff.log" 2>&1; then :; else status=1; fi
 # The speed-accuracy charts run the FEM's full solve down to 1e-8 (7-17 s per state with gmsh meshing).
 ./target/release/verify compare --report "$out" --fem-tolerances 1e-3,1e-4,1e-6,1e-8 > "$out/summary.txt" || status=1
+# FEniCSx on the largest meshes (6e5-1.4e6 unknowns, verify/fenicsx/large/: about a minute).
+./target/release/verify fenicsx --large > "$out/fenicsx-large.txt" || status=1
 ./target/release/verify stability --json > "$out/stability.json" || status=1
 ./target/release/verify stability > "$out/stability.txt" || true
 # The long fuzzing run (the default test run makes 20 000 inputs): 400 000 mutated meshes and scenes.

@@ -5,7 +5,7 @@
 
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::harness::fenicsx::{
-    self, compare, load_results, results_directory, FORCE_AGREEMENT,
+    self, compare, large_results_directory, load_results, results_directory, FORCE_AGREEMENT,
 };
 
 #[test]
@@ -53,6 +53,26 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
             row.file
         );
         assert!(!row.stored.dolfinx_version.is_empty() && !row.stored.petsc_version.is_empty());
+    }
+}
+
+/// The results on the largest meshes are compared only on request (`verify fenicsx --large`: a
+/// minute of solves): here they must parse, be large, and carry what remakes and reruns them.
+#[test]
+fn the_stored_results_on_the_largest_meshes_can_be_remade_and_compared() {
+    let large = load_results(&large_results_directory()).unwrap();
+    assert!(large.len() >= 3, "found {} large results", large.len());
+    for (file, result) in &large {
+        assert!(result.dofs >= 500_000, "{file}: {} dofs", result.dofs);
+        assert!(
+            result.mesh_parameters.is_some(),
+            "{file}: no gmsh parameters to remake its mesh"
+        );
+        assert!(
+            result.reproduce.starts_with("verify solve --punch"),
+            "{file}"
+        );
+        assert!(result.force.is_finite() && result.force > 0.0 && result.wall_s > 0.0);
     }
 }
 

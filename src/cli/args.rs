@@ -66,9 +66,13 @@ since they were stored are reported as stale and not used.
 
 Refresh the stored results (installs FEniCSx from Debian when missing):
   bash scripts/fenicsx/run_all.sh
+and those on the largest meshes (verify/fenicsx/large/, 6e5-1.4e6 unknowns; about 7 minutes):
+  bash scripts/fenicsx/run_generated.sh --large
 
 Example:
   verify fenicsx --json
+  verify fenicsx --large              add the stored results on the largest meshes (about a minute
+                                      with the meshes cached; gmsh remakes them when they are not)
   verify fenicsx --operators --json   the stored operator comparisons (bash
                                       scripts/fenicsx/run_operators.sh remakes them)")]
     Fenicsx(FenicsxArgs),
@@ -401,6 +405,11 @@ pub struct FenicsxArgs {
     /// vector, entry by entry, dofs matched by position) with FEniCSx's.
     #[arg(long)]
     pub operators: bool,
+    /// Also compare the stored results on the largest meshes (verify/fenicsx/large/: 6e5 to
+    /// 1.4e6 unknowns, the top of the README's cost table). Takes about a minute with the meshes
+    /// cached, plus gmsh's time to remake them when they are not (needs gmsh then).
+    #[arg(long, conflicts_with = "operators")]
+    pub large: bool,
 }
 
 // The arguments of the subcommands whose only flag is `--json`.

@@ -21,7 +21,7 @@ pub fn fenicsx(args: FenicsxArgs) -> Result<Reply, String> {
         };
         return Ok(Reply::verdict(text, operators_met));
     }
-    let rows = fenicsx::run().map_err(message)?;
+    let rows = fenicsx::run_with(args.large).map_err(message)?;
     let success = fenicsx::failures(&rows) == 0 && operators_met;
     let text = if args.json {
         to_json(&rows)?

@@ -80,6 +80,13 @@ pub fn results_directory() -> PathBuf {
     repository_root().join("verify").join("fenicsx")
 }
 
+/// Directory of the stored FEniCSx results on the largest meshes (5e5 to 1.5e6 unknowns): compared
+/// only on request (`verify fenicsx --large`, the nightly run), since our solves of them take
+/// 5-20 s each and their meshes 10-60 s of gmsh when not cached.
+pub fn large_results_directory() -> PathBuf {
+    results_directory().join("large")
+}
+
 /// Read every stored result, sorted by file name.
 pub fn load_results(dir: &Path) -> Result<Vec<(String, FenicsxResult)>> {
     super::stored::load_json_dir(dir, "FEniCSx result")
@@ -200,13 +207,32 @@ pub fn compare(
     Ok(out)
 }
 
-/// Compare every stored result.
+/// Compare every stored result of `verify/fenicsx/` (the default set).
 pub fn run() -> Result<Vec<FenicsxComparison>> {
+    run_with(false)
+}
+
+/// Compare every stored result, and with `large` those of [`large_results_directory`] too
+/// (their files named `large/NAME.json`), printing one progress line per large model to stderr.
+pub fn run_with(large: bool) -> Result<Vec<FenicsxComparison>> {
     let ring = RingBemSolver::new();
-    load_results(&results_directory())?
+    let mut rows = load_results(&results_directory())?
         .iter()
         .map(|(file, stored)| compare(file, stored, &ring))
-        .collect()
+        .collect::<Result<Vec<_>>>()?;
+    if large {
+        let stored = load_results(&large_results_directory())?;
+        for (i, (file, result)) in stored.iter().enumerate() {
+            eprintln!(
+                "fenicsx --large: {}/{} large/{file} ({} dofs)",
+                i + 1,
+                stored.len(),
+                result.dofs
+            );
+            rows.push(compare(&format!("large/{file}"), result, &ring)?);
+        }
+    }
+    Ok(rows)
 }
 
 /// Number of failures: disagreements, results that could not be compared because their mesh
