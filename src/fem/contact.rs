@@ -235,7 +235,8 @@ impl<'m> ContactModel<'m> {
             if let (Some(step), Some(previous), true) = (step, last_step, secant_allowed) {
                 if let Some(edge) = Self::edge_secant(previous, step) {
                     next = self.active_set_for_radius(edge);
-                    // The jump lands near the edge: let the creep that follows go to the band.
+                    // The jump lands near the edge: the band may take over from there (at once
+                    // when this step was creeping already).
                     handed_over = !handover;
                 }
             }

@@ -81,7 +81,7 @@ fn case_of(stored: &TamaasPulloff) -> Case {
 }
 
 /// Our simulation of every stored case at its range, on the study mesh and the level below it
-/// (each mesh condensed once), against Tamaas's pull-off.
+/// (each mesh condensed once; cases and meshes in parallel), against Tamaas's pull-off.
 pub fn run() -> Result<Vec<AdhesionPeerComparison>> {
     let stored = load()?;
     let mut out = Vec::new();
@@ -103,8 +103,12 @@ pub fn run() -> Result<Vec<AdhesionPeerComparison>> {
             });
         }
         let cases: Vec<Case> = here.iter().map(|s| case_of(&s.1)).collect();
-        let ours = study::simulate_cases(&cases, range, &fine)?;
-        let check = study::simulate_cases(&cases, range, &coarse)?;
+        // The two meshes' simulations run side by side (each runs its cases in parallel too).
+        let (ours, check) = rayon::join(
+            || study::simulate_cases(&cases, range, &fine),
+            || study::simulate_cases(&cases, range, &coarse),
+        );
+        let (ours, check) = (ours?, check?);
         for ((file, s), (mine, other)) in here.iter().zip(ours.into_iter().zip(check)) {
             out.push(compare(file, s, mine, &other));
         }

@@ -82,7 +82,7 @@ pub fn results_directory() -> PathBuf {
 
 /// Directory of the stored FEniCSx results on the largest meshes (5e5 to 1.5e6 unknowns): compared
 /// only on request (`verify fenicsx --large`, the nightly run), since our solves of them take
-/// 5-20 s each and their meshes 10-60 s of gmsh when not cached.
+/// 4-12 s each and their meshes 5-9 s of gmsh when not cached.
 pub fn large_results_directory() -> PathBuf {
     results_directory().join("large")
 }

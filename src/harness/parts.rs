@@ -297,7 +297,7 @@ impl Part {
             },
             Part::Adhesion(_) => 4.0,
             Part::PulloffLive => 7.0,
-            Part::AdhesionPeers => 19.0,
+            Part::AdhesionPeers => 12.0,
             // Small d0/h: pressed deeper until the hole closes, and ranges where it reopens
             // replaced by smaller ones (measured alone on 2 cores: cone 0.3 224 s, sphere 0.3
             // 155 s, cone and sphere 1 45-48 s).
