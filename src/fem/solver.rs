@@ -239,6 +239,9 @@ fn display_path(path: &Path) -> String {
 /// One mesh loaded, assembled and symbolically factorised.
 struct PreparedModel {
     mesh: Mesh,
+    /// The file's mesh (after any corner refinement), validated, before its degree was raised:
+    /// what the linear edge locator assembles without reading the file again.
+    vertex_mesh: Mesh,
     path: String,
     provided: ProvidedMesh,
     /// Poisson's ratio of the material (for the linear edge locator on the same mesh).
@@ -255,6 +258,26 @@ struct PreparedModel {
     timings: FemTimings,
 }
 
+/// Physical groups every model needs.
+const REQUIRED_TAGS: [(i32, &str); 3] = [
+    (tags::CONTACT, "contact"),
+    (tags::FAR, "far"),
+    (tags::AXIS, "axis"),
+];
+
+/// Read and validate the mesh file (its messages quote the file's tags), then apply its corner
+/// refinement: the vertex mesh every degree of the model is raised from.
+fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<Mesh> {
+    let raw = read_msh(provided.path.as_path())?;
+    raw.validate(&REQUIRED_TAGS)?;
+    raw.validate_geometry(contact_start)?;
+    match &provided.corner_refinement {
+        Some(refinement) => refinement.apply(&raw),
+        None => Ok(raw),
+    }
+}
+
+/// Read the mesh of `provided` and assemble its model of `degree` ([`assemble_model`]).
 fn prepare(
     provided: &ProvidedMesh,
     degree: Degree,
@@ -263,22 +286,33 @@ fn prepare(
     contact_start: f64,
 ) -> Result<PreparedModel> {
     let start = Instant::now();
-    let path = provided.path.as_path();
-    let raw = read_msh(path)?;
-    let required = [
-        (tags::CONTACT, "contact"),
-        (tags::FAR, "far"),
-        (tags::AXIS, "axis"),
-    ];
-    // The file's mesh first (its messages quote the file's tags), then the degree-raised one.
-    raw.validate(&required)?;
-    raw.validate_geometry(contact_start)?;
-    let raw = match &provided.corner_refinement {
-        Some(refinement) => refinement.apply(&raw)?,
-        None => raw,
-    };
-    let mesh = raw.with_degree(degree);
-    mesh.validate(&required)?;
+    let vertex_mesh = read_vertex_mesh(provided, contact_start)?;
+    let read = start.elapsed().as_secs_f64();
+    let mut model = assemble_model(
+        vertex_mesh,
+        provided,
+        degree,
+        poisson_ratio,
+        far_field,
+        contact_start,
+    )?;
+    model.timings.read += read;
+    Ok(model)
+}
+
+/// Raise `vertex_mesh` to `degree`, assemble its stiffness `K = Σ_e K_e` and, with
+/// [`FarField::Boussinesq`], slave the far arc to the point-force field.
+fn assemble_model(
+    vertex_mesh: Mesh,
+    provided: &ProvidedMesh,
+    degree: Degree,
+    poisson_ratio: f64,
+    far_field: FarField,
+    contact_start: f64,
+) -> Result<PreparedModel> {
+    let start = Instant::now();
+    let mesh = vertex_mesh.with_degree(degree);
+    mesh.validate(&REQUIRED_TAGS)?;
     let read = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
@@ -308,10 +342,11 @@ fn prepare(
     let assembly = start.elapsed().as_secs_f64();
     Ok(PreparedModel {
         mesh,
+        vertex_mesh,
         domain_radius,
         arc_grading,
         far_field,
-        path: display_path(path),
+        path: display_path(provided.path.as_path()),
         provided: provided.clone(),
         poisson_ratio,
         contact_start,
@@ -451,7 +486,8 @@ fn linear_edge_locator(
     depth_guess: Option<f64>,
     tolerance: f64,
 ) -> Option<(WarmStart, f64)> {
-    let mut linear = prepare(
+    let mut linear = assemble_model(
+        model.vertex_mesh.clone(),
         &model.provided,
         Degree::Linear,
         model.poisson_ratio,
