@@ -244,10 +244,8 @@ struct PreparedModel {
     vertex_mesh: Mesh,
     path: String,
     provided: ProvidedMesh,
-    /// Poisson's ratio of the material (for the linear edge locator on the same mesh).
-    poisson_ratio: f64,
-    /// Where the scene's contact line starts, `b/a` (0 for a closed one).
-    contact_start: f64,
+    /// What the model was assembled as (the linear edge locator reuses it at degree 1).
+    spec: ModelSpec,
     /// Domain radius `R/a`: the largest distance of a far-boundary node from the origin.
     domain_radius: f64,
     /// Largest far-arc edge over `R`: the grading of the far field.
@@ -256,6 +254,17 @@ struct PreparedModel {
     /// The far-field condition, when the arc is slaved to Boussinesq's field.
     far_field: Option<FarFieldCondition>,
     timings: FemTimings,
+}
+
+/// What a model is besides its mesh.
+#[derive(Clone, Copy, Debug)]
+struct ModelSpec {
+    degree: Degree,
+    /// Poisson's ratio of the material (`E* = 1` whatever it is).
+    poisson_ratio: f64,
+    far_field: FarField,
+    /// Where the scene's contact line starts, `b/a` (0 for a closed one).
+    contact_start: f64,
 }
 
 /// Physical groups every model needs.
@@ -277,39 +286,29 @@ fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<Mesh>
     }
 }
 
-/// Read the mesh of `provided` and assemble its model of `degree` ([`assemble_model`]).
-fn prepare(
-    provided: &ProvidedMesh,
-    degree: Degree,
-    poisson_ratio: f64,
-    far_field: FarField,
-    contact_start: f64,
-) -> Result<PreparedModel> {
+/// Read the mesh of `provided` and assemble its model ([`assemble_model`]).
+fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
     let start = Instant::now();
-    let vertex_mesh = read_vertex_mesh(provided, contact_start)?;
+    let vertex_mesh = read_vertex_mesh(provided, spec.contact_start)?;
     let read = start.elapsed().as_secs_f64();
-    let mut model = assemble_model(
-        vertex_mesh,
-        provided,
-        degree,
-        poisson_ratio,
-        far_field,
-        contact_start,
-    )?;
+    let mut model = assemble_model(vertex_mesh, provided, spec)?;
     model.timings.read += read;
     Ok(model)
 }
 
-/// Raise `vertex_mesh` to `degree`, assemble its stiffness `K = Σ_e K_e` and, with
+/// Raise `vertex_mesh` to the spec's degree, assemble its stiffness `K = Σ_e K_e` and, with
 /// [`FarField::Boussinesq`], slave the far arc to the point-force field.
 fn assemble_model(
     vertex_mesh: Mesh,
     provided: &ProvidedMesh,
-    degree: Degree,
-    poisson_ratio: f64,
-    far_field: FarField,
-    contact_start: f64,
+    spec: ModelSpec,
 ) -> Result<PreparedModel> {
+    let ModelSpec {
+        degree,
+        poisson_ratio,
+        far_field,
+        ..
+    } = spec;
     let start = Instant::now();
     let mesh = vertex_mesh.with_degree(degree);
     mesh.validate(&REQUIRED_TAGS)?;
@@ -348,8 +347,7 @@ fn assemble_model(
         far_field,
         path: display_path(provided.path.as_path()),
         provided: provided.clone(),
-        poisson_ratio,
-        contact_start,
+        spec,
         stiffness,
         timings: FemTimings {
             read,
@@ -486,15 +484,11 @@ fn linear_edge_locator(
     depth_guess: Option<f64>,
     tolerance: f64,
 ) -> Option<(WarmStart, f64)> {
-    let mut linear = assemble_model(
-        model.vertex_mesh.clone(),
-        &model.provided,
-        Degree::Linear,
-        model.poisson_ratio,
-        model.far_field_kind(),
-        model.contact_start,
-    )
-    .ok()?;
+    let spec = ModelSpec {
+        degree: Degree::Linear,
+        ..model.spec
+    };
+    let mut linear = assemble_model(model.vertex_mesh.clone(), &model.provided, spec).ok()?;
     let (s, depth, _) =
         solve_model(&mut linear, kind, eps, load, None, depth_guess, tolerance).ok()?;
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
@@ -512,16 +506,9 @@ impl PreparedModel {
     /// Relative force bias of truncating the half-space at this model's `R` with its far-field
     /// treatment ([`FarField::truncation_bias`]).
     fn truncation_bias(&self) -> f64 {
-        self.far_field_kind()
+        self.spec
+            .far_field
             .truncation_bias(self.domain_radius, self.arc_grading)
-    }
-
-    fn far_field_kind(&self) -> FarField {
-        if self.far_field.is_some() {
-            FarField::Boussinesq
-        } else {
-            FarField::Fixed
-        }
     }
 }
 
@@ -534,13 +521,13 @@ fn prepare_checked(
     contact_start: f64,
     domain_tolerance: f64,
 ) -> Result<PreparedModel> {
-    let model = prepare(
-        provided,
-        options.degree,
-        options.poisson_ratio,
-        options.far_field,
+    let spec = ModelSpec {
+        degree: options.degree,
+        poisson_ratio: options.poisson_ratio,
+        far_field: options.far_field,
         contact_start,
-    )?;
+    };
+    let model = prepare(provided, spec)?;
     check_domain(&model, domain_tolerance)?;
     Ok(model)
 }
@@ -598,7 +585,7 @@ fn finish(
         },
         domain_radius: model.domain_radius,
         truncation_bias: model.truncation_bias(),
-        far_field: model.far_field_kind(),
+        far_field: model.spec.far_field,
         mesh_sha256: model.provided.sha256.clone(),
         mesh_origin: model.provided.origin,
         gmsh_version: model.provided.gmsh_version.clone(),
