@@ -3,6 +3,11 @@
 //! The sparsity pattern is built once from the connectivity (two dofs per node, `(u_r, u_z)`),
 //! then element matrices are added in place; the pattern never changes afterwards, which lets the
 //! Cholesky factorisation reuse its symbolic analysis whatever constraints are applied.
+//!
+//! Adding `K_e` needs, for every pair of a cell's nodes `(a, b)`, the position of node `a` in the
+//! sorted neighbour list of node `b` (the rows of `b`'s columns). These positions are found once,
+//! while the pattern is built (a dense marker per node, no search), and kept cell by cell; the
+//! additions then run in parallel, each thread owning a range of columns.
 
 use nalgebra_sparse::CscMatrix;
 use rayon::prelude::*;
@@ -15,13 +20,32 @@ use crate::error::{Error, Result};
 /// Cells whose element matrices are computed together (in parallel) before they are added.
 const ASSEMBLY_BLOCK: usize = 4096;
 
-/// Sorted neighbours of every node (itself included) in compressed form `(offsets, list)`:
-/// node `n`'s are `list[offsets[n]..offsets[n + 1]]`.
-fn node_adjacency(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
+/// The node-level pattern of a mesh and where each cell's entries go in it.
+struct NodePattern {
+    /// Sorted neighbours of every node (itself included): node `n`'s are
+    /// `neighbours[offsets[n]..offsets[n + 1]]`.
+    offsets: Vec<usize>,
+    neighbours: Vec<usize>,
+    /// `positions[(c k + b) k + a]`: the position of cell `c`'s node `a` in the neighbour list
+    /// of its node `b` (`k` nodes per cell).
+    positions: Vec<u32>,
+}
+
+impl NodePattern {
+    fn neighbours(&self, node: usize) -> &[usize] {
+        &self.neighbours[self.offsets[node]..self.offsets[node + 1]]
+    }
+}
+
+/// Build the node pattern of `mesh`: each node's neighbours through its cells, sorted, and the
+/// position of every cell node pair in them.
+fn node_pattern(mesh: &Mesh) -> Result<NodePattern> {
     let nodes = mesh.nodes.len();
-    // Cells of each node.
+    let k = mesh.degree.nodes_per_cell();
+    let cells = mesh.cell_count();
+    // Cells of each node (counting sort).
     let mut cell_offsets = vec![0usize; nodes + 1];
-    for c in 0..mesh.cell_count() {
+    for c in 0..cells {
         for &a in mesh.cell(c) {
             cell_offsets[a + 1] += 1;
         }
@@ -31,105 +55,323 @@ fn node_adjacency(mesh: &Mesh) -> (Vec<usize>, Vec<usize>) {
     }
     let mut fill = cell_offsets.clone();
     let mut cells_of = vec![0usize; cell_offsets[nodes]];
-    for c in 0..mesh.cell_count() {
+    for c in 0..cells {
         for &a in mesh.cell(c) {
             cells_of[fill[a]] = c;
             fill[a] += 1;
         }
     }
+    let position_overflow = || Error::InvalidMesh {
+        path: mesh.source.clone(),
+        message: "a node has more than 2^32 neighbours".into(),
+    };
+    // `marker[m]`: the node whose list `m` was last put in, then `m`'s position in that list.
     let mut marker = vec![usize::MAX; nodes];
+    let mut position = vec![0u32; nodes];
     let mut offsets = Vec::with_capacity(nodes + 1);
-    let mut list = Vec::with_capacity(cells_of.len() * 4);
+    let mut neighbours = Vec::with_capacity(cells_of.len() * 4);
+    let mut positions = vec![0u32; cells * k * k];
     offsets.push(0);
     for node in 0..nodes {
-        let start = list.len();
-        for &c in &cells_of[cell_offsets[node]..cell_offsets[node + 1]] {
-            for &b in mesh.cell(c) {
-                if marker[b] != node {
-                    marker[b] = node;
-                    list.push(b);
+        let start = neighbours.len();
+        let node_cells = &cells_of[cell_offsets[node]..cell_offsets[node + 1]];
+        for &c in node_cells {
+            for &m in mesh.cell(c) {
+                if marker[m] != node {
+                    marker[m] = node;
+                    neighbours.push(m);
                 }
             }
         }
-        list[start..].sort_unstable();
-        offsets.push(list.len());
+        neighbours[start..].sort_unstable();
+        for (p, &m) in neighbours[start..].iter().enumerate() {
+            position[m] = u32::try_from(p).map_err(|_| position_overflow())?;
+        }
+        for &c in node_cells {
+            let cell = mesh.cell(c);
+            // The node's place in the cell (a node appears once in a valid cell).
+            let b = cell.iter().position(|&m| m == node).unwrap_or(0);
+            let slot = &mut positions[(c * k + b) * k..(c * k + b + 1) * k];
+            for (out, &m) in slot.iter_mut().zip(cell) {
+                *out = position[m];
+            }
+        }
+        offsets.push(neighbours.len());
     }
-    (offsets, list)
+    Ok(NodePattern {
+        offsets,
+        neighbours,
+        positions,
+    })
 }
 
-/// Assemble `K = Σ_e K_e` for the whole mesh.
+/// The columns of nodes `first_node..end_node` and their stored values: one thread's share.
+struct ColumnRange<'v> {
+    first_node: usize,
+    end_node: usize,
+    /// Offset in the whole value array of `values[0]`.
+    value_start: usize,
+    values: &'v mut [f64],
+}
+
+/// Split the value array into `parts` ranges of whole nodes with about equal numbers of entries.
+fn column_ranges<'v>(
+    col_offsets: &[usize],
+    nodes: usize,
+    parts: usize,
+    mut values: &'v mut [f64],
+) -> Vec<ColumnRange<'v>> {
+    let nnz = values.len();
+    let mut ranges = Vec::with_capacity(parts);
+    let mut first_node = 0;
+    let mut value_start = 0;
+    for part in 1..=parts {
+        let end_node = if part == parts {
+            nodes
+        } else {
+            let target = nnz * part / parts;
+            // First node whose columns start at or after the target.
+            let dof = col_offsets.partition_point(|&o| o < target);
+            first_node.max(dof.div_ceil(2).min(nodes))
+        };
+        let value_end = col_offsets[2 * end_node];
+        let (head, tail) = values.split_at_mut(value_end - value_start);
+        values = tail;
+        ranges.push(ColumnRange {
+            first_node,
+            end_node,
+            value_start,
+            values: head,
+        });
+        first_node = end_node;
+        value_start = value_end;
+    }
+    ranges
+}
+
+/// The sparsity pattern of a mesh's stiffness matrix (compressed sparse columns, rows sorted,
+/// both triangles) and where each cell's entries go in it: known before any value, so that the
+/// symbolic analysis of the factorisation can run while the values are assembled.
+pub struct StiffnessPattern {
+    /// Start of each column's entries (`2 × nodes + 1` of them).
+    pub col_offsets: Vec<usize>,
+    /// Row of each entry.
+    pub row_indices: Vec<usize>,
+    nodes: NodePattern,
+}
+
+impl StiffnessPattern {
+    /// The pattern of `mesh` (two dofs per node, `(u_r, u_z)`): dof `2n + c` couples to both
+    /// dofs of every node that shares a cell with node `n`.
+    pub fn new(mesh: &Mesh) -> Result<Self> {
+        let nodes = node_pattern(mesh)?;
+        let count = mesh.nodes.len();
+        let dofs = 2 * count;
+        let mut col_offsets = Vec::with_capacity(dofs + 1);
+        col_offsets.push(0);
+        for node in 0..count {
+            for _ in 0..2 {
+                let last = *col_offsets.last().unwrap_or(&0);
+                col_offsets.push(last + 2 * nodes.neighbours(node).len());
+            }
+        }
+        let nnz = *col_offsets.last().unwrap_or(&0);
+        let mut row_indices = Vec::with_capacity(nnz);
+        for node in 0..count {
+            for _ in 0..2 {
+                for &m in nodes.neighbours(node) {
+                    row_indices.push(2 * m);
+                    row_indices.push(2 * m + 1);
+                }
+            }
+        }
+        Ok(Self {
+            col_offsets,
+            row_indices,
+            nodes,
+        })
+    }
+
+    /// Number of rows (and columns).
+    pub fn dofs(&self) -> usize {
+        self.col_offsets.len() - 1
+    }
+
+    /// The values of `K = Σ_e K_e` on this pattern (`mesh` the one it was made from), in the
+    /// order of [`Self::row_indices`].
+    ///
+    /// Element matrices are computed in parallel, a block of cells at a time, then added in
+    /// parallel: each thread adds the columns of its own range of nodes.
+    pub fn values(&self, mesh: &Mesh, material: &Lame, rule: &TriangleRule) -> Result<Vec<f64>> {
+        let count = mesh.nodes.len();
+        let dofs = 2 * count;
+        if self.dofs() != dofs {
+            return Err(Error::InvalidMesh {
+                path: mesh.source.clone(),
+                message: "internal: the stiffness pattern belongs to another mesh".into(),
+            });
+        }
+        let (col_offsets, nodes) = (&self.col_offsets, &self.nodes);
+        let mut values = vec![0.0; self.row_indices.len()];
+        let k = mesh.degree.nodes_per_cell();
+        let size = 2 * k;
+        let mut ranges = column_ranges(
+            col_offsets,
+            count,
+            rayon::current_num_threads().max(1),
+            &mut values,
+        );
+        let mut locals = vec![0.0; ASSEMBLY_BLOCK * size * size];
+        for block_start in (0..mesh.cell_count()).step_by(ASSEMBLY_BLOCK) {
+            let block_end = (block_start + ASSEMBLY_BLOCK).min(mesh.cell_count());
+            locals[..(block_end - block_start) * size * size]
+                .par_chunks_mut(size * size)
+                .enumerate()
+                .for_each(|(i, local)| {
+                    let cell = mesh.cell(block_start + i);
+                    let vertices = [
+                        mesh.nodes[cell[0]],
+                        mesh.nodes[cell[1]],
+                        mesh.nodes[cell[2]],
+                    ];
+                    stiffness(mesh.degree, vertices, material, rule, local);
+                });
+            let locals = &locals;
+            let positions = &nodes.positions;
+            ranges.par_iter_mut().for_each(|range| {
+                for c in block_start..block_end {
+                    let local = &locals[(c - block_start) * size * size..][..size * size];
+                    for (b, &nb) in mesh.cell(c).iter().enumerate() {
+                        if nb < range.first_node || nb >= range.end_node {
+                            continue;
+                        }
+                        let slot = &positions[(c * k + b) * k..(c * k + b + 1) * k];
+                        for cb in 0..2 {
+                            let column = col_offsets[2 * nb + cb] - range.value_start;
+                            let values = &mut range.values[column..];
+                            // Column `2b + cb` of the symmetric `K_e`, read as its row.
+                            let row = &local[(2 * b + cb) * size..][..size];
+                            for (&pos, pair) in slot.iter().zip(row.chunks_exact(2)) {
+                                let base = 2 * pos as usize;
+                                values[base] += pair[0];
+                                values[base + 1] += pair[1];
+                            }
+                        }
+                    }
+                }
+            });
+        }
+        drop(ranges);
+        Ok(values)
+    }
+
+    /// The matrix of this pattern with `values` ([`Self::values`]).
+    pub fn into_matrix(self, values: Vec<f64>) -> Result<CscMatrix<f64>> {
+        let dofs = self.dofs();
+        CscMatrix::try_from_csc_data(dofs, dofs, self.col_offsets, self.row_indices, values)
+            .map_err(|e| Error::InvalidMesh {
+                path: String::new(),
+                message: format!("internal: stiffness pattern rejected: {e}"),
+            })
+    }
+}
+
+/// Assemble `K = Σ_e K_e` for the whole mesh ([`StiffnessPattern::new`], its
+/// [`StiffnessPattern::values`] and [`StiffnessPattern::into_matrix`]).
 pub fn assemble_stiffness(
     mesh: &Mesh,
     material: &Lame,
     rule: &TriangleRule,
 ) -> Result<CscMatrix<f64>> {
-    let nodes = mesh.nodes.len();
-    let (adjacency_offsets, adjacency) = node_adjacency(mesh);
-    let neighbours = |node: usize| &adjacency[adjacency_offsets[node]..adjacency_offsets[node + 1]];
-    let dofs = 2 * nodes;
-    let mut col_offsets = Vec::with_capacity(dofs + 1);
-    col_offsets.push(0);
-    for node in 0..nodes {
-        for _ in 0..2 {
-            let last = *col_offsets.last().unwrap_or(&0);
-            col_offsets.push(last + 2 * neighbours(node).len());
-        }
-    }
-    let nnz = *col_offsets.last().unwrap_or(&0);
-    let mut row_indices = Vec::with_capacity(nnz);
-    for node in 0..nodes {
-        for _ in 0..2 {
-            for &m in neighbours(node) {
-                row_indices.push(2 * m);
-                row_indices.push(2 * m + 1);
+    let pattern = StiffnessPattern::new(mesh)?;
+    let values = pattern.values(mesh, material, rule)?;
+    pattern.into_matrix(values)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::mesh::{structured_rectangle, Degree};
+    use crate::fem::solver::stiffness_rule;
+
+    /// `K` by adding every element matrix into a dense matrix at its nodes' dofs.
+    fn dense_by_definition(mesh: &Mesh, material: &Lame, rule: &TriangleRule) -> Vec<Vec<f64>> {
+        let dofs = 2 * mesh.nodes.len();
+        let size = 2 * mesh.degree.nodes_per_cell();
+        let mut k = vec![vec![0.0; dofs]; dofs];
+        let mut local = vec![0.0; size * size];
+        for c in 0..mesh.cell_count() {
+            let cell = mesh.cell(c);
+            let vertices = [
+                mesh.nodes[cell[0]],
+                mesh.nodes[cell[1]],
+                mesh.nodes[cell[2]],
+            ];
+            stiffness(mesh.degree, vertices, material, rule, &mut local);
+            for i in 0..size {
+                for j in 0..size {
+                    k[2 * cell[i / 2] + i % 2][2 * cell[j / 2] + j % 2] += local[i * size + j];
+                }
             }
         }
+        k
     }
-    let mut values = vec![0.0; nnz];
-    let k = mesh.degree.nodes_per_cell();
-    let size = 2 * k;
-    // Element matrices are computed in parallel, a block of cells at a time, and added serially.
-    let mut locals = vec![0.0; ASSEMBLY_BLOCK * size * size];
-    for block_start in (0..mesh.cell_count()).step_by(ASSEMBLY_BLOCK) {
-        let block_end = (block_start + ASSEMBLY_BLOCK).min(mesh.cell_count());
-        locals[..(block_end - block_start) * size * size]
-            .par_chunks_mut(size * size)
-            .enumerate()
-            .for_each(|(i, local)| {
-                let cell = mesh.cell(block_start + i);
-                let vertices = [
-                    mesh.nodes[cell[0]],
-                    mesh.nodes[cell[1]],
-                    mesh.nodes[cell[2]],
-                ];
-                stiffness(mesh.degree, vertices, material, rule, local);
-            });
-        for c in block_start..block_end {
-            let cell = mesh.cell(c);
-            let local =
-                &locals[(c - block_start) * size * size..(c - block_start + 1) * size * size];
-            for (b, &nb) in cell.iter().enumerate() {
-                let list = neighbours(nb);
-                for (a, &na) in cell.iter().enumerate() {
-                    let pos = list.binary_search(&na).map_err(|_| Error::InvalidMesh {
-                        path: mesh.source.clone(),
-                        message: "internal: adjacency misses an element pair".into(),
-                    })?;
-                    for cb in 0..2 {
-                        let col = 2 * nb + cb;
-                        let base = col_offsets[col] + 2 * pos;
-                        for ca in 0..2 {
-                            values[base + ca] += local[(2 * a + ca) * size + 2 * b + cb];
-                        }
-                    }
+
+    #[test]
+    fn the_assembled_matrix_is_the_sum_of_its_element_matrices() {
+        let material = Lame::from_young_poisson(1.0, 0.25);
+        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+            let mesh = structured_rectangle(2.0, 1.0, 4, 3, 1, 2, 3).with_degree(degree);
+            let rule = stiffness_rule(degree);
+            let k = assemble_stiffness(&mesh, &material, &rule).unwrap();
+            let reference = dense_by_definition(&mesh, &material, &rule);
+            let scale = reference
+                .iter()
+                .flatten()
+                .fold(0.0_f64, |m, v| m.max(v.abs()));
+            let mut stored = vec![vec![false; k.ncols()]; k.ncols()];
+            for (col, column) in k.col_iter().enumerate() {
+                for (&row, &value) in column.row_indices().iter().zip(column.values()) {
+                    stored[row][col] = true;
+                    assert!(
+                        (value - reference[row][col]).abs() <= 1e-13 * scale,
+                        "{degree:?} ({row}, {col}): {value} against {}",
+                        reference[row][col]
+                    );
+                }
+            }
+            // Nothing of the reference lies outside the pattern.
+            for (row, line) in reference.iter().enumerate() {
+                for (col, &value) in line.iter().enumerate() {
+                    assert!(
+                        stored[row][col] || value == 0.0,
+                        "{degree:?} ({row}, {col})"
+                    );
                 }
             }
         }
     }
-    CscMatrix::try_from_csc_data(dofs, dofs, col_offsets, row_indices, values).map_err(|e| {
-        Error::InvalidMesh {
-            path: mesh.source.clone(),
-            message: format!("internal: stiffness pattern rejected: {e}"),
+
+    #[test]
+    fn the_column_ranges_cover_every_node_once_whatever_the_parts() {
+        let mesh = structured_rectangle(1.0, 1.0, 2, 1, 1, 2, 3);
+        let pattern = StiffnessPattern::new(&mesh).unwrap();
+        let nodes = mesh.nodes.len();
+        for parts in [1, 2, 3, nodes, nodes + 5] {
+            let mut values = vec![0.0; pattern.row_indices.len()];
+            let ranges = column_ranges(&pattern.col_offsets, nodes, parts, &mut values);
+            assert_eq!(ranges.len(), parts);
+            let mut next = 0;
+            for range in &ranges {
+                assert_eq!(range.first_node, next);
+                assert_eq!(range.value_start, pattern.col_offsets[2 * next]);
+                next = range.end_node;
+                assert_eq!(
+                    range.values.len(),
+                    pattern.col_offsets[2 * next] - range.value_start
+                );
+            }
+            assert_eq!(next, nodes, "{parts} parts");
         }
-    })
+    }
 }

@@ -152,6 +152,14 @@ impl AffineTriangle {
 }
 
 /// Element stiffness `K_e` (row-major, `2k x 2k` for `k` nodes) of an axisymmetric triangle.
+///
+/// For nodes `a`, `b` with shape gradients `(g_r, g_z)`, hoop term `h = N/r` and `t = g_r + h`
+/// (the trace of the strain of a unit radial displacement), the 2 x 2 block of `Bᵀ D B` is
+/// `rr = λ t_a t_b + 2μ (g_r,a g_r,b + h_a h_b) + μ g_z,a g_z,b`,
+/// `rz = λ t_a g_z,b + μ g_z,a g_r,b`, `zr = λ g_z,a t_b + μ g_r,a g_z,b`,
+/// `zz = (λ + 2μ) g_z,a g_z,b + μ g_r,a g_r,b`: the product with the zeros of the strain vectors
+/// `(ε_rr, ε_zz, ε_θθ, γ_rz)` left out (a sixth of the operations of the full product).
+/// Blocks with `a <= b` are summed over the rule, the rest mirrored.
 pub fn stiffness(
     degree: Degree,
     vertices: [[f64; 2]; 3],
@@ -163,30 +171,98 @@ pub fn stiffness(
     let size = 2 * k;
     out[..size * size].iter_mut().for_each(|v| *v = 0.0);
     let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
+    let (lambda, mu) = (material.lambda, material.mu);
     let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
-    // Strain of each unit dof: b[dof] = ε vector.
-    let mut b = [[0.0; 4]; 20];
+    let (mut gr, mut gz, mut h, mut t) = ([0.0; 10], [0.0; 10], [0.0; 10], [0.0; 10]);
     for (p, &w) in rule.points.iter().zip(&rule.weights) {
         shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
         let r = tri.map(p[0], p[1])[0];
         for a in 0..k {
             let g = tri.gradient(dxi[a], deta[a]);
-            b[2 * a] = [g[0], 0.0, n[a] / r, g[1]];
-            b[2 * a + 1] = [0.0, g[1], 0.0, g[0]];
+            gr[a] = g[0];
+            gz[a] = g[1];
+            h[a] = n[a] / r;
+            t[a] = g[0] + h[a];
         }
         let scale = w * tri.det * 2.0 * std::f64::consts::PI * r;
-        for i in 0..size {
-            let s = material.stress(b[i]);
-            for j in i..size {
-                let e = b[j];
-                let v = scale * (s[0] * e[0] + s[1] * e[1] + s[2] * e[2] + s[3] * e[3]);
-                out[i * size + j] += v;
+        for a in 0..k {
+            let (sgr, sgz, sh, st) = (scale * gr[a], scale * gz[a], scale * h[a], scale * t[a]);
+            let (row_r, row_z) = out[2 * a * size..(2 * a + 2) * size].split_at_mut(size);
+            for b in a..k {
+                row_r[2 * b] +=
+                    lambda * st * t[b] + 2.0 * mu * (sgr * gr[b] + sh * h[b]) + mu * sgz * gz[b];
+                row_r[2 * b + 1] += lambda * st * gz[b] + mu * sgz * gr[b];
+                row_z[2 * b] += lambda * sgz * t[b] + mu * sgr * gz[b];
+                row_z[2 * b + 1] += (lambda + 2.0 * mu) * sgz * gz[b] + mu * sgr * gr[b];
             }
         }
     }
     for i in 0..size {
         for j in 0..i {
             out[i * size + j] = out[j * size + i];
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::solver::stiffness_rule;
+
+    /// `K_e` by the definition: `Σ_q w_q 2π r_q B_qᵀ D B_q |det J|` with the full strain vectors.
+    fn stiffness_by_definition(
+        degree: Degree,
+        vertices: [[f64; 2]; 3],
+        material: &Lame,
+        rule: &TriangleRule,
+    ) -> Vec<f64> {
+        let k = degree.nodes_per_cell();
+        let size = 2 * k;
+        let mut out = vec![0.0; size * size];
+        let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
+        let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
+        for (p, &w) in rule.points.iter().zip(&rule.weights) {
+            shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
+            let r = tri.map(p[0], p[1])[0];
+            let mut b = vec![[0.0; 4]; size];
+            for a in 0..k {
+                let g = tri.gradient(dxi[a], deta[a]);
+                b[2 * a] = [g[0], 0.0, n[a] / r, g[1]];
+                b[2 * a + 1] = [0.0, g[1], 0.0, g[0]];
+            }
+            let scale = w * tri.det * 2.0 * std::f64::consts::PI * r;
+            for i in 0..size {
+                let s = material.stress(b[i]);
+                for j in 0..size {
+                    out[i * size + j] += scale * (0..4).map(|c| s[c] * b[j][c]).sum::<f64>();
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_element_stiffness_equals_the_full_product_of_its_definition() {
+        // A compressible material (λ ≠ 0) and a triangle off the axis and on it.
+        let material = Lame::from_young_poisson(2.5, 0.3);
+        for vertices in [
+            [[0.7, -0.2], [1.3, -0.1], [0.9, 0.4]],
+            [[0.0, 0.0], [0.5, -0.3], [0.0, -0.6]],
+        ] {
+            for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+                let rule = stiffness_rule(degree);
+                let size = 2 * degree.nodes_per_cell();
+                let mut fast = vec![0.0; size * size];
+                stiffness(degree, vertices, &material, &rule, &mut fast);
+                let reference = stiffness_by_definition(degree, vertices, &material, &rule);
+                let scale = reference.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+                for (i, (x, y)) in fast.iter().zip(&reference).enumerate() {
+                    assert!(
+                        (x - y).abs() <= 1e-13 * scale,
+                        "{degree:?} entry {i}: {x} against {y}"
+                    );
+                }
+            }
         }
     }
 }

@@ -144,13 +144,63 @@ impl FarFieldCondition {
         }
     }
 
-    /// The extended matrix `K̃` (see the type's documentation).
+    /// Whether each dof is an arc dof.
+    fn arc_mask(&self, n: usize) -> Vec<bool> {
+        let mut is_arc = vec![false; n];
+        for &(dof, _) in &self.arc {
+            is_arc[dof] = true;
+        }
+        is_arc
+    }
+
+    /// The dofs off the arc that share an entry of `K`'s pattern with an arc dof: those that
+    /// couple to the amplitude (structurally, whatever the values).
+    fn coupled(&self, col_offsets: &[usize], row_indices: &[usize]) -> Vec<bool> {
+        let n = col_offsets.len() - 1;
+        let is_arc = self.arc_mask(n);
+        let mut coupled = vec![false; n];
+        for col in (0..n).filter(|&c| is_arc[c]) {
+            for &row in &row_indices[col_offsets[col]..col_offsets[col + 1]] {
+                coupled[row] |= !is_arc[row];
+            }
+        }
+        coupled
+    }
+
+    /// The pattern of `K̃` from that of `K` (compressed columns, rows sorted): every column of a
+    /// coupled dof gains the amplitude row `n` (last, so rows stay sorted), and the amplitude's
+    /// column holds the coupled rows and its diagonal. Known before `K`'s values are, so the
+    /// factorisation's symbolic analysis of `K̃` can run while `K` is assembled.
+    pub fn extended_pattern(
+        &self,
+        col_offsets: &[usize],
+        row_indices: &[usize],
+    ) -> (Vec<usize>, Vec<usize>) {
+        let n = col_offsets.len() - 1;
+        let coupled = self.coupled(col_offsets, row_indices);
+        let coupled_count = coupled.iter().filter(|&&c| c).count();
+        let mut offsets = Vec::with_capacity(n + 2);
+        let mut rows = Vec::with_capacity(row_indices.len() + 2 * coupled_count + 1);
+        offsets.push(0);
+        for col in 0..n {
+            rows.extend_from_slice(&row_indices[col_offsets[col]..col_offsets[col + 1]]);
+            if coupled[col] {
+                rows.push(n);
+            }
+            offsets.push(rows.len());
+        }
+        rows.extend((0..n).filter(|&row| coupled[row]));
+        rows.push(n);
+        offsets.push(rows.len());
+        (offsets, rows)
+    }
+
+    /// The extended matrix `K̃` (see the type's documentation), on [`Self::extended_pattern`].
     pub fn extend(&self, k: &CscMatrix<f64>) -> crate::error::Result<CscMatrix<f64>> {
         let n = k.nrows();
-        let mut is_arc = vec![false; n];
+        let is_arc = self.arc_mask(n);
         let mut value = vec![0.0; n];
         for &(dof, g) in &self.arc {
-            is_arc[dof] = true;
             value[dof] = g;
         }
         // coupling[i] = Σ_arc K_ik g_k (interior rows), diagonal gᵀ K_aa g.
@@ -169,29 +219,20 @@ impl FarFieldCondition {
                 }
             }
         }
-        // Built column by column: the extra row n is last in every column, so rows stay sorted.
-        let coupled: Vec<usize> = (0..n).filter(|&row| coupling[row] != 0.0).collect();
-        let nnz = k.nnz() + 2 * coupled.len() + 1;
-        let mut new_offsets = Vec::with_capacity(n + 2);
-        let mut new_rows = Vec::with_capacity(nnz);
-        let mut new_values = Vec::with_capacity(nnz);
-        new_offsets.push(0);
+        let (new_offsets, new_rows) = self.extended_pattern(offsets, rows);
+        let mut new_values = Vec::with_capacity(new_rows.len());
         for col in 0..n {
-            new_rows.extend_from_slice(&rows[offsets[col]..offsets[col + 1]]);
             new_values.extend_from_slice(&values[offsets[col]..offsets[col + 1]]);
-            if coupling[col] != 0.0 {
-                new_rows.push(n);
+            if new_offsets[col + 1] - new_offsets[col] > offsets[col + 1] - offsets[col] {
                 new_values.push(coupling[col]);
             }
-            new_offsets.push(new_rows.len());
         }
-        for &row in &coupled {
-            new_rows.push(row);
-            new_values.push(coupling[row]);
-        }
-        new_rows.push(n);
+        new_values.extend(
+            new_rows[new_offsets[n]..new_offsets[n + 1] - 1]
+                .iter()
+                .map(|&r| coupling[r]),
+        );
         new_values.push(diagonal);
-        new_offsets.push(new_rows.len());
         CscMatrix::try_from_csc_data(n + 1, n + 1, new_offsets, new_rows, new_values).map_err(|e| {
             crate::error::Error::InvalidMesh {
                 path: String::new(),

@@ -54,8 +54,20 @@ impl<'a> ConstrainedCholesky<'a> {
     /// at 706 k, and blocked solves of 64 right-hand sides 0.087 s against 0.153 s (the two
     /// cores are better used by the parallel element assembly and by independent states).
     pub fn new(matrix: &'a CscMatrix<f64>) -> Result<Self> {
+        let symbolic = SymbolicFactor::of_pattern(matrix.col_offsets(), matrix.row_indices())?;
+        Self::with_symbolic(matrix, symbolic)
+    }
+
+    /// [`Self::new`] with the symbolic analysis of `matrix`'s pattern already done (for example
+    /// while the matrix was assembled); an analysis of another pattern is an error.
+    pub fn with_symbolic(matrix: &'a CscMatrix<f64>, symbolic: SymbolicFactor) -> Result<Self> {
         faer::set_global_parallelism(faer::Par::Seq);
         let n = matrix.nrows();
+        if !symbolic.fits(n, matrix.nnz()) {
+            return Err(solver_error(
+                "internal: the symbolic analysis belongs to another pattern".into(),
+            ));
+        }
         let pattern = SymbolicSparseColMat::new_checked(
             n,
             n,
@@ -63,7 +75,6 @@ impl<'a> ConstrainedCholesky<'a> {
             None,
             matrix.row_indices().to_vec(),
         );
-        let symbolic = SymbolicFactor::new(pattern.as_ref())?;
         let mut diagonal = vec![usize::MAX; n];
         for (col, slot) in diagonal.iter_mut().enumerate() {
             let range = matrix.col_offsets()[col]..matrix.col_offsets()[col + 1];

@@ -17,8 +17,10 @@ use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, LltRef, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
@@ -149,9 +151,33 @@ pub fn node_graph_ordering(
 #[derive(Clone, Debug)]
 pub struct SymbolicFactor {
     inner: Arc<SymbolicCholesky<usize>>,
+    /// Size and number of entries of the analysed pattern (both triangles).
+    shape: (usize, usize),
 }
 
 impl SymbolicFactor {
+    /// Analyse the pattern given as compressed columns (`col_offsets`, sorted `row_indices`).
+    pub fn of_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
+        let n = col_offsets.len().saturating_sub(1);
+        if col_offsets.last() != Some(&row_indices.len()) {
+            return Err(solver_error(
+                "internal: the pattern's offsets do not end at its entry count".into(),
+            ));
+        }
+        Self::new(SymbolicSparseColMatRef::new_checked(
+            n,
+            n,
+            col_offsets,
+            None,
+            row_indices,
+        ))
+    }
+
+    /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
+    pub fn fits(&self, n: usize, nnz: usize) -> bool {
+        self.shape == (n, nnz)
+    }
+
     /// Analyse `pattern` (both triangles stored; the lower one is read).
     pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<Self> {
         let n = pattern.nrows();
@@ -161,11 +187,15 @@ impl SymbolicFactor {
             pattern,
             Side::Lower,
             SymmetricOrdering::Custom(ordering),
-            Default::default(),
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
         )
         .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
         Ok(Self {
             inner: Arc::new(inner),
+            shape: (n, pattern.compute_nnz()),
         })
     }
 }
