@@ -17,4 +17,5 @@ pub mod norms;
 pub mod quadrature;
 pub mod solver;
 pub mod surface_response;
+pub mod vertex_ordering;
 pub mod vtu;

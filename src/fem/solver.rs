@@ -27,6 +27,7 @@ use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarg
 use super::msh::read_msh;
 use super::node_ordered_cholesky::SymbolicFactor;
 use super::quadrature::TriangleRule;
+use super::vertex_ordering::vertex_led_node_order;
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
@@ -343,12 +344,15 @@ fn assemble_model(
     // The symbolic analysis needs only the pattern: it runs while the values are assembled.
     let analysis = || {
         let start = Instant::now();
+        let order = vertex_led_node_order(&mesh);
         let symbolic = match &far_field {
-            None => SymbolicFactor::of_pattern(&pattern.col_offsets, &pattern.row_indices),
+            None => {
+                SymbolicFactor::with_node_order(&pattern.col_offsets, &pattern.row_indices, &order)
+            }
             Some(condition) => {
                 let (offsets, rows) =
                     condition.extended_pattern(&pattern.col_offsets, &pattern.row_indices);
-                SymbolicFactor::of_pattern(&offsets, &rows)
+                SymbolicFactor::with_node_order(&offsets, &rows, &order)
             }
         };
         (symbolic, start.elapsed().as_secs_f64())
