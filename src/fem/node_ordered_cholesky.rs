@@ -134,30 +134,70 @@ pub fn minimum_degree_order(count: usize, offsets: Vec<usize>, rows: Vec<usize>)
     perm
 }
 
+/// Expand an elimination order of the nodes to the dofs: node `m` is dofs `2m`, `2m + 1`, and
+/// for odd `n` node `n / 2` is the trailing dof `n - 1` alone. `(perm, perm_inverse)`; an order
+/// that is not a permutation of the `n / 2 + n % 2` nodes is an error.
+fn dof_order(node_order: &[usize], n: usize) -> Result<(Vec<usize>, Vec<usize>)> {
+    let (pairs, nodes) = (n / 2, n / 2 + n % 2);
+    let mut perm = Vec::with_capacity(n);
+    for &node in node_order {
+        match node {
+            m if m < pairs => perm.extend([2 * m, 2 * m + 1]),
+            m if m < nodes => perm.push(n - 1),
+            m => {
+                return Err(solver_error(format!(
+                    "internal: node {m} of the elimination order is not one of the {nodes} nodes"
+                )))
+            }
+        }
+    }
+    let mut inverse = vec![usize::MAX; n];
+    for (i, &d) in perm.iter().enumerate() {
+        if inverse[d] != usize::MAX {
+            return Err(solver_error(format!(
+                "internal: node {} appears twice in the elimination order",
+                d / 2
+            )));
+        }
+        inverse[d] = i;
+    }
+    if perm.len() != n {
+        return Err(solver_error(format!(
+            "internal: the elimination order holds {} of the {nodes} nodes",
+            node_order.len()
+        )));
+    }
+    Ok((perm, inverse))
+}
+
 /// Approximate-minimum-degree ordering of the node graph of `pattern`, expanded to the dofs:
 /// `(perm, perm_inverse)`.
 pub fn node_graph_ordering(
     pattern: SymbolicSparseColMatRef<'_, usize>,
-) -> (Vec<usize>, Vec<usize>) {
+) -> Result<(Vec<usize>, Vec<usize>)> {
     let n = pattern.nrows();
-    let nodes = n / 2 + n % 2;
     let (offsets, rows) = node_graph(pattern);
-    let perm = minimum_degree_order(nodes, offsets, rows);
-    let pairs = n / 2;
-    let mut dof_perm = Vec::with_capacity(n);
-    for &node in &perm {
-        if node < pairs {
-            dof_perm.push(2 * node);
-            dof_perm.push(2 * node + 1);
-        } else {
-            dof_perm.push(n - 1);
-        }
+    dof_order(&minimum_degree_order(n / 2 + n % 2, offsets, rows), n)
+}
+
+/// The pattern given as compressed columns (`col_offsets`, sorted `row_indices`) as a view.
+fn checked_pattern<'p>(
+    col_offsets: &'p [usize],
+    row_indices: &'p [usize],
+) -> Result<SymbolicSparseColMatRef<'p, usize>> {
+    let n = col_offsets.len().saturating_sub(1);
+    if col_offsets.last() != Some(&row_indices.len()) {
+        return Err(solver_error(
+            "internal: the pattern's offsets do not end at its entry count".into(),
+        ));
     }
-    let mut dof_inverse = vec![0usize; n];
-    for (i, &d) in dof_perm.iter().enumerate() {
-        dof_inverse[d] = i;
-    }
-    (dof_perm, dof_inverse)
+    Ok(SymbolicSparseColMatRef::new_checked(
+        n,
+        n,
+        col_offsets,
+        None,
+        row_indices,
+    ))
 }
 
 /// Symbolic Cholesky analysis of a symmetric pattern, ordered on its node graph
@@ -172,19 +212,7 @@ pub struct SymbolicFactor {
 impl SymbolicFactor {
     /// Analyse the pattern given as compressed columns (`col_offsets`, sorted `row_indices`).
     pub fn of_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
-        let n = col_offsets.len().saturating_sub(1);
-        if col_offsets.last() != Some(&row_indices.len()) {
-            return Err(solver_error(
-                "internal: the pattern's offsets do not end at its entry count".into(),
-            ));
-        }
-        Self::new(SymbolicSparseColMatRef::new_checked(
-            n,
-            n,
-            col_offsets,
-            None,
-            row_indices,
-        ))
+        Self::new(checked_pattern(col_offsets, row_indices)?)
     }
 
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
@@ -194,7 +222,7 @@ impl SymbolicFactor {
 
     /// Analyse `pattern` (both triangles stored; the lower one is read).
     pub fn new(pattern: SymbolicSparseColMatRef<'_, usize>) -> Result<Self> {
-        let (perm, perm_inverse) = node_graph_ordering(pattern);
+        let (perm, perm_inverse) = node_graph_ordering(pattern)?;
         Self::with_dof_order(pattern, &perm, &perm_inverse)
     }
 
@@ -207,42 +235,13 @@ impl SymbolicFactor {
         row_indices: &[usize],
         node_order: &[usize],
     ) -> Result<Self> {
-        let n = col_offsets.len().saturating_sub(1);
-        if col_offsets.last() != Some(&row_indices.len()) {
-            return Err(solver_error(
-                "internal: the pattern's offsets do not end at its entry count".into(),
-            ));
-        }
-        let pairs = n / 2;
-        let mut perm = Vec::with_capacity(n);
-        for &node in node_order {
-            if node >= pairs {
-                return Err(solver_error(format!(
-                    "internal: node {node} of the elimination order is not one of the {pairs} nodes"
-                )));
-            }
-            perm.extend([2 * node, 2 * node + 1]);
-        }
+        let pattern = checked_pattern(col_offsets, row_indices)?;
+        let n = pattern.nrows();
+        let mut nodes = node_order.to_vec();
         if n % 2 == 1 {
-            perm.push(n - 1);
+            nodes.push(n / 2);
         }
-        let mut inverse = vec![usize::MAX; n];
-        for (i, &d) in perm.iter().enumerate() {
-            if inverse[d] != usize::MAX {
-                return Err(solver_error(format!(
-                    "internal: node {} appears twice in the elimination order",
-                    d / 2
-                )));
-            }
-            inverse[d] = i;
-        }
-        if perm.len() != n {
-            return Err(solver_error(format!(
-                "internal: the elimination order holds {} of the {pairs} nodes",
-                node_order.len()
-            )));
-        }
-        let pattern = SymbolicSparseColMatRef::new_checked(n, n, col_offsets, None, row_indices);
+        let (perm, inverse) = dof_order(&nodes, n)?;
         Self::with_dof_order(pattern, &perm, &inverse)
     }
 
@@ -381,7 +380,7 @@ mod tests {
             offsets.push(rows.len());
         }
         let pattern = SymbolicSparseColMat::new_checked(n, n, offsets, None, rows);
-        let (perm, inverse) = node_graph_ordering(pattern.as_ref());
+        let (perm, inverse) = node_graph_ordering(pattern.as_ref()).unwrap();
         let mut sorted = perm.clone();
         sorted.sort_unstable();
         assert_eq!(sorted, (0..n).collect::<Vec<_>>());

@@ -94,9 +94,9 @@ fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
         .collect()
 }
 
-/// Every node of `mesh` once, in a fill-reducing elimination order: nodes in no cell first, then
-/// the bubble nodes, then each vertex in the minimum-degree order of the vertex graph, preceded by
-/// the inner nodes of its edges that no earlier vertex took.
+/// Every node of `mesh` once, in a fill-reducing elimination order: the bubble nodes, then each
+/// vertex in the minimum-degree order of the vertex graph, preceded by the inner nodes of its
+/// edges that no earlier vertex took, then any node in no cell.
 pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
     let nodes = mesh.nodes.len();
     let (per_edge, bubble) = edge_layout(mesh.degree);
@@ -110,15 +110,6 @@ pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
             order.push(node);
         }
     };
-    let mut in_a_cell = vec![false; nodes];
-    for c in 0..mesh.cell_count() {
-        for &m in mesh.cell(c) {
-            in_a_cell[m] = true;
-        }
-    }
-    for (node, _) in in_a_cell.iter().enumerate().filter(|(_, &used)| !used) {
-        place(node, &mut order);
-    }
     if bubble {
         for c in 0..mesh.cell_count() {
             place(mesh.cell(c)[3 + 3 * per_edge], &mut order);
@@ -138,7 +129,7 @@ pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
         }
         place(v, &mut order);
     }
-    // A node a malformed cell lists only among inner nodes of other roles is still placed.
+    // Nodes in no cell (isolated: any place serves) are placed last.
     for node in 0..nodes {
         place(node, &mut order);
     }
