@@ -13,6 +13,7 @@ use nalgebra_sparse::CscMatrix;
 use rayon::prelude::*;
 
 use super::element::{stiffness, Lame};
+use super::far_field::FarFieldCondition;
 use super::mesh::Mesh;
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
@@ -158,6 +159,8 @@ pub struct StiffnessPattern {
     /// Row of each entry.
     pub row_indices: Vec<usize>,
     nodes: NodePattern,
+    /// Whether the far-field amplitude's row and column were added ([`Self::extend_for_far_field`]).
+    extended: bool,
 }
 
 impl StiffnessPattern {
@@ -189,7 +192,18 @@ impl StiffnessPattern {
             col_offsets,
             row_indices,
             nodes,
+            extended: false,
         })
+    }
+
+    /// Add the far-field amplitude's row and column in place
+    /// ([`FarFieldCondition::extend_pattern`]): [`Self::values`] then gives `K` in the extended
+    /// layout, its new entries zero until [`FarFieldCondition::fill_extension`] fills them.
+    pub fn extend_for_far_field(&mut self, condition: &FarFieldCondition) {
+        if !self.extended {
+            condition.extend_pattern(&mut self.col_offsets, &mut self.row_indices);
+            self.extended = true;
+        }
     }
 
     /// Number of rows (and columns).
@@ -198,13 +212,13 @@ impl StiffnessPattern {
     }
 
     /// The values of `K = Σ_e K_e` on this pattern (`mesh` the one it was made from), in the
-    /// order of [`Self::row_indices`].
+    /// order of [`Self::row_indices`] (the far-field extension's entries, if any, zero).
     ///
     /// Element matrices are computed in parallel, a block of cells at a time, then added in
     /// parallel: each thread adds the columns of its own range of nodes.
     pub fn values(&self, mesh: &Mesh, material: &Lame, rule: &TriangleRule) -> Result<Vec<f64>> {
         let count = mesh.nodes.len();
-        let dofs = 2 * count;
+        let dofs = 2 * count + usize::from(self.extended);
         if self.dofs() != dofs {
             return Err(Error::InvalidMesh {
                 path: mesh.source.clone(),
@@ -372,6 +386,66 @@ mod tests {
                 );
             }
             assert_eq!(next, nodes, "{parts} parts");
+        }
+    }
+
+    #[test]
+    fn the_far_field_extension_in_place_is_the_extended_matrix_by_definition() {
+        // K̃ = [K, K T g; gᵀ Tᵀ K, gᵀ K_aa g + k_ext] with the arc's coupling kept off the arc
+        // rows; here the bottom side (tag 3, the far boundary's) plays the arc.
+        let material = Lame::from_young_poisson(1.0, 0.3);
+        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+            let mesh = structured_rectangle(2.0, 1.0, 3, 2, 1, 2, 3).with_degree(degree);
+            let rule = stiffness_rule(degree);
+            let condition = FarFieldCondition::new(&mesh, &material, 2.0);
+            let mut pattern = StiffnessPattern::new(&mesh).unwrap();
+            pattern.extend_for_far_field(&condition);
+            let mut values = pattern.values(&mesh, &material, &rule).unwrap();
+            condition.fill_extension(&pattern.col_offsets, &pattern.row_indices, &mut values);
+            let extended = pattern.into_matrix(values).unwrap();
+
+            let k = dense_by_definition(&mesh, &material, &rule);
+            let n = k.len();
+            let (mut g, mut on_arc) = (vec![0.0; n], vec![false; n]);
+            for &(dof, value) in &condition.arc {
+                g[dof] = value;
+                on_arc[dof] = true;
+            }
+            let mut reference = vec![vec![0.0; n + 1]; n + 1];
+            for i in 0..n {
+                reference[i][..n].copy_from_slice(&k[i]);
+                if !on_arc[i] {
+                    reference[i][n] = (0..n).map(|j| k[i][j] * g[j]).sum();
+                    reference[n][i] = reference[i][n];
+                }
+            }
+            reference[n][n] = condition.exterior_stiffness
+                + (0..n)
+                    .flat_map(|i| (0..n).map(move |j| (i, j)))
+                    .map(|(i, j)| g[i] * k[i][j] * g[j])
+                    .sum::<f64>();
+            let scale = k.iter().flatten().fold(0.0_f64, |m, v| m.max(v.abs()));
+            let mut dense = vec![vec![0.0; n + 1]; n + 1];
+            for (col, column) in extended.col_iter().enumerate() {
+                let rows = column.row_indices();
+                assert!(
+                    rows.windows(2).all(|w| w[0] < w[1]),
+                    "{degree:?} column {col}"
+                );
+                for (&row, &value) in rows.iter().zip(column.values()) {
+                    dense[row][col] = value;
+                }
+            }
+            for i in 0..=n {
+                for j in 0..=n {
+                    assert!(
+                        (dense[i][j] - reference[i][j]).abs() <= 1e-12 * scale,
+                        "{degree:?} ({i}, {j}): {} against {}",
+                        dense[i][j],
+                        reference[i][j]
+                    );
+                }
+            }
         }
     }
 }

@@ -19,8 +19,6 @@
 //! of the far field itself (about `7e-4 a/R` at grading 0.1): measured 2e-4 at `R = 4 a` where the
 //! fixed arc is 29 % off.
 
-use nalgebra_sparse::CscMatrix;
-
 use super::element::Lame;
 use super::mesh::{tags, Mesh};
 use super::quadrature::gauss_legendre;
@@ -167,78 +165,73 @@ impl FarFieldCondition {
         coupled
     }
 
-    /// The pattern of `K̃` from that of `K` (compressed columns, rows sorted): every column of a
-    /// coupled dof gains the amplitude row `n` (last, so rows stay sorted), and the amplitude's
-    /// column holds the coupled rows and its diagonal. Known before `K`'s values are, so the
-    /// factorisation's symbolic analysis of `K̃` can run while `K` is assembled.
-    pub fn extended_pattern(
-        &self,
-        col_offsets: &[usize],
-        row_indices: &[usize],
-    ) -> (Vec<usize>, Vec<usize>) {
+    /// Extend `K`'s pattern (compressed columns, rows sorted) in place to that of `K̃`: every
+    /// column of a coupled dof gains the amplitude row `n` (last, so rows stay sorted), and the
+    /// amplitude's column holds the coupled rows and its diagonal. The columns of `K` keep their
+    /// entries in order at their new offsets, so `K`'s values can be added into the extended
+    /// layout directly ([`Self::fill_extension`] then adds the new entries): no copy of `K`.
+    /// Known before `K`'s values are, so the factorisation's symbolic analysis of `K̃` can run
+    /// while `K` is assembled.
+    pub fn extend_pattern(&self, col_offsets: &mut Vec<usize>, row_indices: &mut Vec<usize>) {
         let n = col_offsets.len() - 1;
         let coupled = self.coupled(col_offsets, row_indices);
-        let coupled_count = coupled.iter().filter(|&&c| c).count();
-        let mut offsets = Vec::with_capacity(n + 2);
-        let mut rows = Vec::with_capacity(row_indices.len() + 2 * coupled_count + 1);
-        offsets.push(0);
-        for col in 0..n {
-            rows.extend_from_slice(&row_indices[col_offsets[col]..col_offsets[col + 1]]);
+        let coupled_rows: Vec<usize> = (0..n).filter(|&row| coupled[row]).collect();
+        let old_nnz = row_indices.len();
+        let new_nnz = old_nnz + 2 * coupled_rows.len() + 1;
+        row_indices.resize(new_nnz, 0);
+        // The amplitude's column, then the others moved back from the last one, each gaining the
+        // amplitude row if coupled (moving backwards never overwrites an entry not yet moved).
+        let amplitude_start = new_nnz - coupled_rows.len() - 1;
+        row_indices[amplitude_start..new_nnz - 1].copy_from_slice(&coupled_rows);
+        row_indices[new_nnz - 1] = n;
+        let mut end = amplitude_start;
+        for col in (0..n).rev() {
+            let (start, stop) = (col_offsets[col], col_offsets[col + 1]);
+            col_offsets[col + 1] = end;
             if coupled[col] {
-                rows.push(n);
+                end -= 1;
+                row_indices[end] = n;
             }
-            offsets.push(rows.len());
+            let len = stop - start;
+            row_indices.copy_within(start..stop, end - len);
+            end -= len;
         }
-        rows.extend((0..n).filter(|&row| coupled[row]));
-        rows.push(n);
-        offsets.push(rows.len());
-        (offsets, rows)
+        debug_assert_eq!(end, 0);
+        col_offsets.push(new_nnz);
     }
 
-    /// The extended matrix `K̃` (see the type's documentation), on [`Self::extended_pattern`].
-    pub fn extend(&self, k: &CscMatrix<f64>) -> crate::error::Result<CscMatrix<f64>> {
-        let n = k.nrows();
+    /// Fill the entries [`Self::extend_pattern`] added, given `K`'s values in the extended
+    /// layout (`values`, zero at the added entries): `(K T g)_i = Σ_arc K_ik g_k` for the coupled
+    /// rows and the diagonal `gᵀ K_aa g + k_ext`.
+    pub fn fill_extension(&self, col_offsets: &[usize], row_indices: &[usize], values: &mut [f64]) {
+        let n = col_offsets.len() - 2;
         let is_arc = self.arc_mask(n);
         let mut value = vec![0.0; n];
         for &(dof, g) in &self.arc {
             value[dof] = g;
         }
-        // coupling[i] = Σ_arc K_ik g_k (interior rows), diagonal gᵀ K_aa g.
         let mut coupling = vec![0.0; n];
         let mut diagonal = self.exterior_stiffness;
-        let offsets = k.col_offsets();
-        let rows = k.row_indices();
-        let values = k.values();
         for col in (0..n).filter(|&c| is_arc[c]) {
-            for p in offsets[col]..offsets[col + 1] {
-                let row = rows[p];
+            for p in col_offsets[col]..col_offsets[col + 1] {
+                let row = row_indices[p];
                 if is_arc[row] {
                     diagonal += value[row] * values[p] * value[col];
-                } else {
+                } else if row < n {
                     coupling[row] += values[p] * value[col];
                 }
             }
         }
-        let (new_offsets, new_rows) = self.extended_pattern(offsets, rows);
-        let mut new_values = Vec::with_capacity(new_rows.len());
         for col in 0..n {
-            new_values.extend_from_slice(&values[offsets[col]..offsets[col + 1]]);
-            if new_offsets[col + 1] - new_offsets[col] > offsets[col + 1] - offsets[col] {
-                new_values.push(coupling[col]);
+            let last = col_offsets[col + 1] - 1;
+            if col_offsets[col + 1] > col_offsets[col] && row_indices[last] == n {
+                values[last] = coupling[col];
             }
         }
-        new_values.extend(
-            new_rows[new_offsets[n]..new_offsets[n + 1] - 1]
-                .iter()
-                .map(|&r| coupling[r]),
-        );
-        new_values.push(diagonal);
-        CscMatrix::try_from_csc_data(n + 1, n + 1, new_offsets, new_rows, new_values).map_err(|e| {
-            crate::error::Error::InvalidMesh {
-                path: String::new(),
-                message: format!("internal: the far-field extended pattern was rejected: {e}"),
-            }
-        })
+        for p in col_offsets[n]..col_offsets[n + 1] - 1 {
+            values[p] = coupling[row_indices[p]];
+        }
+        values[col_offsets[n + 1] - 1] = diagonal;
     }
 
     /// Full nodal displacement (`2 × nodes`) from the extended solution: arc dofs `α g`.

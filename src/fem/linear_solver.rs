@@ -5,25 +5,116 @@
 //! side. The pattern is therefore the same for every constraint set, and the symbolic analysis
 //! (node-graph AMD ordering, supernodal structure: [`super::node_ordered_cholesky`]) is computed
 //! once and reused for each new active set of the contact iteration: only the numeric
-//! factorisation is repeated.
+//! factorisation is repeated, on the permuted lower triangle gathered from `K` without copying it
+//! ([`super::permuted_lower`]). A large model's matrix is split in two parts and a separator
+//! and factorised on two cores ([`super::split_cholesky`]).
 
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use std::sync::Arc;
+
 use faer::MatMut;
 use nalgebra_sparse::CscMatrix;
 
+use super::mesh::Mesh;
 use super::node_ordered_cholesky::{NumericFactor, SymbolicFactor};
+use super::separator::{split_nodes, Side};
+use super::split_cholesky::{SplitAnalysis, SplitFactor};
+use super::vertex_ordering::vertex_led_node_order;
 use crate::error::{Error, Result};
+
+/// The symbolic analysis a [`ConstrainedCholesky`] factorises on: of the whole matrix, or of its
+/// two parts and their separator.
+#[derive(Clone, Debug)]
+pub enum Analysis {
+    Whole(SymbolicFactor),
+    Split(Arc<SplitAnalysis>),
+}
+
+/// Fewest unknowns for which a model's factorisation is split over two cores.
+pub const SPLIT_MIN_DOFS: usize = 10_000;
+
+/// [`SPLIT_MIN_DOFS`], or the environment's `RINGCONTACT_SPLIT_MIN_DOFS` (to compare the split
+/// factorisation with the whole one on the same model).
+fn split_min_dofs() -> usize {
+    std::env::var("RINGCONTACT_SPLIT_MIN_DOFS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(SPLIT_MIN_DOFS)
+}
+
+/// Most separator unknowns a split may have (its Schur complement is dense).
+pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
+
+impl Analysis {
+    /// The analysis of a model's stiffness pattern (compressed columns, both triangles, two dofs
+    /// per node of `mesh` and an optional trailing dof) in the vertex-led order
+    /// ([`super::vertex_ordering`]): split in two parts by a separator ring
+    /// ([`super::separator`]) when the model has at least [`SPLIT_MIN_DOFS`] unknowns and such a
+    /// ring of at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns exists, whole otherwise.
+    pub fn of_mesh(mesh: &Mesh, col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
+        let order = vertex_led_node_order(mesh);
+        let dofs = col_offsets.len().saturating_sub(1);
+        if dofs >= split_min_dofs() {
+            if let Some(split) = split_nodes(mesh) {
+                let separator = 2 * split.count(Side::Separator) + dofs % 2;
+                if separator <= SPLIT_MAX_SEPARATOR_DOFS {
+                    let analysis = SplitAnalysis::new(col_offsets, row_indices, &order, &split)?;
+                    return Ok(Analysis::Split(Arc::new(analysis)));
+                }
+            }
+        }
+        SymbolicFactor::with_node_order(col_offsets, row_indices, &order).map(Analysis::Whole)
+    }
+
+    /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
+    pub fn fits(&self, n: usize, nnz: usize) -> bool {
+        match self {
+            Analysis::Whole(symbolic) => symbolic.fits(n, nnz),
+            Analysis::Split(split) => split.fits(n, nnz),
+        }
+    }
+
+    /// One phrase for traces: `whole`, or the parts' and the separator's unknowns.
+    pub fn describe(&self) -> String {
+        match self {
+            Analysis::Whole(_) => "whole".into(),
+            Analysis::Split(split) => {
+                let [first, second] = split.part_sizes();
+                format!(
+                    "split {first} + {second}, separator {}",
+                    split.separator_len()
+                )
+            }
+        }
+    }
+}
+
+/// A numeric factorisation on an [`Analysis`].
+enum Factor {
+    Whole(NumericFactor),
+    Split(SplitFactor),
+}
+
+impl Factor {
+    /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs`.
+    fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+        match self {
+            Factor::Whole(factor) => factor.solve_in_place(rhs),
+            Factor::Split(factor) => factor.solve_in_place(rhs),
+        }
+    }
+}
 
 /// Cholesky solver bound to one stiffness matrix.
 pub struct ConstrainedCholesky<'a> {
     matrix: &'a CscMatrix<f64>,
-    symbolic_pattern: SymbolicSparseColMat<usize>,
-    symbolic: SymbolicFactor,
+    analysis: Analysis,
     diagonal: Vec<usize>,
-    scratch: Vec<f64>,
+    /// Values of the permuted lower triangle of the constrained matrix (allocated at the first
+    /// factorisation, reused by the next ones).
+    lower_values: Vec<f64>,
     /// The last numeric factorisation and the constraint set it belongs to: a solve with the same
     /// set (other prescribed values or forces) is a back-substitution only.
-    last: Option<(Vec<bool>, NumericFactor)>,
+    last: Option<(Vec<bool>, Factor)>,
     /// Number of numeric factorisations done.
     pub factorisations: usize,
     /// Wall time spent in numeric factorisations (seconds).
@@ -55,26 +146,19 @@ impl<'a> ConstrainedCholesky<'a> {
     /// cores are better used by the parallel element assembly and by independent states).
     pub fn new(matrix: &'a CscMatrix<f64>) -> Result<Self> {
         let symbolic = SymbolicFactor::of_pattern(matrix.col_offsets(), matrix.row_indices())?;
-        Self::with_symbolic(matrix, symbolic)
+        Self::with_symbolic(matrix, Analysis::Whole(symbolic))
     }
 
     /// [`Self::new`] with the symbolic analysis of `matrix`'s pattern already done (for example
     /// while the matrix was assembled); an analysis of another pattern is an error.
-    pub fn with_symbolic(matrix: &'a CscMatrix<f64>, symbolic: SymbolicFactor) -> Result<Self> {
+    pub fn with_symbolic(matrix: &'a CscMatrix<f64>, analysis: Analysis) -> Result<Self> {
         faer::set_global_parallelism(faer::Par::Seq);
         let n = matrix.nrows();
-        if !symbolic.fits(n, matrix.nnz()) {
+        if !analysis.fits(n, matrix.nnz()) {
             return Err(solver_error(
                 "internal: the symbolic analysis belongs to another pattern".into(),
             ));
         }
-        let pattern = SymbolicSparseColMat::new_checked(
-            n,
-            n,
-            matrix.col_offsets().to_vec(),
-            None,
-            matrix.row_indices().to_vec(),
-        );
         let mut diagonal = vec![usize::MAX; n];
         for (col, slot) in diagonal.iter_mut().enumerate() {
             let range = matrix.col_offsets()[col]..matrix.col_offsets()[col + 1];
@@ -92,10 +176,9 @@ impl<'a> ConstrainedCholesky<'a> {
         }
         Ok(Self {
             matrix,
-            symbolic_pattern: pattern,
-            symbolic,
+            analysis,
             diagonal,
-            scratch: vec![0.0; matrix.nnz()],
+            lower_values: Vec::new(),
             last: None,
             factorisations: 0,
             factorisation_seconds: 0.0,
@@ -152,7 +235,7 @@ impl<'a> ConstrainedCholesky<'a> {
         if !reuse {
             self.factorise(constrained)?;
         }
-        if let Some((_, llt)) = &self.last {
+        if let Some((mask, llt)) = &self.last {
             // One step of iterative refinement with the same factor: the graded meshes span
             // element sizes from 1e-10 a to 1e6 a, and without it rounding left a floor of about
             // 4e-9 in the force of 10^6-unknown models (measured against the ring BEM).
@@ -161,11 +244,16 @@ impl<'a> ConstrainedCholesky<'a> {
             if !refine {
                 return finite(rhs);
             }
+            // r = b - K_C x, K_C being K with the constrained rows and columns reduced to
+            // their diagonal.
             let mut residual = b;
             for col in 0..n {
                 let x = rhs[col];
                 for k in offsets[col]..offsets[col + 1] {
-                    residual[rows[k]] -= self.scratch[k] * x;
+                    let row = rows[k];
+                    if row == col || !(mask[row] || mask[col]) {
+                        residual[row] -= values[k] * x;
+                    }
                 }
             }
             llt.solve_in_place(MatMut::from_column_major_slice_mut(&mut residual, n, 1));
@@ -185,29 +273,29 @@ impl<'a> ConstrainedCholesky<'a> {
     /// their diagonal (the symbolic analysis is reused).
     fn factorise(&mut self, constrained: &[bool]) -> Result<()> {
         let start = std::time::Instant::now();
-        let n = self.matrix.nrows();
-        let offsets = self.matrix.col_offsets();
-        let rows = self.matrix.row_indices();
-        let values = self.matrix.values();
-        for col in 0..n {
-            for k in offsets[col]..offsets[col + 1] {
-                let row = rows[k];
-                self.scratch[k] = if constrained[row] || constrained[col] {
-                    if row == col {
-                        values[k]
-                    } else {
-                        0.0
-                    }
-                } else {
-                    values[k]
-                };
+        let factor = match &self.analysis {
+            Analysis::Whole(symbolic) => {
+                let constrained_new: Vec<bool> = symbolic
+                    .perm()
+                    .iter()
+                    .map(|&dof| constrained[dof])
+                    .collect();
+                let layout = symbolic.lower();
+                self.lower_values.resize(layout.len(), 0.0);
+                layout.gather(
+                    self.matrix.values(),
+                    &constrained_new,
+                    &mut self.lower_values,
+                );
+                Factor::Whole(NumericFactor::new(symbolic, &self.lower_values)?)
             }
-        }
-        let matrix = SparseColMatRef::new(self.symbolic_pattern.as_ref(), &self.scratch);
-        let llt = NumericFactor::new(&self.symbolic, matrix)?;
+            Analysis::Split(split) => {
+                Factor::Split(SplitFactor::new(split, self.matrix.values(), constrained)?)
+            }
+        };
         self.factorisations += 1;
         self.factorisation_seconds += start.elapsed().as_secs_f64();
-        self.last = Some((constrained.to_vec(), llt));
+        self.last = Some((constrained.to_vec(), factor));
         Ok(())
     }
 

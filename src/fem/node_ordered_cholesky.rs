@@ -21,14 +21,19 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::supernodal::{
+    factorize_supernodal_numeric_llt, factorize_supernodal_numeric_llt_scratch,
+};
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
+use rayon::prelude::*;
 
+use super::permuted_lower::PermutedLower;
 use crate::error::{Error, Result};
 
 fn solver_error(message: String) -> Error {
@@ -205,6 +210,8 @@ fn checked_pattern<'p>(
 #[derive(Clone, Debug)]
 pub struct SymbolicFactor {
     inner: Arc<SymbolicCholesky<usize>>,
+    /// The permuted lower triangle the numeric factorisation reads, laid out for this order.
+    lower: Arc<PermutedLower>,
     /// Size and number of entries of the analysed pattern (both triangles).
     shape: (usize, usize),
 }
@@ -218,6 +225,16 @@ impl SymbolicFactor {
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
     pub fn fits(&self, n: usize, nnz: usize) -> bool {
         self.shape == (n, nnz)
+    }
+
+    /// The elimination order: `perm()[p]` is the dof eliminated `p`-th.
+    pub fn perm(&self) -> &[usize] {
+        self.inner.perm().map_or(&[][..], |perm| perm.arrays().0)
+    }
+
+    /// The layout of the permuted lower triangle that [`NumericFactor::new`] factorises.
+    pub fn lower(&self) -> &PermutedLower {
+        &self.lower
     }
 
     /// Analyse `pattern` (both triangles stored; the lower one is read).
@@ -253,22 +270,99 @@ impl SymbolicFactor {
         perm_inverse: &[usize],
     ) -> Result<Self> {
         let n = pattern.nrows();
-        let ordering = PermRef::new_checked(perm, perm_inverse, n);
-        let inner = factorize_symbolic_cholesky(
-            pattern,
-            Side::Lower,
-            SymmetricOrdering::Custom(ordering),
-            CholeskySymbolicParams {
-                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-                ..Default::default()
-            },
-        )
-        .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
+        let inner = supernodal_analysis(pattern, perm, perm_inverse)?;
+        let lower = PermutedLower::new(pattern.col_ptr(), pattern.row_idx(), perm)?;
         Ok(Self {
             inner: Arc::new(inner),
+            lower: Arc::new(lower),
             shape: (n, pattern.compute_nnz()),
         })
     }
+}
+
+/// Supernodal symbolic analysis of the lower triangle of `pattern` eliminated in the order
+/// `perm` (`perm_inverse` its inverse).
+fn supernodal_analysis(
+    pattern: SymbolicSparseColMatRef<'_, usize>,
+    perm: &[usize],
+    perm_inverse: &[usize],
+) -> Result<SymbolicCholesky<usize>> {
+    let ordering = PermRef::new_checked(perm, perm_inverse, pattern.nrows());
+    let inner = factorize_symbolic_cholesky(
+        pattern,
+        Side::Lower,
+        SymmetricOrdering::Custom(ordering),
+        CholeskySymbolicParams {
+            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
+    if !matches!(inner.raw(), SymbolicCholeskyRaw::Supernodal(_)) || inner.perm().is_none() {
+        return Err(solver_error(
+            "internal: the symbolic analysis is not supernodal with the given order".into(),
+        ));
+    }
+    Ok(inner)
+}
+
+/// Supernodal symbolic analysis of a lower triangle already in elimination order (its own
+/// order kept: `faer`'s permutation is the identity).
+pub fn supernodal_analysis_in_order(
+    lower: &SymbolicSparseColMat<usize>,
+) -> Result<SymbolicCholesky<usize>> {
+    let identity: Vec<usize> = (0..lower.nrows()).collect();
+    supernodal_analysis(lower.as_ref(), &identity, &identity)
+}
+
+/// The supernodal factor `L` of the matrix whose lower triangle (in the analysis's elimination
+/// order) is `lower` with `lower_values`: `faer`'s values of `L`, supernode by supernode. Fails
+/// if the matrix is not positive definite.
+///
+/// The factor's memory is first written by both cores: on this machine the kernel's zeroing of
+/// fresh pages runs at about 2 GB/s per core, and the factor holds 1.25 GB at 1.4e6 cubic
+/// unknowns.
+pub fn factorise_supernodal(
+    analysis: &SymbolicCholesky<usize>,
+    lower: &SymbolicSparseColMat<usize>,
+    lower_values: &[f64],
+) -> Result<Vec<f64>> {
+    let SymbolicCholeskyRaw::Supernodal(supernodal) = analysis.raw() else {
+        return Err(solver_error(
+            "internal: the symbolic analysis is not supernodal".into(),
+        ));
+    };
+    if lower_values.len() != lower.compute_nnz() || lower.nrows() != analysis.nrows() {
+        return Err(solver_error(
+            "internal: the values do not fit the permuted lower triangle".into(),
+        ));
+    }
+    let mut values = vec![0.0; analysis.len_val()];
+    values
+        .par_chunks_mut(1 << 16)
+        .for_each(|chunk| chunk.fill(0.0));
+    let mut memory = MemBuffer::try_new(factorize_supernodal_numeric_llt_scratch::<usize, f64>(
+        supernodal,
+        Par::Seq,
+        Default::default(),
+    ))
+    .map_err(|_| solver_error("out of memory for the Cholesky factorisation".into()))?;
+    factorize_supernodal_numeric_llt(
+        &mut values,
+        SparseColMatRef::new(lower.as_ref(), lower_values),
+        Default::default(),
+        supernodal,
+        Par::Seq,
+        MemStack::new(&mut memory),
+        Default::default(),
+    )
+    .map_err(|e| {
+        solver_error(format!(
+            "the stiffness matrix is not positive definite ({e:?}): is the body held against \
+             rigid motion?"
+        ))
+    })?;
+    Ok(values)
 }
 
 /// Numeric Cholesky factor `A = L Lᵀ` on a [`SymbolicFactor`].
@@ -279,31 +373,12 @@ pub struct NumericFactor {
 }
 
 impl NumericFactor {
-    /// Factorise `matrix` (its pattern that of the analysis); fails if it is not positive
-    /// definite.
-    pub fn new(symbolic: &SymbolicFactor, matrix: SparseColMatRef<'_, usize, f64>) -> Result<Self> {
+    /// Factorise `P A Pᵀ = L Lᵀ`, given the values of its lower triangle in the layout of
+    /// [`SymbolicFactor::lower`] (gathered by [`PermutedLower::gather`]); fails if `A` is not
+    /// positive definite ([`factorise_supernodal`]).
+    pub fn new(symbolic: &SymbolicFactor, lower_values: &[f64]) -> Result<Self> {
         let inner = &symbolic.inner;
-        let mut values = vec![0.0; inner.len_val()];
-        let mut memory = MemBuffer::try_new(
-            inner.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .map_err(|_| solver_error("out of memory for the Cholesky factorisation".into()))?;
-        inner
-            .factorize_numeric_llt(
-                &mut values,
-                matrix,
-                Side::Lower,
-                Default::default(),
-                Par::Seq,
-                MemStack::new(&mut memory),
-                Default::default(),
-            )
-            .map_err(|e| {
-                solver_error(format!(
-                    "the stiffness matrix is not positive definite ({e:?}): is the body held \
-                     against rigid motion?"
-                ))
-            })?;
+        let values = factorise_supernodal(inner, symbolic.lower.pattern(), lower_values)?;
         Ok(Self {
             symbolic: Arc::clone(inner),
             values,

@@ -21,13 +21,11 @@ use super::assembly::StiffnessPattern;
 use super::contact::{ContactModel, ContactSolution};
 use super::element::Lame;
 use super::far_field::{FarField, FarFieldCondition};
-use super::linear_solver::ConstrainedCholesky;
+use super::linear_solver::{Analysis, ConstrainedCholesky};
 use super::mesh::{tags, Degree, Mesh};
 use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
 use super::msh::read_msh;
-use super::node_ordered_cholesky::SymbolicFactor;
 use super::quadrature::TriangleRule;
-use super::vertex_ordering::vertex_led_node_order;
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
@@ -256,7 +254,7 @@ struct PreparedModel {
     arc_grading: f64,
     stiffness: nalgebra_sparse::CscMatrix<f64>,
     /// The symbolic Cholesky analysis of `stiffness`'s pattern (done during the assembly).
-    symbolic: SymbolicFactor,
+    symbolic: Analysis,
     /// The far-field condition, when the arc is slaved to Boussinesq's field.
     far_field: Option<FarFieldCondition>,
     timings: FemTimings,
@@ -322,7 +320,7 @@ fn assemble_model(
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
     let rule = stiffness_rule(degree);
-    let pattern = StiffnessPattern::new(&mesh)?;
+    let mut pattern = StiffnessPattern::new(&mesh)?;
     let domain_radius = mesh
         .boundary_nodes(tags::FAR)
         .iter()
@@ -341,29 +339,22 @@ fn assemble_model(
         FarField::Fixed => None,
         FarField::Boussinesq => Some(FarFieldCondition::new(&mesh, &material, domain_radius)),
     };
+    if let Some(condition) = &far_field {
+        pattern.extend_for_far_field(condition);
+    }
     // The symbolic analysis needs only the pattern: it runs while the values are assembled.
     let analysis = || {
         let start = Instant::now();
-        let order = vertex_led_node_order(&mesh);
-        let symbolic = match &far_field {
-            None => {
-                SymbolicFactor::with_node_order(&pattern.col_offsets, &pattern.row_indices, &order)
-            }
-            Some(condition) => {
-                let (offsets, rows) =
-                    condition.extended_pattern(&pattern.col_offsets, &pattern.row_indices);
-                SymbolicFactor::with_node_order(&offsets, &rows, &order)
-            }
-        };
+        let symbolic = Analysis::of_mesh(&mesh, &pattern.col_offsets, &pattern.row_indices);
         (symbolic, start.elapsed().as_secs_f64())
     };
     let ((symbolic, symbolic_seconds), values) =
         rayon::join(analysis, || pattern.values(&mesh, &material, &rule));
-    let (symbolic, stiffness) = (symbolic?, pattern.into_matrix(values?)?);
-    let stiffness = match &far_field {
-        None => stiffness,
-        Some(condition) => condition.extend(&stiffness)?,
-    };
+    let (symbolic, mut values) = (symbolic?, values?);
+    if let Some(condition) = &far_field {
+        condition.fill_extension(&pattern.col_offsets, &pattern.row_indices, &mut values);
+    }
+    let stiffness = pattern.into_matrix(values)?;
     let assembly = start.elapsed().as_secs_f64();
     Ok(PreparedModel {
         mesh,
@@ -628,11 +619,12 @@ fn finish(
 fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     let t = &model.timings;
     eprintln!(
-        "fem: {} ({} unknowns): read {:.3} s, assembly {:.3} s (symbolic {:.3} s of it, alongside), contact {:.3} s \
+        "fem: {} ({} unknowns, factorised {}): read {:.3} s, assembly {:.3} s (symbolic {:.3} s of it, alongside), contact {:.3} s \
          ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10} (node spacing \
          there {:.2e}), force {:.12}",
         model.path,
         model.stiffness.nrows(),
+        model.symbolic.describe(),
         t.read,
         t.assembly,
         t.symbolic,

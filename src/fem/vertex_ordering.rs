@@ -14,7 +14,7 @@ use super::node_ordered_cholesky::minimum_degree_order;
 
 /// Inner nodes per edge and whether a cell has a bubble node, by degree: the cell's nodes are its
 /// three vertices, then the inner nodes of edges (0, 1), (1, 2), (2, 0) in turn, then the bubble.
-fn edge_layout(degree: Degree) -> (usize, bool) {
+pub(super) fn edge_layout(degree: Degree) -> (usize, bool) {
     match degree {
         Degree::Linear => (0, false),
         Degree::Quadratic => (1, false),
@@ -24,14 +24,14 @@ fn edge_layout(degree: Degree) -> (usize, bool) {
 
 /// The cells at each vertex: vertex `v`'s are `cells[offsets[v]..offsets[v + 1]]` (empty for a
 /// node that is no cell's vertex).
-struct VertexCells {
+pub(super) struct VertexCells {
     offsets: Vec<usize>,
     cells: Vec<usize>,
 }
 
 impl VertexCells {
     /// Counting sort of the cells by their three vertices.
-    fn new(mesh: &Mesh) -> Self {
+    pub(super) fn new(mesh: &Mesh) -> Self {
         let nodes = mesh.nodes.len();
         let mut offsets = vec![0usize; nodes + 1];
         for c in 0..mesh.cell_count() {
@@ -53,14 +53,28 @@ impl VertexCells {
         Self { offsets, cells }
     }
 
-    fn of(&self, vertex: usize) -> &[usize] {
+    pub(super) fn of(&self, vertex: usize) -> &[usize] {
         &self.cells[self.offsets[vertex]..self.offsets[vertex + 1]]
     }
 }
 
-/// Approximate-minimum-degree order of the graph of the cells' vertices: vertex ids in the order
-/// to eliminate them.
-fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
+/// The graph of the cells' vertices: `vertices[i]` is the node of graph vertex `i`, whose
+/// sorted neighbours (itself included) are `rows[offsets[i]..offsets[i + 1]]`.
+pub(super) struct VertexGraph {
+    pub vertices: Vec<usize>,
+    pub offsets: Vec<usize>,
+    pub rows: Vec<usize>,
+}
+
+impl VertexGraph {
+    /// The neighbours of graph vertex `i` (itself included).
+    pub fn neighbours(&self, i: usize) -> &[usize] {
+        &self.rows[self.offsets[i]..self.offsets[i + 1]]
+    }
+}
+
+/// The vertex graph of `mesh`: two vertices are neighbours when they share a cell.
+pub(super) fn vertex_graph(mesh: &Mesh, incidence: &VertexCells) -> VertexGraph {
     let vertices: Vec<usize> = (0..mesh.nodes.len())
         .filter(|&v| !incidence.of(v).is_empty())
         .collect();
@@ -88,9 +102,21 @@ fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
         rows[start..].sort_unstable();
         offsets.push(rows.len());
     }
-    minimum_degree_order(count, offsets, rows)
+    VertexGraph {
+        vertices,
+        offsets,
+        rows,
+    }
+}
+
+/// Approximate-minimum-degree order of the graph of the cells' vertices: vertex ids in the order
+/// to eliminate them.
+fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
+    let graph = vertex_graph(mesh, incidence);
+    let count = graph.vertices.len();
+    minimum_degree_order(count, graph.offsets, graph.rows)
         .into_iter()
-        .map(|i| vertices[i])
+        .map(|i| graph.vertices[i])
         .collect()
 }
 

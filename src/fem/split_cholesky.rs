@@ -1,0 +1,457 @@
+//! Cholesky solves of `K` split in two parts and a separator, factorised on two cores.
+//!
+//! With the dofs in three groups, the two parts `1`, `2` (no entry of `K` couples them) and the
+//! separator `S` ([`super::separator`]),
+//!
+//! ```text
+//!     K = [K11  0    K1S]        M_i = [Kii  KiS]   (i = 1, 2)
+//!         [0    K22  K2S]              [KSi  KSS]
+//!         [KS1  KS2  KSS]
+//! ```
+//!
+//! each `M_i` (a principal submatrix of `K`, so positive definite) is factorised on its own
+//! core with the separator last, `M_i = L_i L_iᵀ`. The bottom-right block `L_SS,i` of `L_i` gives
+//! the part's Schur complement `S_i = KSS − KSi Kii⁻¹ KiS = L_SS,i L_SS,iᵀ`, and the Schur
+//! complement of `K` is `S = S_1 + S_2 − KSS` (dense, the separator being a ring of a few
+//! dozen vertices), factorised densely. A solve `K u = f` is then, per part, one forward and one
+//! backward substitution with `L_i` (the two parts again on two cores):
+//!
+//! 1. forward with `[f_i; 0]`: `z_i = Lii⁻¹ f_i`, `z_S,i = −L_SS,i⁻¹ KSi Kii⁻¹ f_i`, so
+//!    `g_i = KSi Kii⁻¹ f_i = −L_SS,i z_S,i`;
+//! 2. `u_S = S⁻¹ (f_S − g_1 − g_2)`;
+//! 3. backward with `[z_i; L_SS,iᵀ u_S]`: its first block is `Kii⁻¹ (f_i − KiS u_S) = u_i`.
+
+use std::sync::Arc;
+
+use faer::linalg::matmul::matmul;
+use faer::linalg::solvers::{Llt, Solve};
+use faer::linalg::triangular_solve::{
+    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
+};
+use faer::reborrow::{Reborrow, ReborrowMut};
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::{Accum, Mat, MatMut, Par, Side};
+
+use super::node_ordered_cholesky::{factorise_supernodal, supernodal_analysis_in_order};
+use super::permuted_lower::PermutedLower;
+use super::separator::{NodeSplit, Side as PartSide};
+use crate::error::{Error, Result};
+
+fn solver_error(message: String) -> Error {
+    Error::NoConvergence {
+        method: "fem".into(),
+        reason: message,
+    }
+}
+
+/// One part with the separator: its dofs in elimination order (the part's, then the
+/// separator's), the layout of its matrix's lower triangle and the symbolic analysis of it.
+#[derive(Debug)]
+struct PartAnalysis {
+    order: Vec<usize>,
+    lower: PermutedLower,
+    symbolic: SymbolicCholesky<usize>,
+}
+
+impl PartAnalysis {
+    fn new(col_offsets: &[usize], row_indices: &[usize], order: Vec<usize>) -> Result<Self> {
+        let lower = PermutedLower::new(col_offsets, row_indices, &order)?;
+        let symbolic = supernodal_analysis_in_order(lower.pattern())?;
+        Ok(Self {
+            order,
+            lower,
+            symbolic,
+        })
+    }
+
+    /// Number of dofs before the separator.
+    fn interior(&self, separator: usize) -> usize {
+        self.order.len() - separator
+    }
+}
+
+/// The symbolic analysis of a split `K`: the two parts' and the separator's dofs.
+#[derive(Debug)]
+pub struct SplitAnalysis {
+    parts: [PartAnalysis; 2],
+    separator: Vec<usize>,
+    /// Size and number of entries of the analysed pattern (both triangles).
+    shape: (usize, usize),
+}
+
+/// Expand nodes to their two dofs each.
+fn node_dofs(nodes: impl Iterator<Item = usize>) -> impl Iterator<Item = usize> {
+    nodes.flat_map(|m| [2 * m, 2 * m + 1])
+}
+
+impl SplitAnalysis {
+    /// Analyse `K`'s pattern (compressed columns, both triangles, two dofs per node and an
+    /// optional trailing dof, which joins the separator) split as `split`, each part's nodes
+    /// eliminated in the order they have in `node_order` (every node once).
+    pub fn new(
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        node_order: &[usize],
+        split: &NodeSplit,
+    ) -> Result<Self> {
+        let n = col_offsets.len().saturating_sub(1);
+        let nodes = split.sides.len();
+        if n / 2 != nodes || node_order.len() != nodes {
+            return Err(solver_error(
+                "internal: the split belongs to another mesh".into(),
+            ));
+        }
+        let of_side = |side: PartSide| {
+            node_order
+                .iter()
+                .copied()
+                .filter(move |&m| split.sides[m] == side)
+        };
+        let mut separator: Vec<usize> = node_dofs(of_side(PartSide::Separator)).collect();
+        if n % 2 == 1 {
+            separator.push(n - 1);
+        }
+        let order_of = |side| -> Vec<usize> {
+            node_dofs(of_side(side))
+                .chain(separator.iter().copied())
+                .collect()
+        };
+        let (first, second) = rayon::join(
+            || PartAnalysis::new(col_offsets, row_indices, order_of(PartSide::First)),
+            || PartAnalysis::new(col_offsets, row_indices, order_of(PartSide::Second)),
+        );
+        let parts = [first?, second?];
+        Ok(Self {
+            parts,
+            separator,
+            shape: (n, row_indices.len()),
+        })
+    }
+
+    /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
+    pub fn fits(&self, n: usize, nnz: usize) -> bool {
+        self.shape == (n, nnz)
+    }
+
+    /// Number of separator dofs.
+    pub fn separator_len(&self) -> usize {
+        self.separator.len()
+    }
+
+    /// Number of dofs of each part, its separator excluded.
+    pub fn part_sizes(&self) -> [usize; 2] {
+        let s = self.separator.len();
+        [self.parts[0].interior(s), self.parts[1].interior(s)]
+    }
+}
+
+/// One part's numeric factor and its separator block `L_SS,i` (dense, lower).
+struct PartFactor {
+    values: Vec<f64>,
+    separator_block: Mat<f64>,
+}
+
+/// The numeric factorisation of a split `K_C` (see the module's documentation).
+pub struct SplitFactor {
+    analysis: Arc<SplitAnalysis>,
+    parts: [PartFactor; 2],
+    schur: Llt<f64>,
+}
+
+fn supernodal(
+    analysis: &SymbolicCholesky<usize>,
+) -> &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize> {
+    match analysis.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => s,
+        // Checked when analysed (supernodal_analysis_in_order).
+        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("the part's analysis is supernodal"),
+    }
+}
+
+/// The dense bottom-right block (last `size` rows and columns) of a supernodal factor.
+fn trailing_block(llt: SupernodalLltRef<'_, usize, f64>, size: usize) -> Mat<f64> {
+    let symbolic = llt.symbolic();
+    let n = symbolic.nrows();
+    let first = n - size;
+    let mut block = Mat::<f64>::zeros(size, size);
+    for s in 0..symbolic.n_supernodes() {
+        let node = llt.supernode(s);
+        let (start, width) = (node.start(), node.val().ncols());
+        if start + width <= first {
+            continue;
+        }
+        let values = node.val();
+        for j in start.max(first)..start + width {
+            let col = j - start;
+            for row in col..width {
+                block[(start + row - first, j - first)] = values[(row, col)];
+            }
+            for (idx, &i) in node.pattern().iter().enumerate() {
+                block[(i - first, j - first)] = values[(width + idx, col)];
+            }
+        }
+    }
+    block
+}
+
+/// Most off-diagonal rows of any supernode of the factor.
+fn longest_pattern(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
+    (0..llt.symbolic().n_supernodes())
+        .map(|s| llt.supernode(s).pattern().len())
+        .max()
+        .unwrap_or(0)
+}
+
+/// `x ← L⁻¹ x` with a supernodal factor (forward substitution).
+fn forward(llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+    let k = x.ncols();
+    let mut scratch = Mat::<f64>::zeros(longest_pattern(llt), k);
+    for s in 0..llt.symbolic().n_supernodes() {
+        let node = llt.supernode(s);
+        let width = node.val().ncols();
+        let (top, bottom) = node.val().split_at_row(width);
+        let mut x_top = x.rb_mut().subrows_mut(node.start(), width);
+        solve_lower_triangular_in_place(top, x_top.rb_mut(), Par::Seq);
+        let mut update = scratch.as_mut().subrows_mut(0, node.pattern().len());
+        matmul(
+            update.rb_mut(),
+            Accum::Replace,
+            bottom,
+            x_top.rb(),
+            1.0,
+            Par::Seq,
+        );
+        for j in 0..k {
+            for (idx, &i) in node.pattern().iter().enumerate() {
+                x[(i, j)] -= update[(idx, j)];
+            }
+        }
+    }
+}
+
+/// `x ← L⁻ᵀ x` with a supernodal factor (backward substitution).
+fn backward(llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+    let k = x.ncols();
+    let mut scratch = Mat::<f64>::zeros(longest_pattern(llt), k);
+    for s in (0..llt.symbolic().n_supernodes()).rev() {
+        let node = llt.supernode(s);
+        let width = node.val().ncols();
+        let (top, bottom) = node.val().split_at_row(width);
+        let mut gathered = scratch.as_mut().subrows_mut(0, node.pattern().len());
+        for j in 0..k {
+            for (idx, &i) in node.pattern().iter().enumerate() {
+                gathered[(idx, j)] = x[(i, j)];
+            }
+        }
+        let mut x_top = x.rb_mut().subrows_mut(node.start(), width);
+        matmul(
+            x_top.rb_mut(),
+            Accum::Add,
+            bottom.transpose(),
+            gathered.rb(),
+            -1.0,
+            Par::Seq,
+        );
+        solve_upper_triangular_in_place(top.transpose(), x_top, Par::Seq);
+    }
+}
+
+impl SplitFactor {
+    /// Factorise `K_C`: `values` are `K`'s (on the analysed pattern), with every off-diagonal
+    /// entry of a `constrained` dof's row and column taken as zero.
+    pub fn new(
+        analysis: &Arc<SplitAnalysis>,
+        values: &[f64],
+        constrained: &[bool],
+    ) -> Result<Self> {
+        let separator = analysis.separator.len();
+        let factor_part = |part: &PartAnalysis| -> Result<(PartFactor, Mat<f64>)> {
+            let constrained_local: Vec<bool> = part.order.iter().map(|&d| constrained[d]).collect();
+            let mut lower_values = vec![0.0; part.lower.len()];
+            part.lower
+                .gather(values, &constrained_local, &mut lower_values);
+            // K_SS (lower) from the part's trailing columns, before the factorisation.
+            let pattern = part.lower.pattern();
+            let interior = part.interior(separator);
+            let mut kss = Mat::<f64>::zeros(separator, separator);
+            for col in interior..part.order.len() {
+                let range = pattern.col_ptr()[col]..pattern.col_ptr()[col + 1];
+                for (&row, &v) in pattern.row_idx()[range.clone()]
+                    .iter()
+                    .zip(&lower_values[range])
+                {
+                    kss[(row - interior, col - interior)] = v;
+                }
+            }
+            let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
+            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &values);
+            let separator_block = trailing_block(llt, separator);
+            Ok((
+                PartFactor {
+                    values,
+                    separator_block,
+                },
+                kss,
+            ))
+        };
+        let (first, second) = rayon::join(
+            || factor_part(&analysis.parts[0]),
+            || factor_part(&analysis.parts[1]),
+        );
+        let ((first, kss), (second, _)) = (first?, second?);
+        // S = L_SS,1 L_SS,1ᵀ + L_SS,2 L_SS,2ᵀ − K_SS (lower triangle; K_SS's upper part is zero).
+        let mut schur = Mat::<f64>::zeros(separator, separator);
+        for block in [&first.separator_block, &second.separator_block] {
+            matmul(
+                schur.as_mut(),
+                Accum::Add,
+                block.as_ref(),
+                block.transpose(),
+                1.0,
+                Par::Seq,
+            );
+        }
+        for j in 0..separator {
+            for i in j..separator {
+                schur[(i, j)] -= kss[(i, j)];
+            }
+        }
+        let schur = schur.llt(Side::Lower).map_err(|e| {
+            solver_error(format!(
+                "the stiffness matrix is not positive definite on the separator ({e:?}): is the \
+                 body held against rigid motion?"
+            ))
+        })?;
+        Ok(Self {
+            analysis: Arc::clone(analysis),
+            parts: [first, second],
+            schur,
+        })
+    }
+
+    /// Overwrite `rhs` (one or more columns) with `K_C⁻¹ rhs`.
+    pub fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
+        let analysis = &self.analysis;
+        let separator = analysis.separator.len();
+        let k = rhs.ncols();
+        let rhs_ref = rhs.rb();
+        // Steps 1: per part, forward with [f_i; 0]; g_i = −L_SS,i z_S,i.
+        let forward_part = |i: usize| -> (Mat<f64>, Mat<f64>) {
+            let part = &analysis.parts[i];
+            let interior = part.interior(separator);
+            let mut x = Mat::<f64>::zeros(part.order.len(), k);
+            for j in 0..k {
+                for (p, &d) in part.order[..interior].iter().enumerate() {
+                    x[(p, j)] = rhs_ref[(d, j)];
+                }
+            }
+            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &self.parts[i].values);
+            forward(llt, x.as_mut());
+            let mut g = Mat::<f64>::zeros(separator, k);
+            matmul(
+                g.as_mut(),
+                Accum::Replace,
+                self.parts[i].separator_block.as_ref(),
+                x.as_ref().subrows(interior, separator),
+                -1.0,
+                Par::Seq,
+            );
+            (x, g)
+        };
+        let ((mut x1, g1), (mut x2, g2)) = rayon::join(|| forward_part(0), || forward_part(1));
+        // Step 2: u_S = S⁻¹ (f_S − g_1 − g_2).
+        let mut u_s = Mat::<f64>::zeros(separator, k);
+        for j in 0..k {
+            for (p, &d) in analysis.separator.iter().enumerate() {
+                u_s[(p, j)] = rhs_ref[(d, j)] - g1[(p, j)] - g2[(p, j)];
+            }
+        }
+        self.schur.solve_in_place(u_s.as_mut());
+        // Step 3: per part, backward with [z_i; L_SS,iᵀ u_S].
+        let backward_part = |i: usize, x: &mut Mat<f64>| {
+            let part = &analysis.parts[i];
+            let interior = part.interior(separator);
+            matmul(
+                x.as_mut().subrows_mut(interior, separator),
+                Accum::Replace,
+                self.parts[i].separator_block.transpose(),
+                u_s.as_ref(),
+                1.0,
+                Par::Seq,
+            );
+            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &self.parts[i].values);
+            backward(llt, x.as_mut());
+        };
+        rayon::join(|| backward_part(0, &mut x1), || backward_part(1, &mut x2));
+        for (part, x) in analysis.parts.iter().zip([&x1, &x2]) {
+            let interior = part.interior(separator);
+            for j in 0..k {
+                for (p, &d) in part.order[..interior].iter().enumerate() {
+                    rhs[(d, j)] = x[(p, j)];
+                }
+            }
+        }
+        for j in 0..k {
+            for (p, &d) in analysis.separator.iter().enumerate() {
+                rhs[(d, j)] = u_s[(p, j)];
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::fem::assembly::assemble_stiffness;
+    use crate::fem::element::Lame;
+    use crate::fem::mesh::{structured_rectangle, tags, Degree};
+    use crate::fem::separator::split_nodes;
+    use crate::fem::solver::stiffness_rule;
+    use crate::fem::vertex_ordering::vertex_led_node_order;
+
+    #[test]
+    fn the_split_solve_equals_the_dense_solve_with_constraints() {
+        let material = Lame::from_young_poisson(1.0, 0.3);
+        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+            let mesh = structured_rectangle(6.0, 1.0, 18, 3, tags::CONTACT, tags::AXIS, tags::FAR)
+                .with_degree(degree);
+            let k = assemble_stiffness(&mesh, &material, &stiffness_rule(degree)).unwrap();
+            let n = k.nrows();
+            let split = split_nodes(&mesh).expect("the strip splits");
+            let order = vertex_led_node_order(&mesh);
+            let analysis = Arc::new(
+                SplitAnalysis::new(k.col_offsets(), k.row_indices(), &order, &split).unwrap(),
+            );
+            assert!(analysis.separator_len() > 0);
+            assert!(analysis
+                .part_sizes()
+                .iter()
+                .all(|&p| p > analysis.separator_len()));
+            // Hold the bottom (far) nodes fixed, as the solver does, and one separator dof.
+            let mut constrained = vec![false; n];
+            for node in mesh.boundary_nodes(tags::FAR) {
+                constrained[2 * node] = true;
+                constrained[2 * node + 1] = true;
+            }
+            constrained[analysis.separator[0]] = true;
+            let factor = SplitFactor::new(&analysis, k.values(), &constrained).unwrap();
+            // Dense K_C and two right-hand sides.
+            let mut dense = Mat::<f64>::zeros(n, n);
+            for (col, column) in k.col_iter().enumerate() {
+                for (&row, &v) in column.row_indices().iter().zip(column.values()) {
+                    if row == col || !(constrained[row] || constrained[col]) {
+                        dense[(row, col)] = v;
+                    }
+                }
+            }
+            let rhs = Mat::<f64>::from_fn(n, 2, |i, j| ((i * 7 + j * 3) % 11) as f64 - 5.0);
+            let expected = dense.partial_piv_lu().solve(rhs.as_ref());
+            let mut solved = rhs.clone();
+            factor.solve_in_place(solved.as_mut());
+            let scale = expected.norm_max();
+            let error = (&solved - &expected).norm_max();
+            assert!(error <= 1e-10 * scale, "{degree:?}: {error:e} of {scale:e}");
+        }
+    }
+}
