@@ -49,7 +49,8 @@ impl Analysis {
     /// per node of `mesh` and an optional trailing dof) in the vertex-led order
     /// ([`super::vertex_ordering`]): split in two parts by a separator ring
     /// ([`super::separator`]) when the model has at least [`SPLIT_MIN_DOFS`] unknowns and such a
-    /// ring of at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns exists, whole otherwise.
+    /// ring of at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns exists (and no entry of `K` couples
+    /// the two parts), whole otherwise.
     pub fn of_mesh(mesh: &Mesh, col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
         let order = vertex_led_node_order(mesh);
         let dofs = col_offsets.len().saturating_sub(1);
@@ -57,8 +58,11 @@ impl Analysis {
             if let Some(split) = split_nodes(mesh) {
                 let separator = 2 * split.count(Side::Separator) + dofs % 2;
                 if separator <= SPLIT_MAX_SEPARATOR_DOFS {
-                    let analysis = SplitAnalysis::new(col_offsets, row_indices, &order, &split)?;
-                    return Ok(Analysis::Split(Arc::new(analysis)));
+                    if let Some(analysis) =
+                        SplitAnalysis::new(col_offsets, row_indices, &order, &split)?
+                    {
+                        return Ok(Analysis::Split(Arc::new(analysis)));
+                    }
                 }
             }
         }

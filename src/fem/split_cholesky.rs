@@ -88,19 +88,44 @@ fn node_dofs(nodes: impl Iterator<Item = usize>) -> impl Iterator<Item = usize> 
 impl SplitAnalysis {
     /// Analyse `K`'s pattern (compressed columns, both triangles, two dofs per node and an
     /// optional trailing dof, which joins the separator) split as `split`, each part's nodes
-    /// eliminated in the order they have in `node_order` (every node once).
+    /// eliminated in the order they have in `node_order` (every node once). `None` when an entry
+    /// of the pattern couples the two parts (a coupling that is not through a cell): the split
+    /// does not apply.
     pub fn new(
         col_offsets: &[usize],
         row_indices: &[usize],
         node_order: &[usize],
         split: &NodeSplit,
-    ) -> Result<Self> {
+    ) -> Result<Option<Self>> {
         let n = col_offsets.len().saturating_sub(1);
         let nodes = split.sides.len();
-        if n / 2 != nodes || node_order.len() != nodes {
+        if n / 2 != nodes
+            || node_order.len() != nodes
+            || col_offsets.last() != Some(&row_indices.len())
+        {
             return Err(solver_error(
                 "internal: the split belongs to another mesh".into(),
             ));
+        }
+        let side_of_dof = |d: usize| {
+            if d < 2 * nodes {
+                split.sides[d / 2]
+            } else {
+                PartSide::Separator
+            }
+        };
+        let couples_the_parts = (0..n).any(|col| {
+            let side = side_of_dof(col);
+            side != PartSide::Separator
+                && row_indices[col_offsets[col]..col_offsets[col + 1]]
+                    .iter()
+                    .any(|&row| {
+                        let other = side_of_dof(row);
+                        other != side && other != PartSide::Separator
+                    })
+        });
+        if couples_the_parts {
+            return Ok(None);
         }
         let of_side = |side: PartSide| {
             node_order
@@ -122,11 +147,11 @@ impl SplitAnalysis {
             || PartAnalysis::new(col_offsets, row_indices, order_of(PartSide::Second)),
         );
         let parts = [first?, second?];
-        Ok(Self {
+        Ok(Some(Self {
             parts,
             separator,
             shape: (n, row_indices.len()),
-        })
+        }))
     }
 
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
@@ -421,7 +446,9 @@ mod tests {
             let split = split_nodes(&mesh).expect("the strip splits");
             let order = vertex_led_node_order(&mesh);
             let analysis = Arc::new(
-                SplitAnalysis::new(k.col_offsets(), k.row_indices(), &order, &split).unwrap(),
+                SplitAnalysis::new(k.col_offsets(), k.row_indices(), &order, &split)
+                    .unwrap()
+                    .expect("the parts share no cell"),
             );
             assert!(analysis.separator_len() > 0);
             assert!(analysis
@@ -453,5 +480,40 @@ mod tests {
             let error = (&solved - &expected).norm_max();
             assert!(error <= 1e-10 * scale, "{degree:?}: {error:e} of {scale:e}");
         }
+    }
+
+    #[test]
+    fn a_pattern_coupling_the_parts_is_not_split() {
+        let mesh = structured_rectangle(6.0, 1.0, 18, 3, tags::CONTACT, tags::AXIS, tags::FAR);
+        let split = split_nodes(&mesh).expect("the strip splits");
+        let first = split
+            .sides
+            .iter()
+            .position(|&s| s == PartSide::First)
+            .unwrap();
+        let second = split
+            .sides
+            .iter()
+            .position(|&s| s == PartSide::Second)
+            .unwrap();
+        // Every node couples to itself, and one node of each part to the other.
+        let n = 2 * mesh.nodes.len();
+        let (mut offsets, mut rows) = (vec![0], Vec::new());
+        for d in 0..n {
+            let start = rows.len();
+            rows.push(d);
+            let node = d / 2;
+            if node == first {
+                rows.extend([2 * second, 2 * second + 1]);
+            } else if node == second {
+                rows.extend([2 * first, 2 * first + 1]);
+            }
+            rows[start..].sort_unstable();
+            offsets.push(rows.len());
+        }
+        let order: Vec<usize> = (0..mesh.nodes.len()).collect();
+        assert!(SplitAnalysis::new(&offsets, &rows, &order, &split)
+            .unwrap()
+            .is_none());
     }
 }
