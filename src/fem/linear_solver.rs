@@ -279,18 +279,9 @@ impl<'a> ConstrainedCholesky<'a> {
         let start = std::time::Instant::now();
         let factor = match &self.analysis {
             Analysis::Whole(symbolic) => {
-                let constrained_new: Vec<bool> = symbolic
-                    .perm()
-                    .iter()
-                    .map(|&dof| constrained[dof])
-                    .collect();
                 let layout = symbolic.lower();
                 self.lower_values.resize(layout.len(), 0.0);
-                layout.gather(
-                    self.matrix.values(),
-                    &constrained_new,
-                    &mut self.lower_values,
-                );
+                layout.gather(self.matrix.values(), constrained, &mut self.lower_values);
                 Factor::Whole(NumericFactor::new(symbolic, &self.lower_values)?)
             }
             Analysis::Split(split) => {

@@ -227,11 +227,6 @@ impl SymbolicFactor {
         self.shape == (n, nnz)
     }
 
-    /// The elimination order: `perm()[p]` is the dof eliminated `p`-th.
-    pub fn perm(&self) -> &[usize] {
-        self.inner.perm().map_or(&[][..], |perm| perm.arrays().0)
-    }
-
     /// The layout of the permuted lower triangle that [`NumericFactor::new`] factorises.
     pub fn lower(&self) -> &PermutedLower {
         &self.lower

@@ -27,6 +27,8 @@ pub struct PermutedLower {
     pattern: SymbolicSparseColMat<usize>,
     /// `source[e]`: index into `K`'s value array of the permuted entry `e`.
     source: Vec<u32>,
+    /// `order[p]`: the dof of `K` eliminated `p`-th.
+    order: Vec<usize>,
 }
 
 impl PermutedLower {
@@ -79,12 +81,21 @@ impl PermutedLower {
             offsets.push(rows.len());
         }
         let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, offsets, None, rows);
-        Ok(Self { pattern, source })
+        Ok(Self {
+            pattern,
+            source,
+            order: order.to_vec(),
+        })
     }
 
     /// The permuted lower triangle's pattern.
     pub fn pattern(&self) -> &SymbolicSparseColMat<usize> {
         &self.pattern
+    }
+
+    /// The elimination order: `order()[p]` is the dof of `K` eliminated `p`-th.
+    pub fn order(&self) -> &[usize] {
+        &self.order
     }
 
     /// Number of stored entries.
@@ -98,9 +109,10 @@ impl PermutedLower {
     }
 
     /// Fill `out` (one value per stored entry) with the permuted lower triangle of `K_C`: `K`'s
-    /// `values` with every off-diagonal entry in a constrained row or column set to zero
-    /// (`constrained_new[p]`: whether the dof eliminated `p`-th is constrained).
-    pub fn gather(&self, values: &[f64], constrained_new: &[bool], out: &mut [f64]) {
+    /// `values` with every off-diagonal entry in a row or column of a `constrained` dof (in
+    /// `K`'s numbering) set to zero.
+    pub fn gather(&self, values: &[f64], constrained: &[bool], out: &mut [f64]) {
+        let constrained_new: Vec<bool> = self.order.iter().map(|&dof| constrained[dof]).collect();
         let offsets = self.pattern.col_ptr();
         let rows = self.pattern.row_idx();
         for col in 0..self.pattern.ncols() {
@@ -141,10 +153,10 @@ mod tests {
         }
         let perm = [3usize, 0, 4, 1, 2]; // perm[new] = old
         let constrained_old = [false, true, false, false, false];
-        let constrained_new: Vec<bool> = perm.iter().map(|&old| constrained_old[old]).collect();
         let layout = PermutedLower::new(&offsets, &rows, &perm).unwrap();
+        assert_eq!(layout.order(), &perm[..]);
         let mut out = vec![f64::NAN; layout.len()];
-        layout.gather(&values, &constrained_new, &mut out);
+        layout.gather(&values, &constrained_old, &mut out);
         let mut dense = [[0.0; 5]; 5];
         let pattern = layout.pattern();
         for (col, bounds) in pattern.col_ptr().windows(2).enumerate() {
@@ -182,7 +194,7 @@ mod tests {
         assert_eq!(layout.len(), 2);
         let values: Vec<f64> = (0..rows.len()).map(|k| k as f64).collect();
         let mut out = vec![0.0; 2];
-        layout.gather(&values, &[false, false], &mut out);
+        layout.gather(&values, &[false; 4], &mut out);
         assert_eq!(out, vec![9.0, 3.0]);
     }
 

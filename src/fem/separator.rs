@@ -16,7 +16,9 @@
 use std::collections::VecDeque;
 
 use super::mesh::Mesh;
-use super::vertex_ordering::{edge_layout, vertex_graph, VertexCells, VertexGraph};
+use super::vertex_ordering::{
+    bubble_node, edge_inner_nodes, vertex_graph, VertexCells, VertexGraph,
+};
 
 /// Which part of the split a node belongs to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,7 +121,6 @@ pub fn split_nodes(mesh: &Mesh) -> Option<NodeSplit> {
         (Side::Second, _) | (_, Side::Second) => Side::Second,
         _ => Side::Separator,
     };
-    let (per_edge, bubble) = edge_layout(mesh.degree);
     for c in 0..mesh.cell_count() {
         let cell = mesh.cell(c);
         let corner: [Side; 3] = std::array::from_fn(|i| vertex_side(cell[i], &index));
@@ -128,12 +129,12 @@ pub fn split_nodes(mesh: &Mesh) -> Option<NodeSplit> {
         }
         for edge in 0..3 {
             let side = joined(corner[edge], corner[(edge + 1) % 3]);
-            for &m in &cell[3 + per_edge * edge..3 + per_edge * (edge + 1)] {
+            for &m in edge_inner_nodes(cell, mesh.degree, edge) {
                 sides[m] = side;
             }
         }
-        if bubble {
-            sides[cell[3 + 3 * per_edge]] = joined(joined(corner[0], corner[1]), corner[2]);
+        if let Some(bubble) = bubble_node(cell, mesh.degree) {
+            sides[bubble] = joined(joined(corner[0], corner[1]), corner[2]);
         }
     }
     Some(NodeSplit { sides })

@@ -45,29 +45,29 @@ fn solver_error(message: String) -> Error {
     }
 }
 
-/// One part with the separator: its dofs in elimination order (the part's, then the
-/// separator's), the layout of its matrix's lower triangle and the symbolic analysis of it.
+/// One part with the separator: the layout of its matrix's lower triangle, its dofs in
+/// elimination order (the part's, then the separator's), and the symbolic analysis of it.
 #[derive(Debug)]
 struct PartAnalysis {
-    order: Vec<usize>,
     lower: PermutedLower,
     symbolic: SymbolicCholesky<usize>,
 }
 
 impl PartAnalysis {
-    fn new(col_offsets: &[usize], row_indices: &[usize], order: Vec<usize>) -> Result<Self> {
-        let lower = PermutedLower::new(col_offsets, row_indices, &order)?;
+    fn new(col_offsets: &[usize], row_indices: &[usize], order: &[usize]) -> Result<Self> {
+        let lower = PermutedLower::new(col_offsets, row_indices, order)?;
         let symbolic = supernodal_analysis_in_order(lower.pattern())?;
-        Ok(Self {
-            order,
-            lower,
-            symbolic,
-        })
+        Ok(Self { lower, symbolic })
+    }
+
+    /// The part's dofs (of `K`) in elimination order, the separator's last.
+    fn order(&self) -> &[usize] {
+        self.lower.order()
     }
 
     /// Number of dofs before the separator.
     fn interior(&self, separator: usize) -> usize {
-        self.order.len() - separator
+        self.order().len() - separator
     }
 }
 
@@ -143,8 +143,8 @@ impl SplitAnalysis {
                 .collect()
         };
         let (first, second) = rayon::join(
-            || PartAnalysis::new(col_offsets, row_indices, order_of(PartSide::First)),
-            || PartAnalysis::new(col_offsets, row_indices, order_of(PartSide::Second)),
+            || PartAnalysis::new(col_offsets, row_indices, &order_of(PartSide::First)),
+            || PartAnalysis::new(col_offsets, row_indices, &order_of(PartSide::Second)),
         );
         let parts = [first?, second?];
         Ok(Some(Self {
@@ -220,6 +220,24 @@ fn trailing_block(llt: SupernodalLltRef<'_, usize, f64>, size: usize) -> Mat<f64
     block
 }
 
+/// The lower triangle of a part's separator block `K_SS` (its trailing `separator` columns),
+/// from the part's gathered `lower_values`.
+fn separator_block_of(part: &PartAnalysis, lower_values: &[f64], separator: usize) -> Mat<f64> {
+    let pattern = part.lower.pattern();
+    let interior = part.interior(separator);
+    let mut kss = Mat::<f64>::zeros(separator, separator);
+    for col in interior..part.order().len() {
+        let range = pattern.col_ptr()[col]..pattern.col_ptr()[col + 1];
+        for (&row, &v) in pattern.row_idx()[range.clone()]
+            .iter()
+            .zip(&lower_values[range])
+        {
+            kss[(row - interior, col - interior)] = v;
+        }
+    }
+    kss
+}
+
 /// Most off-diagonal rows of any supernode of the factor.
 fn longest_pattern(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
     (0..llt.symbolic().n_supernodes())
@@ -291,38 +309,28 @@ impl SplitFactor {
         constrained: &[bool],
     ) -> Result<Self> {
         let separator = analysis.separator.len();
-        let factor_part = |part: &PartAnalysis| -> Result<(PartFactor, Mat<f64>)> {
-            let constrained_local: Vec<bool> = part.order.iter().map(|&d| constrained[d]).collect();
-            let mut lower_values = vec![0.0; part.lower.len()];
-            part.lower
-                .gather(values, &constrained_local, &mut lower_values);
-            // K_SS (lower) from the part's trailing columns, before the factorisation.
-            let pattern = part.lower.pattern();
-            let interior = part.interior(separator);
-            let mut kss = Mat::<f64>::zeros(separator, separator);
-            for col in interior..part.order.len() {
-                let range = pattern.col_ptr()[col]..pattern.col_ptr()[col + 1];
-                for (&row, &v) in pattern.row_idx()[range.clone()]
-                    .iter()
-                    .zip(&lower_values[range])
-                {
-                    kss[(row - interior, col - interior)] = v;
-                }
-            }
-            let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
-            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &values);
-            let separator_block = trailing_block(llt, separator);
-            Ok((
-                PartFactor {
-                    values,
-                    separator_block,
-                },
-                kss,
-            ))
-        };
+        // Each part's factor; the first also gives K_SS (lower), from its trailing columns
+        // before the factorisation (the second's are the same).
+        let factor_part =
+            |part: &PartAnalysis, with_kss: bool| -> Result<(PartFactor, Option<Mat<f64>>)> {
+                let mut lower_values = vec![0.0; part.lower.len()];
+                part.lower.gather(values, constrained, &mut lower_values);
+                let kss = with_kss.then(|| separator_block_of(part, &lower_values, separator));
+                let pattern = part.lower.pattern();
+                let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
+                let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &values);
+                let separator_block = trailing_block(llt, separator);
+                Ok((
+                    PartFactor {
+                        values,
+                        separator_block,
+                    },
+                    kss,
+                ))
+            };
         let (first, second) = rayon::join(
-            || factor_part(&analysis.parts[0]),
-            || factor_part(&analysis.parts[1]),
+            || factor_part(&analysis.parts[0], true),
+            || factor_part(&analysis.parts[1], false),
         );
         let ((first, kss), (second, _)) = (first?, second?);
         // S = L_SS,1 L_SS,1ᵀ + L_SS,2 L_SS,2ᵀ − K_SS (lower triangle; K_SS's upper part is zero).
@@ -337,9 +345,11 @@ impl SplitFactor {
                 Par::Seq,
             );
         }
-        for j in 0..separator {
-            for i in j..separator {
-                schur[(i, j)] -= kss[(i, j)];
+        if let Some(kss) = &kss {
+            for j in 0..separator {
+                for i in j..separator {
+                    schur[(i, j)] -= kss[(i, j)];
+                }
             }
         }
         let schur = schur.llt(Side::Lower).map_err(|e| {
@@ -365,9 +375,9 @@ impl SplitFactor {
         let forward_part = |i: usize| -> (Mat<f64>, Mat<f64>) {
             let part = &analysis.parts[i];
             let interior = part.interior(separator);
-            let mut x = Mat::<f64>::zeros(part.order.len(), k);
+            let mut x = Mat::<f64>::zeros(part.order().len(), k);
             for j in 0..k {
-                for (p, &d) in part.order[..interior].iter().enumerate() {
+                for (p, &d) in part.order()[..interior].iter().enumerate() {
                     x[(p, j)] = rhs_ref[(d, j)];
                 }
             }
@@ -412,7 +422,7 @@ impl SplitFactor {
         for (part, x) in analysis.parts.iter().zip([&x1, &x2]) {
             let interior = part.interior(separator);
             for j in 0..k {
-                for (p, &d) in part.order[..interior].iter().enumerate() {
+                for (p, &d) in part.order()[..interior].iter().enumerate() {
                     rhs[(d, j)] = x[(p, j)];
                 }
             }

@@ -14,12 +14,25 @@ use super::node_ordered_cholesky::minimum_degree_order;
 
 /// Inner nodes per edge and whether a cell has a bubble node, by degree: the cell's nodes are its
 /// three vertices, then the inner nodes of edges (0, 1), (1, 2), (2, 0) in turn, then the bubble.
-pub(super) fn edge_layout(degree: Degree) -> (usize, bool) {
+fn edge_layout(degree: Degree) -> (usize, bool) {
     match degree {
         Degree::Linear => (0, false),
         Degree::Quadratic => (1, false),
         Degree::Cubic => (2, true),
     }
+}
+
+/// The inner nodes of edge `edge` (from vertex `edge` to vertex `(edge + 1) % 3`) of a cell's
+/// node list of degree `degree` ([`edge_layout`]).
+pub(super) fn edge_inner_nodes(cell: &[usize], degree: Degree, edge: usize) -> &[usize] {
+    let (per_edge, _) = edge_layout(degree);
+    &cell[3 + per_edge * edge..3 + per_edge * (edge + 1)]
+}
+
+/// The bubble node of a cell's node list of degree `degree`, if the degree has one.
+pub(super) fn bubble_node(cell: &[usize], degree: Degree) -> Option<usize> {
+    let (per_edge, bubble) = edge_layout(degree);
+    bubble.then(|| cell[3 + 3 * per_edge])
 }
 
 /// The cells at each vertex: vertex `v`'s are `cells[offsets[v]..offsets[v + 1]]` (empty for a
@@ -125,7 +138,6 @@ fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
 /// edges that no earlier vertex took, then any node in no cell.
 pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
     let nodes = mesh.nodes.len();
-    let (per_edge, bubble) = edge_layout(mesh.degree);
     let incidence = VertexCells::new(mesh);
     let vertices = vertex_order(mesh, &incidence);
     let mut placed = vec![false; nodes];
@@ -136,9 +148,9 @@ pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
             order.push(node);
         }
     };
-    if bubble {
-        for c in 0..mesh.cell_count() {
-            place(mesh.cell(c)[3 + 3 * per_edge], &mut order);
+    for c in 0..mesh.cell_count() {
+        if let Some(bubble) = bubble_node(mesh.cell(c), mesh.degree) {
+            place(bubble, &mut order);
         }
     }
     for v in vertices {
@@ -147,7 +159,7 @@ pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
             for edge in 0..3 {
                 let (i, j) = (edge, (edge + 1) % 3);
                 if cell[i] == v || cell[j] == v {
-                    for &m in &cell[3 + per_edge * edge..3 + per_edge * (edge + 1)] {
+                    for &m in edge_inner_nodes(cell, mesh.degree, edge) {
                         place(m, &mut order);
                     }
                 }
@@ -183,12 +195,11 @@ mod tests {
             for (i, &m) in order.iter().enumerate() {
                 position[m] = i;
             }
-            let (per_edge, _) = edge_layout(degree);
             for c in 0..mesh.cell_count() {
                 let cell = mesh.cell(c);
                 for edge in 0..3 {
                     let first = position[cell[edge]].min(position[cell[(edge + 1) % 3]]);
-                    for &m in &cell[3 + per_edge * edge..3 + per_edge * (edge + 1)] {
+                    for &m in edge_inner_nodes(cell, degree, edge) {
                         assert!(position[m] < first, "{degree:?} cell {c} edge {edge}");
                     }
                 }
