@@ -53,6 +53,7 @@ fn report_panics_in_one_line() {
 
 fn main() -> ExitCode {
     report_panics_in_one_line();
+    ringcontact::keep_freed_memory_for_reuse();
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
     // unknown flag).
     let command = Cli::command()

@@ -136,11 +136,15 @@ impl<'m> ContactModel<'m> {
             .unwrap_or(0.0)
     }
 
-    fn reactions(&self, solver: &ConstrainedCholesky, u: &[f64], zero: &[f64]) -> Vec<(f64, f64)> {
-        let residual = solver.residual(u, zero);
+    /// `(r, reaction)` at each contact node of a solution `u` without applied forces: the
+    /// reaction is `-(K u)` at the node's `z` dof.
+    fn reactions(&self, solver: &ConstrainedCholesky, u: &[f64]) -> Vec<(f64, f64)> {
+        let dofs: Vec<usize> = self.contact_nodes.iter().map(|&n| 2 * n + 1).collect();
+        let products = solver.product_at(u, &dofs);
         self.contact_nodes
             .iter()
-            .map(|&n| (self.mesh.nodes[n][0], -residual[2 * n + 1]))
+            .zip(products)
+            .map(|(&n, ku)| (self.mesh.nodes[n][0], -ku))
             .collect()
     }
 
@@ -155,7 +159,7 @@ impl<'m> ContactModel<'m> {
         }
         let zero = vec![0.0; dofs];
         let u = solver.solve(&zero, &constrained, &prescribed)?;
-        let reactions = self.reactions(solver, &u, &zero);
+        let reactions = self.reactions(solver, &u);
         Ok(ContactSolution {
             active_radii: reactions.iter().map(|r| r.0).collect(),
             force: reactions.iter().map(|r| r.1).sum(),
@@ -219,7 +223,7 @@ impl<'m> ContactModel<'m> {
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
             let (constrained, prescribed) = self.constraints(&active, &bound);
             let u = system.solver.solve(&zero, &constrained, &prescribed)?;
-            let reactions = self.reactions(system.solver, &u, &zero);
+            let reactions = self.reactions(system.solver, &u);
             let gaps = self.gaps(&bound, &u);
             let mut next = self.next_active(&active, &reactions, &gaps)?;
             if next == active {
@@ -319,12 +323,11 @@ impl<'m> ContactModel<'m> {
             .zip(&system.core)
             .map(|(&a, &c)| a || c)
             .collect();
-        let zero = vec![0.0; self.supports.len()];
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
             let Some(u) = system.solve(&active, depth, 1.0, false)? else {
                 return Ok(BandOutcome::TooWide);
             };
-            let reactions = self.reactions(system.solver, &u, &zero);
+            let reactions = self.reactions(system.solver, &u);
             let gaps = self.gaps(&bound, &u);
             let next = self.next_active(&active, &reactions, &gaps)?;
             let released = next
@@ -342,7 +345,7 @@ impl<'m> ContactModel<'m> {
                 let Some(u) = system.solve(&active, depth, 1.0, true)? else {
                     return Ok(BandOutcome::TooWide);
                 };
-                let reactions = self.reactions(system.solver, &u, &zero);
+                let reactions = self.reactions(system.solver, &u);
                 let gaps = self.gaps(&bound, &u);
                 let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
                 return Ok(BandOutcome::Solved(solution, active));
@@ -675,7 +678,7 @@ impl<'m> ContactModel<'m> {
                 }
             };
             let stiffness: f64 = self
-                .reactions(system.solver, &unit, &zero)
+                .reactions(system.solver, &unit)
                 .iter()
                 .zip(&active)
                 .filter(|(_, &a)| a)

@@ -13,12 +13,13 @@ use std::sync::Arc;
 
 use faer::MatMut;
 use nalgebra_sparse::CscMatrix;
+use rayon::prelude::*;
 
 use super::mesh::Mesh;
 use super::node_ordered_cholesky::{NumericFactor, SymbolicFactor};
-use super::separator::{split_nodes, Side};
+use super::separator::{split_nodes_of, NodeSplit, Side};
 use super::split_cholesky::{SplitAnalysis, SplitFactor};
-use super::vertex_ordering::vertex_led_node_order;
+use super::vertex_ordering::{vertex_graph, vertex_led_node_order_of, VertexCells};
 use crate::error::{Error, Result};
 
 /// The symbolic analysis a [`ConstrainedCholesky`] factorises on: of the whole matrix, or of its
@@ -41,32 +42,62 @@ fn split_min_dofs() -> usize {
         .unwrap_or(SPLIT_MIN_DOFS)
 }
 
+/// Rows of the refinement's residual computed per parallel task.
+const RESIDUAL_ROWS_PER_TASK: usize = 4096;
+
 /// Most separator unknowns a split may have (its Schur complement is dense).
 pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
 
+/// What a model's [`Analysis`] needs from its mesh alone: the vertex-led node order
+/// ([`super::vertex_ordering`]) and, for a model of at least [`SPLIT_MIN_DOFS`] unknowns, a
+/// split by a separator ring ([`super::separator`]). Needs no pattern, so it is computed while
+/// the pattern is built.
+pub struct MeshOrdering {
+    order: Vec<usize>,
+    split: Option<NodeSplit>,
+}
+
+impl MeshOrdering {
+    /// The ordering of `mesh`'s nodes (one vertex graph for the order and the split, which are
+    /// found side by side).
+    pub fn of_mesh(mesh: &Mesh) -> Self {
+        let incidence = VertexCells::new(mesh);
+        let graph = vertex_graph(mesh, &incidence);
+        let wants_split = 2 * mesh.nodes.len() >= split_min_dofs();
+        let (order, split) = rayon::join(
+            || vertex_led_node_order_of(mesh, &incidence, &graph),
+            || wants_split.then(|| split_nodes_of(mesh, &graph)).flatten(),
+        );
+        Self { order, split }
+    }
+}
+
 impl Analysis {
     /// The analysis of a model's stiffness pattern (compressed columns, both triangles, two dofs
-    /// per node of `mesh` and an optional trailing dof) in the vertex-led order
-    /// ([`super::vertex_ordering`]): split in two parts by a separator ring
-    /// ([`super::separator`]) when the model has at least [`SPLIT_MIN_DOFS`] unknowns and such a
-    /// ring of at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns exists (and no entry of `K` couples
-    /// the two parts), whole otherwise.
-    pub fn of_mesh(mesh: &Mesh, col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
-        let order = vertex_led_node_order(mesh);
+    /// per node of the mesh `ordering` belongs to and an optional trailing dof), in its
+    /// vertex-led order: split in two parts by its separator ring when the model has at least
+    /// [`SPLIT_MIN_DOFS`] unknowns, the ring at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns and no
+    /// entry of `K` couples the two parts; whole otherwise.
+    pub fn of_ordering(
+        ordering: &MeshOrdering,
+        col_offsets: &[usize],
+        row_indices: &[usize],
+    ) -> Result<Self> {
+        let order = &ordering.order;
         let dofs = col_offsets.len().saturating_sub(1);
         if dofs >= split_min_dofs() {
-            if let Some(split) = split_nodes(mesh) {
+            if let Some(split) = &ordering.split {
                 let separator = 2 * split.count(Side::Separator) + dofs % 2;
                 if separator <= SPLIT_MAX_SEPARATOR_DOFS {
                     if let Some(analysis) =
-                        SplitAnalysis::new(col_offsets, row_indices, &order, &split)?
+                        SplitAnalysis::new(col_offsets, row_indices, order, split)?
                     {
                         return Ok(Analysis::Split(Arc::new(analysis)));
                     }
                 }
             }
         }
-        SymbolicFactor::with_node_order(col_offsets, row_indices, &order).map(Analysis::Whole)
+        SymbolicFactor::with_node_order(col_offsets, row_indices, order).map(Analysis::Whole)
     }
 
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
@@ -223,10 +254,10 @@ impl<'a> ConstrainedCholesky<'a> {
         let values = self.matrix.values();
         let reuse = self.is_factorised_for(constrained);
         let mut rhs = force.to_vec();
-        for col in 0..n {
+        for col in (0..n).filter(|&col| constrained[col]) {
             for k in offsets[col]..offsets[col + 1] {
                 let row = rows[k];
-                if constrained[col] && !constrained[row] {
+                if !constrained[row] {
                     rhs[row] -= values[k] * prescribed[col];
                 }
             }
@@ -250,16 +281,30 @@ impl<'a> ConstrainedCholesky<'a> {
             }
             // r = b - K_C x, K_C being K with the constrained rows and columns reduced to
             // their diagonal.
-            let mut residual = b;
-            for col in 0..n {
-                let x = rhs[col];
-                for k in offsets[col]..offsets[col + 1] {
-                    let row = rows[k];
-                    if row == col || !(mask[row] || mask[col]) {
-                        residual[row] -= values[k] * x;
+            // A free row's term is its product with the free part of x (row i read as column
+            // i: K is symmetric), a constrained row's its diagonal term; the rows in parallel.
+            let free_x: Vec<f64> = rhs
+                .iter()
+                .zip(mask)
+                .map(|(&x, &held)| if held { 0.0 } else { x })
+                .collect();
+            let mut residual: Vec<f64> = (0..n)
+                .into_par_iter()
+                .with_min_len(RESIDUAL_ROWS_PER_TASK)
+                .map(|i| {
+                    if mask[i] {
+                        b[i] - values[self.diagonal[i]] * rhs[i]
+                    } else {
+                        let column = offsets[i]..offsets[i + 1];
+                        let product: f64 = rows[column.clone()]
+                            .iter()
+                            .zip(&values[column])
+                            .map(|(&row, &k)| k * free_x[row])
+                            .sum();
+                        b[i] - product
                     }
-                }
-            }
+                })
+                .collect();
             llt.solve_in_place(MatMut::from_column_major_slice_mut(&mut residual, n, 1));
             for (x, dx) in rhs.iter_mut().zip(&residual) {
                 *x += dx;
@@ -328,6 +373,22 @@ impl<'a> ConstrainedCholesky<'a> {
             ));
         }
         Ok(columns)
+    }
+
+    /// `(K u)_i` for each dof `i` of `dofs`: the reaction at a constrained dof of a solution
+    /// without forces there. Read from column `i` (`K` is symmetric), so it costs the entries of
+    /// those columns only, not a product with the whole matrix.
+    pub fn product_at(&self, u: &[f64], dofs: &[usize]) -> Vec<f64> {
+        let offsets = self.matrix.col_offsets();
+        let rows = self.matrix.row_indices();
+        let values = self.matrix.values();
+        dofs.iter()
+            .map(|&i| {
+                (offsets[i]..offsets[i + 1])
+                    .map(|k| values[k] * u[rows[k]])
+                    .sum()
+            })
+            .collect()
     }
 
     /// Residual `K u - f`: the reaction forces at constrained dofs (zero elsewhere, to rounding).

@@ -4,8 +4,6 @@
 //! order (vertices, then the mid-edge nodes of edges 0-1, 1-2, 2-0); boundary edges carry the
 //! physical tag of their curve. Quadratic elements are straight-sided (affine geometry).
 
-use std::collections::HashMap;
-
 use crate::error::{Error, Result};
 
 /// Physical tags of the boundary curves and the domain, as written by `meshes/half_space.geo`.
@@ -101,6 +99,44 @@ fn mesh_error(source: &str, message: String) -> Error {
     Error::InvalidMesh {
         path: source.to_string(),
         message,
+    }
+}
+
+/// The edges of a mesh, numbered in the order they are first met, found without hashing: each
+/// edge is listed under its lower vertex, and a vertex has a handful of edges.
+struct EdgeIndex {
+    /// First edge listed under each vertex (`usize::MAX`: none).
+    head: Vec<usize>,
+    /// The next edge under the same lower vertex.
+    next: Vec<usize>,
+    /// The higher vertex of each edge.
+    upper: Vec<usize>,
+}
+
+impl EdgeIndex {
+    fn new(vertices: usize) -> Self {
+        Self {
+            head: vec![usize::MAX; vertices],
+            next: Vec::new(),
+            upper: Vec::new(),
+        }
+    }
+
+    /// The number of edge `{a, b}`, and whether it was met here for the first time.
+    fn find_or_insert(&mut self, a: usize, b: usize) -> (usize, bool) {
+        let (lower, upper) = (a.min(b), a.max(b));
+        let mut edge = self.head[lower];
+        while edge != usize::MAX {
+            if self.upper[edge] == upper {
+                return (edge, false);
+            }
+            edge = self.next[edge];
+        }
+        let edge = self.upper.len();
+        self.upper.push(upper);
+        self.next.push(self.head[lower]);
+        self.head[lower] = edge;
+        (edge, true)
     }
 }
 
@@ -423,14 +459,16 @@ impl Mesh {
             return self.clone();
         }
         let mut nodes = self.nodes.clone();
-        let mut midpoint: HashMap<(usize, usize), usize> = HashMap::new();
+        let mut edges = EdgeIndex::new(nodes.len());
+        let mut midpoint: Vec<usize> = Vec::new();
         let mut mid = |a: usize, b: usize, nodes: &mut Vec<[f64; 2]>| -> usize {
-            let key = (a.min(b), a.max(b));
-            *midpoint.entry(key).or_insert_with(|| {
+            let (edge, new) = edges.find_or_insert(a, b);
+            if new {
                 let (pa, pb) = (nodes[a], nodes[b]);
                 nodes.push([0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])]);
-                nodes.len() - 1
-            })
+                midpoint.push(nodes.len() - 1);
+            }
+            midpoint[edge]
         };
         let mut cells = Vec::with_capacity(self.cell_count() * 6);
         for c in 0..self.cell_count() {
@@ -531,19 +569,27 @@ impl Mesh {
         if self.degree == Degree::Cubic {
             return self.clone();
         }
-        let linear = self.to_linear();
+        let linear_copy;
+        let linear = if self.degree == Degree::Linear {
+            self
+        } else {
+            linear_copy = self.to_linear();
+            &linear_copy
+        };
         let mut nodes = linear.nodes.clone();
-        // Edge (min, max) -> the nodes at 1/3 and 2/3 from min.
-        let mut thirds: HashMap<(usize, usize), [usize; 2]> = HashMap::new();
+        // Edge number -> the nodes at 1/3 and 2/3 from its lower vertex.
+        let mut edges = EdgeIndex::new(nodes.len());
+        let mut thirds: Vec<[usize; 2]> = Vec::new();
         let mut edge_nodes = |a: usize, b: usize, nodes: &mut Vec<[f64; 2]>| -> [usize; 2] {
-            let key = (a.min(b), a.max(b));
-            let pair = *thirds.entry(key).or_insert_with(|| {
-                let (p, q) = (nodes[key.0], nodes[key.1]);
+            let (edge, new) = edges.find_or_insert(a, b);
+            if new {
+                let (p, q) = (nodes[a.min(b)], nodes[a.max(b)]);
                 let at = |t: f64| [p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])];
                 nodes.push(at(1.0 / 3.0));
                 nodes.push(at(2.0 / 3.0));
-                [nodes.len() - 2, nodes.len() - 1]
-            });
+                thirds.push([nodes.len() - 2, nodes.len() - 1]);
+            }
+            let pair = thirds[edge];
             if a < b {
                 pair
             } else {
@@ -590,6 +636,7 @@ impl Mesh {
         match (self.degree, degree) {
             (a, b) if a == b => self.clone(),
             (_, Degree::Linear) => self.to_linear(),
+            (Degree::Linear, Degree::Quadratic) => self.to_quadratic(),
             (_, Degree::Quadratic) => self.to_linear().to_quadratic(),
             (_, Degree::Cubic) => self.to_cubic(),
         }

@@ -121,8 +121,8 @@ fn node_graph(pattern: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<u
 /// Approximate-minimum-degree order (`faer`'s AMD) of a graph of `count` vertices given as
 /// compressed columns (`offsets`, sorted `rows`, each vertex its own neighbour): the vertices in
 /// the order to eliminate them.
-pub fn minimum_degree_order(count: usize, offsets: Vec<usize>, rows: Vec<usize>) -> Vec<usize> {
-    let graph = SymbolicSparseColMat::new_checked(count, count, offsets, None, rows);
+pub fn minimum_degree_order(count: usize, offsets: &[usize], rows: &[usize]) -> Vec<usize> {
+    let graph = SymbolicSparseColMatRef::new_checked(count, count, offsets, None, rows);
     let (mut perm, mut perm_inverse) = (vec![0usize; count], vec![0usize; count]);
     let mut memory = MemBuffer::new(amd::order_scratch::<usize>(count, graph.compute_nnz()));
     let ordered = amd::order(
@@ -182,7 +182,7 @@ pub fn node_graph_ordering(
 ) -> Result<(Vec<usize>, Vec<usize>)> {
     let n = pattern.nrows();
     let (offsets, rows) = node_graph(pattern);
-    dof_order(&minimum_degree_order(n / 2 + n % 2, offsets, rows), n)
+    dof_order(&minimum_degree_order(n / 2 + n % 2, &offsets, &rows), n)
 }
 
 /// The pattern given as compressed columns (`col_offsets`, sorted `row_indices`) as a view.

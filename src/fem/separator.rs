@@ -70,13 +70,18 @@ fn levels_from(graph: &VertexGraph, start: usize) -> (Vec<usize>, usize) {
 /// level leaves at least the smallest of [`MIN_PART_SHARES`] of the vertices on each side.
 pub fn split_nodes(mesh: &Mesh) -> Option<NodeSplit> {
     let incidence = VertexCells::new(mesh);
-    let graph = vertex_graph(mesh, &incidence);
+    split_nodes_of(mesh, &vertex_graph(mesh, &incidence))
+}
+
+/// [`split_nodes`] with the mesh's vertex graph given (shared with
+/// [`super::vertex_ordering::vertex_led_node_order_of`]).
+pub(super) fn split_nodes_of(mesh: &Mesh, graph: &VertexGraph) -> Option<NodeSplit> {
     let count = graph.vertices.len();
     if count < 16 {
         return None;
     }
-    let (_, far) = levels_from(&graph, 0);
-    let (level, _) = levels_from(&graph, far);
+    let (_, far) = levels_from(graph, 0);
+    let (level, _) = levels_from(graph, far);
     if level.contains(&usize::MAX) {
         return None;
     }

@@ -24,6 +24,7 @@
 use std::sync::Arc;
 
 use faer::linalg::matmul::matmul;
+use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::solvers::{Llt, Solve};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
@@ -335,12 +336,16 @@ impl SplitFactor {
         let ((first, kss), (second, _)) = (first?, second?);
         // S = L_SS,1 L_SS,1ᵀ + L_SS,2 L_SS,2ᵀ − K_SS (lower triangle; K_SS's upper part is zero).
         let mut schur = Mat::<f64>::zeros(separator, separator);
+        // Lower triangle only, from the triangular blocks (a sixth of a full product's work).
         for block in [&first.separator_block, &second.separator_block] {
-            matmul(
+            triangular::matmul(
                 schur.as_mut(),
+                BlockStructure::TriangularLower,
                 Accum::Add,
                 block.as_ref(),
+                BlockStructure::TriangularLower,
                 block.transpose(),
+                BlockStructure::TriangularUpper,
                 1.0,
                 Par::Seq,
             );

@@ -124,10 +124,9 @@ pub(super) fn vertex_graph(mesh: &Mesh, incidence: &VertexCells) -> VertexGraph 
 
 /// Approximate-minimum-degree order of the graph of the cells' vertices: vertex ids in the order
 /// to eliminate them.
-fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
-    let graph = vertex_graph(mesh, incidence);
+fn vertex_order(graph: &VertexGraph) -> Vec<usize> {
     let count = graph.vertices.len();
-    minimum_degree_order(count, graph.offsets, graph.rows)
+    minimum_degree_order(count, &graph.offsets, &graph.rows)
         .into_iter()
         .map(|i| graph.vertices[i])
         .collect()
@@ -137,9 +136,20 @@ fn vertex_order(mesh: &Mesh, incidence: &VertexCells) -> Vec<usize> {
 /// vertex in the minimum-degree order of the vertex graph, preceded by the inner nodes of its
 /// edges that no earlier vertex took, then any node in no cell.
 pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
-    let nodes = mesh.nodes.len();
     let incidence = VertexCells::new(mesh);
-    let vertices = vertex_order(mesh, &incidence);
+    let graph = vertex_graph(mesh, &incidence);
+    vertex_led_node_order_of(mesh, &incidence, &graph)
+}
+
+/// [`vertex_led_node_order`] with the mesh's cells at each vertex and its vertex graph given
+/// (shared with [`super::separator::split_nodes_of`]).
+pub(super) fn vertex_led_node_order_of(
+    mesh: &Mesh,
+    incidence: &VertexCells,
+    graph: &VertexGraph,
+) -> Vec<usize> {
+    let nodes = mesh.nodes.len();
+    let vertices = vertex_order(graph);
     let mut placed = vec![false; nodes];
     let mut order = Vec::with_capacity(nodes);
     let mut place = |node: usize, order: &mut Vec<usize>| {
