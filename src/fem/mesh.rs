@@ -4,6 +4,8 @@
 //! order (vertices, then the mid-edge nodes of edges 0-1, 1-2, 2-0); boundary edges carry the
 //! physical tag of their curve. Quadratic elements are straight-sided (affine geometry).
 
+use std::collections::HashMap;
+
 use crate::error::{Error, Result};
 
 /// Physical tags of the boundary curves and the domain, as written by `meshes/half_space.geo`.
@@ -102,29 +104,49 @@ fn mesh_error(source: &str, message: String) -> Error {
     }
 }
 
+/// Edges listed under one vertex beyond which that vertex's edges are found by hashing.
+const EDGE_LIST_LIMIT: usize = 32;
+
 /// The edges of a mesh, numbered in the order they are first met, found without hashing: each
-/// edge is listed under its lower vertex, and a vertex has a handful of edges.
+/// edge is listed under its lower vertex, and a vertex of a gmsh mesh has a handful of edges. A
+/// vertex with more than [`EDGE_LIST_LIMIT`] (a fan of many cells around one point, which a
+/// file may hold) has its edges found by hashing instead, so no mesh makes the search quadratic.
 struct EdgeIndex {
     /// First edge listed under each vertex (`usize::MAX`: none).
     head: Vec<usize>,
+    /// Number of edges listed under each vertex.
+    listed: Vec<usize>,
     /// The next edge under the same lower vertex.
     next: Vec<usize>,
     /// The higher vertex of each edge.
     upper: Vec<usize>,
+    /// The edges of the vertices with more than [`EDGE_LIST_LIMIT`], by `(lower, upper)`.
+    hashed: HashMap<(usize, usize), usize>,
 }
 
 impl EdgeIndex {
     fn new(vertices: usize) -> Self {
         Self {
             head: vec![usize::MAX; vertices],
+            listed: vec![0; vertices],
             next: Vec::new(),
             upper: Vec::new(),
+            hashed: HashMap::new(),
         }
     }
 
     /// The number of edge `{a, b}`, and whether it was met here for the first time.
     fn find_or_insert(&mut self, a: usize, b: usize) -> (usize, bool) {
         let (lower, upper) = (a.min(b), a.max(b));
+        let new_edge = self.upper.len();
+        if self.listed[lower] > EDGE_LIST_LIMIT {
+            let edge = *self.hashed.entry((lower, upper)).or_insert(new_edge);
+            if edge == new_edge {
+                self.upper.push(upper);
+                self.next.push(usize::MAX);
+            }
+            return (edge, edge == new_edge);
+        }
         let mut edge = self.head[lower];
         while edge != usize::MAX {
             if self.upper[edge] == upper {
@@ -132,11 +154,19 @@ impl EdgeIndex {
             }
             edge = self.next[edge];
         }
-        let edge = self.upper.len();
         self.upper.push(upper);
         self.next.push(self.head[lower]);
-        self.head[lower] = edge;
-        (edge, true)
+        self.head[lower] = new_edge;
+        self.listed[lower] += 1;
+        if self.listed[lower] > EDGE_LIST_LIMIT {
+            // From now on this vertex's edges are hashed, the listed ones included.
+            let mut edge = self.head[lower];
+            while edge != usize::MAX {
+                self.hashed.insert((lower, self.upper[edge]), edge);
+                edge = self.next[edge];
+            }
+        }
+        (new_edge, true)
     }
 }
 
@@ -705,5 +735,52 @@ pub fn structured_rectangle(
         boundary,
         source: format!("structured {nr}x{nz} rectangle {width} x {height}"),
         file_tags: FileTags::default(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fan of `cells` triangles around vertex 0 (every edge from it is listed under it), with
+    /// its rim vertices on the unit circle's lower half.
+    fn fan(cells: usize) -> Mesh {
+        let mut nodes = vec![[0.0, 0.0]];
+        for k in 0..=cells {
+            let angle = std::f64::consts::PI * (1.0 + k as f64 / cells as f64);
+            nodes.push([angle.cos() + 1.5, angle.sin()]);
+        }
+        let cells: Vec<usize> = (0..cells).flat_map(|k| [0, k + 1, k + 2]).collect();
+        Mesh {
+            nodes,
+            cells,
+            degree: Degree::Linear,
+            boundary: Vec::new(),
+            source: "fan".into(),
+            file_tags: FileTags::default(),
+        }
+    }
+
+    #[test]
+    fn each_edge_gets_its_own_inner_nodes_even_around_a_vertex_of_many_cells() {
+        // 5 000 cells around one vertex: 10 001 edges (the fan's spokes, its rim), each met once
+        // or twice; listed and hashed edges must give one inner node (P2), two (P3) per edge.
+        let cells = 5_000;
+        let linear = fan(cells);
+        let vertices = linear.nodes.len();
+        let edges = 2 * cells + 1;
+        let quadratic = linear.to_quadratic();
+        assert_eq!(quadratic.nodes.len(), vertices + edges);
+        let cubic = linear.to_cubic();
+        assert_eq!(cubic.nodes.len(), vertices + 2 * edges + cells);
+        // Neighbouring cells share the inner node of their common spoke.
+        for k in 0..cells - 1 {
+            let (this, next) = (quadratic.cell(k), quadratic.cell(k + 1));
+            // Edge 2-0 of cell k is spoke k + 2, edge 0-1 of cell k + 1 the same spoke.
+            assert_eq!(this[5], next[3], "cell {k}");
+            let (this, next) = (cubic.cell(k), cubic.cell(k + 1));
+            // The thirds run from the lower vertex (0) out: reversed across the two cells.
+            assert_eq!([this[7], this[8]], [next[4], next[3]], "cell {k}");
+        }
     }
 }

@@ -52,8 +52,8 @@ fn check_format_line(bytes: &[u8], name: &str) -> Result<()> {
 
 /// A map from a file's tags (node or element numbers) to values: a table indexed by the tag
 /// when the tags are dense (gmsh numbers them 1..N), a hash map otherwise (any tags a file
-/// holds). The table is 5-10 times faster than hashing every tag, a third of the reading time
-/// of a 1 MB mesh.
+/// holds). Reading a 1 MB mesh (9e4 quadratic unknowns) took 9 ms with the table against 12 ms
+/// hashing every tag.
 enum TagTable<V> {
     Dense(Vec<Option<V>>),
     Hashed(HashMap<u64, V>),
