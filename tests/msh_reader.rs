@@ -208,3 +208,65 @@ fn committed_meshes_are_valid() {
         dir.display()
     );
 }
+
+/// `VALID` with its node tags 1-4 and element tags 1-6 renumbered sparsely (far beyond their
+/// count, so the reader looks them up by hashing instead of in a table).
+fn sparsely_tagged(duplicate_node: bool) -> String {
+    let node = |t: u64| [7u64, 900_000, 12, 5_000_000][t as usize - 1];
+    let element = |t: u64| t * 1_000_003;
+    let mut out = String::new();
+    let mut section = "";
+    // Element lines still to come in the current block (the line before them gives the count).
+    let mut elements_left = 0;
+    for line in VALID.lines() {
+        if line.starts_with('$') {
+            section = line;
+            out.push_str(line);
+            out.push('\n');
+            continue;
+        }
+        let words: Vec<u64> = line
+            .split_whitespace()
+            .filter_map(|w| w.parse().ok())
+            .collect();
+        let renumbered = match (section, words.as_slice()) {
+            ("$Nodes", [1, 4, 1, 4]) => "1 4 7 5000000".to_string(),
+            ("$Nodes", [t]) => {
+                let tag = if duplicate_node && *t == 4 { 2 } else { *t };
+                node(tag).to_string()
+            }
+            ("$Elements", [4, 6, 1, 6]) => format!("4 6 {} {}", element(1), element(6)),
+            ("$Elements", [tag, nodes @ ..]) if elements_left > 0 => {
+                elements_left -= 1;
+                let mut words = vec![element(*tag).to_string()];
+                words.extend(nodes.iter().map(|&n| node(n).to_string()));
+                words.join(" ")
+            }
+            ("$Elements", [_, _, _, count]) => {
+                elements_left = *count;
+                line.to_string()
+            }
+            _ => line.to_string(),
+        };
+        out.push_str(&renumbered);
+        out.push('\n');
+    }
+    out
+}
+
+#[test]
+fn sparse_node_and_element_tags_are_read_like_dense_ones() {
+    let dense = parse_msh(VALID.as_bytes(), "test.msh").unwrap();
+    let sparse_text = sparsely_tagged(false);
+    assert!(sparse_text.contains("5000000"), "{sparse_text}");
+    let sparse = parse_msh(sparse_text.as_bytes(), "test.msh").unwrap();
+    sparse.validate(&REQUIRED).unwrap();
+    assert_eq!(dense.nodes, sparse.nodes);
+    assert_eq!(dense.cells, sparse.cells);
+    assert_eq!(dense.file_tags.cell_lines, sparse.file_tags.cell_lines);
+    let message = error_of(&sparsely_tagged(true));
+    assert!(
+        message.contains("node tag 900000 appears twice"),
+        "{message}"
+    );
+}
