@@ -298,13 +298,7 @@ impl<'a> ConstrainedCholesky<'a> {
                     if mask[i] {
                         b[i] - values[self.diagonal[i]] * rhs[i]
                     } else {
-                        let column = offsets[i]..offsets[i + 1];
-                        let product: f64 = rows[column.clone()]
-                            .iter()
-                            .zip(&values[column])
-                            .map(|(&row, &k)| k * free_x[row])
-                            .sum();
-                        b[i] - product
+                        b[i] - self.column_dot(i, &free_x)
                     }
                 })
                 .collect();
@@ -382,16 +376,17 @@ impl<'a> ConstrainedCholesky<'a> {
     /// without forces there. Read from column `i` (`K` is symmetric), so it costs the entries of
     /// those columns only, not a product with the whole matrix.
     pub fn product_at(&self, u: &[f64], dofs: &[usize]) -> Vec<f64> {
-        let offsets = self.matrix.col_offsets();
-        let rows = self.matrix.row_indices();
-        let values = self.matrix.values();
-        dofs.iter()
-            .map(|&i| {
-                (offsets[i]..offsets[i + 1])
-                    .map(|k| values[k] * u[rows[k]])
-                    .sum()
-            })
-            .collect()
+        dofs.iter().map(|&i| self.column_dot(i, u)).collect()
+    }
+
+    /// `Σ_k K_ki x_k` over column `i`'s entries: `(K x)_i`, `K` being symmetric.
+    fn column_dot(&self, i: usize, x: &[f64]) -> f64 {
+        let column = self.matrix.col_offsets()[i]..self.matrix.col_offsets()[i + 1];
+        self.matrix.row_indices()[column.clone()]
+            .iter()
+            .zip(&self.matrix.values()[column])
+            .map(|(&row, &k)| k * x[row])
+            .sum()
     }
 
     /// Residual `K u - f`: the reaction forces at constrained dofs (zero elsewhere, to rounding).
