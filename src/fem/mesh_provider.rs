@@ -52,27 +52,81 @@ pub fn adapted_rim_size(level: i32) -> f64 {
     (1e-4 * 0.01f64.powi(level.max(0))).max(MIN_RIM_SIZE)
 }
 
+/// Width of the contact ring (in units of `a`) below which the ring's own width, not `a`, sets
+/// the size of the elements at its edges ([`ring_width_scale`]).
+pub const NARROW_RING_WIDTH: f64 = 0.1;
+
+/// Width `1 - b/a` of the contact ring (units of `a`), `b/a` being the annulus' inner edge
+/// `contact_start` or a concave punch's located `free_edge`; no narrower than the located edge's
+/// `edge_uncertainty` (an edge found at the rim, only the rim node in contact on the coarser
+/// model, bounds a ring narrower than that model's spacing there).
+pub fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: f64) -> f64 {
+    let inner = contact_start.max(free_edge.unwrap_or(0.0));
+    (1.0 - inner).max(edge_uncertainty).clamp(0.0, 1.0)
+}
+
+/// Factor on the rim size for a contact ring `width` wide ([`ring_width`]):
+/// `min(1, width /` [`NARROW_RING_WIDTH`]`)`. The two edges' singular fields scale with the
+/// ring's width, and so does the innermost element's force error. Unscaled (measured against
+/// the ring BEM at `--tol 1e-3`): the flat annulus `b/a = 0.9999` had a force error of 9e-3 under
+/// an estimate of 3e-5, the cone at `d = 0.003 h` 2.4e-3 under 6.2e-4 and the sphere at
+/// `d = 0.003 h` 4.5e-3 under 1.2e-4, every level of the ladder wrong alike.
+pub fn ring_width_scale(width: f64) -> f64 {
+    (width / NARROW_RING_WIDTH).clamp(0.0, 1.0)
+}
+
 /// Rim size wanted for `level` and `target`: [`adapted_rim_size`], and no larger than a tenth of
 /// the target's tolerance (the innermost element's force error is about `0.16 hmin` for P2, and
-/// `0.5 hmin` for P3 on the flat annulus `b/a = 0.97`).
-pub fn wanted_rim_size(level: i32, target: Option<SizeTarget>) -> f64 {
-    match target {
-        Some(t) => adapted_rim_size(level)
-            .min(0.1 * t.tolerance)
-            .max(MIN_RIM_SIZE),
+/// `0.5 hmin` for P3 on the flat annulus `b/a = 0.97`), both times `ring_scale`
+/// ([`ring_width_scale`]); never below [`MIN_RIM_SIZE`].
+pub fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f64 {
+    let size = match target {
+        Some(t) => adapted_rim_size(level).min(0.1 * t.tolerance),
         None => adapted_rim_size(level),
+    };
+    (size * ring_scale).max(MIN_RIM_SIZE)
+}
+
+/// Whether the rim size that `target` needs on a contact ring `width` wide ([`ring_width`]),
+/// a tenth of the tolerance times [`ring_width_scale`], is one the FEM makes (at least
+/// [`MIN_RIM_SIZE`]); otherwise an error naming the loosest tolerance that would do. Below it
+/// the last levels would share the floor's rim size and their changes would not see the error
+/// the edges leave (measured on the flat annulus `b/a = 0.999` at `--tol 1e-8` with the rim at
+/// the floor and the edges' share left out of the estimate: a force error of 1.4e-8 under an
+/// estimate of 3.6e-9).
+pub fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
+    let ring_scale = ring_width_scale(width);
+    let needed = 0.1 * target.tolerance * ring_scale;
+    // A relative slack for the rounding of the product: a need of exactly the floor is met.
+    if needed >= MIN_RIM_SIZE * (1.0 - 1e-9) {
+        return Ok(());
     }
+    Err(Error::OutOfRange {
+        method: "fem".into(),
+        reason: format!(
+            "a contact ring {} a wide (b/a = {}) needs elements of {} a at its edges for the \
+             tolerance {:e}, below the smallest the FEM makes ({MIN_RIM_SIZE:e} a); ask for a \
+             tolerance of at least {}, or use the ring BEM (rings of 1e-4 a and wider) or, for \
+             a flat annulus narrower than that, `--method reference` (the narrow-ring asymptote)",
+            crate::error::show(width),
+            crate::error::show(1.0 - width),
+            crate::error::show(needed),
+            target.tolerance,
+            crate::error::show(MIN_RIM_SIZE / (0.1 * ring_scale)),
+        ),
+    })
 }
 
 /// The corner refinement that completes the gmsh mesh of `level` and `target`: the singular
-/// edges `r = a` (and `r = b` for `contact_start > 0`) halved down to [`wanted_rim_size`] when
-/// that is below [`GMSH_MIN_ELEMENT_SIZE`].
+/// edges `r = a` (and `r = b` for `contact_start > 0`) halved down to [`wanted_rim_size`] (with
+/// `ring_scale`, [`ring_width_scale`]) when that is below [`GMSH_MIN_ELEMENT_SIZE`].
 pub fn adapted_corner_refinement(
     contact_start: f64,
+    ring_scale: f64,
     level: i32,
     target: Option<SizeTarget>,
 ) -> Option<CornerRefinement> {
-    let size = wanted_rim_size(level, target);
+    let size = wanted_rim_size(level, target, ring_scale);
     (size < GMSH_MIN_ELEMENT_SIZE).then(|| CornerRefinement {
         radii: if contact_start > 0.0 {
             vec![contact_start, 1.0]
@@ -276,7 +330,8 @@ pub fn adapted_parameters(
 ) -> Vec<(String, f64)> {
     let grading = adapted_grading(level);
     let degree = target.map_or(2.0, |t| t.degree as f64);
-    let hmin = wanted_rim_size(level, target).max(GMSH_MIN_ELEMENT_SIZE);
+    let ring_scale = ring_width_scale(ring_width(contact_start, free_edge, edge_uncertainty));
+    let hmin = wanted_rim_size(level, target, ring_scale).max(GMSH_MIN_ELEMENT_SIZE);
     let edge_floor = match target {
         Some(t) => 0.75 * degree * t.tolerance,
         None => 1e-3 * 0.1f64.powi(level.max(0)),
@@ -347,6 +402,10 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
             edge_uncertainty,
             target,
         } => {
+            let width = ring_width(*contact_start, *free_edge, *edge_uncertainty);
+            if let Some(target) = target {
+                check_rim_size_reachable(width, *target)?;
+            }
             let parameters = adapted_parameters(
                 *contact_start,
                 *level,
@@ -355,7 +414,8 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
                 *target,
             );
             let mut provided = generate(&parameters, why)?;
-            provided.corner_refinement = adapted_corner_refinement(*contact_start, *level, *target);
+            provided.corner_refinement =
+                adapted_corner_refinement(*contact_start, ring_width_scale(width), *level, *target);
             Ok(provided)
         }
     }
@@ -413,6 +473,33 @@ mod tests {
     use super::*;
 
     #[test]
+    fn the_rim_size_follows_the_contact_rings_width() {
+        // Wide rings keep the rim size of the level; narrower than 0.1 a it shrinks with the ring.
+        assert_eq!(ring_width(0.5, None, 0.0), 0.5);
+        assert_eq!(ring_width_scale(ring_width(0.5, None, 0.0)), 1.0);
+        assert!((ring_width_scale(ring_width(0.999, None, 0.0)) - 0.01).abs() < 1e-12);
+        // A concave punch's located edge, the larger of the annulus' and the located one.
+        assert!((ring_width(0.0, Some(0.99), 1e-4) - 0.01).abs() < 1e-12);
+        // An edge located at the rim bounds the ring by its uncertainty, never by zero.
+        assert_eq!(ring_width(0.0, Some(1.0), 3e-4), 3e-4);
+        let level0 = wanted_rim_size(0, None, 1.0);
+        assert!((wanted_rim_size(0, None, 0.01) - 0.01 * level0).abs() < 1e-18);
+        // Never below the floor; a target that would need less is declined, naming a tolerance.
+        assert_eq!(wanted_rim_size(3, None, 1e-6), MIN_RIM_SIZE);
+        let target = |tolerance| SizeTarget {
+            tolerance,
+            degree: 3,
+        };
+        assert!(check_rim_size_reachable(0.01, target(1e-6)).is_ok());
+        assert!(check_rim_size_reachable(1e-3, target(1e-7)).is_ok());
+        let e = check_rim_size_reachable(1e-3, target(1e-8)).unwrap_err();
+        assert!(
+            matches!(&e, Error::OutOfRange { reason, .. } if reason.contains("at least 1.000000e-7")),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn gmsh_is_never_asked_for_elements_it_cannot_shape() {
         // Below 1e-8 of the coordinates' magnitude gmsh makes slivers (GMSH_MIN_ELEMENT_SIZE);
         // smaller rims come from the corner refinement, which must then be requested.
@@ -429,8 +516,8 @@ mod tests {
                     if let (Some(hb), Some(b)) = (get("hb"), free_edge) {
                         assert!(hb >= GMSH_MIN_ELEMENT_SIZE * b.max(1e-2), "{p:?}");
                     }
-                    let wanted = wanted_rim_size(level, target);
-                    let refinement = adapted_corner_refinement(0.3, level, target);
+                    let wanted = wanted_rim_size(level, target, 1.0);
+                    let refinement = adapted_corner_refinement(0.3, 1.0, level, target);
                     assert_eq!(refinement.is_some(), wanted < GMSH_MIN_ELEMENT_SIZE);
                     if let Some(r) = refinement {
                         assert_eq!(r.radii, vec![0.3, 1.0]);
