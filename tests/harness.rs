@@ -53,6 +53,17 @@ fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
     assert_eq!(s.method, "fem");
     assert!(s.error_estimate.unwrap() <= 1e-3);
+    // A ring 1e-5 a wide at 1e-6: the ring BEM's range ends at 1e-4 a and the FEM's rim
+    // elements would have to be below 1e-10 a; the narrow-ring asymptote (bound 4e-10) answers.
+    let scene = SceneSpec::default()
+        .shape(PunchKind::FlatAnnulus)
+        .inner_ratio(0.99999)
+        .tolerance(1e-6)
+        .validate()
+        .unwrap();
+    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    assert_eq!(s.method, "reference:narrow-ring");
+    assert!(s.error_estimate.unwrap() <= 1e-9);
 }
 
 #[test]
