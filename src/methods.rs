@@ -102,13 +102,13 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
     Ok(solution)
 }
 
-/// Methods in order of cost for an axisymmetric scene (measured: ring BEM ~1 ms, FEM 0.1-5 s;
-/// the grid BEM has no error estimate and is never chosen to certify a tolerance), then the
-/// analytic references with an error bound, as the last resort: the independent
-/// discretisations first wherever they apply, the reference where both decline (the flat annulus
-/// beyond the ring BEM's `b/a = 0.9999`, whose rim the FEM cannot refine enough for a tight
-/// tolerance, is the narrow-ring asymptote's, bound `δ² ln(16/δ)`).
-const COST_ORDER: [Method; 3] = [Method::RingBem, Method::Fem, Method::Reference];
+/// The order `auto` tries methods in: the axisymmetric ones by cost (measured: ring BEM ~1 ms,
+/// FEM 0.1-5 s; the grid BEM has no error estimate and is never chosen to certify a tolerance),
+/// then, as the last resort where both decline, the analytic references with an error bound
+/// (the flat annulus beyond the ring BEM's `b/a = 0.9999`, whose rim the FEM cannot refine
+/// enough for a tight tolerance, is the narrow-ring asymptote's, bound `δ² ln(16/δ)`): the
+/// independent discretisations first wherever they apply.
+const AUTO_ORDER: [Method; 3] = [Method::RingBem, Method::Fem, Method::Reference];
 
 /// Pick the cheapest method whose own error estimate meets the scene's tolerance (default 1e-6).
 pub fn solve_auto(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
@@ -118,7 +118,7 @@ pub fn solve_auto(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         ..*scene
     };
     let mut tried = Vec::new();
-    for method in COST_ORDER {
+    for method in AUTO_ORDER {
         match solve_with(&scene, method, options) {
             Ok(mut s) if s.error_estimate.is_some_and(|e| e <= tolerance) => {
                 s.selection = Some(format!(

@@ -32,36 +32,39 @@ fn no_method_returns_a_wrong_number_without_an_error() {
     }
 }
 
+/// `--method auto` on a validated scene.
+fn auto(spec: SceneSpec) -> ringcontact::solution::Solution {
+    let scene = spec.validate().unwrap();
+    methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap()
+}
+
 #[test]
 fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
-    let scene = SceneSpec::default()
-        .shape(PunchKind::Cone)
-        .depth(2.0)
-        .tolerance(1e-6)
-        .validate()
-        .unwrap();
-    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    let s = auto(
+        SceneSpec::default()
+            .shape(PunchKind::Cone)
+            .depth(2.0)
+            .tolerance(1e-6),
+    );
     assert_eq!(s.method, "ring-bem");
     assert!(s.selection.unwrap().contains("cheapest"));
     // Where the ring BEM declines (the cone's contact nearly closed), the FEM is chosen.
-    let scene = SceneSpec::default()
-        .shape(PunchKind::Cone)
-        .depth(60.0)
-        .tolerance(1e-3)
-        .validate()
-        .unwrap();
-    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    let s = auto(
+        SceneSpec::default()
+            .shape(PunchKind::Cone)
+            .depth(60.0)
+            .tolerance(1e-3),
+    );
     assert_eq!(s.method, "fem");
     assert!(s.error_estimate.unwrap() <= 1e-3);
     // A ring 1e-5 a wide at 1e-6: the ring BEM's range ends at 1e-4 a and the FEM's rim
     // elements would have to be below 1e-10 a; the narrow-ring asymptote (bound 4e-10) answers.
-    let scene = SceneSpec::default()
-        .shape(PunchKind::FlatAnnulus)
-        .inner_ratio(0.99999)
-        .tolerance(1e-6)
-        .validate()
-        .unwrap();
-    let s = methods::solve_with(&scene, Method::Auto, &MethodOptions::default()).unwrap();
+    let s = auto(
+        SceneSpec::default()
+            .shape(PunchKind::FlatAnnulus)
+            .inner_ratio(0.99999)
+            .tolerance(1e-6),
+    );
     assert_eq!(s.method, "reference:narrow-ring");
     assert!(s.error_estimate.unwrap() <= 1e-9);
 }
