@@ -318,9 +318,14 @@ pub fn adapted_grading(level: i32) -> f64 {
 /// Sizes: grading `g` from [`adapted_grading`]; rim size `hmin` from [`wanted_rim_size`], but
 /// not below [`GMSH_MIN_ELEMENT_SIZE`] (finer is [`adapted_corner_refinement`]'s job); around a free edge known to within `δ`, the edge size
 /// `hb = g δ / (exp(N g / p) - 1)` puts `N` = [`EDGE_WINDOW_NODES`] contact nodes of degree `p`
-/// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` (which makes the
-/// edge's location bound `0.3 hb / p` under a quarter of the tolerance) or, without a target,
-/// `1e-3 · 10^-k`, unless a quarter of `b̃` is smaller (a small hole keeps a few elements).
+/// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` times the
+/// ring's [`ring_width_scale`] (which makes the edge's location bound `0.3 hb / p` under a
+/// quarter of the tolerance, and on a narrow ring keeps as many elements across the ring at the
+/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of `b̃` is
+/// smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring `3e-4 a` wide
+/// (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its force error
+/// of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their changes did
+/// not see the edge's share.
 pub fn adapted_parameters(
     contact_start: f64,
     level: i32,
@@ -333,7 +338,7 @@ pub fn adapted_parameters(
     let ring_scale = ring_width_scale(ring_width(contact_start, free_edge, edge_uncertainty));
     let hmin = wanted_rim_size(level, target, ring_scale).max(GMSH_MIN_ELEMENT_SIZE);
     let edge_floor = match target {
-        Some(t) => 0.75 * degree * t.tolerance,
+        Some(t) => 0.75 * degree * t.tolerance * ring_scale,
         None => 1e-3 * 0.1f64.powi(level.max(0)),
     };
     let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
@@ -496,6 +501,26 @@ mod tests {
         assert!(
             matches!(&e, Error::OutOfRange { reason, .. } if reason.contains("at least 1.000000e-7")),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn the_free_edge_size_follows_the_contact_rings_width() {
+        // The floor of the free edge's elements, 0.75 p tol, scales like the rim's with the ring.
+        let hb = |free_edge: f64| {
+            let target = SizeTarget {
+                tolerance: 1e-5,
+                degree: 2,
+            };
+            let p = adapted_parameters(0.0, 3, Some(free_edge), 1e-7, Some(target));
+            p.iter().find(|(n, _)| n == "hb").map(|(_, v)| *v).unwrap()
+        };
+        assert!((hb(0.5) - 1.5e-5).abs() < 1e-18, "{}", hb(0.5));
+        let narrow = ring_width_scale(ring_width(0.0, Some(0.9997), 1e-7));
+        assert!(
+            (hb(0.9997) - 1.5e-5 * narrow).abs() < 1e-15,
+            "{}",
+            hb(0.9997)
         );
     }
 
