@@ -119,6 +119,10 @@ fn bad_input_exits_non_zero_with_a_message_naming_the_problem() {
             &["solve", "--scene", "/nonexistent/scene.toml"],
             "cannot read scene file",
         ),
+        (
+            &["mesh", "--eps", "0.3", "--free-edge", "0.2"],
+            "lies in the hole of the contact line",
+        ),
         // A ring narrower than the mesh's last contact-node spacing (1.4e-4 a at the rim of
         // disk-L1; the cone's ring at d = 1e-4 h is narrower than 1e-4 a): named, not returned
         // as b/a = 1.

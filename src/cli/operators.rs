@@ -85,6 +85,13 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
         if !(0.0..1.0).contains(&b) {
             return Err(format!("--free-edge {b}: need 0 <= b/a < 1"));
         }
+        if b < args.eps {
+            return Err(format!(
+                "--free-edge {b} lies in the hole of the contact line, which starts at --eps {}: \
+                 a free edge is located on the contact line",
+                args.eps
+            ));
+        }
     }
     if let Some(tol) = args.tol {
         if !(tol > 0.0 && tol < 1.0) {
