@@ -22,6 +22,7 @@ pub mod fem;
 pub mod finite;
 pub mod fit;
 pub mod harness;
+pub mod heartbeat;
 pub mod methods;
 pub mod numerics;
 pub mod punch;

@@ -102,10 +102,12 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
         tolerance,
         degree: args.degree as usize,
     });
+    // The printed parameters are those of the request, so that they remake its mesh.
+    let free_edge = args.free_edge.filter(|&b| b > 0.0);
     let request = MeshRequest::Adapted {
         contact_start: args.eps,
         level: args.level,
-        free_edge: args.free_edge.filter(|&b| b > 0.0),
+        free_edge,
         edge_uncertainty: args.edge_uncertainty,
         target,
     };
@@ -113,7 +115,7 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
     let parameters = mesh_provider::adapted_parameters(
         args.eps,
         args.level,
-        args.free_edge,
+        free_edge,
         args.edge_uncertainty,
         target,
     );

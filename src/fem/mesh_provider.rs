@@ -117,15 +117,18 @@ pub fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
     })
 }
 
-/// The corner refinement that completes the gmsh mesh of `level` and `target`: the singular
-/// edges `r = a` (and `r = b` for `contact_start > 0`) halved down to [`wanted_rim_size`] (with
-/// `ring_scale`, [`ring_width_scale`]) when that is below [`GMSH_MIN_ELEMENT_SIZE`].
+/// The corner refinement that completes the gmsh mesh of [`adapted_parameters`] (same
+/// arguments): the singular edges `r = a` (and `r = b` for `contact_start > 0`) halved down to
+/// [`wanted_rim_size`] (for the ring's [`ring_width`]) when that is below
+/// [`GMSH_MIN_ELEMENT_SIZE`].
 pub fn adapted_corner_refinement(
     contact_start: f64,
-    ring_scale: f64,
     level: i32,
+    free_edge: Option<f64>,
+    edge_uncertainty: f64,
     target: Option<SizeTarget>,
 ) -> Option<CornerRefinement> {
+    let ring_scale = ring_width_scale(ring_width(contact_start, free_edge, edge_uncertainty));
     let size = wanted_rim_size(level, target, ring_scale);
     (size < GMSH_MIN_ELEMENT_SIZE).then(|| CornerRefinement {
         radii: if contact_start > 0.0 {
@@ -407,20 +410,21 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
             edge_uncertainty,
             target,
         } => {
-            let width = ring_width(*contact_start, *free_edge, *edge_uncertainty);
             if let Some(target) = target {
+                let width = ring_width(*contact_start, *free_edge, *edge_uncertainty);
                 check_rim_size_reachable(width, *target)?;
             }
-            let parameters = adapted_parameters(
+            let (start, level, edge, uncertainty, target) = (
                 *contact_start,
                 *level,
                 *free_edge,
                 *edge_uncertainty,
                 *target,
             );
+            let parameters = adapted_parameters(start, level, edge, uncertainty, target);
             let mut provided = generate(&parameters, why)?;
             provided.corner_refinement =
-                adapted_corner_refinement(*contact_start, ring_width_scale(width), *level, *target);
+                adapted_corner_refinement(start, level, edge, uncertainty, target);
             Ok(provided)
         }
     }
@@ -542,7 +546,7 @@ mod tests {
                         assert!(hb >= GMSH_MIN_ELEMENT_SIZE * b.max(1e-2), "{p:?}");
                     }
                     let wanted = wanted_rim_size(level, target, 1.0);
-                    let refinement = adapted_corner_refinement(0.3, 1.0, level, target);
+                    let refinement = adapted_corner_refinement(0.3, level, None, 0.0, target);
                     assert_eq!(refinement.is_some(), wanted < GMSH_MIN_ELEMENT_SIZE);
                     if let Some(r) = refinement {
                         assert_eq!(r.radii, vec![0.3, 1.0]);

@@ -15,7 +15,6 @@
 //! `E = E* (1 - nu²)` with the scene's `nu` (default 0).
 
 use std::path::{Path, PathBuf};
-use std::sync::{mpsc, Arc, Mutex};
 use std::time::Instant;
 
 use super::assembly::StiffnessPattern;
@@ -28,6 +27,7 @@ use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarg
 use super::msh::read_msh;
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
+use crate::heartbeat::Heartbeat;
 use crate::punch::PunchKind;
 
 /// Name of the method.
@@ -695,70 +695,6 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     );
 }
 
-/// Seconds between the lines a long ladder writes on standard error ([`LadderProgress`]), as
-/// the harness's plain progress lines; `RINGCONTACT_PROGRESS_S` sets another interval.
-pub const PROGRESS_INTERVAL_S: f64 = 10.0;
-
-/// [`PROGRESS_INTERVAL_S`], or the positive number of seconds `RINGCONTACT_PROGRESS_S` gives.
-fn progress_interval() -> std::time::Duration {
-    let seconds = std::env::var("RINGCONTACT_PROGRESS_S")
-        .ok()
-        .and_then(|v| v.trim().parse::<f64>().ok())
-        .filter(|s| s.is_finite() && *s > 0.0 && *s < 1e6)
-        .unwrap_or(PROGRESS_INTERVAL_S);
-    std::time::Duration::from_secs_f64(seconds)
-}
-
-/// Progress of a ladder on standard error: a watcher thread writes `fem: <elapsed> s: <step>`
-/// every [`progress_interval`] while the ladder runs, so that a long solve (fine tolerances,
-/// linear elements, gmsh meshing a large model) is never silent, and a short one (most solves,
-/// the harness's many) writes nothing. Stops when dropped.
-struct LadderProgress {
-    step: Arc<Mutex<String>>,
-    stop: Option<mpsc::Sender<()>>,
-    watcher: Option<std::thread::JoinHandle<()>>,
-}
-
-impl LadderProgress {
-    fn start() -> Self {
-        let step = Arc::new(Mutex::new("starting".to_string()));
-        let (stop, stopped) = mpsc::channel::<()>();
-        let shared = Arc::clone(&step);
-        let started = Instant::now();
-        let interval = progress_interval();
-        let watcher = std::thread::Builder::new()
-            .name("fem-progress".into())
-            .spawn(move || {
-                while let Err(mpsc::RecvTimeoutError::Timeout) = stopped.recv_timeout(interval) {
-                    let step = shared.lock().map(|s| s.clone()).unwrap_or_default();
-                    eprintln!("fem: {:.0} s: {step}", started.elapsed().as_secs_f64());
-                }
-            })
-            .ok();
-        Self {
-            step,
-            stop: Some(stop),
-            watcher,
-        }
-    }
-
-    /// The step the ladder is at, for the next line.
-    fn set(&self, step: String) {
-        if let Ok(mut current) = self.step.lock() {
-            *current = step;
-        }
-    }
-}
-
-impl Drop for LadderProgress {
-    fn drop(&mut self) {
-        drop(self.stop.take());
-        if let Some(watcher) = self.watcher.take() {
-            let _ = watcher.join();
-        }
-    }
-}
-
 /// Below this tolerance, cubic elements are the default (`--degree` not given): on the adapted
 /// family their force error falls like `g⁶` against `g⁴` for quadratic ones, so they reach 1e-6
 /// on a level whose quadratic model is 1e-4 off (measured: flat annulus 0.3 at `g = 0.19`, 2.2e-7
@@ -1007,7 +943,9 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
     }
     // The mesh families live in the project's data directory: say so if it cannot be found.
     mesh_provider::find_project_root()?;
-    let progress = LadderProgress::start();
+    // A long ladder (fine tolerances, linear elements, gmsh meshing a large model) says which
+    // step it is at every 10 s; a short one writes nothing.
+    let progress = Heartbeat::start("fem");
     let why = format!(
         "the FEM for the {kind} at tolerance {:e}",
         options.tolerance

@@ -1,13 +1,13 @@
 //! Progress on standard error: on a terminal an `indicatif` bar with rate and ETA, redrawn in
-//! place; elsewhere (pipes, CI logs, scripts) a plain line at most every [`PLAIN_INTERVAL_S`]
-//! seconds, so that long runs are never silent (indicatif hides its bar there).
+//! place; elsewhere (pipes, CI logs, scripts) a plain line at most every [`plain_interval`]
+//! ([`PLAIN_INTERVAL_S`] seconds unless `RINGCONTACT_PROGRESS_S` says otherwise), so that long
+//! runs are never silent (indicatif hides its bar there).
 
 use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-/// Seconds between plain progress lines when standard error is not a terminal.
-pub const PLAIN_INTERVAL_S: f64 = 10.0;
+pub use crate::heartbeat::{plain_interval, PLAIN_INTERVAL_S};
 
 /// Progress of a sweep of known length.
 pub struct Progress {
@@ -17,6 +17,7 @@ pub struct Progress {
     bar: Option<ProgressBar>,
     started: std::time::Instant,
     reported: std::time::Instant,
+    interval: std::time::Duration,
 }
 
 impl Progress {
@@ -40,6 +41,7 @@ impl Progress {
             bar,
             started: std::time::Instant::now(),
             reported: std::time::Instant::now(),
+            interval: plain_interval(),
         }
     }
 
@@ -62,7 +64,7 @@ impl Progress {
             }
             return;
         }
-        if self.reported.elapsed().as_secs_f64() >= PLAIN_INTERVAL_S && self.done < self.total {
+        if self.reported.elapsed() >= self.interval && self.done < self.total {
             self.reported = std::time::Instant::now();
             eprintln!(
                 "{}: {}/{} done after {:.0} s ({})",
