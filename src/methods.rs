@@ -238,6 +238,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         fem_timings: Some(state.timings),
         degree: Some(state.degree as u8),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
+        edge_conditioning: state.edge_conditioning,
         provenance: format!(
             "axisymmetric FEM, P{} triangles, {} dofs on {} ({}{}, sha256 {}){}, domain radius {:.3e} a with {} far field \
              (truncation bias {:.1e} included in the estimate){}",
@@ -336,6 +337,7 @@ fn base(
         fem_timings: None,
         degree: None,
         complementarity_residual: None,
+        edge_conditioning: None,
         grid: None,
         selection: None,
         pressure: Vec::new(),

@@ -89,6 +89,11 @@ pub struct Solution {
     /// Complementarity residual of the contact solution (FEM concave punches, grid BEM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub complementarity_residual: Option<f64>,
+    /// Conditioning of the located free edge, `κ = |db/dd| d` (FEM concave punches): the edge
+    /// moves κ times a relative change of the depth; above about 1 its error is set by the
+    /// displacement field's, not by the mesh at the edge.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub edge_conditioning: Option<f64>,
     /// Cells per side of the square grid (grid BEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<usize>,
@@ -247,6 +252,7 @@ mod tests {
             fem_timings: None,
             degree: None,
             complementarity_residual: None,
+            edge_conditioning: None,
             grid: None,
             selection: None,
             pressure: Vec::new(),

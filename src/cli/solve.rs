@@ -125,6 +125,12 @@ pub fn describe(scene: &Scene, s: &Solution) -> Table {
             format!("{dofs} dofs, P{} on {mesh}", s.degree.unwrap_or(0)),
         );
     }
+    if let Some(k) = s.edge_conditioning {
+        row(
+            "free edge",
+            format!("conditioning κ = |db/dd| d = {k:.2} (the edge moves κ times a relative depth change)"),
+        );
+    }
     if let Some(r) = s.complementarity_residual {
         row(
             "contact",

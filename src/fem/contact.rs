@@ -63,6 +63,19 @@ pub struct ContactSolution {
     pub active_radii: Vec<f64>,
     /// Nodal displacements.
     pub displacement: Vec<f64>,
+    /// `db/dd`: the located inner radius's change per unit depth at the converged active set
+    /// ([`ContactModel::edge_depth_sensitivity`]); 0 for flat punches and without a hole.
+    pub edge_depth_sensitivity: f64,
+}
+
+/// The free side's extrapolation of the inner radius ([`ContactModel::locate_inner_radius`]).
+enum Extrapolated {
+    /// No node before the active ring is free (or only the axis node).
+    NoHole,
+    /// Too few free nodes to extrapolate: the edge lies between these two radii.
+    Between(f64, f64),
+    /// The extrapolated root and the element gap it is clamped to.
+    Root { root: f64, low: f64, high: f64 },
 }
 
 /// How a banded contact solve ended.
@@ -169,6 +182,7 @@ impl<'m> ContactModel<'m> {
             complementarity_residual: 0.0,
             reactions,
             displacement: u,
+            edge_depth_sensitivity: 0.0,
         })
     }
 
@@ -479,6 +493,7 @@ impl<'m> ContactModel<'m> {
             complementarity_residual: residual,
             reactions,
             displacement: u,
+            edge_depth_sensitivity: 0.0,
         }
     }
 
@@ -513,6 +528,16 @@ impl<'m> ContactModel<'m> {
     /// two exist) and its root is taken, clamped to the element gap between the last free and the
     /// first active node.
     fn locate_inner_radius(&self, active: &[bool], gaps: &[f64]) -> f64 {
+        match self.extrapolated_inner_radius(active, gaps) {
+            Extrapolated::NoHole => 0.0,
+            Extrapolated::Between(low, high) => 0.5 * (low + high),
+            Extrapolated::Root { root, low, high } => root.clamp(low, high),
+        }
+    }
+
+    /// The root of [`Self::locate_inner_radius`]'s extrapolation before it is clamped to the
+    /// element gap between the last free and the first active node (`low`, `high`).
+    fn extrapolated_inner_radius(&self, active: &[bool], gaps: &[f64]) -> Extrapolated {
         let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
         let q = |i: usize| gaps[i].max(0.0).powf(2.0 / 3.0);
         // Innermost node of the active ring that reaches the rim.
@@ -524,10 +549,10 @@ impl<'m> ContactModel<'m> {
         // reaction vanishes: the first moment of a vertex shape function is zero there), so a free
         // axis node alone does not open a hole.
         if first == 0 || (first == 1 && r(0) == 0.0) {
-            return 0.0;
+            return Extrapolated::NoHole;
         }
         let (i1, r_active) = (first - 1, r(first));
-        let midpoint = 0.5 * (r(i1) + r_active);
+        let between = Extrapolated::Between(r(i1), r_active);
         // Cubic elements: the last free node lies in the element cut by the edge, where the
         // cubic cannot follow the `(b - r)^{3/2}` gap; its `q/(b - r)` was measured 30 % off
         // (the nodes before it: 0.1-1 %; P2's last node: 1.4 %), so the fit starts one node
@@ -535,12 +560,12 @@ impl<'m> ContactModel<'m> {
         let skip = usize::from(self.mesh.degree == Degree::Cubic && i1 >= 3);
         let end = i1 - skip;
         if end == 0 {
-            return midpoint;
+            return between;
         }
         let linear = {
             let (q1, q2) = (q(end), q(end - 1));
             if q2 <= q1 {
-                return midpoint;
+                return between;
             }
             r(end) + q1 * (r(end) - r(end - 1)) / (q2 - q1)
         };
@@ -575,7 +600,11 @@ impl<'m> ContactModel<'m> {
         } else {
             linear
         };
-        estimate.clamp(r(i1), r_active)
+        Extrapolated::Root {
+            root: estimate,
+            low: r(i1),
+            high: r_active,
+        }
     }
 
     /// Distance between the last free and the first active contact node.
@@ -650,8 +679,6 @@ impl<'m> ContactModel<'m> {
         initial_active: Option<Vec<bool>>,
         relative_tolerance: f64,
     ) -> Result<(ContactSolution, f64)> {
-        let dofs = self.supports.len();
-        let zero = vec![0.0; dofs];
         let mut depth = depth_guess;
         let mut warm = initial_active;
         let mut iterations = 0;
@@ -659,24 +686,7 @@ impl<'m> ContactModel<'m> {
             let (solution, active, banded) = self.concave_with(system, kind, depth, warm.take())?;
             iterations += solution.iterations;
             // Force per unit depth at this active set: prescribed u_z = -1 on active nodes.
-            let unit = match banded {
-                true => system.solve(&active, 1.0, 0.0, true)?,
-                false => None,
-            };
-            let unit = match unit {
-                Some(u) => u,
-                None => {
-                    let mut constrained = self.supports.clone();
-                    let mut prescribed = vec![0.0; dofs];
-                    for (&n, &a) in self.contact_nodes.iter().zip(&active) {
-                        if a {
-                            constrained[2 * n + 1] = true;
-                            prescribed[2 * n + 1] = -1.0;
-                        }
-                    }
-                    system.solver.solve(&zero, &constrained, &prescribed)?
-                }
-            };
+            let unit = self.unit_depth_response(system, &active, banded)?;
             let stiffness: f64 = self
                 .reactions(system.solver, &unit)
                 .iter()
@@ -694,12 +704,119 @@ impl<'m> ContactModel<'m> {
             if settled {
                 let mut solution = solution;
                 solution.iterations = iterations;
+                solution.edge_depth_sensitivity =
+                    self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
                 return Ok((solution, depth));
             }
             depth = (depth + step).max(0.5 * depth);
             warm = Some(active);
         }
         Err(fem_error("force control: the depth did not settle".into()))
+    }
+
+    /// Concave punch at `depth` with the located edge's depth sensitivity
+    /// ([`Self::edge_depth_sensitivity`]) filled in: [`Self::concave_with`] and one more solve
+    /// on the converged constraint set (a back-substitution, or the band's responses).
+    pub fn concave_with_sensitivity(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        initial_active: Option<Vec<bool>>,
+    ) -> Result<ContactSolution> {
+        let (mut solution, active, banded) =
+            self.concave_with(system, kind, depth, initial_active)?;
+        let unit = self.unit_depth_response(system, &active, banded)?;
+        solution.edge_depth_sensitivity =
+            self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
+        Ok(solution)
+    }
+
+    /// Displacements `w` for the active set pressed down by a unit depth (`u_z = -1` on the
+    /// active contact nodes, the gap shape left out), the other contact nodes free: at a fixed
+    /// active set the solution is affine in the depth, `u(d) = u(d0) + (d - d0) w`. Through the
+    /// band's responses when `banded` (the set was solved on the band), else one solve on the
+    /// current factorisation.
+    fn unit_depth_response(
+        &self,
+        system: &mut BandedSystem,
+        active: &[bool],
+        banded: bool,
+    ) -> Result<Vec<f64>> {
+        if banded {
+            if let Some(unit) = system.solve(active, 1.0, 0.0, true)? {
+                return Ok(unit);
+            }
+        }
+        let dofs = self.supports.len();
+        let mut constrained = self.supports.clone();
+        let mut prescribed = vec![0.0; dofs];
+        for (&n, &a) in self.contact_nodes.iter().zip(active) {
+            if a {
+                constrained[2 * n + 1] = true;
+                prescribed[2 * n + 1] = -1.0;
+            }
+        }
+        system
+            .solver
+            .solve(&vec![0.0; dofs], &constrained, &prescribed)
+    }
+
+    /// `db/dd`, the change of the located inner radius `b` ([`Self::locate_inner_radius`]) per
+    /// unit depth at the converged active set `active` of `solution` (at `depth`):
+    /// `db/dd = Σ_i (∂b/∂g_i)(∂g_i/∂d)`, where the free nodes' gaps `g_i = -d + g(r_i) - u_z,i`
+    /// change by `∂g_i/∂d = -1 - w_i` (`w` the [`Self::unit_depth_response`]) and `∂b/∂g` is
+    /// taken by a central difference along that direction, with a step that moves no gap by
+    /// more than 1e-3 of itself. 0 without a located hole.
+    ///
+    /// It measures how well the edge is conditioned: near a closing hole (the sphere as
+    /// `d → 3h`) the edge moves tens of times the relative depth, so a small error of the
+    /// displacement field (of the size of the relative force error) moves it that much more.
+    pub fn edge_depth_sensitivity(
+        &self,
+        kind: PunchKind,
+        depth: f64,
+        active: &[bool],
+        solution: &ContactSolution,
+        unit: &[f64],
+    ) -> f64 {
+        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
+            return 0.0;
+        }
+        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
+        let rates: Vec<f64> = self
+            .contact_nodes
+            .iter()
+            .map(|&n| -1.0 - unit[2 * n + 1])
+            .collect();
+        // The depth step that moves no free node's gap by more than 1e-3 of itself.
+        let step = gaps
+            .iter()
+            .zip(&rates)
+            .zip(active)
+            .filter(|((&g, &rate), &a)| !a && g > 0.0 && rate != 0.0)
+            .map(|((&g, &rate), _)| 1e-3 * g / rate.abs())
+            .fold(f64::INFINITY, f64::min);
+        if !step.is_finite() || step <= 0.0 {
+            return 0.0;
+        }
+        // The root before its clamp: a located edge held at the clamp still moves with the depth
+        // once the active set follows.
+        let root = |sign: f64| {
+            let moved: Vec<f64> = gaps
+                .iter()
+                .zip(&rates)
+                .map(|(&g, &rate)| g + sign * step * rate)
+                .collect();
+            match self.extrapolated_inner_radius(active, &moved) {
+                Extrapolated::Root { root, .. } => Some(root),
+                _ => None,
+            }
+        };
+        match (root(1.0), root(-1.0)) {
+            (Some(up), Some(down)) if (up - down).is_finite() => (up - down) / (2.0 * step),
+            _ => 0.0,
+        }
     }
 
     /// Active set of a contact ring `[inner_radius, a]` (to warm-start the iteration).

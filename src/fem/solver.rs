@@ -9,7 +9,10 @@
 //! **Error estimate and model choice.** Levels are climbed until the change of the result from
 //! the previous level meets the tolerance: the smallest model that meets it. The estimate of the
 //! finer result is that change (conservative under convergence) plus the far-field truncation
-//! bias ([`FarField::truncation_bias`]) and the [`unresolved_component`].
+//! bias ([`FarField::truncation_bias`]) and the [`unresolved_component`]. A concave punch's
+//! located edge is bounded by its level change, by a share of the node spacing there and, where
+//! the edge is ill-conditioned (a nearly closed hole), by [`EDGE_FIELD_FRACTION`] of its
+//! conditioning times the force estimate.
 //!
 //! **Material.** The frictionless rigid-punch response depends on `E*` only; the solid is given
 //! `E = E* (1 - nu²)` with the scene's `nu` (default 0).
@@ -151,6 +154,9 @@ pub struct FemState {
     pub mesh_refinement: Option<String>,
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
+    /// Concave punches: the located edge's conditioning `κ = |db/dd| d` on the final model
+    /// ([`super::contact::ContactModel::edge_depth_sensitivity`]).
+    pub edge_conditioning: Option<f64>,
 }
 
 /// Mesh and displacement `(u_r, u_z)` per node of a solved model.
@@ -477,7 +483,7 @@ fn solve_model(
         FemLoad::ConcaveDepth(depth) => {
             let initial = warm.map(|w| contact.active_set_for_radius(w.inner_radius));
             let mut system = contact.banded_system(&mut solver, kind, core_radius(warm));
-            let (s, _, _) = contact.concave_with(&mut system, kind, depth, initial)?;
+            let s = contact.concave_with_sensitivity(&mut system, kind, depth, initial)?;
             model.timings.band_responses = system.responses_computed();
             let g2 = 0.5 * s.force;
             (s, depth, g2)
@@ -635,6 +641,9 @@ fn finish(
     degree: Degree,
     start: Instant,
 ) -> FemState {
+    let edge_conditioning = gamma1
+        .filter(|_| solution.edge_depth_sensitivity != 0.0)
+        .map(|depth| solution.edge_depth_sensitivity.abs() * depth.abs());
     FemState {
         eps,
         gamma,
@@ -668,6 +677,7 @@ fn finish(
             .as_ref()
             .map(|r| r.describe()),
         timings: model.timings,
+        edge_conditioning,
     }
 }
 
@@ -677,7 +687,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     eprintln!(
         "fem: {} ({} unknowns, factorised {}): read {:.3} s, assembly {:.3} s (symbolic {:.3} s of it, alongside), contact {:.3} s \
          ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10} (node spacing \
-         there {:.2e}), force {:.12}",
+         there {:.2e}, db/dd {:.3e}), force {:.12}",
         model.path,
         model.stiffness.nrows(),
         model.symbolic.describe(),
@@ -691,6 +701,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
         solution.iterations,
         solution.inner_radius,
         solution.inner_node_spacing,
+        solution.edge_depth_sensitivity,
         solution.force
     );
 }
@@ -716,6 +727,18 @@ pub fn default_degree(tolerance: f64) -> Degree {
 pub fn gmsh_found() -> bool {
     super::gmsh::Gmsh::get(&mesh_provider::project_root(), "").is_ok()
 }
+
+/// Share of the edge's conditioning times the model's force error that bounds the located
+/// edge's error from the displacement field (`EDGE_FIELD_FRACTION · κ · ε`, `κ = |db/dd| d`
+/// from [`ContactModel::edge_depth_sensitivity`], `ε` the force estimate with its floor). A
+/// field error that acted as a depth error would move the edge by `κ ε`; the measured share
+/// is smaller, because in depth control the contact ring's displacements are exact and a
+/// uniform stiffening does not move the edge. Measured on the sphere near closure (`d/h` =
+/// 2.8-2.9999, where `κ` = 2-105 and the edge error was up to 6.6 times its old estimate), with
+/// the ring BEM's edge and force as reference: the edge error was 0.10-0.25 of `κ` times the
+/// actual force error, which the force estimate exceeds by 2-10; 0.5 keeps a factor of 2 on
+/// the largest share.
+pub const EDGE_FIELD_FRACTION: f64 = 0.5;
 
 /// Safety factor on the Richardson estimate between two grading levels (Roache's `F_s = 3` for
 /// two grids).
@@ -1090,12 +1113,20 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 (Some(p), Some(c)) if c == p => level_force_estimate.unwrap_or(change) + change,
                 _ => change,
             };
-            current.eps_error = current.eps_estimate(prev);
             // The edges' component falls with finer models, but the rim sizes the targets ask
             // for keep it below 0.05 of the tolerance: it never stops the ladder below alone.
             let floor = model.truncation_bias()
                 + unresolved_component(eps_out)
                 + model.edge_component(eps_out);
+            current.eps_error = current.eps_estimate(prev);
+            // The edge's conditioning `κ = |db/dd| d`: the located edge moves κ times the
+            // relative depth, and a model whose forces err by `ε` has a displacement field that
+            // errs by a fraction of that, as a depth error would: an edge component that refining
+            // at the edge does not reduce ([`EDGE_FIELD_FRACTION`]; near a closing hole κ reaches
+            // 10-100).
+            let conditioning = s.edge_depth_sensitivity.abs() * x.abs();
+            let edge_from_field = EDGE_FIELD_FRACTION * conditioning * (force_estimate + floor);
+            current.eps_error = current.eps_error.max(edge_from_field);
             let estimate = force_estimate.max(current.eps_error) + floor;
             if estimate <= options.tolerance {
                 rim_resolves_the_ring(&model, kind, &s)?;
@@ -1117,6 +1148,23 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                  tolerance {:.1e}: refining",
                 options.tolerance
             ));
+            // The floor's share of the edge's field component is not reduced either.
+            let field_floor = EDGE_FIELD_FRACTION * conditioning * floor;
+            if field_floor > 0.5 * options.tolerance {
+                return Err(Error::OutOfRange {
+                    method: METHOD.into(),
+                    reason: format!(
+                        "the free edge b/a = {} of {last_mesh} is ill-conditioned (a nearly \
+                         closed hole): it moves κ = |db/dd| d = {conditioning:.1} times a \
+                         relative change of the depth, and the part of its error that finer \
+                         models do not reduce ({EDGE_FIELD_FRACTION} κ times the force floor \
+                         {floor:.1e}: {field_floor:.1e}) is above half the tolerance {:.1e}; \
+                         loosen --tol or use the ring BEM",
+                        crate::error::show(eps_out),
+                        options.tolerance
+                    ),
+                });
+            }
             if floor > 0.5 * options.tolerance || unknowns > MAX_LADDER_UNKNOWNS {
                 // Finer models do not reduce the floor, and past this size the next model (about
                 // 2.7x larger) would take minutes and most of the memory: stop here.
@@ -1137,9 +1185,10 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             }
             if let Some(level) = level {
                 // Only the free edge misses: refine there on the same level (at most twice).
+                // (Not when the edge's field component misses: only finer levels reduce it.)
                 let edge_only = concave
                     && level_force_estimate.is_some()
-                    && force_estimate + floor <= options.tolerance
+                    && force_estimate.max(edge_from_field) + floor <= options.tolerance
                     && repeats < MAX_EDGE_REPEATS;
                 if edge_only {
                     repeats += 1;
