@@ -66,13 +66,6 @@ pub struct ContactSolution {
     /// `db/dd`: the located inner radius's change per unit depth at the converged active set
     /// ([`ContactModel::edge_depth_sensitivity`]); 0 for flat punches and without a hole.
     pub edge_depth_sensitivity: f64,
-    /// Full contact of a concave punch: the relative depth decrease `Δd/d` that would release
-    /// the innermost contact node off the axis ([`ContactModel::opening_margin`]); infinite
-    /// otherwise.
-    pub opening_margin: f64,
-    /// A located hole: the relative depth increase `Δd/d` that would close it
-    /// ([`ContactModel::closing_margin`]); infinite otherwise.
-    pub closing_margin: f64,
 }
 
 /// The free side's extrapolation of the inner radius ([`ContactModel::locate_inner_radius`]).
@@ -190,8 +183,6 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             edge_depth_sensitivity: 0.0,
-            opening_margin: f64::INFINITY,
-            closing_margin: f64::INFINITY,
         })
     }
 
@@ -503,8 +494,6 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             edge_depth_sensitivity: 0.0,
-            opening_margin: f64::INFINITY,
-            closing_margin: f64::INFINITY,
         }
     }
 
@@ -715,7 +704,8 @@ impl<'m> ContactModel<'m> {
             if settled {
                 let mut solution = solution;
                 solution.iterations = iterations;
-                self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
+                solution.edge_depth_sensitivity =
+                    self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
                 return Ok((solution, depth));
             }
             depth = (depth + step).max(0.5 * depth);
@@ -724,8 +714,8 @@ impl<'m> ContactModel<'m> {
         Err(fem_error("force control: the depth did not settle".into()))
     }
 
-    /// Concave punch at `depth` with the located edge's conditioning
-    /// ([`Self::edge_depth_sensitivity`], the opening and closing margins) filled in: [`Self::concave_with`] and one more solve
+    /// Concave punch at `depth` with the located edge's depth sensitivity
+    /// ([`Self::edge_depth_sensitivity`]) filled in: [`Self::concave_with`] and one more solve
     /// on the converged constraint set (a back-substitution, or the band's responses).
     pub fn concave_with_sensitivity(
         &self,
@@ -737,116 +727,9 @@ impl<'m> ContactModel<'m> {
         let (mut solution, active, banded) =
             self.concave_with(system, kind, depth, initial_active)?;
         let unit = self.unit_depth_response(system, &active, banded)?;
-        self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
-        Ok(solution)
-    }
-
-    /// Fill in `solution`'s [`Self::edge_depth_sensitivity`], [`Self::opening_margin`] and
-    /// [`Self::closing_margin`] from its [`Self::unit_depth_response`] `unit`.
-    fn fill_conditioning(
-        &self,
-        solver: &ConstrainedCholesky,
-        kind: PunchKind,
-        depth: f64,
-        active: &[bool],
-        solution: &mut ContactSolution,
-        unit: &[f64],
-    ) {
         solution.edge_depth_sensitivity =
-            self.edge_depth_sensitivity(kind, depth, active, solution, unit);
-        solution.opening_margin = self.opening_margin(solver, depth, active, solution, unit);
-        solution.closing_margin = self.closing_margin(kind, depth, active, solution, unit);
-    }
-
-    /// A solution with a located hole: the contact nodes' gaps `g_i = -d + g(r_i) - u_z,i` and
-    /// their rates `∂g_i/∂d = -1 - w_i` (`w` the [`Self::unit_depth_response`]) at its active
-    /// set; `None` without a hole.
-    fn hole_gaps_and_rates(
-        &self,
-        kind: PunchKind,
-        depth: f64,
-        solution: &ContactSolution,
-        unit: &[f64],
-    ) -> Option<(Vec<f64>, Vec<f64>)> {
-        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
-            return None;
-        }
-        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
-        let rates = self
-            .contact_nodes
-            .iter()
-            .map(|&n| -1.0 - unit[2 * n + 1])
-            .collect();
-        Some((gaps, rates))
-    }
-
-    /// A located hole: the relative increase of the depth, `Δd/d`, that closes every free node
-    /// off the axis (their gaps, affine in the depth at this active set, reach zero at
-    /// `g_i / |∂g_i/∂d|`). Infinite without a hole or when a gap would not close.
-    ///
-    /// When the model's own error, as a relative depth error, exceeds it, the model cannot
-    /// tell the hole from a closed contact: the hole's whole radius is then uncertain.
-    pub fn closing_margin(
-        &self,
-        kind: PunchKind,
-        depth: f64,
-        active: &[bool],
-        solution: &ContactSolution,
-        unit: &[f64],
-    ) -> f64 {
-        let Some((gaps, rates)) = self.hole_gaps_and_rates(kind, depth, solution, unit) else {
-            return f64::INFINITY;
-        };
-        let margin = (0..active.len())
-            .filter(|&i| !active[i] && self.mesh.nodes[self.contact_nodes[i]][0] > 0.0)
-            .map(|i| {
-                if rates[i] < 0.0 {
-                    gaps[i].max(0.0) / (-rates[i] * depth)
-                } else {
-                    f64::INFINITY
-                }
-            })
-            .fold(0.0, f64::max);
-        if margin > 0.0 {
-            margin
-        } else {
-            f64::INFINITY
-        }
-    }
-
-    /// Full contact (every contact node off the axis active): the relative decrease of the
-    /// depth, `Δd/d`, at which the innermost contact node off the axis would release. At a fixed active set its
-    /// reaction is affine in the depth, `λ(d) = λ(d0) + (d - d0) λ'` with `λ'` the reaction of
-    /// the [`Self::unit_depth_response`], so it reaches zero at `Δd = λ / λ'`. (The axis node's
-    /// reaction vanishes with its area and is skipped.) Infinite when a hole is located or the
-    /// node would not release.
-    ///
-    /// A hole opens as this node releases: when the model's own error, as a relative depth
-    /// error, exceeds the margin, the model cannot tell a closed contact from an open hole.
-    pub fn opening_margin(
-        &self,
-        solver: &ConstrainedCholesky,
-        depth: f64,
-        active: &[bool],
-        solution: &ContactSolution,
-        unit: &[f64],
-    ) -> f64 {
-        let off_axis = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0] > 0.0;
-        let closed = (0..active.len()).all(|i| active[i] || !off_axis(i));
-        if !closed || unit.len() != solution.displacement.len() {
-            return f64::INFINITY;
-        }
-        let Some(inner) = (0..active.len()).find(|&i| off_axis(i)) else {
-            return f64::INFINITY;
-        };
-        let reaction = solution.reactions[inner].1;
-        let rate = self.reactions(solver, unit)[inner].1;
-        let margin = reaction / (rate * depth);
-        if rate > 0.0 && margin.is_finite() && margin >= 0.0 {
-            margin
-        } else {
-            f64::INFINITY
-        }
+            self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
+        Ok(solution)
     }
 
     /// Displacements `w` for the active set pressed down by a unit depth (`u_z = -1` on the
@@ -897,9 +780,15 @@ impl<'m> ContactModel<'m> {
         solution: &ContactSolution,
         unit: &[f64],
     ) -> f64 {
-        let Some((gaps, rates)) = self.hole_gaps_and_rates(kind, depth, solution, unit) else {
+        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
             return 0.0;
-        };
+        }
+        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
+        let rates: Vec<f64> = self
+            .contact_nodes
+            .iter()
+            .map(|&n| -1.0 - unit[2 * n + 1])
+            .collect();
         // The depth step that moves no free node's gap by more than 1e-3 of itself.
         let step = gaps
             .iter()

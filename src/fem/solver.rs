@@ -687,7 +687,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     eprintln!(
         "fem: {} ({} unknowns, factorised {}): read {:.3} s, assembly {:.3} s (symbolic {:.3} s of it, alongside), contact {:.3} s \
          ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10} (node spacing \
-         there {:.2e}, db/dd {:.3e}, opening margin {:.2e}), force {:.12}",
+         there {:.2e}, db/dd {:.3e}), force {:.12}",
         model.path,
         model.stiffness.nrows(),
         model.symbolic.describe(),
@@ -702,7 +702,6 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
         solution.inner_radius,
         solution.inner_node_spacing,
         solution.edge_depth_sensitivity,
-        solution.opening_margin,
         solution.force
     );
 }
@@ -875,15 +874,10 @@ fn state_of(
     }
 }
 
-/// Every contact node off the axis in contact (a free axis node alone opens no hole: it
-/// carries no area): a hole, if any, lies inside the first node off the axis, whose radius is
-/// returned (the located edge's uncertainty); else `None`.
+/// Every contact node in contact, the axis node included: a hole, if any, lies inside the first
+/// node off the axis, whose radius is returned (the located edge's uncertainty); else `None`.
 fn full_contact_spacing(s: &ContactSolution) -> Option<f64> {
-    let first_off_axis = s.active_radii.iter().copied().find(|&r| r > 0.0);
-    let closed = s.active_radii.first() == Some(&0.0)
-        || (s.active_radii.len() + 1 == s.reactions.len()
-            && s.reactions.first().is_some_and(|&(r, _)| r == 0.0));
-    closed.then(|| first_off_axis.unwrap_or(1.0))
+    (s.active_radii.first() == Some(&0.0)).then(|| s.active_radii.get(1).copied().unwrap_or(1.0))
 }
 
 /// A concave punch whose contact ring holds no contact node but the rim's: the ring is narrower
@@ -1133,25 +1127,6 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let conditioning = s.edge_depth_sensitivity.abs() * x.abs();
             let edge_from_field = EDGE_FIELD_FRACTION * conditioning * (force_estimate + floor);
             current.eps_error = current.eps_error.max(edge_from_field);
-            // A hole that the model's error, as a depth error, could close: its whole radius
-            // is uncertain. Full contact that it could open: whether there is a hole, and how
-            // wide, is below what the model resolves.
-            let depth_error = EDGE_FIELD_FRACTION * (force_estimate + floor);
-            if s.closing_margin < depth_error {
-                current.eps_error = current.eps_error.max(eps_out);
-            }
-            if current.full_contact && s.opening_margin < depth_error {
-                return Err(Error::OutOfRange {
-                    method: METHOD.into(),
-                    reason: format!(
-                        "{last_mesh} finds full contact, but a depth {:.1e} smaller (relative; \
-                         within its error {depth_error:.1e}) would open a hole: a nearly closed \
-                         hole is below what the model resolves; use cubic elements, a tighter \
-                         --tol or the ring BEM",
-                        s.opening_margin
-                    ),
-                });
-            }
             let estimate = force_estimate.max(current.eps_error) + floor;
             if estimate <= options.tolerance {
                 rim_resolves_the_ring(&model, kind, &s)?;
@@ -1210,12 +1185,10 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             }
             if let Some(level) = level {
                 // Only the free edge misses: refine there on the same level (at most twice).
-                // (Not when the edge's field component misses or the hole could close within the
-                // model's error: only finer levels reduce those.)
+                // (Not when the edge's field component misses: only finer levels reduce it.)
                 let edge_only = concave
                     && level_force_estimate.is_some()
                     && force_estimate.max(edge_from_field) + floor <= options.tolerance
-                    && s.closing_margin >= depth_error
                     && repeats < MAX_EDGE_REPEATS;
                 if edge_only {
                     repeats += 1;
