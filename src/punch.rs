@@ -42,6 +42,14 @@ impl PunchKind {
         matches!(self, PunchKind::Cone | PunchKind::Sphere)
     }
 
+    /// Whether the concave profile is smooth at the axis (`g(r)` even and analytic there: the
+    /// sphere), so that the full-contact pressure is smooth there and the contact can close.
+    /// The cone's apex (`g = h (1 - r/a)`, a kink) makes the pressure there log-singular: a
+    /// hole stays open at every depth.
+    pub fn profile_smooth_at_axis(self) -> bool {
+        matches!(self, PunchKind::Sphere)
+    }
+
     /// Dimensionless gap `g(r)/h` of a concave punch at `rho = r/a` (0 for flat punches).
     pub fn gap_shape(self, rho: f64) -> f64 {
         match self {

@@ -66,6 +66,15 @@ pub struct ContactSolution {
     /// `db/dd`: the located inner radius's change per unit depth at the converged active set
     /// ([`ContactModel::edge_depth_sensitivity`]); 0 for flat punches and without a hole.
     pub edge_depth_sensitivity: f64,
+    /// Full contact of a concave punch: the relative depth decrease `Δd/d` that would release
+    /// the innermost contact node off the axis ([`ContactModel::opening_margins`]); infinite
+    /// otherwise.
+    pub opening_margin: f64,
+    /// Full contact: a lower bound of the relative depth decrease at which the contact opens at
+    /// the axis, extrapolated from the two innermost nodes' margins
+    /// ([`ContactModel::opening_margins`]; meaningful for a profile smooth at the axis);
+    /// `-inf` otherwise.
+    pub closure_margin: f64,
 }
 
 /// The free side's extrapolation of the inner radius ([`ContactModel::locate_inner_radius`]).
@@ -183,6 +192,8 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             edge_depth_sensitivity: 0.0,
+            opening_margin: f64::INFINITY,
+            closure_margin: f64::NEG_INFINITY,
         })
     }
 
@@ -494,6 +505,8 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             edge_depth_sensitivity: 0.0,
+            opening_margin: f64::INFINITY,
+            closure_margin: f64::NEG_INFINITY,
         }
     }
 
@@ -704,8 +717,7 @@ impl<'m> ContactModel<'m> {
             if settled {
                 let mut solution = solution;
                 solution.iterations = iterations;
-                solution.edge_depth_sensitivity =
-                    self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
+                self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
                 return Ok((solution, depth));
             }
             depth = (depth + step).max(0.5 * depth);
@@ -714,9 +726,10 @@ impl<'m> ContactModel<'m> {
         Err(fem_error("force control: the depth did not settle".into()))
     }
 
-    /// Concave punch at `depth` with the located edge's depth sensitivity
-    /// ([`Self::edge_depth_sensitivity`]) filled in: [`Self::concave_with`] and one more solve
-    /// on the converged constraint set (a back-substitution, or the band's responses).
+    /// Concave punch at `depth` with the located edge's conditioning
+    /// ([`Self::edge_depth_sensitivity`], [`Self::opening_margins`]) filled in:
+    /// [`Self::concave_with`] and one more solve on the converged constraint set (a
+    /// back-substitution, or the band's responses).
     pub fn concave_with_sensitivity(
         &self,
         system: &mut BandedSystem,
@@ -727,9 +740,96 @@ impl<'m> ContactModel<'m> {
         let (mut solution, active, banded) =
             self.concave_with(system, kind, depth, initial_active)?;
         let unit = self.unit_depth_response(system, &active, banded)?;
-        solution.edge_depth_sensitivity =
-            self.edge_depth_sensitivity(kind, depth, &active, &solution, &unit);
+        self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
         Ok(solution)
+    }
+
+    /// Fill in `solution`'s [`Self::edge_depth_sensitivity`] and [`Self::opening_margins`] from
+    /// its [`Self::unit_depth_response`] `unit`.
+    fn fill_conditioning(
+        &self,
+        solver: &ConstrainedCholesky,
+        kind: PunchKind,
+        depth: f64,
+        active: &[bool],
+        solution: &mut ContactSolution,
+        unit: &[f64],
+    ) {
+        solution.edge_depth_sensitivity =
+            self.edge_depth_sensitivity(kind, depth, active, solution, unit);
+        (solution.opening_margin, solution.closure_margin) =
+            self.opening_margins(solver, depth, active, solution, unit);
+    }
+
+    /// A solution with a located hole: the contact nodes' gaps `g_i = -d + g(r_i) - u_z,i` and
+    /// their rates `∂g_i/∂d = -1 - w_i` (`w` the [`Self::unit_depth_response`]) at its active
+    /// set; `None` without a hole.
+    fn hole_gaps_and_rates(
+        &self,
+        kind: PunchKind,
+        depth: f64,
+        solution: &ContactSolution,
+        unit: &[f64],
+    ) -> Option<(Vec<f64>, Vec<f64>)> {
+        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
+            return None;
+        }
+        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
+        let rates = self
+            .contact_nodes
+            .iter()
+            .map(|&n| -1.0 - unit[2 * n + 1])
+            .collect();
+        Some((gaps, rates))
+    }
+
+    /// Full contact (every contact node off the axis active): `(μ1, μ0_low)`. `μ_i`, the
+    /// relative decrease of the depth `Δd/d` at which contact node `i` would release: at a fixed
+    /// active set its reaction is affine in the depth, `λ(d) = λ(d0) + (d - d0) λ'` with `λ'`
+    /// the reaction of the [`Self::unit_depth_response`], so `μ_i = λ_i / (d λ'_i)`. `μ1` is the
+    /// innermost node's off the axis (the axis node's reaction vanishes with its area and is
+    /// skipped). For a profile smooth at the axis the margin is even and smooth in `r`, so the
+    /// two innermost nodes' give the axis' `μ0 = μ1 - (μ2 - μ1) r1² / (r2² - r1²)`, and
+    /// `μ0_low = μ0 - |μ1 - μ0|` keeps the whole extrapolation as its uncertainty.
+    /// `(inf, -inf)` when a hole is located or the nodes would not release.
+    ///
+    /// A hole opens as the innermost node releases: when the model's own error, as a relative
+    /// depth error, exceeds `μ1`, the model cannot tell a closed contact from an open hole; when
+    /// it is below `μ0_low`, no hole is open at all.
+    pub fn opening_margins(
+        &self,
+        solver: &ConstrainedCholesky,
+        depth: f64,
+        active: &[bool],
+        solution: &ContactSolution,
+        unit: &[f64],
+    ) -> (f64, f64) {
+        let none = (f64::INFINITY, f64::NEG_INFINITY);
+        let radius = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+        let closed = (0..active.len()).all(|i| active[i] || radius(i) <= 0.0);
+        if !closed || unit.len() != solution.displacement.len() {
+            return none;
+        }
+        let mut inner = (0..active.len()).filter(|&i| radius(i) > 0.0);
+        let (Some(first), second) = (inner.next(), inner.next()) else {
+            return none;
+        };
+        let rates = self.reactions(solver, unit);
+        let margin = |i: usize| {
+            let m = solution.reactions[i].1 / (rates[i].1 * depth);
+            (rates[i].1 > 0.0 && m.is_finite() && m >= 0.0).then_some(m)
+        };
+        let Some(mu1) = margin(first) else {
+            return none;
+        };
+        let closure = second
+            .and_then(|j| margin(j).map(|mu2| (radius(j), mu2)))
+            .map_or(f64::NEG_INFINITY, |(r2, mu2)| {
+                let r1 = radius(first);
+                let mu0 = mu1 - (mu2 - mu1) * r1 * r1 / (r2 * r2 - r1 * r1);
+                mu0 - (mu1 - mu0).abs()
+            });
+        (mu1, closure)
     }
 
     /// Displacements `w` for the active set pressed down by a unit depth (`u_z = -1` on the
@@ -780,15 +880,9 @@ impl<'m> ContactModel<'m> {
         solution: &ContactSolution,
         unit: &[f64],
     ) -> f64 {
-        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
+        let Some((gaps, rates)) = self.hole_gaps_and_rates(kind, depth, solution, unit) else {
             return 0.0;
-        }
-        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
-        let rates: Vec<f64> = self
-            .contact_nodes
-            .iter()
-            .map(|&n| -1.0 - unit[2 * n + 1])
-            .collect();
+        };
         // The depth step that moves no free node's gap by more than 1e-3 of itself.
         let step = gaps
             .iter()

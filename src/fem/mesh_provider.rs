@@ -324,7 +324,7 @@ pub fn adapted_grading(level: i32) -> f64 {
 /// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` times the
 /// ring's [`ring_width_scale`] (which makes the edge's location bound `0.3 hb / p` under a
 /// quarter of the tolerance, and on a narrow ring keeps as many elements across the ring at the
-/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of `b̃` is
+/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of a hole `b̃ > 0` is
 /// smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring `3e-4 a` wide
 /// (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its force error
 /// of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their changes did
@@ -346,8 +346,13 @@ pub fn adapted_parameters(
     };
     let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
     // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
-    // of a quarter of its radius, or the window's size when none was found.
-    let edge_floor = edge_floor.min(0.25 * free_edge.unwrap_or(f64::INFINITY));
+    // of a quarter of its radius. Full contact (`b̃ = 0`) has no hole to keep elements in: its
+    // axis refinement stays at the floor (else each level's window, a fraction of the last
+    // node spacing, shrank it again, down to gmsh stalling on 5e-10 a).
+    let edge_floor = match free_edge {
+        Some(b) if b > 0.0 => edge_floor.min(0.25 * b),
+        _ => edge_floor,
+    };
     // Never below what gmsh meshes well at the edge's radius (GMSH_MIN_ELEMENT_SIZE of the
     // coordinates' magnitude; the free edge is not singular, so no corner refinement goes
     // further): binds only on levels 6 and 7 without a target.

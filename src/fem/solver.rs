@@ -687,7 +687,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     eprintln!(
         "fem: {} ({} unknowns, factorised {}): read {:.3} s, assembly {:.3} s (symbolic {:.3} s of it, alongside), contact {:.3} s \
          ({} factorisations {:.3} s, {} band responses, {} iterations), b/a = {:.10} (node spacing \
-         there {:.2e}, db/dd {:.3e}), force {:.12}",
+         there {:.2e}, db/dd {:.3e}, opening margin {:.2e}, at the axis above {:.2e}), force {:.12}",
         model.path,
         model.stiffness.nrows(),
         model.symbolic.describe(),
@@ -702,6 +702,8 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
         solution.inner_radius,
         solution.inner_node_spacing,
         solution.edge_depth_sensitivity,
+        solution.opening_margin,
+        solution.closure_margin,
         solution.force
     );
 }
@@ -874,10 +876,17 @@ fn state_of(
     }
 }
 
-/// Every contact node in contact, the axis node included: a hole, if any, lies inside the first
-/// node off the axis, whose radius is returned (the located edge's uncertainty); else `None`.
+/// Every contact node off the axis in contact, the axis node in contact or not: a hole, if any,
+/// lies inside the first node off the axis, whose radius is returned (the located edge's
+/// uncertainty); else `None`. A free axis node alone bounds the hole by that radius too (its
+/// own spacing to the axis is no bound: P2 returned `eps = 0` with an estimate of 2.3e-4 for
+/// holes 6e-3 and 1.9e-2 a wide, the sphere at `d = 2.9999h` and `2.999h`).
 fn full_contact_spacing(s: &ContactSolution) -> Option<f64> {
-    (s.active_radii.first() == Some(&0.0)).then(|| s.active_radii.get(1).copied().unwrap_or(1.0))
+    let on_axis = |&(r, _): &(f64, f64)| r == 0.0;
+    let axis_free_alone =
+        s.reactions.first().is_some_and(on_axis) && s.active_radii.len() + 1 == s.reactions.len();
+    let first_off_axis = s.active_radii.iter().copied().find(|&r| r > 0.0);
+    (s.active_radii.first() == Some(&0.0) || axis_free_alone).then(|| first_off_axis.unwrap_or(1.0))
 }
 
 /// A concave punch whose contact ring holds no contact node but the rim's: the ring is narrower
@@ -1000,6 +1009,9 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
     let mut last_estimate = f64::INFINITY;
     let mut iterations = 0;
     let mut last_mesh = String::new();
+    // `(opening margin, depth error)` of the last model when it found full contact that its
+    // own error could open.
+    let mut closure_unresolved: Option<(f64, f64)> = None;
     loop {
         let (request, level) = match committed.next() {
             Some(request) => (request, None),
@@ -1127,8 +1139,24 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let conditioning = s.edge_depth_sensitivity.abs() * x.abs();
             let edge_from_field = EDGE_FIELD_FRACTION * conditioning * (force_estimate + floor);
             current.eps_error = current.eps_error.max(edge_from_field);
+            // Full contact, its margins against the model's error taken as a relative depth
+            // error: a profile smooth at the axis whose contact would open only beyond that
+            // error is closed (`eps = 0` exactly, no hole to bound by the first node's radius);
+            // full contact that the error could open (the innermost node off the axis releases
+            // within it) leaves whether a hole is open, and how wide, below this model: only
+            // finer levels tell.
+            let depth_error = force_estimate + floor;
+            if current.full_contact
+                && kind.profile_smooth_at_axis()
+                && s.closure_margin > depth_error
+            {
+                current.full_contact = false;
+                current.eps_error = 0.0;
+            }
+            closure_unresolved = (current.full_contact && s.opening_margin < depth_error)
+                .then_some((s.opening_margin, depth_error));
             let estimate = force_estimate.max(current.eps_error) + floor;
-            if estimate <= options.tolerance {
+            if estimate <= options.tolerance && closure_unresolved.is_none() {
                 rim_resolves_the_ring(&model, kind, &s)?;
                 let state = (eps_out, gamma, gamma1, gamma2);
                 return Ok(finish(
@@ -1165,6 +1193,9 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                     ),
                 });
             }
+            if closure_unresolved.is_some() && unknowns > MAX_LADDER_UNKNOWNS {
+                return Err(closure_unresolved_error(&last_mesh, closure_unresolved));
+            }
             if floor > 0.5 * options.tolerance || unknowns > MAX_LADDER_UNKNOWNS {
                 // Finer models do not reduce the floor, and past this size the next model (about
                 // 2.7x larger) would take minutes and most of the memory: stop here.
@@ -1187,6 +1218,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 // Only the free edge misses: refine there on the same level (at most twice).
                 // (Not when the edge's field component misses: only finer levels reduce it.)
                 let edge_only = concave
+                    && closure_unresolved.is_none()
                     && level_force_estimate.is_some()
                     && force_estimate.max(edge_from_field) + floor <= options.tolerance
                     && repeats < MAX_EDGE_REPEATS;
@@ -1202,11 +1234,28 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         }
         previous = Some(current);
     }
+    if closure_unresolved.is_some() {
+        return Err(closure_unresolved_error(&last_mesh, closure_unresolved));
+    }
     Err(fem_error(format!(
         "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above the \
          tolerance {:.1e}; loosen --tol or use the ring BEM",
         options.tolerance
     )))
+}
+
+/// The ladder ended on full contact that its last model's error could open
+/// (`(opening margin, depth error)`, see [`ContactSolution::opening_margin`]).
+fn closure_unresolved_error(last_mesh: &str, margins: Option<(f64, f64)>) -> Error {
+    let (margin, depth_error) = margins.unwrap_or((0.0, 0.0));
+    Error::OutOfRange {
+        method: METHOD.into(),
+        reason: format!(
+            "{last_mesh} finds full contact, but a depth {margin:.1e} smaller (relative; within \
+             its estimated error {depth_error:.1e}) would open a hole: a nearly closed hole is \
+             below what the finest model resolves; use cubic elements or the ring BEM"
+        ),
+    }
 }
 
 /// The FE model of `provided` (degree, far field and Poisson's ratio of `options`) condensed onto
