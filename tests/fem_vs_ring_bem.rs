@@ -336,46 +336,54 @@ fn full_contact_near_closure_is_bound_certified_or_declined() {
     // bound: eps = 0 was returned for the first three with estimates of 2.3e-4 and 3.4e-5.
     // Full contact is now bounded by the first node off the axis, certified closed only when
     // the contact would open beyond the model's error, and refined when it would open within.
-    // Each must bound its errors against the ring BEM (MDR past closure) or decline.
+    // The cone never closes, and its apex (a kink) hides a hole at the first node: at 12 h its
+    // hole of 9e-4 a lay inside first nodes at 7.5e-4 a, whose margins fell toward the axis, and
+    // P2 and P3 at 1e-3 ended in the impossible-state error; the next mesh now refines inside
+    // that node. Each must bound its errors against the ring BEM (MDR past closure) or decline.
     if !gmsh_available("full_contact_near_closure_is_bound_certified_or_declined") {
         return;
     }
     let mut answered = 0;
-    for (degree, depth, tolerance) in [
-        (Degree::Quadratic, 2.999, 1e-3),
-        (Degree::Quadratic, 2.9999, 1e-3),
-        (Degree::Quadratic, 2.99995, 1e-3),
-        (Degree::Quadratic, 2.9999, 1e-4),
-        (Degree::Quadratic, 3.0001, 1e-3),
-        (Degree::Cubic, 3.0001, 1e-4),
-        (Degree::Cubic, 2.99995, 1e-4),
-    ] {
+    let sphere = PunchKind::Sphere;
+    let cases = [
+        (sphere, Degree::Quadratic, 2.999, 1e-3),
+        (sphere, Degree::Quadratic, 2.9999, 1e-3),
+        (sphere, Degree::Quadratic, 2.99995, 1e-3),
+        (sphere, Degree::Quadratic, 2.9999, 1e-4),
+        (sphere, Degree::Quadratic, 3.0001, 1e-3),
+        (sphere, Degree::Cubic, 3.0001, 1e-4),
+        (sphere, Degree::Cubic, 2.99995, 1e-4),
+        (PunchKind::Cone, Degree::Quadratic, 12.0, 1e-3),
+        (PunchKind::Cone, Degree::Cubic, 12.0, 1e-3),
+        (PunchKind::Cone, Degree::Cubic, 14.0, 1e-3),
+    ];
+    for (kind, degree, depth, tolerance) in cases {
         let load = FemLoad::ConcaveDepth(depth);
         let options = ladder_options(degree, tolerance);
-        let state = match solver::solve(PunchKind::Sphere, 0.0, load, &options) {
+        let state = match solver::solve(kind, 0.0, load, &options) {
             Ok(state) => state,
             Err(e) => {
-                println!("{degree:?} d/h = {depth} at {tolerance:e}: declined: {e}");
+                println!("{kind} {degree:?} d/h = {depth} at {tolerance:e}: declined: {e}");
                 continue;
             }
         };
         answered += 1;
-        let (force_error, eps_error) = errors(PunchKind::Sphere, 0.0, load, &state);
+        let (force_error, eps_error) = errors(kind, 0.0, load, &state);
         let estimate = state.error_estimate.unwrap();
         println!(
-            "{degree:?} d/h = {depth} at {tolerance:e}: eps {:.3e}, force error {force_error:.1e}, \
+            "{kind} {degree:?} d/h = {depth} at {tolerance:e}: eps {:.3e}, force error {force_error:.1e}, \
              eps error {eps_error:.1e}, estimate {estimate:.1e}, {} dofs",
             state.eps, state.dofs
         );
         assert!(
             estimate <= tolerance && force_error <= estimate && eps_error <= estimate,
-            "{degree:?} d/h = {depth} at {tolerance:e}: the estimate {estimate:.1e} does not \
+            "{kind} {degree:?} d/h = {depth} at {tolerance:e}: the estimate {estimate:.1e} does not \
              bound the errors ({force_error:.1e}, {eps_error:.1e})"
         );
     }
     // Declining everything would pass the loop: most of these states were answered when the
-    // test was written (all seven).
-    assert!(answered >= 5, "only {answered} of 7 answered");
+    // test was written (all ten).
+    assert!(answered >= 8, "only {answered} of {} answered", cases.len());
 }
 
 #[test]

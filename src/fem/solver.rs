@@ -828,6 +828,10 @@ struct LevelResult {
     /// A concave punch found in full contact: the located edge `0` is known only to within the
     /// first contact node off the axis (`spacing`), the whole of which bounds its error.
     full_contact: bool,
+    /// Full contact of a profile with a kink at the axis (the cone, whose hole never closes)
+    /// that its margins do not show closed beyond the model's error: a hole hides inside the
+    /// first node off the axis (`spacing`), or just beyond it; the next mesh refines inside it.
+    hole_inside_first_node: bool,
     /// Bound on the located edge's error as a multiple of `spacing` ([`INNER_RADIUS_BOUND`], or
     /// more when the hole holds too few nodes to extrapolate from).
     edge_bound: f64,
@@ -1019,14 +1023,19 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             None => {
                 // Concave punches: refine around the free edge located on the previous solve.
                 let edge = previous.as_ref().filter(|_| concave);
+                // A hole inside the first node off the axis: refine around the middle of that
+                // node's radius, to a quarter of it.
+                let hidden_hole = edge
+                    .filter(|p| p.hole_inside_first_node)
+                    .map(|p| 0.5 * p.spacing);
                 let request = MeshRequest::Adapted {
                     contact_start: start_line,
                     level: next_level,
                     // Full contact located: refine around the axis (r = 0), where a hole opens.
-                    free_edge: edge
+                    free_edge: hidden_hole.or(edge
                         .map(|p| p.values.2)
-                        .filter(|&b| b > 0.0 || edge.is_some_and(|p| p.full_contact)),
-                    edge_uncertainty: edge.map_or(0.0, |p| p.eps_error),
+                        .filter(|&b| b > 0.0 || edge.is_some_and(|p| p.full_contact))),
+                    edge_uncertainty: hidden_hole.or(edge.map(|p| p.eps_error)).unwrap_or(0.0),
                     target: Some(target),
                 };
                 (request, Some(next_level))
@@ -1097,6 +1106,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             level,
             locator: is_locator,
             full_contact: false,
+            hole_inside_first_node: false,
             edge_bound: INNER_RADIUS_BOUND,
         };
         let free_nodes = s.reactions.len() - s.active_radii.len();
@@ -1152,6 +1162,18 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             {
                 current.full_contact = false;
                 current.eps_error = 0.0;
+            }
+            // A profile with a kink at the axis never closes: its full contact, unless its
+            // margin extrapolated to the axis stays beyond the model's error, hides a hole at
+            // its first node, and the model's error at the apex can hide one a little wider (the
+            // cone at 12 h: a hole of 9e-4 a under first nodes at 7.5e-4 a, whose margins fell
+            // toward the axis): two first-node radii bound it, and the next mesh refines inside.
+            if current.full_contact
+                && !kind.profile_smooth_at_axis()
+                && s.closure_margin <= depth_error
+            {
+                current.hole_inside_first_node = true;
+                current.eps_error = current.eps_error.max(2.0 * current.spacing);
             }
             closure_unresolved = (current.full_contact && s.opening_margin < depth_error)
                 .then_some((s.opening_margin, depth_error));
