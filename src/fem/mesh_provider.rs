@@ -324,8 +324,8 @@ pub fn adapted_grading(level: i32) -> f64 {
 /// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` times the
 /// ring's [`ring_width_scale`] (which makes the edge's location bound `0.3 hb / p` under a
 /// quarter of the tolerance, and on a narrow ring keeps as many elements across the ring at the
-/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of a hole `b̃ > 0` is
-/// smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring `3e-4 a` wide
+/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of a hole
+/// `b̃ > 0` is smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring `3e-4 a` wide
 /// (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its force error
 /// of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their changes did
 /// not see the edge's share.

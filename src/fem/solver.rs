@@ -1215,8 +1215,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                     ),
                 });
             }
-            if closure_unresolved.is_some() && unknowns > MAX_LADDER_UNKNOWNS {
-                return Err(closure_unresolved_error(&last_mesh, closure_unresolved));
+            if let Some(margins) = closure_unresolved.filter(|_| unknowns > MAX_LADDER_UNKNOWNS) {
+                return Err(closure_unresolved_error(&last_mesh, margins));
             }
             if floor > 0.5 * options.tolerance || unknowns > MAX_LADDER_UNKNOWNS {
                 // Finer models do not reduce the floor, and past this size the next model (about
@@ -1256,8 +1256,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         }
         previous = Some(current);
     }
-    if closure_unresolved.is_some() {
-        return Err(closure_unresolved_error(&last_mesh, closure_unresolved));
+    if let Some(margins) = closure_unresolved {
+        return Err(closure_unresolved_error(&last_mesh, margins));
     }
     Err(fem_error(format!(
         "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above the \
@@ -1268,8 +1268,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
 
 /// The ladder ended on full contact that its last model's error could open
 /// (`(opening margin, depth error)`, see [`ContactSolution::opening_margin`]).
-fn closure_unresolved_error(last_mesh: &str, margins: Option<(f64, f64)>) -> Error {
-    let (margin, depth_error) = margins.unwrap_or((0.0, 0.0));
+fn closure_unresolved_error(last_mesh: &str, (margin, depth_error): (f64, f64)) -> Error {
     Error::OutOfRange {
         method: METHOD.into(),
         reason: format!(
