@@ -38,6 +38,15 @@ pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 /// `1e-10 a`. Smaller rim sizes come from [`CornerRefinement`].
 pub const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
 
+/// Smallest element size (units of `a`) asked of gmsh around the axis point (a full contact's
+/// refinement) and, by the solver, around a hole hidden inside the first node. There gmsh's time
+/// grows like the inverse of the size (the adapted family at level 3, measured around the axis
+/// point: 0.5 s at `2.25e-6 a`, 1.7 s at `1e-6`, 3.3 s at `5e-7`, 7.2 s at `3e-7`, more than 40 s
+/// at `1e-7` and `2.25e-8`; around `1.86e-7 a` more than 40 s at `4.6e-8`). A located hole keeps
+/// [`GMSH_MIN_ELEMENT_SIZE`]: around `5.6e-6 a` gmsh made `2.25e-8` in seconds, around `2.3e-7 a`
+/// `5.7e-8` in about 30 s, and around `2.1e-7 a` not `2.25e-8` in 300 s.
+pub const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
+
 /// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
 /// have vertex coordinates good to `1e-6` of their size.
 pub const MIN_RIM_SIZE: f64 = 1e-10;
@@ -355,8 +364,12 @@ pub fn adapted_parameters(
     };
     // Never below what gmsh meshes well at the edge's radius (GMSH_MIN_ELEMENT_SIZE of the
     // coordinates' magnitude; the free edge is not singular, so no corner refinement goes
-    // further): binds only on levels 6 and 7 without a target.
-    let smallest = GMSH_MIN_ELEMENT_SIZE * free_edge.unwrap_or(1.0).max(1e-2);
+    // further): binds only on levels 6 and 7 without a target. Around the axis point itself
+    // (full contact), never below [`AXIS_MIN_ELEMENT_SIZE`].
+    let smallest = match free_edge {
+        Some(b) if b <= 0.0 => AXIS_MIN_ELEMENT_SIZE,
+        _ => GMSH_MIN_ELEMENT_SIZE * free_edge.unwrap_or(1.0).max(1e-2),
+    };
     let hb = window.max(edge_floor).clamp(smallest, 1e-2);
     let mut p = vec![
         ("a".to_string(), 1.0),

@@ -1024,10 +1024,12 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 // Concave punches: refine around the free edge located on the previous solve.
                 let edge = previous.as_ref().filter(|_| concave);
                 // A hole inside the first node off the axis: refine around the middle of that
-                // node's radius, to a quarter of it.
+                // node's radius, to a quarter of it (no finer than gmsh makes at the axis, else
+                // around the axis point itself).
                 let hidden_hole = edge
                     .filter(|p| p.hole_inside_first_node)
-                    .map(|p| 0.5 * p.spacing);
+                    .map(|p| 0.5 * p.spacing)
+                    .filter(|&b| 0.25 * b >= mesh_provider::AXIS_MIN_ELEMENT_SIZE);
                 let request = MeshRequest::Adapted {
                     contact_start: start_line,
                     level: next_level,
@@ -1192,6 +1194,24 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 ));
             }
             last_estimate = estimate;
+            // Full contact whose first node off the axis is already as close to it as gmsh's
+            // elements there go: finer models cannot bound a hole inside it any better.
+            let axis_spacing =
+                mesh_provider::AXIS_MIN_ELEMENT_SIZE / f64::from(options.degree as u8);
+            if current.full_contact && current.spacing <= 2.0 * axis_spacing {
+                return Err(Error::OutOfRange {
+                    method: METHOD.into(),
+                    reason: format!(
+                        "{last_mesh} finds full contact: a hole, if any, lies inside its first \
+                         node off the axis (r = {:.1e} a), and bounding it to the tolerance \
+                         {:.1e} needs elements at the axis below {:.0e} a, which gmsh does not \
+                         make in reasonable time; loosen --tol or use the ring BEM",
+                        current.spacing,
+                        options.tolerance,
+                        mesh_provider::AXIS_MIN_ELEMENT_SIZE
+                    ),
+                });
+            }
             let unknowns = model.stiffness.nrows();
             progress.set(format!(
                 "{unknowns} unknowns on {last_mesh} gave an estimate of {estimate:.1e}, above the \
