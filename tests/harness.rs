@@ -3,6 +3,8 @@
 
 use std::process::Command;
 
+mod common;
+
 use ringcontact::harness::stability;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
@@ -48,15 +50,6 @@ fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     );
     assert_eq!(s.method, "ring-bem");
     assert!(s.selection.unwrap().contains("cheapest"));
-    // Where the ring BEM declines (the cone's contact nearly closed), the FEM is chosen.
-    let s = auto(
-        SceneSpec::default()
-            .shape(PunchKind::Cone)
-            .depth(60.0)
-            .tolerance(1e-3),
-    );
-    assert_eq!(s.method, "fem");
-    assert!(s.error_estimate.unwrap() <= 1e-3);
     // A ring 1e-5 a wide at 1e-6: the ring BEM's range ends at 1e-4 a and the FEM's rim
     // elements would have to be below 1e-10 a; the narrow-ring asymptote (bound 4e-10) answers.
     let s = auto(
@@ -67,6 +60,20 @@ fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     );
     assert_eq!(s.method, "reference:narrow-ring");
     assert!(s.error_estimate.unwrap() <= 1e-9);
+    // Where the ring BEM declines (the cone's contact nearly closed), the FEM is chosen. Its
+    // full contact is bounded by the first node off the axis, which the committed meshes do not
+    // bring within 1e-3 a: gmsh makes the mesh that does.
+    if !common::gmsh_available("auto_picks_the_cheapest_method_that_meets_the_tolerance (cone)") {
+        return;
+    }
+    let s = auto(
+        SceneSpec::default()
+            .shape(PunchKind::Cone)
+            .depth(60.0)
+            .tolerance(1e-3),
+    );
+    assert_eq!(s.method, "fem");
+    assert!(s.error_estimate.unwrap() <= 1e-3);
 }
 
 #[test]

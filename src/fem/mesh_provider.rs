@@ -44,7 +44,7 @@ pub const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
 /// point: 0.5 s at `2.25e-6 a`, 1.7 s at `1e-6`, 3.3 s at `5e-7`, 7.2 s at `3e-7`, more than 40 s
 /// at `1e-7` and `2.25e-8`; around `1.86e-7 a` more than 40 s at `4.6e-8`). A located hole keeps
 /// [`GMSH_MIN_ELEMENT_SIZE`]: around `5.6e-6 a` gmsh made `2.25e-8` in seconds, around `2.3e-7 a`
-/// `5.7e-8` in about 30 s, and around `2.1e-7 a` not `2.25e-8` in 300 s.
+/// `5.7e-8` within a 36 s solve, and around `2.1e-7 a` not `2.25e-8` in 300 s.
 pub const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
 
 /// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
@@ -334,10 +334,11 @@ pub fn adapted_grading(level: i32) -> f64 {
 /// ring's [`ring_width_scale`] (which makes the edge's location bound `0.3 hb / p` under a
 /// quarter of the tolerance, and on a narrow ring keeps as many elements across the ring at the
 /// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of a hole
-/// `b̃ > 0` is smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring `3e-4 a` wide
-/// (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its force error
-/// of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their changes did
-/// not see the edge's share.
+/// `b̃ > 0` is smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring
+/// `3e-4 a` wide (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its
+/// force error of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their
+/// changes did not see the edge's share. Around the axis point (full contact) the edge size is
+/// never below [`AXIS_MIN_ELEMENT_SIZE`].
 pub fn adapted_parameters(
     contact_start: f64,
     level: i32,
