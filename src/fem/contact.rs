@@ -63,18 +63,36 @@ pub struct ContactSolution {
     pub active_radii: Vec<f64>,
     /// Nodal displacements.
     pub displacement: Vec<f64>,
-    /// `db/dd`: the located inner radius's change per unit depth at the converged active set
+    /// The located edge's conditioning at the converged active set ([`Conditioning`]).
+    pub conditioning: Conditioning,
+}
+
+/// How a concave solution's located edge, or its full contact, moves with the depth, from one
+/// more solve at its converged active set ([`ContactModel::concave_with_sensitivity`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Conditioning {
+    /// `db/dd`: the located inner radius's change per unit depth
     /// ([`ContactModel::edge_depth_sensitivity`]); 0 for flat punches and without a hole.
     pub edge_depth_sensitivity: f64,
-    /// Full contact of a concave punch: the relative depth decrease `Δd/d` that would release
-    /// the innermost contact node off the axis ([`ContactModel::opening_margins`]); infinite
-    /// otherwise.
+    /// Full contact: the relative depth decrease `Δd/d` that would release the innermost contact
+    /// node off the axis ([`ContactModel::opening_margins`]); infinite otherwise.
     pub opening_margin: f64,
     /// Full contact: a lower bound of the relative depth decrease at which the contact opens at
     /// the axis, extrapolated from the two innermost nodes' margins
     /// ([`ContactModel::opening_margins`]; meaningful for a profile smooth at the axis);
     /// `-inf` otherwise.
     pub closure_margin: f64,
+}
+
+impl Default for Conditioning {
+    /// Not measured: no edge movement, no margins.
+    fn default() -> Self {
+        Conditioning {
+            edge_depth_sensitivity: 0.0,
+            opening_margin: f64::INFINITY,
+            closure_margin: f64::NEG_INFINITY,
+        }
+    }
 }
 
 /// The free side's extrapolation of the inner radius ([`ContactModel::locate_inner_radius`]).
@@ -191,9 +209,7 @@ impl<'m> ContactModel<'m> {
             complementarity_residual: 0.0,
             reactions,
             displacement: u,
-            edge_depth_sensitivity: 0.0,
-            opening_margin: f64::INFINITY,
-            closure_margin: f64::NEG_INFINITY,
+            conditioning: Conditioning::default(),
         })
     }
 
@@ -504,9 +520,7 @@ impl<'m> ContactModel<'m> {
             complementarity_residual: residual,
             reactions,
             displacement: u,
-            edge_depth_sensitivity: 0.0,
-            opening_margin: f64::INFINITY,
-            closure_margin: f64::NEG_INFINITY,
+            conditioning: Conditioning::default(),
         }
     }
 
@@ -744,8 +758,8 @@ impl<'m> ContactModel<'m> {
         Ok(solution)
     }
 
-    /// Fill in `solution`'s [`Self::edge_depth_sensitivity`] and [`Self::opening_margins`] from
-    /// its [`Self::unit_depth_response`] `unit`.
+    /// Fill in `solution`'s [`Conditioning`] ([`Self::edge_depth_sensitivity`],
+    /// [`Self::opening_margins`]) from its [`Self::unit_depth_response`] `unit`.
     fn fill_conditioning(
         &self,
         solver: &ConstrainedCholesky,
@@ -755,32 +769,14 @@ impl<'m> ContactModel<'m> {
         solution: &mut ContactSolution,
         unit: &[f64],
     ) {
-        solution.edge_depth_sensitivity =
-            self.edge_depth_sensitivity(kind, depth, active, solution, unit);
-        (solution.opening_margin, solution.closure_margin) =
+        let (opening_margin, closure_margin) =
             self.opening_margins(solver, depth, active, solution, unit);
-    }
-
-    /// A solution with a located hole: the contact nodes' gaps `g_i = -d + g(r_i) - u_z,i` and
-    /// their rates `∂g_i/∂d = -1 - w_i` (`w` the [`Self::unit_depth_response`]) at its active
-    /// set; `None` without a hole.
-    fn hole_gaps_and_rates(
-        &self,
-        kind: PunchKind,
-        depth: f64,
-        solution: &ContactSolution,
-        unit: &[f64],
-    ) -> Option<(Vec<f64>, Vec<f64>)> {
-        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
-            return None;
-        }
-        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
-        let rates = self
-            .contact_nodes
-            .iter()
-            .map(|&n| -1.0 - unit[2 * n + 1])
-            .collect();
-        Some((gaps, rates))
+        solution.conditioning = Conditioning {
+            edge_depth_sensitivity: self
+                .edge_depth_sensitivity(kind, depth, active, solution, unit),
+            opening_margin,
+            closure_margin,
+        };
     }
 
     /// Full contact (every contact node off the axis active): `(μ1, μ0_low)`. `μ_i`, the
@@ -880,9 +876,15 @@ impl<'m> ContactModel<'m> {
         solution: &ContactSolution,
         unit: &[f64],
     ) -> f64 {
-        let Some((gaps, rates)) = self.hole_gaps_and_rates(kind, depth, solution, unit) else {
+        if solution.inner_radius <= 0.0 || unit.len() != solution.displacement.len() {
             return 0.0;
-        };
+        }
+        let gaps = self.gaps(&self.bound(kind, depth), &solution.displacement);
+        let rates: Vec<f64> = self
+            .contact_nodes
+            .iter()
+            .map(|&n| -1.0 - unit[2 * n + 1])
+            .collect();
         // The depth step that moves no free node's gap by more than 1e-3 of itself.
         let step = gaps
             .iter()

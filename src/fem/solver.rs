@@ -642,8 +642,8 @@ fn finish(
     start: Instant,
 ) -> FemState {
     let edge_conditioning = gamma1
-        .filter(|_| solution.edge_depth_sensitivity != 0.0)
-        .map(|depth| solution.edge_depth_sensitivity.abs() * depth.abs());
+        .filter(|_| solution.conditioning.edge_depth_sensitivity != 0.0)
+        .map(|depth| solution.conditioning.edge_depth_sensitivity.abs() * depth.abs());
     FemState {
         eps,
         gamma,
@@ -701,9 +701,9 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
         solution.iterations,
         solution.inner_radius,
         solution.inner_node_spacing,
-        solution.edge_depth_sensitivity,
-        solution.opening_margin,
-        solution.closure_margin,
+        solution.conditioning.edge_depth_sensitivity,
+        solution.conditioning.opening_margin,
+        solution.conditioning.closure_margin,
         solution.force
     );
 }
@@ -1148,7 +1148,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             // errs by a fraction of that, as a depth error would: an edge component that refining
             // at the edge does not reduce ([`EDGE_FIELD_FRACTION`]; near a closing hole κ reaches
             // 10-100).
-            let conditioning = s.edge_depth_sensitivity.abs() * x.abs();
+            let conditioning = s.conditioning.edge_depth_sensitivity.abs() * x.abs();
             let edge_from_field = EDGE_FIELD_FRACTION * conditioning * (force_estimate + floor);
             current.eps_error = current.eps_error.max(edge_from_field);
             // Full contact, its margins against the model's error taken as a relative depth
@@ -1160,7 +1160,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             let depth_error = force_estimate + floor;
             if current.full_contact
                 && kind.profile_smooth_at_axis()
-                && s.closure_margin > depth_error
+                && s.conditioning.closure_margin > depth_error
             {
                 current.full_contact = false;
                 current.eps_error = 0.0;
@@ -1172,13 +1172,14 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             // toward the axis): two first-node radii bound it, and the next mesh refines inside.
             if current.full_contact
                 && !kind.profile_smooth_at_axis()
-                && s.closure_margin <= depth_error
+                && s.conditioning.closure_margin <= depth_error
             {
                 current.hole_inside_first_node = true;
                 current.eps_error = current.eps_error.max(2.0 * current.spacing);
             }
-            closure_unresolved = (current.full_contact && s.opening_margin < depth_error)
-                .then_some((s.opening_margin, depth_error));
+            closure_unresolved = (current.full_contact
+                && s.conditioning.opening_margin < depth_error)
+                .then_some((s.conditioning.opening_margin, depth_error));
             let estimate = force_estimate.max(current.eps_error) + floor;
             if estimate <= options.tolerance && closure_unresolved.is_none() {
                 rim_resolves_the_ring(&model, kind, &s)?;
@@ -1287,7 +1288,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
 }
 
 /// The ladder ended on full contact that its last model's error could open
-/// (`(opening margin, depth error)`, see [`ContactSolution::opening_margin`]).
+/// (`(opening margin, depth error)`, see [`super::contact::Conditioning::opening_margin`]).
 fn closure_unresolved_error(last_mesh: &str, (margin, depth_error): (f64, f64)) -> Error {
     Error::OutOfRange {
         method: METHOD.into(),
