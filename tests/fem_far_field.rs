@@ -79,3 +79,53 @@ fn the_far_field_removes_the_one_over_r_bias_on_the_default_domain() {
     println!("cone d = 2h, L2: fixed {e_fixed:.3e}, Boussinesq {e_far:.3e}");
     assert!(e_far.abs() < e_fixed.abs() - 5e-6);
 }
+
+#[test]
+fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
+    // The solver condenses every cubic cell's bubble node and recovers its displacement after
+    // the solve (after the far-field arc is restored). The bubble lies inside its cell, with no
+    // load or constraint: its rows of the full, uncondensed `K u` must vanish. Checked against
+    // `assemble_stiffness` (no condensation) with the field the solver returns.
+    use ringcontact::fem::assembly::assemble_stiffness;
+    use ringcontact::fem::element::Lame;
+    use ringcontact::fem::solver::stiffness_rule;
+    for far_field in [FarField::Boussinesq, FarField::Fixed] {
+        let options = FemOptions {
+            degree: Degree::Cubic,
+            tolerance: 0.9,
+            mesh: Some(solver::mesh_directory().join("small-domain-R5.msh")),
+            poisson_ratio: 0.3,
+            far_field,
+        };
+        let state = solver::solve(PunchKind::Flat, 0.0, FemLoad::Flat, &options).unwrap();
+        let mesh = &state.field.mesh;
+        let u = &state.field.displacement;
+        assert_eq!(u.len(), 2 * mesh.nodes.len());
+        // The solver's material: E* = 1 whatever ν is.
+        let nu: f64 = 0.3;
+        let material = Lame::from_young_poisson(1.0 - nu * nu, nu);
+        let k = assemble_stiffness(mesh, &material, &stiffness_rule(Degree::Cubic)).unwrap();
+        let mut ku = vec![0.0; u.len()];
+        let mut scale = vec![0.0_f64; u.len()];
+        for (col, column) in k.col_iter().enumerate() {
+            for (&row, &value) in column.row_indices().iter().zip(column.values()) {
+                ku[row] += value * u[col];
+                scale[row] = scale[row].max((value * u[col]).abs());
+            }
+        }
+        let mut bubbles = 0;
+        for c in 0..mesh.cell_count() {
+            let b = mesh.cell(c)[9];
+            for dof in [2 * b, 2 * b + 1] {
+                bubbles += 1;
+                assert!(
+                    ku[dof].abs() <= 1e-10 * scale[dof],
+                    "{far_field:?}: bubble dof {dof}: (K u) = {:e} against terms of {:e}",
+                    ku[dof],
+                    scale[dof]
+                );
+            }
+        }
+        assert!(bubbles > 100, "{bubbles} bubble dofs");
+    }
+}

@@ -20,7 +20,7 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use super::assembly::StiffnessPattern;
+use super::assembly::{BubbleRecovery, StiffnessPattern};
 use super::contact::{ContactModel, ContactSolution};
 use super::element::Lame;
 use super::far_field::{FarField, FarFieldCondition};
@@ -274,7 +274,10 @@ struct PreparedModel {
     domain_radius: f64,
     /// Largest far-arc edge over `R`: the grading of the far field.
     arc_grading: f64,
+    /// The stiffness, cubic cells' bubbles condensed ([`StiffnessPattern::with_condensed_bubbles`]).
     stiffness: nalgebra_sparse::CscMatrix<f64>,
+    /// What recovers the condensed bubbles' displacements (cubic models).
+    bubbles: Option<BubbleRecovery>,
     /// The symbolic Cholesky analysis of `stiffness`'s pattern (done during the assembly).
     symbolic: Analysis,
     /// The far-field condition, when the arc is slaved to Boussinesq's field.
@@ -362,7 +365,7 @@ fn assemble_model(
     };
     // The pattern, and beside it the node order (from the mesh alone).
     let build_pattern = || -> Result<StiffnessPattern> {
-        let mut pattern = StiffnessPattern::new(&mesh)?;
+        let mut pattern = StiffnessPattern::with_condensed_bubbles(&mesh)?;
         if let Some(condition) = &far_field {
             pattern.extend_for_far_field(condition);
         }
@@ -381,9 +384,10 @@ fn assemble_model(
         let symbolic = Analysis::of_ordering(&ordering, &pattern.col_offsets, &pattern.row_indices);
         (symbolic, ordering_seconds + start.elapsed().as_secs_f64())
     };
-    let ((symbolic, symbolic_seconds), values) =
-        rayon::join(analysis, || pattern.values(&mesh, &material, &rule));
-    let (symbolic, mut values) = (symbolic?, values?);
+    let ((symbolic, symbolic_seconds), values) = rayon::join(analysis, || {
+        pattern.condensed_values(&mesh, &material, &rule)
+    });
+    let (symbolic, (mut values, bubbles)) = (symbolic?, values?);
     if let Some(condition) = &far_field {
         condition.fill_extension(&pattern.col_offsets, &pattern.row_indices, &mut values);
     }
@@ -399,6 +403,7 @@ fn assemble_model(
         provided: provided.clone(),
         spec,
         stiffness,
+        bubbles,
         symbolic,
         timings: FemTimings {
             read,
@@ -553,6 +558,20 @@ fn linear_edge_locator(
 }
 
 impl PreparedModel {
+    /// The displacement `(u_r, u_z)` of every node from the solution of the model's system: the
+    /// far-field arc restored ([`FarFieldCondition::expand`]), then the condensed bubbles
+    /// ([`BubbleRecovery::recover`]).
+    fn nodal_field(&self, solution: Vec<f64>) -> Vec<f64> {
+        let mut u = match &self.far_field {
+            Some(condition) => condition.expand(&solution),
+            None => solution,
+        };
+        if let Some(bubbles) = &self.bubbles {
+            bubbles.recover(&self.mesh, &mut u);
+        }
+        u
+    }
+
     /// Relative force bias of truncating the half-space at this model's `R` with its far-field
     /// treatment ([`FarField::truncation_bias`]).
     fn truncation_bias(&self) -> f64 {
@@ -660,10 +679,7 @@ fn finish(
         active_radii: solution.active_radii,
         field: FemField {
             mesh: model.mesh.clone(),
-            displacement: match &model.far_field {
-                Some(condition) => condition.expand(&solution.displacement),
-                None => solution.displacement,
-            },
+            displacement: model.nodal_field(solution.displacement),
         },
         domain_radius: model.domain_radius,
         truncation_bias: model.truncation_bias(),
