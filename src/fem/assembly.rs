@@ -12,7 +12,7 @@
 use nalgebra_sparse::CscMatrix;
 use rayon::prelude::*;
 
-use super::element::{stiffness, Lame};
+use super::element::{ElementKernel, Lame};
 use super::far_field::FarFieldCondition;
 use super::mesh::{tags, Degree, Mesh};
 use super::quadrature::TriangleRule;
@@ -383,6 +383,7 @@ impl StiffnessPattern {
             rayon::current_num_threads().max(1),
             &mut values,
         );
+        let kernel = ElementKernel::new(mesh.degree, rule);
         let block = (ASSEMBLY_BLOCK_BYTES / (8 * size * size)).min(mesh.cell_count().max(1));
         let mut locals = vec![0.0; block * size * size];
         for block_start in (0..mesh.cell_count()).step_by(block) {
@@ -394,7 +395,7 @@ impl StiffnessPattern {
                     mesh.nodes[cell[1]],
                     mesh.nodes[cell[2]],
                 ];
-                stiffness(mesh.degree, vertices, material, rule, local);
+                kernel.stiffness(vertices, material, local);
             };
             let locals_in_block = &mut locals[..(block_end - block_start) * size * size];
             match recovery.as_deref_mut() {
@@ -473,6 +474,7 @@ pub fn assemble_stiffness(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fem::element::stiffness;
     use crate::fem::mesh::{structured_rectangle, Degree};
     use crate::fem::solver::stiffness_rule;
 

@@ -151,15 +151,9 @@ impl AffineTriangle {
     }
 }
 
-/// Element stiffness `K_e` (row-major, `2k x 2k` for `k` nodes) of an axisymmetric triangle.
-///
-/// For nodes `a`, `b` with shape gradients `(g_r, g_z)`, hoop term `h = N/r` and `t = g_r + h`
-/// (the trace of the strain of a unit radial displacement), the 2 x 2 block of `Bᵀ D B` is
-/// `rr = λ t_a t_b + 2μ (g_r,a g_r,b + h_a h_b) + μ g_z,a g_z,b`,
-/// `rz = λ t_a g_z,b + μ g_z,a g_r,b`, `zr = λ g_z,a t_b + μ g_r,a g_z,b`,
-/// `zz = (λ + 2μ) g_z,a g_z,b + μ g_r,a g_r,b`: the product with the zeros of the strain vectors
-/// `(ε_rr, ε_zz, ε_θθ, γ_rz)` left out (a sixth of the operations of the full product).
-/// Blocks with `a <= b` are summed over the rule, the rest mirrored.
+/// Element stiffness `K_e` (row-major, `2k x 2k` for `k` nodes) of an axisymmetric triangle
+/// ([`ElementKernel::stiffness`]; builds the kernel's tables at every call, so assemblies make
+/// one [`ElementKernel`] instead).
 pub fn stiffness(
     degree: Degree,
     vertices: [[f64; 2]; 3],
@@ -167,39 +161,139 @@ pub fn stiffness(
     rule: &TriangleRule,
     out: &mut [f64],
 ) {
-    let k = degree.nodes_per_cell();
-    let size = 2 * k;
-    out[..size * size].iter_mut().for_each(|v| *v = 0.0);
-    let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
-    let (lambda, mu) = (material.lambda, material.mu);
-    let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
-    let (mut gr, mut gz, mut h, mut t) = ([0.0; 10], [0.0; 10], [0.0; 10], [0.0; 10]);
-    for (p, &w) in rule.points.iter().zip(&rule.weights) {
-        shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
-        let r = tri.map(p[0], p[1])[0];
-        for a in 0..k {
-            let g = tri.gradient(dxi[a], deta[a]);
-            gr[a] = g[0];
-            gz[a] = g[1];
-            h[a] = n[a] / r;
-            t[a] = g[0] + h[a];
-        }
-        let scale = w * tri.det * 2.0 * std::f64::consts::PI * r;
-        for a in 0..k {
-            let (sgr, sgz, sh, st) = (scale * gr[a], scale * gz[a], scale * h[a], scale * t[a]);
-            let (row_r, row_z) = out[2 * a * size..(2 * a + 2) * size].split_at_mut(size);
-            for b in a..k {
-                row_r[2 * b] +=
-                    lambda * st * t[b] + 2.0 * mu * (sgr * gr[b] + sh * h[b]) + mu * sgz * gz[b];
-                row_r[2 * b + 1] += lambda * st * gz[b] + mu * sgz * gr[b];
-                row_z[2 * b] += lambda * sgz * t[b] + mu * sgr * gz[b];
-                row_z[2 * b + 1] += (lambda + 2.0 * mu) * sgz * gz[b] + mu * sgr * gr[b];
+    ElementKernel::new(degree, rule).stiffness(vertices, material, out);
+}
+
+/// The element stiffness of one degree and quadrature rule, with the rule's sums over the
+/// reference triangle done once.
+///
+/// For nodes `a`, `b` with physical gradients `(g_r, g_z)`, hoop term `h = N/r` and `t = g_r + h`,
+/// the 2 x 2 block of `K_e = Σ_q w_q |J| 2π r_q Bᵀ D B` is
+/// `rr = λ t_a t_b + 2μ (g_r,a g_r,b + h_a h_b) + μ g_z,a g_z,b`,
+/// `rz = λ t_a g_z,b + μ g_z,a g_r,b`, `zr = λ g_z,a t_b + μ g_r,a g_z,b`,
+/// `zz = (λ + 2μ) g_z,a g_z,b + μ g_r,a g_r,b`, each weighted by `r`. On an affine triangle
+/// `g = J⁻ᵀ ∇_ξ N` and `r_q = Σ_v r_v L_v(q)` (barycentric `L`), so the rule's sums regroup into
+/// reference tables: `Σ_q w_q r_q ∂_k N_a ∂_l N_b = Σ_v r_v A^v_{ab,kl}`,
+/// `Σ_q w_q r_q h_a ∂_l N_b = Σ_q w_q N_a ∂_l N_b` (the `r` cancels), and only
+/// `Σ_q w_q N_a N_b / r_q` is summed cell by cell. The same finite sums as the rule applied
+/// point by point (equal to rounding), at a quarter to a third of the operations.
+#[derive(Clone, Debug)]
+pub struct ElementKernel {
+    nodes: usize,
+    /// The node pairs `(a, b)`, `a <= b`.
+    pairs: Vec<(usize, usize)>,
+    /// `A^v_{ab,kl} = Σ_q w_q L_v(q) ∂_k N_a ∂_l N_b` at `[v × pairs + pair]`, `kl` in the order
+    /// `ξξ, ξη, ηξ, ηη`.
+    gradient_products: Vec<[f64; 4]>,
+    /// `[Σ w N_a ∂_ξ N_b, Σ w N_a ∂_η N_b, Σ w N_b ∂_ξ N_a, Σ w N_b ∂_η N_a]` per pair.
+    value_gradient_products: Vec<[f64; 4]>,
+    /// `w_q N_a(q) N_b(q)` at `[q × pairs + pair]`.
+    value_products: Vec<f64>,
+    /// Barycentric coordinates of each point of the rule.
+    barycentric: Vec<[f64; 3]>,
+}
+
+impl ElementKernel {
+    /// Tabulate the rule's sums for `degree`'s shape functions ([`shape`]).
+    pub fn new(degree: Degree, rule: &TriangleRule) -> Self {
+        let k = degree.nodes_per_cell();
+        let pairs: Vec<(usize, usize)> = (0..k).flat_map(|a| (a..k).map(move |b| (a, b))).collect();
+        let np = pairs.len();
+        let mut gradient_products = vec![[0.0; 4]; 3 * np];
+        let mut value_gradient_products = vec![[0.0; 4]; np];
+        let mut value_products = vec![0.0; rule.points.len() * np];
+        let mut barycentric = Vec::with_capacity(rule.points.len());
+        let (mut n, mut dxi, mut deta) = ([0.0; 10], [0.0; 10], [0.0; 10]);
+        for (q, (p, &w)) in rule.points.iter().zip(&rule.weights).enumerate() {
+            shape(degree, p[0], p[1], &mut n, &mut dxi, &mut deta);
+            let l = [1.0 - p[0] - p[1], p[0], p[1]];
+            barycentric.push(l);
+            for (i, &(a, b)) in pairs.iter().enumerate() {
+                let grad = |c: usize| [dxi[c], deta[c]];
+                let (ga, gb) = (grad(a), grad(b));
+                for (v, &lv) in l.iter().enumerate() {
+                    let entry = &mut gradient_products[v * np + i];
+                    entry[0] += w * lv * ga[0] * gb[0];
+                    entry[1] += w * lv * ga[0] * gb[1];
+                    entry[2] += w * lv * ga[1] * gb[0];
+                    entry[3] += w * lv * ga[1] * gb[1];
+                }
+                let entry = &mut value_gradient_products[i];
+                entry[0] += w * n[a] * gb[0];
+                entry[1] += w * n[a] * gb[1];
+                entry[2] += w * n[b] * ga[0];
+                entry[3] += w * n[b] * ga[1];
+                value_products[q * np + i] = w * n[a] * n[b];
             }
         }
+        Self {
+            nodes: k,
+            pairs,
+            gradient_products,
+            value_gradient_products,
+            value_products,
+            barycentric,
+        }
     }
-    for i in 0..size {
-        for j in 0..i {
-            out[i * size + j] = out[j * size + i];
+
+    /// `K_e` (row-major, `2k x 2k`) of the triangle with `vertices` `(r, z)`.
+    pub fn stiffness(&self, vertices: [[f64; 2]; 3], material: &Lame, out: &mut [f64]) {
+        let size = 2 * self.nodes;
+        let tri = AffineTriangle::new(vertices[0], vertices[1], vertices[2]);
+        let (lambda, mu) = (material.lambda, material.mu);
+        // ∂/∂r = c_r · (∂_ξ, ∂_η), ∂/∂z = c_z · (∂_ξ, ∂_η): the columns of J⁻ᵀ.
+        let c_r = [tri.inverse[0][0], tri.inverse[1][0]];
+        let c_z = [tri.inverse[0][1], tri.inverse[1][1]];
+        let radii = [vertices[0][0], vertices[1][0], vertices[2][0]];
+        let scale = tri.det * 2.0 * std::f64::consts::PI;
+        let np = self.pairs.len();
+        let inverse_radii: Vec<f64> = self
+            .barycentric
+            .iter()
+            .map(|l| 1.0 / (l[0] * radii[0] + l[1] * radii[1] + l[2] * radii[2]))
+            .collect();
+        for (i, &(a, b)) in self.pairs.iter().enumerate() {
+            let mut s = [0.0; 4];
+            for (v, &rv) in radii.iter().enumerate() {
+                let table = &self.gradient_products[v * np + i];
+                for (sk, tk) in s.iter_mut().zip(table) {
+                    *sk += rv * tk;
+                }
+            }
+            // u_k = Σ_l S_kl c_r,l and v_k = Σ_l S_kl c_z,l; then contract k.
+            let u = [s[0] * c_r[0] + s[1] * c_r[1], s[2] * c_r[0] + s[3] * c_r[1]];
+            let v = [s[0] * c_z[0] + s[1] * c_z[1], s[2] * c_z[0] + s[3] * c_z[1]];
+            let grgr = c_r[0] * u[0] + c_r[1] * u[1];
+            let gzgr = c_z[0] * u[0] + c_z[1] * u[1];
+            let grgz = c_r[0] * v[0] + c_r[1] * v[1];
+            let gzgz = c_z[0] * v[0] + c_z[1] * v[1];
+            let vg = &self.value_gradient_products[i];
+            let hgr = c_r[0] * vg[0] + c_r[1] * vg[1];
+            let hgz = c_z[0] * vg[0] + c_z[1] * vg[1];
+            let grh = c_r[0] * vg[2] + c_r[1] * vg[3];
+            let gzh = c_z[0] * vg[2] + c_z[1] * vg[3];
+            let hh: f64 = inverse_radii
+                .iter()
+                .enumerate()
+                .map(|(q, inv_r)| self.value_products[q * np + i] * inv_r)
+                .sum();
+            let rr = lambda * (grgr + grh + hgr + hh) + 2.0 * mu * (grgr + hh) + mu * gzgz;
+            let rz = lambda * (grgz + hgz) + mu * gzgr;
+            let zr = lambda * (gzgr + gzh) + mu * grgz;
+            let zz = (lambda + 2.0 * mu) * gzgz + mu * grgr;
+            let (ra, za, rb, zb) = (2 * a, 2 * a + 1, 2 * b, 2 * b + 1);
+            // The block (a, b) and its mirror (b, a); on the diagonal (a = b) `zr` equals `rz`
+            // but for rounding, and the upper entry is mirrored so that `K_e` is exactly
+            // symmetric.
+            let zr = if a == b { rz } else { zr };
+            out[ra * size + rb] = scale * rr;
+            out[ra * size + zb] = scale * rz;
+            out[za * size + rb] = scale * zr;
+            out[za * size + zb] = scale * zz;
+            out[rb * size + ra] = scale * rr;
+            out[zb * size + ra] = scale * rz;
+            out[rb * size + za] = scale * zr;
+            out[zb * size + za] = scale * zz;
         }
     }
 }
