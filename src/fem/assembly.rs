@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 use super::element::{ElementKernel, Lame};
 use super::far_field::FarFieldCondition;
-use super::mesh::{tags, Degree, Mesh};
+use super::mesh::{Degree, Mesh};
 use super::quadrature::TriangleRule;
 use super::vertex_ordering::bubble_node;
 use crate::error::{Error, Result};
@@ -135,22 +135,24 @@ fn condensed_bubble(cell: &[usize], degree: Degree, condensed_bubbles: bool) -> 
     }
 }
 
-/// The columns of nodes `first_node..end_node` and their stored values: one thread's share.
-struct ColumnRange<'v> {
+/// The columns of nodes `first_node..end_node` and their stored entries (values or row
+/// indices): one thread's share.
+struct ColumnRange<'v, T> {
     first_node: usize,
     end_node: usize,
-    /// Offset in the whole value array of `values[0]`.
+    /// Offset in the whole entry array of `values[0]`.
     value_start: usize,
-    values: &'v mut [f64],
+    values: &'v mut [T],
 }
 
-/// Split the value array into `parts` ranges of whole nodes with about equal numbers of entries.
-fn column_ranges<'v>(
+/// Split the entry array (of the node columns, `col_offsets[2 × nodes]` entries) into `parts`
+/// ranges of whole nodes with about equal numbers of entries.
+fn column_ranges<'v, T>(
     col_offsets: &[usize],
     nodes: usize,
     parts: usize,
-    mut values: &'v mut [f64],
-) -> Vec<ColumnRange<'v>> {
+    mut values: &'v mut [T],
+) -> Vec<ColumnRange<'v, T>> {
     let nnz = values.len();
     let mut ranges = Vec::with_capacity(parts);
     let mut first_node = 0;
@@ -256,7 +258,7 @@ impl StiffnessPattern {
     /// The pattern of `mesh` (two dofs per node, `(u_r, u_z)`): dof `2n + c` couples to both
     /// dofs of every node that shares a cell with node `n`.
     pub fn new(mesh: &Mesh) -> Result<Self> {
-        Self::build(mesh, false)
+        Self::build(mesh, false, None)
     }
 
     /// The pattern of `mesh` with the bubble node of every cubic cell condensed out of the
@@ -267,47 +269,91 @@ impl StiffnessPattern {
     /// then no longer meets a third of the cubic mesh's nodes as small supernodes coupled to
     /// their cells (measured at 61 k cubic unknowns: factorisation 30 against 23-27 ms).
     pub fn with_condensed_bubbles(mesh: &Mesh) -> Result<Self> {
-        Self::build(mesh, true)
+        Self::build(mesh, true, None)
     }
 
-    fn build(mesh: &Mesh, condensed: bool) -> Result<Self> {
+    /// The pattern of a model: bubbles condensed ([`Self::with_condensed_bubbles`]) and, with
+    /// a far-field condition, the amplitude's row and column laid out directly (the same pattern
+    /// as [`Self::extend_for_far_field`] gives, without moving every entry to make room).
+    pub fn of_model(mesh: &Mesh, far_field: Option<&FarFieldCondition>) -> Result<Self> {
+        Self::build(mesh, true, far_field)
+    }
+
+    /// Columns node by node: each dof of node `n` holds both dofs of every neighbour, then the
+    /// amplitude row `2 × nodes` when `n` couples to the far arc; the amplitude's own column (the
+    /// coupled dofs and its diagonal) last. Written in parallel over ranges of nodes.
+    fn build(mesh: &Mesh, condensed: bool, far_field: Option<&FarFieldCondition>) -> Result<Self> {
         let condensed = condensed && mesh.degree == Degree::Cubic;
         let nodes = node_pattern(mesh, condensed)?;
         let count = mesh.nodes.len();
-        let dofs = 2 * count;
-        let mut col_offsets = Vec::with_capacity(dofs + 1);
+        let amplitude = 2 * count;
+        // Nodes off the arc that share a cell with an arc node couple to the amplitude.
+        let coupled = match far_field {
+            None => Vec::new(),
+            Some(condition) => {
+                let mut on_arc = vec![false; count];
+                for &(dof, _) in &condition.arc {
+                    on_arc[dof / 2] = true;
+                }
+                (0..count)
+                    .map(|n| !on_arc[n] && nodes.neighbours(n).iter().any(|&m| on_arc[m]))
+                    .collect()
+            }
+        };
+        let is_coupled = |n: usize| coupled.get(n).copied().unwrap_or(false);
+        let mut col_offsets = Vec::with_capacity(amplitude + 2);
         col_offsets.push(0);
         for node in 0..count {
+            let len = 2 * nodes.neighbours(node).len() + usize::from(is_coupled(node));
             for _ in 0..2 {
                 let last = *col_offsets.last().unwrap_or(&0);
-                col_offsets.push(last + 2 * nodes.neighbours(node).len());
+                col_offsets.push(last + len);
             }
         }
-        let nnz = *col_offsets.last().unwrap_or(&0);
-        // Room for the far-field extension ([`Self::extend_for_far_field`]): at most the two
-        // dofs of each neighbour of a far-arc node, twice (row and column), and the amplitude's
-        // diagonal. Capacity never written costs no memory; growing the array later would copy
-        // it into fresh pages (a quarter of the assembly time at 9e4 unknowns).
-        let far_field_room = 4 * mesh
-            .boundary_nodes(tags::FAR)
-            .iter()
-            .map(|&n| nodes.neighbours(n).len())
-            .sum::<usize>()
-            + 1;
-        let mut row_indices = Vec::with_capacity(nnz + far_field_room);
-        for node in 0..count {
-            for _ in 0..2 {
-                for &m in nodes.neighbours(node) {
-                    row_indices.push(2 * m);
-                    row_indices.push(2 * m + 1);
+        let node_entries = *col_offsets.last().unwrap_or(&0);
+        let coupled_count = coupled.iter().filter(|&&c| c).count();
+        let nnz = node_entries + far_field.map_or(0, |_| 2 * coupled_count + 1);
+        let mut row_indices = vec![0usize; nnz];
+        let (node_rows, amplitude_rows) = row_indices.split_at_mut(node_entries);
+        let ranges = column_ranges(
+            &col_offsets,
+            count,
+            rayon::current_num_threads().max(1),
+            node_rows,
+        );
+        ranges.into_par_iter().for_each(|range| {
+            let mut at = 0;
+            for node in range.first_node..range.end_node {
+                for _ in 0..2 {
+                    for &m in nodes.neighbours(node) {
+                        range.values[at] = 2 * m;
+                        range.values[at + 1] = 2 * m + 1;
+                        at += 2;
+                    }
+                    if is_coupled(node) {
+                        range.values[at] = amplitude;
+                        at += 1;
+                    }
                 }
             }
+        });
+        if far_field.is_some() {
+            let coupled_dofs = (0..count)
+                .filter(|&n| coupled[n])
+                .flat_map(|n| [2 * n, 2 * n + 1]);
+            for (out, row) in amplitude_rows
+                .iter_mut()
+                .zip(coupled_dofs.chain([amplitude]))
+            {
+                *out = row;
+            }
+            col_offsets.push(nnz);
         }
         Ok(Self {
             col_offsets,
             row_indices,
             nodes,
-            extended: false,
+            extended: far_field.is_some(),
             condensed,
         })
     }
@@ -687,6 +733,30 @@ mod tests {
                 );
             }
             assert_eq!(next, nodes, "{parts} parts");
+        }
+    }
+
+    #[test]
+    fn the_model_pattern_is_the_pattern_extended_in_place() {
+        // `of_model` lays out the amplitude's row and column directly; `extend_for_far_field`
+        // (checked against the extended matrix by definition below) moves the entries of the
+        // plain pattern to make room. Both layouts and their values must agree.
+        let material = Lame::from_young_poisson(1.0, 0.3);
+        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+            let mesh = structured_rectangle(2.0, 1.0, 4, 3, 1, 2, 3).with_degree(degree);
+            let rule = stiffness_rule(degree);
+            let condition = FarFieldCondition::new(&mesh, &material, 2.0);
+            let direct = StiffnessPattern::of_model(&mesh, Some(&condition)).unwrap();
+            let mut moved = StiffnessPattern::with_condensed_bubbles(&mesh).unwrap();
+            moved.extend_for_far_field(&condition);
+            assert_eq!(direct.col_offsets, moved.col_offsets, "{degree:?}");
+            assert_eq!(direct.row_indices, moved.row_indices, "{degree:?}");
+            let (a, _) = direct.condensed_values(&mesh, &material, &rule).unwrap();
+            let (b, _) = moved.condensed_values(&mesh, &material, &rule).unwrap();
+            assert_eq!(a, b, "{degree:?}");
+            let plain = StiffnessPattern::of_model(&mesh, None).unwrap();
+            let unextended = StiffnessPattern::with_condensed_bubbles(&mesh).unwrap();
+            assert_eq!(plain.row_indices, unextended.row_indices, "{degree:?}");
         }
     }
 

@@ -157,6 +157,9 @@ pub struct ConstrainedCholesky<'a> {
     pub factorisations: usize,
     /// Wall time spent in numeric factorisations (seconds).
     pub factorisation_seconds: f64,
+    /// Whether [`Self::solve`] takes its step of iterative refinement
+    /// ([`Self::refine_solutions`]).
+    refine: bool,
 }
 
 fn solver_error(message: String) -> Error {
@@ -220,7 +223,15 @@ impl<'a> ConstrainedCholesky<'a> {
             last: None,
             factorisations: 0,
             factorisation_seconds: 0.0,
+            refine: true,
         })
+    }
+
+    /// Whether [`Self::solve`] refines its solution (one step of iterative refinement, on by
+    /// default): worth its second triangular solve only where the answer is asked to within a
+    /// few orders of magnitude of rounding (see [`Self::solve`]).
+    pub fn refine_solutions(&mut self, refine: bool) {
+        self.refine = refine;
     }
 
     /// Solve `K u = f` with `u_i = prescribed[i]` wherever `constrained[i]`.
@@ -279,7 +290,7 @@ impl<'a> ConstrainedCholesky<'a> {
             // 4e-9 in the force of 10^6-unknown models (measured against the ring BEM).
             let b = rhs.clone();
             llt.solve_in_place(MatMut::from_column_major_slice_mut(&mut rhs, n, 1));
-            if !refine {
+            if !(refine && self.refine) {
                 return finite(rhs);
             }
             // r = b - K_C x, K_C being K with the constrained rows and columns reduced to
