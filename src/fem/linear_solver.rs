@@ -86,21 +86,33 @@ impl Analysis {
         col_offsets: &[usize],
         row_indices: &[usize],
     ) -> Result<Self> {
+        Self::of_ordering_beside(ordering, col_offsets, row_indices, || ()).0
+    }
+
+    /// [`Self::of_ordering`] with `beside` run on the two cores beside the analysis (for a
+    /// split, beside the second part's: [`SplitAnalysis::new_beside`]).
+    pub fn of_ordering_beside<R: Send>(
+        ordering: &MeshOrdering,
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        beside: impl FnOnce() -> R + Send,
+    ) -> (Result<Self>, R) {
         let order = &ordering.order;
         let dofs = col_offsets.len().saturating_sub(1);
-        if dofs >= split_min_dofs() {
-            if let Some(split) = &ordering.split {
-                let separator = 2 * split.count(Side::Separator) + dofs % 2;
-                if separator <= SPLIT_MAX_SEPARATOR_DOFS {
-                    if let Some(analysis) =
-                        SplitAnalysis::new(col_offsets, row_indices, order, split)?
-                    {
-                        return Ok(Analysis::Split(Arc::new(analysis)));
-                    }
-                }
-            }
+        let whole = || SymbolicFactor::with_node_order(col_offsets, row_indices, order);
+        let split = ordering.split.as_ref().filter(|split| {
+            dofs >= split_min_dofs()
+                && 2 * split.count(Side::Separator) + dofs % 2 <= SPLIT_MAX_SEPARATOR_DOFS
+        });
+        let Some(split) = split else {
+            let (analysis, result) = rayon::join(whole, beside);
+            return (analysis.map(Analysis::Whole), result);
+        };
+        match SplitAnalysis::new_beside(col_offsets, row_indices, order, split, beside) {
+            (Ok(Some(analysis)), result) => (Ok(Analysis::Split(Arc::new(analysis))), result),
+            (Ok(None), result) => (whole().map(Analysis::Whole), result),
+            (Err(e), result) => (Err(e), result),
         }
-        SymbolicFactor::with_node_order(col_offsets, row_indices, order).map(Analysis::Whole)
     }
 
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
