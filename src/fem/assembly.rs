@@ -248,7 +248,7 @@ pub struct StiffnessPattern {
     /// Row of each entry.
     pub row_indices: Vec<usize>,
     nodes: NodePattern,
-    /// Whether the far-field amplitude's row and column were added ([`Self::extend_for_far_field`]).
+    /// Whether the far-field amplitude's row and column were laid out ([`Self::of_model`]).
     extended: bool,
     /// Whether cubic cells' bubble nodes are condensed ([`Self::with_condensed_bubbles`]).
     condensed: bool,
@@ -273,8 +273,10 @@ impl StiffnessPattern {
     }
 
     /// The pattern of a model: bubbles condensed ([`Self::with_condensed_bubbles`]) and, with
-    /// a far-field condition, the amplitude's row and column laid out directly (the same pattern
-    /// as [`Self::extend_for_far_field`] gives, without moving every entry to make room).
+    /// a far-field condition, the amplitude's row and column laid out with the rest (known before
+    /// `K`'s values, so the symbolic analysis of `K̃` runs while `K` is assembled; the values then
+    /// go straight into the extended layout and [`FarFieldCondition::fill_extension`] adds the
+    /// new entries: no copy of `K`).
     pub fn of_model(mesh: &Mesh, far_field: Option<&FarFieldCondition>) -> Result<Self> {
         Self::build(mesh, true, far_field)
     }
@@ -356,16 +358,6 @@ impl StiffnessPattern {
             extended: far_field.is_some(),
             condensed,
         })
-    }
-
-    /// Add the far-field amplitude's row and column in place
-    /// ([`FarFieldCondition::extend_pattern`]): [`Self::values`] then gives `K` in the extended
-    /// layout, its new entries zero until [`FarFieldCondition::fill_extension`] fills them.
-    pub fn extend_for_far_field(&mut self, condition: &FarFieldCondition) {
-        if !self.extended {
-            condition.extend_pattern(&mut self.col_offsets, &mut self.row_indices);
-            self.extended = true;
-        }
     }
 
     /// Number of rows (and columns).
@@ -737,31 +729,7 @@ mod tests {
     }
 
     #[test]
-    fn the_model_pattern_is_the_pattern_extended_in_place() {
-        // `of_model` lays out the amplitude's row and column directly; `extend_for_far_field`
-        // (checked against the extended matrix by definition below) moves the entries of the
-        // plain pattern to make room. Both layouts and their values must agree.
-        let material = Lame::from_young_poisson(1.0, 0.3);
-        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
-            let mesh = structured_rectangle(2.0, 1.0, 4, 3, 1, 2, 3).with_degree(degree);
-            let rule = stiffness_rule(degree);
-            let condition = FarFieldCondition::new(&mesh, &material, 2.0);
-            let direct = StiffnessPattern::of_model(&mesh, Some(&condition)).unwrap();
-            let mut moved = StiffnessPattern::with_condensed_bubbles(&mesh).unwrap();
-            moved.extend_for_far_field(&condition);
-            assert_eq!(direct.col_offsets, moved.col_offsets, "{degree:?}");
-            assert_eq!(direct.row_indices, moved.row_indices, "{degree:?}");
-            let (a, _) = direct.condensed_values(&mesh, &material, &rule).unwrap();
-            let (b, _) = moved.condensed_values(&mesh, &material, &rule).unwrap();
-            assert_eq!(a, b, "{degree:?}");
-            let plain = StiffnessPattern::of_model(&mesh, None).unwrap();
-            let unextended = StiffnessPattern::with_condensed_bubbles(&mesh).unwrap();
-            assert_eq!(plain.row_indices, unextended.row_indices, "{degree:?}");
-        }
-    }
-
-    #[test]
-    fn the_far_field_extension_in_place_is_the_extended_matrix_by_definition() {
+    fn the_far_field_layout_is_the_extended_matrix_by_definition() {
         // K̃ = [K, K T g; gᵀ Tᵀ K, gᵀ K_aa g + k_ext] with the arc's coupling kept off the arc
         // rows; here the bottom side (tag 3, the far boundary's) plays the arc.
         let material = Lame::from_young_poisson(1.0, 0.3);
@@ -769,8 +737,27 @@ mod tests {
             let mesh = structured_rectangle(2.0, 1.0, 3, 2, 1, 2, 3).with_degree(degree);
             let rule = stiffness_rule(degree);
             let condition = FarFieldCondition::new(&mesh, &material, 2.0);
-            let mut pattern = StiffnessPattern::new(&mesh).unwrap();
-            pattern.extend_for_far_field(&condition);
+            // The model's layout without the bubbles' condensation (of `K` itself, as defined);
+            // with it, the same layout at every other node (checked below).
+            let pattern = StiffnessPattern::build(&mesh, false, Some(&condition)).unwrap();
+            let condensed = StiffnessPattern::of_model(&mesh, Some(&condition)).unwrap();
+            if degree != Degree::Cubic {
+                assert_eq!(condensed.row_indices, pattern.row_indices, "{degree:?}");
+            }
+            assert_eq!(condensed.dofs(), pattern.dofs(), "{degree:?}");
+            // The amplitude couples to the same dofs but the bubbles (which, condensed, couple
+            // to their own node only).
+            let amplitude_column = |p: &StiffnessPattern| {
+                let n = p.dofs() - 1;
+                p.row_indices[p.col_offsets[n]..p.col_offsets[n + 1]].to_vec()
+            };
+            let bubbles: Vec<usize> = (0..mesh.cell_count())
+                .filter_map(|c| bubble_node(mesh.cell(c), degree))
+                .flat_map(|b| [2 * b, 2 * b + 1])
+                .collect();
+            let mut expected = amplitude_column(&pattern);
+            expected.retain(|row| !bubbles.contains(row));
+            assert_eq!(amplitude_column(&condensed), expected, "{degree:?}");
             let mut values = pattern.values(&mesh, &material, &rule).unwrap();
             condition.fill_extension(&pattern.col_offsets, &pattern.row_indices, &mut values);
             let extended = pattern.into_matrix(values).unwrap();

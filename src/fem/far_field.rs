@@ -151,56 +151,10 @@ impl FarFieldCondition {
         is_arc
     }
 
-    /// The dofs off the arc that share an entry of `K`'s pattern with an arc dof: those that
-    /// couple to the amplitude (structurally, whatever the values).
-    fn coupled(&self, col_offsets: &[usize], row_indices: &[usize]) -> Vec<bool> {
-        let n = col_offsets.len() - 1;
-        let is_arc = self.arc_mask(n);
-        let mut coupled = vec![false; n];
-        for col in (0..n).filter(|&c| is_arc[c]) {
-            for &row in &row_indices[col_offsets[col]..col_offsets[col + 1]] {
-                coupled[row] |= !is_arc[row];
-            }
-        }
-        coupled
-    }
-
-    /// Extend `K`'s pattern (compressed columns, rows sorted) in place to that of `K̃`: every
-    /// column of a coupled dof gains the amplitude row `n` (last, so rows stay sorted), and the
-    /// amplitude's column holds the coupled rows and its diagonal. The columns of `K` keep their
-    /// entries in order at their new offsets, so `K`'s values can be added into the extended
-    /// layout directly ([`Self::fill_extension`] then adds the new entries): no copy of `K`.
-    /// Known before `K`'s values are, so the factorisation's symbolic analysis of `K̃` can run
-    /// while `K` is assembled.
-    pub fn extend_pattern(&self, col_offsets: &mut Vec<usize>, row_indices: &mut Vec<usize>) {
-        let n = col_offsets.len() - 1;
-        let coupled = self.coupled(col_offsets, row_indices);
-        let coupled_rows: Vec<usize> = (0..n).filter(|&row| coupled[row]).collect();
-        let old_nnz = row_indices.len();
-        let new_nnz = old_nnz + 2 * coupled_rows.len() + 1;
-        row_indices.resize(new_nnz, 0);
-        // The amplitude's column, then the others moved back from the last one, each gaining the
-        // amplitude row if coupled (moving backwards never overwrites an entry not yet moved).
-        let amplitude_start = new_nnz - coupled_rows.len() - 1;
-        row_indices[amplitude_start..new_nnz - 1].copy_from_slice(&coupled_rows);
-        row_indices[new_nnz - 1] = n;
-        let mut end = amplitude_start;
-        for col in (0..n).rev() {
-            let (start, stop) = (col_offsets[col], col_offsets[col + 1]);
-            col_offsets[col + 1] = end;
-            if coupled[col] {
-                end -= 1;
-                row_indices[end] = n;
-            }
-            let len = stop - start;
-            row_indices.copy_within(start..stop, end - len);
-            end -= len;
-        }
-        debug_assert_eq!(end, 0);
-        col_offsets.push(new_nnz);
-    }
-
-    /// Fill the entries [`Self::extend_pattern`] added, given `K`'s values in the extended
+    /// Fill the entries that the amplitude's row and column add to `K`'s pattern
+    /// ([`crate::fem::assembly::StiffnessPattern::of_model`]: every column of a dof off the arc
+    /// that couples to an arc dof gains the amplitude row `n`, last; the amplitude's column holds
+    /// those rows and its diagonal), given `K`'s values in the extended
     /// layout (`values`, zero at the added entries): `(K T g)_i = Σ_arc K_ik g_k` for the coupled
     /// rows and the diagonal `gᵀ K_aa g + k_ext`.
     pub fn fill_extension(&self, col_offsets: &[usize], row_indices: &[usize], values: &mut [f64]) {
