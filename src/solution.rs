@@ -139,8 +139,8 @@ const CONE_HOLE_BOUND_SHARE: f64 = 0.9;
 
 /// A lower bound of the conical punch's hole `b/a` at depth `d/h`: `ln(b/a)` interpolated
 /// linearly in `d/h` between the rows of [`CONE_HOLE_BY_DEPTH`], times
-/// [`CONE_HOLE_BOUND_SHARE`]. Above the first row's hole before it (the hole shrinks as the punch
-/// presses deeper), 0 beyond the last row.
+/// [`CONE_HOLE_BOUND_SHARE`]. Shallower than the first row, that row's hole times the share (the
+/// hole shrinks as the punch presses deeper, so it is wider there); deeper than the last, 0.
 pub fn cone_hole_lower_bound(depth: f64) -> f64 {
     let rows = &CONE_HOLE_BY_DEPTH;
     if depth.is_nan() || depth <= rows[0].0 {
@@ -382,7 +382,7 @@ mod tests {
         without_estimate.error_estimate = None;
         assert!(without_estimate.check_plausible().is_err());
         // At 13h the hole is 4.8e-4 a (ring BEM): closed within 8.2e-4 holds it (the FEM's P2
-        // answer at --tol 1e-3), closed within 1e-4 does not; nor, at 5h (a hole of 7e-2 a),
+        // answer at --tol 1e-3), closed within 1e-4 does not; nor, at 5h (a hole of 7.8e-2 a),
         // closed within 5e-2.
         let mut closed_at_13 = state(PunchKind::Cone, 0.0, 13.0, 25.6);
         closed_at_13.error_estimate = Some(8.2e-4);
