@@ -106,9 +106,6 @@ pub struct Solution {
     pub provenance: String,
 }
 
-/// Depth `d/h` below which a conical punch's hole is certainly resolvable (`b/a > 1e-4`).
-pub const CONE_CLOSED_DEPTH: f64 = 15.0;
-
 /// The conical punch's hole `b/a` at depth `d/h` (`γ1(b/a) = d/h`), ascending in depth: the ring
 /// BEM (`verify solve --punch cone --eps B --method ring-bem`, 2026-11-25; its error estimates
 /// 1e-13 to 1e-9). They follow `d/h ≈ (π/2) ln(a/b) + 1` (PHYSICS.md fact 5).
@@ -137,23 +134,33 @@ const CONE_HOLE_BY_DEPTH: [(f64, f64); 16] = [
 /// (2 to 15 h).
 const CONE_HOLE_BOUND_SHARE: f64 = 0.9;
 
+/// The cone's hole deeper than [`CONE_HOLE_BY_DEPTH`] (where the ring BEM stops at `b/a =
+/// 1e-4`): PHYSICS.md fact 5, `d/h = (π/2) ln(a/b) + c`, with `c = 1`. The table's `c` rises
+/// toward it from below and has settled at 0.9998-1.0002 from `b/a = 1e-2` down, so
+/// `b/a = exp(-2 (d/h - 1)/π)` is within 0.02 % of the hole at the table's end.
+fn cone_hole_asymptote(depth: f64) -> f64 {
+    (-2.0 * (depth - 1.0) / std::f64::consts::PI).exp()
+}
+
 /// A lower bound of the conical punch's hole `b/a` at depth `d/h`: `ln(b/a)` interpolated
 /// linearly in `d/h` between the rows of [`CONE_HOLE_BY_DEPTH`], times
 /// [`CONE_HOLE_BOUND_SHARE`]. Shallower than the first row, that row's hole times the share (the
-/// hole shrinks as the punch presses deeper, so it is wider there); deeper than the last, 0.
+/// hole shrinks as the punch presses deeper, so it is wider there); deeper than the last, the
+/// asymptote ([`cone_hole_asymptote`]) times the share.
 pub fn cone_hole_lower_bound(depth: f64) -> f64 {
     let rows = &CONE_HOLE_BY_DEPTH;
     if depth.is_nan() || depth <= rows[0].0 {
         // Shallower than the first row (or not a number): at least its hole.
         return CONE_HOLE_BOUND_SHARE * rows[0].1;
     }
-    rows.windows(2)
-        .find(|pair| depth <= pair[1].0)
-        .map_or(0.0, |pair| {
+    rows.windows(2).find(|pair| depth <= pair[1].0).map_or(
+        CONE_HOLE_BOUND_SHARE * cone_hole_asymptote(depth),
+        |pair| {
             let ((d0, b0), (d1, b1)) = (pair[0], pair[1]);
             let t = (depth - d0) / (d1 - d0);
             CONE_HOLE_BOUND_SHARE * (b0.ln() + t * (b1.ln() - b0.ln())).exp()
-        })
+        },
+    )
 }
 
 impl Solution {
@@ -224,17 +231,12 @@ impl Solution {
             match self.punch {
                 PunchKind::Cone => {
                     // The cone never closes, but its hole shrinks fast with depth: a
-                    // discretisation may resolve it as closed, with an estimate, deep enough
-                    // (from d = 15h, where the hole is about 1e-4 a), or shallower when its
-                    // estimate of `eps` is at least the hole there (`eps = 0` within the
-                    // estimate then holds the true hole). A closed contact whose estimate is
-                    // smaller than the hole is wrong.
+                    // discretisation may resolve it as closed when its estimate of `eps` is at
+                    // least the hole there (`eps = 0` within the estimate then holds the true
+                    // hole). A closed contact whose estimate is smaller than the hole is wrong.
                     let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
                     let hole = cone_hole_lower_bound(depth_over_hole);
-                    let within_estimate = match self.error_estimate {
-                        Some(estimate) => depth_over_hole >= CONE_CLOSED_DEPTH || estimate >= hole,
-                        None => false,
-                    };
+                    let within_estimate = self.error_estimate.is_some_and(|e| e >= hole);
                     if depth_over_hole.is_nan() || !within_estimate {
                         return fail(match self.error_estimate {
                             None => format!(
@@ -350,7 +352,15 @@ mod tests {
         }
         assert_eq!(cone_hole_lower_bound(1.0), 0.9 * 0.5);
         assert_eq!(cone_hole_lower_bound(f64::NAN), 0.9 * 0.5);
-        assert_eq!(cone_hole_lower_bound(16.0), 0.0);
+        // Beyond it, the asymptote (c = 1): at the table's end within 0.02 % of the ring BEM's
+        // hole, then 0.9 of it, falling by e^{-2/π} per h.
+        let last = CONE_HOLE_BY_DEPTH[CONE_HOLE_BY_DEPTH.len() - 1];
+        assert!((cone_hole_asymptote(last.0) / last.1 - 1.0).abs() < 2e-4);
+        for depth in [16.0, 20.0, 60.0] {
+            let bound = cone_hole_lower_bound(depth);
+            assert_eq!(bound, 0.9 * cone_hole_asymptote(depth));
+            assert!(bound > 0.0 && bound < last.1);
+        }
     }
 
     #[test]
@@ -370,8 +380,8 @@ mod tests {
         assert!(state(PunchKind::Cone, 0.45, 2.0, -3.6)
             .check_plausible()
             .is_err());
-        // Full contact where it cannot exist: the cone below d = 15h with an estimate smaller
-        // than its hole there (or without an estimate), and the sphere below d = 3h.
+        // Full contact where it cannot exist: the cone with an estimate smaller than its hole
+        // there (or without an estimate), and the sphere below d = 3h.
         assert!(state(PunchKind::Cone, 0.0, 5.0, 10.0)
             .check_plausible()
             .is_err());
@@ -392,6 +402,12 @@ mod tests {
         let mut closed_at_5 = state(PunchKind::Cone, 0.0, 5.0, 10.0);
         closed_at_5.error_estimate = Some(5e-2);
         assert!(closed_at_5.check_plausible().is_err());
+        // Deeper than the ring BEM's table: at 20h the hole is about 5.6e-6 a (asymptote).
+        let mut closed_at_20 = state(PunchKind::Cone, 0.0, 20.0, 40.0);
+        closed_at_20.error_estimate = Some(1e-5);
+        assert!(closed_at_20.check_plausible().is_ok());
+        closed_at_20.error_estimate = Some(1e-6);
+        assert!(closed_at_20.check_plausible().is_err());
         assert!(state(PunchKind::Sphere, 0.0, 2.5, 5.0)
             .check_plausible()
             .is_err());

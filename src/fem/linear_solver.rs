@@ -80,17 +80,8 @@ impl Analysis {
     /// per node of the mesh `ordering` belongs to and an optional trailing dof), in its
     /// vertex-led order: split in two parts by its separator ring when the model has at least
     /// [`SPLIT_MIN_DOFS`] unknowns, the ring at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns and no
-    /// entry of `K` couples the two parts; whole otherwise.
-    pub fn of_ordering(
-        ordering: &MeshOrdering,
-        col_offsets: &[usize],
-        row_indices: &[usize],
-    ) -> Result<Self> {
-        Self::of_ordering_beside(ordering, col_offsets, row_indices, || ()).0
-    }
-
-    /// [`Self::of_ordering`] with `beside` run on the two cores beside the analysis (for a
-    /// split, beside the second part's: [`SplitAnalysis::new_beside`]).
+    /// entry of `K` couples the two parts; whole otherwise. `beside` runs on the two cores beside
+    /// the analysis (for a split, beside the second part's: [`SplitAnalysis::new_beside`]).
     pub fn of_ordering_beside<R: Send>(
         ordering: &MeshOrdering,
         col_offsets: &[usize],
