@@ -797,8 +797,7 @@ pub const MAX_EDGE_REPEATS: usize = 2;
 /// to 0.53, 12.5 to 0.32, 18 to 0.19, against `0.6^-6 = 21`), so the order taken is `2p - 1`: the
 /// finer error is `|ΔF| / (0.6^{1-2p} - 1)`, times [`RICHARDSON_SAFETY`].
 pub fn richardson_factor(degree: Degree) -> f64 {
-    let p = degree as i32;
-    RICHARDSON_SAFETY / (0.6f64.powi(1 - 2 * p) - 1.0)
+    RICHARDSON_SAFETY / (known_order_ratio(degree) - 1.0)
 }
 
 /// Smallest ratio of consecutive grading steps' force changes that [`grading_step_estimate`]
@@ -816,9 +815,7 @@ pub const MIN_OBSERVED_RATIO: f64 = 1.5;
 /// (9.2e-6) was below the actual error (1.26e-5, ring BEM); the observed ratio's is 1.45e-5.
 pub fn grading_step_estimate(degree: Degree, change: f64, previous_change: Option<f64>) -> f64 {
     let assumed = known_order_ratio(degree);
-    let ratio = previous_change
-        .filter(|&previous| previous > 0.0 && change > 0.0)
-        .map_or(assumed, |previous| (previous / change).min(assumed));
+    let ratio = observed_ratio(change, previous_change).map_or(assumed, |r| r.min(assumed));
     RICHARDSON_SAFETY * change / (ratio.max(MIN_OBSERVED_RATIO) - 1.0)
 }
 
@@ -828,13 +825,18 @@ fn known_order_ratio(degree: Degree) -> f64 {
     0.6f64.powi(1 - 2 * degree as i32)
 }
 
+/// `previous_change / change`, where both changes are known and positive.
+fn observed_ratio(change: f64, previous_change: Option<f64>) -> Option<f64> {
+    previous_change
+        .filter(|&previous| previous > 0.0 && change > 0.0)
+        .map(|previous| previous / change)
+}
+
 /// Whether a grading step whose force changed by `change`, after a step that changed it by
 /// `previous_change`, converged more slowly than the known order says (the observed ratio is the
 /// one [`grading_step_estimate`] used): the model is outside the asymptotic range.
 pub fn below_known_order(degree: Degree, change: f64, previous_change: Option<f64>) -> bool {
-    previous_change.is_some_and(|previous| {
-        previous > 0.0 && change > 0.0 && previous / change < known_order_ratio(degree)
-    })
+    observed_ratio(change, previous_change).is_some_and(|r| r < known_order_ratio(degree))
 }
 
 /// Predicted relative force error of adapted level `k` at degree `p`: `C_p 0.6^{2pk}` with
