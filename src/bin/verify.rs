@@ -6,7 +6,10 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory, FromArgMatches};
 
-use ringcontact::cli::{self, args::Cli};
+use ringcontact::cli::{
+    self,
+    args::{Cli, Command},
+};
 use ringcontact::fem::mesh_provider;
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
@@ -67,6 +70,11 @@ fn main() -> ExitCode {
         // Read by the data lookups of the library (mesh_provider::find_project_root); set once,
         // before any thread starts.
         std::env::set_var(mesh_provider::DATA_DIR_VARIABLE, dir);
+    }
+    // One scene's solve takes all of its memory fresh: small pages cost it less (see the
+    // function); the harness's commands reuse memory across solves and keep huge pages.
+    if matches!(cli.command, Some(Command::Solve(_))) {
+        ringcontact::use_base_pages_for_a_single_solve();
     }
     if cli::needs_data(&cli.command) {
         if let Err(e) = mesh_provider::find_project_root() {
