@@ -302,9 +302,15 @@ pub fn mesh_directory() -> PathBuf {
 
 /// Directory of generated meshes.
 pub fn cache_directory() -> PathBuf {
+    cache_directory_of(&project_root())
+}
+
+/// Directory of generated meshes of the project at `root` (`RINGCONTACT_MESH_CACHE`
+/// overrides); it also remembers gmsh's version ([`Gmsh::find`]).
+pub fn cache_directory_of(root: &Path) -> PathBuf {
     std::env::var_os("RINGCONTACT_MESH_CACHE")
         .map(PathBuf::from)
-        .unwrap_or_else(|| project_root().join(".mesh-cache"))
+        .unwrap_or_else(|| root.join(".mesh-cache"))
 }
 
 /// Committed family for a contact line starting at `b/a` (`disk` for 0), if there is one.
