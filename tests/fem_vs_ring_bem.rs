@@ -359,6 +359,37 @@ fn an_edge_under_a_prescribed_force_is_bound_near_closure() {
 }
 
 #[test]
+fn an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error() {
+    // The sphere under F = 5.3328 (d = 2.99973 h by the ring BEM, a hole of 0.0100 a): the
+    // located edge moves κ = |db/dd| d times the relative depth error, and the model's own κ
+    // errs by up to a third near closure (48.3 here against the ring BEM's 56.3). Taking the
+    // whole shift once, the cubic model at 1e-3 answered eps off by 9.3e-4 under an estimate of
+    // 9.5e-4: bound by a factor of 1.02, so a neighbouring state with a worse κ would not be.
+    // The estimate must keep a margin of 1.25 here (the model's κ a fifth under).
+    if !gmsh_available("an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error") {
+        return;
+    }
+    let (kind, load) = (PunchKind::Sphere, FemLoad::ConcaveForce(2.6664));
+    let state = fem_of_degree(Degree::Cubic, kind, 0.0, load, 1e-3);
+    let (force_error, eps_error) = errors(kind, 0.0, load, &state);
+    let estimate = state.error_estimate.unwrap();
+    println!(
+        "{kind} {load:?}: force error {force_error:.2e}, eps error {eps_error:.2e}, estimate \
+         {estimate:.1e}, {} dofs",
+        state.dofs
+    );
+    assert!(
+        estimate <= 1e-3,
+        "estimate {estimate:e} above the tolerance"
+    );
+    assert!(
+        1.25 * force_error.max(eps_error) <= estimate,
+        "the estimate {estimate:.2e} bounds the errors ({force_error:.2e}, {eps_error:.2e}) by \
+         less than a factor of 1.25"
+    );
+}
+
+#[test]
 fn full_contact_near_closure_is_bound_certified_or_declined() {
     // Quadratic models near the sphere's closure (holes of 1.9e-2, 6.1e-3 and 4.3e-3 a at
     // d/h = 2.999, 2.9999, 2.99995; closed from d = 3h, where F = 2 E* a (d - h/3)): their
