@@ -13,7 +13,7 @@ use std::sync::OnceLock;
 
 use sha2::{Digest, Sha256};
 
-use super::mesh_provider::cache_directory_of;
+use super::mesh_provider::{cache_directory_of, hex};
 use crate::error::{Error, Result};
 
 /// Longest a single gmsh run may take before it is stopped (the finest adapted level takes
@@ -43,10 +43,6 @@ fn gmsh_error(message: String) -> Error {
 /// whitespace.
 fn is_version(text: &str) -> bool {
     text.starts_with(|c: char| c.is_ascii_digit()) && !text.contains(char::is_whitespace)
-}
-
-fn hex(bytes: &[u8]) -> String {
-    bytes.iter().map(|b| format!("{b:02x}")).collect()
 }
 
 /// Whether a file may be run (any execute bit on Unix).
