@@ -11,6 +11,7 @@ use ringcontact::cli::{
     args::{Cli, Command},
 };
 use ringcontact::fem::mesh_provider;
+use ringcontact::methods::Method;
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
 /// ends the program quietly with status 141 (as if by SIGPIPE); any other write error (a full
@@ -71,9 +72,13 @@ fn main() -> ExitCode {
         // before any thread starts.
         std::env::set_var(mesh_provider::DATA_DIR_VARIABLE, dir);
     }
-    // One scene's solve takes all of its memory fresh: small pages cost it less (see the
-    // function); the harness's commands reuse memory across solves and keep huge pages.
-    if matches!(cli.command, Some(Command::Solve(_))) {
+    // One scene's finite-element solve takes all of its memory fresh: small pages cost it less
+    // (see the function). The grid BEM iterates hundreds of times over the same large arrays and
+    // the harness's commands reuse memory across solves: both keep huge pages.
+    if matches!(
+        &cli.command,
+        Some(Command::Solve(args)) if matches!(args.method, Method::Fem | Method::Auto)
+    ) {
         ringcontact::use_base_pages_for_a_single_solve();
     }
     if cli::needs_data(&cli.command) {
