@@ -284,6 +284,16 @@ mod tests {
         script
     }
 
+    /// An empty scratch directory `ringcontact-gmsh-<name>-<pid>` under the system's temporary
+    /// directory.
+    fn scratch_dir(name: &str) -> PathBuf {
+        let dir =
+            std::env::temp_dir().join(format!("ringcontact-gmsh-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
     fn runs(dir: &Path) -> usize {
         std::fs::read_to_string(dir.join("runs"))
             .map(|t| t.lines().count())
@@ -294,10 +304,7 @@ mod tests {
     /// changed program (another size) is probed again and its new version reported.
     #[test]
     fn a_probed_version_is_remembered_until_the_program_changes() {
-        let dir =
-            std::env::temp_dir().join(format!("ringcontact-gmsh-memo-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("memo");
         let memo = dir.join("memo");
         let script = fake_gmsh(&dir, "4.15.2");
         let first = Gmsh::probe_remembered(script.clone(), Vec::new(), &memo).unwrap();
@@ -317,10 +324,7 @@ mod tests {
     /// A program that prints no version is not gmsh, and nothing is remembered for it.
     #[test]
     fn a_program_without_a_version_is_not_gmsh() {
-        let dir =
-            std::env::temp_dir().join(format!("ringcontact-gmsh-none-{}", std::process::id()));
-        let _ = std::fs::remove_dir_all(&dir);
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = scratch_dir("none");
         let script = fake_gmsh(&dir, "usage:");
         assert!(Gmsh::probe_remembered(script, Vec::new(), &dir.join("memo")).is_none());
         assert!(!dir.join("memo").exists());

@@ -767,9 +767,8 @@ pub fn gmsh_found() -> bool {
 pub const EDGE_FIELD_FRACTION: f64 = 0.5;
 
 /// The whole shift `κ ε` of a field error that acted as a depth error, with a margin for `κ`'s
-/// own error (below), taken instead of
-/// [`EDGE_FIELD_FRACTION`] where the reasons for a smaller share fail (twelfth session, the
-/// ring BEM's edge, depth and force as reference):
+/// own error (below), taken instead of [`EDGE_FIELD_FRACTION`] where the reasons for a smaller
+/// share fail (twelfth session, the ring BEM's edge, depth and force as reference):
 /// - under a prescribed force the model's force error is a depth error: the sphere under 5.3,
 ///   5.33 and 5.333 (P3, `--tol 1e-3`) had edges off by 5.1e-4, 1.0e-3 and 1.3e-3 under
 ///   estimates of 2.5e-4, 9.2e-4 and 6.5e-4 (at 5.3: depth error 4.8e-5, `κ` = 7.1, so the field
@@ -1255,6 +1254,8 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             } else {
                 EDGE_FIELD_FRACTION
             };
+            // Also asked of the edge-only refinement below: the field component is not reduced
+            // by refining at the edge.
             let edge_from_field = field_share * conditioning * (force_estimate + floor);
             current.eps_error = if whole_shift {
                 current.eps_error + edge_from_field
