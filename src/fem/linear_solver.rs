@@ -114,14 +114,16 @@ impl Analysis {
         }
     }
 
-    /// One phrase for traces: `whole`, or the parts' and the separator's unknowns.
+    /// One phrase for traces: `whole`, or the parts' and the separator's unknowns, with the
+    /// numeric factorisation's multiply-adds ([`super::node_ordered_cholesky::factorisation_work`]).
     pub fn describe(&self) -> String {
         match self {
-            Analysis::Whole(_) => "whole".into(),
+            Analysis::Whole(symbolic) => format!("whole, work {:.3e}", symbolic.work()),
             Analysis::Split(split) => {
                 let [first, second] = split.part_sizes();
+                let [first_work, second_work] = split.part_work();
                 format!(
-                    "split {first} + {second}, separator {}",
+                    "split {first} + {second}, separator {}, work {first_work:.3e} + {second_work:.3e}",
                     split.separator_len()
                 )
             }

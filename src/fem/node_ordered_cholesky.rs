@@ -217,6 +217,11 @@ pub struct SymbolicFactor {
 }
 
 impl SymbolicFactor {
+    /// The numeric factorisation's multiply-adds ([`factorisation_work`]).
+    pub fn work(&self) -> f64 {
+        factorisation_work(&self.inner)
+    }
+
     /// Analyse the pattern given as compressed columns (`col_offsets`, sorted `row_indices`).
     pub fn of_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
         Self::new(checked_pattern(col_offsets, row_indices)?)
@@ -299,6 +304,31 @@ fn supernodal_analysis(
         ));
     }
     Ok(inner)
+}
+
+/// The numeric factorisation's work on a supernodal analysis, `Σ_j c_j²` multiply-adds over
+/// the factor's columns `j` (`c_j` the entries of column `j` on and below the diagonal, the
+/// supernodes' dense blocks counted whole, with the zeros `faer`'s relaxed supernodes carry: a
+/// tridiagonal matrix of 10 rows in its own order, 37 without them, counts 385, one dense
+/// supernode), for traces and comparisons of orderings.
+pub fn factorisation_work(analysis: &SymbolicCholesky<usize>) -> f64 {
+    let SymbolicCholeskyRaw::Supernodal(supernodal) = analysis.raw() else {
+        return f64::NAN;
+    };
+    let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
+    let rows = supernodal.col_ptr_for_row_idx();
+    (0..supernodal.n_supernodes())
+        .map(|s| {
+            let below = (rows[s + 1] - rows[s]) as f64;
+            let columns = end[s] - begin[s];
+            (0..columns)
+                .map(|j| {
+                    let c = (columns - j) as f64 + below;
+                    c * c
+                })
+                .sum::<f64>()
+        })
+        .sum()
 }
 
 /// Supernodal symbolic analysis of a lower triangle already in elimination order (its own
@@ -431,6 +461,26 @@ mod tests {
                 expected.as_slice(),
                 "node {node}"
             );
+        }
+    }
+
+    #[test]
+    fn the_work_of_dense_blocks_is_the_sum_of_their_squared_column_counts() {
+        // A block-diagonal pattern of `blocks` dense blocks of `size` dofs: whatever the order,
+        // each block's factor is dense, with column counts size, size - 1, ..., 1, so the work is
+        // blocks * size (size + 1) (2 size + 1) / 6 (the sum of the first `size` squares).
+        for (blocks, size) in [(1, 6), (3, 4), (5, 2)] {
+            let n = blocks * size;
+            let mut offsets = vec![0];
+            let mut rows = Vec::new();
+            for col in 0..n {
+                let block = col / size;
+                rows.extend(block * size..(block + 1) * size);
+                offsets.push(rows.len());
+            }
+            let symbolic = SymbolicFactor::of_pattern(&offsets, &rows).expect("analysis");
+            let expected = (blocks * size * (size + 1) * (2 * size + 1) / 6) as f64;
+            assert_eq!(symbolic.work(), expected, "{blocks} blocks of {size}");
         }
     }
 

@@ -34,7 +34,9 @@ use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::{Accum, Mat, MatMut, Par, Side};
 
-use super::node_ordered_cholesky::{factorise_supernodal, supernodal_analysis_in_order};
+use super::node_ordered_cholesky::{
+    factorisation_work, factorise_supernodal, supernodal_analysis_in_order,
+};
 use super::permuted_lower::PermutedLower;
 use super::separator::{NodeSplit, Side as PartSide};
 use crate::error::{Error, Result};
@@ -206,6 +208,14 @@ impl SplitAnalysis {
     /// Number of separator dofs.
     pub fn separator_len(&self) -> usize {
         self.separator.len()
+    }
+
+    /// Each part's numeric factorisation's multiply-adds ([`factorisation_work`]).
+    pub fn part_work(&self) -> [f64; 2] {
+        [
+            factorisation_work(&self.parts[0].symbolic),
+            factorisation_work(&self.parts[1].symbolic),
+        ]
     }
 
     /// Number of dofs of each part, its separator excluded.
