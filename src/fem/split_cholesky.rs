@@ -212,10 +212,9 @@ impl SplitAnalysis {
 
     /// Each part's numeric factorisation's multiply-adds ([`factorisation_work`]).
     pub fn part_work(&self) -> [f64; 2] {
-        [
-            factorisation_work(&self.parts[0].symbolic),
-            factorisation_work(&self.parts[1].symbolic),
-        ]
+        self.parts
+            .each_ref()
+            .map(|part| factorisation_work(&part.symbolic))
     }
 
     /// Number of dofs of each part, its separator excluded.
