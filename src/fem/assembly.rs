@@ -412,7 +412,8 @@ impl StiffnessPattern {
             });
         }
         let (col_offsets, nodes) = (&self.col_offsets, &self.nodes);
-        let mut values = vec![0.0; self.row_indices.len()];
+        // Written, not only allocated: the scatter-adds below read before they write.
+        let mut values = super::zeroed::zeros_written(self.row_indices.len());
         let k = mesh.degree.nodes_per_cell();
         let size = 2 * k;
         let mut ranges = column_ranges(
@@ -421,15 +422,6 @@ impl StiffnessPattern {
             rayon::current_num_threads().max(1),
             &mut values,
         );
-        // Each thread writes its range once before adding to it. `vec![0.0; n]` is fresh,
-        // untouched memory: a first access that reads a page (the `+=` below) maps the shared
-        // zero page, and the write after it faults again and flushes the page from the other
-        // core's TLB, an inter-processor interrupt (slow on a virtual machine). Measured at
-        // 9e4 quadratic unknowns: the flushes were 11 % of a cold solve's CPU time, and the
-        // solve's process took 0.275 s before this pass and 0.235 s with it (medians of 12).
-        ranges
-            .par_iter_mut()
-            .for_each(|range| range.values.fill(0.0));
         let kernel = ElementKernel::new(mesh.degree, rule);
         let block = (ASSEMBLY_BLOCK_BYTES / (8 * size * size)).min(mesh.cell_count().max(1));
         let mut locals = vec![0.0; block * size * size];

@@ -22,3 +22,4 @@ pub mod split_cholesky;
 pub mod surface_response;
 pub mod vertex_ordering;
 pub mod vtu;
+pub mod zeroed;

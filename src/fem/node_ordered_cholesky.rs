@@ -31,7 +31,6 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
-use rayon::prelude::*;
 
 use super::permuted_lower::PermutedLower;
 use crate::error::{Error, Result};
@@ -344,9 +343,9 @@ pub fn supernodal_analysis_in_order(
 /// order) is `lower` with `lower_values`: `faer`'s values of `L`, supernode by supernode. Fails
 /// if the matrix is not positive definite.
 ///
-/// The factor's memory is first written by both cores: on this machine the kernel's zeroing of
-/// fresh pages runs at about 2 GB/s per core, and the factor holds 1.25 GB at 1.4e6 cubic
-/// unknowns.
+/// The factor's memory is first written by both cores ([`super::zeroed::zeros_written`]): on
+/// this machine the kernel's zeroing of fresh pages runs at about 2 GB/s per core, and the
+/// factor holds 1.25 GB at 1.4e6 cubic unknowns.
 pub fn factorise_supernodal(
     analysis: &SymbolicCholesky<usize>,
     lower: &SymbolicSparseColMat<usize>,
@@ -362,10 +361,7 @@ pub fn factorise_supernodal(
             "internal: the values do not fit the permuted lower triangle".into(),
         ));
     }
-    let mut values = vec![0.0; analysis.len_val()];
-    values
-        .par_chunks_mut(1 << 16)
-        .for_each(|chunk| chunk.fill(0.0));
+    let mut values = super::zeroed::zeros_written(analysis.len_val());
     let mut memory = MemBuffer::try_new(factorize_supernodal_numeric_llt_scratch::<usize, f64>(
         supernodal,
         Par::Seq,
