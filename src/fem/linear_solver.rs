@@ -19,7 +19,7 @@ use super::mesh::Mesh;
 use super::node_ordered_cholesky::{NumericFactor, SymbolicFactor};
 use super::separator::{split_nodes_of, NodeSplit, Side};
 use super::split_cholesky::{SplitAnalysis, SplitFactor};
-use super::vertex_ordering::{vertex_graph, vertex_led_node_order_of, VertexCells};
+use super::vertex_ordering::{vertex_graph, vertex_led_node_order_of, vertex_order, VertexCells};
 use crate::error::{Error, Result};
 
 /// The symbolic analysis a [`ConstrainedCholesky`] factorises on: of the whole matrix, or of its
@@ -53,7 +53,8 @@ pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
 
 /// What a model's [`Analysis`] needs from its mesh alone: the vertex-led node order
 /// ([`super::vertex_ordering`]) and, for a model of at least [`SPLIT_MIN_DOFS`] unknowns, a
-/// split by a separator ring ([`super::separator`]). Needs no pattern, so it is computed while
+/// split by a separator read off that order's elimination tree or a ring of the mesh, whichever
+/// promises the shorter factorisation ([`super::separator`]). Needs no pattern, so it is computed while
 /// the pattern is built.
 pub struct MeshOrdering {
     order: Vec<usize>,
@@ -61,15 +62,20 @@ pub struct MeshOrdering {
 }
 
 impl MeshOrdering {
-    /// The ordering of `mesh`'s nodes (one vertex graph for the order and the split, which are
-    /// found side by side).
+    /// The ordering of `mesh`'s nodes (one vertex graph and one minimum-degree order of it for
+    /// the node order and the split, which are then found side by side).
     pub fn of_mesh(mesh: &Mesh) -> Self {
         let incidence = VertexCells::new(mesh);
         let graph = vertex_graph(mesh, &incidence);
         let wants_split = 2 * mesh.nodes.len() >= split_min_dofs();
+        let vertices = vertex_order(&graph);
         let (order, split) = rayon::join(
-            || vertex_led_node_order_of(mesh, &incidence, &graph),
-            || wants_split.then(|| split_nodes_of(mesh, &graph)).flatten(),
+            || vertex_led_node_order_of(mesh, &incidence, &graph, &vertices),
+            || {
+                wants_split
+                    .then(|| split_nodes_of(mesh, &graph, &vertices))
+                    .flatten()
+            },
         );
         Self { order, split }
     }
@@ -78,8 +84,8 @@ impl MeshOrdering {
 impl Analysis {
     /// The analysis of a model's stiffness pattern (compressed columns, both triangles, two dofs
     /// per node of the mesh `ordering` belongs to and an optional trailing dof), in its
-    /// vertex-led order: split in two parts by its separator ring when the model has at least
-    /// [`SPLIT_MIN_DOFS`] unknowns, the ring at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns and no
+    /// vertex-led order: split in two parts by its separator when the model has at least
+    /// [`SPLIT_MIN_DOFS`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns and no
     /// entry of `K` couples the two parts; whole otherwise. `beside` runs on the two cores beside
     /// the analysis (for a split, beside the second part's: [`SplitAnalysis::new_beside`]).
     pub fn of_ordering_beside<R: Send>(

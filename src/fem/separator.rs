@@ -1,23 +1,40 @@
 //! A two-way split of a mesh's nodes by a small separator, so that the two parts of the
-//! stiffness matrix can be factorised on two cores ([`super::split_cholesky`]).
+//! stiffness matrix can be factorised on two cores ([`super::split_cholesky`]). Each part is
+//! eliminated in the whole model's order ([`super::vertex_ordering`]) with the separator last;
+//! two candidate splits are made and the one of the lesser estimated critical path is kept
+//! ([`split_nodes_of`]):
 //!
-//! The separator is one level of a breadth-first search of the vertex graph, started from a
-//! pseudo-peripheral vertex (the last vertex reached from an arbitrary start): the vertices
-//! before that level form the first part, those after it the second. The two parts share no cell
-//! (a cell's vertices are neighbours, so their levels differ by at most one), hence no entry of
-//! `K`. On the graded meshes of this project the levels are rings around the refined points, a
-//! few dozen to a few hundred vertices each, so the separator is small wherever the split is
-//! balanced: of the levels whose split leaves 47-53 % of the vertices on each side (else
-//! 40-60 %), the smallest is taken.
+//! - **The tree split**, read off the elimination tree of the vertex graph in that order. Two
+//!   subtrees share no edge, so once a separator `S` closed under taking parents (the top of the
+//!   tree) is removed, the remaining trees can be dealt to the two parts freely, and every part
+//!   column is the whole factor's own column. `S` grows from the root, the heaviest remaining
+//!   tree giving up its root, and of the separators met on the way the one with the least
+//!   estimated critical path is kept. Minimum-degree trees are often a long chain with small
+//!   subtrees along it, and then no small `S` balances the parts.
+//! - **The level split**: one breadth-first level of the vertex graph ([`level_split`]), the
+//!   smallest that leaves about half the vertices on each side. On the graded meshes of this
+//!   project the levels are rings around the refined points. Forcing a ring last costs work, and
+//!   equal vertex counts need not carry equal work.
+//!
+//! The estimate is the vertex-level elimination ([`Elimination`]): each vertex's weighted column
+//! in the vertex-level factor, weighted by the dofs it brings, gives its columns' work; the
+//! critical path is the heavier part's work plus the separator's dense work ([`critical_path`]).
+//! On the 12 880-unknown annulus (`b/a` = 0.9, P2) the level split's parts carried 4.1e7 and 1.2e7
+//! multiply-adds, its larger part more than the whole factor's 3.4e7; the tree split's carry
+//! 1.6e7 and 1.8e7. On the 27 432-unknown annulus (`b/a` = 0.3) the tree's best split left 6.4e7
+//! against 1.7e7 and the level split (5.2e7 each) is kept.
+//!
 //! Inner nodes of an edge and bubble nodes go with the part of their edge's or cell's vertices
 //! off the separator (a cell touches at most one part); those of edges and cells lying wholly on
 //! the separator join it.
 
+use std::cmp::Ordering;
 use std::collections::VecDeque;
 
 use super::mesh::Mesh;
 use super::vertex_ordering::{
-    bubble_node, edge_inner_nodes, vertex_graph, VertexCells, VertexGraph,
+    bubble_node, edge_inner_nodes, edge_layout, vertex_graph, vertex_order, VertexCells,
+    VertexGraph,
 };
 
 /// Which part of the split a node belongs to.
@@ -41,10 +58,249 @@ impl NodeSplit {
     }
 }
 
-/// Fractions of the vertices each part must hold at least, tried in turn: a nearly even split
-/// first (the parts' factorisations run side by side, and their cost grows like `n^1.5`), then a
-/// looser one.
+/// Most separator dofs the descent from the root considers (the dense Schur complement's cost
+/// grows like their cube).
+const MAX_SEPARATOR_DOFS: usize = 1_200;
+
+/// Fractions of the vertices each part of a level split must hold at least, tried in turn: a
+/// nearly even split first, then a looser one.
 const MIN_PART_SHARES: [f64; 2] = [0.47, 0.4];
+
+/// No tree marker.
+const NONE: usize = usize::MAX;
+
+/// The vertex-level elimination of the vertex graph in an order (graph vertex indices), by tree
+/// positions (`k`: the `k`-th eliminated vertex).
+struct Elimination {
+    /// Parent of each position in the elimination tree, or [`NONE`] for a root.
+    parent: Vec<usize>,
+    /// Dofs each position's vertex brings: its own two and two per inner node of its edges to
+    /// later vertices (the vertex-led order places those just before it).
+    weight: Vec<usize>,
+    /// Estimated work of each position's dof columns ([`column_work`]).
+    work: Vec<f64>,
+}
+
+impl Elimination {
+    fn of(mesh: &Mesh, graph: &VertexGraph, order: &[usize]) -> Self {
+        let n = order.len();
+        let mut position = vec![NONE; n];
+        for (k, &v) in order.iter().enumerate() {
+            position[v] = k;
+        }
+        let parent = elimination_tree(graph, order, &position);
+        let (per_edge, _) = edge_layout(mesh.degree);
+        let weight: Vec<usize> = (0..n)
+            .map(|k| {
+                let later = graph
+                    .neighbours(order[k])
+                    .iter()
+                    .filter(|&&w| position[w] > k)
+                    .count();
+                2 * (1 + per_edge * later)
+            })
+            .collect();
+        let work = column_work(graph, order, &position, &parent, &weight);
+        Self {
+            parent,
+            weight,
+            work,
+        }
+    }
+}
+
+/// Elimination tree of the vertex graph eliminated in `order` (graph vertex indices), by tree
+/// positions: `parent[k]` is the position of the parent of the `k`-th eliminated vertex, or
+/// [`NONE`] for a root (Liu's algorithm with path compression).
+fn elimination_tree(graph: &VertexGraph, order: &[usize], position: &[usize]) -> Vec<usize> {
+    let n = order.len();
+    let mut parent = vec![NONE; n];
+    let mut ancestor = vec![NONE; n];
+    for (k, &v) in order.iter().enumerate() {
+        for &w in graph.neighbours(v) {
+            let mut i = position[w];
+            if i >= k {
+                continue;
+            }
+            // Climb from i to its current root, pointing the path at k.
+            while ancestor[i] != NONE && ancestor[i] != k {
+                let next = ancestor[i];
+                ancestor[i] = k;
+                i = next;
+            }
+            if ancestor[i] == NONE {
+                ancestor[i] = k;
+                parent[i] = k;
+            }
+        }
+    }
+    parent
+}
+
+/// The estimated factorisation work of each tree position's columns, in the units of
+/// [`super::node_ordered_cholesky::factorisation_work`] (`Σ c²` over the columns, `c` the
+/// column's entries): vertex `k` brings `weight[k]` dof columns eliminated together, of
+/// `W_k, W_k − 1, …` entries, `W_k` the weighted size of its column in the vertex-level factor
+/// (its own weight and those of the rows below it). The column structures are merged up the tree
+/// (`struct(k) = adj⁺(k) ∪ ⋃ struct(child) \ {k}`), each written once to one arena and read once,
+/// by its parent.
+fn column_work(
+    graph: &VertexGraph,
+    order: &[usize],
+    position: &[usize],
+    parent: &[usize],
+    weight: &[usize],
+) -> Vec<f64> {
+    let n = order.len();
+    let mut first_child = vec![NONE; n];
+    let mut next_sibling = vec![NONE; n];
+    for k in (0..n).rev() {
+        if parent[k] != NONE {
+            next_sibling[k] = first_child[parent[k]];
+            first_child[parent[k]] = k;
+        }
+    }
+    // Column k's rows below the diagonal: arena[start[k]..end[k]].
+    let mut arena: Vec<usize> = Vec::with_capacity(8 * graph.rows.len());
+    let mut start = vec![0usize; n];
+    let mut end = vec![0usize; n];
+    let mut marker = vec![NONE; n];
+    let mut work = vec![0.0; n];
+    for k in 0..n {
+        start[k] = arena.len();
+        marker[k] = k;
+        let mut below = 0usize;
+        for &w in graph.neighbours(order[k]) {
+            let i = position[w];
+            if i > k && marker[i] != k {
+                marker[i] = k;
+                below += weight[i];
+                arena.push(i);
+            }
+        }
+        let mut child = first_child[k];
+        while child != NONE {
+            for e in start[child]..end[child] {
+                let i = arena[e];
+                if marker[i] != k {
+                    marker[i] = k;
+                    below += weight[i];
+                    arena.push(i);
+                }
+            }
+            child = next_sibling[child];
+        }
+        end[k] = arena.len();
+        // Σ_{j < w} (w − j + below)² for the vertex's w = weight[k] columns, in closed form.
+        let (w, b) = (weight[k] as f64, below as f64);
+        work[k] = w * (w + 1.0) * (2.0 * w + 1.0) / 6.0 + b * w * (w + 1.0) + b * b * w;
+    }
+    work
+}
+
+/// Estimated critical path of a split with parts of works `parts` and `separator_dofs`
+/// separator dofs: the heavier part plus the separator's dense work that is not shared between
+/// the cores, `4 s³ / 3` (its block in one part, `s³ / 3`; the two parts' products and the Schur
+/// complement's factorisation, `s³ / 3` each).
+fn critical_path(parts: [f64; 2], separator_dofs: usize) -> f64 {
+    let s = separator_dofs as f64;
+    parts[0].max(parts[1]) + 4.0 * s * s * s / 3.0
+}
+
+/// Deal trees (their works) to two parts, heaviest first, each to the lighter part so far:
+/// the two parts' works and each tree's part (`false`: the first).
+fn deal(trees: &[f64]) -> ([f64; 2], Vec<bool>) {
+    let mut sorted: Vec<usize> = (0..trees.len()).collect();
+    sorted.sort_by(|&a, &b| trees[b].partial_cmp(&trees[a]).unwrap_or(Ordering::Equal));
+    let mut parts = [0.0, 0.0];
+    let mut second = vec![false; trees.len()];
+    for i in sorted {
+        let to_second = parts[1] < parts[0];
+        second[i] = to_second;
+        parts[usize::from(to_second)] += trees[i];
+    }
+    (parts, second)
+}
+
+/// The split read off the elimination tree (module documentation): its estimated critical path
+/// and each tree position's side, or `None` when no separator of at most
+/// [`MAX_SEPARATOR_DOFS`] dofs leaves two parts.
+fn tree_split(elimination: &Elimination) -> Option<(f64, Vec<Side>)> {
+    let Elimination {
+        parent,
+        weight,
+        work,
+    } = elimination;
+    let n = parent.len();
+    let mut subtree = work.clone();
+    let mut children: Vec<Vec<usize>> = vec![Vec::new(); n];
+    for k in 0..n {
+        if parent[k] != NONE {
+            subtree[parent[k]] += subtree[k];
+            children[parent[k]].push(k);
+        }
+    }
+    let roots: Vec<usize> = (0..n).filter(|&k| parent[k] == NONE).collect();
+    // Descend from the roots, the heaviest tree giving up its root at each step; remember the
+    // step with the least estimated critical path.
+    let mut forest = roots.clone();
+    let mut separator_dofs = 0usize;
+    let mut taken: Vec<usize> = Vec::new();
+    let mut best: Option<(f64, usize)> = None;
+    while !forest.is_empty() {
+        let trees: Vec<f64> = forest.iter().map(|&k| subtree[k]).collect();
+        // No deeper separator can beat the best: its parts hold at least half the forest.
+        let forest_work: f64 = trees.iter().sum();
+        if best.is_some_and(|(e, _)| critical_path([forest_work / 2.0; 2], separator_dofs) >= e) {
+            break;
+        }
+        let (parts, _) = deal(&trees);
+        if parts[0] > 0.0 && parts[1] > 0.0 {
+            let estimate = critical_path(parts, separator_dofs);
+            if best.is_none_or(|(e, _)| estimate < e) {
+                best = Some((estimate, taken.len()));
+            }
+        }
+        let heaviest = (0..forest.len())
+            .max_by(|&a, &b| trees[a].partial_cmp(&trees[b]).unwrap_or(Ordering::Equal))
+            .unwrap_or(0);
+        let root = forest.swap_remove(heaviest);
+        separator_dofs += weight[root];
+        if separator_dofs > MAX_SEPARATOR_DOFS {
+            break;
+        }
+        taken.push(root);
+        forest.extend_from_slice(&children[root]);
+    }
+    let (estimate, steps) = best?;
+    // Replay the descent to the best separator, then deal its forest.
+    let mut side = vec![Side::First; n];
+    let mut forest = roots;
+    for &root in &taken[..steps] {
+        side[root] = Side::Separator;
+        forest.retain(|&k| k != root);
+        forest.extend_from_slice(&children[root]);
+    }
+    let trees: Vec<f64> = forest.iter().map(|&k| subtree[k]).collect();
+    let (_, second) = deal(&trees);
+    let mut assigned = vec![false; n];
+    for (tree, &root) in forest.iter().enumerate() {
+        side[root] = if second[tree] {
+            Side::Second
+        } else {
+            Side::First
+        };
+        assigned[root] = true;
+    }
+    // A parent comes after its children: walk down from the top, each position taking its
+    // parent's side (the separator's children are the roots, already dealt).
+    for k in (0..n).rev() {
+        if side[k] != Side::Separator && !assigned[k] {
+            side[k] = side[parent[k]];
+        }
+    }
+    Some((estimate, side))
+}
 
 /// Breadth-first levels of the vertex graph from graph vertex `start`: `(level of each vertex,
 /// last vertex reached)`; vertices not reached keep `usize::MAX`.
@@ -65,21 +321,14 @@ fn levels_from(graph: &VertexGraph, start: usize) -> (Vec<usize>, usize) {
     (level, last)
 }
 
-/// Split the nodes of `mesh` in two parts and a separator level (see the module's
-/// documentation), or `None` when the vertex graph is disconnected or too small, or when no
-/// level leaves at least the smallest of [`MIN_PART_SHARES`] of the vertices on each side.
-pub fn split_nodes(mesh: &Mesh) -> Option<NodeSplit> {
-    let incidence = VertexCells::new(mesh);
-    split_nodes_of(mesh, &vertex_graph(mesh, &incidence))
-}
-
-/// [`split_nodes`] with the mesh's vertex graph given (shared with
-/// [`super::vertex_ordering::vertex_led_node_order_of`]).
-pub(super) fn split_nodes_of(mesh: &Mesh, graph: &VertexGraph) -> Option<NodeSplit> {
+/// The split by one breadth-first level of the vertex graph, started from a pseudo-peripheral
+/// vertex (the last vertex reached from an arbitrary start): the vertices before that level form
+/// the first part, those after it the second. On the graded meshes of this project the levels
+/// are rings around the refined points. Of the levels whose split leaves 47-53 % of the vertices
+/// on each side (else 40-60 %), the smallest is taken. Each graph vertex's side, or `None` when
+/// the graph is disconnected or no level qualifies.
+fn level_split(graph: &VertexGraph) -> Option<Vec<Side>> {
     let count = graph.vertices.len();
-    if count < 16 {
-        return None;
-    }
     let (_, far) = levels_from(graph, 0);
     let (level, _) = levels_from(graph, far);
     if level.contains(&usize::MAX) {
@@ -107,19 +356,101 @@ pub(super) fn split_nodes_of(mesh: &Mesh, graph: &VertexGraph) -> Option<NodeSpl
     let cut = MIN_PART_SHARES
         .iter()
         .find_map(|&share| smallest_level(share))?;
-    let vertex_side = |node: usize, index: &[usize]| -> Side {
-        let l = level[index[node]];
-        match l.cmp(&cut) {
-            std::cmp::Ordering::Less => Side::First,
-            std::cmp::Ordering::Greater => Side::Second,
-            std::cmp::Ordering::Equal => Side::Separator,
+    Some(
+        level
+            .iter()
+            .map(|&l| match l.cmp(&cut) {
+                Ordering::Less => Side::First,
+                Ordering::Greater => Side::Second,
+                Ordering::Equal => Side::Separator,
+            })
+            .collect(),
+    )
+}
+
+/// Estimated critical path of a split given by each graph vertex's side, the parts eliminated
+/// in `order` and the separator last ([`critical_path`] of a vertex-level [`Elimination`]).
+fn split_estimate(mesh: &Mesh, graph: &VertexGraph, order: &[usize], sides: &[Side]) -> f64 {
+    let reordered: Vec<usize> = [Side::First, Side::Second, Side::Separator]
+        .iter()
+        .flat_map(|&side| order.iter().copied().filter(move |&v| sides[v] == side))
+        .collect();
+    let elimination = Elimination::of(mesh, graph, &reordered);
+    let mut parts = [0.0, 0.0];
+    let mut separator_dofs = 0;
+    for (k, &v) in reordered.iter().enumerate() {
+        match sides[v] {
+            Side::First => parts[0] += elimination.work[k],
+            Side::Second => parts[1] += elimination.work[k],
+            Side::Separator => separator_dofs += elimination.weight[k],
         }
-    };
-    let mut index = vec![usize::MAX; mesh.nodes.len()];
-    for (i, &v) in graph.vertices.iter().enumerate() {
-        index[v] = i;
     }
-    // Nodes in no cell couple to nothing: the first part takes them.
+    critical_path(parts, separator_dofs)
+}
+
+/// Split the nodes of `mesh` in two parts and a separator (see the module's documentation), or
+/// `None` when the mesh is too small or no split promises a shorter critical path than the
+/// whole factorisation on one core.
+pub fn split_nodes(mesh: &Mesh) -> Option<NodeSplit> {
+    let incidence = VertexCells::new(mesh);
+    let graph = vertex_graph(mesh, &incidence);
+    split_nodes_of(mesh, &graph, &vertex_order(&graph))
+}
+
+/// The level split of `mesh` whatever its estimate ([`level_split`]; for tests of the split
+/// solve, which need a split of a small mesh that would not pay), or `None` when no level
+/// qualifies.
+pub fn split_by_level(mesh: &Mesh) -> Option<NodeSplit> {
+    let incidence = VertexCells::new(mesh);
+    let graph = vertex_graph(mesh, &incidence);
+    let sides = level_split(&graph)?;
+    Some(node_sides(mesh, &graph, &sides))
+}
+
+/// [`split_nodes`] with the mesh's vertex graph and its elimination order (graph vertex indices)
+/// given (shared with [`super::vertex_ordering::vertex_led_node_order_of`]): of the tree split
+/// and the level split, the one of the lesser estimated critical path, if that is less than the
+/// whole factor's estimated work.
+pub(super) fn split_nodes_of(
+    mesh: &Mesh,
+    graph: &VertexGraph,
+    order: &[usize],
+) -> Option<NodeSplit> {
+    let n = graph.vertices.len();
+    if n < 16 || order.len() != n {
+        return None;
+    }
+    let elimination = Elimination::of(mesh, graph, order);
+    let whole: f64 = elimination.work.iter().sum();
+    let tree = tree_split(&elimination).map(|(estimate, by_position)| {
+        let mut sides = vec![Side::First; n];
+        for (k, &v) in order.iter().enumerate() {
+            sides[v] = by_position[k];
+        }
+        (estimate, sides)
+    });
+    let level = level_split(graph).map(|sides| (split_estimate(mesh, graph, order, &sides), sides));
+    let (estimate, sides) = match (tree, level) {
+        (Some(t), Some(l)) => {
+            if t.0 <= l.0 {
+                t
+            } else {
+                l
+            }
+        }
+        (t, l) => t.or(l)?,
+    };
+    (estimate < whole).then(|| node_sides(mesh, graph, &sides))
+}
+
+/// The side of every node, given each graph vertex's (`graph_sides`): an edge's inner nodes and a
+/// cell's bubble join the part of their vertices off the separator, or the separator when all
+/// are on it. Nodes in no cell couple to nothing: the first part takes them.
+fn node_sides(mesh: &Mesh, graph: &VertexGraph, graph_sides: &[Side]) -> NodeSplit {
+    let mut vertex_side = vec![Side::First; mesh.nodes.len()];
+    for (i, &v) in graph.vertices.iter().enumerate() {
+        vertex_side[v] = graph_sides[i];
+    }
     let mut sides = vec![Side::First; mesh.nodes.len()];
     let joined = |a: Side, b: Side| match (a, b) {
         (Side::First, _) | (_, Side::First) => Side::First,
@@ -128,7 +459,7 @@ pub(super) fn split_nodes_of(mesh: &Mesh, graph: &VertexGraph) -> Option<NodeSpl
     };
     for c in 0..mesh.cell_count() {
         let cell = mesh.cell(c);
-        let corner: [Side; 3] = std::array::from_fn(|i| vertex_side(cell[i], &index));
+        let corner: [Side; 3] = std::array::from_fn(|i| vertex_side[cell[i]]);
         for (i, &side) in corner.iter().enumerate() {
             sides[cell[i]] = side;
         }
@@ -142,7 +473,7 @@ pub(super) fn split_nodes_of(mesh: &Mesh, graph: &VertexGraph) -> Option<NodeSpl
             sides[bubble] = joined(joined(corner[0], corner[1]), corner[2]);
         }
     }
-    Some(NodeSplit { sides })
+    NodeSplit { sides }
 }
 
 #[cfg(test)]
@@ -154,7 +485,7 @@ mod tests {
     fn the_parts_share_no_cell_and_hold_comparable_shares() {
         for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
             let mesh = structured_rectangle(4.0, 1.0, 24, 6, 1, 2, 3).with_degree(degree);
-            let split = split_nodes(&mesh).expect("a long strip splits");
+            let split = split_by_level(&mesh).expect("a long strip splits");
             for c in 0..mesh.cell_count() {
                 let cell = mesh.cell(c);
                 let has = |side| cell.iter().any(|&m| split.sides[m] == side);
@@ -171,6 +502,118 @@ mod tests {
                 "{degree:?}: separator {separator} of {}",
                 mesh.nodes.len()
             );
+        }
+    }
+
+    /// Number of later neighbours of each position in the filled graph of `order`, by dense
+    /// elimination (the definition of fill: eliminating a vertex joins its later neighbours).
+    fn filled_later_neighbours(graph: &VertexGraph, order: &[usize]) -> Vec<Vec<usize>> {
+        let n = order.len();
+        let mut position = vec![0; n];
+        for (k, &v) in order.iter().enumerate() {
+            position[v] = k;
+        }
+        let mut adjacent = vec![vec![false; n]; n];
+        for v in 0..n {
+            for &w in graph.neighbours(v) {
+                adjacent[position[v]][position[w]] = true;
+            }
+        }
+        let mut later = Vec::with_capacity(n);
+        for k in 0..n {
+            let rows: Vec<usize> = (k + 1..n).filter(|&i| adjacent[k][i]).collect();
+            for &a in &rows {
+                for &b in &rows {
+                    adjacent[a][b] = true;
+                }
+            }
+            later.push(rows);
+        }
+        later
+    }
+
+    #[test]
+    fn the_vertex_level_work_is_that_of_the_dense_elimination() {
+        for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+            let mesh = structured_rectangle(3.0, 2.0, 9, 6, 1, 2, 3).with_degree(degree);
+            let incidence = VertexCells::new(&mesh);
+            let graph = vertex_graph(&mesh, &incidence);
+            let order = vertex_order(&graph);
+            let elimination = Elimination::of(&mesh, &graph, &order);
+            let filled = filled_later_neighbours(&graph, &order);
+            let per_edge = match degree {
+                Degree::Linear => 0,
+                Degree::Quadratic => 1,
+                Degree::Cubic => 2,
+            };
+            let mut position = vec![0; order.len()];
+            for (k, &v) in order.iter().enumerate() {
+                position[v] = k;
+            }
+            let weight: Vec<usize> = (0..order.len())
+                .map(|k| {
+                    let later_edges = graph
+                        .neighbours(order[k])
+                        .iter()
+                        .filter(|&&w| position[w] > k)
+                        .count();
+                    2 + 2 * per_edge * later_edges
+                })
+                .collect();
+            assert_eq!(elimination.weight, weight, "{degree:?}");
+            for k in 0..order.len() {
+                let below: usize = filled[k].iter().map(|&i| weight[i]).sum();
+                // Columns of w, w − 1, …, 1 entries above the `below` rows, counted one by one.
+                let expected: f64 = (1..=weight[k]).map(|c| ((c + below) as f64).powi(2)).sum();
+                assert!(
+                    (elimination.work[k] - expected).abs() <= 1e-9 * expected,
+                    "{degree:?} position {k}: {} against {expected}",
+                    elimination.work[k]
+                );
+                // The tree's parent is the first later neighbour in the filled graph.
+                assert_eq!(
+                    elimination.parent[k],
+                    filled[k].first().copied().unwrap_or(NONE),
+                    "{degree:?} position {k}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_tree_split_separates_the_parts_by_the_top_of_the_tree() {
+        for (width, nr, nz) in [(6.0, 36, 4), (2.0, 12, 10)] {
+            let mesh = structured_rectangle(width, 1.0, nr, nz, 1, 2, 3);
+            let incidence = VertexCells::new(&mesh);
+            let graph = vertex_graph(&mesh, &incidence);
+            let order = vertex_order(&graph);
+            let elimination = Elimination::of(&mesh, &graph, &order);
+            let (estimate, side) = tree_split(&elimination).expect("the mesh splits");
+            assert!(estimate.is_finite() && estimate > 0.0);
+            assert!(side.contains(&Side::First) && side.contains(&Side::Second));
+            let mut position = vec![0; order.len()];
+            for (k, &v) in order.iter().enumerate() {
+                position[v] = k;
+            }
+            for k in 0..order.len() {
+                // The separator is closed under taking parents.
+                let parent = elimination.parent[k];
+                if side[k] == Side::Separator && parent != NONE {
+                    assert_eq!(side[parent], Side::Separator, "{nr}x{nz}: position {k}");
+                }
+                // No edge of the vertex graph joins the two parts.
+                for &w in graph.neighbours(order[k]) {
+                    let other = side[position[w]];
+                    assert!(
+                        !matches!(
+                            (side[k], other),
+                            (Side::First, Side::Second) | (Side::Second, Side::First)
+                        ),
+                        "{nr}x{nz}: positions {k} and {}",
+                        position[w]
+                    );
+                }
+            }
         }
     }
 

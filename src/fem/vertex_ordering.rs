@@ -14,7 +14,7 @@ use super::node_ordered_cholesky::minimum_degree_order;
 
 /// Inner nodes per edge and whether a cell has a bubble node, by degree: the cell's nodes are its
 /// three vertices, then the inner nodes of edges (0, 1), (1, 2), (2, 0) in turn, then the bubble.
-fn edge_layout(degree: Degree) -> (usize, bool) {
+pub(super) fn edge_layout(degree: Degree) -> (usize, bool) {
     match degree {
         Degree::Linear => (0, false),
         Degree::Quadratic => (1, false),
@@ -122,14 +122,10 @@ pub(super) fn vertex_graph(mesh: &Mesh, incidence: &VertexCells) -> VertexGraph 
     }
 }
 
-/// Approximate-minimum-degree order of the graph of the cells' vertices: vertex ids in the order
-/// to eliminate them.
-fn vertex_order(graph: &VertexGraph) -> Vec<usize> {
-    let count = graph.vertices.len();
-    minimum_degree_order(count, &graph.offsets, &graph.rows)
-        .into_iter()
-        .map(|i| graph.vertices[i])
-        .collect()
+/// Approximate-minimum-degree order of the graph of the cells' vertices: graph vertex indices
+/// (into `graph.vertices`) in the order to eliminate them.
+pub(super) fn vertex_order(graph: &VertexGraph) -> Vec<usize> {
+    minimum_degree_order(graph.vertices.len(), &graph.offsets, &graph.rows)
 }
 
 /// Every node of `mesh` once, in a fill-reducing elimination order: the bubble nodes, then each
@@ -138,18 +134,19 @@ fn vertex_order(graph: &VertexGraph) -> Vec<usize> {
 pub fn vertex_led_node_order(mesh: &Mesh) -> Vec<usize> {
     let incidence = VertexCells::new(mesh);
     let graph = vertex_graph(mesh, &incidence);
-    vertex_led_node_order_of(mesh, &incidence, &graph)
+    vertex_led_node_order_of(mesh, &incidence, &graph, &vertex_order(&graph))
 }
 
-/// [`vertex_led_node_order`] with the mesh's cells at each vertex and its vertex graph given
-/// (shared with [`super::separator::split_nodes_of`]).
+/// [`vertex_led_node_order`] with the mesh's cells at each vertex, its vertex graph and the
+/// graph's [`vertex_order`] given (shared with [`super::separator::split_nodes_of`]).
 pub(super) fn vertex_led_node_order_of(
     mesh: &Mesh,
     incidence: &VertexCells,
     graph: &VertexGraph,
+    vertex_order: &[usize],
 ) -> Vec<usize> {
     let nodes = mesh.nodes.len();
-    let vertices = vertex_order(graph);
+    let vertices = vertex_order.iter().map(|&i| graph.vertices[i]);
     let mut placed = vec![false; nodes];
     let mut order = Vec::with_capacity(nodes);
     let mut place = |node: usize, order: &mut Vec<usize>| {
