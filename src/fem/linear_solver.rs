@@ -54,8 +54,8 @@ pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
 /// What a model's [`Analysis`] needs from its mesh alone: the vertex-led node order
 /// ([`super::vertex_ordering`]) and, for a model of at least [`SPLIT_MIN_DOFS`] unknowns, a
 /// split by a separator read off that order's elimination tree or a ring of the mesh, whichever
-/// promises the shorter factorisation ([`super::separator`]). Needs no pattern, so it is computed while
-/// the pattern is built.
+/// promises the shorter factorisation ([`super::separator`]). Needs no pattern, so it is
+/// computed while the pattern is built.
 pub struct MeshOrdering {
     order: Vec<usize>,
     split: Option<NodeSplit>,
@@ -85,8 +85,8 @@ impl Analysis {
     /// The analysis of a model's stiffness pattern (compressed columns, both triangles, two dofs
     /// per node of the mesh `ordering` belongs to and an optional trailing dof), in its
     /// vertex-led order: split in two parts by its separator when the model has at least
-    /// [`SPLIT_MIN_DOFS`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns and no
-    /// entry of `K` couples the two parts; whole otherwise. `beside` runs on the two cores beside
+    /// [`SPLIT_MIN_DOFS`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] unknowns
+    /// and no entry of `K` couples the two parts; whole otherwise. `beside` runs on the two cores beside
     /// the analysis (for a split, beside the second part's: [`SplitAnalysis::new_beside`]).
     pub fn of_ordering_beside<R: Send>(
         ordering: &MeshOrdering,

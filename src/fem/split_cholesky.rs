@@ -13,8 +13,9 @@
 //! core with the separator last, `M_i = L_i L_iᵀ`. The bottom-right block `L_SS,i` of `L_i` gives
 //! the part's Schur complement `S_i = KSS − KSi Kii⁻¹ KiS = L_SS,i L_SS,iᵀ`, and the Schur
 //! complement of `K` is `S = S_1 + S_2 − KSS` (dense, the separator being a few dozen
-//! vertices), factorised densely; each part forms its own product `L_SS,i L_SS,iᵀ` on its core. A solve `K u = f` is then, per part, one forward and one
-//! backward substitution with `L_i` (the two parts again on two cores):
+//! vertices), factorised densely; each part forms its own product `L_SS,i L_SS,iᵀ` on its core.
+//! A solve `K u = f` is then, per part, one forward and one backward substitution with `L_i`
+//! (the two parts again on two cores):
 //!
 //! 1. forward with `[f_i; 0]`: `z_i = Lii⁻¹ f_i`, `z_S,i = −L_SS,i⁻¹ KSi Kii⁻¹ f_i`, so
 //!    `g_i = KSi Kii⁻¹ f_i = −L_SS,i z_S,i`;
