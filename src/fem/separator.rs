@@ -458,16 +458,10 @@ pub(super) fn split_nodes_of(
         (estimate, sides)
     });
     let level = level_split(graph).map(|sides| (split_estimate(mesh, graph, order, &sides), sides));
-    let (estimate, sides) = match (tree, level) {
-        (Some(t), Some(l)) => {
-            if t.0 <= l.0 {
-                t
-            } else {
-                l
-            }
-        }
-        (t, l) => t.or(l)?,
-    };
+    let (estimate, sides) = [tree, level]
+        .into_iter()
+        .flatten()
+        .min_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal))?;
     (estimate < whole).then(|| node_sides(mesh, graph, &sides))
 }
 

@@ -231,12 +231,11 @@ struct PartFactor {
     separator_block: Mat<f64>,
 }
 
-/// A part just factorised: its factor, its term `L_SS,i L_SS,iᵀ` of the Schur complement (lower
-/// triangle) and, for the first part, `K_SS` (lower).
+/// A part just factorised: its factor and its term of the Schur complement (lower triangle):
+/// `L_SS,i L_SS,iᵀ`, less `K_SS` for the first part.
 struct FactoredPart {
     factor: PartFactor,
     schur_term: Mat<f64>,
-    kss: Option<Mat<f64>>,
 }
 
 /// The numeric factorisation of a split `K_C` (see the module's documentation).
@@ -371,8 +370,9 @@ impl SplitFactor {
         constrained: &[bool],
     ) -> Result<Self> {
         let separator = analysis.separator.len();
-        // Each part's factor; the first also gives K_SS (lower), from its trailing columns
-        // before the factorisation (the second's are the same).
+        // Each part's factor and Schur term on its own core; the first also subtracts K_SS
+        // (lower), read from its trailing columns before the factorisation (the second's are the
+        // same).
         let factor_part = |part: &PartAnalysis, with_kss: bool| -> Result<FactoredPart> {
             let mut lower_values = vec![0.0; part.lower.len()];
             part.lower.gather(values, constrained, &mut lower_values);
@@ -381,11 +381,11 @@ impl SplitFactor {
             let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
             let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &values);
             let separator_block = trailing_block(llt, separator);
-            // This part's term L_SS,i L_SS,iᵀ of the Schur complement (lower triangle, from
-            // the triangular blocks: a sixth of a full product's work), on this part's core.
-            let mut product = Mat::<f64>::zeros(separator, separator);
+            // L_SS,i L_SS,iᵀ (lower triangle, from the triangular blocks: a sixth of a full
+            // product's work).
+            let mut schur_term = Mat::<f64>::zeros(separator, separator);
             triangular::matmul(
-                product.as_mut(),
+                schur_term.as_mut(),
                 BlockStructure::TriangularLower,
                 Accum::Replace,
                 separator_block.as_ref(),
@@ -395,13 +395,19 @@ impl SplitFactor {
                 1.0,
                 Par::Seq,
             );
+            if let Some(kss) = &kss {
+                for j in 0..separator {
+                    for i in j..separator {
+                        schur_term[(i, j)] -= kss[(i, j)];
+                    }
+                }
+            }
             Ok(FactoredPart {
                 factor: PartFactor {
                     values,
                     separator_block,
                 },
-                schur_term: product,
-                kss,
+                schur_term,
             })
         };
         let (first, second) = rayon::join(
@@ -409,18 +415,11 @@ impl SplitFactor {
             || factor_part(&analysis.parts[1], false),
         );
         let (first, second) = (first?, second?);
-        let (kss, mut schur) = (first.kss, first.schur_term);
-        // S = L_SS,1 L_SS,1ᵀ + L_SS,2 L_SS,2ᵀ − K_SS (lower triangle; K_SS's upper part is zero).
+        // S = (L_SS,1 L_SS,1ᵀ − K_SS) + L_SS,2 L_SS,2ᵀ (lower triangle).
+        let mut schur = first.schur_term;
         for j in 0..separator {
             for i in j..separator {
                 schur[(i, j)] += second.schur_term[(i, j)];
-            }
-        }
-        if let Some(kss) = &kss {
-            for j in 0..separator {
-                for i in j..separator {
-                    schur[(i, j)] -= kss[(i, j)];
-                }
             }
         }
         let schur = schur.llt(Side::Lower).map_err(|e| {
