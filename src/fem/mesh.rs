@@ -761,6 +761,53 @@ mod tests {
         }
     }
 
+    /// The solver validates the vertex mesh (after any corner refinement) and not the mesh
+    /// raised from it: raising must keep a valid mesh valid, whatever the file's degree.
+    #[test]
+    fn raising_the_degree_keeps_a_mesh_valid() {
+        use crate::fem::corner_refinement::CornerRefinement;
+        let required = [
+            (tags::CONTACT, "contact"),
+            (tags::FAR, "far"),
+            (tags::AXIS, "axis"),
+        ];
+        let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes");
+        let mut meshes = Vec::new();
+        for file in ["disk-L0.msh", "annulus-0.5-L0.msh", "annulus-0.9-L1.msh"] {
+            let mesh = crate::fem::msh::read_msh(&root.join(file)).expect("committed mesh");
+            mesh.validate(&required).expect("committed mesh valid");
+            let refined = CornerRefinement {
+                radii: vec![1.0],
+                size: 1e-9,
+            }
+            .apply(&mesh)
+            .expect("refinement at the rim");
+            refined.validate(&required).expect("refined mesh valid");
+            // A file of quadratic triangles is raised from its own degree too.
+            let quadratic = mesh.to_quadratic();
+            quadratic.validate(&required).expect("quadratic mesh valid");
+            meshes.extend([mesh, refined, quadratic]);
+        }
+        meshes.push(structured_rectangle(
+            2.0,
+            1.0,
+            5,
+            3,
+            tags::CONTACT,
+            tags::FAR,
+            tags::AXIS,
+        ));
+        for mesh in &meshes {
+            for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+                let raised = mesh.with_degree(degree);
+                assert_eq!(raised.degree, degree);
+                raised
+                    .validate(&required)
+                    .unwrap_or_else(|e| panic!("{} as P{}: {e}", mesh.source, degree as u8));
+            }
+        }
+    }
+
     #[test]
     fn each_edge_gets_its_own_inner_nodes_even_around_a_vertex_of_many_cells() {
         // 5 000 cells around one vertex: 10 001 edges (the fan's spokes, its rim), each met once

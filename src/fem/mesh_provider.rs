@@ -238,6 +238,8 @@ pub enum MeshOrigin {
 pub struct ProvidedMesh {
     pub path: PathBuf,
     pub origin: MeshOrigin,
+    /// SHA-256 of the file when it was provided (empty for a user's `--mesh`: the solver hashes
+    /// the bytes it reads, and reports that hash).
     pub sha256: String,
     /// Version of the gmsh that made it (generated meshes only).
     pub gmsh_version: Option<String>,

@@ -38,6 +38,29 @@ impl PermutedLower {
     /// of `P K Pᵀ`, kept where `p(i) ≥ p(j)`. An order of some of the dofs lays out the
     /// principal submatrix of `K` on them (the entries coupling them to other dofs are left out).
     pub fn new(col_offsets: &[usize], row_indices: &[usize], order: &[usize]) -> Result<Self> {
+        Self::laid_out(col_offsets, row_indices, order, 0).map(|(layout, _)| layout)
+    }
+
+    /// [`Self::new`] for one part of a split `K` (the part's dofs, then the separator's, in
+    /// `order`): `None` when an entry of one of the part's own columns (the first `interior` of
+    /// `order`) lies outside the order, that is, when `K` couples the part to the other part.
+    pub fn of_part(
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        order: &[usize],
+        interior: usize,
+    ) -> Result<Option<Self>> {
+        let (layout, couples) = Self::laid_out(col_offsets, row_indices, order, interior)?;
+        Ok((!couples).then_some(layout))
+    }
+
+    /// The layout, and whether one of the first `checked` columns has an entry outside `order`.
+    fn laid_out(
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        order: &[usize],
+        checked: usize,
+    ) -> Result<(Self, bool)> {
         let dofs = col_offsets.len().saturating_sub(1);
         if col_offsets.last() != Some(&row_indices.len()) {
             return Err(layout_error(
@@ -67,6 +90,7 @@ impl PermutedLower {
         let mut rows = Vec::with_capacity((row_indices.len() + n) / 2);
         let mut source = Vec::with_capacity((row_indices.len() + n) / 2);
         offsets.push(0);
+        let mut outside = false;
         for (new_col, &old_col) in order.iter().enumerate() {
             let range = col_offsets[old_col]..col_offsets[old_col + 1];
             for (k, &old_row) in range.clone().zip(&row_indices[range]) {
@@ -77,15 +101,17 @@ impl PermutedLower {
                     // In range: checked against u32::MAX above.
                     source.push(k as u32);
                 }
+                outside |= new_row == usize::MAX && new_col < checked;
             }
             offsets.push(rows.len());
         }
         let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, offsets, None, rows);
-        Ok(Self {
+        let layout = Self {
             pattern,
             source,
             order: order.to_vec(),
-        })
+        };
+        Ok((layout, outside))
     }
 
     /// The permuted lower triangle's pattern.

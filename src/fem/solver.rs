@@ -29,7 +29,7 @@ use super::far_field::{FarField, FarFieldCondition};
 use super::linear_solver::{Analysis, ConstrainedCholesky, MeshOrdering};
 use super::mesh::{tags, Degree, Mesh};
 use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
-use super::msh::read_msh;
+use super::msh::read_msh_hashed;
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
 use crate::heartbeat::Heartbeat;
@@ -266,6 +266,8 @@ fn display_path(path: &Path) -> String {
 /// One mesh loaded, assembled and symbolically factorised.
 struct PreparedModel {
     mesh: Mesh,
+    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]).
+    mesh_sha256: String,
     /// The file's mesh (after any corner refinement), validated, before its degree was raised:
     /// what the linear edge locator assembles without reading the file again.
     vertex_mesh: Mesh,
@@ -307,23 +309,30 @@ const REQUIRED_TAGS: [(i32, &str); 3] = [
 ];
 
 /// Read and validate the mesh file (its messages quote the file's tags), then apply its corner
-/// refinement: the vertex mesh every degree of the model is raised from.
-fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<Mesh> {
-    let raw = read_msh(provided.path.as_path())?;
+/// refinement, validated again: the vertex mesh every degree of the model is raised from. Raising
+/// the degree keeps a valid mesh valid (its added nodes lie at the fractions `k/p` of straight
+/// edges; `raising_the_degree_keeps_a_mesh_valid` tests it), so the raised mesh is not checked
+/// again.
+fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, String)> {
+    let (raw, sha256) = read_msh_hashed(provided.path.as_path())?;
     raw.validate(&REQUIRED_TAGS)?;
     raw.validate_geometry(contact_start)?;
     match &provided.corner_refinement {
-        Some(refinement) => refinement.apply(&raw),
-        None => Ok(raw),
+        Some(refinement) => {
+            let refined = refinement.apply(&raw)?;
+            refined.validate(&REQUIRED_TAGS)?;
+            Ok((refined, sha256))
+        }
+        None => Ok((raw, sha256)),
     }
 }
 
 /// Read the mesh of `provided` and assemble its model ([`assemble_model`]).
 fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
     let start = Instant::now();
-    let vertex_mesh = read_vertex_mesh(provided, spec.contact_start)?;
+    let (vertex_mesh, mesh_sha256) = read_vertex_mesh(provided, spec.contact_start)?;
     let read = start.elapsed().as_secs_f64();
-    let mut model = assemble_model(vertex_mesh, provided, spec)?;
+    let mut model = assemble_model(vertex_mesh, mesh_sha256, provided, spec)?;
     model.timings.read += read;
     Ok(model)
 }
@@ -332,6 +341,7 @@ fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
 /// [`FarField::Boussinesq`], slave the far arc to the point-force field.
 fn assemble_model(
     vertex_mesh: Mesh,
+    mesh_sha256: String,
     provided: &ProvidedMesh,
     spec: ModelSpec,
 ) -> Result<PreparedModel> {
@@ -343,7 +353,6 @@ fn assemble_model(
     } = spec;
     let start = Instant::now();
     let mesh = vertex_mesh.with_degree(degree);
-    mesh.validate(&REQUIRED_TAGS)?;
     let read = start.elapsed().as_secs_f64();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
@@ -393,6 +402,7 @@ fn assemble_model(
     let assembly = start.elapsed().as_secs_f64();
     Ok(PreparedModel {
         mesh,
+        mesh_sha256,
         vertex_mesh,
         domain_radius,
         arc_grading,
@@ -551,7 +561,14 @@ fn linear_edge_locator(
         degree: Degree::Linear,
         ..model.spec
     };
-    let mut linear = assemble_model(model.vertex_mesh.clone(), &model.provided, spec).ok()?;
+    let vertex_mesh = model.vertex_mesh.clone();
+    let mut linear = assemble_model(
+        vertex_mesh,
+        model.mesh_sha256.clone(),
+        &model.provided,
+        spec,
+    )
+    .ok()?;
     let (s, depth, _) =
         solve_model(&mut linear, kind, eps, load, None, depth_guess, tolerance).ok()?;
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
@@ -692,7 +709,7 @@ fn finish(
         domain_radius: model.domain_radius,
         truncation_bias: model.truncation_bias(),
         far_field: model.spec.far_field,
-        mesh_sha256: model.provided.sha256.clone(),
+        mesh_sha256: model.mesh_sha256.clone(),
         mesh_origin: model.provided.origin,
         gmsh_version: model.provided.gmsh_version.clone(),
         mesh_refinement: model
@@ -1050,8 +1067,10 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         });
     }
     if let Some(path) = &options.mesh {
+        // The solution's hash is that of the bytes the solve reads (`PreparedModel::mesh_sha256`),
+        // computed beside the parse; a user's mesh is not hashed beforehand.
         let provided = ProvidedMesh {
-            sha256: mesh_provider::sha256_file(path)?,
+            sha256: String::new(),
             path: path.clone(),
             origin: MeshOrigin::User,
             gmsh_version: None,

@@ -41,7 +41,6 @@ use super::node_ordered_cholesky::{
 use super::permuted_lower::PermutedLower;
 use super::separator::{NodeSplit, Side as PartSide};
 use crate::error::{Error, Result};
-use rayon::prelude::*;
 
 fn solver_error(message: String) -> Error {
     Error::NoConvergence {
@@ -59,10 +58,19 @@ struct PartAnalysis {
 }
 
 impl PartAnalysis {
-    fn new(col_offsets: &[usize], row_indices: &[usize], order: &[usize]) -> Result<Self> {
-        let lower = PermutedLower::new(col_offsets, row_indices, order)?;
+    /// The analysis of the part whose dofs are `order`'s first `interior`, then the separator's;
+    /// `None` when an entry of `K` couples the part to the other one.
+    fn new(
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        order: &[usize],
+        interior: usize,
+    ) -> Result<Option<Self>> {
+        let Some(lower) = PermutedLower::of_part(col_offsets, row_indices, order, interior)? else {
+            return Ok(None);
+        };
         let symbolic = supernodal_analysis_in_order(lower.pattern())?;
-        Ok(Self { lower, symbolic })
+        Ok(Some(Self { lower, symbolic }))
     }
 
     /// The part's dofs (of `K`) in elimination order, the separator's last.
@@ -106,11 +114,13 @@ impl SplitAnalysis {
     }
 
     /// [`Self::new`], with `beside` run on the two cores beside the second part's analysis
-    /// (before the analysis, when the split does not apply or the input is wrong). The two parts'
-    /// analyses are sequential and about equal; started first, one on each core, they leave
-    /// `beside` (the assembly's values, itself parallel) to fill in whichever core is free first:
-    /// started after `beside`'s work, the second part ran alone at the end (measured at 9e4
-    /// quadratic unknowns: 39 against about 28 ms for the three).
+    /// (before the analysis, when the input is wrong). The two parts' analyses are sequential and
+    /// about equal; started first, one on each core, they leave `beside` (the assembly's values,
+    /// itself parallel) to fill in whichever core is free first: started after `beside`'s work,
+    /// the second part ran alone at the end (measured at 9e4 quadratic unknowns: 39 against about
+    /// 28 ms for the three). Whether an entry couples the parts is found while each part's
+    /// layout is made ([`PermutedLower::of_part`]), not in a pass of its own before them (that
+    /// pass was 2.5 ms of one core at 9e4 quadratic unknowns).
     pub fn new_beside<R: Send>(
         col_offsets: &[usize],
         row_indices: &[usize],
@@ -120,38 +130,39 @@ impl SplitAnalysis {
     ) -> (Result<Option<Self>>, R) {
         let (separator, first, second) =
             match Self::part_orders(col_offsets, row_indices, node_order, split) {
-                Ok(Some(orders)) => orders,
-                Ok(None) => return (Ok(None), beside()),
+                Ok(orders) => orders,
                 Err(e) => return (Err(e), beside()),
             };
+        let interior = |order: &Vec<usize>| order.len() - separator.len();
         let (first, (second, result)) = rayon::join(
-            || PartAnalysis::new(col_offsets, row_indices, &first),
+            || PartAnalysis::new(col_offsets, row_indices, &first, interior(&first)),
             || {
                 rayon::join(
-                    || PartAnalysis::new(col_offsets, row_indices, &second),
+                    || PartAnalysis::new(col_offsets, row_indices, &second, interior(&second)),
                     beside,
                 )
             },
         );
-        let analysis = first.and_then(|first| {
-            Ok(Some(Self {
-                parts: [first, second?],
+        let analysis = match (first, second) {
+            (Ok(Some(first)), Ok(Some(second))) => Ok(Some(Self {
+                parts: [first, second],
                 separator,
                 shape: (col_offsets.len().saturating_sub(1), row_indices.len()),
-            }))
-        });
+            })),
+            (Err(e), _) | (_, Err(e)) => Err(e),
+            _ => Ok(None),
+        };
         (analysis, result)
     }
 
     /// The separator's dofs and each part's dofs in elimination order (its own, then the
-    /// separator's); `None` when an entry couples the two parts.
-    #[allow(clippy::type_complexity)]
+    /// separator's).
     fn part_orders(
         col_offsets: &[usize],
         row_indices: &[usize],
         node_order: &[usize],
         split: &NodeSplit,
-    ) -> Result<Option<(Vec<usize>, Vec<usize>, Vec<usize>)>> {
+    ) -> Result<(Vec<usize>, Vec<usize>, Vec<usize>)> {
         let n = col_offsets.len().saturating_sub(1);
         let nodes = split.sides.len();
         if n / 2 != nodes
@@ -161,26 +172,6 @@ impl SplitAnalysis {
             return Err(solver_error(
                 "internal: the split belongs to another mesh".into(),
             ));
-        }
-        let side_of_dof = |d: usize| {
-            if d < 2 * nodes {
-                split.sides[d / 2]
-            } else {
-                PartSide::Separator
-            }
-        };
-        let couples_the_parts = (0..n).into_par_iter().any(|col| {
-            let side = side_of_dof(col);
-            side != PartSide::Separator
-                && row_indices[col_offsets[col]..col_offsets[col + 1]]
-                    .iter()
-                    .any(|&row| {
-                        let other = side_of_dof(row);
-                        other != side && other != PartSide::Separator
-                    })
-        });
-        if couples_the_parts {
-            return Ok(None);
         }
         let of_side = |side: PartSide| {
             node_order
@@ -198,7 +189,7 @@ impl SplitAnalysis {
                 .collect()
         };
         let (first, second) = (order_of(PartSide::First), order_of(PartSide::Second));
-        Ok(Some((separator, first, second)))
+        Ok((separator, first, second))
     }
 
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
