@@ -12,8 +12,8 @@ range over the rounds.
 The settle pause is there to test the moment: on the virtual machine this project is developed
 on, a solve started right after a large process had freed its memory once ran up to 1.4 times
 slower for a few seconds, while FEniCSx's own timed region starts after its imports, about 0.6 s
-after the previous solve ended. Over five rounds the pause changed little (README, *Where the
-92 528-unknown row's time goes*, both protocols' tables).
+after the previous solve ended. Over five rounds the pause changed little (benches/FENICSX_SPEED.md,
+*Where the 92 528-unknown row's time goes*, both protocols' tables).
 
 Usage (from anywhere; needs FEniCSx, see setup.sh, and a release build of `verify`):
 

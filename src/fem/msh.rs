@@ -10,7 +10,6 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use mshio::mshfile::ElementType;
-
 use sha2::{Digest, Sha256};
 
 use super::mesh::{BoundaryEdge, Degree, FileTags, Mesh};
