@@ -48,10 +48,6 @@ fn split_min_dofs() -> usize {
 /// Rows of the refinement's residual computed per parallel task.
 const RESIDUAL_ROWS_PER_TASK: usize = 4096;
 
-/// Columns per parallel task when the diagonal entries are located
-/// ([`ConstrainedCholesky::with_symbolic`]).
-const DIAGONAL_COLUMNS_PER_TASK: usize = 4096;
-
 /// Most separator unknowns a split may have (its Schur complement is dense).
 pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
 
@@ -215,19 +211,16 @@ impl<'a> ConstrainedCholesky<'a> {
                 "internal: the symbolic analysis belongs to another pattern".into(),
             ));
         }
-        // Each column's rows are sorted (a CSC matrix of nalgebra-sparse): its diagonal entry is
-        // found by bisection, the columns in parallel.
-        let (offsets, rows) = (matrix.col_offsets(), matrix.row_indices());
-        let diagonal: Vec<usize> = (0..n)
-            .into_par_iter()
-            .with_min_len(DIAGONAL_COLUMNS_PER_TASK)
-            .map(|col| {
-                let column = &rows[offsets[col]..offsets[col + 1]];
-                column
-                    .binary_search(&col)
-                    .map_or(usize::MAX, |k| offsets[col] + k)
-            })
-            .collect();
+        let mut diagonal = vec![usize::MAX; n];
+        for (col, slot) in diagonal.iter_mut().enumerate() {
+            let range = matrix.col_offsets()[col]..matrix.col_offsets()[col + 1];
+            if let Some(k) = matrix.row_indices()[range.clone()]
+                .iter()
+                .position(|&row| row == col)
+            {
+                *slot = range.start + k;
+            }
+        }
         if let Some(col) = diagonal.iter().position(|&d| d == usize::MAX) {
             return Err(solver_error(format!(
                 "dof {col} has no diagonal entry (a node outside every element)"
