@@ -11,9 +11,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use sha2::{Digest, Sha256};
-
-use super::mesh_provider::{cache_directory_of, hex};
+use super::mesh_provider::{cache_directory_of, sha256_hex};
 use crate::error::{Error, Result};
 
 /// Longest a single gmsh run may take before it is stopped (the finest adapted level takes
@@ -139,7 +137,7 @@ impl Gmsh {
         };
         let memo = memo_dir.join(format!(
             "gmsh-version-{}.txt",
-            &hex(&Sha256::digest(identity.as_bytes()))[..16]
+            &sha256_hex(identity.as_bytes())[..16]
         ));
         let remembered = std::fs::read_to_string(&memo).ok().and_then(|text| {
             let mut lines = text.lines();

@@ -405,7 +405,12 @@ pub fn sha256_file(path: &Path) -> Result<String> {
         path: path.display().to_string(),
         message: format!("cannot read: {e}"),
     })?;
-    Ok(hex(&Sha256::digest(&bytes)))
+    Ok(sha256_hex(&bytes))
+}
+
+/// SHA-256 of `bytes`, hex.
+pub fn sha256_hex(bytes: &[u8]) -> String {
+    hex(&Sha256::digest(bytes))
 }
 
 /// Lower-case hexadecimal of `bytes` (a digest's usual spelling).

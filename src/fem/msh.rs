@@ -10,10 +10,9 @@ use std::collections::HashMap;
 use std::path::Path;
 
 use mshio::mshfile::ElementType;
-use sha2::{Digest, Sha256};
 
 use super::mesh::{BoundaryEdge, Degree, FileTags, Mesh};
-use super::mesh_provider::hex;
+use super::mesh_provider::sha256_hex;
 use crate::error::{Error, Result};
 
 fn err(path: &str, message: impl Into<String>) -> Error {
@@ -242,19 +241,24 @@ fn node_tags_in_file_order(bytes: &[u8], name: &str) -> Result<Vec<(u64, usize)>
     Ok(tags)
 }
 
-/// Read and parse a `.msh` file (format 4.1, ASCII or binary).
-pub fn read_msh(path: &Path) -> Result<Mesh> {
+/// The file's name for messages and its bytes.
+fn file_bytes(path: &Path) -> Result<(String, Vec<u8>)> {
     let name = path.display().to_string();
     let bytes = std::fs::read(path).map_err(|e| err(&name, format!("cannot read: {e}")))?;
+    Ok((name, bytes))
+}
+
+/// Read and parse a `.msh` file (format 4.1, ASCII or binary).
+pub fn read_msh(path: &Path) -> Result<Mesh> {
+    let (name, bytes) = file_bytes(path)?;
     parse_msh(&bytes, &name)
 }
 
 /// [`read_msh`], and the SHA-256 (hex) of the bytes it parsed, computed beside the parse: the
 /// provenance of exactly what was solved, at no cost to the read's time.
 pub fn read_msh_hashed(path: &Path) -> Result<(Mesh, String)> {
-    let name = path.display().to_string();
-    let bytes = std::fs::read(path).map_err(|e| err(&name, format!("cannot read: {e}")))?;
-    parse_msh_beside(&bytes, &name, || hex(&Sha256::digest(&bytes)))
+    let (name, bytes) = file_bytes(path)?;
+    parse_msh_beside(&bytes, &name, || sha256_hex(&bytes))
 }
 
 /// Parse `.msh` 4.1 bytes; `name` is used in error messages.
