@@ -13,6 +13,7 @@ pub mod mesh;
 pub mod mesh_provider;
 pub mod msh;
 pub mod node_ordered_cholesky;
+pub mod node_pair_analysis;
 pub mod norms;
 pub mod permuted_lower;
 pub mod quadrature;

@@ -23,6 +23,7 @@ use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::supernodal::{
     factorize_supernodal_numeric_llt, factorize_supernodal_numeric_llt_scratch,
+    SymbolicSupernodalCholesky,
 };
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
@@ -218,7 +219,7 @@ pub struct SymbolicFactor {
 impl SymbolicFactor {
     /// The numeric factorisation's multiply-adds ([`factorisation_work`]).
     pub fn work(&self) -> f64 {
-        factorisation_work(&self.inner)
+        factorisation_work(supernodal_of(&self.inner))
     }
 
     /// Analyse the pattern given as compressed columns (`col_offsets`, sorted `row_indices`).
@@ -305,15 +306,21 @@ fn supernodal_analysis(
     Ok(inner)
 }
 
+/// The supernodal part of an analysis made by [`supernodal_analysis`] (which checks that it is
+/// supernodal).
+fn supernodal_of(analysis: &SymbolicCholesky<usize>) -> &SymbolicSupernodalCholesky<usize> {
+    match analysis.raw() {
+        SymbolicCholeskyRaw::Supernodal(supernodal) => supernodal,
+        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("checked by supernodal_analysis"),
+    }
+}
+
 /// The numeric factorisation's work on a supernodal analysis, `Σ_j c_j²` multiply-adds over
 /// the factor's columns `j` (`c_j` the entries of column `j` on and below the diagonal, the
 /// supernodes' dense blocks counted whole, with the zeros `faer`'s relaxed supernodes carry: a
 /// tridiagonal matrix of 10 rows in its own order, 37 without them, counts 385, one dense
 /// supernode), for traces and comparisons of orderings.
-pub fn factorisation_work(analysis: &SymbolicCholesky<usize>) -> f64 {
-    let SymbolicCholeskyRaw::Supernodal(supernodal) = analysis.raw() else {
-        return f64::NAN;
-    };
+pub fn factorisation_work(supernodal: &SymbolicSupernodalCholesky<usize>) -> f64 {
     let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
     let rows = supernodal.col_ptr_for_row_idx();
     (0..supernodal.n_supernodes())
@@ -330,15 +337,6 @@ pub fn factorisation_work(analysis: &SymbolicCholesky<usize>) -> f64 {
         .sum()
 }
 
-/// Supernodal symbolic analysis of a lower triangle already in elimination order (its own
-/// order kept: `faer`'s permutation is the identity).
-pub fn supernodal_analysis_in_order(
-    lower: &SymbolicSparseColMat<usize>,
-) -> Result<SymbolicCholesky<usize>> {
-    let identity: Vec<usize> = (0..lower.nrows()).collect();
-    supernodal_analysis(lower.as_ref(), &identity, &identity)
-}
-
 /// The supernodal factor `L` of the matrix whose lower triangle (in the analysis's elimination
 /// order) is `lower` with `lower_values`: `faer`'s values of `L`, supernode by supernode. Fails
 /// if the matrix is not positive definite.
@@ -347,21 +345,16 @@ pub fn supernodal_analysis_in_order(
 /// this machine the kernel's zeroing of fresh pages runs at about 2 GB/s per core, and the
 /// factor holds 1.25 GB at 1.4e6 cubic unknowns.
 pub fn factorise_supernodal(
-    analysis: &SymbolicCholesky<usize>,
+    supernodal: &SymbolicSupernodalCholesky<usize>,
     lower: &SymbolicSparseColMat<usize>,
     lower_values: &[f64],
 ) -> Result<Vec<f64>> {
-    let SymbolicCholeskyRaw::Supernodal(supernodal) = analysis.raw() else {
-        return Err(solver_error(
-            "internal: the symbolic analysis is not supernodal".into(),
-        ));
-    };
-    if lower_values.len() != lower.compute_nnz() || lower.nrows() != analysis.nrows() {
+    if lower_values.len() != lower.compute_nnz() || lower.nrows() != supernodal.nrows() {
         return Err(solver_error(
             "internal: the values do not fit the permuted lower triangle".into(),
         ));
     }
-    let mut values = super::zeroed::zeros_written(analysis.len_val());
+    let mut values = super::zeroed::zeros_written(supernodal.len_val());
     let mut memory = MemBuffer::try_new(factorize_supernodal_numeric_llt_scratch::<usize, f64>(
         supernodal,
         Par::Seq,
@@ -399,7 +392,8 @@ impl NumericFactor {
     /// positive definite ([`factorise_supernodal`]).
     pub fn new(symbolic: &SymbolicFactor, lower_values: &[f64]) -> Result<Self> {
         let inner = &symbolic.inner;
-        let values = factorise_supernodal(inner, symbolic.lower.pattern(), lower_values)?;
+        let values =
+            factorise_supernodal(supernodal_of(inner), symbolic.lower.pattern(), lower_values)?;
         Ok(Self {
             symbolic: Arc::clone(inner),
             values,

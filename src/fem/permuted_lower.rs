@@ -114,6 +114,20 @@ impl PermutedLower {
         Ok((layout, outside))
     }
 
+    /// A layout made elsewhere ([`super::node_pair_analysis`]): `source[e]` is the index in `K`'s
+    /// values of the entry `e` of `pattern`, and `order[p]` the dof eliminated `p`-th.
+    pub(super) fn from_parts(
+        pattern: SymbolicSparseColMat<usize>,
+        source: Vec<u32>,
+        order: Vec<usize>,
+    ) -> Self {
+        Self {
+            pattern,
+            source,
+            order,
+        }
+    }
+
     /// The permuted lower triangle's pattern.
     pub fn pattern(&self) -> &SymbolicSparseColMat<usize> {
         &self.pattern

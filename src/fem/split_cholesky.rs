@@ -31,13 +31,11 @@ use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::reborrow::{Reborrow, ReborrowMut};
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
-use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
 use faer::{Accum, Mat, MatMut, Par, Side};
 
-use super::node_ordered_cholesky::{
-    factorisation_work, factorise_supernodal, supernodal_analysis_in_order,
-};
+use super::node_ordered_cholesky::{factorisation_work, factorise_supernodal};
+use super::node_pair_analysis::{analyse_node_pairs, supernodal_of_lower};
 use super::permuted_lower::PermutedLower;
 use super::separator::{NodeSplit, Side as PartSide};
 use crate::error::{Error, Result};
@@ -54,7 +52,7 @@ fn solver_error(message: String) -> Error {
 #[derive(Debug)]
 struct PartAnalysis {
     lower: PermutedLower,
-    symbolic: SymbolicCholesky<usize>,
+    symbolic: SymbolicSupernodalCholesky<usize>,
 }
 
 impl PartAnalysis {
@@ -66,10 +64,18 @@ impl PartAnalysis {
         order: &[usize],
         interior: usize,
     ) -> Result<Option<Self>> {
+        // On the node graph where K's dofs come in node pairs (always, for the solver's
+        // models), dof by dof otherwise.
+        if let Some(analysis) = analyse_node_pairs(col_offsets, row_indices, order, interior)? {
+            return Ok((!analysis.couples).then_some(Self {
+                lower: analysis.lower,
+                symbolic: analysis.symbolic,
+            }));
+        }
         let Some(lower) = PermutedLower::of_part(col_offsets, row_indices, order, interior)? else {
             return Ok(None);
         };
-        let symbolic = supernodal_analysis_in_order(lower.pattern())?;
+        let symbolic = supernodal_of_lower(lower.pattern().as_ref())?;
         Ok(Some(Self { lower, symbolic }))
     }
 
@@ -236,16 +242,6 @@ pub struct SplitFactor {
     schur: Llt<f64>,
 }
 
-fn supernodal(
-    analysis: &SymbolicCholesky<usize>,
-) -> &faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky<usize> {
-    match analysis.raw() {
-        SymbolicCholeskyRaw::Supernodal(s) => s,
-        // Checked when analysed (supernodal_analysis_in_order).
-        SymbolicCholeskyRaw::Simplicial(_) => unreachable!("the part's analysis is supernodal"),
-    }
-}
-
 /// The dense bottom-right block (last `size` rows and columns) of a supernodal factor.
 fn trailing_block(llt: SupernodalLltRef<'_, usize, f64>, size: usize) -> Mat<f64> {
     let symbolic = llt.symbolic();
@@ -370,7 +366,7 @@ impl SplitFactor {
             let kss = with_kss.then(|| separator_block_of(part, &lower_values, separator));
             let pattern = part.lower.pattern();
             let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
-            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &values);
+            let llt = SupernodalLltRef::new(&part.symbolic, &values);
             let separator_block = trailing_block(llt, separator);
             // L_SS,i L_SS,iᵀ (lower triangle, from the triangular blocks: a sixth of a full
             // product's work).
@@ -442,7 +438,7 @@ impl SplitFactor {
                     x[(p, j)] = rhs_ref[(d, j)];
                 }
             }
-            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &self.parts[i].values);
+            let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
             forward(llt, x.as_mut());
             let mut g = Mat::<f64>::zeros(separator, k);
             matmul(
@@ -476,7 +472,7 @@ impl SplitFactor {
                 1.0,
                 Par::Seq,
             );
-            let llt = SupernodalLltRef::new(supernodal(&part.symbolic), &self.parts[i].values);
+            let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
             backward(llt, x.as_mut());
         };
         rayon::join(|| backward_part(0, &mut x1), || backward_part(1, &mut x2));
