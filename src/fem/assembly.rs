@@ -15,6 +15,7 @@ use rayon::prelude::*;
 use super::element::{ElementKernel, Lame};
 use super::far_field::FarFieldCondition;
 use super::mesh::{Degree, Mesh};
+use super::prefetch::prefetch;
 use super::quadrature::TriangleRule;
 use super::vertex_ordering::bubble_node;
 use crate::error::{Error, Result};
@@ -24,6 +25,12 @@ use crate::error::{Error, Result};
 /// 4096 cubic cells' matrices were 13 MB, written once per solve), large enough that each
 /// parallel step has a few hundred cells.
 const ASSEMBLY_BLOCK_BYTES: usize = 1 << 20;
+
+/// How many nodes ahead of its lists the node pattern asks for their cells.
+const PATTERN_PREFETCH_NODES: usize = 4;
+
+/// How many cells ahead of its additions the assembly asks for `K`'s entries.
+const SCATTER_PREFETCH_CELLS: usize = 4;
 
 /// The node-level pattern of a mesh and where each cell's entries go in it.
 struct NodePattern {
@@ -82,6 +89,14 @@ fn node_pattern(mesh: &Mesh, condensed_bubbles: bool) -> Result<NodePattern> {
     let mut positions = vec![0u32; cells * k * k];
     offsets.push(0);
     for node in 0..nodes {
+        // The cells of a node a few ahead (their nodes and their slots), asked for now: a
+        // node's cells are spread over the mesh's arrays.
+        if let Some(&end) = cell_offsets.get(node + PATTERN_PREFETCH_NODES + 1) {
+            for &c in &cells_of[cell_offsets[node + PATTERN_PREFETCH_NODES]..end] {
+                prefetch(&mesh.cells, c * k);
+                prefetch(&positions, c * k * k);
+            }
+        }
         let start = neighbours.len();
         let node_cells = &cells_of[cell_offsets[node]..cell_offsets[node + 1]];
         for &c in node_cells {
@@ -459,6 +474,23 @@ impl StiffnessPattern {
             let positions = &nodes.positions;
             ranges.par_iter_mut().for_each(|range| {
                 for c in block_start..block_end {
+                    // The entries a few cells ahead, asked for now: the cells' nodes are spread
+                    // over K's columns.
+                    let ahead = c + SCATTER_PREFETCH_CELLS;
+                    if ahead < block_end {
+                        for (b, &nb) in mesh.cell(ahead).iter().enumerate() {
+                            if nb < range.first_node || nb >= range.end_node {
+                                continue;
+                            }
+                            let slot = &positions[(ahead * k + b) * k..(ahead * k + b + 1) * k];
+                            for cb in 0..2 {
+                                let column = col_offsets[2 * nb + cb] - range.value_start;
+                                for &pos in slot {
+                                    prefetch(range.values, column + 2 * pos as usize);
+                                }
+                            }
+                        }
+                    }
                     let local = &locals[(c - block_start) * size * size..][..size * size];
                     for (b, &nb) in mesh.cell(c).iter().enumerate() {
                         if nb < range.first_node || nb >= range.end_node {

@@ -16,6 +16,7 @@ pub mod node_ordered_cholesky;
 pub mod node_pair_analysis;
 pub mod norms;
 pub mod permuted_lower;
+pub mod prefetch;
 pub mod quadrature;
 pub mod separator;
 pub mod solver;

@@ -36,6 +36,7 @@ use faer::sparse::linalg::SymbolicSupernodalParams;
 use faer::sparse::{SymbolicSparseColMat, SymbolicSparseColMatRef};
 
 use super::permuted_lower::PermutedLower;
+use super::prefetch::prefetch_range;
 use crate::error::{Error, Result};
 
 fn analysis_error(message: String) -> Error {
@@ -267,26 +268,8 @@ pub fn analyse_node_pairs(
     }))
 }
 
-/// How many node columns ahead of the scan [`prefetch_range`] asks for.
+/// How many node columns ahead of the scan the prefetch asks for.
 const PREFETCH_AHEAD: usize = 8;
-
-/// Ask the processor to bring `values` into its cache (a hint: nothing is read, nothing can
-/// fault; no-op off x86-64).
-#[inline(always)]
-fn prefetch_range(values: &[usize]) {
-    #[cfg(target_arch = "x86_64")]
-    for line in values.chunks(64 / std::mem::size_of::<usize>()) {
-        // SAFETY: a prefetch is a hint that neither reads memory architecturally nor faults,
-        // whatever the address; this one is inside `values`.
-        unsafe {
-            std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
-                line.as_ptr().cast::<i8>(),
-            )
-        };
-    }
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = values;
-}
 
 /// The supernodal analysis of the dof pattern whose node graph's upper triangle (with its
 /// diagonal) is `node_upper`: `pairs` nodes of two dofs, then, if `single`, one of one dof.

@@ -11,7 +11,11 @@
 
 use faer::sparse::SymbolicSparseColMat;
 
+use super::prefetch::prefetch;
 use crate::error::{Error, Result};
+
+/// How many columns ahead of its copy [`PermutedLower::gather`] asks for `K`'s values.
+const GATHER_PREFETCH_COLUMNS: usize = 4;
 
 fn layout_error(message: String) -> Error {
     Error::NoConvergence {
@@ -156,6 +160,14 @@ impl PermutedLower {
         let offsets = self.pattern.col_ptr();
         let rows = self.pattern.row_idx();
         for col in 0..self.pattern.ncols() {
+            // A column's entries come from one or two columns of `K`, scattered over it in
+            // elimination order: ask for those of a column a few ahead.
+            if let Some(&end) = offsets.get(col + GATHER_PREFETCH_COLUMNS + 1) {
+                let first = offsets[col + GATHER_PREFETCH_COLUMNS];
+                for e in (first..end).step_by(4) {
+                    prefetch(values, self.source[e] as usize);
+                }
+            }
             let range = offsets[col]..offsets[col + 1];
             let column_constrained = constrained_new[col];
             for e in range {
