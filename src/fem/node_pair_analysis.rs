@@ -21,7 +21,9 @@
 //!
 //! The result is the analysis `faer` makes of the whole dof pattern (the tests compare the two
 //! on the committed meshes, with and without the far-field dof, whole and split), at less cost:
-//! at 92 528 quadratic unknowns each part's layout and analysis took 25-35 ms on the dof graph.
+//! at 92 528 quadratic unknowns a part's layout and analysis took 28 ms dof by dof and 18 ms
+//! here (medians of 20 warm solves). The scan visits `K`'s columns in elimination order, not in
+//! `K`'s: without asking for the columns a few nodes ahead it was as slow as the dof-wise layout.
 //! A pattern or order not in this form is reported (`None`), and the caller analyses the dofs.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
