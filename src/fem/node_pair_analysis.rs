@@ -60,7 +60,7 @@ pub struct NodePairAnalysis {
     pub symbolic: SymbolicSupernodalCholesky<usize>,
 }
 
-/// A compressed-column list of node indices, one column per node.
+/// A compressed-column list of indices (node indices, or dofs for [`supernodal_of_lower`]).
 struct NodeColumns {
     offsets: Vec<usize>,
     rows: Vec<usize>,
@@ -73,24 +73,33 @@ impl NodeColumns {
 
     /// The transpose (rows sorted within each column).
     fn transposed(&self) -> Self {
-        let n = self.offsets.len() - 1;
-        let mut counts = vec![0usize; n + 1];
-        for &r in &self.rows {
-            counts[r + 1] += 1;
+        transpose(&self.offsets, &self.rows)
+    }
+}
+
+/// The transpose of the square pattern with compressed columns `offsets`, `rows` (rows sorted
+/// within each column of the result): a counting sort.
+fn transpose(offsets: &[usize], rows: &[usize]) -> NodeColumns {
+    let n = offsets.len() - 1;
+    let mut counts = vec![0usize; n + 1];
+    for &r in rows {
+        counts[r + 1] += 1;
+    }
+    for i in 0..n {
+        counts[i + 1] += counts[i];
+    }
+    let transposed_offsets = counts.clone();
+    let mut next = counts;
+    let mut transposed_rows = vec![0usize; rows.len()];
+    for c in 0..n {
+        for &r in &rows[offsets[c]..offsets[c + 1]] {
+            transposed_rows[next[r]] = c;
+            next[r] += 1;
         }
-        for i in 0..n {
-            counts[i + 1] += counts[i];
-        }
-        let offsets = counts.clone();
-        let mut next = counts;
-        let mut rows = vec![0usize; self.rows.len()];
-        for c in 0..n {
-            for &r in self.column(c) {
-                rows[next[r]] = c;
-                next[r] += 1;
-            }
-        }
-        Self { offsets, rows }
+    }
+    NodeColumns {
+        offsets: transposed_offsets,
+        rows: transposed_rows,
     }
 }
 
@@ -105,18 +114,7 @@ pub fn analyse_node_pairs(
     checked: usize,
 ) -> Result<Option<NodePairAnalysis>> {
     let dofs = col_offsets.len().saturating_sub(1);
-    if col_offsets.last() != Some(&row_indices.len()) {
-        return Err(analysis_error(
-            "internal: the pattern's offsets do not end at its entry count".into(),
-        ));
-    }
-    if row_indices.len() > u32::MAX as usize {
-        return Err(analysis_error(format!(
-            "the stiffness matrix has {} entries, more than the solver's limit of {}",
-            row_indices.len(),
-            u32::MAX
-        )));
-    }
+    PermutedLower::check_pattern(col_offsets, row_indices)?;
     let n = order.len();
     // K's own trailing dof (odd dimension), and the order's: the same dof, last, or none.
     let amplitude = (dofs % 2 == 1).then(|| dofs - 1);
@@ -392,28 +390,8 @@ pub fn supernodal_of_lower(
     lower: SymbolicSparseColMatRef<'_, usize>,
 ) -> Result<SymbolicSupernodalCholesky<usize>> {
     let n = lower.nrows();
-    let mut counts = vec![0usize; n + 1];
-    for j in 0..n {
-        for &i in lower.row_idx_of_col_raw(j) {
-            if i > j {
-                counts[i + 1] += 1;
-            }
-        }
-    }
-    for i in 0..n {
-        counts[i + 1] += counts[i];
-    }
-    let offsets = counts.clone();
-    let mut next = counts;
-    let mut rows = vec![0usize; offsets[n]];
-    for j in 0..n {
-        for &i in lower.row_idx_of_col_raw(j) {
-            if i > j {
-                rows[next[i]] = j;
-                next[i] += 1;
-            }
-        }
-    }
+    // The upper triangle, diagonal included (faer's analysis reads the entries above it only).
+    let NodeColumns { offsets, rows } = transpose(lower.col_ptr(), lower.row_idx());
     let upper = SymbolicSparseColMatRef::new_checked(n, n, &offsets, None, &rows);
     let mut parent = vec![0isize; n];
     let mut col_counts = vec![0usize; n];

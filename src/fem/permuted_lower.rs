@@ -58,14 +58,9 @@ impl PermutedLower {
         Ok((!couples).then_some(layout))
     }
 
-    /// The layout, and whether one of the first `checked` columns has an entry outside `order`.
-    fn laid_out(
-        col_offsets: &[usize],
-        row_indices: &[usize],
-        order: &[usize],
-        checked: usize,
-    ) -> Result<(Self, bool)> {
-        let dofs = col_offsets.len().saturating_sub(1);
+    /// Check that `K`'s pattern can be laid out: its offsets end at its entry count, and every
+    /// entry's index fits the layout's `u32` sources.
+    pub(super) fn check_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<()> {
         if col_offsets.last() != Some(&row_indices.len()) {
             return Err(layout_error(
                 "internal: the pattern's offsets do not end at its entry count".into(),
@@ -78,6 +73,18 @@ impl PermutedLower {
                 u32::MAX
             )));
         }
+        Ok(())
+    }
+
+    /// The layout, and whether one of the first `checked` columns has an entry outside `order`.
+    fn laid_out(
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        order: &[usize],
+        checked: usize,
+    ) -> Result<(Self, bool)> {
+        let dofs = col_offsets.len().saturating_sub(1);
+        Self::check_pattern(col_offsets, row_indices)?;
         let n = order.len();
         let mut perm_inverse = vec![usize::MAX; dofs];
         for (new, &old) in order.iter().enumerate() {
