@@ -558,7 +558,7 @@ mod tests {
                 let far = FarFieldCondition::new(&mesh, &material, radius);
                 for far_field in [None, Some(&far)] {
                     let pattern = StiffnessPattern::of_model(&mesh, far_field).unwrap();
-                    let (offsets, rows) = (&pattern.col_offsets, &pattern.row_indices);
+                    let (offsets, rows) = (pattern.col_offsets(), pattern.row_indices());
                     let dofs = offsets.len() - 1;
                     for (part, order, interior) in orders_of(&mesh, dofs) {
                         let case =
@@ -596,7 +596,7 @@ mod tests {
             .iter()
             .flat_map(|&m| [2 * m, 2 * m + 1])
             .collect();
-        let (offsets, rows) = (&pattern.col_offsets, &pattern.row_indices);
+        let (offsets, rows) = (pattern.col_offsets(), pattern.row_indices());
         let got = analyse_node_pairs(offsets, rows, &half, half.len())
             .unwrap()
             .unwrap();

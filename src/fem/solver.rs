@@ -281,6 +281,8 @@ struct PreparedModel {
     arc_grading: f64,
     /// The stiffness, cubic cells' bubbles condensed ([`StiffnessPattern::with_condensed_bubbles`]).
     stiffness: nalgebra_sparse::CscMatrix<f64>,
+    /// Where each column's diagonal entry is among `stiffness`'s entries (from the assembly).
+    diagonal: Vec<usize>,
     /// What recovers the condensed bubbles' displacements (cubic models).
     bubbles: Option<BubbleRecovery>,
     /// The symbolic Cholesky analysis of `stiffness`'s pattern (done during the assembly).
@@ -389,16 +391,16 @@ fn assemble_model(
     let analysis_start = Instant::now();
     let (symbolic, values) = Analysis::of_ordering_beside(
         &ordering,
-        &pattern.col_offsets,
-        &pattern.row_indices,
+        pattern.col_offsets(),
+        pattern.row_indices(),
         || pattern.condensed_values(&mesh, &material, &rule),
     );
     let symbolic_seconds = ordering_seconds + analysis_start.elapsed().as_secs_f64();
     let (symbolic, (mut values, bubbles)) = (symbolic?, values?);
     if let Some(condition) = &far_field {
-        condition.fill_extension(&pattern.col_offsets, &pattern.row_indices, &mut values);
+        condition.fill_extension(pattern.col_offsets(), pattern.row_indices(), &mut values);
     }
-    let stiffness = pattern.into_matrix(values)?;
+    let (stiffness, diagonal) = pattern.into_matrix_and_diagonal(values)?;
     let assembly = start.elapsed().as_secs_f64();
     Ok(PreparedModel {
         mesh,
@@ -411,6 +413,7 @@ fn assemble_model(
         provided: provided.clone(),
         spec,
         stiffness,
+        diagonal,
         bubbles,
         symbolic,
         timings: FemTimings {
@@ -480,7 +483,11 @@ fn solve_model(
         }
         _ => (warm, depth_guess),
     };
-    let mut solver = ConstrainedCholesky::with_symbolic(&model.stiffness, model.symbolic.clone())?;
+    let mut solver = ConstrainedCholesky::with_symbolic_and_diagonal(
+        &model.stiffness,
+        model.symbolic.clone(),
+        &model.diagonal,
+    )?;
     solver.refine_solutions(tolerance < REFINE_BELOW_TOLERANCE);
     let start = Instant::now();
     let contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
@@ -1440,7 +1447,11 @@ pub fn surface_response_on_mesh(
     contact_start: f64,
 ) -> Result<(super::surface_response::SurfaceResponse, String)> {
     let model = prepare_checked(provided, options, contact_start, options.tolerance)?;
-    let mut solver = ConstrainedCholesky::with_symbolic(&model.stiffness, model.symbolic.clone())?;
+    let mut solver = ConstrainedCholesky::with_symbolic_and_diagonal(
+        &model.stiffness,
+        model.symbolic.clone(),
+        &model.diagonal,
+    )?;
     let contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
     let start_line = contact.contact_line_start();
     if (start_line - contact_start).abs() > 1e-9 {

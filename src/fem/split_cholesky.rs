@@ -562,15 +562,15 @@ mod tests {
             let pattern = crate::fem::assembly::StiffnessPattern::new(&mesh).unwrap();
             let order = vertex_led_node_order(&mesh);
             let whole = crate::fem::node_ordered_cholesky::SymbolicFactor::with_node_order(
-                &pattern.col_offsets,
-                &pattern.row_indices,
+                pattern.col_offsets(),
+                pattern.row_indices(),
                 &order,
             )
             .unwrap()
             .work();
             let split = split_nodes(&mesh).expect("the mesh splits");
             let analysis =
-                SplitAnalysis::new(&pattern.col_offsets, &pattern.row_indices, &order, &split)
+                SplitAnalysis::new(pattern.col_offsets(), pattern.row_indices(), &order, &split)
                     .unwrap()
                     .expect("the parts share no cell");
             let larger = analysis.part_work().into_iter().fold(0.0, f64::max);
