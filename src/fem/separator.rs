@@ -14,7 +14,11 @@
 //! - **The level split**: one breadth-first level of the vertex graph ([`level_split`]), the
 //!   smallest that leaves about half the vertices on each side. On the graded meshes of this
 //!   project the levels are rings around the refined points. Forcing a ring last costs work, and
-//!   equal vertex counts need not carry equal work.
+//!   equal vertex counts need not carry equal work: when that level's estimate finds one part
+//!   heavier than the other by more than a tenth, the level that should balance them
+//!   ([`rebalanced_level`]) is estimated as well. On the 92 528-unknown annulus (`b/a` = 0.3,
+//!   P2) the central level's parts carried 3.95e8 and 2.88e8 multiply-adds (`faer`'s count),
+//!   the rebalanced level's 3.34e8 and 3.25e8.
 //!
 //! The estimate is the vertex-level elimination ([`Elimination`]): each vertex's weighted column
 //! in the vertex-level factor, weighted by the dofs it brings, gives its columns' work; the
@@ -62,8 +66,8 @@ impl NodeSplit {
 /// grows like their cube).
 const MAX_SEPARATOR_DOFS: usize = 1_200;
 
-/// Most vertices for which the two candidate splits are estimated; beyond, the level split is
-/// taken as it is. The estimate's two vertex-level eliminations grow faster than the pattern they
+/// Most vertices for which the candidate splits are estimated; beyond, the level split is
+/// taken as it is. The estimate's two or three vertex-level eliminations grow faster than the pattern they
 /// run beside (one core, warm: 22 ms against a pattern of 19-23 ms at 9e4 P2 unknowns, 11 779
 /// vertices; 288 ms against 245 ms at 6.4e5), and on every model measured beyond this size
 /// (1.5e5-1.4e6 unknowns) the level split's parts carried the same work within 10 %.
@@ -72,6 +76,13 @@ const ESTIMATED_SPLIT_MAX_VERTICES: usize = 16_000;
 /// Fractions of the vertices each part of a level split must hold at least, tried in turn: a
 /// nearly even split first, then a looser one.
 const MIN_PART_SHARES: [f64; 2] = [0.47, 0.4];
+
+/// Exponent of a part's factorisation work in its share of the vertices, for
+/// [`rebalanced_level`] (nested dissection of a planar mesh of `n` vertices takes `O(n^1.5)`).
+const PART_WORK_EXPONENT: f64 = 1.5;
+
+/// Parts' estimated works within this factor of each other are taken as balanced.
+const BALANCED_PARTS: f64 = 1.1;
 
 /// No tree marker.
 const NONE: usize = usize::MAX;
@@ -173,11 +184,32 @@ fn elimination_tree(graph: &PositionGraph) -> Vec<usize> {
 /// [`super::node_ordered_cholesky::factorisation_work`] (`Σ c²` over the columns, `c` the
 /// column's entries): vertex `k` brings `weight[k]` dof columns eliminated together, of
 /// `W_k, W_k − 1, …` entries, `W_k` the weighted size of its column in the vertex-level factor
-/// (its own weight and those of the rows below it). The column structures are merged up the tree
-/// (`struct(k) = adj⁺(k) ∪ ⋃ struct(child) \ {k}`), each written once to one arena and read once,
-/// by its parent.
+/// (its own weight and those of the rows below it, [`weighted_column_counts`]).
 fn column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec<f64> {
+    weighted_column_counts(graph, parent, weight)
+        .iter()
+        .zip(weight)
+        .map(|(&count, &w)| {
+            // Σ_{j < w} (w − j + below)² for the vertex's w columns, in closed form.
+            let (w, b) = (w as f64, (count - w) as f64);
+            w * (w + 1.0) * (2.0 * w + 1.0) / 6.0 + b * w * (w + 1.0) + b * b * w
+        })
+        .collect()
+}
+
+/// The weighted column counts of the vertex-level factor: for each position `j`, the sum of
+/// `weight[i]` over the rows `i` of its column (the diagonal `i = j` included). Gilbert, Ng and
+/// Peyton's algorithm (as `cs_counts` in Davis, *Direct Methods for Sparse Linear Systems*,
+/// 2006, §4.5) with each row counted by its weight: row `i`'s subtree of the elimination tree
+/// gets `+w_i` at each of its leaves, `−w_i` at the least common ancestor of each two
+/// consecutive leaves and at the parent of its root `i`, so that the sum of these over the
+/// subtree of `j` is the weight of the rows in column `j`. Time nearly linear in the graph's
+/// entries, where merging the columns' structures up the tree is linear in the factor's: at
+/// 92 528 quadratic unknowns (11 779 vertices) 1.0-1.3 ms against 1.5-2.0 ms, alternated in one
+/// process, and the whole split's search 7.3-7.8 against 8.5-10.2 ms.
+fn weighted_column_counts(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec<usize> {
     let n = graph.len();
+    // Postorder of the tree (children before parents, each subtree contiguous).
     let mut first_child = vec![NONE; n];
     let mut next_sibling = vec![NONE; n];
     for k in (0..n).rev() {
@@ -186,41 +218,78 @@ fn column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec
             first_child[parent[k]] = k;
         }
     }
-    // Column k's rows below the diagonal: arena[start[k]..end[k]].
-    let mut arena: Vec<usize> = Vec::with_capacity(8 * graph.rows.len());
-    let mut start = vec![0usize; n];
-    let mut end = vec![0usize; n];
-    let mut marker = vec![NONE; n];
-    let mut work = vec![0.0; n];
-    for k in 0..n {
-        start[k] = arena.len();
-        marker[k] = k;
-        let mut below = 0usize;
-        for &i in graph.neighbours(k) {
-            if i > k && marker[i] != k {
-                marker[i] = k;
-                below += weight[i];
-                arena.push(i);
+    let mut post = Vec::with_capacity(n);
+    let mut stack = Vec::new();
+    for root in (0..n).filter(|&k| parent[k] == NONE) {
+        stack.push(root);
+        while let Some(&top) = stack.last() {
+            let child = first_child[top];
+            if child == NONE {
+                post.push(top);
+                stack.pop();
+            } else {
+                // Visit the child next; unlink it so that the parent's next child comes after.
+                first_child[top] = next_sibling[child];
+                stack.push(child);
             }
         }
-        let mut child = first_child[k];
-        while child != NONE {
-            for e in start[child]..end[child] {
-                let i = arena[e];
-                if marker[i] != k {
-                    marker[i] = k;
-                    below += weight[i];
-                    arena.push(i);
-                }
-            }
-            child = next_sibling[child];
-        }
-        end[k] = arena.len();
-        // Σ_{j < w} (w − j + below)² for the vertex's w = weight[k] columns, in closed form.
-        let (w, b) = (weight[k] as f64, below as f64);
-        work[k] = w * (w + 1.0) * (2.0 * w + 1.0) / 6.0 + b * w * (w + 1.0) + b * b * w;
     }
-    work
+    // first[j]: postorder number of j's first descendant; a leaf is its own.
+    let mut first = vec![NONE; n];
+    // Signed sums in i64: a subtree's sums stay non-negative, the deltas need not.
+    let mut delta = vec![0i64; n];
+    for (k, &j) in post.iter().enumerate() {
+        if first[j] == NONE {
+            delta[j] = weight[j] as i64;
+        }
+        let mut up = j;
+        while up != NONE && first[up] == NONE {
+            first[up] = k;
+            up = parent[up];
+        }
+    }
+    let mut max_first = vec![NONE; n];
+    let mut previous_leaf = vec![NONE; n];
+    let mut ancestor: Vec<usize> = (0..n).collect();
+    for &j in &post {
+        if parent[j] != NONE {
+            delta[parent[j]] -= weight[j] as i64;
+        }
+        for &i in graph.neighbours(j) {
+            // Is j a leaf of row i's subtree (a descendant of no earlier one of its leaves)?
+            if i <= j || (max_first[i] != NONE && first[j] <= max_first[i]) {
+                continue;
+            }
+            max_first[i] = first[j];
+            let previous = previous_leaf[i];
+            previous_leaf[i] = j;
+            delta[j] += weight[i] as i64;
+            if previous != NONE {
+                // The least common ancestor of the previous leaf and j, with path compression.
+                let mut q = previous;
+                while q != ancestor[q] {
+                    q = ancestor[q];
+                }
+                let mut s = previous;
+                while s != q {
+                    let next = ancestor[s];
+                    ancestor[s] = q;
+                    s = next;
+                }
+                delta[q] -= weight[i] as i64;
+            }
+        }
+        if parent[j] != NONE {
+            ancestor[j] = parent[j];
+        }
+    }
+    // Children come before their parents in position order.
+    for j in 0..n {
+        if parent[j] != NONE {
+            delta[parent[j]] += delta[j];
+        }
+    }
+    delta.iter().map(|&d| d.max(0) as usize).collect()
 }
 
 /// Estimated critical path of a split with parts of works `parts` and `separator_dofs`
@@ -346,30 +415,42 @@ fn levels_from(graph: &VertexGraph, start: usize) -> (Vec<usize>, usize) {
     (level, last)
 }
 
-/// The split by one breadth-first level of the vertex graph, started from a pseudo-peripheral
-/// vertex (the last vertex reached from an arbitrary start): the vertices before that level form
-/// the first part, those after it the second. On the graded meshes of this project the levels
-/// are rings around the refined points. Of the levels whose split leaves 47-53 % of the vertices
-/// on each side (else 40-60 %), the smallest is taken. Each graph vertex's side, or `None` when
-/// the graph is disconnected or no level qualifies.
-fn level_split(graph: &VertexGraph) -> Option<Vec<Side>> {
-    let count = graph.vertices.len();
-    let (_, far) = levels_from(graph, 0);
-    let (level, _) = levels_from(graph, far);
-    if level.contains(&usize::MAX) {
-        return None;
+/// The breadth-first levels of the vertex graph from a pseudo-peripheral vertex (the last
+/// vertex reached from an arbitrary start), with the number of vertices on each level.
+struct Levels {
+    level: Vec<usize>,
+    per_level: Vec<usize>,
+}
+
+impl Levels {
+    /// The levels of `graph`, or `None` when it is disconnected.
+    fn of(graph: &VertexGraph) -> Option<Self> {
+        let (_, far) = levels_from(graph, 0);
+        let (level, _) = levels_from(graph, far);
+        if level.contains(&usize::MAX) {
+            return None;
+        }
+        let depth = level.iter().max().copied().unwrap_or(0) + 1;
+        let mut per_level = vec![0usize; depth];
+        for &l in &level {
+            per_level[l] += 1;
+        }
+        Some(Self { level, per_level })
     }
-    let depth = level.iter().max().copied().unwrap_or(0) + 1;
-    let mut per_level = vec![0usize; depth];
-    for &l in &level {
-        per_level[l] += 1;
+
+    /// Share of the vertices on the levels before `cut`.
+    fn share_before(&self, cut: usize) -> f64 {
+        let before: usize = self.per_level[..cut].iter().sum();
+        before as f64 / self.level.len() as f64
     }
-    // The smallest level with at least a share of the vertices before and after it.
-    let smallest_level = |share: f64| {
+
+    /// The smallest level with at least `share` of the vertices before it and after it.
+    fn smallest_central(&self, share: f64) -> Option<usize> {
+        let count = self.level.len();
         let least = (share * count as f64).ceil() as usize;
         let mut before = 0;
         let mut best: Option<(usize, usize)> = None;
-        for (l, &size) in per_level.iter().enumerate() {
+        for (l, &size) in self.per_level.iter().enumerate() {
             let after = count - before - size;
             if before >= least && after >= least && best.is_none_or(|(_, s)| size < s) {
                 best = Some((l, size));
@@ -377,25 +458,82 @@ fn level_split(graph: &VertexGraph) -> Option<Vec<Side>> {
             before += size;
         }
         best.map(|(l, _)| l)
-    };
-    let cut = MIN_PART_SHARES
-        .iter()
-        .find_map(|&share| smallest_level(share))?;
-    Some(
-        level
+    }
+
+    /// The level whose share of the vertices before it is nearest `share` (neither the first
+    /// level nor the last: both parts hold vertices).
+    fn nearest_share(&self, share: f64) -> Option<usize> {
+        (1..self.per_level.len().saturating_sub(1)).min_by(|&a, &b| {
+            let (da, db) = (
+                (self.share_before(a) - share).abs(),
+                (self.share_before(b) - share).abs(),
+            );
+            da.partial_cmp(&db).unwrap_or(Ordering::Equal)
+        })
+    }
+
+    /// Each graph vertex's side when level `cut` is the separator: the levels before it form
+    /// the first part, those after it the second.
+    fn sides(&self, cut: usize) -> Vec<Side> {
+        self.level
             .iter()
             .map(|&l| match l.cmp(&cut) {
                 Ordering::Less => Side::First,
                 Ordering::Greater => Side::Second,
                 Ordering::Equal => Side::Separator,
             })
-            .collect(),
-    )
+            .collect()
+    }
 }
 
-/// Estimated critical path of a split given by each graph vertex's side, the parts eliminated
-/// in `order` and the separator last ([`critical_path`] of a vertex-level [`Elimination`]).
-fn split_estimate(mesh: &Mesh, graph: &VertexGraph, order: &[usize], sides: &[Side]) -> f64 {
+/// The level of the level split: of the levels that leave 47-53 % of the vertices on each side
+/// (else 40-60 %), the smallest. On the graded meshes of this project the levels are rings
+/// around the refined points.
+fn central_level(levels: &Levels) -> Option<usize> {
+    MIN_PART_SHARES
+        .iter()
+        .find_map(|&share| levels.smallest_central(share))
+}
+
+/// The split by the [`central_level`] of the vertex graph's [`Levels`]: each graph vertex's
+/// side, or `None` when the graph is disconnected or no level qualifies.
+fn level_split(graph: &VertexGraph) -> Option<Vec<Side>> {
+    let levels = Levels::of(graph)?;
+    Some(levels.sides(central_level(&levels)?))
+}
+
+/// The level whose split should carry equal work in its two parts, from the estimated works
+/// `parts` of the split at level `cut`: each part's work taken to grow like its share of the
+/// vertices to the power [`PART_WORK_EXPONENT`], with the density the split at `cut` shows
+/// (`p_1 = c_1 s^γ`, `p_2 = c_2 (1 − s)^γ`, equal where `s / (1 − s) = (c_2 / c_1)^{1/γ}`).
+/// `None` when the parts are within [`BALANCED_PARTS`] of each other or that level is `cut`.
+fn rebalanced_level(levels: &Levels, cut: usize, parts: [f64; 2]) -> Option<usize> {
+    let (heavier, lighter) = (parts[0].max(parts[1]), parts[0].min(parts[1]));
+    if lighter <= 0.0 || heavier <= BALANCED_PARTS * lighter {
+        return None;
+    }
+    let share = levels.share_before(cut);
+    let first_density = parts[0] / share.powf(PART_WORK_EXPONENT);
+    let second_density = parts[1] / (1.0 - share).powf(PART_WORK_EXPONENT);
+    let ratio = (second_density / first_density).powf(1.0 / PART_WORK_EXPONENT);
+    let level = levels.nearest_share(ratio / (1.0 + ratio))?;
+    (level != cut).then_some(level)
+}
+
+/// The estimated works of a split's two parts and its critical path ([`critical_path`]).
+struct SplitEstimate {
+    critical_path: f64,
+    parts: [f64; 2],
+}
+
+/// Estimate a split given by each graph vertex's side, the parts eliminated in `order` and the
+/// separator last (a vertex-level [`Elimination`]).
+fn split_estimate(
+    mesh: &Mesh,
+    graph: &VertexGraph,
+    order: &[usize],
+    sides: &[Side],
+) -> SplitEstimate {
     let reordered: Vec<usize> = [Side::First, Side::Second, Side::Separator]
         .iter()
         .flat_map(|&side| order.iter().copied().filter(move |&v| sides[v] == side))
@@ -410,7 +548,10 @@ fn split_estimate(mesh: &Mesh, graph: &VertexGraph, order: &[usize], sides: &[Si
             Side::Separator => separator_dofs += elimination.weight[k],
         }
     }
-    critical_path(parts, separator_dofs)
+    SplitEstimate {
+        critical_path: critical_path(parts, separator_dofs),
+        parts,
+    }
 }
 
 /// Split the nodes of `mesh` in two parts and a separator (see the module's documentation), or
@@ -457,10 +598,24 @@ pub(super) fn split_nodes_of(
         }
         (estimate, sides)
     });
-    let level = level_split(graph).map(|sides| (split_estimate(mesh, graph, order, &sides), sides));
-    let (estimate, sides) = [tree, level]
+    // The central level, and the level that should balance its parts' estimated work.
+    let mut levels_tried = Vec::new();
+    if let Some(levels) = Levels::of(graph) {
+        if let Some(cut) = central_level(&levels) {
+            let sides = levels.sides(cut);
+            let estimate = split_estimate(mesh, graph, order, &sides);
+            let rebalanced = rebalanced_level(&levels, cut, estimate.parts);
+            levels_tried.push((estimate.critical_path, sides));
+            if let Some(level) = rebalanced {
+                let sides = levels.sides(level);
+                let estimate = split_estimate(mesh, graph, order, &sides);
+                levels_tried.push((estimate.critical_path, sides));
+            }
+        }
+    }
+    let (estimate, sides) = tree
         .into_iter()
-        .flatten()
+        .chain(levels_tried)
         .min_by(|a, b| a.0.partial_cmp(&b.0).unwrap_or(Ordering::Equal))?;
     (estimate < whole).then(|| node_sides(mesh, graph, &sides))
 }
@@ -554,6 +709,109 @@ mod tests {
         later
     }
 
+    /// The work of [`column_work`] as the previous builds found it, each column's structure merged
+    /// up the tree from its children's (linear in the factor's entries): a reference for the
+    /// weighted counts. The estimated factorisation work of each tree position's columns, in the units of
+    /// [`super::node_ordered_cholesky::factorisation_work`] (`Σ c²` over the columns, `c` the
+    /// column's entries): vertex `k` brings `weight[k]` dof columns eliminated together, of
+    /// `W_k, W_k − 1, …` entries, `W_k` the weighted size of its column in the vertex-level factor
+    /// (its own weight and those of the rows below it). The column structures are merged up the tree
+    /// (`struct(k) = adj⁺(k) ∪ ⋃ struct(child) \ {k}`), each written once to one arena and read once,
+    /// by its parent.
+    fn merged_column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec<f64> {
+        let n = graph.len();
+        let mut first_child = vec![NONE; n];
+        let mut next_sibling = vec![NONE; n];
+        for k in (0..n).rev() {
+            if parent[k] != NONE {
+                next_sibling[k] = first_child[parent[k]];
+                first_child[parent[k]] = k;
+            }
+        }
+        // Column k's rows below the diagonal: arena[start[k]..end[k]].
+        let mut arena: Vec<usize> = Vec::with_capacity(8 * graph.rows.len());
+        let mut start = vec![0usize; n];
+        let mut end = vec![0usize; n];
+        let mut marker = vec![NONE; n];
+        let mut work = vec![0.0; n];
+        for k in 0..n {
+            start[k] = arena.len();
+            marker[k] = k;
+            let mut below = 0usize;
+            for &i in graph.neighbours(k) {
+                if i > k && marker[i] != k {
+                    marker[i] = k;
+                    below += weight[i];
+                    arena.push(i);
+                }
+            }
+            let mut child = first_child[k];
+            while child != NONE {
+                for e in start[child]..end[child] {
+                    let i = arena[e];
+                    if marker[i] != k {
+                        marker[i] = k;
+                        below += weight[i];
+                        arena.push(i);
+                    }
+                }
+                child = next_sibling[child];
+            }
+            end[k] = arena.len();
+            // Σ_{j < w} (w − j + below)² for the vertex's w = weight[k] columns, in closed form.
+            let (w, b) = (weight[k] as f64, below as f64);
+            work[k] = w * (w + 1.0) * (2.0 * w + 1.0) / 6.0 + b * w * (w + 1.0) + b * b * w;
+        }
+        work
+    }
+
+    #[test]
+    fn the_weighted_counts_give_the_merged_structures_work() {
+        let meshes = [
+            structured_rectangle(3.0, 2.0, 9, 6, 1, 2, 3),
+            crate::fem::msh::read_msh(std::path::Path::new(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/meshes/annulus-0.9-L1.msh"
+            )))
+            .unwrap(),
+            crate::fem::msh::read_msh(std::path::Path::new(concat!(
+                env!("CARGO_MANIFEST_DIR"),
+                "/meshes/disk-L1.msh"
+            )))
+            .unwrap(),
+        ];
+        for vertex_mesh in &meshes {
+            for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
+                let mesh = vertex_mesh.with_degree(degree);
+                let incidence = VertexCells::new(&mesh);
+                let graph = vertex_graph(&mesh, &incidence);
+                let order = vertex_order(&graph);
+                // The whole order, and the level split's (parts first, the separator last:
+                // a forest until the separator joins it).
+                let mut orders = vec![order.clone()];
+                if let Some(sides) = level_split(&graph) {
+                    let sides = &sides;
+                    orders.push(
+                        [Side::First, Side::Second, Side::Separator]
+                            .iter()
+                            .flat_map(|&side| {
+                                order.iter().copied().filter(move |&v| sides[v] == side)
+                            })
+                            .collect(),
+                    );
+                }
+                for order in &orders {
+                    let positions = PositionGraph::new(&graph, order);
+                    let parent = elimination_tree(&positions);
+                    let weight: Vec<usize> = (0..order.len()).map(|k| 2 + (k * 7) % 11).collect();
+                    let merged = merged_column_work(&positions, &parent, &weight);
+                    let counted = column_work(&positions, &parent, &weight);
+                    assert_eq!(counted, merged, "{} {degree:?}", mesh.source);
+                }
+            }
+        }
+    }
+
     #[test]
     fn the_vertex_level_work_is_that_of_the_dense_elimination() {
         for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
@@ -637,6 +895,27 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn the_rebalanced_level_moves_the_cut_toward_the_lighter_part() {
+        // Ten levels of ten vertices: the level `l` cut leaves a share `l / 10` before it.
+        let levels = Levels {
+            level: (0..100).map(|v| v / 10).collect(),
+            per_level: vec![10; 10],
+        };
+        assert!((levels.share_before(5) - 0.5).abs() < 1e-12);
+        // First part twice the second at s = 0.5: c_1 = 2 c_2, so s / (1 − s) = 2^(−2/3) and
+        // s = 0.386, nearest the share 0.4 before level 4.
+        assert_eq!(rebalanced_level(&levels, 5, [2.0, 1.0]), Some(4));
+        assert_eq!(rebalanced_level(&levels, 5, [1.0, 2.0]), Some(6));
+        // Parts within BALANCED_PARTS of each other, or no other level to go to, stay.
+        assert_eq!(rebalanced_level(&levels, 5, [1.0, 1.05]), None);
+        assert_eq!(rebalanced_level(&levels, 4, [1.02, 1.0]), None);
+        assert_eq!(rebalanced_level(&levels, 5, [1.0, 0.0]), None);
+        // Never the first or last level (a part would be empty).
+        assert_eq!(rebalanced_level(&levels, 5, [1e6, 1.0]), Some(1));
+        assert_eq!(rebalanced_level(&levels, 5, [1.0, 1e6]), Some(8));
     }
 
     #[test]
