@@ -67,8 +67,8 @@ impl NodeSplit {
 const MAX_SEPARATOR_DOFS: usize = 1_200;
 
 /// Most vertices for which the candidate splits are estimated; beyond, the level split is
-/// taken as it is. The estimate's two or three vertex-level eliminations grow faster than the pattern they
-/// run beside (one core, warm: 22 ms against a pattern of 19-23 ms at 9e4 P2 unknowns, 11 779
+/// taken as it is. The estimate's two or three vertex-level eliminations grow faster than the
+/// pattern they run beside (one core, warm: 22 ms against a pattern of 19-23 ms at 9e4 P2 unknowns, 11 779
 /// vertices; 288 ms against 245 ms at 6.4e5), and on every model measured beyond this size
 /// (1.5e5-1.4e6 unknowns) the level split's parts carried the same work within 10 %.
 const ESTIMATED_SPLIT_MAX_VERTICES: usize = 16_000;
@@ -191,7 +191,7 @@ fn column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec
         .zip(weight)
         .map(|(&count, &w)| {
             // Σ_{j < w} (w − j + below)² for the vertex's w columns, in closed form.
-            let (w, b) = (w as f64, (count - w) as f64);
+            let (w, b) = (w as f64, count.saturating_sub(w) as f64);
             w * (w + 1.0) * (2.0 * w + 1.0) / 6.0 + b * w * (w + 1.0) + b * b * w
         })
         .collect()
@@ -463,13 +463,18 @@ impl Levels {
     /// The level whose share of the vertices before it is nearest `share` (neither the first
     /// level nor the last: both parts hold vertices).
     fn nearest_share(&self, share: f64) -> Option<usize> {
-        (1..self.per_level.len().saturating_sub(1)).min_by(|&a, &b| {
-            let (da, db) = (
-                (self.share_before(a) - share).abs(),
-                (self.share_before(b) - share).abs(),
-            );
-            da.partial_cmp(&db).unwrap_or(Ordering::Equal)
-        })
+        let count = self.level.len() as f64;
+        let mut before = 0;
+        let mut nearest: Option<(usize, f64)> = None;
+        for (l, &size) in self.per_level.iter().enumerate() {
+            let distance = (before as f64 / count - share).abs();
+            let inner = l > 0 && l + 1 < self.per_level.len();
+            if inner && nearest.is_none_or(|(_, d)| distance < d) {
+                nearest = Some((l, distance));
+            }
+            before += size;
+        }
+        nearest.map(|(l, _)| l)
     }
 
     /// Each graph vertex's side when level `cut` is the separator: the levels before it form
