@@ -197,6 +197,21 @@ fn column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec
         .collect()
 }
 
+/// Each tree position's first child and next sibling ([`NONE`] where there is none), children
+/// in increasing position.
+fn child_lists(parent: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let n = parent.len();
+    let mut first_child = vec![NONE; n];
+    let mut next_sibling = vec![NONE; n];
+    for k in (0..n).rev() {
+        if parent[k] != NONE {
+            next_sibling[k] = first_child[parent[k]];
+            first_child[parent[k]] = k;
+        }
+    }
+    (first_child, next_sibling)
+}
+
 /// The weighted column counts of the vertex-level factor: for each position `j`, the sum of
 /// `weight[i]` over the rows `i` of its column (the diagonal `i = j` included). Gilbert, Ng and
 /// Peyton's algorithm (as `cs_counts` in Davis, *Direct Methods for Sparse Linear Systems*,
@@ -210,14 +225,7 @@ fn column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec
 fn weighted_column_counts(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec<usize> {
     let n = graph.len();
     // Postorder of the tree (children before parents, each subtree contiguous).
-    let mut first_child = vec![NONE; n];
-    let mut next_sibling = vec![NONE; n];
-    for k in (0..n).rev() {
-        if parent[k] != NONE {
-            next_sibling[k] = first_child[parent[k]];
-            first_child[parent[k]] = k;
-        }
-    }
+    let (mut first_child, next_sibling) = child_lists(parent);
     let mut post = Vec::with_capacity(n);
     let mut stack = Vec::new();
     for root in (0..n).filter(|&k| parent[k] == NONE) {
@@ -714,25 +722,13 @@ mod tests {
         later
     }
 
-    /// The work of [`column_work`] as the previous builds found it, each column's structure merged
-    /// up the tree from its children's (linear in the factor's entries): a reference for the
-    /// weighted counts. The estimated factorisation work of each tree position's columns, in the units of
-    /// [`super::node_ordered_cholesky::factorisation_work`] (`Σ c²` over the columns, `c` the
-    /// column's entries): vertex `k` brings `weight[k]` dof columns eliminated together, of
-    /// `W_k, W_k − 1, …` entries, `W_k` the weighted size of its column in the vertex-level factor
-    /// (its own weight and those of the rows below it). The column structures are merged up the tree
-    /// (`struct(k) = adj⁺(k) ∪ ⋃ struct(child) \ {k}`), each written once to one arena and read once,
-    /// by its parent.
+    /// The work of [`column_work`] as the previous builds found it, a reference for the weighted
+    /// counts: each column's structure merged up the tree from its children's
+    /// (`struct(k) = adj⁺(k) ∪ ⋃ struct(child) \ {k}`, linear in the factor's entries), each
+    /// written once to one arena and read once, by its parent.
     fn merged_column_work(graph: &PositionGraph, parent: &[usize], weight: &[usize]) -> Vec<f64> {
         let n = graph.len();
-        let mut first_child = vec![NONE; n];
-        let mut next_sibling = vec![NONE; n];
-        for k in (0..n).rev() {
-            if parent[k] != NONE {
-                next_sibling[k] = first_child[parent[k]];
-                first_child[parent[k]] = k;
-            }
-        }
+        let (first_child, next_sibling) = child_lists(parent);
         // Column k's rows below the diagonal: arena[start[k]..end[k]].
         let mut arena: Vec<usize> = Vec::with_capacity(8 * graph.rows.len());
         let mut start = vec![0usize; n];
