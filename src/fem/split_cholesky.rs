@@ -32,7 +32,7 @@ use faer::linalg::triangular_solve::{
 };
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::{Accum, Mat, MatMut, MatRef, Par, Side};
+use faer::{Accum, Mat, MatMut, Par, Side};
 
 use super::node_ordered_cholesky::{factorisation_work, factorise_supernodal};
 use super::node_pair_analysis::{analyse_node_pairs, supernodal_of_lower};
@@ -226,6 +226,8 @@ impl SplitAnalysis {
 struct PartFactor {
     values: Vec<f64>,
     separator_block: Mat<f64>,
+    /// [`longest_rows`] of the factor.
+    scratch_rows: usize,
 }
 
 /// A part just factorised: its factor and its term of the Schur complement (lower triangle):
@@ -286,21 +288,23 @@ fn separator_block_of(part: &PartAnalysis, lower_values: &[f64], separator: usiz
     kss
 }
 
-/// Most off-diagonal rows of any supernode of the factor.
-fn longest_pattern(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
+/// Most rows of any supernode of the factor (its width plus its pattern): the length of the
+/// substitutions' scratch.
+fn longest_rows(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
     (0..llt.symbolic().n_supernodes())
-        .map(|s| llt.supernode(s).pattern().len())
+        .map(|s| llt.supernode(s).val().nrows())
         .max()
         .unwrap_or(0)
 }
 
 /// `x ← L⁻¹ x` with a supernodal factor (forward substitution).
-fn forward(llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+/// `scratch_rows` is [`longest_rows`] of the factor.
+fn forward(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, mut x: MatMut<'_, f64>) {
     if let Some(column) = single_column(x.rb_mut()) {
-        return forward_one(llt, column);
+        return forward_one(llt, scratch_rows, column);
     }
     let k = x.ncols();
-    let mut scratch = Mat::<f64>::zeros(longest_pattern(llt), k);
+    let mut scratch = Mat::<f64>::zeros(scratch_rows, k);
     for s in 0..llt.symbolic().n_supernodes() {
         let node = llt.supernode(s);
         let width = node.val().ncols();
@@ -325,12 +329,13 @@ fn forward(llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
 }
 
 /// `x ← L⁻ᵀ x` with a supernodal factor (backward substitution).
-fn backward(llt: SupernodalLltRef<'_, usize, f64>, mut x: MatMut<'_, f64>) {
+/// `scratch_rows` is [`longest_rows`] of the factor.
+fn backward(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, mut x: MatMut<'_, f64>) {
     if let Some(column) = single_column(x.rb_mut()) {
-        return backward_one(llt, column);
+        return backward_one(llt, scratch_rows, column);
     }
     let k = x.ncols();
-    let mut scratch = Mat::<f64>::zeros(longest_pattern(llt), k);
+    let mut scratch = Mat::<f64>::zeros(scratch_rows, k);
     for s in (0..llt.symbolic().n_supernodes()).rev() {
         let node = llt.supernode(s);
         let width = node.val().ncols();
@@ -364,21 +369,17 @@ fn single_column(x: MatMut<'_, f64>) -> Option<&mut [f64]> {
         .map(|c| c.as_slice_mut())
 }
 
-/// Column `j` of a supernode's values (stored column by column: the diagonal block's rows,
-/// then the pattern's).
-fn supernode_column(values: MatRef<'_, f64>, j: usize) -> &[f64] {
-    values
-        .col(j)
-        .try_as_col_major()
-        .expect("faer stores a supernode's columns contiguously")
-        .as_slice()
+/// Supernode `s`'s values, column after column (each column its diagonal block's rows, then the
+/// pattern's): the slice `faer` itself views as the supernode's column-major matrix.
+fn supernode_values(llt: SupernodalLltRef<'_, usize, f64>, s: usize) -> &[f64] {
+    let offsets = llt.symbolic().col_ptr_for_val();
+    &llt.values()[offsets[s]..offsets[s + 1]]
 }
 
 /// `Σ a_i b_i` in four interleaved sums (one running sum would be a chain of dependent
 /// additions, which the compiler may not reorder into vector lanes).
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    let n = a.len().min(b.len());
-    let (a, b) = (&a[..n], &b[..n]);
+    debug_assert_eq!(a.len(), b.len(), "a dot product of unequal lengths");
     let mut sums = [0.0; 4];
     let (a4, b4) = (a.chunks_exact(4), b.chunks_exact(4));
     let tail: f64 = a4
@@ -403,17 +404,16 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// and a product per supernode) cost more to dispatch than plain loops: the contact step's
 /// substitution and reactions took 10-14 % less time this way at 1.5e4-9.3e4 unknowns (medians
 /// of 12-50 warm flat solves, five alternated rounds against the kernels).
-fn forward_one(llt: SupernodalLltRef<'_, usize, f64>, x: &mut [f64]) {
-    let mut y = vec![0.0; longest_rows(llt)];
+fn forward_one(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, x: &mut [f64]) {
+    let mut y = vec![0.0; scratch_rows];
     for s in 0..llt.symbolic().n_supernodes() {
         let node = llt.supernode(s);
-        let values = node.val();
-        let (start, width, pattern) = (node.start(), values.ncols(), node.pattern());
-        let y = &mut y[..values.nrows()];
+        let (start, rows) = (node.start(), node.val().nrows());
+        let (width, pattern) = (node.val().ncols(), node.pattern());
+        let y = &mut y[..rows];
         y[..width].copy_from_slice(&x[start..start + width]);
         y[width..].fill(0.0);
-        for j in 0..width {
-            let column = supernode_column(values, j);
+        for (j, column) in supernode_values(llt, s).chunks_exact(rows).enumerate() {
             let yj = y[j] / column[j];
             y[j] = yj;
             for (yi, &l) in y[j + 1..].iter_mut().zip(&column[j + 1..]) {
@@ -430,31 +430,26 @@ fn forward_one(llt: SupernodalLltRef<'_, usize, f64>, x: &mut [f64]) {
 /// [`backward`] for one right-hand side: `y` gathers the supernode's unknowns and the pattern's
 /// (already solved) values, and column `j`, last first, gives `y_j = (y_j − Σ_{i>j} L_ij y_i) /
 /// L_jj` as one dot product over the column below its diagonal.
-fn backward_one(llt: SupernodalLltRef<'_, usize, f64>, x: &mut [f64]) {
-    let mut y = vec![0.0; longest_rows(llt)];
+fn backward_one(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, x: &mut [f64]) {
+    let mut y = vec![0.0; scratch_rows];
     for s in (0..llt.symbolic().n_supernodes()).rev() {
         let node = llt.supernode(s);
-        let values = node.val();
-        let (start, width, pattern) = (node.start(), values.ncols(), node.pattern());
-        let y = &mut y[..values.nrows()];
+        let (start, rows) = (node.start(), node.val().nrows());
+        let (width, pattern) = (node.val().ncols(), node.pattern());
+        let y = &mut y[..rows];
         y[..width].copy_from_slice(&x[start..start + width]);
         for (yi, &i) in y[width..].iter_mut().zip(pattern) {
             *yi = x[i];
         }
-        for j in (0..width).rev() {
-            let column = supernode_column(values, j);
+        for (j, column) in supernode_values(llt, s)
+            .chunks_exact(rows)
+            .enumerate()
+            .rev()
+        {
             y[j] = (y[j] - dot(&column[j + 1..], &y[j + 1..])) / column[j];
         }
         x[start..start + width].copy_from_slice(&y[..width]);
     }
-}
-
-/// Most rows of a supernode (its width plus its pattern).
-fn longest_rows(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
-    (0..llt.symbolic().n_supernodes())
-        .map(|s| llt.supernode(s).val().nrows())
-        .max()
-        .unwrap_or(0)
 }
 
 impl SplitFactor {
@@ -477,6 +472,7 @@ impl SplitFactor {
             let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
             let llt = SupernodalLltRef::new(&part.symbolic, &values);
             let separator_block = trailing_block(llt, separator);
+            let scratch_rows = longest_rows(llt);
             // L_SS,i L_SS,iᵀ (lower triangle, from the triangular blocks: a sixth of a full
             // product's work).
             let mut schur_term = Mat::<f64>::zeros(separator, separator);
@@ -502,6 +498,7 @@ impl SplitFactor {
                 factor: PartFactor {
                     values,
                     separator_block,
+                    scratch_rows,
                 },
                 schur_term,
             })
@@ -548,7 +545,7 @@ impl SplitFactor {
                 }
             }
             let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
-            forward(llt, x.as_mut());
+            forward(llt, self.parts[i].scratch_rows, x.as_mut());
             let mut g = Mat::<f64>::zeros(separator, k);
             matmul(
                 g.as_mut(),
@@ -582,7 +579,7 @@ impl SplitFactor {
                 Par::Seq,
             );
             let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
-            backward(llt, x.as_mut());
+            backward(llt, self.parts[i].scratch_rows, x.as_mut());
         };
         rayon::join(|| backward_part(0, &mut x1), || backward_part(1, &mut x2));
         for (part, x) in analysis.parts.iter().zip([&x1, &x2]) {
