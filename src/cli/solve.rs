@@ -3,7 +3,7 @@
 use super::args::SolveArgs;
 use super::{message, to_json, Reply};
 use crate::fem::mesh::Degree;
-use crate::harness::table::{Column, Table};
+use crate::harness::table::{readable, Column, Table};
 use crate::methods::{self, MethodOptions};
 use crate::punch::PunchKind;
 use crate::scene::{Scene, SceneSpec};
@@ -99,18 +99,24 @@ pub fn describe(scene: &Scene, s: &Solution) -> Table {
         ],
     );
     let mut row = |name: &str, value: String| t.push(vec![name.into(), value.into()]);
-    row("contact ratio", format!("eps = b/a = {:.12}", s.eps));
-    row("depth", format!("d = {:.12}", s.depth));
-    row("force", format!("F = {:.12}", s.force));
+    row(
+        "contact ratio",
+        format!("eps = b/a = {}", readable(s.eps, 12)),
+    );
+    row("depth", format!("d = {}", readable(s.depth, 12)));
+    row("force", format!("F = {}", readable(s.force, 12)));
     if let Some(g) = s.gamma {
-        row("gamma", format!("F/(2 E* d a) = {g:.15}"));
+        row("gamma", format!("F/(2 E* d a) = {}", readable(g, 15)));
     }
     if let (Some(g1), Some(g2)) = (s.gamma1, s.gamma2) {
-        row("gamma1", format!("d/h = {g1:.15}"));
-        row("gamma2", format!("F/(2 E* h a) = {g2:.15}"));
+        row("gamma1", format!("d/h = {}", readable(g1, 15)));
+        row("gamma2", format!("F/(2 E* h a) = {}", readable(g2, 15)));
     }
     if let Some(k) = s.stress_intensity_rim {
-        row("K at rim", format!("{k:.12} (stress x sqrt(length))"));
+        row(
+            "K at rim",
+            format!("{} (stress x sqrt(length))", readable(k, 12)),
+        );
     }
     row(
         "error estimate",

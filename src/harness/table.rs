@@ -72,6 +72,20 @@ pub enum Cell {
     Flag(String),
 }
 
+/// `x` for people at any magnitude: fixed point with `decimals` decimals where that shows
+/// `decimals + 1` significant digits or fewer than 9 before the point (`1e-3 <= |x| < 1e8`, or
+/// zero), scientific with the same decimals of the mantissa elsewhere; non-finite values as Rust
+/// writes them. A depth of `1e300` in fixed point would print 301 digits, of which all past the
+/// 17th are the binary expansion's noise.
+pub fn readable(x: f64, decimals: usize) -> String {
+    let magnitude = x.abs();
+    if x == 0.0 || !x.is_finite() || (1e-3..1e8).contains(&magnitude) {
+        format!("{x:.decimals$}")
+    } else {
+        format!("{x:.decimals$e}")
+    }
+}
+
 /// A verdict cell: `ok` when `passed`, else the flagged `failure` text.
 pub fn verdict(passed: bool, failure: &str) -> Cell {
     if passed {
@@ -310,6 +324,17 @@ impl Table {
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn readable_numbers_switch_to_scientific_outside_ordinary_magnitudes() {
+        assert_eq!(readable(0.5, 3), "0.500");
+        assert_eq!(readable(0.0, 3), "0.000");
+        assert_eq!(readable(-12345.678, 2), "-12345.68");
+        assert_eq!(readable(1e300, 3), "1.000e300");
+        assert_eq!(readable(-2.5e-7, 2), "-2.50e-7");
+        assert_eq!(readable(f64::INFINITY, 3), "inf");
+        assert!(readable(1e300, 12).len() < 20);
+    }
+
     use super::*;
 
     fn sample() -> Table {

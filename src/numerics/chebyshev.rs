@@ -60,19 +60,26 @@ impl ChebyshevNodes {
         out.iter_mut().for_each(|v| *v *= inv);
     }
 
-    /// Interpolated value at `t` of the function with values `values` at the nodes.
+    /// Interpolated value at `t` of the function with values `values` at the nodes: the
+    /// barycentric formula `Σ_j c_j f_j / Σ_j c_j`, `c_j = w_j / (t - t_j)`, summed as
+    /// `Σ_j (c_j / Σ c) f_j` so that values near the largest `f64` do not overflow (`c_j f_j`
+    /// would, with `c_j` up to `1/(t - t_j)`; the normalised weights are the Lagrange basis,
+    /// bounded by the Lebesgue constant).
     pub fn interpolate(&self, values: &[f64], t: f64) -> f64 {
-        let mut num = 0.0;
         let mut den = 0.0;
         for ((&tj, &wj), &fj) in self.points.iter().zip(&self.weights).zip(values) {
             let diff = t - tj;
             if diff == 0.0 {
                 return fj;
             }
-            num += wj * fj / diff;
             den += wj / diff;
         }
-        num / den
+        self.points
+            .iter()
+            .zip(&self.weights)
+            .zip(values)
+            .map(|((&tj, &wj), &fj)| (wj / (t - tj) / den) * fj)
+            .sum()
     }
 }
 
@@ -87,6 +94,16 @@ mod tests {
         let values: Vec<f64> = nodes.points.iter().map(|&t| f(t)).collect();
         for &t in &[-1.0, -0.3, 0.77, 1.0] {
             assert!((nodes.interpolate(&values, t) - f(t)).abs() < 1e-14);
+        }
+        // Linear in the values, also near the largest f64 (a depth of 1e300 once gave inf), and
+        // also close to a node, where `1/(t - t_j)` is large.
+        let huge: Vec<f64> = values.iter().map(|v| v * 1e306).collect();
+        for &t in &[-0.999, -0.3, 0.77, 0.999, nodes.points[7] + 1e-9] {
+            let scaled = nodes.interpolate(&huge, t) / 1e306;
+            assert!(
+                (scaled - nodes.interpolate(&values, t)).abs() < 1e-14,
+                "t = {t}"
+            );
         }
         let mut basis = vec![0.0; 30];
         nodes.basis_at(0.123, &mut basis);
