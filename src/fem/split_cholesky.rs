@@ -53,6 +53,8 @@ fn solver_error(message: String) -> Error {
 struct PartAnalysis {
     lower: PermutedLower,
     symbolic: SymbolicSupernodalCholesky<usize>,
+    /// [`longest_rows`] of the symbolic factor.
+    scratch_rows: usize,
 }
 
 impl PartAnalysis {
@@ -67,16 +69,22 @@ impl PartAnalysis {
         // On the node graph where K's dofs come in node pairs (always, for the solver's
         // models), dof by dof otherwise.
         if let Some(analysis) = analyse_node_pairs(col_offsets, row_indices, order, interior)? {
-            return Ok((!analysis.couples).then_some(Self {
-                lower: analysis.lower,
-                symbolic: analysis.symbolic,
-            }));
+            return Ok((!analysis.couples).then(|| Self::of(analysis.lower, analysis.symbolic)));
         }
         let Some(lower) = PermutedLower::of_part(col_offsets, row_indices, order, interior)? else {
             return Ok(None);
         };
         let symbolic = supernodal_of_lower(lower.pattern().as_ref())?;
-        Ok(Some(Self { lower, symbolic }))
+        Ok(Some(Self::of(lower, symbolic)))
+    }
+
+    fn of(lower: PermutedLower, symbolic: SymbolicSupernodalCholesky<usize>) -> Self {
+        let scratch_rows = longest_rows(&symbolic);
+        Self {
+            lower,
+            symbolic,
+            scratch_rows,
+        }
     }
 
     /// The part's dofs (of `K`) in elimination order, the separator's last.
@@ -226,8 +234,6 @@ impl SplitAnalysis {
 struct PartFactor {
     values: Vec<f64>,
     separator_block: Mat<f64>,
-    /// [`longest_rows`] of the factor.
-    scratch_rows: usize,
 }
 
 /// A part just factorised: its factor and its term of the Schur complement (lower triangle):
@@ -288,11 +294,12 @@ fn separator_block_of(part: &PartAnalysis, lower_values: &[f64], separator: usiz
     kss
 }
 
-/// Most rows of any supernode of the factor (its width plus its pattern): the length of the
+/// Most rows of any supernode of a factor (its width plus its pattern): the length of the
 /// substitutions' scratch.
-fn longest_rows(llt: SupernodalLltRef<'_, usize, f64>) -> usize {
-    (0..llt.symbolic().n_supernodes())
-        .map(|s| llt.supernode(s).val().nrows())
+fn longest_rows(symbolic: &SymbolicSupernodalCholesky<usize>) -> usize {
+    let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+    (0..symbolic.n_supernodes())
+        .map(|s| end[s] - begin[s] + symbolic.supernode(s).pattern().len())
         .max()
         .unwrap_or(0)
 }
@@ -472,7 +479,6 @@ impl SplitFactor {
             let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;
             let llt = SupernodalLltRef::new(&part.symbolic, &values);
             let separator_block = trailing_block(llt, separator);
-            let scratch_rows = longest_rows(llt);
             // L_SS,i L_SS,iᵀ (lower triangle, from the triangular blocks: a sixth of a full
             // product's work).
             let mut schur_term = Mat::<f64>::zeros(separator, separator);
@@ -498,7 +504,6 @@ impl SplitFactor {
                 factor: PartFactor {
                     values,
                     separator_block,
-                    scratch_rows,
                 },
                 schur_term,
             })
@@ -545,7 +550,7 @@ impl SplitFactor {
                 }
             }
             let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
-            forward(llt, self.parts[i].scratch_rows, x.as_mut());
+            forward(llt, part.scratch_rows, x.as_mut());
             let mut g = Mat::<f64>::zeros(separator, k);
             matmul(
                 g.as_mut(),
@@ -579,7 +584,7 @@ impl SplitFactor {
                 Par::Seq,
             );
             let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
-            backward(llt, self.parts[i].scratch_rows, x.as_mut());
+            backward(llt, part.scratch_rows, x.as_mut());
         };
         rayon::join(|| backward_part(0, &mut x1), || backward_part(1, &mut x2));
         for (part, x) in analysis.parts.iter().zip([&x1, &x2]) {
