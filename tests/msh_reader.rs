@@ -270,3 +270,45 @@ fn sparse_node_and_element_tags_are_read_like_dense_ones() {
         "{message}"
     );
 }
+
+/// `bytes` (a binary 4.1 mesh) with `extra` empty node blocks (a point entity, no nodes) after
+/// the `$Nodes` header: the same mesh, with a block count of the caller's choosing.
+fn with_empty_node_blocks(bytes: &[u8], extra: u64) -> Vec<u8> {
+    let marker = b"$Nodes\n";
+    let at = bytes
+        .windows(marker.len())
+        .position(|w| w == marker)
+        .expect("a $Nodes section")
+        + marker.len();
+    let blocks = u64::from_le_bytes(bytes[at..at + 8].try_into().unwrap());
+    let mut out = bytes[..at].to_vec();
+    out.extend_from_slice(&(blocks + extra).to_le_bytes());
+    out.extend_from_slice(&bytes[at + 8..at + 32]);
+    for _ in 0..extra {
+        // dimension 0, entity 1, not parametric (three i32), then a count of 0 (u64).
+        for v in [0i32, 1, 0] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.extend_from_slice(&0u64.to_le_bytes());
+    }
+    out.extend_from_slice(&bytes[at + 32..]);
+    out
+}
+
+/// A binary mesh is read whatever its node block count, including 10 and 13, whose low byte is a
+/// line ending (`\n`, `\r`): a reader that skipped every line-ending byte after `$Nodes` took
+/// the count for one and rejected a valid gmsh mesh of 13 entities as truncated.
+#[test]
+fn binary_meshes_are_read_whatever_their_node_block_count() {
+    let dir = ringcontact::fem::solver::mesh_directory();
+    let bytes = std::fs::read(dir.join("small-domain-R5-binary.msh")).unwrap();
+    let reference = parse_msh(&bytes, "small-domain-R5-binary.msh").unwrap();
+    for extra in 1..=5 {
+        let name = format!("small-domain-R5-binary.msh with {extra} empty node blocks");
+        let mesh = parse_msh(&with_empty_node_blocks(&bytes, extra), &name)
+            .unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert_eq!(mesh.nodes, reference.nodes, "{name}");
+        assert_eq!(mesh.cells.len(), reference.cells.len(), "{name}");
+        mesh.validate(&REQUIRED).unwrap();
+    }
+}

@@ -154,8 +154,13 @@ fn node_tags_in_file_order(bytes: &[u8], name: &str) -> Result<Vec<(u64, usize)>
         .lines()
         .nth(1)
         .is_some_and(|l| l.split_whitespace().nth(1) == Some("1"));
+    // Exactly one line ending after the marker: in a binary file the next byte is already data
+    // (the block count, whose low byte may be 10 or 13, `\n` or `\r`).
     let mut body = start + marker.len();
-    while body < bytes.len() && (bytes[body] == b'\n' || bytes[body] == b'\r') {
+    if bytes.get(body) == Some(&b'\r') {
+        body += 1;
+    }
+    if bytes.get(body) == Some(&b'\n') {
         body += 1;
     }
     let truncated = || err(name, "the $Nodes section ends early (truncated file?)");
