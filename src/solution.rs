@@ -207,8 +207,20 @@ impl Solution {
         }
         if self.depth <= 0.0 || self.force <= 0.0 {
             return fail(format!(
-                "a pressing punch needs depth > 0 and force > 0 (got d = {}, F = {})",
-                self.depth, self.force
+                "a pressing punch needs depth > 0 and force > 0 (got d = {}, F = {}){}",
+                crate::error::show(self.depth),
+                crate::error::show(self.force),
+                match (self.depth > 0.0, self.force > 0.0) {
+                    (true, false) if self.force == 0.0 => {
+                        ": the force underflows f64, so choose units in which a, h, E* and the \
+                         load are nearer 1"
+                    }
+                    (false, true) if self.depth == 0.0 => {
+                        ": the depth underflows f64, so choose units in which a, h, E* and the \
+                         load are nearer 1"
+                    }
+                    _ => "",
+                }
             ));
         }
         for (name, value) in [
@@ -218,7 +230,10 @@ impl Solution {
         ] {
             if let Some(v) = value {
                 if v <= 0.0 {
-                    return fail(format!("{name} = {v} must be positive"));
+                    return fail(format!(
+                        "{name} = {} must be positive",
+                        crate::error::show(v)
+                    ));
                 }
             }
         }
@@ -240,13 +255,15 @@ impl Solution {
                     if depth_over_hole.is_nan() || !within_estimate {
                         return fail(match self.error_estimate {
                             None => format!(
-                                "full contact at d/h = {depth_over_hole} without an error \
-                                 estimate: the conical punch never closes"
+                                "full contact at d/h = {} without an error estimate: the \
+                                 conical punch never closes",
+                                crate::error::show(depth_over_hole)
                             ),
                             Some(estimate) => format!(
-                                "full contact at d/h = {depth_over_hole}: the conical punch never \
-                                 closes, and its hole there is at least {} a (ring BEM), more \
-                                 than the error estimate {estimate:.1e}",
+                                "full contact at d/h = {}: the conical punch never closes, and \
+                                 its hole there is at least {} a (ring BEM), more than the error \
+                                 estimate {estimate:.1e}",
+                                crate::error::show(depth_over_hole),
                                 crate::error::show(hole)
                             ),
                         });
@@ -258,8 +275,9 @@ impl Solution {
                     let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
                     if depth_over_hole.is_nan() || depth_over_hole < 3.0 * (1.0 - slack) {
                         return fail(format!(
-                            "full contact at d/h = {depth_over_hole}: the spherical punch reaches \
-                             it only at d/h >= 3"
+                            "full contact at d/h = {}: the spherical punch reaches it only at \
+                             d/h >= 3",
+                            crate::error::show(depth_over_hole)
                         ));
                     }
                 }
@@ -274,7 +292,17 @@ impl Solution {
             .iter()
             .find(|p| !p.r.is_finite() || !p.p.is_finite())
         {
-            return fail(format!("pressure sample p({}) = {}", p.r, p.p));
+            return fail(format!(
+                "pressure sample p({}) = {}{}",
+                crate::error::show(p.r),
+                crate::error::show(p.p),
+                if p.r.is_finite() {
+                    " (beyond f64's range: choose units in which a, h, E* and the load are \
+                     nearer 1)"
+                } else {
+                    ""
+                }
+            ));
         }
         Ok(())
     }
@@ -361,6 +389,16 @@ mod tests {
             assert_eq!(bound, 0.9 * cone_hole_asymptote(depth));
             assert!(bound > 0.0 && bound < last.1);
         }
+    }
+
+    #[test]
+    fn an_underflowed_force_is_refused_with_short_numbers_and_the_cause() {
+        let mut tiny = state(PunchKind::Cone, 0.45, 2e-301, 0.0);
+        tiny.gamma2 = Some(1.8);
+        let message = tiny.check_plausible().unwrap_err().to_string();
+        assert!(message.contains("force underflows"), "{message}");
+        assert!(message.contains("2.000000e-301"), "{message}");
+        assert!(message.len() < 400, "{message}");
     }
 
     #[test]
