@@ -41,6 +41,28 @@ fn flat_annulus_agrees_with_collins_and_approaches_argatov() {
 }
 
 #[test]
+fn a_small_holes_inner_edge_follows_collins_down_to_the_range_end() {
+    // Collins' series (paper 21): γ' = -4 eps²/π² - 8 eps⁴/(3π²) - 32 eps⁵/(9π⁴), so
+    // κ_in = sqrt(-γ'/eps) and d_c = -1/κ_in at the inner edge. The differenced γ' loses digits
+    // here (γ' ~ 1e-9 against γ ~ 1): it once gave a d_c 24 % off at eps = 1e-4.
+    let solver = RingBemSolver::new();
+    for eps in [1e-4, 3e-4, 1e-3, 1e-2] {
+        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let gp = -4.0 * eps * eps / (PI * PI)
+            - 8.0 * eps.powi(4) / (3.0 * PI * PI)
+            - 32.0 * eps.powi(5) / (9.0 * PI.powi(4));
+        let collins = -1.0 / (-gp / eps).sqrt();
+        assert!(
+            ((r.dc_inner - collins) / collins).abs() < 1e-5,
+            "eps = {eps}: d_c = {} against Collins' {collins}",
+            r.dc_inner
+        );
+    }
+    // The validated range's other end: the derivative's stencil stays inside it.
+    assert!(adhesion::flat_annulus(&solver, 0.9999).is_ok());
+}
+
+#[test]
 fn the_outer_edge_governs_and_edge_intensities_are_consistent() {
     // Paper: "the annular flat punch will always start to detach at the outer boundary".
     let solver = RingBemSolver::new();
