@@ -453,3 +453,31 @@ fn the_flat_annulus_sweep_writes_its_csv_with_the_documented_columns() {
     assert!(dir.join("critical-flat-annulus.svg").exists());
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `verify jkr` refuses a flag that does not apply to the punch instead of ignoring it.
+#[test]
+fn jkr_refuses_a_flag_of_the_other_punch_family() {
+    for (args, named) in [
+        (
+            &[
+                "jkr",
+                "--punch",
+                "flat-annulus",
+                "--eps",
+                "0.5",
+                "--d0h",
+                "1",
+            ][..],
+            "--d0h",
+        ),
+        (
+            &["jkr", "--punch", "cone", "--eps", "0.5", "--d0h", "1"][..],
+            "--eps",
+        ),
+    ] {
+        let out = verify(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(stderr.contains(named), "{args:?}: {stderr}");
+    }
+}

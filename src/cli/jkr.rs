@@ -11,6 +11,23 @@ use crate::punch::PunchKind;
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
+    match args.punch {
+        PunchKind::FlatAnnulus if args.d0h.is_some() => {
+            return Err(
+                "--d0h is the concave punches' work of adhesion: the flat annulus's \
+                        results are in units of d0 and F0 already, so it takes only --eps"
+                    .into(),
+            )
+        }
+        PunchKind::Cone | PunchKind::Sphere if args.eps.is_some() => {
+            return Err(format!(
+                "--eps fixes the flat annulus's hole: the {}'s contact ratio follows from \
+                 --d0h (the pull-off states are searched over it)",
+                args.punch
+            ))
+        }
+        _ => {}
+    }
     let solver = RingBemSolver::new();
     let text = match args.punch {
         PunchKind::FlatAnnulus if args.sweep => sweep_output(
