@@ -121,7 +121,7 @@ pub struct FlatAnnulusJkr {
 /// accurate). The inner edge's as the ring BEM reads it off its pressure field (as for the
 /// concave punches' [`branch_point`]): the energy route's `κ_in² = -γ'/eps` loses digits where
 /// `γ'` is small against `γ` (`γ' ≈ -4 eps²/π²`); at `eps = 1e-4` it was 24 % off Collins'
-/// `2 sqrt(eps)/π`, the field's within 4e-7 (the series' next term). `kappa_consistency`
+/// `2 sqrt(eps)/π`, the field's within 4e-7 of it. `kappa_consistency`
 /// compares the two routes at both edges.
 pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> {
     if !(0.0 < eps && eps < 1.0) {
