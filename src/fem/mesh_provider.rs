@@ -463,6 +463,32 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
     }
 }
 
+/// Whether the file's last line is a whole section end (`$End...` and a newline), as every gmsh
+/// `.msh` file's is: false for a file cut short (or unreadable).
+fn ends_with_a_section_end(path: &Path) -> bool {
+    use std::io::{Read, Seek, SeekFrom};
+    let Ok(mut file) = std::fs::File::open(path) else {
+        return false;
+    };
+    let Ok(len) = file.seek(SeekFrom::End(0)) else {
+        return false;
+    };
+    let mut tail = Vec::new();
+    if file.seek(SeekFrom::Start(len.saturating_sub(64))).is_err()
+        || file.read_to_end(&mut tail).is_err()
+    {
+        return false;
+    }
+    // gmsh ends every line, the last one too, with a newline: a file cut inside its last line
+    // has none at its end.
+    tail.ends_with(b"\n")
+        && tail
+            .split(|&b| b == b'\n')
+            .map(|line| line.trim_ascii())
+            .rfind(|line| !line.is_empty())
+            .is_some_and(|line| line.starts_with(b"$End"))
+}
+
 /// Mesh `meshes/half_space.geo` with `parameters`, through the cache.
 pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
     let root = project_root();
@@ -481,6 +507,16 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
     let key = hex(&hasher.finalize());
     let dir = cache_directory();
     let path = dir.join(format!("{}.msh", &key[..24]));
+    if path.exists() && !ends_with_a_section_end(&path) {
+        // Cut short after gmsh made it (files enter the cache whole, renamed from a partial
+        // name): made again below. Damage elsewhere in a file is found by the reader, whose
+        // message names the cache.
+        eprintln!(
+            "note: the cached mesh {} is cut short; gmsh makes it again",
+            path.display()
+        );
+        let _ = std::fs::remove_file(&path);
+    }
     if path.exists() {
         return Ok(ProvidedMesh {
             sha256: sha256_file(&path)?,
@@ -513,6 +549,28 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_mesh_file_cut_short_is_told_from_a_whole_one() {
+        let dir = std::env::temp_dir().join(format!("ringcontact-tail-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let whole = std::fs::read(mesh_directory().join("annulus-0.5-L0.msh")).unwrap();
+        let binary = std::fs::read(mesh_directory().join("small-domain-R5-binary.msh")).unwrap();
+        let cases: [(&str, &[u8], bool); 5] = [
+            ("whole.msh", &whole, true),
+            ("binary.msh", &binary, true),
+            ("cut.msh", &whole[..whole.len() / 2], false),
+            ("cut-in-last-line.msh", &whole[..whole.len() - 4], false),
+            ("empty.msh", b"", false),
+        ];
+        for (name, bytes, expected) in cases {
+            let path = dir.join(name);
+            std::fs::write(&path, bytes).unwrap();
+            assert_eq!(ends_with_a_section_end(&path), expected, "{name}");
+        }
+        assert!(!ends_with_a_section_end(&dir.join("missing.msh")));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 
     #[test]
     fn the_rim_size_follows_the_contact_rings_width() {

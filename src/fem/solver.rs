@@ -316,7 +316,20 @@ const REQUIRED_TAGS: [(i32, &str); 3] = [
 /// edges; `raising_the_degree_keeps_a_mesh_valid` tests it), so the raised mesh is not checked
 /// again.
 fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, String)> {
-    let (raw, sha256) = read_msh_hashed(provided.path.as_path())?;
+    let (raw, sha256) = read_msh_hashed(provided.path.as_path()).map_err(|e| {
+        match (e, provided.origin) {
+            // gmsh's files enter the cache whole (written under another name, then renamed), so
+            // an unreadable one was damaged afterwards: say how to have it made again.
+            (Error::InvalidMesh { path, message }, MeshOrigin::Cache) => Error::InvalidMesh {
+                path,
+                message: format!(
+                    "{message}; this file is in the mesh cache, damaged since gmsh made it: \
+                     delete it and the next run makes it again"
+                ),
+            },
+            (e, _) => e,
+        }
+    })?;
     raw.validate(&REQUIRED_TAGS)?;
     raw.validate_geometry(contact_start)?;
     match &provided.corner_refinement {
