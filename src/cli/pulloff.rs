@@ -6,7 +6,12 @@ use crate::cohesive::study::{self, PulloffStudy};
 use crate::fem::mesh_provider::{MeshOrigin, ProvidedMesh};
 use crate::harness::progress::Progress;
 use crate::harness::table::{Column, Format, Table};
+use crate::heartbeat::Heartbeat;
 use crate::punch::PunchKind;
+
+/// The `d0/h` of a concave punch's direct simulation: its load path takes about `250 h/d0`
+/// steps per range below `d0/h = 1` and `200 d0/h` above.
+pub const PULLOFF_D0H_RANGE: (f64, f64) = (0.1, 100.0);
 
 /// `verify pulloff`: the sequence at decreasing ranges, its extrapolate and the JKR route's
 /// value.
@@ -20,11 +25,40 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         (true, Some(s)) if !(s.is_finite() && s > 0.0) => {
             return Err(format!("--d0h {s}: need d0/h > 0"))
         }
+        (true, Some(s)) if !(PULLOFF_D0H_RANGE.0..=PULLOFF_D0H_RANGE.1).contains(&s) => {
+            return Err(format!(
+                "--d0h {}: the direct simulation runs for d0/h in [{}, {}] (the paper's \
+                 Fig. 10 range). It follows the load path in steps of 0.02 d0, at most 0.02 h, \
+                 from 3h deep to 4 d0 + 2h out: about 250 h/d0 steps per range below d0/h = 1 \
+                 and 200 d0/h above: 833 at d0/h = 0.3 and 2 250 at 10, whose stored runs took \
+                 52 and 25 s, but 2.5e6 at 1e-4. \
+                 `verify jkr --punch {} --d0h {}` gives the JKR limit for d0/h in [1e-6, 1e6]",
+                crate::error::show(s),
+                PULLOFF_D0H_RANGE.0,
+                PULLOFF_D0H_RANGE.1,
+                args.punch,
+                crate::error::show(s)
+            ));
+        }
         (_, s) => s.unwrap_or(0.0),
     };
     if args.punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
         return Err(format!(
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
+        ));
+    }
+    if args.punch.is_concave() && args.eps.is_some() {
+        return Err(format!(
+            "--eps fixes the flat annulus's hole; the {} is pressed until its hole closes (or, \
+             --branch annular, touched with it open), so its contact ratio is not an input",
+            args.punch
+        ));
+    }
+    if !args.punch.is_concave() && args.d0h.is_some() {
+        return Err(format!(
+            "--d0h is a concave punch's work of adhesion in units of h; the {}'s results are in \
+             units of d0 and F0 already",
+            args.punch
         ));
     }
     let annular = args.branch == study::Branch::Annular;
@@ -70,9 +104,16 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         eps,
         d0_over_h,
     };
+    // A range takes from a few seconds to a minute (meshing, condensation, the load path): a
+    // plain line every ten seconds between the bar's ticks says which one is running.
+    let heartbeat = Heartbeat::start("pull-off");
+    if let Some(first) = ranges.first() {
+        heartbeat.set(format!("the first range, rho/d0 = {first}"));
+    }
     if annular {
         let mut bar = Progress::new("pull-off (annular branch)", ranges.len() + 1);
         let result = crate::cohesive::annular::run_annular(case, &ranges, |entry| {
+            heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
             bar.tick(&format!(
                 "rho/a = {}: F/F0 = {:.4}{}",
                 entry.range_over_a,
@@ -108,6 +149,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
             usable.push(range);
         }
         // Once the given ranges are done the study adds smaller ones (study::smaller_range).
+        heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
         if !repeat
             && seen.len() >= given
             && study::smaller_range(&ranges, range, &usable, any_left).is_some()
