@@ -454,30 +454,21 @@ fn the_flat_annulus_sweep_writes_its_csv_with_the_documented_columns() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-/// `verify jkr` refuses a flag that does not apply to the punch instead of ignoring it.
+/// `verify jkr` and `verify pulloff` refuse a flag of the other punch family instead of ignoring
+/// it.
 #[test]
-fn jkr_refuses_a_flag_of_the_other_punch_family() {
-    for (args, named) in [
-        (
-            &[
-                "jkr",
-                "--punch",
-                "flat-annulus",
-                "--eps",
-                "0.5",
-                "--d0h",
-                "1",
-            ][..],
-            "--d0h",
-        ),
-        (
-            &["jkr", "--punch", "cone", "--eps", "0.5", "--d0h", "1"][..],
-            "--eps",
-        ),
-    ] {
-        let out = verify(args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert!(!out.status.success(), "{args:?} succeeded");
-        assert!(stderr.contains(named), "{args:?}: {stderr}");
+fn a_flag_of_the_other_punch_family_is_refused() {
+    for command in ["jkr", "pulloff"] {
+        for (flags, named) in [
+            (["flat-annulus", "--eps", "0.5", "--d0h", "1"], "--d0h"),
+            (["cone", "--d0h", "1", "--eps", "0.5"], "--eps"),
+        ] {
+            let mut args = vec![command, "--punch"];
+            args.extend(flags);
+            let out = verify(&args);
+            let stderr = String::from_utf8_lossy(&out.stderr);
+            assert!(!out.status.success(), "{args:?} succeeded");
+            assert!(stderr.contains(named), "{args:?}: {stderr}");
+        }
     }
 }

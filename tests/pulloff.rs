@@ -162,23 +162,6 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
             vec!["pulloff", "--punch", "sphere", "--d0h", "1e9"],
             "[0.1, 100]",
         ),
-        // A flag of the other punch family is refused, not ignored.
-        (
-            vec![
-                "pulloff",
-                "--punch",
-                "flat-annulus",
-                "--eps",
-                "0.5",
-                "--d0h",
-                "1",
-            ],
-            "--d0h",
-        ),
-        (
-            vec!["pulloff", "--punch", "cone", "--d0h", "1", "--eps", "0.5"],
-            "--eps",
-        ),
     ] {
         let out = Command::new(verify).args(&args).output().unwrap();
         let err = String::from_utf8_lossy(&out.stderr);

@@ -1,7 +1,7 @@
 //! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
 
 use super::args::JkrArgs;
-use super::{message, refuse_non_finite, to_json, Reply};
+use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
 use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::harness::progress::Progress;
@@ -11,23 +11,7 @@ use crate::punch::PunchKind;
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
-    match args.punch {
-        PunchKind::FlatAnnulus if args.d0h.is_some() => {
-            return Err(
-                "--d0h is the concave punches' work of adhesion: the flat annulus's \
-                        results are in units of d0 and F0 already, so it takes only --eps"
-                    .into(),
-            )
-        }
-        PunchKind::Cone | PunchKind::Sphere if args.eps.is_some() => {
-            return Err(format!(
-                "--eps fixes the flat annulus's hole: the {}'s contact ratio follows from \
-                 --d0h (the pull-off states are searched over it)",
-                args.punch
-            ))
-        }
-        _ => {}
-    }
+    refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
     let text = match args.punch {
         PunchKind::FlatAnnulus if args.sweep => sweep_output(

@@ -104,6 +104,30 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 }
 
 /// Any error of the library as the message of an `Err`.
+/// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
+/// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
+/// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
+/// `F0` already). Used by `verify jkr` and `verify pulloff`.
+fn refuse_other_family_flags(
+    punch: crate::punch::PunchKind,
+    eps: Option<f64>,
+    d0h: Option<f64>,
+) -> Result<(), String> {
+    if punch.is_concave() && eps.is_some() {
+        return Err(format!(
+            "--eps fixes the flat annulus's hole; the {punch}'s contact ratio is found, not \
+             given (use --d0h)"
+        ));
+    }
+    if !punch.is_concave() && d0h.is_some() {
+        return Err(format!(
+            "--d0h is a concave punch's work of adhesion in units of h; the {punch}'s results \
+             are in units of d0 and F0 already"
+        ));
+    }
+    Ok(())
+}
+
 fn message(e: impl std::fmt::Display) -> String {
     e.to_string()
 }

@@ -1,7 +1,7 @@
 //! `verify pulloff`: the pull-off by direct simulation (cohesive zone on the FE model).
 
 use super::args::PulloffArgs;
-use super::{message, refuse_non_finite, to_json, Reply};
+use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
 use crate::cohesive::study::{self, PulloffStudy};
 use crate::fem::mesh_provider::{MeshOrigin, ProvidedMesh};
 use crate::harness::progress::Progress;
@@ -47,20 +47,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
         ));
     }
-    if args.punch.is_concave() && args.eps.is_some() {
-        return Err(format!(
-            "--eps fixes the flat annulus's hole; the {} is pressed until its hole closes (or, \
-             --branch annular, touched with it open), so its contact ratio is not an input",
-            args.punch
-        ));
-    }
-    if !args.punch.is_concave() && args.d0h.is_some() {
-        return Err(format!(
-            "--d0h is a concave punch's work of adhesion in units of h; the {}'s results are in \
-             units of d0 and F0 already",
-            args.punch
-        ));
-    }
+    refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
     let annular = args.branch == study::Branch::Annular;
     if annular && !args.punch.is_concave() {
         return Err(format!(

@@ -60,26 +60,14 @@ impl ChebyshevNodes {
         out.iter_mut().for_each(|v| *v *= inv);
     }
 
-    /// Interpolated value at `t` of the function with values `values` at the nodes: the
-    /// barycentric formula `Σ_j c_j f_j / Σ_j c_j`, `c_j = w_j / (t - t_j)`, summed as
-    /// `Σ_j (c_j / Σ c) f_j` so that values near the largest `f64` do not overflow (`c_j f_j`
-    /// would, with `c_j` up to `1/(t - t_j)`; the normalised weights are the Lagrange basis,
-    /// bounded by the Lebesgue constant).
+    /// Interpolated value at `t` of the function with values `values` at the nodes:
+    /// `Σ_j L_j(t) f_j` with the Lagrange basis of [`Self::basis_at`] (normalised before it
+    /// multiplies the values, so values near the largest `f64` do not overflow, as the unnormalised
+    /// barycentric sum `Σ_j w_j f_j / (t - t_j)` did).
     pub fn interpolate(&self, values: &[f64], t: f64) -> f64 {
-        let mut den = 0.0;
-        for ((&tj, &wj), &fj) in self.points.iter().zip(&self.weights).zip(values) {
-            let diff = t - tj;
-            if diff == 0.0 {
-                return fj;
-            }
-            den += wj / diff;
-        }
-        self.points
-            .iter()
-            .zip(&self.weights)
-            .zip(values)
-            .map(|((&tj, &wj), &fj)| (wj / (t - tj) / den) * fj)
-            .sum()
+        let mut basis = vec![0.0; self.points.len()];
+        self.basis_at(t, &mut basis);
+        basis.iter().zip(values).map(|(l, f)| l * f).sum()
     }
 }
 
