@@ -18,7 +18,11 @@
 //!   heavier than the other by more than a tenth, the level that should balance them
 //!   ([`rebalanced_level`]) is estimated as well. On the 92 528-unknown annulus (`b/a` = 0.3,
 //!   P2) the central level's parts carried 3.95e8 and 2.88e8 multiply-adds (`faer`'s count),
-//!   the rebalanced level's 3.34e8 and 3.25e8.
+//!   the rebalanced level's 3.34e8 and 3.25e8. When the rebalanced level is still unbalanced
+//!   (the power law overshot or fell short), one secant step between the two levels is
+//!   estimated as well ([`interpolated_level`]): on the 14 558-unknown annulus (`b/a` = 0.5, P2)
+//!   the central level left 1.75e7 and 2.81e7, the rebalanced one overshot, and the secant's
+//!   2.45e7 and 2.42e7 took 9 % less factorisation time.
 //!
 //! The estimate is the vertex-level elimination ([`Elimination`]): each vertex's weighted column
 //! in the vertex-level factor, weighted by the dofs it brings, gives its columns' work; the
@@ -300,13 +304,23 @@ fn weighted_column_counts(graph: &PositionGraph, parent: &[usize], weight: &[usi
     delta.iter().map(|&d| d.max(0) as usize).collect()
 }
 
+/// How much faster a multiply-add runs in the separator's dense blocks than in the parts'
+/// sparse factorisation, for [`critical_path`]: `faer`'s dense kernels run at 20-27 GFMA/s on
+/// the 2-core machine, its supernodal factorisation of these meshes at 5-8 (benches/
+/// FENICSX_SPEED.md, *A multifrontal factorisation, tried*). Counted at par, a separator a few
+/// dofs longer outweighed a balance of the parts worth 9 % of the factorisation (14 558-unknown
+/// annulus, `b/a` = 0.5: parts of 1.75e7 and 2.81e7 multiply-adds behind 134 separator dofs,
+/// 7.6 ms, against 2.45e7 and 2.42e7 behind 168, 6.9 ms).
+const DENSE_SPEEDUP: f64 = 4.0;
+
 /// Estimated critical path of a split with parts of works `parts` and `separator_dofs`
-/// separator dofs: the heavier part plus the separator's dense work that is not shared between
-/// the cores, `4 s³ / 3` (its block in one part, `s³ / 3`; the two parts' products and the Schur
-/// complement's factorisation, `s³ / 3` each).
+/// separator dofs, in sparse multiply-adds: the heavier part plus the separator's dense work
+/// that is not shared between the cores, `4 s³ / 3` (its block in one part, `s³ / 3`; the two
+/// parts' products and the Schur complement's factorisation, `s³ / 3` each), which runs
+/// [`DENSE_SPEEDUP`] times faster.
 fn critical_path(parts: [f64; 2], separator_dofs: usize) -> f64 {
     let s = separator_dofs as f64;
-    parts[0].max(parts[1]) + 4.0 * s * s * s / 3.0
+    parts[0].max(parts[1]) + 4.0 * s * s * s / (3.0 * DENSE_SPEEDUP)
 }
 
 /// Deal trees (their works) to two parts, heaviest first, each to the lighter part so far:
@@ -521,8 +535,7 @@ fn level_split(graph: &VertexGraph) -> Option<Vec<Side>> {
 /// (`p_1 = c_1 s^γ`, `p_2 = c_2 (1 − s)^γ`, equal where `s / (1 − s) = (c_2 / c_1)^{1/γ}`).
 /// `None` when the parts are within [`BALANCED_PARTS`] of each other or that level is `cut`.
 fn rebalanced_level(levels: &Levels, cut: usize, parts: [f64; 2]) -> Option<usize> {
-    let (heavier, lighter) = (parts[0].max(parts[1]), parts[0].min(parts[1]));
-    if lighter <= 0.0 || heavier <= BALANCED_PARTS * lighter {
+    if parts[0].min(parts[1]) <= 0.0 || balanced(parts) {
         return None;
     }
     let share = levels.share_before(cut);
@@ -531,6 +544,30 @@ fn rebalanced_level(levels: &Levels, cut: usize, parts: [f64; 2]) -> Option<usiz
     let ratio = (second_density / first_density).powf(1.0 / PART_WORK_EXPONENT);
     let level = levels.nearest_share(ratio / (1.0 + ratio))?;
     (level != cut).then_some(level)
+}
+
+/// The level between two estimated level splits where the parts' works should be equal, by
+/// linear interpolation of the difference of the two parts' works over the levels (a secant
+/// step after [`rebalanced_level`], whose power law overshot or fell short): `None` when the
+/// difference is the same at both, or the level is one of the two or outside the inner levels.
+fn interpolated_level(
+    levels: &Levels,
+    (cut, parts): (usize, [f64; 2]),
+    (other, other_parts): (usize, [f64; 2]),
+) -> Option<usize> {
+    let (d0, d1) = (parts[0] - parts[1], other_parts[0] - other_parts[1]);
+    if d0 == d1 || !(d0.is_finite() && d1.is_finite()) {
+        return None;
+    }
+    let (c0, c1) = (cut as f64, other as f64);
+    let level = (c0 - d0 * (c1 - c0) / (d1 - d0)).round();
+    let inner = 1.0..(levels.per_level.len() - 1) as f64;
+    (inner.contains(&level) && level != c0 && level != c1).then_some(level as usize)
+}
+
+/// Whether two parts' works are within [`BALANCED_PARTS`] of each other.
+fn balanced(parts: [f64; 2]) -> bool {
+    parts[0].max(parts[1]) <= BALANCED_PARTS * parts[0].min(parts[1])
 }
 
 /// The estimated works of a split's two parts and its critical path ([`critical_path`]).
@@ -621,8 +658,19 @@ pub(super) fn split_nodes_of(
             levels_tried.push((estimate.critical_path, sides));
             if let Some(level) = rebalanced {
                 let sides = levels.sides(level);
-                let estimate = split_estimate(mesh, graph, order, &sides);
-                levels_tried.push((estimate.critical_path, sides));
+                let second = split_estimate(mesh, graph, order, &sides);
+                levels_tried.push((second.critical_path, sides));
+                // Still unbalanced: one secant step between the two levels estimated.
+                let secant = (!balanced(second.parts))
+                    .then(|| {
+                        interpolated_level(&levels, (cut, estimate.parts), (level, second.parts))
+                    })
+                    .flatten();
+                if let Some(level) = secant {
+                    let sides = levels.sides(level);
+                    let third = split_estimate(mesh, graph, order, &sides);
+                    levels_tried.push((third.critical_path, sides));
+                }
             }
         }
     }
@@ -917,6 +965,38 @@ mod tests {
         // Never the first or last level (a part would be empty).
         assert_eq!(rebalanced_level(&levels, 5, [1e6, 1.0]), Some(1));
         assert_eq!(rebalanced_level(&levels, 5, [1.0, 1e6]), Some(8));
+    }
+
+    #[test]
+    fn the_secant_level_lies_where_the_parts_difference_crosses_zero() {
+        let levels = Levels {
+            level: (0..100).map(|v| v / 10).collect(),
+            per_level: vec![10; 10],
+        };
+        // Difference -3 at level 2, +1 at level 6: zero at level 5.
+        assert_eq!(
+            interpolated_level(&levels, (2, [1.0, 4.0]), (6, [3.0, 2.0])),
+            Some(5)
+        );
+        // Both on the same side (the power law fell short): the line goes on past the second
+        // (-4 at level 2, -2 at level 4: zero at level 6).
+        assert_eq!(
+            interpolated_level(&levels, (2, [1.0, 5.0]), (4, [1.0, 3.0])),
+            Some(6)
+        );
+        // No slope, a level already estimated, or beyond the inner levels: none.
+        assert_eq!(
+            interpolated_level(&levels, (2, [1.0, 4.0]), (6, [1.0, 4.0])),
+            None
+        );
+        assert_eq!(
+            interpolated_level(&levels, (2, [1.0, 4.0]), (3, [3.0, 2.0])),
+            None
+        );
+        assert_eq!(
+            interpolated_level(&levels, (2, [1.0, 9.0]), (3, [1.0, 8.0])),
+            None
+        );
     }
 
     #[test]
