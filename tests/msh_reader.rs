@@ -178,6 +178,73 @@ fn a_duplicated_node_tag_is_an_error_naming_tag_and_line() {
     assert!(message.contains("line 17"), "{message}");
 }
 
+/// `text` with its blanks made irregular as gmsh still reads them (it reads fields with
+/// `fscanf`): fields separated by runs of spaces and tabs, lines indented and ending in blanks,
+/// Windows line endings.
+fn with_irregular_blanks(text: &str) -> String {
+    text.lines()
+        .enumerate()
+        .map(|(i, line)| {
+            let fields = line
+                .split(' ')
+                .collect::<Vec<_>>()
+                .join(["  ", "\t", " \t "][i % 3]);
+            format!(
+                "{}{fields}{}\r\n",
+                [" ", "", "\t"][i % 3],
+                [" ", "\t", "  "][i % 2]
+            )
+        })
+        .collect()
+}
+
+/// What a mesh holds, for comparing two reads: nodes, cells and tagged boundary edges.
+fn contents(mesh: &ringcontact::fem::mesh::Mesh) -> String {
+    let boundary: Vec<(i32, Vec<usize>)> = mesh
+        .boundary
+        .iter()
+        .map(|e| (e.tag, e.nodes.clone()))
+        .collect();
+    let cells: Vec<Vec<usize>> = (0..mesh.cell_count())
+        .map(|c| mesh.cell(c).to_vec())
+        .collect();
+    format!("{:?} {cells:?} {boundary:?}", mesh.nodes)
+}
+
+#[test]
+fn irregular_blanks_are_read_as_gmsh_reads_them() {
+    let irregular = with_irregular_blanks(VALID);
+    assert!(irregular.contains("  ") && irregular.contains('\t') && irregular.contains(" \r\n"));
+    let expected = parse_msh(VALID.as_bytes(), "test.msh").unwrap();
+    let mesh = parse_msh(irregular.as_bytes(), "test.msh").unwrap();
+    mesh.validate(&REQUIRED).unwrap();
+    assert_eq!(contents(&mesh), contents(&expected));
+    // A committed mesh (its nodes in several blocks, quadratic cells) likewise.
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/annulus-0.5-L1.msh");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let expected = parse_msh(text.as_bytes(), "annulus.msh").unwrap();
+    let mesh = parse_msh(with_irregular_blanks(&text).as_bytes(), "annulus.msh").unwrap();
+    assert_eq!(contents(&mesh), contents(&expected));
+}
+
+#[test]
+fn a_malformed_mesh_with_irregular_blanks_is_still_an_error_naming_its_line() {
+    // The duplicated tag of the test above, in a file with irregular blanks: the same message,
+    // the same line (the lines are kept as they are counted in the file).
+    let duplicated = VALID.replace("1\n2\n3\n4\n0 0 0", "1\n2\n3\n2\n0 0 0");
+    let message = error_of(&with_irregular_blanks(&duplicated));
+    assert!(message.contains("node tag 2 appears twice"), "{message}");
+    assert!(message.contains("line 17"), "{message}");
+    // A file cut short, or cut inside a line: the same error as with regular blanks.
+    for end in [
+        VALID.find("$Elements").unwrap(),
+        VALID.find("$EndNodes").unwrap() - 3,
+    ] {
+        let cut = &VALID[..end];
+        assert_eq!(error_of(&with_irregular_blanks(cut)), error_of(cut));
+    }
+}
+
 #[test]
 fn a_missing_file_is_an_error() {
     let e = read_msh(std::path::Path::new("/nonexistent/mesh.msh"))

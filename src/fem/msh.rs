@@ -272,10 +272,64 @@ pub fn parse_msh(bytes: &[u8], name: &str) -> Result<Mesh> {
 }
 
 /// [`parse_msh`], with `beside` run on the thread that scans the text while mshio parses it.
+///
+/// gmsh reads ASCII meshes field by field, so any run of blanks separates two numbers and lines
+/// may end in blanks; mshio wants exactly one space between fields and none at a line's end. An
+/// ASCII mesh mshio refuses is read again with its blanks made regular
+/// ([`with_regular_blanks`]), if that changes it: a hand-edited or tab-separated file is read as
+/// gmsh reads it, and one wrong for other reasons gets the error found past its blanks (its
+/// lines are kept, so the lines the error names are the file's).
 fn parse_msh_beside<T: Send>(
     bytes: &[u8],
     name: &str,
     beside: impl Fn() -> T + Sync,
+) -> Result<(Mesh, T)> {
+    match parse_regular_msh_beside(bytes, name, &beside) {
+        Err(first) if is_ascii_mesh(bytes) => match with_regular_blanks(bytes) {
+            Some(regular) => parse_regular_msh_beside(&regular, name, &beside),
+            None => Err(first),
+        },
+        result => result,
+    }
+}
+
+/// Whether the `$MeshFormat` line gives file type 0 (ASCII).
+fn is_ascii_mesh(bytes: &[u8]) -> bool {
+    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(256)]);
+    head.lines()
+        .nth(1)
+        .is_some_and(|format| format.split_whitespace().nth(1) == Some("0"))
+}
+
+/// `bytes` with every line's fields separated by one space and no blanks at its ends (`\n`
+/// line endings, the number of lines kept, so error messages still name the file's lines), or
+/// `None` when no line changes (a `\r\n` ending alone counts as regular: mshio reads it).
+fn with_regular_blanks(bytes: &[u8]) -> Option<Vec<u8>> {
+    let text = std::str::from_utf8(bytes).ok()?;
+    let mut regular = String::with_capacity(text.len());
+    let mut changed = false;
+    for line in text.split_inclusive('\n') {
+        let body = line.trim_end_matches(['\n', '\r']);
+        let start = regular.len();
+        for (i, field) in body.split_ascii_whitespace().enumerate() {
+            if i > 0 {
+                regular.push(' ');
+            }
+            regular.push_str(field);
+        }
+        changed |= &regular[start..] != body;
+        if line.ends_with('\n') {
+            regular.push('\n');
+        }
+    }
+    changed.then(|| regular.into_bytes())
+}
+
+/// [`parse_msh_beside`] for a file whose blanks mshio accepts.
+fn parse_regular_msh_beside<T: Send>(
+    bytes: &[u8],
+    name: &str,
+    beside: &(impl Fn() -> T + Sync),
 ) -> Result<(Mesh, T)> {
     check_format_line(bytes, name)?;
     // mshio unwraps in places (e.g. header numbers that overflow): a panic inside it is turned
