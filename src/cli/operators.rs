@@ -121,7 +121,7 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
     );
     let out = serde_json::json!({
         "path": provided.path.display().to_string(),
-        "sha256": provided.sha256,
+        "sha256": provided.sha256().map_err(message)?,
         "origin": provided.origin,
         "gmsh_version": provided.gmsh_version,
         "label": request.label(),

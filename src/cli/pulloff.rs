@@ -157,7 +157,6 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     let result = match &args.mesh {
         Some(path) => {
             let mesh = ProvidedMesh {
-                sha256: crate::fem::mesh_provider::sha256_file(path).map_err(message)?,
                 path: path.clone(),
                 origin: MeshOrigin::User,
                 gmsh_version: None,

@@ -181,7 +181,7 @@ pub fn run_annular(
             .into(),
         preload_over_d0: ANNULAR_PRELOAD / case.d0(),
         mesh: mesh_name,
-        mesh_sha256: mesh.sha256.clone(),
+        mesh_sha256: mesh.sha256()?,
         mesh_gmsh_version: mesh.gmsh_version.clone(),
         contact_nodes,
         unknowns,

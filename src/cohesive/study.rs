@@ -558,14 +558,14 @@ struct ModelInfo {
 }
 
 impl ModelInfo {
-    fn of(mesh: &ProvidedMesh, name: String, response: &SurfaceResponse) -> Self {
-        ModelInfo {
+    fn of(mesh: &ProvidedMesh, name: String, response: &SurfaceResponse) -> Result<Self> {
+        Ok(ModelInfo {
             mesh: name,
-            sha256: mesh.sha256.clone(),
+            sha256: mesh.sha256()?,
             gmsh_version: mesh.gmsh_version.clone(),
             contact_nodes: response.radii.len(),
             unknowns: response.unknowns,
-        }
+        })
     }
 }
 
@@ -585,10 +585,11 @@ fn simulate_in_rim_band(
         width,
         element_size: size,
         mesh: name.clone(),
-        mesh_sha256: mesh.sha256.clone(),
+        mesh_sha256: mesh.sha256()?,
         contact_nodes: response.radii.len(),
     });
-    Ok((entry, curve, edges, ModelInfo::of(&mesh, name, &response)))
+    let info = ModelInfo::of(&mesh, name, &response)?;
+    Ok((entry, curve, edges, info))
 }
 
 /// The study's loop: `fixed` = one mesh (and a check mesh) for every range, `None` = a rim-band
@@ -621,7 +622,7 @@ fn run_sequence(
     let shared = match fixed {
         Some((mesh, _)) => {
             let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
-            Some((ModelInfo::of(mesh, name, &response), response))
+            Some((ModelInfo::of(mesh, name, &response)?, response))
         }
         None => None,
     };

@@ -1090,7 +1090,6 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         // The solution's hash is that of the bytes the solve reads (`PreparedModel::mesh_sha256`),
         // computed beside the parse; a user's mesh is not hashed beforehand.
         let provided = ProvidedMesh {
-            sha256: String::new(),
             path: path.clone(),
             origin: MeshOrigin::User,
             gmsh_version: None,
