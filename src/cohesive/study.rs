@@ -581,14 +581,14 @@ fn simulate_in_rim_band(
     let (response, name) = surface_response_on_mesh(&mesh, &study_options(), case.eps)?;
     let (mut entry, curve, edges) =
         simulate(&response, case, range, Branch::Closed, Some(1.0 - width))?;
+    let info = ModelInfo::of(&mesh, name, &response)?;
     entry.rim_band = Some(RimBand {
         width,
         element_size: size,
-        mesh: name.clone(),
-        mesh_sha256: mesh.sha256()?,
+        mesh: info.mesh.clone(),
+        mesh_sha256: info.sha256.clone(),
         contact_nodes: response.radii.len(),
     });
-    let info = ModelInfo::of(&mesh, name, &response)?;
     Ok((entry, curve, edges, info))
 }
 
