@@ -103,7 +103,6 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
     })
 }
 
-/// Any error of the library as the message of an `Err`.
 /// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
 /// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
 /// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
@@ -128,6 +127,7 @@ fn refuse_other_family_flags(
     Ok(())
 }
 
+/// Any error of the library as the message of an `Err`.
 fn message(e: impl std::fmt::Display) -> String {
     e.to_string()
 }

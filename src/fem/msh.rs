@@ -22,8 +22,9 @@ fn err(path: &str, message: impl Into<String>) -> Error {
     }
 }
 
-/// Check the `$MeshFormat` line ourselves: `4.1`, file type 0 (ASCII) or 1 (binary), data size 8.
-fn check_format_line(bytes: &[u8], name: &str) -> Result<()> {
+/// Check the `$MeshFormat` line ourselves: `4.1`, file type 0 (ASCII) or 1 (binary), data size
+/// 8; whether the file is ASCII.
+fn check_format_line(bytes: &[u8], name: &str) -> Result<bool> {
     let head = &bytes[..bytes.len().min(256)];
     let text = String::from_utf8_lossy(head);
     let mut lines = text.lines();
@@ -36,7 +37,7 @@ fn check_format_line(bytes: &[u8], name: &str) -> Result<()> {
     let format = lines.next().unwrap_or("");
     let fields: Vec<&str> = format.split_whitespace().collect();
     match fields.as_slice() {
-        ["4.1", "0" | "1", "8"] => Ok(()),
+        ["4.1", file_type @ ("0" | "1"), "8"] => Ok(*file_type == "0"),
         [version, ..] if *version != "4.1" => Err(err(
             name,
             format!("line 2: format version `{version}`; this reader takes gmsh 4.1 (gmsh -format msh41)"),
@@ -284,21 +285,14 @@ fn parse_msh_beside<T: Send>(
     name: &str,
     beside: impl Fn() -> T + Sync,
 ) -> Result<(Mesh, T)> {
+    let ascii = check_format_line(bytes, name)?;
     match parse_regular_msh_beside(bytes, name, &beside) {
-        Err(first) if is_ascii_mesh(bytes) => match with_regular_blanks(bytes) {
+        Err(first) if ascii => match with_regular_blanks(bytes) {
             Some(regular) => parse_regular_msh_beside(&regular, name, &beside),
             None => Err(first),
         },
         result => result,
     }
-}
-
-/// Whether the `$MeshFormat` line gives file type 0 (ASCII).
-fn is_ascii_mesh(bytes: &[u8]) -> bool {
-    let head = String::from_utf8_lossy(&bytes[..bytes.len().min(256)]);
-    head.lines()
-        .nth(1)
-        .is_some_and(|format| format.split_whitespace().nth(1) == Some("0"))
 }
 
 /// `bytes` with every line's fields separated by one space and no blanks at its ends (`\n`
@@ -325,13 +319,12 @@ fn with_regular_blanks(bytes: &[u8]) -> Option<Vec<u8>> {
     changed.then(|| regular.into_bytes())
 }
 
-/// [`parse_msh_beside`] for a file whose blanks mshio accepts.
+/// [`parse_msh_beside`] for a file whose format line is checked and whose blanks mshio accepts.
 fn parse_regular_msh_beside<T: Send>(
     bytes: &[u8],
     name: &str,
     beside: &(impl Fn() -> T + Sync),
 ) -> Result<(Mesh, T)> {
-    check_format_line(bytes, name)?;
     // mshio unwraps in places (e.g. header numbers that overflow): a panic inside it is turned
     // into an error naming the file, never a crash.
     let parse = || {
