@@ -66,10 +66,23 @@ impl MeshOrdering {
     /// The ordering of `mesh`'s nodes (one vertex graph and one minimum-degree order of it for
     /// the node order and the split, which are then found side by side).
     pub fn of_mesh(mesh: &Mesh) -> Self {
-        let incidence = VertexCells::new(mesh);
-        let graph = vertex_graph(mesh, &incidence);
-        let wants_split = 2 * mesh.nodes.len() >= split_min_dofs();
+        Self::of_raised(mesh, || mesh)
+    }
+
+    /// The ordering of the mesh `raised` gives, `vertex_mesh` with its degree raised: the vertex
+    /// graph and its minimum-degree order, which need only the cells' vertices, are found on
+    /// `vertex_mesh` before `raised` is called, so that the raising can run beside them. If the
+    /// raised mesh's cells do not have `vertex_mesh`'s vertices (in the same order), they are
+    /// found again on the raised mesh.
+    pub fn of_raised<'m>(vertex_mesh: &Mesh, raised: impl FnOnce() -> &'m Mesh) -> Self {
+        let incidence = VertexCells::new(vertex_mesh);
+        let graph = vertex_graph(vertex_mesh, &incidence);
         let vertices = vertex_order(&graph);
+        let mesh = raised();
+        if !same_vertices(vertex_mesh, mesh) {
+            return Self::of_mesh(mesh);
+        }
+        let wants_split = 2 * mesh.nodes.len() >= split_min_dofs();
         let (order, split) = rayon::join(
             || vertex_led_node_order_of(mesh, &incidence, &graph, &vertices),
             || {
@@ -80,6 +93,15 @@ impl MeshOrdering {
         );
         Self { order, split }
     }
+}
+
+/// Whether `raised` has the cells of `vertex_mesh`, in the same order, with the same vertex
+/// nodes (each cell's first three), and keeps `vertex_mesh`'s nodes' numbers: then both have the
+/// same vertex graph.
+fn same_vertices(vertex_mesh: &Mesh, raised: &Mesh) -> bool {
+    vertex_mesh.cell_count() == raised.cell_count()
+        && raised.nodes.len() >= vertex_mesh.nodes.len()
+        && (0..vertex_mesh.cell_count()).all(|c| vertex_mesh.cell(c)[..3] == raised.cell(c)[..3])
 }
 
 impl Analysis {
@@ -479,6 +501,31 @@ mod tests {
             }
         }
         y
+    }
+
+    /// The ordering found with the vertex graph of the vertex mesh, beside the raising, is the
+    /// ordering of the raised mesh; a "raised" mesh with other vertices gets its own.
+    #[test]
+    fn the_ordering_beside_the_raising_is_the_raised_meshs_own() {
+        let path =
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("meshes/annulus-0.5-L1.msh");
+        let vertex_mesh = crate::fem::msh::read_msh(&path).unwrap();
+        assert_eq!(vertex_mesh.degree, Degree::Linear);
+        let same = |a: &MeshOrdering, b: &MeshOrdering| {
+            a.order == b.order
+                && a.split.as_ref().map(|s| &s.sides) == b.split.as_ref().map(|s| &s.sides)
+        };
+        for degree in [Degree::Quadratic, Degree::Cubic] {
+            let raised = vertex_mesh.with_degree(degree);
+            let beside = MeshOrdering::of_raised(&vertex_mesh, || &raised);
+            let own = MeshOrdering::of_mesh(&raised);
+            assert!(beside.split.is_some(), "{degree:?}: the split is exercised");
+            assert!(same(&beside, &own), "{degree:?}");
+        }
+        let other = structured_rectangle(2.0, 1.0, 30, 20, 1, 2, 3).with_degree(Degree::Quadratic);
+        let beside = MeshOrdering::of_raised(&vertex_mesh, || &other);
+        assert_eq!(beside.order.len(), other.nodes.len());
+        assert!(same(&beside, &MeshOrdering::of_mesh(&other)));
     }
 
     #[test]

@@ -19,7 +19,9 @@
 //! **Material.** The frictionless rigid-punch response depends on `E*` only; the solid is given
 //! `E = E* (1 - nu²)` with the scene's `nu` (default 0).
 
+use std::panic::AssertUnwindSafe;
 use std::path::{Path, PathBuf};
+use std::sync::OnceLock;
 use std::time::Instant;
 
 use super::assembly::{BubbleRecovery, StiffnessPattern};
@@ -29,7 +31,7 @@ use super::far_field::{FarField, FarFieldCondition};
 use super::linear_solver::{Analysis, ConstrainedCholesky, MeshOrdering};
 use super::mesh::{tags, Degree, Mesh};
 use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
-use super::msh::read_msh_hashed;
+use super::msh::{read_msh_hashed, FileHash};
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
 use crate::heartbeat::Heartbeat;
@@ -171,7 +173,8 @@ pub struct FemField {
 /// Where the time of the finest model's solve went (seconds; JSON key `fem_timings`).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct FemTimings {
-    /// Reading the mesh and raising its degree.
+    /// Reading the mesh: the parse, the checks and any corner refinement (raising its degree
+    /// is part of `assembly_s`).
     #[serde(rename = "read_s")]
     pub read: f64,
     /// Assembling the stiffness (and the far-field condition), wall time: the symbolic analysis
@@ -266,8 +269,9 @@ fn display_path(path: &Path) -> String {
 /// One mesh loaded, assembled and symbolically factorised.
 struct PreparedModel {
     mesh: Mesh,
-    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]).
-    mesh_sha256: String,
+    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]; still being
+    /// computed while the model is raised and ordered).
+    mesh_sha256: FileHash,
     /// The file's mesh (after any corner refinement), validated, before its degree was raised:
     /// what the linear edge locator assembles without reading the file again.
     vertex_mesh: Mesh,
@@ -315,7 +319,7 @@ const REQUIRED_TAGS: [(i32, &str); 3] = [
 /// the degree keeps a valid mesh valid (its added nodes lie at the fractions `k/p` of straight
 /// edges; `raising_the_degree_keeps_a_mesh_valid` tests it), so the raised mesh is not checked
 /// again.
-fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, String)> {
+fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, FileHash)> {
     let (raw, sha256) = read_msh_hashed(provided.path.as_path()).map_err(|e| {
         match (e, provided.origin) {
             // gmsh's files enter the cache whole (written under another name, then renamed), so
@@ -353,10 +357,11 @@ fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
 }
 
 /// Raise `vertex_mesh` to the spec's degree, assemble its stiffness `K = Σ_e K_e` and, with
-/// [`FarField::Boussinesq`], slave the far arc to the point-force field.
+/// [`FarField::Boussinesq`], slave the far arc to the point-force field. Waits first for the
+/// file's hash (`mesh_sha256`), which the read left running.
 fn assemble_model(
     vertex_mesh: Mesh,
-    mesh_sha256: String,
+    mesh_sha256: FileHash,
     provided: &ProvidedMesh,
     spec: ModelSpec,
 ) -> Result<PreparedModel> {
@@ -366,40 +371,63 @@ fn assemble_model(
         far_field,
         ..
     } = spec;
-    let start = Instant::now();
-    let mesh = vertex_mesh.with_degree(degree);
-    let read = start.elapsed().as_secs_f64();
+    // The file's hash ran beside the parse, the checks and any corner refinement; the assembly
+    // has work for both cores, so it starts when the hash is done.
+    mesh_sha256.wait();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
     let rule = stiffness_rule(degree);
-    let domain_radius = mesh
-        .boundary_nodes(tags::FAR)
-        .iter()
-        .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
-        .fold(0.0, f64::max);
-    let arc_grading = mesh
-        .boundary
-        .iter()
-        .filter(|e| e.tag == tags::FAR)
-        .map(|e| {
-            let (p, q) = (mesh.nodes[e.nodes[0]], mesh.nodes[e.nodes[1]]);
-            (p[0] - q[0]).hypot(p[1] - q[1]) / domain_radius
+    // On one core the degree is raised and the pattern built; on the other, beside them, the
+    // node order, whose vertex graph and minimum-degree order need only the vertex mesh (it then
+    // waits for the raised mesh, set before the pattern's work begins, so it never waits on work
+    // queued behind it). A panic while raising is an error, and the order beside does not wait.
+    let raised: OnceLock<Option<Mesh>> = OnceLock::new();
+    let raise = || {
+        raised.get_or_init(|| {
+            std::panic::catch_unwind(AssertUnwindSafe(|| vertex_mesh.with_degree(degree))).ok()
         })
-        .fold(0.0, f64::max);
-    let far_field = match far_field {
-        FarField::Fixed => None,
-        FarField::Boussinesq => Some(FarFieldCondition::new(&mesh, &material, domain_radius)),
     };
-    // The pattern, and beside it the node order (from the mesh alone).
-    let build_pattern =
-        || -> Result<StiffnessPattern> { StiffnessPattern::of_model(&mesh, far_field.as_ref()) };
+    let raise_and_build_pattern =
+        || -> Result<(f64, f64, Option<FarFieldCondition>, StiffnessPattern)> {
+            let mesh = raise()
+                .as_ref()
+                .ok_or_else(|| unraisable_mesh_error(provided, degree))?;
+            let domain_radius = mesh
+                .boundary_nodes(tags::FAR)
+                .iter()
+                .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
+                .fold(0.0, f64::max);
+            let arc_grading = mesh
+                .boundary
+                .iter()
+                .filter(|e| e.tag == tags::FAR)
+                .map(|e| {
+                    let (p, q) = (mesh.nodes[e.nodes[0]], mesh.nodes[e.nodes[1]]);
+                    (p[0] - q[0]).hypot(p[1] - q[1]) / domain_radius
+                })
+                .fold(0.0, f64::max);
+            let far_field = match far_field {
+                FarField::Fixed => None,
+                FarField::Boussinesq => {
+                    Some(FarFieldCondition::new(mesh, &material, domain_radius))
+                }
+            };
+            let pattern = StiffnessPattern::of_model(mesh, far_field.as_ref())?;
+            Ok((domain_radius, arc_grading, far_field, pattern))
+        };
     let order_nodes = || {
         let start = Instant::now();
-        let ordering = MeshOrdering::of_mesh(&mesh);
+        let ordering = MeshOrdering::of_raised(&vertex_mesh, || {
+            raised.wait().as_ref().unwrap_or(&vertex_mesh)
+        });
         (ordering, start.elapsed().as_secs_f64())
     };
-    let (pattern, (ordering, ordering_seconds)) = rayon::join(build_pattern, order_nodes);
-    let pattern = pattern?;
+    let (built, (ordering, ordering_seconds)) = rayon::join(raise_and_build_pattern, order_nodes);
+    let (domain_radius, arc_grading, far_field, pattern) = built?;
+    let mesh = raised
+        .into_inner()
+        .flatten()
+        .ok_or_else(|| unraisable_mesh_error(provided, degree))?;
     // The symbolic analysis needs only the pattern: the values are assembled beside it.
     let analysis_start = Instant::now();
     let (symbolic, values) = Analysis::of_ordering_beside(
@@ -430,12 +458,22 @@ fn assemble_model(
         bubbles,
         symbolic,
         timings: FemTimings {
-            read,
             assembly,
             symbolic: symbolic_seconds,
             ..Default::default()
         },
     })
+}
+
+/// The error of a mesh whose degree could not be raised (a panic while raising: not expected).
+fn unraisable_mesh_error(provided: &ProvidedMesh, degree: Degree) -> Error {
+    Error::InvalidMesh {
+        path: display_path(provided.path.as_path()),
+        message: format!(
+            "internal: its degree could not be raised to {}",
+            degree as usize
+        ),
+    }
 }
 
 /// The quadrature rule of the stiffness: degree 2 (3 points) for linear, degree 4 (6 points)
@@ -729,7 +767,7 @@ fn finish(
         domain_radius: model.domain_radius,
         truncation_bias: model.truncation_bias(),
         far_field: model.spec.far_field,
-        mesh_sha256: model.mesh_sha256.clone(),
+        mesh_sha256: model.mesh_sha256.value(),
         mesh_origin: model.provided.origin,
         gmsh_version: model.provided.gmsh_version.clone(),
         mesh_refinement: model
