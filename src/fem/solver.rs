@@ -269,8 +269,8 @@ fn display_path(path: &Path) -> String {
 /// One mesh loaded, assembled and symbolically factorised.
 struct PreparedModel {
     mesh: Mesh,
-    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]; still being
-    /// computed while the model is raised and ordered).
+    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]; computed beside the
+    /// read's last steps and the checks, done before the assembly starts).
     mesh_sha256: FileHash,
     /// The file's mesh (after any corner refinement), validated, before its degree was raised:
     /// what the linear edge locator assembles without reading the file again.
