@@ -96,12 +96,14 @@ impl MeshOrdering {
 }
 
 /// Whether `raised` has the cells of `vertex_mesh`, in the same order, with the same vertex
-/// nodes (each cell's first three), and keeps `vertex_mesh`'s nodes' numbers: then both have the
-/// same vertex graph.
+/// nodes (each cell's first three), and keeps `vertex_mesh`'s nodes' numbers (or is the same
+/// mesh, as in [`MeshOrdering::of_mesh`]): then both have the same vertex graph.
 fn same_vertices(vertex_mesh: &Mesh, raised: &Mesh) -> bool {
-    vertex_mesh.cell_count() == raised.cell_count()
-        && raised.nodes.len() >= vertex_mesh.nodes.len()
-        && (0..vertex_mesh.cell_count()).all(|c| vertex_mesh.cell(c)[..3] == raised.cell(c)[..3])
+    std::ptr::eq(vertex_mesh, raised)
+        || vertex_mesh.cell_count() == raised.cell_count()
+            && raised.nodes.len() >= vertex_mesh.nodes.len()
+            && (0..vertex_mesh.cell_count())
+                .all(|c| vertex_mesh.cell(c)[..3] == raised.cell(c)[..3])
 }
 
 impl Analysis {

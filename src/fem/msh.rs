@@ -8,7 +8,7 @@
 
 use std::collections::HashMap;
 use std::path::Path;
-use std::sync::{Arc, Mutex, OnceLock, PoisonError};
+use std::sync::{Arc, OnceLock};
 use std::thread::JoinHandle;
 
 use mshio::mshfile::ElementType;
@@ -262,84 +262,63 @@ pub fn read_msh(path: &Path) -> Result<Mesh> {
     parse_msh(&bytes, &name)
 }
 
-/// The SHA-256 (hex) of a file's bytes, computed on a thread of its own: [`read_msh_hashed`]
-/// starts it when its scans of the text are done, and it runs beside the rest of the parse and
-/// whatever the caller does next on one core (checks, refinement). [`Self::wait`] waits for it if
-/// it is not done yet; clones share the one computation.
-#[derive(Clone, Debug)]
-pub struct FileHash(Arc<HashState>);
-
+/// The SHA-256 (hex) of a file's bytes, being computed on a thread of its own:
+/// [`read_msh_hashed`] starts it when its scans of the text are done, so that it runs beside the
+/// rest of the parse and whatever the caller does next on one core (checks, refinement);
+/// [`Self::finish`] waits for it.
 #[derive(Debug)]
-struct HashState {
-    pending: Mutex<Option<JoinHandle<String>>>,
-    value: OnceLock<String>,
+pub enum PendingHash {
+    /// Computed on this thread (no other could be started).
+    Done(String),
+    /// Still running, or finished and not yet joined.
+    Running(JoinHandle<String>),
 }
 
-impl FileHash {
-    /// A hash already known.
-    pub fn ready(hex: String) -> Self {
-        Self(Arc::new(HashState {
-            pending: Mutex::new(None),
-            value: OnceLock::from(hex),
-        }))
-    }
-
-    /// The hash of `bytes`, computed on a new thread (here, if no thread can be started).
-    fn spawn(bytes: Arc<Vec<u8>>) -> Self {
+impl PendingHash {
+    /// Start hashing `bytes` on a new thread (hash them here if no thread can be started).
+    fn start(bytes: Arc<Vec<u8>>) -> Self {
         let hashing = std::thread::Builder::new().spawn({
             let bytes = Arc::clone(&bytes);
             move || sha256_hex(&bytes)
         });
         match hashing {
-            Ok(handle) => Self(Arc::new(HashState {
-                pending: Mutex::new(Some(handle)),
-                value: OnceLock::new(),
-            })),
-            Err(_) => Self::ready(sha256_hex(&bytes)),
+            Ok(handle) => Self::Running(handle),
+            Err(_) => Self::Done(sha256_hex(&bytes)),
         }
     }
 
-    /// The hash (lower-case hex), waiting for its thread if it is still running.
-    pub fn value(&self) -> String {
-        self.wait().to_string()
-    }
-
-    /// Wait for the hash's thread, if it is still running.
-    pub fn wait(&self) -> &str {
-        let state = &self.0;
-        state.value.get_or_init(|| {
-            let pending = state
-                .pending
-                .lock()
-                .unwrap_or_else(PoisonError::into_inner)
-                .take();
-            // A panic on the hashing thread (none is expected) is resumed here. The handle
-            // is taken by the one caller that initialises the value.
-            pending.map_or_else(String::new, |handle| {
-                handle
-                    .join()
-                    .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
-            })
-        })
+    /// The hash (lower-case hex), waiting for its thread if it is still running. A panic on that
+    /// thread (none is expected) is resumed here.
+    pub fn finish(self) -> String {
+        match self {
+            Self::Done(hex) => hex,
+            Self::Running(handle) => handle
+                .join()
+                .unwrap_or_else(|panic| std::panic::resume_unwind(panic)),
+        }
     }
 }
 
 /// [`read_msh`], and the SHA-256 of the bytes it parsed: the provenance of exactly what was
 /// solved. The hash starts on the thread that scans the text once its scans are done and is not
-/// waited for here ([`FileHash`]): on this project's 2-core machine a 1 MB mesh (9e4 quadratic
-/// unknowns) took 5.5 ms to hash, longer than mshio's parse beside it, while the parse's own
-/// steps after it (pairing tags, cells, orientation) and the caller's checks need one core.
-/// A caller about to use both cores waits for it first: left running beside the assembly, it
-/// delayed the second core's start (measured on the 12 880-unknown annulus).
-pub fn read_msh_hashed(path: &Path) -> Result<(Mesh, FileHash)> {
+/// waited for here ([`PendingHash`]): on this project's 2-core machine a 1 MB mesh (9e4
+/// quadratic unknowns) took 5.5 ms to hash, longer than mshio's parse beside it, while the
+/// parse's own steps after it (pairing tags, cells, orientation) and the caller's checks need
+/// one core. A caller about to use both cores waits for it first: left running beside the
+/// assembly, it delayed the second core's start (measured on the 12 880-unknown annulus).
+pub fn read_msh_hashed(path: &Path) -> Result<(Mesh, PendingHash)> {
     let (name, bytes) = file_bytes(path)?;
     let bytes = Arc::new(bytes);
-    let hash = OnceLock::new();
+    // Started once, even when the parse is retried with regular blanks.
+    let hashing = OnceLock::new();
     let start_hash = || {
-        hash.get_or_init(|| FileHash::spawn(Arc::clone(&bytes)))
-            .clone()
+        hashing.get_or_init(|| PendingHash::start(Arc::clone(&bytes)));
     };
-    parse_msh_beside(&bytes, &name, start_hash)
+    let (mesh, ()) = parse_msh_beside(&bytes, &name, start_hash)?;
+    let hash = hashing
+        .into_inner()
+        .unwrap_or_else(|| PendingHash::Done(sha256_hex(&bytes)));
+    Ok((mesh, hash))
 }
 
 /// Parse `.msh` 4.1 bytes; `name` is used in error messages.
@@ -729,20 +708,15 @@ fn first_line(s: &str) -> String {
 mod tests {
     use super::*;
 
-    /// FIPS 180-2's first SHA-256 example ("abc"), computed on the hashing thread, read by
-    /// several clones, and a known hash given as it is.
+    /// FIPS 180-2's first SHA-256 example ("abc"), computed on the hashing thread; a hash
+    /// already computed is given as it is.
     #[test]
     fn the_hash_on_its_own_thread_is_sha256() {
         let abc = "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad";
-        let pending = FileHash::spawn(Arc::new(b"abc".to_vec()));
-        let clones: Vec<FileHash> = (0..3).map(|_| pending.clone()).collect();
-        let values: Vec<String> = std::thread::scope(|s| {
-            let readers: Vec<_> = clones.iter().map(|h| s.spawn(|| h.value())).collect();
-            readers.into_iter().map(|r| r.join().unwrap()).collect()
-        });
-        assert!(values.iter().all(|v| v == abc));
-        assert_eq!(pending.wait(), abc);
-        assert_eq!(FileHash::ready(abc.into()).value(), abc);
+        let pending = PendingHash::start(Arc::new(b"abc".to_vec()));
+        assert!(matches!(pending, PendingHash::Running(_)));
+        assert_eq!(pending.finish(), abc);
+        assert_eq!(PendingHash::Done(abc.into()).finish(), abc);
     }
 
     /// The hash a read reports is that of the file's bytes (the one `verify fenicsx` checks
@@ -753,7 +727,7 @@ mod tests {
         let (mesh, hash) = read_msh_hashed(&path).unwrap();
         assert!(!mesh.nodes.is_empty());
         assert_eq!(
-            hash.value(),
+            hash.finish(),
             crate::fem::mesh_provider::sha256_file(&path).unwrap()
         );
     }

@@ -31,7 +31,7 @@ use super::far_field::{FarField, FarFieldCondition};
 use super::linear_solver::{Analysis, ConstrainedCholesky, MeshOrdering};
 use super::mesh::{tags, Degree, Mesh};
 use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
-use super::msh::{read_msh_hashed, FileHash};
+use super::msh::{read_msh_hashed, PendingHash};
 use super::quadrature::TriangleRule;
 use crate::error::{Error, Result};
 use crate::heartbeat::Heartbeat;
@@ -173,8 +173,8 @@ pub struct FemField {
 /// Where the time of the finest model's solve went (seconds; JSON key `fem_timings`).
 #[derive(Clone, Copy, Debug, Default, serde::Serialize, serde::Deserialize)]
 pub struct FemTimings {
-    /// Reading the mesh: the parse, the checks and any corner refinement (raising its degree
-    /// is part of `assembly_s`).
+    /// Reading the mesh: the parse, the checks, any corner refinement and the end of the file's
+    /// hash (raising its degree is part of `assembly_s`).
     #[serde(rename = "read_s")]
     pub read: f64,
     /// Assembling the stiffness (and the far-field condition), wall time: the symbolic analysis
@@ -269,9 +269,8 @@ fn display_path(path: &Path) -> String {
 /// One mesh loaded, assembled and symbolically factorised.
 struct PreparedModel {
     mesh: Mesh,
-    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]; computed beside the
-    /// read's last steps and the checks, done before the assembly starts).
-    mesh_sha256: FileHash,
+    /// SHA-256 of the file's bytes as read and parsed ([`read_msh_hashed`]).
+    mesh_sha256: String,
     /// The file's mesh (after any corner refinement), validated, before its degree was raised:
     /// what the linear edge locator assembles without reading the file again.
     vertex_mesh: Mesh,
@@ -319,7 +318,7 @@ const REQUIRED_TAGS: [(i32, &str); 3] = [
 /// the degree keeps a valid mesh valid (its added nodes lie at the fractions `k/p` of straight
 /// edges; `raising_the_degree_keeps_a_mesh_valid` tests it), so the raised mesh is not checked
 /// again.
-fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, FileHash)> {
+fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh, PendingHash)> {
     let (raw, sha256) = read_msh_hashed(provided.path.as_path()).map_err(|e| {
         match (e, provided.origin) {
             // gmsh's files enter the cache whole (written under another name, then renamed), so
@@ -349,7 +348,10 @@ fn read_vertex_mesh(provided: &ProvidedMesh, contact_start: f64) -> Result<(Mesh
 /// Read the mesh of `provided` and assemble its model ([`assemble_model`]).
 fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
     let start = Instant::now();
-    let (vertex_mesh, mesh_sha256) = read_vertex_mesh(provided, spec.contact_start)?;
+    let (vertex_mesh, hashing) = read_vertex_mesh(provided, spec.contact_start)?;
+    // The file's hash ran beside the parse's last steps, the checks and any corner refinement;
+    // the assembly has work for both cores, so it starts when the hash is done.
+    let mesh_sha256 = hashing.finish();
     let read = start.elapsed().as_secs_f64();
     let mut model = assemble_model(vertex_mesh, mesh_sha256, provided, spec)?;
     model.timings.read += read;
@@ -357,11 +359,10 @@ fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
 }
 
 /// Raise `vertex_mesh` to the spec's degree, assemble its stiffness `K = Σ_e K_e` and, with
-/// [`FarField::Boussinesq`], slave the far arc to the point-force field. Waits first for the
-/// file's hash (`mesh_sha256`), which the read left running.
+/// [`FarField::Boussinesq`], slave the far arc to the point-force field.
 fn assemble_model(
     vertex_mesh: Mesh,
-    mesh_sha256: FileHash,
+    mesh_sha256: String,
     provided: &ProvidedMesh,
     spec: ModelSpec,
 ) -> Result<PreparedModel> {
@@ -371,9 +372,6 @@ fn assemble_model(
         far_field,
         ..
     } = spec;
-    // The file's hash ran beside the parse, the checks and any corner refinement; the assembly
-    // has work for both cores, so it starts when the hash is done.
-    mesh_sha256.wait();
     let start = Instant::now();
     let material = Lame::from_young_poisson(1.0 - poisson_ratio * poisson_ratio, poisson_ratio);
     let rule = stiffness_rule(degree);
@@ -767,7 +765,7 @@ fn finish(
         domain_radius: model.domain_radius,
         truncation_bias: model.truncation_bias(),
         far_field: model.spec.far_field,
-        mesh_sha256: model.mesh_sha256.value(),
+        mesh_sha256: model.mesh_sha256.clone(),
         mesh_origin: model.provided.origin,
         gmsh_version: model.provided.gmsh_version.clone(),
         mesh_refinement: model
