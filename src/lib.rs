@@ -29,6 +29,7 @@ pub mod punch;
 pub mod reference;
 pub mod scene;
 pub mod solution;
+pub mod thread_pinning;
 
 pub use error::{Error, Result};
 

@@ -58,6 +58,8 @@ fn report_panics_in_one_line() {
 fn main() -> ExitCode {
     report_panics_in_one_line();
     ringcontact::keep_freed_memory_for_reuse();
+    // Before anything uses rayon: each worker held to its own core (see the module).
+    ringcontact::thread_pinning::pin_pool_workers_to_cores();
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
     // unknown flag).
     let command = Cli::command()

@@ -277,9 +277,13 @@ pub enum PendingHash {
 impl PendingHash {
     /// Start hashing `bytes` on a new thread (hash them here if no thread can be started).
     fn start(bytes: Arc<Vec<u8>>) -> Self {
+        let core = crate::thread_pinning::helper_core_of_caller();
         let hashing = std::thread::Builder::new().spawn({
             let bytes = Arc::clone(&bytes);
-            move || sha256_hex(&bytes)
+            move || {
+                crate::thread_pinning::hold_helper_to(core);
+                sha256_hex(&bytes)
+            }
         });
         match hashing {
             Ok(handle) => Self::Running(handle),
@@ -391,11 +395,19 @@ fn parse_regular_msh_beside<T: Send>(
     // Our own scans of the text (node tags, element lines) on a thread of their own while mshio
     // parses: at 9e4 quadratic unknowns (a 1 MB file) the whole read took 1.26-1.31 times
     // mshio's parse against 1.70-1.77 times one after the other. A thread, not the rayon pool:
-    // the pool's sleeping workers took 1-2 ms to start a job here, about what the scans take.
+    // the pool's sleeping workers took 1-2 ms to start a job here, about what the scans take
+    // (when `verify` holds the pool's workers to their cores, this thread is held to the core
+    // this one is not on: see `thread_pinning`).
     let scans = || (node_tags_in_file_order(bytes, name), element_lines(bytes));
     let (parsed, ((tags, lines), side)) = std::thread::scope(|scope| {
         let scan_thread = std::thread::Builder::new();
-        match scan_thread.spawn_scoped(scope, || (scans(), beside())) {
+        let core = crate::thread_pinning::helper_core_away_from_caller();
+        let scans = &scans;
+        let scan_and_beside = move || {
+            crate::thread_pinning::hold_helper_to(core);
+            (scans(), beside())
+        };
+        match scan_thread.spawn_scoped(scope, scan_and_beside) {
             Ok(scanning) => {
                 let parsed = parse();
                 // A panic on the scan thread (none is expected: the scans return errors) is

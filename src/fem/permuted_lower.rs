@@ -163,6 +163,24 @@ impl PermutedLower {
     /// `values` with every off-diagonal entry in a row or column of a `constrained` dof (in
     /// `K`'s numbering) set to zero.
     pub fn gather(&self, values: &[f64], constrained: &[bool], out: &mut [f64]) {
+        assert_eq!(out.len(), self.len(), "one gathered value per stored entry");
+        let mut slots = out.iter_mut();
+        self.for_each_gathered(values, constrained, |v| {
+            if let Some(slot) = slots.next() {
+                *slot = v;
+            }
+        });
+    }
+
+    /// [`Self::gather`] into a new vector, each value written once (no zero-filling first).
+    pub fn gathered(&self, values: &[f64], constrained: &[bool]) -> Vec<f64> {
+        let mut out = Vec::with_capacity(self.len());
+        self.for_each_gathered(values, constrained, |v| out.push(v));
+        out
+    }
+
+    /// The values of [`Self::gather`], in the order of the stored entries.
+    fn for_each_gathered(&self, values: &[f64], constrained: &[bool], mut put: impl FnMut(f64)) {
         let constrained_new: Vec<bool> = self.order.iter().map(|&dof| constrained[dof]).collect();
         let offsets = self.pattern.col_ptr();
         let rows = self.pattern.row_idx();
@@ -180,11 +198,11 @@ impl PermutedLower {
             for e in range {
                 let row = rows[e];
                 let held = column_constrained || constrained_new[row];
-                out[e] = if held && row != col {
+                put(if held && row != col {
                     0.0
                 } else {
                     values[self.source[e] as usize]
-                };
+                });
             }
         }
     }
@@ -216,6 +234,8 @@ mod tests {
         assert_eq!(layout.order(), &perm[..]);
         let mut out = vec![f64::NAN; layout.len()];
         layout.gather(&values, &constrained_old, &mut out);
+        // The new vector holds the same values, entry for entry (NaN-free: every slot written).
+        assert_eq!(layout.gathered(&values, &constrained_old), out);
         let mut dense = [[0.0; 5]; 5];
         let pattern = layout.pattern();
         for (col, bounds) in pattern.col_ptr().windows(2).enumerate() {

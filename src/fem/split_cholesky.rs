@@ -472,8 +472,7 @@ impl SplitFactor {
         // (lower), read from its trailing columns before the factorisation (the second's are the
         // same).
         let factor_part = |part: &PartAnalysis, with_kss: bool| -> Result<FactoredPart> {
-            let mut lower_values = vec![0.0; part.lower.len()];
-            part.lower.gather(values, constrained, &mut lower_values);
+            let lower_values = part.lower.gathered(values, constrained);
             let kss = with_kss.then(|| separator_block_of(part, &lower_values, separator));
             let pattern = part.lower.pattern();
             let values = factorise_supernodal(&part.symbolic, pattern, &lower_values)?;

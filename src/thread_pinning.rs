@@ -1,0 +1,188 @@
+//! One rayon worker per core, each held to its own core.
+//!
+//! A solve hands work from one core to the other many times (`rayon::join`: the first half runs
+//! here, the second is taken by the other worker). When that worker is asleep, the kernel wakes
+//! it, and Linux's scheduler may place the woken thread on the waker's core, which is busy,
+//! instead of the idle one: the second half then starts only when the first has ended, and the
+//! two cores' work runs on one. Measured on the 2-core virtual machine this project is developed
+//! on (kernel 6.18; a scratch program that keeps the calling thread busy for a while, then joins
+//! two halves of 0.2 or 2 ms and records when each starts, 60 joins): once the other core had
+//! been idle for 5 ms, the second half started after a median of 1.2-2.0 ms, that is mostly only
+//! once the first had ended, and after 20 ms idle after 2.0 ms (90th percentile 2.04 ms), against
+//! medians of 35-36 µs (90th percentiles 45-51 µs) with each worker held to its own core. A
+//! worker held to one core can only be woken there: the kernel then sends the idle core an
+//! interrupt rather than queueing the worker behind a busy thread. New threads fare the same:
+//! after two of five idle times, at least a tenth of the threads started beside a busy one ran
+//! only once its 3 ms of work had ended (90th percentiles of 1.4 and 2.6 ms).
+//!
+//! [`pin_pool_workers_to_cores`] builds rayon's global pool that way. The program's other
+//! threads (its main thread, child processes such as gmsh) keep the whole machine. Set
+//! [`PIN_VARIABLE`] to `0` to leave the pool to the scheduler (for example when another program
+//! shares the machine's cores).
+
+use std::sync::OnceLock;
+
+/// Environment variable that turns the pinning off (`0`).
+pub const PIN_VARIABLE: &str = "RINGCONTACT_PIN_THREADS";
+
+/// The allowed cores, set when the pool's workers were pinned: helper threads are then held
+/// away from the core of the thread that starts them ([`helper_core_away_from_caller`]).
+static PINNED_CORES: OnceLock<Vec<usize>> = OnceLock::new();
+
+/// What [`pin_pool_workers_to_cores`] did.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Pinning {
+    /// The global pool was built with worker `i` held to `cores[i % cores.len()]`.
+    Pinned { workers: usize, cores: Vec<usize> },
+    /// Not pinned, and why.
+    NotPinned(String),
+}
+
+/// The cores this process may run on (its affinity mask), ascending; empty when unknown.
+pub fn allowed_cores() -> Vec<usize> {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: `sched_getaffinity(0, ...)` fills a zeroed `cpu_set_t` of the size given with
+        // the calling thread's mask; `CPU_ISSET` reads that set within its size.
+        unsafe {
+            let mut set: libc::cpu_set_t = std::mem::zeroed();
+            if libc::sched_getaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &mut set) != 0 {
+                return Vec::new();
+            }
+            (0..libc::CPU_SETSIZE as usize)
+                .filter(|&cpu| libc::CPU_ISSET(cpu, &set))
+                .collect()
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        Vec::new()
+    }
+}
+
+/// Hold the calling thread to `core`; whether the kernel accepted it.
+fn hold_current_thread_to(core: usize) -> bool {
+    #[cfg(target_os = "linux")]
+    {
+        if core >= libc::CPU_SETSIZE as usize {
+            return false;
+        }
+        // SAFETY: a zeroed `cpu_set_t` with one bit set below `CPU_SETSIZE`, passed with its own
+        // size; `sched_setaffinity(0, ...)` changes only the calling thread.
+        unsafe {
+            let mut set: libc::cpu_set_t = std::mem::zeroed();
+            libc::CPU_SET(core, &mut set);
+            libc::sched_setaffinity(0, std::mem::size_of::<libc::cpu_set_t>(), &set) == 0
+        }
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        let _ = core;
+        false
+    }
+}
+
+/// Build rayon's global pool (its default size: `RAYON_NUM_THREADS`, else one worker per
+/// allowed core) with worker `i` held to the `i`-th allowed core (modulo their number), unless
+/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, or the pool already exists. Call
+/// once, at the start of `main`, before anything uses rayon.
+pub fn pin_pool_workers_to_cores() -> Pinning {
+    if std::env::var(PIN_VARIABLE).is_ok_and(|v| v.trim() == "0") {
+        return Pinning::NotPinned(format!("{PIN_VARIABLE}=0"));
+    }
+    let cores = allowed_cores();
+    if cores.len() < 2 {
+        return Pinning::NotPinned(format!("{} allowed core(s)", cores.len()));
+    }
+    let for_workers = cores.clone();
+    let built = rayon::ThreadPoolBuilder::new()
+        .start_handler(move |i| {
+            // A refusal (a core taken away meanwhile) leaves the worker to the scheduler.
+            hold_current_thread_to(for_workers[i % for_workers.len()]);
+        })
+        .build_global();
+    match built {
+        Ok(()) => {
+            let _ = PINNED_CORES.set(cores.clone());
+            Pinning::Pinned {
+                workers: rayon::current_num_threads(),
+                cores,
+            }
+        }
+        Err(e) => Pinning::NotPinned(format!("rayon's global pool: {e}")),
+    }
+}
+
+/// For a helper thread about to be started beside the calling thread (the mesh read's scans
+/// and hash, beside the parse): a core other than the caller's current one, when the pool was
+/// pinned ([`pin_pool_workers_to_cores`]); `None` otherwise. The helper passes it to
+/// [`hold_helper_to`] first thing: a new thread may otherwise be queued behind its busy starter
+/// while the other core idles (the same scheduling as the pool's, see the module).
+pub fn helper_core_away_from_caller() -> Option<usize> {
+    let cores = PINNED_CORES.get()?;
+    let current = current_core();
+    cores.iter().copied().find(|&c| Some(c) != current)
+}
+
+/// For a helper thread that takes over the caller's core (the caller is about to end, as the
+/// read's scan thread does once it has started the hash): that core, when the pool was pinned
+/// and it is one of the allowed cores; `None` otherwise.
+pub fn helper_core_of_caller() -> Option<usize> {
+    let cores = PINNED_CORES.get()?;
+    current_core().filter(|c| cores.contains(c))
+}
+
+/// The core the calling thread runs on now.
+fn current_core() -> Option<usize> {
+    #[cfg(target_os = "linux")]
+    {
+        // SAFETY: reads the calling thread's CPU number (-1 on failure).
+        let core = unsafe { libc::sched_getcpu() };
+        usize::try_from(core).ok()
+    }
+    #[cfg(not(target_os = "linux"))]
+    {
+        None
+    }
+}
+
+/// Hold the calling (helper) thread to `core` when there is one (see
+/// [`helper_core_away_from_caller`]).
+pub fn hold_helper_to(core: Option<usize>) {
+    if let Some(core) = core {
+        hold_current_thread_to(core);
+    }
+}
+
+#[cfg(all(test, target_os = "linux"))]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_allowed_cores_are_distinct_and_at_least_the_standard_librarys_count() {
+        let cores = allowed_cores();
+        assert!(cores.windows(2).all(|w| w[0] < w[1]));
+        // The standard library counts the same mask, less any cgroup quota.
+        let available = std::thread::available_parallelism().map_or(1, |n| n.get());
+        assert!(cores.len() >= available, "{cores:?} against {available}");
+    }
+
+    /// A thread held to one core reports that core as its mask, and the rest of the process
+    /// keeps its own.
+    #[test]
+    fn a_held_thread_runs_on_its_core_only() {
+        let cores = allowed_cores();
+        let last = *cores.last().expect("at least one core");
+        let (held, seen) = std::thread::spawn(move || {
+            let held = hold_current_thread_to(last);
+            // SAFETY: reads the calling thread's CPU number.
+            let seen = unsafe { libc::sched_getcpu() };
+            (held && allowed_cores() == vec![last], seen)
+        })
+        .join()
+        .expect("the thread ends");
+        assert!(held);
+        assert_eq!(seen, last as i32);
+        assert_eq!(allowed_cores(), cores);
+    }
+}
