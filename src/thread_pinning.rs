@@ -32,7 +32,7 @@ static PINNED_CORES: OnceLock<Vec<usize>> = OnceLock::new();
 /// What [`pin_pool_workers_to_cores`] did.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum Pinning {
-    /// The global pool was built with worker `i` held to `cores[i % cores.len()]`.
+    /// The global pool was built with worker `i` held to `cores[i]`.
     Pinned { workers: usize, cores: Vec<usize> },
     /// Not pinned, and why.
     NotPinned(String),
@@ -82,9 +82,19 @@ fn hold_current_thread_to(core: usize) -> bool {
     }
 }
 
-/// Build rayon's global pool (its default size: `RAYON_NUM_THREADS`, else one worker per
-/// allowed core) with worker `i` held to the `i`-th allowed core (modulo their number), unless
-/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, or the pool already exists. Call
+/// The size rayon gives its global pool by default: `RAYON_NUM_THREADS` when it is a positive
+/// number, else the standard library's count of available cores.
+pub fn default_pool_size() -> usize {
+    std::env::var("RAYON_NUM_THREADS")
+        .ok()
+        .and_then(|v| v.trim().parse::<usize>().ok())
+        .filter(|&n| n > 0)
+        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+}
+
+/// Build rayon's global pool with worker `i` held to the `i`-th allowed core, unless
+/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, the pool's default size
+/// ([`default_pool_size`]) is not the number of allowed cores, or the pool already exists. Call
 /// once, at the start of `main`, before anything uses rayon.
 pub fn pin_pool_workers_to_cores() -> Pinning {
     if std::env::var(PIN_VARIABLE).is_ok_and(|v| v.trim() == "0") {
@@ -94,11 +104,23 @@ pub fn pin_pool_workers_to_cores() -> Pinning {
     if cores.len() < 2 {
         return Pinning::NotPinned(format!("{} allowed core(s)", cores.len()));
     }
+    // A pool of another size than the cores (RAYON_NUM_THREADS, or a CPU quota that the
+    // standard library's count honours) is left alone: held workers could not move off cores
+    // that other processes of the same kind would hold as well.
+    let workers = default_pool_size();
+    if workers != cores.len() {
+        return Pinning::NotPinned(format!(
+            "a pool of {workers} workers for {} allowed cores",
+            cores.len()
+        ));
+    }
     let for_workers = cores.clone();
     let built = rayon::ThreadPoolBuilder::new()
         .start_handler(move |i| {
             // A refusal (a core taken away meanwhile) leaves the worker to the scheduler.
-            hold_current_thread_to(for_workers[i % for_workers.len()]);
+            if let Some(&core) = for_workers.get(i) {
+                hold_current_thread_to(core);
+            }
         })
         .build_global();
     match built {

@@ -4,18 +4,20 @@
 #![cfg(target_os = "linux")]
 
 use ringcontact::thread_pinning::{
-    allowed_cores, helper_core_away_from_caller, helper_core_of_caller, pin_pool_workers_to_cores,
-    Pinning, PIN_VARIABLE,
+    allowed_cores, default_pool_size, helper_core_away_from_caller, helper_core_of_caller,
+    pin_pool_workers_to_cores, Pinning, PIN_VARIABLE,
 };
 
 #[test]
 fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     let cores = allowed_cores();
     let pinning = pin_pool_workers_to_cores();
+    // Held only when asked (not `0`), with two cores or more, one worker per core.
     let wanted = std::env::var(PIN_VARIABLE).map_or(true, |v| v.trim() != "0");
-    if cores.len() < 2 || !wanted {
+    if cores.len() < 2 || !wanted || default_pool_size() != cores.len() {
         assert!(matches!(pinning, Pinning::NotPinned(_)), "{pinning:?}");
         assert_eq!(helper_core_away_from_caller(), None);
+        assert_eq!(helper_core_of_caller(), None);
         return;
     }
     let workers = rayon::current_num_threads();
@@ -28,8 +30,9 @@ fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     );
     // Every worker's mask is the one core it was given: worker i on the i-th allowed core.
     let masks = rayon::broadcast(|context| (context.index(), allowed_cores()));
+    assert_eq!(masks.len(), cores.len());
     for (i, mask) in masks {
-        assert_eq!(mask, vec![cores[i % cores.len()]], "worker {i}");
+        assert_eq!(mask, vec![cores[i]], "worker {i}");
     }
     // This (test) thread keeps the whole machine; a helper started from it is sent to another
     // core than the one it runs on, and one taking over its core gets that core.
