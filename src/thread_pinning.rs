@@ -82,20 +82,12 @@ fn hold_current_thread_to(core: usize) -> bool {
     }
 }
 
-/// The size rayon gives its global pool by default: `RAYON_NUM_THREADS` when it is a positive
-/// number, else the standard library's count of available cores.
-pub fn default_pool_size() -> usize {
-    std::env::var("RAYON_NUM_THREADS")
-        .ok()
-        .and_then(|v| v.trim().parse::<usize>().ok())
-        .filter(|&n| n > 0)
-        .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
-}
-
 /// Build rayon's global pool with worker `i` held to the `i`-th allowed core, unless
-/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, the pool's default size
-/// ([`default_pool_size`]) is not the number of allowed cores, or the pool already exists. Call
-/// once, at the start of `main`, before anything uses rayon.
+/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, or the pool already exists. A pool
+/// of another size than the allowed cores (`RAYON_NUM_THREADS`, or a CPU quota that rayon's
+/// count honours) is built but left to the scheduler: held workers could not move off cores that
+/// other processes of the same kind would hold as well. Call once, at the start of `main`,
+/// before anything uses rayon.
 pub fn pin_pool_workers_to_cores() -> Pinning {
     if std::env::var(PIN_VARIABLE).is_ok_and(|v| v.trim() == "0") {
         return Pinning::NotPinned(format!("{PIN_VARIABLE}=0"));
@@ -104,35 +96,28 @@ pub fn pin_pool_workers_to_cores() -> Pinning {
     if cores.len() < 2 {
         return Pinning::NotPinned(format!("{} allowed core(s)", cores.len()));
     }
-    // A pool of another size than the cores (RAYON_NUM_THREADS, or a CPU quota that the
-    // standard library's count honours) is left alone: held workers could not move off cores
-    // that other processes of the same kind would hold as well.
-    let workers = default_pool_size();
+    let for_workers = cores.clone();
+    let built = rayon::ThreadPoolBuilder::new()
+        .start_handler(move |i| {
+            // The handler runs on the new worker, so the count is its pool's. A refusal (a core
+            // taken away meanwhile) leaves the worker to the scheduler.
+            if rayon::current_num_threads() == for_workers.len() {
+                hold_current_thread_to(for_workers[i]);
+            }
+        })
+        .build_global();
+    if let Err(e) = built {
+        return Pinning::NotPinned(format!("rayon's global pool: {e}"));
+    }
+    let workers = rayon::current_num_threads();
     if workers != cores.len() {
         return Pinning::NotPinned(format!(
             "a pool of {workers} workers for {} allowed cores",
             cores.len()
         ));
     }
-    let for_workers = cores.clone();
-    let built = rayon::ThreadPoolBuilder::new()
-        .start_handler(move |i| {
-            // A refusal (a core taken away meanwhile) leaves the worker to the scheduler.
-            if let Some(&core) = for_workers.get(i) {
-                hold_current_thread_to(core);
-            }
-        })
-        .build_global();
-    match built {
-        Ok(()) => {
-            let _ = PINNED_CORES.set(cores.clone());
-            Pinning::Pinned {
-                workers: rayon::current_num_threads(),
-                cores,
-            }
-        }
-        Err(e) => Pinning::NotPinned(format!("rayon's global pool: {e}")),
-    }
+    let _ = PINNED_CORES.set(cores.clone());
+    Pinning::Pinned { workers, cores }
 }
 
 /// For a helper thread about to be started beside the calling thread (the mesh read's scans
