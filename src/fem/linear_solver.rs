@@ -16,6 +16,7 @@ use faer::MatMut;
 use nalgebra_sparse::CscMatrix;
 use rayon::prelude::*;
 
+use super::dense_cholesky::zero_padded;
 use super::mesh::Mesh;
 use super::node_ordered_cholesky::{NumericFactor, SymbolicFactor};
 use super::separator::{split_nodes_of, NodeSplit, Side};
@@ -435,7 +436,7 @@ impl<'a> ConstrainedCholesky<'a> {
         if !self.is_factorised_for(constrained) {
             self.factorise(constrained)?;
         }
-        let mut block = faer::Mat::<f64>::zeros(n, dofs.len());
+        let mut block = zero_padded(n, dofs.len());
         for (c, &j) in dofs.iter().enumerate() {
             block[(j, c)] = 1.0;
         }

@@ -4,6 +4,7 @@ pub mod assembly;
 pub mod contact;
 pub mod contact_band;
 pub mod corner_refinement;
+pub mod dense_cholesky;
 pub mod element;
 pub mod export;
 pub mod far_field;

@@ -33,6 +33,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
+use super::dense_cholesky::zeroed_scratch;
 use super::permuted_lower::PermutedLower;
 use crate::error::{Error, Result};
 
@@ -400,9 +401,10 @@ impl NumericFactor {
         })
     }
 
-    /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs`.
+    /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs`. The scratch is zeroed: `faer`'s
+    /// dense kernels compute on its padding ([`super::dense_cholesky`]).
     pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
-        let mut memory = MemBuffer::new(
+        let mut memory = zeroed_scratch(
             self.symbolic
                 .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq),
         );

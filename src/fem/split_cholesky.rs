@@ -13,7 +13,10 @@
 //! core with the separator last, `M_i = L_i L_iᵀ`. The bottom-right block `L_SS,i` of `L_i` gives
 //! the part's Schur complement `S_i = KSS − KSi Kii⁻¹ KiS = L_SS,i L_SS,iᵀ`, and the Schur
 //! complement of `K` is `S = S_1 + S_2 − KSS` (dense, the separator being a few dozen
-//! vertices), factorised densely; each part forms its own product `L_SS,i L_SS,iᵀ` on its core.
+//! vertices), factorised densely in zero-padded storage ([`super::dense_cholesky`]: `faer`'s
+//! kernels compute on a column's padding, where leftover bytes read as subnormal numbers slowed
+//! that factorisation up to sevenfold); each part forms its own product `L_SS,i L_SS,iᵀ` on its
+//! core, and every dense matrix of this module is zero-padded.
 //! A solve `K u = f` is then, per part, one forward and one backward substitution with `L_i`
 //! (the two parts again on two cores):
 //!
@@ -26,14 +29,14 @@ use std::sync::Arc;
 
 use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
-use faer::linalg::solvers::{Llt, Solve};
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
 use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::{SupernodalLltRef, SymbolicSupernodalCholesky};
-use faer::{Accum, Mat, MatMut, Par, Side};
+use faer::{Accum, Mat, MatMut, Par};
 
+use super::dense_cholesky::{zero_padded, DenseCholesky};
 use super::node_ordered_cholesky::{factorisation_work, factorise_supernodal};
 use super::node_pair_analysis::{analyse_node_pairs, supernodal_of_lower};
 use super::permuted_lower::PermutedLower;
@@ -247,7 +250,7 @@ struct FactoredPart {
 pub struct SplitFactor {
     analysis: Arc<SplitAnalysis>,
     parts: [PartFactor; 2],
-    schur: Llt<f64>,
+    schur: DenseCholesky,
 }
 
 /// The dense bottom-right block (last `size` rows and columns) of a supernodal factor.
@@ -255,7 +258,7 @@ fn trailing_block(llt: SupernodalLltRef<'_, usize, f64>, size: usize) -> Mat<f64
     let symbolic = llt.symbolic();
     let n = symbolic.nrows();
     let first = n - size;
-    let mut block = Mat::<f64>::zeros(size, size);
+    let mut block = zero_padded(size, size);
     for s in 0..symbolic.n_supernodes() {
         let node = llt.supernode(s);
         let (start, width) = (node.start(), node.val().ncols());
@@ -281,7 +284,7 @@ fn trailing_block(llt: SupernodalLltRef<'_, usize, f64>, size: usize) -> Mat<f64
 fn separator_block_of(part: &PartAnalysis, lower_values: &[f64], separator: usize) -> Mat<f64> {
     let pattern = part.lower.pattern();
     let interior = part.interior(separator);
-    let mut kss = Mat::<f64>::zeros(separator, separator);
+    let mut kss = zero_padded(separator, separator);
     for col in interior..part.order().len() {
         let range = pattern.col_ptr()[col]..pattern.col_ptr()[col + 1];
         for (&row, &v) in pattern.row_idx()[range.clone()]
@@ -311,7 +314,7 @@ fn forward(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, mut x: Ma
         return forward_one(llt, scratch_rows, column);
     }
     let k = x.ncols();
-    let mut scratch = Mat::<f64>::zeros(scratch_rows, k);
+    let mut scratch = zero_padded(scratch_rows, k);
     for s in 0..llt.symbolic().n_supernodes() {
         let node = llt.supernode(s);
         let width = node.val().ncols();
@@ -342,7 +345,7 @@ fn backward(llt: SupernodalLltRef<'_, usize, f64>, scratch_rows: usize, mut x: M
         return backward_one(llt, scratch_rows, column);
     }
     let k = x.ncols();
-    let mut scratch = Mat::<f64>::zeros(scratch_rows, k);
+    let mut scratch = zero_padded(scratch_rows, k);
     for s in (0..llt.symbolic().n_supernodes()).rev() {
         let node = llt.supernode(s);
         let width = node.val().ncols();
@@ -480,7 +483,7 @@ impl SplitFactor {
             let separator_block = trailing_block(llt, separator);
             // L_SS,i L_SS,iᵀ (lower triangle, from the triangular blocks: a sixth of a full
             // product's work).
-            let mut schur_term = Mat::<f64>::zeros(separator, separator);
+            let mut schur_term = zero_padded(separator, separator);
             triangular::matmul(
                 schur_term.as_mut(),
                 BlockStructure::TriangularLower,
@@ -513,16 +516,14 @@ impl SplitFactor {
         );
         let (first, second) = (first?, second?);
         // S = (L_SS,1 L_SS,1ᵀ − K_SS) + L_SS,2 L_SS,2ᵀ (lower triangle).
-        let mut schur = first.schur_term;
-        for j in 0..separator {
-            for i in j..separator {
-                schur[(i, j)] += second.schur_term[(i, j)];
-            }
-        }
-        let schur = schur.llt(Side::Lower).map_err(|e| {
+        let schur = DenseCholesky::of_lower(separator, |i, j| {
+            first.schur_term[(i, j)] + second.schur_term[(i, j)]
+        });
+        let schur = schur.map_err(|e| {
             solver_error(format!(
-                "the stiffness matrix is not positive definite on the separator ({e:?}): is the \
-                 body held against rigid motion?"
+                "the stiffness matrix is not positive definite on the separator (pivot {}): is \
+                 the body held against rigid motion?",
+                e.column
             ))
         })?;
         Ok(Self {
@@ -542,7 +543,7 @@ impl SplitFactor {
         let forward_part = |i: usize| -> (Mat<f64>, Mat<f64>) {
             let part = &analysis.parts[i];
             let interior = part.interior(separator);
-            let mut x = Mat::<f64>::zeros(part.order().len(), k);
+            let mut x = zero_padded(part.order().len(), k);
             for j in 0..k {
                 for (p, &d) in part.order()[..interior].iter().enumerate() {
                     x[(p, j)] = rhs_ref[(d, j)];
@@ -550,7 +551,7 @@ impl SplitFactor {
             }
             let llt = SupernodalLltRef::new(&part.symbolic, &self.parts[i].values);
             forward(llt, part.scratch_rows, x.as_mut());
-            let mut g = Mat::<f64>::zeros(separator, k);
+            let mut g = zero_padded(separator, k);
             matmul(
                 g.as_mut(),
                 Accum::Replace,
@@ -563,7 +564,7 @@ impl SplitFactor {
         };
         let ((mut x1, g1), (mut x2, g2)) = rayon::join(|| forward_part(0), || forward_part(1));
         // Step 2: u_S = S⁻¹ (f_S − g_1 − g_2).
-        let mut u_s = Mat::<f64>::zeros(separator, k);
+        let mut u_s = zero_padded(separator, k);
         for j in 0..k {
             for (p, &d) in analysis.separator.iter().enumerate() {
                 u_s[(p, j)] = rhs_ref[(d, j)] - g1[(p, j)] - g2[(p, j)];
@@ -611,6 +612,7 @@ mod tests {
     use crate::fem::separator::{split_by_level, split_nodes};
     use crate::fem::solver::stiffness_rule;
     use crate::fem::vertex_ordering::vertex_led_node_order;
+    use faer::linalg::solvers::Solve;
 
     #[test]
     fn the_split_solve_equals_the_dense_solve_with_constraints() {
