@@ -182,14 +182,12 @@ mod tests {
         let last = *cores.last().expect("at least one core");
         let (held, seen) = std::thread::spawn(move || {
             let held = hold_current_thread_to(last);
-            // SAFETY: reads the calling thread's CPU number.
-            let seen = unsafe { libc::sched_getcpu() };
-            (held && allowed_cores() == vec![last], seen)
+            (held && allowed_cores() == vec![last], current_core())
         })
         .join()
         .expect("the thread ends");
         assert!(held);
-        assert_eq!(seen, last as i32);
+        assert_eq!(seen, Some(last));
         assert_eq!(allowed_cores(), cores);
     }
 }

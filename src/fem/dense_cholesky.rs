@@ -26,7 +26,7 @@ use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_s
 use faer::linalg::triangular_solve::{
     solve_lower_triangular_in_place, solve_upper_triangular_in_place,
 };
-use faer::{Mat, MatMut, MatRef, Par};
+use faer::{Mat, MatMut, Par};
 
 /// Values per `faer` column vector: a column's storage is its rows rounded up to a multiple of
 /// this.
@@ -48,7 +48,7 @@ pub fn zeroed_scratch(request: StackReq) -> Vec<MaybeUninit<u8>> {
 }
 
 /// The Cholesky factor `L` of a dense symmetric positive definite matrix, `A = L Lᵀ`, kept in
-/// zero-padded storage ([`zero_padded`]).
+/// zero-padded storage ([`zero_padded`]), its strict upper triangle zero.
 #[derive(Clone, Debug)]
 pub struct DenseCholesky {
     lower: Mat<f64>,
@@ -92,11 +92,6 @@ impl DenseCholesky {
             }
         }
         Ok(Self { lower: factor })
-    }
-
-    /// The factor `L` (its strict upper triangle is zero).
-    pub fn factor(&self) -> MatRef<'_, f64> {
-        self.lower.as_ref()
     }
 
     /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs = L⁻ᵀ L⁻¹ rhs`.
@@ -144,7 +139,7 @@ mod tests {
             for i in 0..n {
                 let expected = known[(i, j)];
                 assert!(
-                    (cholesky.factor()[(i, j)] - expected).abs() <= 1e-13,
+                    (cholesky.lower[(i, j)] - expected).abs() <= 1e-13,
                     "L[{i},{j}]"
                 );
             }
