@@ -22,8 +22,40 @@
 
 use std::sync::OnceLock;
 
-/// Environment variable that turns the pinning off (`0`).
+/// Environment variable that turns the pinning off (`0`) or on (`1`, the default); see
+/// [`pinning_wanted`] for the values it takes.
 pub const PIN_VARIABLE: &str = "RINGCONTACT_PIN_THREADS";
+
+/// The setting a value of [`PIN_VARIABLE`] names: `0`, `off`, `false` or `no` turn the pinning
+/// off, `1`, `on`, `true` or `yes` on (any case, blanks around ignored); `None` for anything
+/// else.
+pub fn parse_pin_setting(value: &str) -> Option<bool> {
+    match value.trim().to_ascii_lowercase().as_str() {
+        "0" | "off" | "false" | "no" => Some(false),
+        "1" | "on" | "true" | "yes" => Some(true),
+        _ => None,
+    }
+}
+
+/// Whether the environment asks for the pool's workers to be held to cores: yes when
+/// [`PIN_VARIABLE`] is unset or empty, else its [`parse_pin_setting`]; an error naming the
+/// variable, its value and the values it takes when it is none of them (a typo such as `of`
+/// must not silently leave the default on).
+pub fn pinning_wanted() -> Result<bool, String> {
+    let Some(raw) = std::env::var_os(PIN_VARIABLE) else {
+        return Ok(true);
+    };
+    let value = raw.to_string_lossy();
+    if value.trim().is_empty() {
+        return Ok(true);
+    }
+    parse_pin_setting(&value).ok_or_else(|| {
+        format!(
+            "{PIN_VARIABLE}={value:?} is not a setting: use 0 or off (leave the solver's workers \
+             to the scheduler) or 1 or on (each worker held to its own core, the default)"
+        )
+    })
+}
 
 /// The allowed cores, set when the pool's workers were pinned: helper threads are then held
 /// away from the core of the thread that starts them ([`helper_core_away_from_caller`]).
@@ -83,14 +115,17 @@ fn hold_current_thread_to(core: usize) -> bool {
 }
 
 /// Build rayon's global pool with worker `i` held to the `i`-th allowed core, unless
-/// [`PIN_VARIABLE`] is `0`, fewer than two cores are allowed, or the pool already exists. A pool
+/// [`pinning_wanted`] says no (or cannot read [`PIN_VARIABLE`]: a caller that wants that
+/// reported asks it first), fewer than two cores are allowed, or the pool already exists. A pool
 /// of another size than the allowed cores (`RAYON_NUM_THREADS`, or a CPU quota that rayon's
 /// count honours) is built but left to the scheduler: held workers could not move off cores that
 /// other processes of the same kind would hold as well. Call once, at the start of `main`,
 /// before anything uses rayon.
 pub fn pin_pool_workers_to_cores() -> Pinning {
-    if std::env::var(PIN_VARIABLE).is_ok_and(|v| v.trim() == "0") {
-        return Pinning::NotPinned(format!("{PIN_VARIABLE}=0"));
+    match pinning_wanted() {
+        Ok(true) => {}
+        Ok(false) => return Pinning::NotPinned(format!("{PIN_VARIABLE} is off")),
+        Err(e) => return Pinning::NotPinned(e),
     }
     let cores = allowed_cores();
     if cores.len() < 2 {
@@ -164,6 +199,19 @@ pub fn hold_helper_to(core: Option<usize>) {
 #[cfg(all(test, target_os = "linux"))]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_pin_setting_takes_on_and_off_words_and_nothing_else() {
+        for off in ["0", "off", "OFF", " false ", "no"] {
+            assert_eq!(parse_pin_setting(off), Some(false), "{off:?}");
+        }
+        for on in ["1", "on", "True", "yes\n"] {
+            assert_eq!(parse_pin_setting(on), Some(true), "{on:?}");
+        }
+        for neither in ["", "2", "of", "00", "disable", "-1"] {
+            assert_eq!(parse_pin_setting(neither), None, "{neither:?}");
+        }
+    }
 
     #[test]
     fn the_allowed_cores_are_distinct_and_at_least_the_standard_librarys_count() {

@@ -5,7 +5,7 @@
 
 use ringcontact::thread_pinning::{
     allowed_cores, helper_core_away_from_caller, helper_core_of_caller, pin_pool_workers_to_cores,
-    Pinning, PIN_VARIABLE,
+    pinning_wanted, Pinning,
 };
 
 #[test]
@@ -13,7 +13,7 @@ fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     let cores = allowed_cores();
     let pinning = pin_pool_workers_to_cores();
     // Held only when asked (not `0`), with two cores or more, one worker per core.
-    let wanted = std::env::var(PIN_VARIABLE).map_or(true, |v| v.trim() != "0");
+    let wanted = pinning_wanted().unwrap_or(false);
     // (After the call the global pool exists, whoever built it: its size is rayon's default.)
     if cores.len() < 2 || !wanted || rayon::current_num_threads() != cores.len() {
         assert!(matches!(pinning, Pinning::NotPinned(_)), "{pinning:?}");

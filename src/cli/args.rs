@@ -26,9 +26,9 @@ Examples:
                                            `verify merge` (on Slurm: scripts/slurm/submit.sh)
 
 Environment:
-  RINGCONTACT_PIN_THREADS=0   leave the solver's worker threads to the scheduler (by default each
-                              is held to its own core: faster hand-offs between the two halves
-                              of a step; turn off when other programs share the cores)
+  RINGCONTACT_PIN_THREADS=0|1 0: leave the solver's worker threads to the scheduler; 1 (the
+                              default): each held to its own core, faster hand-offs between the
+                              two halves of a step (turn off when other programs share the cores)
   RINGCONTACT_TRACE=1         one line per finite-element model on stderr (phase times, sizes)
   MIMALLOC_ALLOW_THP=0|1      transparent huge pages for the allocator (default: off for
                               `verify solve --method fem` or `auto`, on otherwise)")]

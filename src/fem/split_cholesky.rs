@@ -614,32 +614,45 @@ mod tests {
     use crate::fem::vertex_ordering::vertex_led_node_order;
     use faer::linalg::solvers::Solve;
 
+    /// A 6 × 1 strip of `degree` (18 × 3 cells): its stiffness matrix, the analysis of its
+    /// level split, and its bottom (far) nodes' dofs marked as held.
+    fn split_strip(
+        degree: Degree,
+    ) -> (
+        nalgebra_sparse::CscMatrix<f64>,
+        Arc<SplitAnalysis>,
+        Vec<bool>,
+    ) {
+        let material = Lame::from_young_poisson(1.0, 0.3);
+        let mesh = structured_rectangle(6.0, 1.0, 18, 3, tags::CONTACT, tags::AXIS, tags::FAR)
+            .with_degree(degree);
+        let k = assemble_stiffness(&mesh, &material, &stiffness_rule(degree)).unwrap();
+        let split = split_by_level(&mesh).expect("the strip splits");
+        let order = vertex_led_node_order(&mesh);
+        let analysis = Arc::new(
+            SplitAnalysis::new(k.col_offsets(), k.row_indices(), &order, &split)
+                .unwrap()
+                .expect("the parts share no cell"),
+        );
+        let mut held = vec![false; k.nrows()];
+        for node in mesh.boundary_nodes(tags::FAR) {
+            held[2 * node] = true;
+            held[2 * node + 1] = true;
+        }
+        (k, analysis, held)
+    }
+
     #[test]
     fn the_split_solve_equals_the_dense_solve_with_constraints() {
-        let material = Lame::from_young_poisson(1.0, 0.3);
         for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
-            let mesh = structured_rectangle(6.0, 1.0, 18, 3, tags::CONTACT, tags::AXIS, tags::FAR)
-                .with_degree(degree);
-            let k = assemble_stiffness(&mesh, &material, &stiffness_rule(degree)).unwrap();
+            let (k, analysis, mut constrained) = split_strip(degree);
             let n = k.nrows();
-            let split = split_by_level(&mesh).expect("the strip splits");
-            let order = vertex_led_node_order(&mesh);
-            let analysis = Arc::new(
-                SplitAnalysis::new(k.col_offsets(), k.row_indices(), &order, &split)
-                    .unwrap()
-                    .expect("the parts share no cell"),
-            );
             assert!(analysis.separator_len() > 0);
             assert!(analysis
                 .part_sizes()
                 .iter()
                 .all(|&p| p > analysis.separator_len()));
-            // Hold the bottom (far) nodes fixed, as the solver does, and one separator dof.
-            let mut constrained = vec![false; n];
-            for node in mesh.boundary_nodes(tags::FAR) {
-                constrained[2 * node] = true;
-                constrained[2 * node + 1] = true;
-            }
+            // The bottom (far) nodes held fixed, as the solver does, and one separator dof.
             constrained[analysis.separator[0]] = true;
             let factor = SplitFactor::new(&analysis, k.values(), &constrained).unwrap();
             // Dense K_C and two right-hand sides.
@@ -666,6 +679,48 @@ mod tests {
                 assert!(error <= 1e-10 * scale, "{degree:?}, column {j}: {error:e}");
             }
         }
+    }
+
+    #[test]
+    fn a_matrix_positive_definite_in_each_part_but_not_whole_is_refused_at_the_separator() {
+        // Scale the entries that couple the parts to the separator by t. Part i's matrix
+        // [K_ii, t K_iS; t K_Si, K_SS] is positive definite while K_SS − t² M_i is (M_i =
+        // K_Si K_ii⁻¹ K_iS), the whole while K_SS − t² (M_1 + M_2) is, and the latter is the
+        // smaller: growing t in small steps, the whole loses definiteness first, in the Schur
+        // complement, which must be refused with its own message (an error, not a panic).
+        let (k, analysis, constrained) = split_strip(Degree::Quadratic);
+        let mut on_separator = vec![false; k.nrows()];
+        for &d in &analysis.separator {
+            on_separator[d] = true;
+        }
+        let scaled = |t: f64| -> Vec<f64> {
+            let mut values = k.values().to_vec();
+            for (col, range) in k.col_offsets().windows(2).enumerate() {
+                let rows = &k.row_indices()[range[0]..range[1]];
+                for (value, &row) in values[range[0]..range[1]].iter_mut().zip(rows) {
+                    if on_separator[row] != on_separator[col] {
+                        *value *= t;
+                    }
+                }
+            }
+            values
+        };
+        assert!(SplitFactor::new(&analysis, &scaled(1.0), &constrained).is_ok());
+        let mut t = 1.0;
+        let refusal = loop {
+            t *= 1.01;
+            assert!(
+                t < 100.0,
+                "no scaling up to t = 100 made the matrix indefinite"
+            );
+            if let Err(e) = SplitFactor::new(&analysis, &scaled(t), &constrained) {
+                break e.to_string();
+            }
+        };
+        assert!(
+            refusal.contains("not positive definite on the separator (pivot"),
+            "at t = {t}: {refusal}"
+        );
     }
 
     #[test]
