@@ -14,11 +14,11 @@
 //! branch has ended), it is shifted, and the shift is reported: the state then found may lie on
 //! another branch.
 
-use faer::linalg::solvers::Solve;
-use faer::{Mat, Side};
+use faer::Mat;
 
 use super::law::ExponentialLaw;
 use crate::error::{Error, Result};
+use crate::fem::dense_cholesky::{zero_padded, DenseCholesky};
 use crate::fem::surface_response::SurfaceResponse;
 
 /// Most Newton iterations per state.
@@ -78,11 +78,16 @@ impl CohesiveSurface {
                 ),
             ));
         }
-        let compliance = Mat::<f64>::from_fn(n, n, |i, j| response.compliance[(i, j)]);
-        let llt = compliance.llt(Side::Lower).map_err(|_| {
+        // Zero-padded storage (`DenseCholesky`): `faer`'s kernels compute on a column's padding
+        // rows, where leftover bytes can be slow subnormal numbers.
+        let llt = DenseCholesky::of_lower(n, |i, j| response.compliance[(i, j)]).map_err(|_| {
             no_convergence("the contact line's compliance is not positive definite".into())
         })?;
-        let stiffness = llt.solve(Mat::<f64>::identity(n, n));
+        let mut stiffness = zero_padded(n, n);
+        for i in 0..n {
+            stiffness[(i, i)] = 1.0;
+        }
+        llt.solve_in_place(stiffness.as_mut());
         let stiffness = Mat::from_fn(n, n, |i, j| 0.5 * (stiffness[(i, j)] + stiffness[(j, i)]));
         // Kendall's F0 = sqrt(8 π Δw) (E* = a = 1), or the force of a unit depth, sets the
         // force scale.
@@ -224,7 +229,7 @@ impl CohesiveSurface {
             .fold(0.0f64, f64::max);
         let mut shift = 0.0;
         for _ in 0..40 {
-            let hessian = Mat::<f64>::from_fn(m, m, |a, b| {
+            let hessian = DenseCholesky::of_lower(m, |a, b| {
                 let (i, j) = (free[a], free[b]);
                 let mut h = self.stiffness[(i, j)];
                 if i == j {
@@ -232,9 +237,12 @@ impl CohesiveSurface {
                 }
                 h
             });
-            if let Ok(llt) = hessian.llt(Side::Lower) {
-                let rhs = Mat::<f64>::from_fn(m, 1, |a, _| -gradient[free[a]]);
-                let p = llt.solve(rhs);
+            if let Ok(llt) = hessian {
+                let mut p = zero_padded(m, 1);
+                for a in 0..m {
+                    p[(a, 0)] = -gradient[free[a]];
+                }
+                llt.solve_in_place(p.as_mut());
                 return Ok(((0..m).map(|a| p[(a, 0)]).collect(), shift > 0.0));
             }
             shift = if shift == 0.0 {

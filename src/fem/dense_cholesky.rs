@@ -1,5 +1,6 @@
-//! Dense matrices whose storage padding is zero, and the dense Cholesky factorisation of the
-//! split solver's Schur complement on them.
+//! Dense matrices whose storage padding is zero, and the dense Cholesky factorisation on them:
+//! of the split solver's Schur complement, and of the cohesive model's compliance and Newton
+//! steps (`crate::cohesive::equilibrium`).
 //!
 //! `faer` stores a column of `n` values in `n` rounded up to a multiple of eight (one 64-byte
 //! vector), and leaves the rounding's rows uninitialised. Its dense kernels compute whole
