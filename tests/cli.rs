@@ -100,7 +100,7 @@ fn a_thread_pinning_setting_that_is_neither_on_nor_off_is_refused_before_any_wor
         if refused {
             assert_eq!(out.status.code(), Some(2), "{value}: {stderr}");
             assert!(
-                stderr.contains("RINGCONTACT_PIN_THREADS") && stderr.contains(value),
+                stderr.contains(&format!("RINGCONTACT_PIN_THREADS={value:?}")),
                 "{value}: {stderr}"
             );
             assert!(

@@ -12,7 +12,7 @@ use ringcontact::thread_pinning::{
 fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     let cores = allowed_cores();
     let pinning = pin_pool_workers_to_cores();
-    // Held only when asked (not `0`), with two cores or more, one worker per core.
+    // Held only when asked (not off), with two cores or more, one worker per core.
     let wanted = pinning_wanted().unwrap_or(false);
     // (After the call the global pool exists, whoever built it: its size is rayon's default.)
     if cores.len() < 2 || !wanted || rayon::current_num_threads() != cores.len() {
