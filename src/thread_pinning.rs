@@ -115,18 +115,21 @@ fn hold_current_thread_to(core: usize) -> bool {
 }
 
 /// Build rayon's global pool with worker `i` held to the `i`-th allowed core, unless
-/// [`pinning_wanted`] says no (or cannot read [`PIN_VARIABLE`]: a caller that wants that
-/// reported asks it first), fewer than two cores are allowed, or the pool already exists. A pool
+/// [`pinning_wanted`] says no, fewer than two cores are allowed, or the pool already exists; an
+/// error (nothing built) when [`PIN_VARIABLE`] holds no setting ([`pinning_wanted`]'s). A pool
 /// of another size than the allowed cores (`RAYON_NUM_THREADS`, or a CPU quota that rayon's
 /// count honours) is built but left to the scheduler: held workers could not move off cores that
 /// other processes of the same kind would hold as well. Call once, at the start of `main`,
 /// before anything uses rayon.
-pub fn pin_pool_workers_to_cores() -> Pinning {
-    match pinning_wanted() {
-        Ok(true) => {}
-        Ok(false) => return Pinning::NotPinned(format!("{PIN_VARIABLE} is off")),
-        Err(e) => return Pinning::NotPinned(e),
+pub fn pin_pool_workers_to_cores() -> Result<Pinning, String> {
+    if !pinning_wanted()? {
+        return Ok(Pinning::NotPinned(format!("{PIN_VARIABLE} is off")));
     }
+    Ok(pin_to_allowed_cores())
+}
+
+/// [`pin_pool_workers_to_cores`] once the setting asked for it.
+fn pin_to_allowed_cores() -> Pinning {
     let cores = allowed_cores();
     if cores.len() < 2 {
         return Pinning::NotPinned(format!("{} allowed core(s)", cores.len()));

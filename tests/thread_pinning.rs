@@ -11,9 +11,13 @@ use ringcontact::thread_pinning::{
 #[test]
 fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     let cores = allowed_cores();
-    let pinning = pin_pool_workers_to_cores();
+    // A setting that is neither on nor off is refused, and nothing is built.
+    let Ok(pinning) = pin_pool_workers_to_cores() else {
+        assert!(pinning_wanted().is_err());
+        return;
+    };
     // Held only when asked (not off), with two cores or more, one worker per core.
-    let wanted = pinning_wanted().unwrap_or(false);
+    let wanted = pinning_wanted().expect("the setting was read above");
     // (After the call the global pool exists, whoever built it: its size is rayon's default.)
     if cores.len() < 2 || !wanted || rayon::current_num_threads() != cores.len() {
         assert!(matches!(pinning, Pinning::NotPinned(_)), "{pinning:?}");
@@ -49,5 +53,8 @@ fn each_worker_is_held_to_its_own_core_and_helpers_go_elsewhere() {
     assert!(cores.contains(&away) && cores.contains(&here));
     assert_ne!(away, here);
     // A second call finds the pool built and says so, changing nothing.
-    assert!(matches!(pin_pool_workers_to_cores(), Pinning::NotPinned(_)));
+    assert!(matches!(
+        pin_pool_workers_to_cores(),
+        Ok(Pinning::NotPinned(_))
+    ));
 }

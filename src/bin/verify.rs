@@ -60,11 +60,10 @@ fn main() -> ExitCode {
     ringcontact::keep_freed_memory_for_reuse();
     // Before anything uses rayon: each worker held to its own core (see the module). A setting
     // that is neither on nor off is refused before any work, like a bad flag.
-    if let Err(e) = ringcontact::thread_pinning::pinning_wanted() {
+    if let Err(e) = ringcontact::thread_pinning::pin_pool_workers_to_cores() {
         eprintln!("error: {e}");
         return ExitCode::from(2);
     }
-    ringcontact::thread_pinning::pin_pool_workers_to_cores();
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
     // unknown flag).
     let command = Cli::command()
