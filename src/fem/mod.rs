@@ -22,6 +22,7 @@ pub mod quadrature;
 pub mod separator;
 pub mod solver;
 pub mod split_cholesky;
+pub mod supernodal_numeric;
 pub mod surface_response;
 pub mod vertex_ordering;
 pub mod vtu;

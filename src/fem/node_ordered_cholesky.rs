@@ -1,5 +1,6 @@
-//! Sparse Cholesky factorisation (`faer`) with its fill-reducing ordering computed on the node
-//! graph instead of the dof graph.
+//! Sparse Cholesky factorisation (`faer`'s symbolic analysis, the numeric factorisation of
+//! [`super::supernodal_numeric`]) with its fill-reducing ordering computed on the node graph
+//! instead of the dof graph.
 //!
 //! The stiffness matrix has two dofs per node (`2i`, `2i + 1`), coupled to the same neighbours:
 //! the minimum-degree ordering of the node graph (a quarter of the entries) expanded to the dofs,
@@ -21,20 +22,18 @@ use std::sync::Arc;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
-use faer::sparse::linalg::cholesky::supernodal::{
-    factorize_supernodal_numeric_llt, factorize_supernodal_numeric_llt_scratch,
-    SymbolicSupernodalCholesky,
-};
+use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
+use faer::sparse::{SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
 use super::dense_cholesky::zeroed_scratch;
 use super::permuted_lower::PermutedLower;
+use super::supernodal_numeric;
 use crate::error::{Error, Result};
 
 fn solver_error(message: String) -> Error {
@@ -339,12 +338,9 @@ pub fn factorisation_work(supernodal: &SymbolicSupernodalCholesky<usize>) -> f64
 }
 
 /// The supernodal factor `L` of the matrix whose lower triangle (in the analysis's elimination
-/// order) is `lower` with `lower_values`: `faer`'s values of `L`, supernode by supernode. Fails
-/// if the matrix is not positive definite.
-///
-/// The factor's memory is first written by both cores ([`super::zeroed::zeros_written`]): on
-/// this machine the kernel's zeroing of fresh pages runs at about 2 GB/s per core, and the
-/// factor holds 1.25 GB at 1.4e6 cubic unknowns.
+/// order) is `lower` with `lower_values`: `L`'s values in `faer`'s layout, supernode by
+/// supernode ([`supernodal_numeric::factorise`], which zeroes each supernode's values just
+/// before it forms them). Fails if the matrix is not positive definite.
 pub fn factorise_supernodal(
     supernodal: &SymbolicSupernodalCholesky<usize>,
     lower: &SymbolicSparseColMat<usize>,
@@ -355,29 +351,13 @@ pub fn factorise_supernodal(
             "internal: the values do not fit the permuted lower triangle".into(),
         ));
     }
-    let mut values = super::zeroed::zeros_written(supernodal.len_val());
-    let mut memory = MemBuffer::try_new(factorize_supernodal_numeric_llt_scratch::<usize, f64>(
-        supernodal,
-        Par::Seq,
-        Default::default(),
-    ))
-    .map_err(|_| solver_error("out of memory for the Cholesky factorisation".into()))?;
-    factorize_supernodal_numeric_llt(
-        &mut values,
-        SparseColMatRef::new(lower.as_ref(), lower_values),
-        Default::default(),
-        supernodal,
-        Par::Seq,
-        MemStack::new(&mut memory),
-        Default::default(),
-    )
-    .map_err(|e| {
+    supernodal_numeric::factorise(supernodal, lower.as_ref(), lower_values).map_err(|e| {
         solver_error(format!(
-            "the stiffness matrix is not positive definite ({e:?}): is the body held against \
-             rigid motion?"
+            "the stiffness matrix is not positive definite (pivot {}): is the body held against \
+             rigid motion?",
+            e.column
         ))
-    })?;
-    Ok(values)
+    })
 }
 
 /// Numeric Cholesky factor `A = L Lᵀ` on a [`SymbolicFactor`].
