@@ -29,7 +29,9 @@
 //! dispatches a generic scatter-product per update: costs that weigh on the many small
 //! supernodes of 2-D finite-element matrices.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use std::mem::MaybeUninit;
+
+use faer::dyn_stack::MemStack;
 use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
@@ -37,6 +39,8 @@ use faer::reborrow::{Reborrow, ReborrowMut};
 use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Accum, MatMut, MatRef, Par};
+
+use super::dense_cholesky::zeroed_scratch;
 
 /// A pivot `≤ 0` (or not a number) met: the matrix is not positive definite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -89,7 +93,8 @@ pub fn factorise(
     let mut local = vec![NONE; n];
     let mut row_map = vec![0usize; tallest];
     let mut update = vec![0.0; tallest * widest.max(1)];
-    let mut memory = MemBuffer::new(cholesky_in_place_scratch::<f64>(
+    // Zeroed, as every scratch handed to `faer`'s dense kernels here ([`zeroed_scratch`]).
+    let mut memory = zeroed_scratch(cholesky_in_place_scratch::<f64>(
         widest,
         Par::Seq,
         Default::default(),
@@ -220,7 +225,7 @@ fn factor_panel(
     rows: usize,
     width: usize,
     s_start: usize,
-    memory: &mut MemBuffer,
+    memory: &mut [MaybeUninit<u8>],
 ) -> Result<(), NonPositivePivot> {
     if width <= SMALL_WIDTH {
         // Column by column (left-looking within the panel): column j less Σ_{k<j} L_jk L_k,
@@ -280,6 +285,7 @@ mod tests {
     use crate::fem::permuted_lower::PermutedLower;
     use crate::fem::solver::stiffness_rule;
     use crate::fem::vertex_ordering::vertex_led_node_order;
+    use faer::dyn_stack::MemBuffer;
     use faer::sparse::linalg::cholesky::supernodal::{
         factorize_supernodal_numeric_llt, factorize_supernodal_numeric_llt_scratch,
     };
