@@ -16,8 +16,9 @@
 //! the panel's. A panel at most [`SMALL_WIDTH`] columns wide is factorised column by column in
 //! plain loops, a wider one by `faer`'s dense Cholesky and triangular solve. The values are laid
 //! out as `faer`'s, so `faer`'s `SupernodalLltRef` and this crate's substitutions read them; the
-//! part above the diagonal of a supernode's diagonal block stays zero (`faer`'s own numeric
-//! factorisation leaves values there that no solve reads).
+//! part above the diagonal of a supernode's diagonal block is not part of `L` and no solve reads
+//! it (zero after the plain loops; `faer`'s kernels may leave values there, as `faer`'s own
+//! numeric factorisation does).
 //!
 //! Each supernode's values are zeroed just before they are formed, while they are about to be
 //! used, instead of in a pass over the whole factor first (the only `unsafe` here: the factor's
@@ -378,8 +379,8 @@ mod tests {
                 let w = symbolic.supernode_end()[s] - symbolic.supernode_begin()[s];
                 let rows = (offsets[s + 1] - offsets[s]) / w;
                 for e in range {
-                    // Above the diagonal block's diagonal: not part of L (faer leaves values
-                    // there, this module zeros).
+                    // Above the diagonal block's diagonal: not part of L (values may be left
+                    // there; no solve reads them).
                     let (row, col) = ((e - offsets[s]) % rows, (e - offsets[s]) / rows);
                     if row < col {
                         continue;
