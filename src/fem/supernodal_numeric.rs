@@ -33,7 +33,7 @@
 use std::mem::MaybeUninit;
 
 use faer::dyn_stack::MemStack;
-use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::cholesky::llt::factor::{cholesky_in_place, cholesky_in_place_scratch, LltError};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_lower_triangular_in_place;
 use faer::reborrow::{Reborrow, ReborrowMut};
@@ -91,6 +91,7 @@ pub fn factorise(
     let mut head = vec![NONE; n_super];
     let mut next = vec![NONE; n_super];
     let mut position = vec![0usize; n_super];
+    // The current panel's row of each global row (its own columns, then its pattern), or NONE.
     let mut local = vec![NONE; n];
     let mut row_map = vec![0usize; tallest];
     let mut update = vec![0.0; tallest * widest.max(1)];
@@ -111,6 +112,10 @@ pub fn factorise(
         let width = s_end - s_start;
         let pattern = pattern_of(s);
         let rows = width + pattern.len();
+        // Every row of the panel by its global index: its own columns first, then its pattern.
+        for (i, slot) in local[s_start..s_end].iter_mut().enumerate() {
+            *slot = i;
+        }
         for (i, &row) in pattern.iter().enumerate() {
             local[row] = width + i;
         }
@@ -130,8 +135,7 @@ pub fn factorise(
                 if i < j {
                     continue;
                 }
-                let at = if i < s_end { i - s_start } else { local[i] };
-                column[at] += a_values[k];
+                column[local[i]] += a_values[k];
             }
         }
         // The descendants' updates.
@@ -146,7 +150,7 @@ pub fn factorise(
             let mid = below.partition_point(|&r| r < s_end);
             let d_values = &done[val_ptr[d]..val_ptr[d + 1]];
             for (slot, &r) in row_map.iter_mut().zip(below) {
-                *slot = if r < s_end { r - s_start } else { local[r] };
+                *slot = local[r];
             }
             let below_block = MatRef::from_column_major_slice_with_stride(
                 &d_values[d_width + first..],
@@ -173,6 +177,7 @@ pub fn factorise(
             d = following;
         }
         factor_panel(panel, rows, width, s_start, &mut memory)?;
+        local[s_start..s_end].fill(NONE);
         for &row in pattern {
             local[row] = NONE;
         }
@@ -264,13 +269,9 @@ fn factor_panel(
         MemStack::new(memory),
         Default::default(),
     )
-    .map_err(
-        |faer::linalg::cholesky::llt::factor::LltError::NonPositivePivot { index }| {
-            NonPositivePivot {
-                column: s_start + index,
-            }
-        },
-    )?;
+    .map_err(|LltError::NonPositivePivot { index }| NonPositivePivot {
+        column: s_start + index,
+    })?;
     let (top, bottom) = panel.split_at_row_mut(width);
     solve_lower_triangular_in_place(top.rb(), bottom.transpose_mut(), Par::Seq);
     Ok(())
