@@ -1,4 +1,4 @@
-//! The FEM's accuracy-and-cost targets (issue 10): the cone at `d/h` = 0.5, 2, 4, the sphere at
+//! The FEM's accuracy-and-cost targets: the cone at `d/h` = 0.5, 2, 4, the sphere at
 //! 0.5, 1.5, 2.8 and the flat annulus at `b/a` = 0.1, 0.3, 0.5, 0.7, 0.9, 0.97, solved at each
 //! tolerance with the default degree, against the ring BEM converged to 1e-11 (an independent
 //! discretisation). Each state is solved twice: first with an empty mesh cache (gmsh makes every

@@ -1,35 +1,94 @@
 #!/usr/bin/env bash
-# Nightly verification run: the full suite, the report in reports/<date>/, headline figures
-# appended to reports/history.jsonl and compared with the previous run (accuracy beyond its
+# Nightly verification run: the full suite into one report directory, its headline figures
+# appended to a history file and compared with the previous run (an accuracy beyond its
 # tolerance or a time more than 1.5x slower is a regression: exit status 1).
-# FEniCSx and the FFT-BEM peers are re-run when installed (scripts/fenicsx/setup.sh,
-# scripts/peers/run_peers.sh); otherwise their stored results are used and marked as stored.
+#
+# Usage: bash scripts/nightly.sh [--out DIR] [--history FILE] [--quick]
+#   --out DIR       the report directory (default reports/<UTC date>)
+#   --history FILE  the JSON-lines history (default reports/history.jsonl)
+#   --quick         the default report, the stability probes and fresh peer runs only (no pull-off
+#                   simulations, no FEM at 1e-8, no FEniCSx on the largest meshes, no long
+#                   fuzzing): a few minutes instead of about half an hour
+#
+# Fresh runs of the peers (FEniCSx when /usr/bin/python3 has dolfinx, Tamaas and ContactMechanics
+# when .venv-peers has them) and of the pull-off simulations go into DIR/fresh/ and are compared
+# with the committed baselines in verify/ (a difference beyond tolerance is a failed check in the
+# report). Nothing in the checkout is written, and nothing is installed: the peers' setup scripts
+# (scripts/fenicsx/setup.sh, scripts/peers/setup.sh, scripts/install_gmsh.sh) are run by hand.
+# Refreshing a baseline is its own step: the peer's script with --out verify/..., reviewed and
+# committed.
 set -uo pipefail
 cd "$(dirname "$0")/.."
-day=$(date -u +%F)
-out="reports/$day"
-mkdir -p "$out"
-cargo build --release --quiet || exit 1
+source scripts/lib.sh
+out=""
+history=reports/history.jsonl
+quick=0
+while [ $# -gt 0 ]; do
+  case $1 in
+    --out) out=$2; shift ;;
+    --history) history=$2; shift ;;
+    --quick) quick=1 ;;
+    *) echo "nightly.sh: unknown option $1 (see the comment at the top of this script)" >&2; exit 2 ;;
+  esac
+  shift
+done
+[ -n "$out" ] || out="reports/$(date -u +%F)"
+# The binary first: nothing is written when it cannot be built.
+find_verify
+mkdir -p "$out/fresh"
+echo "nightly: report directory $out (binary $VERIFY)"
 fenicsx=stored
 peers=stored
+status=0
 if /usr/bin/python3 -c "import dolfinx" 2>/dev/null; then
-  if bash scripts/fenicsx/run_all.sh > "$out/fenicsx.log" 2>&1; then fenicsx=fresh; fi
+  echo "nightly: FEniCSx on every stored row -> $out/fresh/fenicsx"
+  if python3 scripts/fenicsx/run_all.py --out "$out/fresh/fenicsx" > "$out/fenicsx.log" 2>&1; then
+    fenicsx=fresh
+  else
+    status=1
+  fi
 fi
 if [ -x .venv-peers/bin/python ] && .venv-peers/bin/python -c "import tamaas, ContactMechanics" 2>/dev/null; then
-  if bash scripts/peers/run_peers.sh > "$out/peers.log" 2>&1; then peers=fresh; fi
+  echo "nightly: Tamaas and ContactMechanics -> $out/fresh/peers"
+  if PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_peers.py \
+    --out "$out/fresh/peers" > "$out/peers.log" 2>&1; then
+    peers=fresh
+  else
+    status=1
+  fi
 fi
-status=0
-# The pull-off simulations (verify/pulloff/, 20 s to 3.5 min each, ~16 min; need gmsh), shown by the report.
-if bash scripts/pulloff/run_all.sh > "$out/pulloff.log" 2>&1; then :; else status=1; fi
-# The speed-accuracy charts run the FEM's full solve down to 1e-8 (7-17 s per state with gmsh meshing).
-./target/release/verify compare --report "$out" --fem-tolerances 1e-3,1e-4,1e-6,1e-8 > "$out/summary.txt" || status=1
-# FEniCSx on the largest meshes (6e5-1.4e6 unknowns, verify/fenicsx/large/: about a minute).
-./target/release/verify fenicsx --large > "$out/fenicsx-large.txt" || status=1
-./target/release/verify stability --json > "$out/stability.json" || status=1
-./target/release/verify stability > "$out/stability.txt" || true
-# The long fuzzing run (the default test run makes 20 000 inputs): 400 000 mutated meshes and scenes.
-RINGCONTACT_FUZZ_CASES=400000 cargo test --release --quiet --test fuzz_inputs > "$out/fuzz.txt" 2>&1 || status=1
-./target/release/verify history --report "$out" --history reports/history.jsonl --fenicsx "$fenicsx" --peers "$peers" || status=1
+tolerances=1e-3,1e-4,1e-6
+if [ $quick = 0 ]; then
+  tolerances=1e-3,1e-4,1e-6,1e-8
+  # The pull-off simulations (20 s to 3.5 min each, about 16 min; need gmsh).
+  echo "nightly: pull-off simulations -> $out/fresh/pulloff"
+  python3 scripts/pulloff/run_all.py --out "$out/fresh/pulloff" > "$out/pulloff.log" 2>&1 || status=1
+fi
+echo "nightly: the report (verify compare) -> $out"
+"$VERIFY" compare --report "$out" --fresh "$out/fresh" --fem-tolerances "$tolerances" \
+  > "$out/summary.txt" || status=1
+if [ $quick = 0 ]; then
+  # FEniCSx on the largest meshes (6e5-1.4e6 unknowns, verify/fenicsx/large/: about a minute).
+  "$VERIFY" fenicsx --large > "$out/fenicsx-large.txt" || status=1
+fi
+echo "nightly: stability probes"
+"$VERIFY" stability --json > "$out/stability.json" || status=1
+"$VERIFY" stability > "$out/stability.txt" || true
+if [ $quick = 0 ]; then
+  # The long fuzzing run (the default test run makes 20 000 inputs) and the stored results'
+  # long reproduce commands (the largest meshes, the pull-off simulations).
+  RINGCONTACT_FUZZ_CASES=400000 cargo test --release --quiet --test fuzz_inputs \
+    > "$out/fuzz.txt" 2>&1 || status=1
+  RINGCONTACT_LONG_TESTS=1 cargo test --release --quiet --test reproduce \
+    > "$out/reproduce.txt" 2>&1 || status=1
+fi
+"$VERIFY" history --report "$out" --history "$history" --fenicsx "$fenicsx" --peers "$peers" \
+  || status=1
 tail -n 3 "$out/summary.txt"
-echo "report: $out/report.md (trend: $out/trend.md)"
+if [ -f "$out/index.html" ]; then
+  echo "report: $out/index.html (trend: $out/trend.md)"
+else
+  echo "nightly: no report was written in $out (see $out/summary.txt)" >&2
+  status=1
+fi
 exit $status

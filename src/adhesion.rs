@@ -113,6 +113,56 @@ pub struct FlatAnnulusJkr {
     pub collins: Option<EdgeCritical>,
     /// Argatov's narrow-ring asymptote (paper 22), where valid (`eps >= 0.85`).
     pub argatov: Option<EdgeCritical>,
+    /// Error bounds of `dc_outer`, `fc_outer`, `dc_inner`, `fc_inner` (absolute, the same
+    /// units), propagated from the ring BEM's estimates ([`FlatAnnulusBounds`]).
+    #[serde(default)]
+    pub error_bounds: Option<FlatAnnulusBounds>,
+}
+
+/// Error bounds of the flat annulus' critical states, propagated from the ring BEM: `δγ` its
+/// estimate; `δγ'` the change of the differenced `γ'` when its step is doubled plus the
+/// stencil's amplification of `δγ` (`1.5 δγ / h`); `δκ_out = (δγ + eps δγ') / (2 κ_out)`;
+/// `δκ_in` the change of the field's inner intensity between tolerances 1e-11 and 1e-8; then
+/// `δd_c = δκ/κ²`, `δF_c = δγ/κ + γ δκ/κ²`.
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
+pub struct FlatAnnulusBounds {
+    pub dc_outer: f64,
+    pub fc_outer: f64,
+    pub dc_inner: f64,
+    pub fc_inner: f64,
+}
+
+/// [`FlatAnnulusBounds`] at `eps` from the edges `e` computed at tolerance [`TOL`].
+fn flat_annulus_bounds(
+    solver: &RingBemSolver,
+    e: &AnnulusEdges,
+    kappa_out: f64,
+    kappa_in: f64,
+) -> Result<FlatAnnulusBounds> {
+    let eps = e.eps;
+    let gamma = |x: f64| -> Result<f64> { Ok(solver.flat(x, TOL)?.gamma.unwrap_or(f64::NAN)) };
+    let state = solver.flat(eps, TOL)?;
+    let d_gamma = state.error_estimate.max(f64::EPSILON) * e.gamma;
+    let step = 1e-3 * eps.min(1.0 - eps);
+    let doubled = derivative(gamma, eps, 2.0 * step, MIN_CONTACT_RATIO, MAX_CONTACT_RATIO)?;
+    let d_gamma_prime = (doubled - e.gamma_prime).abs() + 1.5 * d_gamma / step;
+    let d_kappa_out = (d_gamma + eps * d_gamma_prime) / (2.0 * kappa_out);
+    let looser = solver.flat(eps, 1e-8)?;
+    let d_kappa_in = (looser.inner_stress_intensity * ROOT_PI - kappa_in).abs();
+    let of = |kappa: f64, d_kappa: f64| {
+        (
+            d_kappa / (kappa * kappa),
+            d_gamma / kappa + e.gamma * d_kappa / (kappa * kappa),
+        )
+    };
+    let (dc_outer, fc_outer) = of(kappa_out, d_kappa_out);
+    let (dc_inner, fc_inner) = of(kappa_in, d_kappa_in);
+    Ok(FlatAnnulusBounds {
+        dc_outer,
+        fc_outer,
+        dc_inner,
+        fc_inner,
+    })
 }
 
 /// JKR detachment of the flat annulus at `eps`: `d_c/d0 = -1/κ`, `F_c/F0 = -γ/κ` at each edge,
@@ -176,6 +226,7 @@ pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> 
         kappa_consistency: consistency,
         collins,
         argatov,
+        error_bounds: Some(flat_annulus_bounds(solver, &e, kappa_out, kappa_in)?),
     })
 }
 
@@ -190,6 +241,12 @@ pub struct BranchPoint {
     pub kappa_out_na: f64,
     pub kappa_out: f64,
     pub kappa_in: f64,
+    /// The ring BEM's error estimates of the concave state (`γ1`, `γ2`, relative) and of the
+    /// flat annulus (`γ`, relative).
+    #[serde(default)]
+    pub concave_error: f64,
+    #[serde(default)]
+    pub flat_error: f64,
 }
 
 impl BranchPoint {
@@ -207,10 +264,20 @@ impl BranchPoint {
     }
 }
 
-/// Ring-BEM quantities at `eps` for a concave punch.
+/// Ring-BEM quantities at `eps` for a concave punch (tolerance 1e-10).
 pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
-    let concave = solver.concave_at_ratio(kind, eps, 1e-10)?;
-    let flat = solver.flat(eps, 1e-10)?;
+    branch_point_at(solver, kind, eps, 1e-10)
+}
+
+/// [`branch_point`] from ring-BEM solves at `tolerance`.
+fn branch_point_at(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    eps: f64,
+    tolerance: f64,
+) -> Result<BranchPoint> {
+    let concave = solver.concave_at_ratio(kind, eps, tolerance)?;
+    let flat = solver.flat(eps, tolerance)?;
     Ok(BranchPoint {
         eps,
         gamma1: concave.gamma1.unwrap_or(f64::NAN),
@@ -219,6 +286,8 @@ pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result
         kappa_out_na: concave.rim_stress_intensity * ROOT_PI,
         kappa_out: flat.rim_stress_intensity * ROOT_PI,
         kappa_in: flat.inner_stress_intensity * ROOT_PI,
+        concave_error: concave.error_estimate,
+        flat_error: flat.error_estimate,
     })
 }
 
@@ -234,6 +303,15 @@ pub struct Critical {
     pub force: f64,
     /// `inner` (the hole's edge), `rim` (the sharp outer edge), or `rim (full contact)`.
     pub governing_edge: String,
+    /// Bound on the error of `force` (F/F0, absolute), propagated from the ring BEM: the
+    /// change of the branch's force when its non-adhesive quantities come from a solve at
+    /// tolerance 1e-7 instead of 1e-10, plus the slope along the branch times the location's
+    /// tolerance in `eps` (see [`bound_critical`]); 0 for the closed forms of full contact.
+    #[serde(default)]
+    pub error_bound: Option<f64>,
+    /// The same for `depth` (d/h, absolute).
+    #[serde(default)]
+    pub depth_error_bound: Option<f64>,
 }
 
 /// Full-contact branch: the disk with `w = d - h ĝ(r)`.
@@ -402,6 +480,8 @@ fn annular_pulloff(
             depth_over_d0: p.depth(s) / s,
             force: p.force(s),
             governing_edge: edge.into(),
+            error_bound: None,
+            depth_error_bound: None,
         },
         (eps_max, eps_min),
     )))
@@ -437,7 +517,56 @@ fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<F
             depth_over_d0: depth / s,
             force: (depth - force_offset) / s,
             governing_edge: "rim (full contact)".into(),
+            // Closed forms (the method of dimensionality reduction).
+            error_bound: Some(0.0),
+            depth_error_bound: Some(0.0),
         },
+    })
+}
+
+/// Location tolerance in `eps` of a critical state (the golden-section and bisection searches
+/// stop at 1e-9).
+const LOCATION_TOLERANCE: f64 = 1e-9;
+
+/// `c` with its error bounds. The non-adhesive inputs' share is the larger of two: the ring
+/// BEM's own estimates propagated through the branch (`d/h = γ1 - s/κ_in`,
+/// `F/F0 = γ2/s - γ/κ_in`: `δF = γ2 e_c/s + γ e_f/κ_in + γ δκ_in/κ_in²`,
+/// `δd = γ1 e_c + s δκ_in/κ_in²`, with `e_c`, `e_f` the concave and flat states' relative
+/// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 and 1e-7,
+/// never below `e_f κ_in`), and the change of the branch's force and depth when every input
+/// comes from the solves at 1e-7. Added to it: each quantity's slope along the branch times
+/// [`LOCATION_TOLERANCE`] (zero at a stationary point, the fixed-load force or the fixed-grips
+/// depth; not zero for the other quantity).
+pub fn bound_critical(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    s: f64,
+    c: &Critical,
+) -> Result<Critical> {
+    let p = branch_point(solver, kind, c.eps)?;
+    let looser = branch_point_at(solver, kind, c.eps, 1e-7)?;
+    let d_kappa_in = (looser.kappa_in - p.kappa_in)
+        .abs()
+        .max(p.flat_error * p.kappa_in);
+    let k2 = p.kappa_in * p.kappa_in;
+    let propagated_force = p.gamma2 * p.concave_error / s
+        + p.gamma * p.flat_error / p.kappa_in
+        + p.gamma * d_kappa_in / k2;
+    let propagated_depth = p.gamma1 * p.concave_error + s * d_kappa_in / k2;
+    let step = 1e-6 * c.eps.min(1.0 - c.eps);
+    let nearby = branch_point(solver, kind, c.eps + step)?;
+    let slope_force = ((nearby.force(s) - p.force(s)) / step).abs();
+    let slope_depth = ((nearby.depth(s) - p.depth(s)) / step).abs();
+    Ok(Critical {
+        error_bound: Some(
+            propagated_force.max((looser.force(s) - p.force(s)).abs())
+                + slope_force * LOCATION_TOLERANCE,
+        ),
+        depth_error_bound: Some(
+            propagated_depth.max((looser.depth(s) - p.depth(s)).abs())
+                + slope_depth * LOCATION_TOLERANCE,
+        ),
+        ..c.clone()
     })
 }
 
@@ -536,12 +665,17 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
         }
         None => (None, None),
     };
+    let bound = |c: Option<Critical>| -> Result<Option<Critical>> {
+        c.map(|c| bound_critical(solver, kind, s, &c)).transpose()
+    };
+    let paper_load = bound(paper_load)?;
+    let paper_grips = bound(paper_grips)?;
     Ok(ConcaveJkr {
         punch: kind,
         d0_over_h: s,
         stable_branch_fixed_load: load.as_ref().map(|(_, b)| *b),
-        fixed_load: load.map(|(c, _)| c),
-        fixed_grips: grips.map(|(c, _)| c),
+        fixed_load: bound(load.map(|(c, _)| c))?,
+        fixed_grips: bound(grips.map(|(c, _)| c))?,
         fixed_load_note: load_note,
         fixed_grips_note: grips_note,
         inner_edge_only_fixed_load: paper_load,

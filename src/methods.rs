@@ -14,6 +14,7 @@ use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
 use crate::bem::ring_contact::{self, RingBemSolver, RingState};
 use crate::error::{Error, Result};
+use crate::fem::far_field::FarField;
 use crate::fem::mesh::Degree;
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::numerics::roots::find_root;
@@ -63,6 +64,8 @@ pub struct MethodOptions {
     pub grid: Option<usize>,
     /// FEM: write the final displacement field as VTK (`.vtu`) here.
     pub vtu: Option<PathBuf>,
+    /// FEM: the condition on the far arc (default [`FarField::Boussinesq`]).
+    pub far_field: Option<FarField>,
 }
 
 /// Solve `scene` with `method`.
@@ -82,6 +85,12 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
         return Err(Error::Unsupported {
             method: method.name().into(),
             reason: "--vtu writes the FEM's displacement field: use --method fem".into(),
+        });
+    }
+    if method != Method::Fem && options.far_field.is_some() {
+        return Err(Error::Unsupported {
+            method: method.name().into(),
+            reason: "--far-field sets the FEM's truncated domain: use --method fem".into(),
         });
     }
     if method != Method::GridBem && options.grid.is_some() {
@@ -129,7 +138,10 @@ pub fn solve_auto(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
                 ));
                 return Ok(s);
             }
-            Ok(s) => tried.push(format!("{} estimate {:?}", method.name(), s.error_estimate)),
+            Ok(s) => tried.push(match s.error_estimate {
+                Some(e) => format!("{} estimate {e:.1e}", method.name()),
+                None => format!("{}: no error estimate", method.name()),
+            }),
             Err(e) => tried.push(format!("{}: {e}", method.name())),
         }
     }
@@ -218,7 +230,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         tolerance,
         mesh: options.mesh.clone(),
         poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
-        far_field: crate::fem::far_field::FarField::Boussinesq,
+        far_field: options.far_field.unwrap_or(FarField::Boussinesq),
     };
     let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
     if let Some(path) = &options.vtu {

@@ -1,7 +1,7 @@
 //! Punch shapes and their gap functions.
 //!
 //! The gap `g(r)` is the distance from the punch face up to the plane of the sharp rim, for
-//! `0 <= r <= a` (see `shared/docs/PHYSICS.md`). Non-penetration reads `w(r) >= d - g(r)`.
+//! `0 <= r <= a` (see `docs/conventions.md`). Non-penetration reads `w(r) >= d - g(r)`.
 //!
 //! | shape | gap `g(r)` | contact |
 //! |---|---|---|

@@ -108,7 +108,7 @@ pub struct Solution {
 
 /// The conical punch's hole `b/a` at depth `d/h` (`γ1(b/a) = d/h`), ascending in depth: the ring
 /// BEM (`verify solve --punch cone --eps B --method ring-bem`, 2026-11-25; its error estimates
-/// 1e-13 to 1e-9). They follow `d/h ≈ (π/2) ln(a/b) + 1` (PHYSICS.md fact 5).
+/// 1e-13 to 1e-9). They follow `d/h ≈ (π/2) ln(a/b) + 1` (docs/conventions.md fact 5).
 const CONE_HOLE_BY_DEPTH: [(f64, f64); 16] = [
     (1.789611, 0.5),
     (2.761971, 0.3),
@@ -135,7 +135,7 @@ const CONE_HOLE_BY_DEPTH: [(f64, f64); 16] = [
 const CONE_HOLE_BOUND_SHARE: f64 = 0.9;
 
 /// The cone's hole deeper than [`CONE_HOLE_BY_DEPTH`] (where the ring BEM stops at `b/a =
-/// 1e-4`): PHYSICS.md fact 5, `d/h = (π/2) ln(a/b) + c`, with `c = 1`. The table's `c` rises
+/// 1e-4`): docs/conventions.md fact 5, `d/h = (π/2) ln(a/b) + c`, with `c = 1`. The table's `c` rises
 /// toward it from below and has settled at 0.9998-1.0002 from `b/a = 1e-2` down, so
 /// `b/a = exp(-2 (d/h - 1)/π)` is within 0.02 % of the hole at the table's end.
 fn cone_hole_asymptote(depth: f64) -> f64 {
@@ -167,7 +167,7 @@ impl Solution {
     /// Refuse a state that cannot exist before anyone sees it: every number finite, `0 <= eps < 1`,
     /// depth and force positive (the punch presses), the dimensionless functions positive and
     /// consistent with the scene's `eps`, full contact (`eps = 0`) only for the flat punch and the
-    /// spherical punch at `d >= 3h` (PHYSICS.md facts 4-5: the cone never reaches it), a
+    /// spherical punch at `d >= 3h` (docs/conventions.md facts 4-5: the cone never reaches it), a
     /// non-negative error estimate, finite pressures.
     pub fn check_plausible(&self) -> crate::error::Result<()> {
         let fail = |reason: String| {
@@ -350,7 +350,7 @@ mod tests {
 
     #[test]
     fn the_cone_hole_table_follows_the_asymptote_and_bounds_from_below() {
-        // PHYSICS.md fact 5: γ1 grows like (π/2) ln(1/eps); with the constant 1 it holds to
+        // docs/conventions.md fact 5: γ1 grows like (π/2) ln(1/eps); with the constant 1 it holds to
         // 0.03 from eps = 0.1 down (independent of the ring BEM that made the table).
         for &(depth, hole) in &CONE_HOLE_BY_DEPTH {
             let asymptote = std::f64::consts::FRAC_PI_2 * (1.0 / hole).ln() + 1.0;

@@ -70,7 +70,7 @@ fn the_outer_edge_governs_and_edge_intensities_are_consistent() {
         let r = adhesion::flat_annulus(&solver, eps).unwrap();
         assert_eq!(r.governing_edge, "outer", "eps = {eps}");
         assert!(r.dc_outer.abs() < r.dc_inner.abs());
-        // κ read off the pressure field vs κ from the force derivative (PHYSICS fact 7).
+        // κ read off the pressure field vs κ from the force derivative (docs/conventions.md fact 7).
         assert!(
             r.kappa_consistency < 1e-7,
             "eps = {eps}: {}",
@@ -129,4 +129,50 @@ fn strong_adhesion_leaves_no_stable_annular_state() {
     assert!(r.fixed_load.is_none() && r.fixed_load_note.is_some());
     let expected = -1.0 - (1.0 / 3.0 + 1.0) / 10.0;
     assert!((r.full_contact.pulloff.force - expected).abs() < 1e-12);
+}
+
+/// The critical states' error bounds (propagated from the ring BEM's estimates) bound the
+/// actual error where an independent reference is accurate far beyond them: Collins' series at
+/// small holes (truncation `O(eps^7)`: below 1e-13 at `eps <= 0.02`) for the outer edge's
+/// critical depth and force.
+#[test]
+fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
+    let solver = RingBemSolver::new();
+    for eps in [0.01, 0.015, 0.02] {
+        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let c = r.collins.unwrap();
+        let bounds = r.error_bounds.expect("bounds");
+        let truncation = 10.0 * eps.powi(7);
+        assert!(
+            (r.dc_outer - c.depth).abs() <= bounds.dc_outer + truncation,
+            "eps {eps}: d_c off by {:e}, bound {:e}",
+            (r.dc_outer - c.depth).abs(),
+            bounds.dc_outer
+        );
+        assert!(
+            (r.fc_outer - c.force).abs() <= bounds.fc_outer + truncation,
+            "eps {eps}: F_c off by {:e}, bound {:e}",
+            (r.fc_outer - c.force).abs(),
+            bounds.fc_outer
+        );
+        assert!(
+            bounds.fc_outer > 0.0 && bounds.fc_outer < 1e-6,
+            "{bounds:?}"
+        );
+    }
+}
+
+/// A concave punch's critical states carry bounds; full contact's closed forms are exact.
+#[test]
+fn the_concave_critical_states_carry_error_bounds() {
+    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::Sphere, 1.0).unwrap();
+    for c in [&r.fixed_load, &r.fixed_grips].into_iter().flatten() {
+        let bound = c.error_bound.expect("a bound");
+        assert!(bound > 0.0 && bound < 1e-6, "{c:?}");
+        assert!(
+            c.depth_error_bound.is_some_and(|b| b > 0.0 && b < 1e-6),
+            "{c:?}"
+        );
+    }
+    assert_eq!(r.full_contact.pulloff.error_bound, Some(0.0));
 }

@@ -1,5 +1,5 @@
 //! Code verification of the axisymmetric elasticity discretisation by the method of manufactured
-//! solutions (VERIFICATION.md): observed orders of the L2 and energy-norm errors must be within
+//! solutions (docs/methods.md): observed orders of the L2 and energy-norm errors must be within
 //! 0.1 of theory (2 and 1 for linear, 3 and 2 for quadratic triangles).
 //!
 //! Manufactured field (regular on the axis: `u_r` odd in `r`, `u_z` even):

@@ -451,8 +451,8 @@ fn full_contact_near_closure_is_bound_certified_or_declined() {
 fn a_closed_cone_within_its_estimate_is_answered() {
     // The cone never closes, but at 13 and 14 h its holes (4.8e-4 and 2.5e-4 a, ring BEM) are
     // below the quadratic models' resolution at 1e-3: their answer, eps = 0 within 8.2e-4, holds
-    // them. The harness's plausibility check refused every closed cone below 15 h (eleventh
-    // session: it now compares the estimate with the hole's lower bound at that depth). Through
+    // them. The harness's plausibility check once refused every closed cone below 15 h (it now
+    // compares the estimate with the hole's lower bound at that depth). Through
     // the binary, where the check applies; both bounds against the ring BEM.
     if !gmsh_available("a_closed_cone_within_its_estimate_is_answered") {
         return;

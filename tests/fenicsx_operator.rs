@@ -1,4 +1,4 @@
-//! Our assembled operator against FEniCSx's (issue 12): the stiffness matrix and the
+//! Our assembled operator against FEniCSx's: the stiffness matrix and the
 //! unit-pressure load vector, entry by entry, dofs matched by position.
 //!
 //! References: FEniCSx's own assembly (dolfinx 0.5.2), stored for one small mesh under

@@ -48,7 +48,9 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
             row.file
         );
         assert!(
-            row.stored.reproduce.starts_with("verify solve --punch"),
+            row.stored
+                .reproduce
+                .starts_with("cargo run --release --quiet -- solve --punch"),
             "{}: no reproduce line",
             row.file
         );
@@ -69,7 +71,9 @@ fn the_stored_results_on_the_largest_meshes_can_be_remade_and_compared() {
             "{file}: no gmsh parameters to remake its mesh"
         );
         assert!(
-            result.reproduce.starts_with("verify solve --punch"),
+            result
+                .reproduce
+                .starts_with("cargo run --release --quiet -- solve --punch"),
             "{file}"
         );
         assert!(result.force.is_finite() && result.force > 0.0 && result.wall_s > 0.0);
@@ -92,7 +96,7 @@ fn a_result_whose_mesh_changed_is_stale_and_not_used() {
     let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
     assert_eq!(row.status, "stale");
     assert!(row.our_force.is_none() && !row.passed);
-    // Not compared is a failure (issue 11): the stale row, and a run that compared nothing.
+    // Not compared is a failure: the stale row, and a run that compared nothing.
     assert_eq!(
         fenicsx::failures(std::slice::from_ref(&row)),
         2,

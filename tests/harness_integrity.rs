@@ -1,5 +1,5 @@
 //! A check that compares nothing, or reads a corrupt file as "no problem", is a failure
-//! (issue 11, class 3): empty or foreign reports, truncated history lines, garbage stability
+//!: empty or foreign reports, truncated history lines, garbage stability
 //! files, missing result directories, comparisons with nothing compared.
 
 use std::path::PathBuf;

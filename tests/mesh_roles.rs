@@ -1,6 +1,6 @@
 //! Meshes that read cleanly but do not model the scene: tags swapped between groups, a domain
 //! that misses part of the half-space, overlapping triangles, the wrong contact line for the
-//! punch. Each must be an error naming the problem, never a confident number (issue 11, class 2).
+//! punch. Each must be an error naming the problem, never a confident number.
 //! Built from the committed `small-domain-R5.msh` (a quarter disk of radius 5a, P1).
 
 use std::path::PathBuf;

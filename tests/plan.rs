@@ -55,9 +55,10 @@ fn text(bytes: &[u8]) -> String {
 }
 
 /// Keys whose values are wall times or follow from them (the Pareto front), and dates.
-const TIMING_KEYS: [&str; 6] = [
+const TIMING_KEYS: [&str; 7] = [
     "wall_s",
     "fem_wall_s",
+    "wall_s_range",
     "our_wall_s",
     "wall_time_ratio",
     "on_pareto_front",

@@ -81,7 +81,7 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
     // The study as `verify pulloff` runs it: a mesh per range with a refined band at the rim.
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
     let values: Vec<f64> = s.sequence.iter().map(|e| e.pulloff_over_f0).collect();
-    // The Tabor parameter spans a factor 10 (issue 13), every range on its own band.
+    // The Tabor parameter spans a factor 10, every range on its own band.
     let tabor: Vec<f64> = s.sequence.iter().map(|e| e.tabor).collect();
     assert!(tabor[tabor.len() - 1] >= 9.9 * tabor[0], "{tabor:?}");
     assert!(s.sequence.iter().all(|e| e.rim_band.is_some()));

@@ -1,4 +1,4 @@
-//! The report's web page opened in a real browser (issue 12): Debian's `chromium`, headless,
+//! The report's web page opened in a real browser: Debian's `chromium`, headless,
 //! renders `index.html` of a fresh `verify compare` report; the test checks that every chart of
 //! the Markdown report is on the page and drawn, that nothing failed to load, and that the
 //! screenshot (written to the report directory, `reports/browser-test/screenshot.png`) is not

@@ -42,7 +42,7 @@ fn flat_annulus_agrees_with_collins_series_to_its_truncation_error() {
         let reference = collins_series(eps);
         let state = solver.flat(eps, TOL).unwrap();
         let g = state.gamma.unwrap();
-        // Agreement rule: |f - f_ref| <= U_ref + U_method (VERIFICATION.md, cross-verification).
+        // Agreement rule: |f - f_ref| <= U_ref + U_method (docs/methods.md, cross-verification).
         let bound = reference.error_bound.unwrap() + state.error_estimate * g;
         assert!(
             (g - reference.value).abs() <= bound,
@@ -76,7 +76,7 @@ fn flat_annulus_approaches_the_narrow_ring_asymptote_at_its_order() {
 
 #[test]
 fn the_factor_one_half_in_the_narrow_ring_force() {
-    // PHYSICS.md: F = π² (a+b) E* d / ln(16/δ) (without the 1/2) gives γ > 1, twice too large.
+    // docs/conventions.md: F = π² (a+b) E* d / ln(16/δ) (without the 1/2) gives γ > 1, twice too large.
     let g = gamma(&RingBemSolver::new(), 0.99);
     let without_half = 2.0 * narrow_ring(0.99).value;
     assert!(without_half > 1.0 && (g - without_half).abs() > 0.5);
@@ -132,7 +132,7 @@ fn small_hole_limits_follow_the_full_contact_solutions() {
 
 #[test]
 fn cone_depth_grows_like_half_pi_log_one_over_eps() {
-    // PHYSICS.md fact 5: γ1 ~ (π/2) ln(1/eps) as eps -> 0 (full contact is never reached).
+    // docs/conventions.md fact 5: γ1 ~ (π/2) ln(1/eps) as eps -> 0 (full contact is never reached).
     let solver = RingBemSolver::new();
     let g1 = |eps| {
         solver
@@ -147,7 +147,7 @@ fn cone_depth_grows_like_half_pi_log_one_over_eps() {
 
 #[test]
 fn incremental_stiffness_identity_holds() {
-    // PHYSICS.md fact 6: γ2'(eps) = γ(eps) γ1'(eps), γ from an independent flat-annulus solve.
+    // docs/conventions.md fact 6: γ2'(eps) = γ(eps) γ1'(eps), γ from an independent flat-annulus solve.
     let solver = RingBemSolver::new();
     for kind in [PunchKind::Cone, PunchKind::Sphere] {
         for &eps in &[0.05, 0.2, 0.5, 0.8, 0.95] {
@@ -172,7 +172,7 @@ fn incremental_stiffness_identity_holds() {
 
 #[test]
 fn edge_stress_intensities_follow_from_the_force_derivative() {
-    // PHYSICS.md fact 7: κ_out² = γ - eps γ', κ_in² = -γ'/eps with K = E* d κ / sqrt(π a).
+    // docs/conventions.md fact 7: κ_out² = γ - eps γ', κ_in² = -γ'/eps with K = E* d κ / sqrt(π a).
     let solver = RingBemSolver::new();
     for &eps in &[0.1, 0.4, 0.7, 0.95] {
         let step = 1e-3 * f64::min(eps, 1.0 - eps);

@@ -1,19 +1,33 @@
-"""Solve one punch scene with FEniCSx (dolfinx 0.5) on a committed gmsh mesh and store the result.
+"""Solve one punch scene with FEniCSx (dolfinx 0.5) on a gmsh mesh; print or store the result.
 
-The discrete problem is the one `verify solve --method fem --mesh M --degree k` solves:
-  * axisymmetric linear elasticity in (r, z), E = 1, nu = 0 (so E* = 1), Lagrange P1 or P2 on the
-    mesh's straight-sided triangles;
-  * weak form  a(u, v) = int sigma(u) : eps(v) 2 pi r dx  with a FIXED quadrature degree (2 for P1,
-    4 for P2: basix's default rules, the same points the Rust code uses);
+The discrete problem is the one `verify solve --method fem --mesh M --degree k --far-field fixed`
+solves:
+  * axisymmetric linear elasticity in (r, z), E = 1, nu = 0 (so E* = 1), Lagrange P1, P2 or P3 on
+    the mesh's straight-sided triangles;
+  * weak form  a(u, v) = int sigma(u) : eps(v) 2 pi r dx  with a FIXED quadrature degree (2p:
+    basix's default rules, the same points the Rust code uses);
   * u = 0 on the far arc (tag 3), u_r = 0 on the axis (tag 4);
   * flat punches: u_z = -d on the contact line (tag 1); concave punches: u_z <= -d + h g(r) on every
     contact-line z-dof, solved by PETSc's SNES variational-inequality solver (vinewtonrsls);
   * force = -(sum of K u over the contact-line z-dofs): the consistent nodal reactions.
 
-Usage: /usr/bin/python3 solve.py --punch cone --mesh meshes/disk-L1.msh --degree 2 --depth 2
-       [--eps B_OVER_A] --out verify/fenicsx/NAME.json      (run from the repository root)
-Under MPI (PETSc's distributed vectors and matrices, MUMPS's LU), the same problem:
-       mpirun -n 2 /usr/bin/python3 solve.py ...             (scripts/fenicsx/run_mpi.sh)
+How it is solved, as a competent FEniCSx user would: one matrix assembly (the stiffness with the
+Dirichlet rows and columns replaced by the identity; the residual of the contact problem is its
+product with the iterate, the reactions one vector assembly of the form's action), a direct
+factorisation chosen by --solver (PETSc's own LU, MUMPS's LU or Cholesky, CHOLMOD's Cholesky;
+the matrix is symmetric positive definite), in one process or under `mpirun -n K` (MUMPS).
+
+Timed region (wall_s): from reading the mesh file to the force (read, function space, assembly,
+solve, reactions), after the imports; the phases are in `timings`. `verify solve --json` reports
+the same region of ours as its `wall_s`.
+
+Usage (from the repository root; needs FEniCSx: bash scripts/fenicsx/setup.sh):
+  /usr/bin/python3 scripts/fenicsx/solve.py --punch cone --mesh meshes/disk-L1.msh --degree 2 --depth 2
+  mpirun -n 2 /usr/bin/python3 scripts/fenicsx/solve.py --punch flat --mesh meshes/disk-L2.msh
+  /usr/bin/python3 scripts/fenicsx/solve.py --punch flat-annulus --eps 0.3 \\
+      --mesh-parameters a=1,b=0.3,R=1e7,... --degree 2      (the mesh made by `verify mesh`)
+Prints one JSON object; --out FILE writes it there instead (through a temporary file and a
+rename; the directory must exist). Nothing else is written.
 """
 
 import argparse
@@ -21,6 +35,7 @@ import datetime
 import hashlib
 import json
 import os
+import subprocess
 import sys
 import time
 
@@ -31,16 +46,24 @@ from petsc4py import PETSc
 
 import dolfinx
 from dolfinx import fem
-from dolfinx.fem.petsc import (apply_lifting, assemble_matrix, assemble_vector,
-                               create_matrix, create_vector, set_bc)
+from dolfinx.fem.petsc import apply_lifting, assemble_matrix, assemble_vector, set_bc
 
 from common import read_mesh, stiffness_form
 
 CONTACT, FREE, FAR, AXIS, HOLE = 1, 2, 3, 4, 5
 BIG = 1e20
-# PETSc's own LU is serial; under `mpirun -n K` (K > 1) the factorisation is MUMPS's, distributed
-# (--lu chooses; the stored serial results use PETSc's).
-LU_SOLVER = "mumps" if MPI.COMM_WORLD.size > 1 else "petsc"
+ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
+
+# --solver: (PETSc factor type, PETSc solver package, serial only).
+SOLVERS = {
+    "petsc-lu": ("lu", "petsc", True),
+    "mumps-lu": ("lu", "mumps", False),
+    "mumps-cholesky": ("cholesky", "mumps", False),
+    "cholmod": ("cholesky", "cholmod", True),
+}
+# The fastest configuration measured on the stored rows (benches/records/fenicsx-speed.json).
+DEFAULT_SOLVER = "mumps-cholesky"
+TIMED_REGION = "mesh file to force: read, function space, assembly, solve, reactions (after imports)"
 
 
 def gap_shape(punch, r):
@@ -56,100 +79,114 @@ def sha256(path):
         return hashlib.sha256(f.read()).hexdigest()
 
 
-def main():
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--punch", required=True, choices=["flat", "flat-annulus", "cone", "sphere"])
-    p.add_argument("--mesh", required=True)
-    p.add_argument("--degree", type=int, default=2, choices=[1, 2, 3])
-    p.add_argument("--depth", type=float, default=1.0)
-    p.add_argument("--eps", type=float, default=None, help="b/a of the flat annulus")
-    p.add_argument("--out", required=True)
-    p.add_argument("--mesh-parameters", default=None,
-                   help="JSON list of [name, value]: the gmsh parameters that remake a generated "
-                        "mesh (printed by `verify mesh`); stored with the result")
-    p.add_argument("--lu", choices=["auto", "petsc", "mumps"], default="auto",
-                   help="LU factorisation: PETSc's own (serial only) or MUMPS (distributed); "
-                        "auto: PETSc's in one process, MUMPS under mpirun -n K > 1")
-    args = p.parse_args()
-    global LU_SOLVER
-    if args.lu != "auto":
-        if args.lu == "petsc" and MPI.COMM_WORLD.size > 1:
-            p.error("--lu petsc is serial: use mumps (or auto) under mpirun -n K > 1")
-        LU_SOLVER = args.lu
+def parameters_text(value):
+    """--mesh-parameters as NAME=VALUE,... (a JSON list of [name, value] is accepted too)."""
+    value = value.strip()
+    if value.startswith("["):
+        return ",".join(f"{name}={float(v)!r}" for name, v in json.loads(value))
+    return value
 
-    comm = MPI.COMM_WORLD
-    comm.Barrier()
-    start = time.perf_counter()
-    mesh, facet_tags = read_mesh(args.mesh)
+
+def parameters_list(text):
+    return [[name, float(v)] for name, v in (item.split("=", 1) for item in text.split(","))]
+
+
+def make_mesh(parameters):
+    """The mesh `verify mesh --parameters` makes (through the project's cache), run by cargo so
+    that the binary is found wherever cargo puts it."""
+    out = subprocess.run(
+        ["cargo", "run", "--release", "--quiet", "--bin", "verify", "--", "mesh", "--parameters",
+         parameters], cwd=ROOT, check=True, capture_output=True, text=True)
+    return os.path.relpath(json.loads(out.stdout)["path"], ROOT)
+
+
+def configure(ksp, solver):
+    factor, package, _ = SOLVERS[solver]
+    ksp.setType("preonly")
+    pc = ksp.getPC()
+    pc.setType(factor)
+    pc.setFactorSolverType(package)
+    if package == "mumps":
+        # Debian's MUMPS has no METIS; AMD (ICNTL(7) = 0) beats its default PORD ordering here.
+        PETSc.Options()["mat_mumps_icntl_7"] = 0
+    ksp.setFromOptions()
+
+
+def blas_library():
+    """The BLAS the process loaded (Debian's alternatives: reference, OpenBLAS, BLIS), as the
+    path of the mapped library."""
+    try:
+        with open("/proc/self/maps") as f:
+            for line in f:
+                path = line.split()[-1]
+                if os.path.basename(path).startswith(("libblas", "libopenblas", "libblis")):
+                    return os.path.realpath(path)
+    except OSError:
+        pass
+    return "unknown"
+
+
+def solve(args, mesh_path, comm):
+    """The timed solve: (force, active radii on this process, dofs, iterations, timings)."""
+    timings = {}
+    t0 = time.perf_counter()
+    mesh, facet_tags = read_mesh(mesh_path)
     V = fem.VectorFunctionSpace(mesh, ("Lagrange", args.degree))
+    t1 = time.perf_counter()
+    timings["read_s"] = t1 - t0
 
-    # Degree 2p: basix's default rules for 2, 4, 6 are the 3-, 6- and 12-point rules the Rust
-    # code uses (for P3 the Lagrange variant of dolfinx places the edge dofs differently, which
-    # spans the same space: identical for flat punches, not for node-wise contact).
     qdeg = 2 * args.degree
     a = stiffness_form(mesh, V, qdeg)
     a_form = fem.form(a)
-
     fdim = 1
     far_dofs = fem.locate_dofs_topological(V, fdim, facet_tags.find(FAR))
     axis_dofs = fem.locate_dofs_topological(V.sub(0), fdim, facet_tags.find(AXIS))
     # Under MPI each process owns part of the dofs and sees some of its neighbours' (ghosts): the
-    # Dirichlet conditions take all of them (contact_dofs_all), the bounds, reactions and active
-    # set the owned ones only (contact_dofs), so each dof counts once.
+    # Dirichlet conditions take all of them, the bounds, reactions and active set the owned ones.
     contact_dofs_all = fem.locate_dofs_topological(V.sub(1), fdim, facet_tags.find(CONTACT))
     bs = V.dofmap.index_map_bs
     owned = V.dofmap.index_map.size_local * bs
     contact_dofs = contact_dofs_all[contact_dofs_all < owned]
     bcs = [fem.dirichletbc(np.zeros(2, dtype=PETSc.ScalarType), far_dofs, V),
            fem.dirichletbc(PETSc.ScalarType(0.0), axis_dofs, V.sub(0))]
-
-    # Coordinates of the dofs (r of each z-dof on the contact line).
     coords = V.tabulate_dof_coordinates()
     contact_r = np.array([coords[d // bs][0] for d in contact_dofs])
-
+    flat = args.punch in ("flat", "flat-annulus")
+    if flat:
+        bcs = bcs + [fem.dirichletbc(PETSc.ScalarType(-args.depth), contact_dofs_all, V.sub(1))]
+    A = assemble_matrix(a_form, bcs=bcs)
+    A.assemble()
+    A.setOption(PETSc.Mat.Option.SPD, True)
     u = fem.Function(V)
-    K = assemble_matrix(a_form)  # without boundary conditions: K u gives the reactions
-    K.assemble()
-    iterations = 1
+    t2 = time.perf_counter()
+    timings["assembly_s"] = t2 - t1
 
-    if args.punch in ("flat", "flat-annulus"):
-        bcs_flat = bcs + [fem.dirichletbc(PETSc.ScalarType(-args.depth), contact_dofs_all, V.sub(1))]
-        A = assemble_matrix(a_form, bcs=bcs_flat)
-        A.assemble()
-        b = u.vector.duplicate()  # no body force: the right side comes from the lifting only
+    ksp_owner = None
+    if flat:
+        b = u.vector.duplicate()
         with b.localForm() as bl:
             bl.set(0.0)
-        apply_lifting(b, [a_form], bcs=[bcs_flat])
+        apply_lifting(b, [a_form], bcs=[bcs])
         b.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-        set_bc(b, bcs_flat)
+        set_bc(b, bcs)
         ksp = PETSc.KSP().create(mesh.comm)
         ksp.setOperators(A)
-        ksp.setType("preonly")
-        ksp.getPC().setType("lu")
-        ksp.getPC().setFactorSolverType(LU_SOLVER)
+        configure(ksp, args.solver)
         ksp.solve(b, u.vector)
+        if ksp.getConvergedReason() <= 0:
+            raise RuntimeError(f"the linear solve failed: reason {ksp.getConvergedReason()}")
         u.x.scatter_forward()
+        iterations = 1
         active = np.ones(len(contact_dofs), dtype=bool)
     else:
-        # Residual F(u) = K u with Dirichlet rows, Jacobian K; bounds on the contact z-dofs.
-        residual_form = fem.form(ufl.action(a, u))
-        J = create_matrix(a_form)
-        F = create_vector(residual_form)
-
+        # Residual F(u) = A u (A: K with identity rows and columns at the homogeneous Dirichlet
+        # dofs, where the iterate is zero), Jacobian A, assembled once; bounds on the contact
+        # z-dofs.
         def form_residual(snes, X, B):
-            X.copy(u.vector)
-            u.x.scatter_forward()
-            with B.localForm() as bl:
-                bl.set(0.0)
-            assemble_vector(B, residual_form)
-            apply_lifting(B, [a_form], bcs=[bcs], x0=[X], scale=-1.0)
-            B.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
-            set_bc(B, bcs, X, -1.0)
+            A.mult(X, B)
 
-        def form_jacobian(snes, X, A, P):
-            A.zeroEntries()
-            assemble_matrix(A, a_form, bcs=bcs)
-            A.assemble()
+        def form_jacobian(snes, X, J, P):
+            pass
 
         upper = u.vector.duplicate()
         lower = u.vector.duplicate()
@@ -158,75 +195,163 @@ def main():
         bound = -args.depth + gap_shape(args.punch, contact_r)
         upper.array[contact_dofs] = bound
         snes = PETSc.SNES().create(mesh.comm)
-        snes.setFunction(form_residual, F)
-        snes.setJacobian(form_jacobian, J)
+        snes.setFunction(form_residual, u.vector.duplicate())
+        snes.setJacobian(form_jacobian, A)
         snes.setType("vinewtonrsls")
         snes.setVariableBounds(lower, upper)
         snes.setTolerances(rtol=1e-14, atol=1e-13, max_it=100)
-        ksp = snes.getKSP()
-        ksp.setType("preonly")
-        ksp.getPC().setType("lu")
-        ksp.getPC().setFactorSolverType(LU_SOLVER)
+        configure(snes.getKSP(), args.solver)
         x0 = u.vector.duplicate()
         x0.set(0.0)
         snes.solve(None, x0)
         if snes.getConvergedReason() <= 0:
-            if comm.rank == 0:
-                print(f"SNES did not converge: reason {snes.getConvergedReason()}", file=sys.stderr)
-            return 1
+            raise RuntimeError(f"SNES did not converge: reason {snes.getConvergedReason()}")
         x0.copy(u.vector)
         u.x.scatter_forward()
         iterations = snes.getIterationNumber()
         active = u.vector.array[contact_dofs] >= bound - 1e-10 * args.depth
+        ksp_owner = snes
+    t3 = time.perf_counter()
+    timings["solve_s"] = t3 - t2
 
-    reaction = u.vector.duplicate()
-    K.mult(u.vector, reaction)
+    # Reactions: the unconstrained form's action on the solution, one vector assembly.
+    reaction = assemble_vector(fem.form(ufl.action(a, u)))
+    reaction.ghostUpdate(addv=PETSc.InsertMode.ADD, mode=PETSc.ScatterMode.REVERSE)
     force = -comm.allreduce(float(np.sum(reaction.array[contact_dofs])), op=MPI.SUM)
     comm.Barrier()
-    wall = time.perf_counter() - start
+    timings["reaction_s"] = time.perf_counter() - t3
+    del ksp_owner
     local_active = [float(r) for r, a_ in zip(contact_r, active) if a_]
-    all_active = comm.gather(local_active, root=0)
-    if comm.rank != 0:
-        return 0
+    dofs = int(V.dofmap.index_map.size_global * bs)
+    return force, local_active, dofs, int(iterations), timings
 
-    root = os.getcwd()
-    mesh_rel = os.path.relpath(os.path.abspath(args.mesh), root)
-    cmd = f"verify solve --punch {args.punch} --method fem --mesh {mesh_rel} --degree {args.degree}"
+
+def our_command(args, mesh_rel, parameters):
+    """The `verify solve` that solves the identical discrete problem (runnable as written)."""
+    cmd = f"cargo run --release --quiet -- solve --punch {args.punch} --method fem"
+    cmd += f" --mesh-parameters {parameters}" if parameters else f" --mesh {mesh_rel}"
+    cmd += f" --degree {args.degree}"
     if args.punch == "flat-annulus":
         cmd += f" --eps {args.eps}"
     if args.punch in ("cone", "sphere"):
         cmd += f" --depth {args.depth}"
-    cmd += " --json"
+    return cmd + " --far-field fixed --json"
+
+
+def peer_command(args, mesh_rel, parameters, processes):
+    """This script's command for the same result (printed, not stored)."""
+    cmd = "/usr/bin/python3 scripts/fenicsx/solve.py"
+    if processes > 1:
+        cmd = f"mpirun -n {processes} " + cmd
+    cmd += f" --punch {args.punch}"
+    cmd += f" --mesh-parameters {parameters}" if parameters else f" --mesh {mesh_rel}"
+    cmd += f" --degree {args.degree}"
+    if args.punch == "flat-annulus":
+        cmd += f" --eps {args.eps}"
+    if args.punch in ("cone", "sphere"):
+        cmd += f" --depth {args.depth}"
+    return cmd + f" --solver {args.solver}"
+
+
+def write_atomically(path, text):
+    tmp = f"{path}.{os.getpid()}.partial"
+    with open(tmp, "w") as f:
+        f.write(text)
+    os.replace(tmp, path)
+
+
+def main():
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--punch", required=True, choices=["flat", "flat-annulus", "cone", "sphere"])
+    p.add_argument("--mesh", help="a gmsh .msh file (or give --mesh-parameters)")
+    p.add_argument("--degree", type=int, default=2, choices=[1, 2, 3])
+    p.add_argument("--depth", type=float, default=1.0)
+    p.add_argument("--eps", type=float, default=None, help="b/a of the flat annulus")
+    p.add_argument("--out", help="write the JSON here (default: standard output)")
+    p.add_argument("--mesh-parameters", default=None,
+                   help="NAME=VALUE,... (or a JSON list of [name, value]): the gmsh parameters of "
+                        "meshes/half_space.geo that make the mesh (`verify mesh` prints them); "
+                        "without --mesh the mesh is made from them; stored with the result")
+    p.add_argument("--solver", choices=sorted(SOLVERS), default=None,
+                   help=f"direct factorisation (default {DEFAULT_SOLVER}, the fastest measured)")
+    p.add_argument("--lu", choices=["auto", "petsc", "mumps"], default=None,
+                   help="older spelling: petsc = --solver petsc-lu, mumps = --solver mumps-lu")
+    args = p.parse_args()
+    comm = MPI.COMM_WORLD
+    if args.solver is None:
+        args.solver = {"petsc": "petsc-lu", "mumps": "mumps-lu"}.get(args.lu, DEFAULT_SOLVER)
+    if SOLVERS[args.solver][2] and comm.size > 1:
+        p.error(f"--solver {args.solver} is serial: use mumps-lu or mumps-cholesky under mpirun")
+    if args.mesh is None and args.mesh_parameters is None:
+        p.error("give --mesh FILE or --mesh-parameters NAME=VALUE,...")
+    if args.punch == "flat-annulus" and args.eps is None:
+        p.error("--punch flat-annulus needs --eps B_OVER_A (the mesh's hole)")
+    parameters = parameters_text(args.mesh_parameters) if args.mesh_parameters else None
+    mesh_path = args.mesh
+    if mesh_path is None:
+        mesh_path = make_mesh(parameters) if comm.rank == 0 else None
+        mesh_path = comm.bcast(mesh_path, root=0)
+    mesh_path = os.path.join(ROOT, mesh_path) if not os.path.isabs(mesh_path) else mesh_path
+
+    comm.Barrier()
+    start = time.perf_counter()
+    try:
+        force, local_active, dofs, iterations, timings = solve(args, mesh_path, comm)
+    except RuntimeError as e:
+        if comm.rank == 0:
+            print(f"solve.py: {e}", file=sys.stderr)
+        return 1
+    wall = time.perf_counter() - start
+    all_active = comm.gather(local_active, root=0)
+    if comm.rank != 0:
+        return 0
+
+    mesh_rel = os.path.relpath(mesh_path, ROOT)
     active_r = sorted(r for part in all_active for r in part)
+    factor, package, _ = SOLVERS[args.solver]
     result = {
         "punch": args.punch,
         "mesh": mesh_rel,
-        "mesh_sha256": sha256(args.mesh),
-        **({"mesh_parameters": json.loads(args.mesh_parameters)} if args.mesh_parameters else {}),
+        "mesh_sha256": sha256(mesh_path),
+        **({"mesh_parameters": parameters_list(parameters)} if parameters else {}),
         "degree": args.degree,
-        "quadrature_degree": qdeg,
+        "quadrature_degree": 2 * args.degree,
         "depth": args.depth,
         "eps": args.eps if args.punch == "flat-annulus" else None,
         "force": force,
         "inner_radius": (min(active_r) if active_r else None) if args.punch in ("cone", "sphere") else None,
         "active_contact_radii": active_r,
-        "dofs": int(V.dofmap.index_map.size_global * bs),
-        "iterations": int(iterations),
+        "dofs": dofs,
+        "iterations": iterations,
         "wall_s": wall,
+        "timings": timings,
         "mpi_processes": comm.size,
-        "lu_solver": LU_SOLVER,
+        "lu_solver": package,
+        "configuration": {
+            "solver": args.solver,
+            "factorisation": factor,
+            "package": package,
+            "ordering": "AMD (ICNTL(7) = 0)" if package == "mumps" else "the package's default",
+            "mpi_processes": comm.size,
+            "blas": blas_library(),
+            "blas_threads": os.environ.get("OPENBLAS_NUM_THREADS", "unset"),
+            "timed_region": TIMED_REGION,
+        },
         "dolfinx_version": dolfinx.__version__,
         "petsc_version": ".".join(str(n) for n in PETSc.Sys.getVersion()),
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-        "reproduce": cmd,
+        "reproduce": our_command(args, mesh_rel, parameters),
+        "peer_reproduce": peer_command(args, mesh_rel, parameters, comm.size),
         "notes": "E = 1, nu = 0 (E* = 1), a = h = 1; force includes the 2 pi of the axisymmetric "
                  "weak form; inner_radius is the innermost active contact node (not interpolated)",
     }
-    os.makedirs(os.path.dirname(os.path.abspath(args.out)), exist_ok=True)
-    with open(args.out, "w") as f:
-        json.dump(result, f, indent=2)
-        f.write("\n")
-    print(f"{args.out}: force {force:.12g}, {result['dofs']} dofs, {iterations} iterations, {wall:.2f} s")
+    text = json.dumps(result, indent=2) + "\n"
+    if args.out:
+        write_atomically(args.out, text)
+        print(f"{args.out}: force {force:.12g}, {dofs} dofs, {iterations} iterations, {wall:.3f} s",
+              file=sys.stderr)
+    else:
+        sys.stdout.write(text)
     return 0
 
 

@@ -1,5 +1,5 @@
 """Tamaas's grid BEM with its exponential adhesion functional on our punches and law: the peer of
-`verify pulloff` (issue 13, item 5). One JSON per case under verify/peers/adhesion/.
+`verify pulloff`: one JSON per case (see Usage).
 
 The law is ours: tension (dw/rho) exp(-g/rho) at gap g, i.e. Tamaas's ExponentialAdhesionFunctional
 (potential -dw exp(-g/rho)), with non-penetration; E* = 1 (E = 1, nu = 0), a = 1. Units as
@@ -26,8 +26,13 @@ does not converge within MAX_ITER iterations); the pull-off is found by golden s
 the neighbours of the most tensile step, to 0.002 d0. Tamaas solves each state on its own (no path history); with the hole closed (the
 cases here) there is one branch.
 
-Usage (from the repository root, in .venv-peers; scripts/peers/run_peers.sh adhesion):
-    python scripts/peers/run_adhesion.py
+Usage (from the repository root, in the environment scripts/peers/setup.sh makes):
+    PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_adhesion.py --out DIR [NAME ...]
+    PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_adhesion.py NAME
+The first writes tamaas-NAME.json into DIR for every case (or those named), through a temporary
+file and a rename (the committed baselines are verify/peers/adhesion/: refresh them with --out
+verify/peers/adhesion, review, commit); the second prints the one case's record (what a stored
+record's `reproduce` runs). Cases: flat, cone-d0h10, sphere-d0h10.
 """
 
 import datetime
@@ -206,11 +211,19 @@ def pull(kind, d0_over_h, side, n, log):
 
 
 def main():
+    import argparse
     import tamaas
-    out_dir = os.path.join("verify", "peers", "adhesion")
-    os.makedirs(out_dir, exist_ok=True)
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--out", help="write every case (or those named) into this directory")
+    p.add_argument("names", nargs="*", help="cases: flat, cone-d0h10, sphere-d0h10")
+    args = p.parse_args()
+    if not args.out and len(args.names) != 1:
+        p.error("give --out DIR, or exactly one case to print")
+    out_dir = args.out
+    if out_dir:
+        os.makedirs(out_dir, exist_ok=True)
     log = lambda m: print(m, file=sys.stderr, flush=True)
-    only = sys.argv[1:]
+    only = args.names
     for kind, d0_over_h in CASES:
         name = kind if d0_over_h is None else f"{kind}-d0h{d0_over_h:g}"
         if only and name not in only:
@@ -251,12 +264,17 @@ def main():
             "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "reproduce": "PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_adhesion.py "
                          + name,
-            "ours": cmd,
+            "ours": "cargo run --release --quiet -- " + cmd[len("verify "):] + " --json",
         }
+        if not out_dir:
+            print(json.dumps(record, indent=1))
+            continue
         path = os.path.join(out_dir, f"tamaas-{name}.json")
-        with open(path, "w") as f:
+        tmp = f"{path}.{os.getpid()}.partial"
+        with open(tmp, "w") as f:
             json.dump(record, f, indent=1)
             f.write("\n")
+        os.replace(tmp, path)
         log(f"{path}: pull-off {record['pulloff_over_f0']:.4f} F0 +- {record['uncertainty']:.4f} "
             f"(images {images:+.4f}, resolution {resolution:+.4f})")
 

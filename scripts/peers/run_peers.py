@@ -1,10 +1,15 @@
-"""Run Tamaas and ContactMechanics on the grids and profiles of `verify --method grid-bem` and store
-one JSON per case and package under verify/peers/ (force at a given depth, with provenance).
+"""Run Tamaas and ContactMechanics on the grids and profiles of `verify --method grid-bem`: one
+JSON per case and package (force at a given depth, with provenance).
 
-Usage (from the repository root, in the environment made by scripts/peers/run_peers.sh):
-    python scripts/peers/run_peers.py
+Usage (from the repository root, in the environment scripts/peers/setup.sh makes):
+    PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_peers.py --out DIR
+    PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_peers.py --case tamaas-cone-d2.0-N128
+The first writes every case into DIR (through a temporary file and a rename; the committed
+baselines are verify/peers/: refresh them with --out verify/peers, review, commit); the second
+prints one case's record (what a stored record's `peer_reproduce` runs).
 """
 
+import argparse
 import datetime
 import json
 import os
@@ -41,47 +46,72 @@ def versions():
     return out
 
 
+def name_of(package, kind, eps, depth, n):
+    return f"{package}-{kind}{'-' + str(eps) if kind == 'flat-annulus' else ''}-d{depth}-N{n}"
+
+
+def record_of(package, kind, eps, depth, n, v):
+    inside, g, dx = punch(kind, n, eps)
+    flat = kind in ("flat", "flat-annulus")
+    start = time.perf_counter()
+    if package == "tamaas":
+        force, solves = tamaas_at_depth(inside, g, dx, depth, flat)
+        iterations = None
+    else:
+        force, iterations = contactmechanics_at_depth(inside, g, dx, depth)
+        solves = 1
+    wall = time.perf_counter() - start
+    cmd = f"cargo run --release --quiet -- solve --punch {kind} --method grid-bem --grid {n}"
+    cmd += f" --eps {eps}" if kind == "flat-annulus" else ""
+    cmd += f" --depth {depth}" if not flat else ""
+    name = name_of(package, kind, eps, depth, n)
+    return {
+        "package": package,
+        "package_version": v.get(package, "unknown"),
+        "numpy_version": v["numpy"],
+        "punch": kind,
+        "eps": eps if kind == "flat-annulus" else None,
+        "grid": n,
+        "depth": depth,
+        "force": force,
+        "solves": solves,
+        "iterations": iterations,
+        "wall_s": wall,
+        "profile": "cells N x N on [-1, 1]^2, centres (i + 1/2) dx - 1; punch where b <= r <= 1 "
+                   "(r <= 1); gap 1 - r (cone), 1 - r^2 (sphere), 0 (flat); E* = 1",
+        "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+        "reproduce": cmd + " --json",
+        "peer_reproduce": "PYTHONPATH=scripts/peers .venv-peers/bin/python "
+                          f"scripts/peers/run_peers.py --case {name}",
+    }
+
+
 def main():
-    out_dir = os.path.join("verify", "peers")
-    os.makedirs(out_dir, exist_ok=True)
+    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p.add_argument("--out", help="write every case into this directory")
+    p.add_argument("--case", help="print this case's record (e.g. tamaas-cone-d2.0-N128)")
+    args = p.parse_args()
+    if bool(args.out) == bool(args.case):
+        p.error("give --out DIR (every case) or --case NAME (one, printed)")
     v = versions()
-    for kind, eps, depth, n in CASES:
-        inside, g, dx = punch(kind, n, eps)
-        flat = kind in ("flat", "flat-annulus")
-        for package in ("tamaas", "contactmechanics"):
-            start = time.perf_counter()
-            if package == "tamaas":
-                force, solves = tamaas_at_depth(inside, g, dx, depth, flat)
-                iterations = None
-            else:
-                force, iterations = contactmechanics_at_depth(inside, g, dx, depth)
-                solves = 1
-            wall = time.perf_counter() - start
-            cmd = f"verify solve --punch {kind} --method grid-bem --grid {n}"
-            cmd += f" --eps {eps}" if kind == "flat-annulus" else ""
-            cmd += f" --depth {depth}" if not flat else ""
-            record = {
-                "package": package,
-                "package_version": v.get(package, "unknown"),
-                "numpy_version": v["numpy"],
-                "punch": kind,
-                "eps": eps if kind == "flat-annulus" else None,
-                "grid": n,
-                "depth": depth,
-                "force": force,
-                "solves": solves,
-                "iterations": iterations,
-                "wall_s": wall,
-                "profile": "cells N x N on [-1, 1]^2, centres (i + 1/2) dx - 1; punch where b <= r <= 1 "
-                           "(r <= 1); gap 1 - r (cone), 1 - r^2 (sphere), 0 (flat); E* = 1",
-                "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-                "reproduce": cmd + " --json",
-            }
-            name = f"{package}-{kind}{'-' + str(eps) if kind == 'flat-annulus' else ''}-d{depth}-N{n}.json"
-            with open(os.path.join(out_dir, name), "w") as f:
-                json.dump(record, f, indent=2)
-                f.write("\n")
-            print(f"{name}: force {force:.12g} ({wall:.2f} s)")
+    cases = [(package, *case) for case in CASES for package in ("tamaas", "contactmechanics")]
+    names = [name_of(*c) for c in cases]
+    if args.case:
+        if args.case not in names:
+            p.error(f"unknown case {args.case}; known: {', '.join(names)}")
+        case = cases[names.index(args.case)]
+        print(json.dumps(record_of(*case, v), indent=2))
+        return 0
+    os.makedirs(args.out, exist_ok=True)
+    for case, name in zip(cases, names):
+        record = record_of(*case, v)
+        path = os.path.join(args.out, name + ".json")
+        tmp = f"{path}.{os.getpid()}.partial"
+        with open(tmp, "w") as f:
+            json.dump(record, f, indent=2)
+            f.write("\n")
+        os.replace(tmp, path)
+        print(f"{name}: force {record['force']:.12g} ({record['wall_s']:.2f} s)", file=sys.stderr)
     return 0
 
 

@@ -1,25 +1,34 @@
 #!/usr/bin/env bash
-# Install Tamaas and ContactMechanics from PyPI into .venv-peers (idempotent) and refresh the stored
-# peer results in verify/peers/. Optional arguments: "speed" also runs the 512 x 512 timing
-# comparison with Tamaas (scripts/peers/speed.py); "adhesion" also runs Tamaas's adhesion
-# functional on the pull-off cases (scripts/peers/run_adhesion.py -> verify/peers/adhesion/,
-# about 10 min on 2 cores).
+# Tamaas and ContactMechanics on the grid BEM's problems, every case into --out DIR
+# (scripts/peers/run_peers.py). Extra words: "adhesion" also runs Tamaas's adhesion functional on
+# the pull-off cases into DIR/adhesion (scripts/peers/run_adhesion.py, about 10 min); "speed" also
+# times our grid BEM against Tamaas at 512 x 512, interleaved (scripts/peers/speed.py, its
+# record in benches/records/). Needs the peers (bash scripts/peers/setup.sh); installs nothing.
+# The committed baselines are verify/peers/: refresh with --out verify/peers, review, commit.
+# Usage: bash scripts/peers/run_peers.sh --out DIR [adhesion] [speed]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 venv=.venv-peers
-if [ ! -x "$venv/bin/python" ]; then
-  python3 -m venv "$venv"
-fi
+out=""
+extra=()
+while [ $# -gt 0 ]; do
+  case $1 in
+    --out) out=$2; shift ;;
+    adhesion|speed) extra+=("$1") ;;
+    *) echo "run_peers.sh: unknown argument $1 (--out DIR, adhesion, speed)" >&2; exit 2 ;;
+  esac
+  shift
+done
+[ -n "$out" ] || { echo "run_peers.sh: give --out DIR (verify/peers refreshes the baselines)" >&2; exit 2; }
 if ! "$venv/bin/python" -c "import tamaas, ContactMechanics" 2>/dev/null; then
-  "$venv/bin/pip" install --quiet "tamaas>=2.9" "contactmechanics>=1.8"
+  echo "run_peers.sh: Tamaas and ContactMechanics are not in $venv: bash scripts/peers/setup.sh" >&2
+  exit 1
 fi
-PYTHONPATH=scripts/peers "$venv/bin/python" scripts/peers/run_peers.py
-for arg in "$@"; do
+export PYTHONPATH=scripts/peers
+"$venv/bin/python" scripts/peers/run_peers.py --out "$out"
+for arg in "${extra[@]}"; do
   case $arg in
-    adhesion) PYTHONPATH=scripts/peers "$venv/bin/python" scripts/peers/run_adhesion.py ;;
-    speed)
-      cargo build --release --quiet
-      PYTHONPATH=scripts/peers "$venv/bin/python" scripts/peers/speed.py ;;
-    *) echo "run_peers.sh: unknown argument $arg (speed, adhesion)" >&2; exit 2 ;;
+    adhesion) "$venv/bin/python" scripts/peers/run_adhesion.py --out "$out/adhesion" ;;
+    speed) "$venv/bin/python" scripts/peers/speed.py ;;
   esac
 done

@@ -6,12 +6,8 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory, FromArgMatches};
 
-use ringcontact::cli::{
-    self,
-    args::{Cli, Command},
-};
+use ringcontact::cli::{self, args::Cli};
 use ringcontact::fem::mesh_provider;
-use ringcontact::methods::Method;
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
 /// ends the program quietly with status 141 (as if by SIGPIPE); any other write error (a full
@@ -55,15 +51,15 @@ fn report_panics_in_one_line() {
     }));
 }
 
+/// The program's allocator (a choice of this binary, not of the library: programs that link
+/// `ringcontact` keep their own). mimalloc reuses the large blocks a finite-element solve frees
+/// (pattern, factor, scratch) where the system allocator returns them to the kernel and takes
+/// fresh zeroed pages for the next model.
+#[global_allocator]
+static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
+
 fn main() -> ExitCode {
     report_panics_in_one_line();
-    ringcontact::keep_freed_memory_for_reuse();
-    // Before anything uses rayon: each worker held to its own core (see the module). A setting
-    // that is neither on nor off is refused before any work, like a bad flag.
-    if let Err(e) = ringcontact::thread_pinning::pin_pool_workers_to_cores() {
-        eprintln!("error: {e}");
-        return ExitCode::from(2);
-    }
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
     // unknown flag).
     let command = Cli::command()
@@ -74,18 +70,8 @@ fn main() -> ExitCode {
         Err(e) => e.exit(),
     };
     if let Some(dir) = &cli.data_dir {
-        // Read by the data lookups of the library (mesh_provider::find_project_root); set once,
-        // before any thread starts.
-        std::env::set_var(mesh_provider::DATA_DIR_VARIABLE, dir);
-    }
-    // One scene's finite-element solve takes all of its memory fresh: small pages cost it less
-    // (see the function). The grid BEM iterates hundreds of times over the same large arrays and
-    // the harness's commands reuse memory across solves: both keep huge pages.
-    if matches!(
-        &cli.command,
-        Some(Command::Solve(args)) if matches!(args.method, Method::Fem | Method::Auto)
-    ) {
-        ringcontact::use_base_pages_for_a_single_solve();
+        // Read by the data lookups of the library (mesh_provider::find_project_root).
+        mesh_provider::set_data_directory(dir.clone());
     }
     if cli::needs_data(&cli.command) {
         if let Err(e) = mesh_provider::find_project_root() {

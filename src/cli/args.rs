@@ -26,12 +26,9 @@ Examples:
                                            `verify merge` (on Slurm: scripts/slurm/submit.sh)
 
 Environment:
-  RINGCONTACT_PIN_THREADS=0|1 0: leave the solver's worker threads to the scheduler; 1 (the
-                              default): each held to its own core, faster hand-offs between the
-                              two halves of a step (turn off when other programs share the cores)
+  RINGCONTACT_DATA_DIR=DIR    the project's data directory (as --data-dir)
   RINGCONTACT_TRACE=1         one line per finite-element model on stderr (phase times, sizes)
-  MIMALLOC_ALLOW_THP=0|1      transparent huge pages for the allocator (default: off for
-                              `verify solve --method fem` or `auto`, on otherwise)")]
+  RAYON_NUM_THREADS=N         worker threads of the solvers (default: one per core)")]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Command>,
@@ -72,17 +69,20 @@ Each result is re-solved with FEniCSx's model (same mesh, degree, quadrature, su
 must agree within 1e-8 and the active contact set must be the same. Results whose mesh changed
 since they were stored are reported as stale and not used.
 
-Refresh the stored results (installs FEniCSx from Debian when missing):
-  bash scripts/fenicsx/run_all.sh
-and those on the largest meshes (verify/fenicsx/large/, 6e5-1.4e6 unknowns; about 7 minutes):
-  bash scripts/fenicsx/run_generated.sh --large
+Each stored result carries `reproduce` (this solve, as a command) and `peer_reproduce` (FEniCSx's).
+Refresh the stored results (FEniCSx installed by bash scripts/fenicsx/setup.sh; review the
+difference and commit it):
+  python3 scripts/fenicsx/run_all.py --out verify/fenicsx [--large]
+How fast each code is, measured interleaved: benches/records/fenicsx-speed.md
+(python3 scripts/fenicsx/speed.py).
 
 Example:
   verify fenicsx --json
   verify fenicsx --large              add the stored results on the largest meshes (about a minute
                                       with the meshes cached; gmsh remakes them when they are not)
-  verify fenicsx --operators --json   the stored operator comparisons (bash
-                                      scripts/fenicsx/run_operators.sh remakes them)")]
+  verify fenicsx --operators --json   the stored operator comparisons (python3
+                                      scripts/fenicsx/operators.py --out verify/fenicsx/operators
+                                      remakes them)")]
     Fenicsx(FenicsxArgs),
     /// Make (or find in the cache) a mesh of the adapted family with gmsh and print where it is.
     #[command(after_help = "\
@@ -96,6 +96,7 @@ halvings around the singular edges the solver applies to the file when its rim s
 
 Examples:
   verify mesh --eps 0.3 --level 2                 flat annulus b/a = 0.3, level 2
+  verify mesh --parameters a=1,b=0.3,R=1e5        any parameters of meshes/half_space.geo
   verify mesh --level 1 --free-edge 0.4505        disk, refined around r = 0.4505 a
   verify mesh --level 0 --free-edge 0.4505 --edge-uncertainty 1e-4 --tol 1e-6 --degree 3")]
     Mesh(MeshArgs),
@@ -322,9 +323,9 @@ pub struct JkrArgs {
     /// into --out.
     #[arg(long)]
     pub sweep: bool,
-    /// Directory for the sweep's CSV and SVG.
-    #[arg(long, default_value = "reports/jkr")]
-    pub out: PathBuf,
+    /// Directory for the sweep's CSV and SVG [default: reports/jkr in the project's directory].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     /// Print JSON.
     #[arg(long)]
     pub json: bool,
@@ -348,9 +349,10 @@ pub struct ConvergenceArgs {
     /// d/h of a concave punch.
     #[arg(long, default_value_t = 1.5)]
     pub depth: f64,
-    /// Directory for the CSV and SVG files.
-    #[arg(long, default_value = "reports/convergence")]
-    pub out: PathBuf,
+    /// Directory for the CSV and SVG files [default: reports/convergence in the project's
+    /// directory].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
@@ -379,20 +381,29 @@ pub struct MeshArgs {
     /// Element degree of that solve (with --tol).
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub degree: u8,
+    /// Make the mesh from these meshes/half_space.geo parameters instead (NAME=VALUE,...: the
+    /// `mesh_parameters` this command prints and stored results carry).
+    #[arg(long, value_name = "NAME=VALUE,...", conflicts_with_all = ["eps", "level", "free_edge", "edge_uncertainty", "tol"])]
+    pub parameters: Option<String>,
 }
 
 // The arguments of `verify export`.
 #[derive(Args)]
 pub struct ExportArgs {
     /// gmsh .msh file (physical groups as in meshes/half_space.geo).
-    #[arg(long)]
-    pub mesh: PathBuf,
+    #[arg(long, required_unless_present = "mesh_parameters")]
+    pub mesh: Option<PathBuf>,
+    /// A mesh made by gmsh from meshes/half_space.geo with these parameters (NAME=VALUE,...,
+    /// as `verify mesh` prints them) instead of --mesh.
+    #[arg(long, value_name = "NAME=VALUE,...", conflicts_with = "mesh")]
+    pub mesh_parameters: Option<String>,
     /// Element degree: 1, 2 or 3.
     #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub degree: u8,
-    /// Directory to write stiffness.mtx, load.mtx and dofs.csv into (created if missing).
-    #[arg(long)]
-    pub out: PathBuf,
+    /// Directory to write stiffness.mtx, load.mtx and dofs.csv into (created if missing)
+    /// [default with --compare: a temporary directory, removed afterwards].
+    #[arg(long, required_unless_present = "compare")]
+    pub out: Option<PathBuf>,
     /// FEniCSx's export of the same mesh and degree (scripts/fenicsx/export.py --out DIR):
     /// compare the two operators and print the differences (JSON with --json).
     #[arg(long, value_name = "DIR")]
@@ -460,6 +471,17 @@ pub struct SolveArgs {
     /// instead of the committed mesh family. No error estimate is made on a single mesh.
     #[arg(long)]
     pub mesh: Option<PathBuf>,
+    /// FEM only: a single mesh made by gmsh from meshes/half_space.geo with these parameters
+    /// (NAME=VALUE,...: what `verify mesh` prints and stored results carry), cached in
+    /// .mesh-cache/; like --mesh otherwise.
+    #[arg(long, value_name = "NAME=VALUE,...", conflicts_with = "mesh")]
+    pub mesh_parameters: Option<String>,
+    /// FEM only: the condition on the far arc of the truncated domain. `boussinesq` (the
+    /// default): the arc follows the point-force field, bias O((a/R)^2); `fixed`: u = 0 there,
+    /// the classical truncation (too stiff by about 1.2 a/R), the model of the stored FEniCSx
+    /// results.
+    #[arg(long, value_enum)]
+    pub far_field: Option<crate::fem::far_field::FarField>,
     /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
     /// made by gmsh, 2 on the committed meshes and with --mesh].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
@@ -484,9 +506,10 @@ pub struct CompareArgs {
     /// Print JSON instead of the table.
     #[arg(long)]
     pub json: bool,
-    /// Report directory (Markdown, JSON, SVG charts).
-    #[arg(long, default_value = "reports/latest")]
-    pub report: PathBuf,
+    /// Report directory (Markdown, JSON, SVG charts) [default: reports/latest in the project's
+    /// directory, wherever the command runs].
+    #[arg(long)]
+    pub report: Option<PathBuf>,
     /// Skip the report directory (tables only).
     #[arg(long)]
     pub no_report: bool,
@@ -494,6 +517,11 @@ pub struct CompareArgs {
     /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-8.
     #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
     pub fem_tolerances: Vec<f64>,
+    /// A directory of fresh peer and pull-off results laid out as verify/ (fenicsx/, peers/,
+    /// pulloff/; what scripts/nightly.sh writes into REPORT/fresh): each is compared with its
+    /// committed baseline, a difference beyond tolerance a failed check.
+    #[arg(long, value_name = "DIR")]
+    pub fresh: Option<PathBuf>,
 }
 
 // The arguments of `verify plan`.

@@ -13,9 +13,10 @@ use crate::punch::PunchKind;
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
+    let out = super::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match args.punch {
         PunchKind::FlatAnnulus if args.sweep => sweep_output(
-            &sweeps::flat_annulus_sweep(&solver, &args.out).map_err(message)?,
+            &sweeps::flat_annulus_sweep(&solver, &out).map_err(message)?,
             args.json,
         )?,
         PunchKind::FlatAnnulus => {
@@ -32,7 +33,7 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
         }
         PunchKind::Cone | PunchKind::Sphere if args.sweep => {
             let mut bar = Progress::new("sweep", 25);
-            let sweep = sweeps::pulloff_sweep(&solver, args.punch, &args.out, |s| bar.tick(s))
+            let sweep = sweeps::pulloff_sweep(&solver, args.punch, &out, |s| bar.tick(s))
                 .map_err(message)?;
             sweep_output(&sweep, args.json)?
         }
@@ -78,6 +79,7 @@ fn critical_columns(title: &str) -> Table {
             Column::number("eps", "eps", Format::Fixed(6)),
             Column::number("depth", "d_c", Format::Fixed(9)),
             Column::number("force", "F_c/F0", Format::Fixed(9)),
+            Column::number("bound", "error bound", Format::Scientific(1)),
             Column::text("note", "note"),
         ],
     )
@@ -86,7 +88,8 @@ fn critical_columns(title: &str) -> Table {
 /// The flat annulus: critical states at each edge, and the asymptotic references.
 fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
     let mut t = critical_columns(&format!(
-        "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0)",
+        "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0; the bound \
+         is the larger of d_c's and F_c's, from the ring BEM's estimates)",
         r.eps, r.gamma, r.gamma_prime
     ));
     let governs = |edge: &str| {
@@ -96,11 +99,13 @@ fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
             ""
         }
     };
+    let bounds = r.error_bounds;
     t.push(vec![
         "outer edge".into(),
         r.eps.into(),
         r.dc_outer.into(),
         r.fc_outer.into(),
+        bounds.map(|b| b.dc_outer.max(b.fc_outer)).into(),
         governs("outer").into(),
     ]);
     t.push(vec![
@@ -108,6 +113,7 @@ fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
         r.eps.into(),
         r.dc_inner.into(),
         r.fc_inner.into(),
+        bounds.map(|b| b.dc_inner.max(b.fc_inner)).into(),
         governs("inner").into(),
     ]);
     let references = [
@@ -121,6 +127,7 @@ fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
                 r.eps.into(),
                 c.depth.into(),
                 c.force.into(),
+                Cell::Missing,
                 "reference".into(),
             ]);
         }
@@ -147,6 +154,7 @@ fn concave_text(r: &ConcaveJkr) -> String {
             Column::number("eps", "eps", Format::Fixed(6)),
             Column::number("depth", "d/h", Format::Fixed(6)),
             Column::number("force", "F/F0", Format::Fixed(6)),
+            Column::number("bound", "F error bound", Format::Scientific(1)),
             Column::text("edge", "governing edge / note"),
         ],
     );
@@ -158,11 +166,13 @@ fn concave_text(r: &ConcaveJkr) -> String {
                 c.eps.into(),
                 Some(c.depth).filter(|d| d.is_finite()).into(),
                 c.force.into(),
+                c.error_bound.into(),
                 c.governing_edge.clone().into(),
             ],
             None => vec![
                 control.into(),
                 route.into(),
+                Cell::Missing,
                 Cell::Missing,
                 Cell::Missing,
                 Cell::Missing,
@@ -201,6 +211,9 @@ fn concave_text(r: &ConcaveJkr) -> String {
             depth_over_d0: f64::NAN,
             force,
             governing_edge: "inner".into(),
+            // The paper's fitted formulas declare no error.
+            error_bound: None,
+            depth_error_bound: None,
         });
         critical_row(
             control,

@@ -62,9 +62,10 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         None => studies::compare(CompareArgs {
             tol: DEFAULT_TOLERANCE,
             json: false,
-            report: "reports/latest".into(),
+            report: None,
             no_report: false,
             fem_tolerances: report::DEFAULT_FEM_TOLERANCES.to_vec(),
+            fresh: None,
         }),
         Some(Command::Compare(args)) => studies::compare(args),
         Some(Command::Solve(args)) => solve::solve(args),
@@ -125,6 +126,37 @@ fn refuse_other_family_flags(
         ));
     }
     Ok(())
+}
+
+/// The mesh a FEM command reads: `--mesh FILE` as given, or the mesh gmsh makes (through the
+/// cache) from `--mesh-parameters NAME=VALUE,...`; `None` when neither is given.
+fn chosen_mesh(
+    mesh: Option<&std::path::Path>,
+    parameters: Option<&str>,
+    why: &str,
+) -> Result<Option<std::path::PathBuf>, String> {
+    match (mesh, parameters) {
+        (Some(path), _) => Ok(Some(path.to_path_buf())),
+        (None, Some(text)) => {
+            let parameters = crate::fem::mesh_provider::parse_parameters(text).map_err(message)?;
+            let provided =
+                crate::fem::mesh_provider::generate(&parameters, why).map_err(message)?;
+            Ok(Some(provided.path))
+        }
+        (None, None) => Ok(None),
+    }
+}
+
+/// An output directory: the one given, or `default` (relative) under the project's directory
+/// (never under whichever directory the command runs in, such as `src/`); the current
+/// directory only outside a project.
+fn output_directory(given: Option<&std::path::Path>, default: &str) -> std::path::PathBuf {
+    match given {
+        Some(path) => path.to_path_buf(),
+        None => crate::fem::mesh_provider::find_project_root()
+            .map(|root| root.join(default))
+            .unwrap_or_else(|_| default.into()),
+    }
 }
 
 /// Any error of the library as the message of an `Err`.

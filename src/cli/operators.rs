@@ -39,9 +39,39 @@ pub fn export(args: ExportArgs) -> Result<Reply, String> {
     if args.json && args.compare.is_none() {
         return Err("--json prints the comparison: give --compare DIR as well".into());
     }
-    let written = export_mesh(&args.mesh, degree, &args.out).map_err(message)?;
+    let mesh = super::chosen_mesh(
+        args.mesh.as_deref(),
+        args.mesh_parameters.as_deref(),
+        "verify export --mesh-parameters",
+    )?
+    .ok_or("give --mesh FILE or --mesh-parameters NAME=VALUE,...")?;
+    // With --compare and no --out, our files go to a scratch directory removed at the end.
+    let scratch = args
+        .out
+        .is_none()
+        .then(|| std::env::temp_dir().join(format!("ringcontact-export-{}", std::process::id())));
+    let out = args
+        .out
+        .clone()
+        .or_else(|| scratch.clone())
+        .unwrap_or_default();
+    let result = export_and_compare(&args, &mesh, degree, &out);
+    if let Some(dir) = scratch {
+        let _ = std::fs::remove_dir_all(dir);
+    }
+    result
+}
+
+/// The body of [`export`]: write into `out`, compare with `--compare`'s directory if given.
+fn export_and_compare(
+    args: &ExportArgs,
+    mesh: &std::path::Path,
+    degree: Degree,
+    out: &std::path::Path,
+) -> Result<Reply, String> {
+    let written = export_mesh(mesh, degree, out).map_err(message)?;
     let mut text = String::new();
-    if !args.json {
+    if !args.json && args.out.is_some() {
         for path in &written {
             text += &format!("wrote {}\n", path.display());
         }
@@ -49,8 +79,7 @@ pub fn export(args: ExportArgs) -> Result<Reply, String> {
     let Some(fenicsx_dir) = &args.compare else {
         return Ok(Reply::ok(text));
     };
-    let comparison =
-        operator::compare_operator(&args.mesh, degree, fenicsx_dir).map_err(message)?;
+    let comparison = operator::compare_operator(mesh, degree, fenicsx_dir).map_err(message)?;
     let met = comparison.meets_goal();
     text += &if args.json {
         to_json(&comparison)?
@@ -63,6 +92,12 @@ pub fn export(args: ExportArgs) -> Result<Reply, String> {
 /// `verify mesh`: make (or find in the cache) a mesh of the adapted family and print one JSON
 /// object naming it.
 pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
+    if let Some(text) = &args.parameters {
+        let parameters = mesh_provider::parse_parameters(text).map_err(message)?;
+        let provided =
+            mesh_provider::generate(&parameters, "verify mesh --parameters").map_err(message)?;
+        return describe_mesh(&provided, None, &parameters);
+    }
     if !(0.0..1.0).contains(&args.eps) {
         return Err(format!("--eps {}: need 0 <= b/a < 1", args.eps));
     }
@@ -119,13 +154,24 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
         args.edge_uncertainty,
         target,
     );
+    describe_mesh(&provided, Some(request.label()), &parameters)
+}
+
+/// The JSON object `verify mesh` prints: where the mesh is, its hash and origin, and the
+/// parameters that remake it (as a list and as `--mesh-parameters` text).
+fn describe_mesh(
+    provided: &mesh_provider::ProvidedMesh,
+    label: Option<String>,
+    parameters: &[(String, f64)],
+) -> Result<Reply, String> {
     let out = serde_json::json!({
         "path": provided.path.display().to_string(),
         "sha256": provided.sha256().map_err(message)?,
         "origin": provided.origin,
         "gmsh_version": provided.gmsh_version,
-        "label": request.label(),
+        "label": label,
         "parameters": parameters,
+        "mesh_parameters": mesh_provider::format_parameters(parameters),
         "corner_refinement": provided.corner_refinement.as_ref().map(|r| r.describe()),
     });
     Ok(Reply::ok(to_json(&out)?))

@@ -134,10 +134,14 @@ pub fn merge(args: MergeArgs) -> Result<Reply, String> {
     match parts::assemble(results).map_err(message)? {
         Assembled::Report { inputs, stability } => {
             let mut bar = Progress::new("merge", report::STAGES);
-            report::write_report(&args.report, &inputs, |stage| bar.tick(stage))
+            let extras = report::write_report(&args.report, &inputs, |stage| bar.tick(stage))
                 .map_err(message)?;
-            let mut reply =
-                compare_reply(&CompareInputs::of(&inputs), Some(&args.report), args.json)?;
+            let mut reply = compare_reply(
+                &CompareInputs::of(&inputs),
+                Some(&args.report),
+                Some(&extras),
+                args.json,
+            )?;
             if let Some(probes) = stability {
                 let path = args.report.join("stability.json");
                 std::fs::write(&path, to_json(&probes)?)

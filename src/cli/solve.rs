@@ -13,8 +13,20 @@ use crate::solution::Solution;
 /// `--method`; prints the state (or one JSON object).
 pub fn solve(args: SolveArgs) -> Result<Reply, String> {
     let scene = scene_of(&args)?;
+    if args.mesh_parameters.is_some() && args.method != crate::methods::Method::Fem {
+        return Err(format!(
+            "--mesh-parameters makes a mesh for --method fem only (not {})",
+            args.method.name()
+        ));
+    }
+    let mesh = super::chosen_mesh(
+        args.mesh.as_deref(),
+        args.mesh_parameters.as_deref(),
+        "verify solve --mesh-parameters",
+    )?;
     let options = MethodOptions {
-        mesh: args.mesh.clone(),
+        mesh,
+        far_field: args.far_field,
         degree: args.degree.and_then(Degree::from_number),
         grid: args.grid.map(|g| g as usize),
         vtu: args.vtu.clone(),

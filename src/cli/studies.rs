@@ -9,7 +9,8 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::harness::progress::Progress;
 use crate::harness::table::{Column, Format, Table};
 use crate::harness::{
-    comparison, convergence, fenicsx, history, html, operator, parts, peers, report, stability,
+    baselines, comparison, convergence, fenicsx, history, html, operator, parts, peers, report,
+    stability,
 };
 use crate::punch::PunchKind;
 use crate::reference;
@@ -35,16 +36,41 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
             operators: operator::load_records().map_err(message)?,
             adhesion_peers: Vec::new(),
         };
-        return compare_reply(&inputs, None, args.json);
+        return compare_reply(&inputs, None, None, args.json);
     }
+    if let Some(fresh) = &args.fresh {
+        if !fresh.is_dir() {
+            return Err(format!(
+                "--fresh {}: not a directory (the fresh results laid out as verify/: fenicsx/, \
+                 peers/, pulloff/)",
+                fresh.display()
+            ));
+        }
+    }
+    let report_dir = super::output_directory(args.report.as_deref(), "reports/latest");
+    eprintln!(
+        "verify: writing the report into {} (every method against the references; about a \
+         minute)",
+        absolute(&report_dir)
+    );
     let plan = parts::report_parts(args.tol, &args.fem_tolerances);
     let mut bar = Progress::new("report", plan.len() + report::STAGES);
     let assembled = parts::compute_all(&plan, |id| bar.tick(id)).map_err(message)?;
-    let parts::Assembled::Report { inputs, .. } = assembled else {
+    let parts::Assembled::Report { mut inputs, .. } = assembled else {
         return Err("the report's parts did not make a report".into());
     };
-    report::write_report(&args.report, &inputs, |stage| bar.tick(stage)).map_err(message)?;
-    compare_reply(&CompareInputs::of(&inputs), Some(&args.report), args.json)
+    if let Some(fresh) = &args.fresh {
+        let committed = crate::fem::mesh_provider::project_root().join("verify");
+        inputs.baselines = baselines::compare(fresh, &committed).map_err(message)?;
+    }
+    let extras =
+        report::write_report(&report_dir, &inputs, |stage| bar.tick(stage)).map_err(message)?;
+    compare_reply(
+        &CompareInputs::of(&inputs),
+        Some(&report_dir),
+        Some(&extras),
+        args.json,
+    )
 }
 
 /// What `verify compare` prints: the comparison and the stored external results.
@@ -84,9 +110,14 @@ impl CompareInputs {
 pub(super) fn compare_reply(
     inputs: &CompareInputs,
     report_dir: Option<&std::path::Path>,
+    extras: Option<&report::ReportExtras>,
     json: bool,
 ) -> Result<Reply, String> {
-    let success = inputs.failures() == 0;
+    // With a report, its headline counts every check (error bars, fresh baselines too).
+    let success = match extras {
+        Some(e) => e.headline.failed == 0,
+        None => inputs.failures() == 0,
+    };
     let (comparison, external, operators, peer_rows) = (
         &inputs.comparison,
         &inputs.fenicsx,
@@ -121,11 +152,18 @@ pub(super) fn compare_reply(
         peer_rows.len(),
         peers::failures(peer_rows)
     );
+    if let Some(e) = extras {
+        if !e.baselines.is_empty() {
+            text += "\n";
+            text += &baselines::table(&e.baselines).to_terminal();
+        }
+        let _ = writeln!(text, "{}", e.headline.sentence().replace("**", ""));
+    }
     if let Some(dir) = report_dir {
         let _ = writeln!(
             text,
             "Report: {}/index.html (web page), report.md, report.json, SVG charts",
-            dir.display()
+            absolute(dir)
         );
     }
     Ok(Reply::verdict(text, success))
@@ -144,16 +182,42 @@ pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
         ))
     })
     .map_err(message)?;
-    let [csv_path, svg_path] = convergence::write_files(&study, &args.out).map_err(message)?;
+    let out = super::output_directory(args.out.as_deref(), "reports/convergence");
+    let [csv_path, svg_path] = convergence::write_files(&study, &out).map_err(message)?;
+    // A bar that does not bound the actual error, or a study cut short, is not a success.
+    let success = convergence::failures(&study) == 0 && study.stopped.is_none();
     if args.json {
-        return Ok(Reply::ok(to_json(&study)?));
+        return Ok(Reply::verdict(to_json(&study)?, success));
     }
-    Ok(Reply::ok(format!(
-        "{}  wrote {} and {}\n",
-        convergence::render(&study),
-        csv_path.display(),
-        svg_path.display()
-    )))
+    Ok(Reply::verdict(
+        format!(
+            "{}  wrote {} and {}\n",
+            convergence::render(&study),
+            absolute(&csv_path),
+            absolute(&svg_path)
+        ),
+        success,
+    ))
+}
+
+/// A range's end as people read it: `1e-12`, `0.3`, `1 - 1e-12`.
+fn readable_bound(x: f64) -> String {
+    if x > 0.0 && x < 1e-4 {
+        format!("{x:.0e}")
+    } else if x < 1.0 && 1.0 - x < 1e-4 {
+        format!("1 - {:.0e}", 1.0 - x)
+    } else {
+        format!("{x}")
+    }
+}
+
+/// `path` made absolute against the current directory, so that a message says where a file
+/// went wherever the command ran.
+pub(super) fn absolute(path: &std::path::Path) -> String {
+    std::path::absolute(path)
+        .unwrap_or_else(|_| path.to_path_buf())
+        .display()
+        .to_string()
 }
 
 /// The case of a convergence study from `--punch`, `--eps` (flat annulus only) and `--depth`,
@@ -345,9 +409,14 @@ pub fn references(args: JsonArgs) -> Result<Reply, String> {
     for r in reference::catalogue() {
         t.push(vec![
             r.name.into(),
-            format!("{:?}", r.quantity).into(),
-            format!("{:?}", r.kind).into(),
-            format!("[{}, {}]", r.eps_range.0, r.eps_range.1).into(),
+            r.quantity.label().into(),
+            r.kind.label().into(),
+            format!(
+                "[{}, {}]",
+                readable_bound(r.eps_range.0),
+                readable_bound(r.eps_range.1)
+            )
+            .into(),
             r.source.into(),
         ]);
     }

@@ -24,12 +24,15 @@ use super::mesh::{tags, Mesh};
 use super::quadrature::gauss_legendre;
 
 /// How the boundary at the far arc is treated.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize, clap::ValueEnum,
+)]
 #[serde(rename_all = "kebab-case")]
 pub enum FarField {
-    /// `u = 0` on the arc: the classical truncation, force too stiff by about `1.2 a/R`.
+    /// `u = 0` on the arc: the classical truncation (FEniCSx's model in the stored results),
+    /// force too stiff by about `1.2 a/R`.
     Fixed,
-    /// Arc slaved to Boussinesq's point-force field plus the exterior's energy (default).
+    /// Arc slaved to Boussinesq's point-force field plus the exterior's energy (the default).
     Boussinesq,
 }
 
@@ -43,7 +46,7 @@ impl FarField {
     }
 
     /// Relative bias of the force left by this treatment at domain radius `R` (units of `a`) with
-    /// far-arc elements of relative size `g = h_arc / R`: `1.2 a/R` for a fixed arc (PEERS.md;
+    /// far-arc elements of relative size `g = h_arc / R`: `1.2 a/R` for a fixed arc (docs/conventions.md;
     /// measured in the tests). For the Boussinesq condition, the discretisation of the `1/ρ` field
     /// by the far elements, measured `-6.6e-4 a/R` at `g = 0.1` and falling like `g³` (quadratic
     /// elements), bounded here by `1.5e-3 (g/0.1)³ a/R`, plus `0.05 (a/R)²` for the next multipole.

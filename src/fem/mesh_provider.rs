@@ -258,14 +258,26 @@ impl ProvidedMesh {
 /// Environment variable naming the project's data directory (`verify --data-dir` sets it).
 pub const DATA_DIR_VARIABLE: &str = "RINGCONTACT_DATA_DIR";
 
+/// The data directory a program chose (`verify --data-dir`), set once before any lookup.
+static DATA_DIRECTORY: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+
+/// Make `dir` the project's data directory for the rest of the process (what `verify
+/// --data-dir` does; it takes precedence over `RINGCONTACT_DATA_DIR`). The first call wins.
+pub fn set_data_directory(dir: PathBuf) {
+    let _ = DATA_DIRECTORY.set(dir);
+}
+
 /// The project's data directory (the one holding `meshes/half_space.geo` and `verify/`):
 /// `RINGCONTACT_DATA_DIR` (or `verify --data-dir`), else the first directory upward from the
 /// current one that holds `meshes/half_space.geo`. Never a path compiled into the binary: a copy
 /// of the checkout, a moved one or an installed binary reads the data of where it runs.
 pub fn find_project_root() -> Result<PathBuf> {
     let marker = "meshes/half_space.geo";
-    if let Some(dir) = std::env::var_os(DATA_DIR_VARIABLE) {
-        let dir = PathBuf::from(dir);
+    let chosen = DATA_DIRECTORY
+        .get()
+        .cloned()
+        .or_else(|| std::env::var_os(DATA_DIR_VARIABLE).map(PathBuf::from));
+    if let Some(dir) = chosen {
         if dir.join(marker).is_file() {
             return Ok(dir);
         }
@@ -495,6 +507,64 @@ fn ends_with_a_section_end(path: &Path) -> bool {
             .is_some_and(|line| line.starts_with(b"$End"))
 }
 
+/// The parameters `meshes/half_space.geo` declares (its `DefineConstant` block): the names
+/// [`parse_parameters`] accepts.
+pub const GEO_PARAMETERS: [&str; 12] = [
+    "a", "b", "R", "hmin", "hline", "grading", "bref", "hb", "band", "hband", "split", "order",
+];
+
+/// Read `NAME=VALUE,NAME=VALUE,...` (the form [`format_parameters`] writes and stored results
+/// carry in their `reproduce` commands) into `-setnumber` parameters, in the order given (the
+/// cache key depends on it). Unknown names, repeated names and values that are not finite
+/// numbers are refused with the offending item named.
+pub fn parse_parameters(text: &str) -> Result<Vec<(String, f64)>> {
+    let refuse = |message: String| Error::invalid("--mesh-parameters", message);
+    let mut out: Vec<(String, f64)> = Vec::new();
+    for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
+        let (name, value) = item
+            .split_once('=')
+            .ok_or_else(|| refuse(format!("'{item}' is not NAME=VALUE")))?;
+        let name = name.trim();
+        if !GEO_PARAMETERS.contains(&name) {
+            return Err(refuse(format!(
+                "unknown parameter '{name}' (meshes/half_space.geo takes {})",
+                GEO_PARAMETERS.join(", ")
+            )));
+        }
+        if out.iter().any(|(n, _)| n == name) {
+            return Err(refuse(format!("'{name}' is given twice")));
+        }
+        let value: f64 = value
+            .trim()
+            .parse()
+            .ok()
+            .filter(|v: &f64| v.is_finite())
+            .ok_or_else(|| refuse(format!("'{item}': the value is not a finite number")))?;
+        out.push((name.to_string(), value));
+    }
+    if out.is_empty() {
+        return Err(refuse("no parameters given".into()));
+    }
+    Ok(out)
+}
+
+/// `NAME=VALUE,...` with each value in its shortest form that reads back to the same `f64`
+/// (so a mesh remade from the text is the same mesh, byte for byte, as the one stored).
+pub fn format_parameters(parameters: &[(String, f64)]) -> String {
+    parameters
+        .iter()
+        .map(|(name, value)| {
+            // Both forms are Rust's shortest text that reads back to the same f64.
+            if value.abs() >= 1e-3 && value.abs() < 1e6 || *value == 0.0 {
+                format!("{name}={value}")
+            } else {
+                format!("{name}={value:e}")
+            }
+        })
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
 /// Mesh `meshes/half_space.geo` with `parameters`, through the cache.
 pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
     let root = project_root();
@@ -553,6 +623,26 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn mesh_parameters_read_back_exactly_and_bad_ones_are_named() {
+        let parameters = adapted_parameters(0.0, 1, Some(0.4505), 1e-4, None);
+        let text = format_parameters(&parameters);
+        assert_eq!(parse_parameters(&text).unwrap(), parameters);
+        let tiny = vec![("hmin".to_string(), 1.0000000000000002e-6)];
+        assert_eq!(parse_parameters(&format_parameters(&tiny)).unwrap(), tiny);
+        for (bad, named) in [
+            ("a=1,zz=2", "zz"),
+            ("a=1,a=2", "'a' is given twice"),
+            ("a=x", "a=x"),
+            ("a=inf", "a=inf"),
+            ("a", "'a' is not NAME=VALUE"),
+            ("", "no parameters"),
+        ] {
+            let message = parse_parameters(bad).unwrap_err().to_string();
+            assert!(message.contains(named), "{bad}: {message}");
+        }
+    }
 
     #[test]
     fn a_mesh_file_cut_short_is_told_from_a_whole_one() {

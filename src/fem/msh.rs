@@ -262,6 +262,33 @@ pub fn read_msh(path: &Path) -> Result<Mesh> {
     parse_msh(&bytes, &name)
 }
 
+thread_local! {
+    /// Set while this thread runs code whose panics [`catch_quietly`] turns into errors.
+    static QUIET_PANICS: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Run `f`, turning a panic inside it into an `Err` without printing it. The process's panic
+/// hook is never swapped: the first call installs, once, a hook that stays silent on a thread
+/// inside `catch_quietly` and hands every other panic to the hook that was there before (so
+/// concurrent reads cannot leave a silent hook behind, and a program's own hook keeps working).
+pub(crate) fn catch_quietly<R>(
+    f: impl FnOnce() -> R + std::panic::UnwindSafe,
+) -> std::thread::Result<R> {
+    static INSTALL: std::sync::Once = std::sync::Once::new();
+    INSTALL.call_once(|| {
+        let previous = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            if !QUIET_PANICS.with(std::cell::Cell::get) {
+                previous(info);
+            }
+        }));
+    });
+    let was_quiet = QUIET_PANICS.with(|q| q.replace(true));
+    let result = std::panic::catch_unwind(f);
+    QUIET_PANICS.with(|q| q.set(was_quiet));
+    result
+}
+
 /// The SHA-256 (hex) of a file's bytes, being computed on a thread of its own:
 /// [`read_msh_hashed`] starts it when its scans of the text are done, so that it runs beside the
 /// rest of the parse and whatever the caller does next on one core (checks, refinement);
@@ -277,13 +304,9 @@ pub enum PendingHash {
 impl PendingHash {
     /// Start hashing `bytes` on a new thread (hash them here if no thread can be started).
     fn start(bytes: Arc<Vec<u8>>) -> Self {
-        let core = crate::thread_pinning::helper_core_of_caller();
         let hashing = std::thread::Builder::new().spawn({
             let bytes = Arc::clone(&bytes);
-            move || {
-                crate::thread_pinning::hold_helper_to(core);
-                sha256_hex(&bytes)
-            }
+            move || sha256_hex(&bytes)
         });
         match hashing {
             Ok(handle) => Self::Running(handle),
@@ -385,28 +408,16 @@ fn parse_regular_msh_beside<T: Send>(
 ) -> Result<(Mesh, T)> {
     // mshio unwraps in places (e.g. header numbers that overflow): a panic inside it is turned
     // into an error naming the file, never a crash.
-    let parse = || {
-        let quiet = std::panic::take_hook();
-        std::panic::set_hook(Box::new(|_| {}));
-        let parsed = std::panic::catch_unwind(|| mshio::parse_msh_bytes(bytes));
-        std::panic::set_hook(quiet);
-        parsed
-    };
+    let parse = || catch_quietly(|| mshio::parse_msh_bytes(bytes));
     // Our own scans of the text (node tags, element lines) on a thread of their own while mshio
     // parses: at 9e4 quadratic unknowns (a 1 MB file) the whole read took 1.26-1.31 times
     // mshio's parse against 1.70-1.77 times one after the other. A thread, not the rayon pool:
-    // the pool's sleeping workers took 1-2 ms to start a job here, about what the scans take
-    // (when `verify` holds the pool's workers to their cores, this thread is held to the core
-    // this one is not on: see `thread_pinning`).
+    // the pool's sleeping workers took 1-2 ms to start a job here, about what the scans take.
     let scans = || (node_tags_in_file_order(bytes, name), element_lines(bytes));
     let (parsed, ((tags, lines), side)) = std::thread::scope(|scope| {
         let scan_thread = std::thread::Builder::new();
-        let core = crate::thread_pinning::helper_core_away_from_caller();
         let scans = &scans;
-        let scan_and_beside = move || {
-            crate::thread_pinning::hold_helper_to(core);
-            (scans(), beside())
-        };
+        let scan_and_beside = move || (scans(), beside());
         match scan_thread.spawn_scoped(scope, scan_and_beside) {
             Ok(scanning) => {
                 let parsed = parse();
@@ -718,6 +729,40 @@ fn first_line(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    /// Panics caught quietly on two threads at once leave the process's hook in place: a panic
+    /// elsewhere afterwards still reaches it.
+    #[test]
+    fn quiet_catching_never_swaps_the_process_hook() {
+        use std::sync::atomic::{AtomicUsize, Ordering};
+        use std::sync::Arc;
+        // Make sure the quiet hook is installed before counting.
+        let _ = super::catch_quietly(|| ());
+        let seen = Arc::new(AtomicUsize::new(0));
+        let counter = Arc::clone(&seen);
+        let installed = std::panic::take_hook();
+        std::panic::set_hook(Box::new(move |info| {
+            counter.fetch_add(1, Ordering::SeqCst);
+            installed(info);
+        }));
+        let threads: Vec<_> = (0..4)
+            .map(|_| {
+                std::thread::spawn(|| {
+                    for _ in 0..50 {
+                        assert!(super::catch_quietly(|| panic!("inside mshio")).is_err());
+                    }
+                })
+            })
+            .collect();
+        for t in threads {
+            t.join().unwrap();
+        }
+        let before = seen.load(Ordering::SeqCst);
+        let outside = std::panic::catch_unwind(|| panic!("outside"));
+        assert!(outside.is_err());
+        assert_eq!(seen.load(Ordering::SeqCst), before + 1, "the hook was lost");
+        let _ = std::panic::take_hook();
+    }
+
     use super::*;
 
     /// FIPS 180-2's first SHA-256 example ("abc"), computed on the hashing thread; a hash

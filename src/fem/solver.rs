@@ -841,7 +841,7 @@ pub const EDGE_FIELD_FRACTION: f64 = 0.5;
 
 /// The whole shift `κ ε` of a field error that acted as a depth error, with a margin for `κ`'s
 /// own error (below), taken instead of [`EDGE_FIELD_FRACTION`] where the reasons for a smaller
-/// share fail (twelfth session, the ring BEM's edge, depth and force as reference):
+/// share fail (measured with the ring BEM's edge, depth and force as reference):
 /// - under a prescribed force the model's force error is a depth error: the sphere under 5.3,
 ///   5.33 and 5.333 (P3, `--tol 1e-3`) had edges off by 5.1e-4, 1.0e-3 and 1.3e-3 under
 ///   estimates of 2.5e-4, 9.2e-4 and 6.5e-4 (at 5.3: depth error 4.8e-5, `κ` = 7.1, so the field
@@ -855,7 +855,7 @@ pub const EDGE_FIELD_FRACTION: f64 = 0.5;
 /// sphere under 5.3: 1.96, 3.02 and 1.97 on three consecutive models against the ring BEM's 2.37;
 /// under 5.3328: 48.3 against 56.3), and the force estimate under a prescribed force is close to
 /// the actual depth error, so the whole shift alone left no margin: the sphere under 5.3328 (P3,
-/// `--tol 1e-3`) was bound by a factor of 1.02 (thirteenth session: `eps` off by 9.3e-4 under
+/// `--tol 1e-3`) was bound by a factor of 1.02 (`eps` off by 9.3e-4 under
 /// 9.5e-4; with 1.5 it climbs to 135 356 unknowns and answers within 2.6e-5 under 2.4e-4).
 pub const EDGE_FIELD_FRACTION_WHOLE: f64 = 1.5;
 
@@ -888,9 +888,9 @@ pub const MIN_OBSERVED_RATIO: f64 = 1.5;
 /// Force error of the finer model of a grading step whose force changed by `change`, the step
 /// before having changed it by `previous_change`: Richardson with the known order
 /// ([`richardson_factor`], a ratio of `0.6^{1-2p}` per level), or with the observed ratio
-/// `previous_change / change` where that is smaller (VERIFICATION.md: a result outside the
+/// `previous_change / change` where that is smaller (docs/methods.md: a result outside the
 /// asymptotic range converges more slowly than its order says). Measured on the sphere at
-/// 2.9998 h with P3 at `--tol 1e-3` (eleventh session): consecutive levels changed the force by
+/// 2.9998 h with P3 at `--tol 1e-3`: consecutive levels changed the force by
 /// 1.6e-3 and 1.9e-4, a ratio of 8.5 against the assumed 12.9, and the known order's estimate
 /// (9.2e-6) was below the actual error (1.26e-5, ring BEM); the observed ratio's is 1.45e-5.
 pub fn grading_step_estimate(degree: Degree, change: f64, previous_change: Option<f64>) -> f64 {
@@ -1523,7 +1523,7 @@ mod tests {
 
     #[test]
     fn a_grading_step_takes_the_lower_of_the_known_and_the_observed_ratio() {
-        // VERIFICATION.md's Richardson estimate of the finer model, F_s |ΔF| / (q^p - 1), with
+        // docs/methods.md's Richardson estimate of the finer model, F_s |ΔF| / (q^p - 1), with
         // q^p the ratio of the two steps' changes where it is below 0.6^{1-2p}.
         let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-13;
         let change = 1.9e-4;

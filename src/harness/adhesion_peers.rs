@@ -1,4 +1,4 @@
-//! Tamaas as the peer of the pull-off simulation (issue 13, item 5): its grid BEM with its
+//! Tamaas as the peer of the pull-off simulation: its grid BEM with its
 //! exponential adhesion functional on our punches and law (`scripts/peers/run_adhesion.py`,
 //! stored in `verify/peers/adhesion/`), against this build's simulation at the same range.
 //!

@@ -2,7 +2,7 @@
 //! with the analytic references, with a verdict wherever a reference declares an error bound, and
 //! the FEM cross-verified against the ring BEM.
 //!
-//! Verdict rule (cross-verification, `shared/docs/VERIFICATION.md`): a method and a reference
+//! Verdict rule (cross-verification, `docs/methods.md`): a method and a reference
 //! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or bound.
 //! The paper's fits declare no bound: their difference is shown, not judged.
 
@@ -262,7 +262,7 @@ pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Cr
     Ok(checks)
 }
 
-/// PHYSICS.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
+/// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
 /// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
 /// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve.
 pub fn incremental_stiffness_checks(
@@ -339,7 +339,7 @@ pub fn full_contact_limit_checks(
     Ok(checks)
 }
 
-/// PHYSICS.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
+/// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
 /// from the derivative of its force: `κ_out² = γ - eps γ'` and `κ_in² = -γ'/eps` (energy release
 /// rate at a fixed-depth edge). Left: the ring BEM's edge coefficients (local); right: a
 /// fourth-order difference of its force (global).
@@ -395,7 +395,7 @@ pub fn reference_table(comparison: &ComparisonReport) -> Table {
             Column::number("ring_bem", "ring BEM", Format::Fixed(12)),
             Column::number("error_estimate", "est. error", Format::Scientific(0)),
             Column::number("unknowns", "N", Format::Fixed(0)),
-            Column::number("wall_ms", "time", Format::Fixed(3)).with_unit("ms"),
+            Column::number("wall_ms", "time (one run)", Format::Fixed(3)).with_unit("ms"),
             Column::text("references", "references (rel. difference, verdict)"),
         ],
     );
@@ -419,7 +419,7 @@ pub fn reference_table(comparison: &ComparisonReport) -> Table {
         let failed = r.comparisons.iter().any(|c| c.agrees == Some(false));
         let refs = refs.join("; ");
         t.push(vec![
-            format!("{:?}", r.quantity).into(),
+            r.quantity.label().into(),
             r.eps.into(),
             r.value.into(),
             r.error_estimate.into(),
@@ -475,7 +475,7 @@ pub fn fem_table(comparison: &ComparisonReport) -> Table {
             Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
             Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),
             Column::number("dofs", "dofs", Format::Fixed(0)),
-            Column::number("wall_s", "time", Format::Fixed(2)).with_unit("s"),
+            Column::number("wall_s", "time (one run)", Format::Fixed(2)).with_unit("s"),
             Column::text("mesh", "mesh"),
             Column::text("verdict", "verdict"),
         ],
@@ -507,7 +507,7 @@ pub fn render(report: &ComparisonReport) -> String {
         report.tolerance
     );
     out += &reference_table(report).to_terminal();
-    out += "\nNo reference involved: PHYSICS.md facts 6 and 7, full-contact limits.\n";
+    out += "\nNo reference involved: docs/conventions.md facts 6 and 7, full-contact limits.\n";
     out += &identity_table(report).to_terminal();
     out += "\nFEM (P2, default tolerance, on the meshes named in the mesh column) against the \
             ring BEM; agree when |diff| <= U_fem + U_bem (value relative, eps absolute).\n";

@@ -1,4 +1,4 @@
-//! Mesh-convergence studies (solution verification, `shared/docs/VERIFICATION.md`).
+//! Mesh-convergence studies (solution verification, `docs/methods.md`).
 //!
 //! For a sequence of refinements of one method: size `h`, unknowns, value, error against the
 //! yardstick (the ring BEM at 1e-11), the observed order from each consecutive triple,
@@ -55,10 +55,20 @@ pub struct Study {
     pub levels: Vec<Level>,
     pub richardson: Option<f64>,
     pub richardson_error: Option<f64>,
-    /// GCI of the finest level, never below `error_floor`.
+    /// The error bar of the finest level ([`error_bar`]), never below `error_floor`.
     pub gci_fine: Option<f64>,
+    /// How that bar was made (the GCI's safety factor and order, or the oscillation's spread).
+    #[serde(default)]
+    pub bar_method: Option<String>,
+    /// Whether the bar bounds the finest level's actual error against the yardstick (`false` is
+    /// a failed check of the report and of `verify convergence`).
+    #[serde(default)]
+    pub bar_bounds_error: Option<bool>,
     /// Observed order of the finest triple over that of the previous triple.
     pub asymptotic_ratio: Option<f64>,
+    /// Why the study stopped before its last level (the levels before it are kept), if it did.
+    #[serde(default)]
+    pub stopped: Option<String>,
     /// FEM: the unresolved error component of its finest model
     /// ([`fem_solver::unresolved_component`]), which refinement does not reduce and a GCI from
     /// level differences cannot see.
@@ -177,7 +187,9 @@ pub fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<(
     Ok(())
 }
 
-/// Run a study of `levels` refinements with `method`; `progress` is called after each level.
+/// Run a study of `levels` refinements with `method`; `progress` is called after each level. A
+/// level that fails ends the study there: the levels before it are kept and the reason is in
+/// [`Study::stopped`] (an error only when the first level fails).
 pub fn run(
     case: StudyCase,
     method: Method,
@@ -188,19 +200,34 @@ pub fn run(
     let yardstick = yardstick(&case)?;
     let mut out: Vec<Level> = Vec::new();
     let mut previous_edge: Option<f64> = None;
+    let mut stopped = None;
     let quiet_terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
     for k in 0..levels {
         if !quiet_terminal && k >= 3 {
             // Off a terminal, say which level is running before the long ones (no bar there).
-            eprintln!("convergence: {method:?} level {} of {levels} ...", k + 1);
+            eprintln!(
+                "convergence: {} level {} of {levels} ...",
+                method.name(),
+                k + 1
+            );
         }
-        let computed = compute_level(&case, method, k, previous_edge, yardstick)?;
+        let computed = match compute_level(&case, method, k, previous_edge, yardstick) {
+            Ok(computed) => computed,
+            Err(e) if k > 0 => {
+                stopped = Some(format!("level {} of {levels} failed: {e}", k + 1));
+                break;
+            }
+            Err(e) => return Err(e),
+        };
         previous_edge = computed.free_edge;
         out.push(computed.level);
         set_observed_orders(&mut out);
         progress(&out[out.len() - 1]);
     }
-    Ok(assemble(&case, method, yardstick, out, previous_edge))
+    Ok(Study {
+        stopped,
+        ..assemble(&case, method, yardstick, out, previous_edge)
+    })
 }
 
 /// The ring BEM's value the study measures against (tolerance 1e-11): `γ2` at the depth of a
@@ -395,16 +422,22 @@ pub fn assemble(
         set_observed_orders(&mut out);
     }
     let m = out.len();
-    let (richardson, gci) = if m >= 3 {
+    let ratio = match (m >= 4).then(|| (out[m - 1].observed_order, out[m - 2].observed_order)) {
+        Some((Some(p1), Some(p2))) => Some(p1 / p2),
+        _ => None,
+    };
+    let expected = expected_order(case, method);
+    let (richardson, bar) = if m >= 3 {
         let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
         let (r21, r32) = (
             out[m - 2].size / out[m - 1].size,
             out[m - 3].size / out[m - 2].size,
         );
-        match richardson(f1, f2, f3, r21, r32) {
-            Some((e, g, _)) => (Some(e), Some(g)),
-            None => (None, None),
-        }
+        let extrapolate = richardson(f1, f2, f3, r21, r32).map(|(e, _, _)| e);
+        (
+            extrapolate,
+            error_bar([f1, f2, f3], r21, r32, expected, ratio),
+        )
     } else {
         (None, None)
     };
@@ -415,9 +448,11 @@ pub fn assemble(
             case.eps
         })
     });
-    let gci = gci.map(|g| g.max(error_floor.unwrap_or(0.0)));
-    let ratio = match (m >= 4).then(|| (out[m - 1].observed_order, out[m - 2].observed_order)) {
-        Some((Some(p1), Some(p2))) => Some(p1 / p2),
+    let gci = bar
+        .as_ref()
+        .map(|b| b.value.max(error_floor.unwrap_or(0.0)));
+    let bar_bounds_error = match (gci, out.last()) {
+        (Some(g), Some(finest)) => Some(finest.error.abs() <= g),
         _ => None,
     };
     Study {
@@ -433,9 +468,83 @@ pub fn assemble(
         levels: out,
         richardson,
         gci_fine: gci,
+        bar_method: bar.map(|b| b.method),
+        bar_bounds_error,
         asymptotic_ratio: ratio,
+        stopped: None,
         error_floor,
     }
+}
+
+/// The order at which a method's value converges under refinement, where one is known: the
+/// grid BEM's piecewise-constant pressure 1 (observed nearer 0.7 with the staircase edge), the
+/// FEM's force, a functional of the solution, `2p` for elements of degree `p` on meshes graded
+/// toward the singular edges. The ring BEM converges faster than any power (none).
+pub fn expected_order(case: &StudyCase, method: Method) -> Option<f64> {
+    match method {
+        Method::GridBem => Some(1.0),
+        Method::Fem => Some(2.0 * fem_study_ladder(case).1 as u8 as f64),
+        _ => None,
+    }
+}
+
+/// The finest level's error bar and how it was made.
+#[derive(Clone, Debug)]
+pub struct ErrorBar {
+    pub value: f64,
+    pub method: String,
+}
+
+/// The error bar of the finest of three levels `f = [f1, f2, f3]` (finest first) with
+/// refinement ratios `r21`, `r32` (Roache; Celik et al. 2008):
+/// - oscillatory convergence (`f2 - f1` and `f3 - f2` of opposite signs): no order exists; the
+///   bar is 3 times the spread of the three values, relative to `f1`;
+/// - in the asymptotic range (the last two triples' orders within 10 % of each other, or, with
+///   three levels, the observed order within 10 % of the `expected` one): the GCI
+///   `1.25 |f1 - f2| / |f1| / (r21^p - 1)` with the observed order `p`;
+/// - otherwise the GCI with the safety factor 3 and the order `min(p, expected)`: an order
+///   above the method's, which a lucky cancellation between levels gives, shrinks the bar.
+pub fn error_bar(
+    f: [f64; 3],
+    r21: f64,
+    r32: f64,
+    expected: Option<f64>,
+    order_ratio: Option<f64>,
+) -> Option<ErrorBar> {
+    let [f1, f2, f3] = f;
+    let (e21, e32) = (f2 - f1, f3 - f2);
+    if e21 * e32 < 0.0 {
+        let spread = f.iter().fold(f64::NEG_INFINITY, |a, &b| a.max(b))
+            - f.iter().fold(f64::INFINITY, |a, &b| a.min(b));
+        return Some(ErrorBar {
+            value: 3.0 * spread / f1.abs(),
+            method: "oscillatory convergence: 3 x the spread of the three finest levels".into(),
+        });
+    }
+    let p = observed_order(f1, f2, f3, r21, r32)?;
+    let asymptotic = match (order_ratio, expected) {
+        (Some(r), _) => (r - 1.0).abs() < 0.1,
+        (None, Some(q)) => (p / q - 1.0).abs() < 0.1,
+        (None, None) => false,
+    };
+    let (safety, order, how) = if asymptotic {
+        (1.25, p, format!("GCI, Fs = 1.25, observed order {p:.2}"))
+    } else {
+        let order = expected.map_or(p, |q| p.min(q));
+        (
+            3.0,
+            order,
+            format!(
+                "GCI, Fs = 3 (not shown to be in the asymptotic range), order {order:.2} \
+                 (observed {p:.2}{})",
+                expected.map_or(String::new(), |q| format!(", expected {q:.1}"))
+            ),
+        )
+    };
+    Some(ErrorBar {
+        value: safety * (e21 / f1).abs() / (r21.powf(order) - 1.0),
+        method: how,
+    })
 }
 
 /// The levels: size, unknowns, value, error against the yardstick, observed order, time.
@@ -452,7 +561,7 @@ pub fn table(study: &Study) -> Table {
             Column::number("value", "value", Format::Fixed(12)),
             Column::number("relative_error", "rel. error", Format::SignedScientific(3)),
             Column::number("observed_order", "order", Format::Fixed(2)),
-            Column::number("wall_s", "time", Format::Fixed(3)).with_unit("s"),
+            Column::number("wall_s", "time (one run)", Format::Fixed(3)).with_unit("s"),
         ],
     );
     for l in &study.levels {
@@ -469,9 +578,17 @@ pub fn table(study: &Study) -> Table {
     t
 }
 
-/// Table for the terminal: [`table`] and the [`summary`].
+/// Table for the terminal: [`table`] and the [`summary`] (and why the study stopped early).
 pub fn render(study: &Study) -> String {
-    format!("{}  {}\n", table(study).to_terminal(), summary(study))
+    let stopped = study
+        .stopped
+        .as_ref()
+        .map_or(String::new(), |why| format!("  STOPPED EARLY: {why}\n"));
+    format!(
+        "{}{stopped}  {}\n",
+        table(study).to_terminal(),
+        summary(study)
+    )
 }
 
 /// One sentence: the Richardson extrapolate, its error against the yardstick, the GCI of the
@@ -484,8 +601,8 @@ pub fn summary(study: &Study) -> String {
                     format!("order ratio of the last two triples {r:.3}: in the asymptotic range")
                 }
                 Some(r) => format!(
-                    "order ratio of the last two triples {r:.3}: NOT in the asymptotic range, \
-                     the error bar is not to be trusted"
+                    "order ratio of the last two triples {r:.3}: NOT in the asymptotic range \
+                     (hence the conservative bar)"
                 ),
                 None => "asymptotic range not checked (needs four levels with settled orders)"
                     .to_string(),
@@ -497,15 +614,38 @@ pub fn summary(study: &Study) -> String {
                 _ => "",
             };
             format!(
-                "Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); GCI of \
-                 the finest {g:.2e}{floor}; {range}",
+                "Richardson extrapolate {e:.12} (error against the yardstick {:+.2e}); error \
+                 bar of the finest level {g:.2e}{floor} ({}); {}; {range}",
                 study.richardson_error.unwrap_or(f64::NAN),
+                study.bar_method.as_deref().unwrap_or("GCI"),
+                bound_sentence(study),
             )
         }
-        _ => "no Richardson extrapolate (fewer than three levels, differences at rounding \
-              level, or no settled order)"
+        (None, Some(g)) => format!(
+            "error bar of the finest level {g:.2e} ({}); {}; no Richardson extrapolate (no \
+             settled order)",
+            study.bar_method.as_deref().unwrap_or("-"),
+            bound_sentence(study),
+        ),
+        _ => "no Richardson extrapolate or error bar (fewer than three levels, differences at \
+              rounding level, or no settled order)"
             .to_string(),
     }
+}
+
+/// Whether the bar bounds the finest level's actual error, in words.
+fn bound_sentence(study: &Study) -> String {
+    let actual = study.levels.last().map_or(f64::NAN, |l| l.error.abs());
+    match study.bar_bounds_error {
+        Some(true) => format!("it bounds the actual error {actual:.2e}"),
+        Some(false) => format!("IT DOES NOT BOUND the actual error {actual:.2e} (a failed check)"),
+        None => "not checked".into(),
+    }
+}
+
+/// Failed checks of a study: an error bar that does not bound the actual error.
+pub fn failures(study: &Study) -> usize {
+    usize::from(study.bar_bounds_error == Some(false))
 }
 
 /// CSV of the levels ([`table`]'s columns, full precision).
@@ -574,5 +714,38 @@ mod tests {
         assert!((p - 2.0).abs() < 0.3, "{p}");
         // Converged to rounding: no order.
         assert!(observed_order(1.0, 1.0 + 1e-16, 1.0 + 2e-16, 2.0, 2.0).is_none());
+    }
+
+    /// The bars of the default report's two studies (sphere, d = 1.5 h; values of a run, the
+    /// actual errors against the ring BEM at 1e-11): the grid BEM's levels oscillate (the GCI
+    /// from its observed order 5.1 was 2.5e-6 against an actual 2.1e-3), the FEM's order 7.2
+    /// lies above the 6 of a P3 force (its GCI was 6.0e-6 against 1.7e-5). Both bars bound now.
+    #[test]
+    fn the_error_bars_bound_the_default_studies_actual_errors() {
+        let grid = [1.2044755569212888, 1.2045553006730303, 1.2018670533540974];
+        let bar = error_bar(grid, 2.0, 2.0, Some(1.0), None).unwrap();
+        assert!(bar.method.starts_with("oscillatory"), "{}", bar.method);
+        assert!(bar.value >= 2.0849e-3, "grid BEM bar {}", bar.value);
+        let fem = [1.2070128748394542, 1.2070632570302815, 1.2076335952467923];
+        let sizes = [
+            0.00802908585711205,
+            0.010996316850679233,
+            0.015361001225823307,
+        ];
+        let bar = error_bar(
+            fem,
+            sizes[1] / sizes[0],
+            sizes[2] / sizes[1],
+            Some(6.0),
+            None,
+        )
+        .unwrap();
+        assert!(bar.method.contains("Fs = 3"), "{}", bar.method);
+        assert!(bar.value >= 1.7302e-5, "FEM bar {}", bar.value);
+        // In the asymptotic range the textbook GCI stands: f = 1 + h^2 on h = 0.4, 0.2, 0.1.
+        let f = |h: f64| 1.0 + h * h;
+        let bar = error_bar([f(0.1), f(0.2), f(0.4)], 2.0, 2.0, Some(2.0), None).unwrap();
+        assert!(bar.method.contains("Fs = 1.25"), "{}", bar.method);
+        assert!((bar.value - 1.25 * 0.03 / f(0.1) / 3.0).abs() < 1e-12);
     }
 }

@@ -60,7 +60,8 @@ pub struct FenicsxComparison {
     pub relative_difference: Option<f64>,
     pub same_active_set: Option<bool>,
     pub our_wall_s: Option<f64>,
-    /// Ours / FEniCSx's wall time on the same problem.
+    /// Ours / FEniCSx's wall time on the same problem: this run's single solve over the stored
+    /// run's, measured apart (no speed result: `benches/records/fenicsx-speed.json` is).
     pub wall_time_ratio: Option<f64>,
     /// Ring-BEM force at the same state (the yardstick) and both codes' errors against it.
     pub ring_bem_force: Option<f64>,
@@ -288,9 +289,6 @@ pub fn table(rows: &[FenicsxComparison]) -> Table {
             Column::text("active_set", "active set"),
             Column::number("fenicsx_error", "FEniCSx err", Format::SignedScientific(2)),
             Column::number("our_error", "our err", Format::SignedScientific(2)),
-            Column::number("our_wall_s", "ours", Format::Fixed(3)).with_unit("s"),
-            Column::number("fenicsx_wall_s", "FEniCSx", Format::Fixed(3)).with_unit("s"),
-            Column::number("wall_time_ratio", "ratio", Format::Fixed(2)),
             Column::text("verdict", "verdict"),
         ],
     );
@@ -310,7 +308,7 @@ pub fn table(rows: &[FenicsxComparison]) -> Table {
             ))
         } else {
             Cell::Text(format!(
-                "{} (mesh {}): not used; refresh with scripts/fenicsx/run_all.sh",
+                "{} (mesh {}): not used; refresh with python3 scripts/fenicsx/run_all.py --out verify/fenicsx",
                 r.status.to_uppercase(),
                 r.stored.mesh
             ))
@@ -322,9 +320,6 @@ pub fn table(rows: &[FenicsxComparison]) -> Table {
             active,
             r.fenicsx_error.into(),
             r.our_error.into(),
-            r.our_wall_s.into(),
-            r.stored.wall_s.into(),
-            r.wall_time_ratio.into(),
             verdict_cell,
         ]);
     }
@@ -339,8 +334,27 @@ pub fn render(rows: &[FenicsxComparison]) -> String {
     );
     out += &table(rows).to_terminal();
     if rows.is_empty() {
-        out += "  (no stored results; run scripts/fenicsx/run_all.sh)\n";
+        out +=
+            "  (no stored results; run python3 scripts/fenicsx/run_all.py --out verify/fenicsx)\n";
     }
     out += &format!("  {}\n", coverage(rows));
+    out += &speed_note();
     out
+}
+
+/// Where the two codes' speeds are compared: the interleaved benchmark record (the times of the
+/// rows above are single runs on different days, so their quotient is no result).
+pub fn speed_note() -> String {
+    match super::benchmarks::FenicsxSpeed::load() {
+        Ok(record) => {
+            let (lo, hi) = record.ratio_range();
+            format!(
+                "  Speed, measured interleaved ({} rounds, {}, commit {}): our time over \
+                 FEniCSx's fastest configuration {lo:.2} to {hi:.2} from the mesh file to the \
+                 force (benches/records/fenicsx-speed.md).\n",
+                record.rounds, record.date, record.commit
+            )
+        }
+        Err(e) => format!("  Speed: no interleaved record ({e}).\n"),
+    }
 }

@@ -123,15 +123,17 @@ fn data_links(dir: &Path) -> String {
     html
 }
 
-/// `(checks, failed)` from the report's first line `**N checks, M failed.**`.
-fn summary_counts(markdown: &str) -> Option<(usize, usize)> {
+/// `(checks, failed, the headline's bold part)` from the report's first line
+/// `**N checks, M failed[, K not run: ...].**`.
+fn summary_counts(markdown: &str) -> Option<(usize, usize, String)> {
     let line = markdown.lines().find(|l| l.starts_with("**"))?;
     let inner = line.trim_start_matches("**");
+    let bold = inner.split("**").next()?.trim_end_matches('.').to_string();
     let mut words = inner.split_whitespace();
     let checks = words.next()?.parse().ok()?;
     words.next()?;
-    let failed = words.next()?.parse().ok()?;
-    Some((checks, failed))
+    let failed = words.next()?.trim_end_matches(',').parse().ok()?;
+    Some((checks, failed, bold))
 }
 
 /// A line chart of one headline figure over the runs (x: run number), with the runs that
@@ -275,7 +277,8 @@ pub fn write_index(dir: &Path, history: Option<&[Headline]>) -> Result<PathBuf> 
         Parser::new_ext(&markdown, Options::ENABLE_TABLES),
     );
     let (body, contents) = number_sections(&inline_charts(&body, dir));
-    let (checks, failed) = summary_counts(&markdown).unwrap_or((0, 1));
+    let (checks, failed, badge) =
+        summary_counts(&markdown).unwrap_or((0, 1, "the report's headline is missing".to_string()));
     let title = markdown
         .lines()
         .next()
@@ -284,11 +287,10 @@ pub fn write_index(dir: &Path, history: Option<&[Headline]>) -> Result<PathBuf> 
         .trim();
     let generated = format!("page made {}", utc_now());
     let mut page = format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<header class=\"summary\"><span class=\"badge {}\">{} checks, {} failed</span><span>{}</span> {}</header>\n<main>\n",
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n<header class=\"summary\"><span class=\"badge {}\">{}</span><span>{}</span> {}</header>\n<main>\n",
         escape(title),
-        if failed == 0 { "pass" } else { "fail" },
-        checks,
-        failed,
+        if failed == 0 && checks > 0 { "pass" } else { "fail" },
+        escape(&badge),
         escape(&generated),
         data_links(dir)
     );
@@ -342,7 +344,15 @@ mod tests {
     fn the_summary_line_is_read() {
         assert_eq!(
             summary_counts("# t\n\n**75 checks, 2 failed.** Ring BEM ..."),
-            Some((75, 2))
+            Some((75, 2, "75 checks, 2 failed".to_string()))
+        );
+        assert_eq!(
+            summary_counts("# t\n\n**70 checks, 0 failed, 10 not run: need gmsh (10).** ..."),
+            Some((
+                70,
+                0,
+                "70 checks, 0 failed, 10 not run: need gmsh (10)".to_string()
+            ))
         );
     }
 }

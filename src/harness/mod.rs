@@ -1,6 +1,8 @@
 //! The verification harness: tables comparing methods with each other and with the references.
 
 pub mod adhesion_peers;
+pub mod baselines;
+pub mod benchmarks;
 pub mod comparison;
 pub mod convergence;
 pub mod fenicsx;

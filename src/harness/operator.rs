@@ -86,7 +86,7 @@ pub fn render(rows: &[OperatorComparison]) -> String {
     table(rows).to_terminal()
 }
 
-/// A stored comparison (`scripts/fenicsx/run_operators.sh`): what was compared, FEniCSx's
+/// A stored comparison (`scripts/fenicsx/operators.py`): what was compared, FEniCSx's
 /// versions, when, and the commands that remake it.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct OperatorRecord {
@@ -161,7 +161,7 @@ pub fn render_records(rows: &[OperatorStatus]) -> String {
     if rows.is_empty() {
         return format!(
             "Assembled operator against FEniCSx's: NOTHING COMPARED (no stored comparisons in \
-             {}; make them with bash scripts/fenicsx/run_operators.sh)\n",
+             {}; make them with python3 scripts/fenicsx/operators.py --out verify/fenicsx/operators)\n",
             records_directory().display()
         );
     }
@@ -173,7 +173,7 @@ pub fn render_records(rows: &[OperatorStatus]) -> String {
     );
     out.push_str(&format!(
         "  {} stored comparisons (verify/fenicsx/operators/), {} current, {} above the goal; \
-         remake them with bash scripts/fenicsx/run_operators.sh\n",
+         remake them with python3 scripts/fenicsx/operators.py --out verify/fenicsx/operators\n",
         rows.len(),
         rows.iter().filter(|r| r.status == "current").count(),
         rows.iter()

@@ -403,7 +403,7 @@ impl Part {
 pub type EdgeMemo = HashMap<(String, usize), Option<f64>>;
 
 /// A pull-off simulation as `verify pulloff --json` runs it (the study meshes, the default
-/// ranges), recorded like `scripts/pulloff/run_all.sh` records it: its result, or the reason it
+/// ranges), recorded like `scripts/pulloff/run_all.py` records it: its result, or the reason it
 /// declined the case.
 fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffRecord {
     let mut command = format!("verify pulloff --punch {}", punch.name());
@@ -488,7 +488,7 @@ pub fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<
         .collect()
 }
 
-/// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.sh`'s cases).
+/// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.py`'s cases).
 pub fn pulloff_parts() -> Vec<Part> {
     let mut parts = vec![
         Part::PulloffSimulation {
@@ -667,6 +667,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
             pulloff_simulations: simulations,
             pulloff_live: need(live, "pulloff-live")?,
             adhesion_peers: need(adhesion, "adhesion-peers")?,
+            baselines: Vec::new(),
             wall_s,
         },
         stability,

@@ -1,4 +1,4 @@
-//! Tamaas and ContactMechanics (stored results of `scripts/peers/run_peers.sh`) against our
+//! Tamaas and ContactMechanics (stored results of `scripts/peers/run_peers.sh --out verify/peers`) against our
 //! square-grid BEM on identical grids and profiles: the force at the same depth must agree within
 //! 1e-6 relative (same discretisation: piecewise-constant pressure on square cells, Love kernel,
 //! 2N zero padding).
@@ -141,8 +141,6 @@ pub fn table(rows: &[PeerComparison]) -> Table {
                 "rel. diff",
                 Format::SignedScientific(1),
             ),
-            Column::number("our_wall_s", "ours", Format::Fixed(3)).with_unit("s"),
-            Column::number("peer_wall_s", "peer", Format::Fixed(3)).with_unit("s"),
             Column::text("verdict", "verdict"),
         ],
     );
@@ -152,8 +150,6 @@ pub fn table(rows: &[PeerComparison]) -> Table {
             (r.stored.grid as f64).into(),
             r.stored.force.into(),
             r.relative_difference.into(),
-            r.our_wall_s.into(),
-            r.stored.wall_s.into(),
             verdict(r.passed, "FAIL"),
         ]);
     }
@@ -165,7 +161,7 @@ pub fn render(rows: &[PeerComparison]) -> String {
     let mut out = format!("\nPass: force within {PEER_AGREEMENT:.0e}.\n");
     out += &table(rows).to_terminal();
     if rows.is_empty() {
-        out += "  (no stored results; run scripts/peers/run_peers.sh)\n";
+        out += "  (no stored results; run bash scripts/peers/run_peers.sh --out verify/peers)\n";
     }
     out
 }

@@ -230,7 +230,12 @@ fn write_atomically(path: &Path, text: &str) -> Result<()> {
 fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
     let start = Instant::now();
     let args: Vec<&str> = job.command.split_whitespace().skip(1).collect();
-    let output = Command::new(executable).args(&args).output();
+    // The job reads the data directory this process reads (`--data-dir` is not inherited).
+    let mut command = Command::new(executable);
+    if let Ok(root) = crate::fem::mesh_provider::find_project_root() {
+        command.env(crate::fem::mesh_provider::DATA_DIR_VARIABLE, root);
+    }
+    let output = command.args(&args).output();
     let wall_s = start.elapsed().as_secs_f64();
     let failure = |why: String| JobRecord {
         id: job.part.id(),

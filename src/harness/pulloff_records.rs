@@ -1,5 +1,5 @@
 //! The stored pull-off simulations (`verify/pulloff/*.json`, written by
-//! `scripts/pulloff/run_all.sh`, which the nightly run calls): each holds the result of
+//! `scripts/pulloff/run_all.py --out verify/pulloff`; the nightly run writes fresh ones into its report): each holds the result of
 //! `verify pulloff --json` (or the reason it declined), its date and its command. They are too
 //! slow for the default run (12-60 s each), so the report shows the stored ones.
 
@@ -105,7 +105,7 @@ pub fn table(records: &[PulloffRecord]) -> Table {
             Column::number("error_bar", "error bar", Format::Scientific(1)),
             Column::number("jkr_over_f0", "JKR route", Format::Fixed(4)),
             Column::number("paper_route_over_f0", "paper's route", Format::Fixed(4)),
-            Column::number("wall_s", "time", Format::Fixed(1)).with_unit("s"),
+            Column::number("wall_s", "time (one run)", Format::Fixed(1)).with_unit("s"),
             Column::text("date", "date"),
             Column::text("verdict", "verdict"),
         ],

@@ -58,6 +58,12 @@ pub struct ReportExtras {
     /// Tamaas's pull-off (stored, `verify/peers/adhesion/`) against this run's simulations.
     #[serde(default)]
     pub adhesion_peers: Vec<super::adhesion_peers::AdhesionPeerComparison>,
+    /// Fresh peer and pull-off results against the committed baselines (`--fresh DIR`).
+    #[serde(default)]
+    pub baselines: Vec<super::baselines::BaselineCheck>,
+    /// The checks counted, failed and not run (the report's first line).
+    #[serde(default)]
+    pub headline: Headline,
     pub wall_s: f64,
 }
 
@@ -753,6 +759,9 @@ pub struct ReportInputs {
     pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
     /// The stored Tamaas pull-offs against this run's simulations.
     pub adhesion_peers: Vec<super::adhesion_peers::AdhesionPeerComparison>,
+    /// Fresh peer and pull-off results against the committed baselines (none without
+    /// `--fresh`).
+    pub baselines: Vec<super::baselines::BaselineCheck>,
     /// Wall time of the computations (their sum when merged from jobs), seconds.
     pub wall_s: f64,
 }
@@ -875,7 +884,9 @@ pub fn write_report(
     progress("verdicts");
     let simulations = inputs.pulloff_simulations.clone();
     let verdicts = verdicts(&ring, &inputs.pulloff, &simulations)?;
-    let extras = ReportExtras {
+    let mut extras = ReportExtras {
+        baselines: inputs.baselines.clone(),
+        headline: Headline::default(),
         verdicts,
         pulloff_simulations: simulations,
         pulloff_live: inputs.pulloff_live.clone(),
@@ -885,6 +896,7 @@ pub fn write_report(
         pulloff: inputs.pulloff.clone(),
         wall_s: inputs.wall_s + start.elapsed().as_secs_f64(),
     };
+    extras.headline = headline(comparison, fenicsx, operators, peers, &extras);
     progress("tables and pages");
     let json = serde_json::json!({
         "comparison": comparison,
@@ -911,6 +923,127 @@ pub fn write_report(
     Ok(extras)
 }
 
+/// What a report checked: how many checks, how many failed, and what was not run and why.
+#[derive(Clone, Debug, Default, Serialize, serde::Deserialize)]
+pub struct Headline {
+    pub checks: usize,
+    pub failed: usize,
+    /// `(count, reason)` of the checks left out (a stored result whose mesh needs gmsh, ...).
+    pub not_run: Vec<(usize, String)>,
+    /// `(group, checks in it)`, in the report's order.
+    pub groups: Vec<(String, usize)>,
+}
+
+impl Headline {
+    /// `**80 checks, 0 failed, 10 not run: need gmsh (...).** ring BEM against ...: 28; ...`
+    pub fn sentence(&self) -> String {
+        let not_run: usize = self.not_run.iter().map(|(n, _)| n).sum();
+        let mut first = format!("{} checks, {} failed", self.checks, self.failed);
+        match self.not_run.as_slice() {
+            [] => {}
+            [(_, why)] => first += &format!(", {not_run} not run: {why}"),
+            reasons => {
+                let reasons: Vec<String> = reasons
+                    .iter()
+                    .map(|(n, why)| format!("{n} {why}"))
+                    .collect();
+                first += &format!(", {not_run} not run: {}", reasons.join("; "));
+            }
+        }
+        let groups: Vec<String> = self
+            .groups
+            .iter()
+            .map(|(name, n)| format!("{name}: {n}"))
+            .collect();
+        format!("**{first}.** {}.", groups.join("; "))
+    }
+}
+
+/// Count every check of a report: one per bounded reference, identity, FEM comparison, stored
+/// external result compared, fresh result against its baseline, convergence study's error bar
+/// and speed-accuracy point with its own estimate; results that could not be compared here are
+/// counted apart, with the reason.
+pub fn headline(
+    comparison: &ComparisonReport,
+    fenicsx: &[FenicsxComparison],
+    operators: &[OperatorStatus],
+    peers: &[PeerComparison],
+    extras: &ReportExtras,
+) -> Headline {
+    let bounded = comparison
+        .rows
+        .iter()
+        .flat_map(|r| &r.comparisons)
+        .filter(|c| c.agrees.is_some())
+        .count();
+    let fenicsx_compared = fenicsx.iter().filter(|r| r.status != "needs-gmsh").count();
+    let operators_compared = operators
+        .iter()
+        .filter(|r| r.status != "mesh absent")
+        .count();
+    let bars = extras
+        .convergence
+        .iter()
+        .filter(|s| s.bar_bounds_error.is_some())
+        .count();
+    let estimates = extras
+        .speed_accuracy
+        .iter()
+        .flat_map(|s| &s.points)
+        .filter(|p| p.estimate_bounds_error().is_some())
+        .count();
+    let groups = vec![
+        ("ring BEM against bounded references".to_string(), bounded),
+        ("consistency identities".into(), comparison.identities.len()),
+        ("FEM against the ring BEM".into(), comparison.fem.len()),
+        ("stored FEniCSx results".into(), fenicsx_compared),
+        (
+            "stored FEniCSx operator comparisons".into(),
+            operators_compared,
+        ),
+        ("stored peer results".into(), peers.len()),
+        (
+            "stored Tamaas pull-offs".into(),
+            extras.adhesion_peers.len(),
+        ),
+        (
+            "fresh results against their baselines".into(),
+            extras.baselines.len(),
+        ),
+        (
+            "convergence error bars against the actual error".into(),
+            bars,
+        ),
+        (
+            "speed-accuracy estimates against the actual error".into(),
+            estimates,
+        ),
+    ];
+    let failed = comparison.failures()
+        + super::fenicsx::failures(fenicsx)
+        + super::operator::failures(operators)
+        + super::peers::failures(peers)
+        + super::adhesion_peers::failures(&extras.adhesion_peers)
+        + super::baselines::failures(&extras.baselines)
+        + extras
+            .convergence
+            .iter()
+            .map(convergence::failures)
+            .sum::<usize>()
+        + super::speed_accuracy::unbounded_estimates(&extras.speed_accuracy);
+    let mut not_run = Vec::new();
+    let need_gmsh = fenicsx.len() - fenicsx_compared + operators.len() - operators_compared;
+    if need_gmsh > 0 {
+        not_run.push((need_gmsh, "need gmsh (bash scripts/install_gmsh.sh)".into()));
+    }
+    Headline {
+        checks: groups.iter().map(|(_, n)| n).sum(),
+        failed,
+        not_run,
+        groups,
+    }
+}
+
 fn markdown(
     comparison: &ComparisonReport,
     fenicsx: &[FenicsxComparison],
@@ -920,33 +1053,10 @@ fn markdown(
     tables: &[ReportTable],
 ) -> String {
     let mut md = String::from("# ringcontact verification report\n\n");
-    let bounded = comparison
-        .rows
-        .iter()
-        .flat_map(|r| &r.comparisons)
-        .filter(|c| c.agrees.is_some())
-        .count();
-    let failed = comparison.failures()
-        + super::fenicsx::failures(fenicsx)
-        + super::operator::failures(operators)
-        + super::peers::failures(peers)
-        + super::adhesion_peers::failures(&extras.adhesion_peers);
     let _ = writeln!(
         md,
-        "**{} checks, {failed} failed.** Ring BEM against bounded references: {bounded}; consistency identities: {}; FEM against the ring BEM: {}; stored FEniCSx results: {}; stored FEniCSx operator comparisons: {}; stored peer results: {}; stored Tamaas pull-offs: {}.\n",
-        bounded
-            + comparison.identities.len()
-            + comparison.fem.len()
-            + fenicsx.len()
-            + operators.len()
-            + peers.len()
-            + extras.adhesion_peers.len(),
-        comparison.identities.len(),
-        comparison.fem.len(),
-        fenicsx.len(),
-        operators.len(),
-        peers.len(),
-        extras.adhesion_peers.len()
+        "{}\n",
+        headline(comparison, fenicsx, operators, peers, extras).sentence()
     );
     for t in tables {
         if let Some(section) = &t.section {

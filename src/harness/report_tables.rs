@@ -157,20 +157,54 @@ pub fn report_tables(
             "external",
             external(fenicsx, peers),
         ),
-        ReportTable {
+    ];
+    if !extras.baselines.is_empty() {
+        out.push(ReportTable {
             intro: Some(
-                "Our stiffness matrix and unit-pressure load vector against FEniCSx's on the same \
-                 mesh and degree, dofs matched by position (`scripts/fenicsx/run_operators.sh`); \
-                 goal: largest entry-wise difference over the largest entry <= 1e-12."
+                "This run's fresh peer and pull-off results (in the report directory, `fresh/`) \
+                 against the committed baselines in `verify/`: a difference beyond the \
+                 tolerance is a regression. Baselines change only by a reviewed commit."
                     .into(),
             ),
             ..entry(
-                Some("Assembled operator against FEniCSx (stored comparisons)"),
-                "operators",
-                operators(operator_rows),
+                Some("Fresh runs against the committed baselines"),
+                "baselines",
+                super::baselines::table(&extras.baselines),
             )
-        },
-    ];
+        });
+    }
+    if let Ok(record) = super::benchmarks::FenicsxSpeed::load() {
+        out.push(ReportTable {
+            intro: Some(record.summary()),
+            ..entry(
+                Some("Cost against the peers (interleaved benchmark records)"),
+                "speed-fenicsx",
+                record.table(),
+            )
+        });
+    }
+    if let Ok(record) = super::benchmarks::TamaasSpeed::load() {
+        out.push(ReportTable {
+            intro: Some(format!(
+                "Timed region: {}; reproduce: `{}`.",
+                record.timed_region, record.command
+            )),
+            ..entry(None, "speed-tamaas", record.table())
+        });
+    }
+    out.push(ReportTable {
+        intro: Some(
+            "Our stiffness matrix and unit-pressure load vector against FEniCSx's on the same \
+                 mesh and degree, dofs matched by position (`scripts/fenicsx/operators.py`); \
+                 goal: largest entry-wise difference over the largest entry <= 1e-12."
+                .into(),
+        ),
+        ..entry(
+            Some("Assembled operator against FEniCSx (stored comparisons)"),
+            "operators",
+            operators(operator_rows),
+        )
+    });
     {
         let mut table = super::pulloff_records::table(&extras.pulloff_simulations);
         match &extras.pulloff_live {
@@ -203,7 +237,7 @@ pub fn report_tables(
                  displacement control at ranges spanning a factor 10 in the Tabor parameter \
                  (the closed branch: each on its own mesh, a band at the rim refined to the \
                  cohesive zone), extrapolated to zero range (`verify pulloff`; stored by \
-                 `scripts/pulloff/run_all.sh`, which the nightly run calls). JKR route: fixed-load pull-off (flat punches), from full contact \
+                 `scripts/pulloff/run_all.py --out verify/pulloff`; the nightly run compares fresh runs with them). JKR route: fixed-load pull-off (flat punches), from full contact \
                  (concave punches, pressed until their hole closes: 3h, or deeper for small \
                  d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
                  contact (touched with the hole open, then pulled). A range at which the closed \
@@ -290,9 +324,12 @@ pub fn report_tables(
             vec![
                 text("method", "method"),
                 text("resolution", "resolution"),
-                Column::number("wall_s", "wall time", Format::Fixed(4)).with_unit("s"),
+                Column::number("wall_s", "wall time (median)", Format::Fixed(4)).with_unit("s"),
+                text("wall_s_range", "range [s]"),
+                Column::number("runs", "runs", Format::Fixed(0)),
                 Column::number("error", "rel. error", Format::Scientific(1)),
                 Column::number("estimate", "own estimate", Format::Scientific(1)),
+                text("bounds", "estimate bounds error"),
                 text("pareto", "Pareto"),
             ],
         );
@@ -301,8 +338,17 @@ pub fn report_tables(
                 p.method.clone().into(),
                 p.resolution.clone().into(),
                 p.wall_s.into(),
+                p.wall_s_range
+                    .map_or("-".to_string(), |(lo, hi)| format!("{lo:.4}-{hi:.4}"))
+                    .into(),
+                (p.runs as f64).into(),
                 p.error.into(),
                 p.estimate.into(),
+                match p.estimate_bounds_error() {
+                    Some(true) => "yes".into(),
+                    Some(false) => Cell::Flag("NO (a failed check)".into()),
+                    None => "".into(),
+                },
                 if p.on_pareto_front { "yes" } else { "" }.into(),
             ]);
         }

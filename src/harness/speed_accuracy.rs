@@ -26,7 +26,15 @@ use crate::punch::PunchKind;
 pub struct CostPoint {
     pub method: String,
     pub resolution: String,
+    /// Median wall time of [`TIMING_RUNS`] runs in this process (a stored peer's: see
+    /// `resolution`), seconds.
     pub wall_s: f64,
+    /// Shortest and longest of those runs (`None` for a single stored time).
+    #[serde(default)]
+    pub wall_s_range: Option<(f64, f64)>,
+    /// How many runs the time is the median of.
+    #[serde(default = "one")]
+    pub runs: usize,
     /// `|value - yardstick| / |yardstick|`, floored at 1e-16.
     pub error: f64,
     /// The method's own estimate of that error, where it makes one (drawn as an error bar from
@@ -63,17 +71,44 @@ fn mark_pareto(points: &mut [CostPoint]) {
     }
 }
 
-fn timed<T>(f: impl FnOnce() -> Result<T>) -> Result<(T, f64)> {
-    let start = Instant::now();
-    let v = f()?;
-    Ok((v, start.elapsed().as_secs_f64()))
+fn one() -> usize {
+    1
 }
 
-fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f64) -> CostPoint {
+/// Runs of each timed point: its time is their median, shown with their range.
+pub const TIMING_RUNS: usize = 3;
+
+/// The median wall time of [`TIMING_RUNS`] runs of `f`, and their range.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    median: f64,
+    range: (f64, f64),
+}
+
+/// Run `f` [`TIMING_RUNS`] times one after the other; its (last) value and the [`Timing`].
+fn timed<T>(mut f: impl FnMut() -> Result<T>) -> Result<(T, Timing)> {
+    let mut times = Vec::with_capacity(TIMING_RUNS);
+    let mut value = None;
+    for _ in 0..TIMING_RUNS {
+        let start = Instant::now();
+        value = Some(f()?);
+        times.push(start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    let timing = Timing {
+        median: times[times.len() / 2],
+        range: (times[0], times[times.len() - 1]),
+    };
+    Ok((value.expect("TIMING_RUNS > 0"), timing))
+}
+
+fn point(method: &str, resolution: String, time: Timing, value: f64, yardstick: f64) -> CostPoint {
     CostPoint {
         method: method.into(),
         resolution,
-        wall_s,
+        wall_s: time.median,
+        wall_s_range: Some(time.range),
+        runs: TIMING_RUNS,
         error: floor((value - yardstick) / yardstick),
         estimate: None,
         on_pareto_front: false,
@@ -84,15 +119,32 @@ fn point(method: &str, resolution: String, wall_s: f64, value: f64, yardstick: f
 fn estimated_point(
     method: &str,
     resolution: String,
-    wall_s: f64,
+    time: Timing,
     value: f64,
     yardstick: f64,
     estimate: Option<f64>,
 ) -> CostPoint {
     CostPoint {
         estimate,
-        ..point(method, resolution, wall_s, value, yardstick)
+        ..point(method, resolution, time, value, yardstick)
     }
+}
+
+impl CostPoint {
+    /// Whether the method's own estimate bounds its actual error (`None`: no estimate).
+    pub fn estimate_bounds_error(&self) -> Option<bool> {
+        self.estimate
+            .map(|e| self.error <= e * (1.0 + 1e-9) || self.error <= 1e-15)
+    }
+}
+
+/// Points whose own estimate does not bound their actual error (failed checks of the report).
+pub fn unbounded_estimates(studies: &[SpeedAccuracy]) -> usize {
+    studies
+        .iter()
+        .flat_map(|s| &s.points)
+        .filter(|p| p.estimate_bounds_error() == Some(false))
+        .count()
 }
 
 /// A problem of the speed-accuracy study.
@@ -302,10 +354,12 @@ pub fn assemble(
 ) -> SpeedAccuracy {
     let mut points = base.points.clone();
     points.extend(ladder.iter().flatten().cloned());
+    let benchmark = super::benchmarks::FenicsxSpeed::load().ok();
     points.extend(fenicsx_points(
         &base.problem.cost_problem(),
         base.yardstick,
         fenicsx,
+        benchmark.as_ref(),
     ));
     mark_pareto(&mut points);
     SpeedAccuracy {
@@ -334,12 +388,15 @@ pub fn speed_accuracy(
     Ok(out)
 }
 
-/// The stored FEniCSx results of this state (punch, `b/a` or depth), at their stored wall time
-/// (dolfinx on this machine; the value is `F/2`, i.e. `γ` at unit depth or `γ2` at `h = 1`).
+/// The stored FEniCSx results of this state (punch, `b/a` or depth): their time is the
+/// interleaved benchmark record's median (`benches/records/fenicsx-speed.json`, fastest
+/// configuration) where it has the row, else the stored single run, said so in `resolution`
+/// (the value is `F/2`, i.e. `γ` at unit depth or `γ2` at `h = 1`).
 fn fenicsx_points(
     problem: &CostProblem,
     yardstick: f64,
     fenicsx: &[FenicsxComparison],
+    benchmark: Option<&super::benchmarks::FenicsxSpeed>,
 ) -> Vec<CostPoint> {
     fenicsx
         .iter()
@@ -357,13 +414,36 @@ fn fenicsx_points(
         .map(|c| {
             let r = &c.stored;
             let name = c.file.trim_end_matches(".json");
-            point(
-                "FEniCSx (stored)",
-                format!("{name}, {} dofs", r.dofs),
-                r.wall_s,
-                0.5 * r.force,
-                yardstick,
-            )
+            // The interleaved record's median where it has the row, else the stored single run.
+            let (time, runs, origin) = match benchmark.and_then(|b| b.row(name)) {
+                Some(row) => (
+                    Timing {
+                        median: row.median,
+                        range: (row.min, row.max),
+                    },
+                    row.runs,
+                    format!("{}, median of the interleaved record", row.configuration),
+                ),
+                None => (
+                    Timing {
+                        median: r.wall_s,
+                        range: (r.wall_s, r.wall_s),
+                    },
+                    1,
+                    "one stored run, not interleaved".to_string(),
+                ),
+            };
+            CostPoint {
+                runs,
+                wall_s_range: (runs > 1).then_some(time.range),
+                ..point(
+                    "FEniCSx (stored)",
+                    format!("{name}, {} dofs; {origin}", r.dofs),
+                    time,
+                    0.5 * r.force,
+                    yardstick,
+                )
+            }
         })
         .collect()
 }

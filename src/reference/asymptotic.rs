@@ -17,7 +17,7 @@ fn boussinesq(_eps: f64) -> ReferenceValue {
 ///
 /// The error bound `eps⁷` is a conservative stand-in for the unknown `O(eps⁷)` coefficient: the
 /// known coefficients shrink (0.135, 0.054, 0.0061), and at `eps = 0.3` the bound is 2.2e-4,
-/// consistent with PHYSICS.md's "about 1e-5" there within a factor of 20.
+/// consistent with docs/conventions.md's "about 1e-5" there within a factor of 20.
 pub fn collins_series(eps: f64) -> ReferenceValue {
     let pi2 = PI * PI;
     let value = 1.0

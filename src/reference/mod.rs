@@ -26,6 +26,19 @@ pub enum Quantity {
     SphereGamma2,
 }
 
+impl Quantity {
+    /// The name people read: the function and the punch (`gamma (flat annulus)`).
+    pub fn label(self) -> &'static str {
+        match self {
+            Quantity::FlatGamma => "gamma (flat annulus)",
+            Quantity::ConeGamma1 => "gamma1 (cone)",
+            Quantity::ConeGamma2 => "gamma2 (cone)",
+            Quantity::SphereGamma1 => "gamma1 (sphere)",
+            Quantity::SphereGamma2 => "gamma2 (sphere)",
+        }
+    }
+}
+
 /// A reference value with its declared accuracy.
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct ReferenceValue {
@@ -64,6 +77,18 @@ pub enum ReferenceKind {
     Fit,
 }
 
+impl ReferenceKind {
+    /// Lower-case name for tables.
+    pub fn label(self) -> &'static str {
+        match self {
+            ReferenceKind::Exact => "exact",
+            ReferenceKind::Series => "series",
+            ReferenceKind::Asymptote => "asymptote",
+            ReferenceKind::Fit => "fit",
+        }
+    }
+}
+
 impl Reference {
     /// Whether `eps` lies in the declared range.
     pub fn is_valid_at(&self, eps: f64) -> bool {
@@ -93,7 +118,7 @@ pub fn valid_references(quantity: Quantity, eps: f64) -> Vec<Reference> {
 }
 
 /// Spherical concave punch in full contact (`d >= 3h`), method of dimensionality reduction:
-/// `F = 2 E* a (d - h/3)`, i.e. `γ2 = γ1 - 1/3` for `γ1 = d/h >= 3` (PHYSICS.md fact 4).
+/// `F = 2 E* a (d - h/3)`, i.e. `γ2 = γ1 - 1/3` for `γ1 = d/h >= 3` (docs/conventions.md fact 4).
 /// Returns `None` for `d/h < 3`, where the contact is an annulus.
 pub fn sphere_full_contact_gamma2(depth_over_hole: f64) -> Option<f64> {
     (depth_over_hole >= 3.0).then(|| depth_over_hole - 1.0 / 3.0)
