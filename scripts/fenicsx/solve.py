@@ -161,7 +161,6 @@ def solve(args, mesh_path, comm):
     t2 = time.perf_counter()
     timings["assembly_s"] = t2 - t1
 
-    ksp_owner = None
     if flat:
         b = u.vector.duplicate()
         with b.localForm() as bl:
@@ -210,7 +209,6 @@ def solve(args, mesh_path, comm):
         u.x.scatter_forward()
         iterations = snes.getIterationNumber()
         active = u.vector.array[contact_dofs] >= bound - 1e-10 * args.depth
-        ksp_owner = snes
     t3 = time.perf_counter()
     timings["solve_s"] = t3 - t2
 
@@ -220,37 +218,35 @@ def solve(args, mesh_path, comm):
     force = -comm.allreduce(float(np.sum(reaction.array[contact_dofs])), op=MPI.SUM)
     comm.Barrier()
     timings["reaction_s"] = time.perf_counter() - t3
-    del ksp_owner
     local_active = [float(r) for r, a_ in zip(contact_r, active) if a_]
     dofs = int(V.dofmap.index_map.size_global * bs)
     return force, local_active, dofs, int(iterations), timings
 
 
+def state_words(args, mesh_rel, parameters):
+    """The problem's arguments, shared by our command and this script's: punch, mesh, degree,
+    and the hole or the depth."""
+    words = f" --punch {args.punch}"
+    words += f" --mesh-parameters {parameters}" if parameters else f" --mesh {mesh_rel}"
+    words += f" --degree {args.degree}"
+    if args.punch == "flat-annulus":
+        words += f" --eps {args.eps}"
+    if args.punch in ("cone", "sphere"):
+        words += f" --depth {args.depth}"
+    return words
+
+
 def our_command(args, mesh_rel, parameters):
     """The `verify solve` that solves the identical discrete problem (runnable as written)."""
-    cmd = f"cargo run --release --quiet -- solve --punch {args.punch} --method fem"
-    cmd += f" --mesh-parameters {parameters}" if parameters else f" --mesh {mesh_rel}"
-    cmd += f" --degree {args.degree}"
-    if args.punch == "flat-annulus":
-        cmd += f" --eps {args.eps}"
-    if args.punch in ("cone", "sphere"):
-        cmd += f" --depth {args.depth}"
-    return cmd + " --far-field fixed --json"
+    return ("cargo run --release --quiet -- solve --method fem"
+            + state_words(args, mesh_rel, parameters) + " --far-field fixed --json")
 
 
 def peer_command(args, mesh_rel, parameters, processes):
     """This script's command for the same result (printed, not stored)."""
-    cmd = "/usr/bin/python3 scripts/fenicsx/solve.py"
-    if processes > 1:
-        cmd = f"mpirun -n {processes} " + cmd
-    cmd += f" --punch {args.punch}"
-    cmd += f" --mesh-parameters {parameters}" if parameters else f" --mesh {mesh_rel}"
-    cmd += f" --degree {args.degree}"
-    if args.punch == "flat-annulus":
-        cmd += f" --eps {args.eps}"
-    if args.punch in ("cone", "sphere"):
-        cmd += f" --depth {args.depth}"
-    return cmd + f" --solver {args.solver}"
+    launcher = f"mpirun -n {processes} " if processes > 1 else ""
+    return (launcher + "/usr/bin/python3 scripts/fenicsx/solve.py"
+            + state_words(args, mesh_rel, parameters) + f" --solver {args.solver}")
 
 
 def write_atomically(path, text):

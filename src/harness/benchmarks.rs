@@ -53,15 +53,25 @@ pub struct FenicsxSpeedRow {
     pub ratio: Spread,
 }
 
-/// The FEniCSx speed record.
+/// What every record states about how it was measured.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct FenicsxSpeed {
+pub struct Provenance {
+    /// The command that wrote the record.
     pub command: String,
     pub date: String,
     pub commit: String,
     pub machine: Machine,
+    /// Interleaved rounds: each time is the median of this many runs.
     pub rounds: usize,
+    /// What the timed region holds, the same on both sides.
     pub timed_region: String,
+}
+
+/// The FEniCSx speed record.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct FenicsxSpeed {
+    #[serde(flatten)]
+    pub provenance: Provenance,
     pub configs: Vec<String>,
     pub rows: Vec<FenicsxSpeedRow>,
 }
@@ -131,7 +141,10 @@ impl FenicsxSpeed {
             &format!(
                 "Our FEM against FEniCSx, interleaved ({} rounds, {}, commit {}, {}): median \
                  (range)",
-                self.rounds, self.machine.description, self.commit, self.date
+                self.provenance.rounds,
+                self.provenance.machine.description,
+                self.provenance.commit,
+                self.provenance.date
             ),
             columns,
         );
@@ -164,7 +177,7 @@ impl FenicsxSpeed {
              scripts/fenicsx/solve.py; every force agreed with the stored one to 1e-8. Our time \
              over FEniCSx's fastest configuration: {lo:.2} to {hi:.2} (row medians; the ranges \
              over the rounds are in the table). Reproduce: `{}`.",
-            self.timed_region, self.command
+            self.provenance.timed_region, self.provenance.command
         )
     }
 }
@@ -172,13 +185,9 @@ impl FenicsxSpeed {
 /// The Tamaas speed record (`benches/records/tamaas-speed.json`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct TamaasSpeed {
+    #[serde(flatten)]
+    pub provenance: Provenance,
     pub problem: String,
-    pub command: String,
-    pub date: String,
-    pub commit: String,
-    pub machine: Machine,
-    pub rounds: usize,
-    pub timed_region: String,
     pub tamaas_configuration: String,
     pub ours: Spread,
     pub tamaas: Spread,
@@ -197,7 +206,11 @@ impl TamaasSpeed {
         let mut t = Table::new(
             &format!(
                 "Our grid BEM against Tamaas, {} ({} interleaved rounds, {}, commit {}, {})",
-                self.problem, self.rounds, self.machine.description, self.commit, self.date
+                self.problem,
+                self.provenance.rounds,
+                self.provenance.machine.description,
+                self.provenance.commit,
+                self.provenance.date
             ),
             vec![
                 Column::text("code", "code"),
@@ -230,11 +243,9 @@ mod tests {
             PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("benches/records/fenicsx-speed.json");
         let record: FenicsxSpeed =
             serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
-        assert!(!record.machine.description.is_empty() && !record.commit.is_empty());
-        assert!(
-            record.rounds >= 3,
-            "a record is the median of several rounds"
-        );
+        let p = &record.provenance;
+        assert!(!p.machine.description.is_empty() && !p.commit.is_empty());
+        assert!(p.rounds >= 3, "a record is the median of several rounds");
         for r in &record.rows {
             let fastest = &r.fenicsx[&r.fastest];
             for (config, time) in &r.fenicsx {
@@ -243,7 +254,7 @@ mod tests {
                     "{}: {config} is faster",
                     r.row
                 );
-                assert_eq!(time.runs.len(), record.rounds, "{} {config}", r.row);
+                assert_eq!(time.runs.len(), p.rounds, "{} {config}", r.row);
             }
             let quotient = r.ours.median / fastest.median;
             assert!(

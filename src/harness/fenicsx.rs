@@ -352,7 +352,7 @@ pub fn speed_note() -> String {
                 "  Speed, measured interleaved ({} rounds, {}, commit {}): our time over \
                  FEniCSx's fastest configuration {lo:.2} to {hi:.2} from the mesh file to the \
                  force (benches/records/fenicsx-speed.md).\n",
-                record.rounds, record.date, record.commit
+                record.provenance.rounds, record.provenance.date, record.provenance.commit
             )
         }
         Err(e) => format!("  Speed: no interleaved record ({e}).\n"),

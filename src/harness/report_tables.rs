@@ -187,7 +187,7 @@ pub fn report_tables(
         out.push(ReportTable {
             intro: Some(format!(
                 "Timed region: {}; reproduce: `{}`.",
-                record.timed_region, record.command
+                record.provenance.timed_region, record.provenance.command
             )),
             ..entry(None, "speed-tamaas", record.table())
         });
