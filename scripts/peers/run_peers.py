@@ -46,6 +46,16 @@ def versions():
     return out
 
 
+# Each peer's documented solver and settings (and the build PyPI gives: Tamaas's serial C++
+# backend); wall_s is one run, not a speed comparison (scripts/peers/speed.py makes that).
+CONFIGURATION = {
+    "tamaas": "PolonskyKeerRey, non-periodic dcfft operator, tolerance 1e-12, load control with a "
+              "secant on the load to reach the depth (flat punches: one solve scaled)",
+    "contactmechanics": "FreeFFTElasticHalfSpace, minimize_proxy (L-BFGS-B) under displacement "
+                        "control, pentol 1e-12 d, maxiter 20000",
+}
+
+
 def name_of(package, kind, eps, depth, n):
     return f"{package}-{kind}{'-' + str(eps) if kind == 'flat-annulus' else ''}-d{depth}-N{n}"
 
@@ -79,6 +89,7 @@ def record_of(package, kind, eps, depth, n, v):
         "wall_s": wall,
         "profile": "cells N x N on [-1, 1]^2, centres (i + 1/2) dx - 1; punch where b <= r <= 1 "
                    "(r <= 1); gap 1 - r (cone), 1 - r^2 (sphere), 0 (flat); E* = 1",
+        "configuration": CONFIGURATION[package],
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
         "reproduce": cmd + " --json",
         "peer_reproduce": "PYTHONPATH=scripts/peers .venv-peers/bin/python "

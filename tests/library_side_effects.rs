@@ -1,0 +1,57 @@
+//! The library sets nothing process-wide: no global allocator, no allocator options, no
+//! transparent-huge-page or thread-affinity calls, no environment variable set at run time, and
+//! the panic hook installed at most once (by `fem::msh`'s quiet catch, which keeps the previous
+//! hook). Those choices belong to a program (`src/bin/`), so a program that links `ringcontact`
+//! gets none of them. Checked on the sources, where a regression would be written.
+
+use std::path::{Path, PathBuf};
+
+fn library_sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
+        let path = entry.path();
+        if path.is_dir() {
+            if path.file_name().is_some_and(|n| n != "bin") {
+                library_sources(&path, out);
+            }
+        } else if path.extension().is_some_and(|x| x == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+#[test]
+fn the_library_sets_no_process_state() {
+    let mut files = Vec::new();
+    library_sources(
+        &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"),
+        &mut files,
+    );
+    assert!(files.len() > 50, "found {} sources", files.len());
+    let forbidden = [
+        "#[global_allocator]",
+        "mi_option_set",
+        "PR_SET_THP_DISABLE",
+        "sched_setaffinity",
+        "env::set_var",
+        "env::remove_var",
+    ];
+    for file in &files {
+        let whole = std::fs::read_to_string(file).unwrap();
+        // The code, without its unit tests (which may set a hook to observe one).
+        let text = whole.split("#[cfg(test)]").next().unwrap_or_default();
+        for word in forbidden {
+            assert!(
+                !text.contains(word),
+                "{} uses {word}: a process setting belongs to a program, not the library",
+                file.display()
+            );
+        }
+        let hooks = text.matches("panic::set_hook").count();
+        let allowed = usize::from(file.ends_with("fem/msh.rs"));
+        assert!(
+            hooks <= allowed,
+            "{} sets the panic hook {hooks} times",
+            file.display()
+        );
+    }
+}
