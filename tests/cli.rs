@@ -472,3 +472,94 @@ fn a_flag_of_the_other_punch_family_is_refused() {
         }
     }
 }
+
+/// The flags that make the stored results reproducible refuse what they cannot do, naming it,
+/// before any work: a far field or a mesh for a method that has none, parameters the geometry
+/// file does not take or cannot mesh, a comparison of fresh results without a report.
+#[test]
+fn the_reproduction_flags_refuse_bad_input_with_a_reason() {
+    for (args, named) in [
+        (
+            &["solve", "--punch", "flat", "--far-field", "fixed"][..],
+            "--far-field",
+        ),
+        (
+            &["solve", "--punch", "flat", "--mesh-parameters", "a=1"][..],
+            "--mesh-parameters",
+        ),
+        (
+            &[
+                "solve",
+                "--punch",
+                "flat",
+                "--method",
+                "fem",
+                "--mesh-parameters",
+                "a=x",
+            ][..],
+            "not a finite number",
+        ),
+        (
+            &[
+                "solve",
+                "--punch",
+                "flat",
+                "--method",
+                "fem",
+                "--mesh-parameters",
+                "zz=1",
+            ][..],
+            "unknown parameter 'zz'",
+        ),
+        (&["mesh", "--parameters", "b=2"][..], "need 0 <= b < a < R"),
+        (
+            &["compare", "--no-report", "--fresh", "/nonexistent"][..],
+            "--fresh",
+        ),
+        (
+            &["compare", "--fresh", "/nonexistent"][..],
+            "not a directory",
+        ),
+    ] {
+        let out = verify(args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{args:?} succeeded");
+        assert!(stderr.contains(named), "{args:?}: {stderr}");
+        assert!(out.stdout.is_empty(), "{args:?} printed a result");
+    }
+}
+
+/// `--far-field fixed` is FEniCSx's model: on the committed disk (P2) the force is the stored
+/// FEniCSx force (an independent code) to 1e-8, and the default Boussinesq far field is not.
+#[test]
+fn the_fixed_far_field_solves_fenicsxs_problem() {
+    let stored: serde_json::Value = serde_json::from_str(
+        &std::fs::read_to_string(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("verify/fenicsx/flat-disk-L1-P2.json"),
+        )
+        .unwrap(),
+    )
+    .unwrap();
+    let fenicsx = stored["force"].as_f64().unwrap();
+    let force = |far: &str| {
+        json(&[
+            "solve",
+            "--punch",
+            "flat",
+            "--method",
+            "fem",
+            "--mesh",
+            "meshes/disk-L1.msh",
+            "--degree",
+            "2",
+            "--far-field",
+            far,
+            "--json",
+        ])["force"]
+            .as_f64()
+            .unwrap()
+    };
+    assert!(((force("fixed") - fenicsx) / fenicsx).abs() < 1e-8);
+    assert!(((force("boussinesq") - fenicsx) / fenicsx).abs() > 1e-6);
+}

@@ -28,15 +28,10 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
             "--fem-tolerances: {t} is outside [{floor:e}, 1), the FEM's tolerance range"
         ));
     }
-    if args.no_report {
-        let inputs = CompareInputs {
-            comparison: comparison::run(args.tol).map_err(message)?,
-            fenicsx: fenicsx::run().map_err(message)?,
-            peers: peers::run(parts::PEER_MAX_GRID).map_err(message)?,
-            operators: operator::load_records().map_err(message)?,
-            adhesion_peers: Vec::new(),
-        };
-        return compare_reply(&inputs, None, None, args.json);
+    if args.fresh.is_some() && args.no_report {
+        return Err(
+            "--fresh compares fresh results in the report: drop --no-report (or --fresh)".into(),
+        );
     }
     if let Some(fresh) = &args.fresh {
         if !fresh.is_dir() {
@@ -46,6 +41,16 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
                 fresh.display()
             ));
         }
+    }
+    if args.no_report {
+        let inputs = CompareInputs {
+            comparison: comparison::run(args.tol).map_err(message)?,
+            fenicsx: fenicsx::run().map_err(message)?,
+            peers: peers::run(parts::PEER_MAX_GRID).map_err(message)?,
+            operators: operator::load_records().map_err(message)?,
+            adhesion_peers: Vec::new(),
+        };
+        return compare_reply(&inputs, None, None, args.json);
     }
     let report_dir = super::output_directory(args.report.as_deref(), "reports/latest");
     eprintln!(

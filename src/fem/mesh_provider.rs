@@ -518,7 +518,7 @@ pub const GEO_PARAMETERS: [&str; 12] = [
 /// cache key depends on it). Unknown names, repeated names and values that are not finite
 /// numbers are refused with the offending item named.
 pub fn parse_parameters(text: &str) -> Result<Vec<(String, f64)>> {
-    let refuse = |message: String| Error::invalid("--mesh-parameters", message);
+    let refuse = |message: String| Error::invalid("mesh parameters", message);
     let mut out: Vec<(String, f64)> = Vec::new();
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
         let (name, value) = item
@@ -545,7 +545,44 @@ pub fn parse_parameters(text: &str) -> Result<Vec<(String, f64)>> {
     if out.is_empty() {
         return Err(refuse("no parameters given".into()));
     }
+    check_geometry(&out).map_err(refuse)?;
     Ok(out)
+}
+
+/// The rules `meshes/half_space.geo` needs of its parameters (the file's defaults for those not
+/// given): `0 <= b < a < R`, positive sizes and grading, `split` 0 or beyond `a` and inside `R`,
+/// `order` 1 or 2.
+fn check_geometry(parameters: &[(String, f64)]) -> std::result::Result<(), String> {
+    let get = |name: &str, default: f64| {
+        parameters
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(default, |(_, v)| *v)
+    };
+    let (a, b, r) = (get("a", 1.0), get("b", 0.0), get("R", 1e5));
+    if !(0.0 <= b && b < a && a < r) {
+        return Err(format!(
+            "need 0 <= b < a < R (got b = {b}, a = {a}, R = {r})"
+        ));
+    }
+    for name in ["hmin", "hline", "grading", "hb", "hband"] {
+        if let Some((_, v)) = parameters.iter().find(|(n, _)| n == name) {
+            if *v <= 0.0 {
+                return Err(format!("{name} must be positive (got {v})"));
+            }
+        }
+    }
+    let split = get("split", 0.0);
+    if split != 0.0 && !(split * a > a && split * a < r) {
+        return Err(format!(
+            "split cuts the free surface at split * a: need 0 (no cut) or a < split * a < R \
+             (got {split})"
+        ));
+    }
+    if !matches!(get("order", 1.0), 1.0 | 2.0) {
+        return Err("order must be 1 or 2".into());
+    }
+    Ok(())
 }
 
 /// `NAME=VALUE,...` with each value in its shortest form that reads back to the same `f64`
@@ -638,6 +675,10 @@ mod tests {
             ("a=inf", "a=inf"),
             ("a", "'a' is not NAME=VALUE"),
             ("", "no parameters"),
+            ("b=2", "need 0 <= b < a < R"),
+            ("R=-5", "need 0 <= b < a < R"),
+            ("hmin=0", "hmin must be positive"),
+            ("order=3", "order must be 1 or 2"),
         ] {
             let message = parse_parameters(bad).unwrap_err().to_string();
             assert!(message.contains(named), "{bad}: {message}");
