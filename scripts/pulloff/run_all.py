@@ -8,8 +8,8 @@ of the cone at 3, where none exists (declined). Needs gmsh (bash scripts/install
 
 Each record is NAME.json in --out: the result (or why the simulation declined the case), the
 date, the commit and the command that reproduces it. Records are written through a temporary file
-and a rename. A record without a result never replaces one with a result: it goes beside it as
-NAME.error.json, and the run's exit status is 1. The committed baselines are verify/pulloff/;
+and a rename. A record of a run that declined, failed or stopped early never replaces one with a
+result: it goes beside it as NAME.error.json, and the run's exit status is 1. The committed baselines are verify/pulloff/;
 refresh them with `--out verify/pulloff`, review the difference and commit it.
 
 Usage: python3 scripts/pulloff/run_all.py --out DIR [NAME ...]   (default: every case)
@@ -74,14 +74,19 @@ def main():
             "reproduce": "cargo run --release --quiet -- pulloff " + " ".join(flags) + " --json",
             "commit": commit,
         }
-        if run.returncode == 0:
-            record["result"] = json.loads(run.stdout)
-        else:
+        try:
+            # A sequence cut short still prints its ranges (with `stopped`), exit status 1.
+            record["result"] = json.loads(run.stdout) if run.stdout.strip() else None
+        except ValueError:
+            record["result"] = None
+        if record["result"] is None:
+            del record["result"]
+        if run.returncode != 0:
             lines = run.stderr.strip().splitlines() or [f"exit status {run.returncode}"]
             record["declined"] = lines[-1]
-            print(f"declined or failed: {lines[-1]}", file=sys.stderr)
+            print(f"declined, failed or cut short: {lines[-1]}", file=sys.stderr)
         target = os.path.join(args.out, name + ".json")
-        if "result" not in record and has_result(target):
+        if run.returncode != 0 and has_result(target):
             target = os.path.join(args.out, name + ".error.json")
             status = 1
         write_atomically(target, json.dumps(record, indent=1) + "\n")

@@ -168,10 +168,16 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     }
     .map_err(message)?;
     refuse_non_finite("pulloff", &result.sequence)?;
+    // A sequence cut short keeps its ranges, says why, and is not a success.
+    let complete = result.stopped.is_none();
     if args.json {
-        return Ok(Reply::ok(to_json(&result)?));
+        return Ok(Reply::verdict(to_json(&result)?, complete));
     }
-    Ok(Reply::ok(render(&result)))
+    let stopped = result
+        .stopped
+        .as_ref()
+        .map_or(String::new(), |why| format!("  STOPPED EARLY: {why}\n"));
+    Ok(Reply::verdict(render(&result) + &stopped, complete))
 }
 
 /// The sequence as a table, then the extrapolate beside the JKR route.

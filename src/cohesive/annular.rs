@@ -172,6 +172,7 @@ pub fn run_annular(
     let (extrapolated, error_bar) = extrapolate(&sequence, mesh_difference.unwrap_or(0.0));
     let (jkr, full_contact, paper) = jkr_values(&case)?;
     Ok(PulloffStudy {
+        stopped: None,
         punch: case.punch,
         eps: None,
         d0_over_h: Some(case.d0_over_h),

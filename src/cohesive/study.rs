@@ -277,6 +277,10 @@ pub const MIN_RANGE: f64 = 0.001;
 /// The study of one punch.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct PulloffStudy {
+    /// Why the sequence stopped before its last range (the ranges before it are kept), if it
+    /// did.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
     pub punch: PunchKind,
     /// `b/a` of the flat annulus.
     pub eps: Option<f64>,
@@ -646,6 +650,7 @@ fn run_sequence(
     let mut smallest_model = None;
     let mut queue: Vec<f64> = ranges.to_vec();
     let mut next = 0;
+    let mut stopped = None;
     loop {
         if next == queue.len() {
             let usable: Vec<f64> = sequence
@@ -664,8 +669,16 @@ fn run_sequence(
         }
         let range = queue[next];
         next += 1;
+        // A range that fails after others succeeded ends the sequence there; they are kept.
         let (entry, curve, edges, model) =
-            simulate_range(range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL)?;
+            match simulate_range(range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL) {
+                Ok(simulated) => simulated,
+                Err(e) if !sequence.is_empty() => {
+                    stopped = Some(format!("the range rho/d0 = {range} failed: {e}"));
+                    break;
+                }
+                Err(e) => return Err(e),
+            };
         progress(&entry);
         let left = branch_left(&case, &entry);
         if left.is_none() && model.is_some() {
@@ -716,6 +729,7 @@ fn run_sequence(
         None => smallest_model.expect("a rim-band model for every range in the sequence"),
     };
     Ok(PulloffStudy {
+        stopped,
         punch,
         eps: (punch == PunchKind::FlatAnnulus).then_some(eps),
         d0_over_h: punch.is_concave().then_some(case.d0_over_h),
