@@ -119,6 +119,7 @@ fn main() {
         for (kind, eps, load, label) in states() {
             let (force_ref, eps_ref) = reference(kind, eps, load);
             let options = FemOptions {
+                linear_solver: Default::default(),
                 degree,
                 tolerance,
                 mesh: None,

@@ -28,6 +28,7 @@ pub mod numerics;
 pub mod punch;
 pub mod reference;
 pub mod scene;
+pub mod sparse;
 pub mod solution;
 
 pub use error::{Error, Result};

@@ -221,6 +221,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
     };
     let tolerance = scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE);
     let fem_options = FemOptions {
+        linear_solver: Default::default(),
         // A given mesh keeps the quadratic default; the ladder picks by tolerance.
         degree: options.degree.unwrap_or(if options.mesh.is_some() {
             Degree::Quadratic

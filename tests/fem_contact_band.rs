@@ -126,6 +126,7 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
             .concave(&mut reference_solver, kind, depth, None)
             .unwrap();
         let options = FemOptions {
+            linear_solver: Default::default(),
             degree,
             tolerance: 0.9,
             mesh: Some(path.clone()),

@@ -8,6 +8,7 @@ use clap::{CommandFactory, FromArgMatches};
 
 use ringcontact::cli::{self, args::Cli};
 use ringcontact::fem::mesh_provider;
+use ringcontact::sparse::{self, Backend};
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
 /// ends the program quietly with status 141 (as if by SIGPIPE); any other write error (a full
@@ -72,6 +73,27 @@ fn main() -> ExitCode {
     if let Some(dir) = &cli.data_dir {
         // Read by the data lookups of the library (mesh_provider::find_project_root).
         mesh_provider::set_data_directory(dir.clone());
+    }
+    // Chosen before any solver thread starts; plan jobs get it passed on (harness::plan).
+    let linear_solver = match cli.linear_solver.as_deref().map(str::parse::<Backend>) {
+        Some(Ok(backend)) => Some(backend),
+        Some(Err(e)) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+        None => match std::env::var(sparse::ENVIRONMENT_VARIABLE) {
+            Ok(name) => match name.parse::<Backend>() {
+                Ok(backend) => Some(backend),
+                Err(e) => {
+                    eprintln!("error: {}: {e}", sparse::ENVIRONMENT_VARIABLE);
+                    return ExitCode::from(2);
+                }
+            },
+            Err(_) => None,
+        },
+    };
+    if let Some(backend) = linear_solver {
+        sparse::set_process_backend(backend);
     }
     if cli::needs_data(&cli.command) {
         if let Err(e) = mesh_provider::find_project_root() {

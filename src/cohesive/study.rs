@@ -864,6 +864,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
 pub fn study_options() -> FemOptions {
     FemOptions {
+    linear_solver: Default::default(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

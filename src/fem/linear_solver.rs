@@ -23,6 +23,8 @@ use super::separator::{split_nodes_of, NodeSplit, Side};
 use super::split_cholesky::{SplitAnalysis, SplitFactor};
 use super::vertex_ordering::{vertex_graph, vertex_led_node_order_of, vertex_order, VertexCells};
 use crate::error::{Error, Result};
+use crate::sparse::faer_llt::{FaerAnalysis, FaerFactor};
+use crate::sparse::{Backend, DofOrder, Pattern};
 
 /// The symbolic analysis a [`ConstrainedCholesky`] factorises on: of the whole matrix, or of its
 /// two parts and their separator.
@@ -30,6 +32,7 @@ use crate::error::{Error, Result};
 pub enum Analysis {
     Whole(SymbolicFactor),
     Split(Arc<SplitAnalysis>),
+    Faer(FaerAnalysis, (usize, usize)),
 }
 
 /// Fewest unknowns for which a model's factorisation is split over two cores.
@@ -61,13 +64,15 @@ pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
 pub struct MeshOrdering {
     order: Vec<usize>,
     split: Option<NodeSplit>,
+    /// The backend the analysis is for (only [`Backend::Native`] uses the split).
+    backend: Backend,
 }
 
 impl MeshOrdering {
     /// The ordering of `mesh`'s nodes (one vertex graph and one minimum-degree order of it for
     /// the node order and the split, which are then found side by side).
-    pub fn of_mesh(mesh: &Mesh) -> Self {
-        Self::of_raised(mesh, || mesh)
+    pub fn of_mesh(mesh: &Mesh, backend: Backend) -> Self {
+        Self::of_raised(mesh, backend, || mesh)
     }
 
     /// The ordering of the mesh `raised` gives, `vertex_mesh` with its degree raised: the vertex
@@ -75,15 +80,20 @@ impl MeshOrdering {
     /// `vertex_mesh` before `raised` is called, so that the raising can run beside them. If the
     /// raised mesh's cells do not have `vertex_mesh`'s vertices (in the same order), they are
     /// found again on the raised mesh.
-    pub fn of_raised<'m>(vertex_mesh: &Mesh, raised: impl FnOnce() -> &'m Mesh) -> Self {
+    pub fn of_raised<'m>(
+        vertex_mesh: &Mesh,
+        backend: Backend,
+        raised: impl FnOnce() -> &'m Mesh,
+    ) -> Self {
         let incidence = VertexCells::new(vertex_mesh);
         let graph = vertex_graph(vertex_mesh, &incidence);
         let vertices = vertex_order(&graph);
         let mesh = raised();
         if !same_vertices(vertex_mesh, mesh) {
-            return Self::of_mesh(mesh);
+            return Self::of_mesh(mesh, backend);
         }
-        let wants_split = 2 * mesh.nodes.len() >= split_min_dofs();
+        let wants_split =
+            backend == Backend::Native && 2 * mesh.nodes.len() >= split_min_dofs();
         let (order, split) = rayon::join(
             || vertex_led_node_order_of(mesh, &incidence, &graph, &vertices),
             || {
@@ -92,7 +102,11 @@ impl MeshOrdering {
                     .flatten()
             },
         );
-        Self { order, split }
+        Self {
+            order,
+            split,
+            backend,
+        }
     }
 }
 
@@ -122,6 +136,15 @@ impl Analysis {
     ) -> (Result<Self>, R) {
         let order = &ordering.order;
         let dofs = col_offsets.len().saturating_sub(1);
+        if ordering.backend == Backend::Faer {
+            let pattern = Pattern::new(col_offsets, row_indices);
+            let analyse = || {
+                let order = DofOrder::of_nodes(order, dofs)?;
+                FaerAnalysis::new(&pattern, &order)
+                    .map(|a| Analysis::Faer(a, (dofs, row_indices.len())))
+            };
+            return rayon::join(analyse, beside);
+        }
         let whole = || SymbolicFactor::with_node_order(col_offsets, row_indices, order);
         let split = ordering.split.as_ref().filter(|split| {
             dofs >= split_min_dofs()
@@ -143,6 +166,7 @@ impl Analysis {
         match self {
             Analysis::Whole(symbolic) => symbolic.fits(n, nnz),
             Analysis::Split(split) => split.fits(n, nnz),
+            Analysis::Faer(_, shape) => *shape == (n, nnz),
         }
     }
 
@@ -151,6 +175,7 @@ impl Analysis {
     pub fn describe(&self) -> String {
         match self {
             Analysis::Whole(symbolic) => format!("whole, work {:.3e}", symbolic.work()),
+            Analysis::Faer(analysis, _) => format!("faer, nnz(L) {}", analysis.factor_len()),
             Analysis::Split(split) => {
                 let [first, second] = split.part_sizes();
                 let [first_work, second_work] = split.part_work();
@@ -167,6 +192,7 @@ impl Analysis {
 enum Factor {
     Whole(NumericFactor),
     Split(SplitFactor),
+    Faer(FaerFactor),
 }
 
 impl Factor {
@@ -175,6 +201,7 @@ impl Factor {
         match self {
             Factor::Whole(factor) => factor.solve_in_place(rhs),
             Factor::Split(factor) => factor.solve_in_place(rhs),
+            Factor::Faer(factor) => factor.solve_in_place(rhs),
         }
     }
 }
@@ -224,8 +251,21 @@ impl<'a> ConstrainedCholesky<'a> {
     /// at 706 k, and blocked solves of 64 right-hand sides 0.087 s against 0.153 s (the two
     /// cores are better used by the parallel element assembly and by independent states).
     pub fn new(matrix: &'a CscMatrix<f64>) -> Result<Self> {
-        let symbolic = SymbolicFactor::of_pattern(matrix.col_offsets(), matrix.row_indices())?;
-        Self::with_symbolic(matrix, Analysis::Whole(symbolic))
+        Self::with_backend(matrix, Backend::of_process())
+    }
+
+    /// [`Self::new`] on the given backend (a bare pattern: ordered on its node graph by the
+    /// native backend, by `faer`'s AMD by the other).
+    pub fn with_backend(matrix: &'a CscMatrix<f64>, backend: Backend) -> Result<Self> {
+        let (offsets, rows) = (matrix.col_offsets(), matrix.row_indices());
+        let analysis = match backend {
+            Backend::Native => Analysis::Whole(SymbolicFactor::of_pattern(offsets, rows)?),
+            Backend::Faer => Analysis::Faer(
+                FaerAnalysis::with_amd(&Pattern::new(offsets, rows))?,
+                (matrix.nrows(), matrix.nnz()),
+            ),
+        };
+        Self::with_symbolic(matrix, analysis)
     }
 
     /// [`Self::new`] with the symbolic analysis of `matrix`'s pattern already done (for example
@@ -411,6 +451,16 @@ impl<'a> ConstrainedCholesky<'a> {
             Analysis::Split(split) => {
                 Factor::Split(SplitFactor::new(split, self.matrix.values(), constrained)?)
             }
+            Analysis::Faer(analysis, _) => {
+                let pattern =
+                    Pattern::new(self.matrix.col_offsets(), self.matrix.row_indices());
+                Factor::Faer(FaerFactor::new(
+                    analysis,
+                    &pattern,
+                    self.matrix.values(),
+                    constrained,
+                )?)
+            }
         };
         self.factorisations += 1;
         self.factorisation_seconds += start.elapsed().as_secs_f64();
@@ -520,15 +570,15 @@ mod tests {
         };
         for degree in [Degree::Quadratic, Degree::Cubic] {
             let raised = vertex_mesh.with_degree(degree);
-            let beside = MeshOrdering::of_raised(&vertex_mesh, || &raised);
-            let own = MeshOrdering::of_mesh(&raised);
+            let beside = MeshOrdering::of_raised(&vertex_mesh, Backend::Native, || &raised);
+            let own = MeshOrdering::of_mesh(&raised, Backend::Native);
             assert!(beside.split.is_some(), "{degree:?}: the split is exercised");
             assert!(same(&beside, &own), "{degree:?}");
         }
         let other = structured_rectangle(2.0, 1.0, 30, 20, 1, 2, 3).with_degree(Degree::Quadratic);
-        let beside = MeshOrdering::of_raised(&vertex_mesh, || &other);
+        let beside = MeshOrdering::of_raised(&vertex_mesh, Backend::Native, || &other);
         assert_eq!(beside.order.len(), other.nodes.len());
-        assert!(same(&beside, &MeshOrdering::of_mesh(&other)));
+        assert!(same(&beside, &MeshOrdering::of_mesh(&other, Backend::Native)));
     }
 
     #[test]

@@ -119,6 +119,8 @@ pub struct FemOptions {
     pub poisson_ratio: f64,
     /// Treatment of the far arc (default: Boussinesq's point-force field, bias `O((a/R)²)`).
     pub far_field: FarField,
+    /// The sparse Cholesky backend that factorises the stiffness ([`crate::sparse::Backend`]).
+    pub linear_solver: crate::sparse::Backend,
 }
 
 /// A solved FEM state.
@@ -161,6 +163,8 @@ pub struct FemState {
     /// Concave punches: the located edge's conditioning `κ = |db/dd| d` on the final model
     /// ([`super::contact::ContactModel::edge_depth_sensitivity`]).
     pub edge_conditioning: Option<f64>,
+    /// The sparse Cholesky backend that factorised the final model.
+    pub linear_solver: crate::sparse::Backend,
 }
 
 /// Mesh and displacement `(u_r, u_z)` per node of a solved model.
@@ -304,6 +308,7 @@ struct ModelSpec {
     far_field: FarField,
     /// Where the scene's contact line starts, `b/a` (0 for a closed one).
     contact_start: f64,
+    linear_solver: crate::sparse::Backend,
 }
 
 /// Physical groups every model needs.
@@ -370,6 +375,7 @@ fn assemble_model(
         degree,
         poisson_ratio,
         far_field,
+        linear_solver,
         ..
     } = spec;
     let start = Instant::now();
@@ -415,7 +421,7 @@ fn assemble_model(
         };
     let order_nodes = || {
         let start = Instant::now();
-        let ordering = MeshOrdering::of_raised(&vertex_mesh, || {
+        let ordering = MeshOrdering::of_raised(&vertex_mesh, linear_solver, || {
             raised.wait().as_ref().unwrap_or(&vertex_mesh)
         });
         (ordering, start.elapsed().as_secs_f64())
@@ -705,6 +711,7 @@ fn prepare_checked(
         poisson_ratio: options.poisson_ratio,
         far_field: options.far_field,
         contact_start,
+        linear_solver: options.linear_solver,
     };
     let model = prepare(provided, spec)?;
     check_domain(&model, domain_tolerance)?;
@@ -775,6 +782,7 @@ fn finish(
             .map(|r| r.describe()),
         timings: model.timings,
         edge_conditioning,
+        linear_solver: model.spec.linear_solver,
     }
 }
 
@@ -1216,6 +1224,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         // the 1e-6 states took up to 40 % longer after a quadratic locator).
         let is_locator = locating && level.is_none();
         let locator_options = FemOptions {
+            linear_solver: Default::default(),
             degree: if options.tolerance >= CUBIC_BELOW_TOLERANCE {
                 Degree::Quadratic
             } else {

@@ -198,6 +198,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
 /// punches.
 pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
     let options = FemOptions {
+        linear_solver: Default::default(),
         degree: Degree::Quadratic,
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: None,

@@ -323,6 +323,7 @@ fn compute_level(
                 FemLoad::Flat
             };
             let options = FemOptions {
+                linear_solver: Default::default(),
                 degree,
                 tolerance: 1e-3,
                 mesh: None,

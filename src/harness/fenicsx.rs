@@ -145,6 +145,7 @@ pub fn compare(
         _ => (0.0, FemLoad::ConcaveDepth(stored.depth)),
     };
     let options = FemOptions {
+        linear_solver: Default::default(),
         degree,
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),

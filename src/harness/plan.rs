@@ -234,6 +234,10 @@ fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
     let mut command = Command::new(executable);
     if let Ok(root) = crate::fem::mesh_provider::find_project_root() {
         command.env(crate::fem::mesh_provider::DATA_DIR_VARIABLE, root);
+        command.env(
+            crate::sparse::ENVIRONMENT_VARIABLE,
+            crate::sparse::Backend::of_process().name(),
+        );
     }
     let output = command.args(&args).output();
     let wall_s = start.elapsed().as_secs_f64();

@@ -691,6 +691,7 @@ fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
         .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
         .collect();
     let options = FemOptions {
+        linear_solver: Default::default(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

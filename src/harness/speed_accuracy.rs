@@ -323,6 +323,7 @@ pub fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<
     let cost = problem.cost_problem();
     let degree = fem_solver::default_degree(tolerance);
     let options = FemOptions {
+        linear_solver: Default::default(),
         degree,
         tolerance,
         mesh: None,
@@ -479,6 +480,7 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
         for level in 0..3 {
             let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
             let options = FemOptions {
+                linear_solver: Default::default(),
                 degree,
                 tolerance: 1e-3,
                 mesh: Some(mesh),
