@@ -9,13 +9,13 @@
 
 use std::time::Instant;
 
-use ringcontact::fem::assembly::assemble_stiffness;
+use ringcontact::discretisation::assembly::assemble_stiffness;
+use ringcontact::discretisation::element::Lame;
+use ringcontact::discretisation::quadrature::TriangleRule;
 use ringcontact::fem::contact::ContactModel;
-use ringcontact::fem::element::Lame;
-use ringcontact::fem::linear_solver::ConstrainedCholesky;
-use ringcontact::fem::mesh::{structured_rectangle, tags, Degree};
-use ringcontact::fem::quadrature::TriangleRule;
+use ringcontact::mesh::triangulation::{structured_rectangle, tags, Degree};
 use ringcontact::punch::PunchKind;
+use ringcontact::sparse::constrained::ConstrainedCholesky;
 
 fn main() {
     let material = Lame::from_young_poisson(1.0, 0.3);

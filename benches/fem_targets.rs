@@ -11,7 +11,7 @@
 use std::time::Instant;
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::fem::far_field::FarField;
+use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions};
 use ringcontact::punch::PunchKind;
 
@@ -100,9 +100,9 @@ fn main() {
     let cache = std::env::temp_dir().join(format!("ringcontact-targets-{}", std::process::id()));
     std::env::set_var("RINGCONTACT_MESH_CACHE", &cache);
     // Find gmsh once (its version probe is per process, not per state).
-    let root = ringcontact::fem::mesh_provider::project_root();
+    let root = ringcontact::mesh::provider::project_root();
     let probe = Instant::now();
-    ringcontact::fem::gmsh::Gmsh::get(&root, "the targets benchmark").expect("gmsh is needed");
+    ringcontact::mesh::gmsh::Gmsh::get(&root, "the targets benchmark").expect("gmsh is needed");
     println!(
         "gmsh found in {:.3} s (once per process); mesh cache {}",
         probe.elapsed().as_secs_f64(),

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """The measurement that decides the FEM's default sparse Cholesky backend (`--linear-solver`).
 
-Times, paired and interleaved (the backends' order alternates from round to round), the user's
-paths with each backend of `ringcontact::sparse`:
+Times, paired and interleaved (the configurations' order rotates from round to round), the
+user's paths with each backend of `ringcontact::sparse` and with the native backend's two-core
+split turned off:
 
 - `verify solve --method fem --tol 1e-3 | 1e-6 | 1e-8` on target states of benches/fem_targets
   (meshes from the cache: run once beforehand so that gmsh time is not measured);
@@ -11,7 +12,7 @@ paths with each backend of `ringcontact::sparse`:
 - with `--default-run`, the whole default `verify` run (about a minute a run).
 
 Each time is the program's own `wall_s` (from the mesh file to the answer) or, for the default
-run, the process's wall time. Forces of the two backends are checked to agree to 1e-10.
+run, the process's wall time. Forces of all configurations are checked to agree to 1e-10.
 Writes benches/records/linear-solver.{json,md}; prints the table.
 
   python3 scripts/linear_solver_speed.py [--rounds 5] [--default-run] [--out DIR]
@@ -31,7 +32,14 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "fen
 from records import ROOT, commit_of, machine, verify_binary, write_atomically  # noqa: E402
 import speed as fenicsx_speed  # noqa: E402
 
-BACKENDS = ["native", "faer"]
+# Each configuration: the backend, and the environment it runs with. `native-whole` is the
+# native backend with its two-core split turned off (RINGCONTACT_SPLIT_MIN_DOFS beyond every
+# model): what the split itself gains, and what the native factorisation gains without it.
+CONFIGS = {
+    "native": ("native", {}),
+    "native-whole": ("native", {"RINGCONTACT_SPLIT_MIN_DOFS": "1000000000"}),
+    "faer": ("faer", {}),
+}
 AGREEMENT = 1e-10
 TARGET_STATES = [
     ("cone d/h=2", ["--punch", "cone", "--depth", "2"]),
@@ -57,13 +65,15 @@ def cases(verify):
     return out
 
 
-def run(verify, backend, args):
+def run(verify, config, args):
+    backend, extra = CONFIGS[config]
+    env = dict(os.environ, **extra)
     start = time.perf_counter()
     p = subprocess.run([verify, "--linear-solver", backend] + args, cwd=ROOT,
-                       capture_output=True, text=True)
+                       capture_output=True, text=True, env=env)
     wall = time.perf_counter() - start
     if p.returncode != 0:
-        sys.exit(f"{' '.join(args)} with {backend} failed: {p.stderr.strip()[-400:]}")
+        sys.exit(f"{' '.join(args)} with {config} failed: {p.stderr.strip()[-400:]}")
     if args and args[0] == "solve":
         result = json.loads(p.stdout)
         return result["wall_s"], result["force"]
@@ -88,25 +98,34 @@ def main():
     todo = cases(verify)
     if opts.default_run:
         todo.append(("default verify run", []))
-    times = {label: {b: [] for b in BACKENDS} for label, _ in todo}
+    names = list(CONFIGS)
+    times = {label: {c: [] for c in names} for label, _ in todo}
     forces = {label: {} for label, _ in todo}
     for r in range(opts.rounds):
         for label, args in todo:
-            order = BACKENDS if r % 2 == 0 else list(reversed(BACKENDS))
-            for backend in order:
-                wall, force = run(verify, backend, args)
-                times[label][backend].append(wall)
-                forces[label].setdefault(backend, force)
+            # The order rotates from round to round, so that none always runs first.
+            order = names[r % len(names):] + names[:r % len(names)]
+            for config in order:
+                wall, force = run(verify, config, args)
+                times[label][config].append(wall)
+                forces[label].setdefault(config, force)
         print(f"round {r + 1}/{opts.rounds} done", file=sys.stderr)
     rows = []
     for label, _ in todo:
-        native, faer = times[label]["native"], times[label]["faer"]
-        ratios = [f / n for f, n in zip(faer, native)]
-        fn, ff = forces[label].get("native"), forces[label].get("faer")
-        if fn is not None and abs(fn - ff) > AGREEMENT * max(1.0, abs(fn)):
-            sys.exit(f"{label}: forces differ, native {fn}, faer {ff}")
-        rows.append({"case": label, "native": spread(native), "faer": spread(faer),
-                     "faer_over_native": spread(ratios), "force": fn})
+        row = {"case": label, "force": forces[label].get("native")}
+        for config in names:
+            row[config] = spread(times[label][config])
+            f = forces[label].get(config)
+            fn = forces[label].get("native")
+            if fn is not None and abs(f - fn) > AGREEMENT * max(1.0, abs(fn)):
+                sys.exit(f"{label}: forces differ, native {fn}, {config} {f}")
+        native = times[label]["native"]
+        row["faer_over_native"] = spread([f / n for f, n in zip(times[label]["faer"], native)])
+        row["native_whole_over_native"] = spread(
+            [w / n for w, n in zip(times[label]["native-whole"], native)])
+        row["faer_over_native_whole"] = spread(
+            [f / w for f, w in zip(times[label]["faer"], times[label]["native-whole"])])
+        rows.append(row)
     record = {
         "benchmark": "linear-solver",
         "command": "python3 scripts/linear_solver_speed.py --rounds %d%s"
@@ -115,6 +134,7 @@ def main():
         "commit": commit_of(),
         "machine": machine(),
         "rounds": opts.rounds,
+        "configurations": {name: {"backend": b, "environment": e} for name, (b, e) in CONFIGS.items()},
         "timed_region": "verify's own wall_s (mesh file to answer); the default run: the process",
         "rows": rows,
     }
@@ -122,19 +142,26 @@ def main():
         "# The FEM's sparse Cholesky backends: native against faer's public API",
         "",
         f"Generated by `{record['command']}` on {record['date']} (commit {record['commit']}) on "
-        f"{record['machine']}. {opts.rounds} interleaved rounds; forces of the two backends "
-        f"within {AGREEMENT:g}. Times in seconds: median (range). Ratio: faer's time over "
-        "native's, median of the per-round ratios (range); above 1.25 native earns its place "
-        "on that path.",
+        f"{record['machine']['description']}. {opts.rounds} interleaved rounds; forces of all "
+        "configurations "
+        f"within {AGREEMENT:g}. Times in seconds: median (range). Ratios: medians of the "
+        "per-round ratios (range). `native-whole` is the native backend without its two-core "
+        "split. A home-made piece earns its place on a path where the time without it over the "
+        "time with it is at least 1.25: faer / native for the native backend as a whole, "
+        "native-whole / native for the split, faer / native-whole for the native factorisation "
+        "of a whole matrix.",
         "",
-        "| path | native | faer | faer / native |",
-        "|---|---|---|---|",
+        "| path | native | native-whole | faer | faer / native | native-whole / native "
+        "| faer / native-whole |",
+        "|---|---|---|---|---|---|---|",
     ]
     fmt = lambda s: f"{s['median']:.3f} ({s['min']:.3f}-{s['max']:.3f})"  # noqa: E731
     fmt_ratio = lambda s: f"{s['median']:.2f} ({s['min']:.2f}-{s['max']:.2f})"  # noqa: E731
     for row in rows:
-        lines.append(f"| {row['case']} | {fmt(row['native'])} | {fmt(row['faer'])} | "
-                     f"{fmt_ratio(row['faer_over_native'])} |")
+        lines.append(f"| {row['case']} | {fmt(row['native'])} | {fmt(row['native-whole'])} | "
+                     f"{fmt(row['faer'])} | {fmt_ratio(row['faer_over_native'])} | "
+                     f"{fmt_ratio(row['native_whole_over_native'])} | "
+                     f"{fmt_ratio(row['faer_over_native_whole'])} |")
     text = "\n".join(lines) + "\n"
     os.makedirs(opts.out, exist_ok=True)
     write_atomically(os.path.join(opts.out, "linear-solver.json"), json.dumps(record, indent=1) + "\n")

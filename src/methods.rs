@@ -13,10 +13,10 @@ use std::path::PathBuf;
 use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
 use crate::bem::ring_contact::{self, RingBemSolver, RingState};
+use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
-use crate::fem::far_field::FarField;
-use crate::fem::mesh::Degree;
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::mesh::triangulation::Degree;
 use crate::numerics::roots::find_root;
 use crate::punch::PunchKind;
 use crate::reference::{self, Quantity, ReferenceValue};
@@ -235,7 +235,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
     };
     let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
     if let Some(path) = &options.vtu {
-        crate::fem::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
+        crate::discretisation::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
     }
     Ok(Solution {
         error_estimate: state.error_estimate,

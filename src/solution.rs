@@ -69,7 +69,7 @@ pub struct Solution {
     pub mesh_sha256: Option<String>,
     /// Where the mesh came from: `committed`, `cache`, `gmsh` (made for this run) or `user`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub mesh_origin: Option<crate::fem::mesh_provider::MeshOrigin>,
+    pub mesh_origin: Option<crate::mesh::provider::MeshOrigin>,
     /// Version of the gmsh that made the mesh (generated meshes only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gmsh_version: Option<String>,
@@ -79,7 +79,7 @@ pub struct Solution {
     pub mesh_refinement: Option<String>,
     /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub far_field: Option<crate::fem::far_field::FarField>,
+    pub far_field: Option<crate::discretisation::far_field::FarField>,
     /// Where the finest FEM model's time went (FEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub fem_timings: Option<crate::fem::solver::FemTimings>,

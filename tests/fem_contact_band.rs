@@ -3,23 +3,23 @@
 //! same discrete problem, so they must agree to rounding (the reference is the independent
 //! factorisation-per-iteration route), whatever side of the true free edge the warm start lies.
 
-use ringcontact::fem::assembly::assemble_stiffness;
+use ringcontact::discretisation::assembly::assemble_stiffness;
+use ringcontact::discretisation::element::Lame;
+use ringcontact::discretisation::quadrature::TriangleRule;
 use ringcontact::fem::contact::ContactModel;
-use ringcontact::fem::element::Lame;
-use ringcontact::fem::linear_solver::ConstrainedCholesky;
-use ringcontact::fem::mesh::Degree;
-use ringcontact::fem::msh::read_msh;
-use ringcontact::fem::quadrature::TriangleRule;
 use ringcontact::fem::solver;
+use ringcontact::mesh::msh::read_msh;
+use ringcontact::mesh::triangulation::Degree;
 use ringcontact::punch::PunchKind;
+use ringcontact::sparse::constrained::ConstrainedCholesky;
 
-fn committed(level: usize) -> ringcontact::fem::mesh::Mesh {
+fn committed(level: usize) -> ringcontact::mesh::triangulation::Mesh {
     read_msh(&solver::mesh_directory().join(format!("disk-L{level}.msh")))
         .unwrap()
         .with_degree(Degree::Quadratic)
 }
 
-fn stiffness(mesh: &ringcontact::fem::mesh::Mesh) -> nalgebra_sparse::CscMatrix<f64> {
+fn stiffness(mesh: &ringcontact::mesh::triangulation::Mesh) -> nalgebra_sparse::CscMatrix<f64> {
     assemble_stiffness(
         mesh,
         &Lame::from_young_poisson(1.0, 0.0),
@@ -102,7 +102,7 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
     // `verify solve --mesh M` on a concave punch: the free edge is first located on the linear
     // model of the same mesh, then the quadratic or cubic model is solved by the banded route.
     // Reference: the same discrete problem by the refactorising loop from a cold start.
-    use ringcontact::fem::far_field::FarField;
+    use ringcontact::discretisation::far_field::FarField;
     use ringcontact::fem::solver::{FemLoad, FemOptions};
     let path = solver::mesh_directory().join("disk-L1.msh");
     let cases = [
@@ -117,7 +117,7 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
         let k = assemble_stiffness(
             &mesh,
             &Lame::from_young_poisson(1.0, 0.0),
-            &solver::stiffness_rule(degree),
+            &ringcontact::discretisation::quadrature::stiffness_rule(degree),
         )
         .unwrap();
         let contact = ContactModel::new(&mesh, k.nrows()).unwrap();

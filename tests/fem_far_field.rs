@@ -3,9 +3,9 @@
 //! flat punch `γ(0) = 1` (exact), and the ring BEM for the cone.
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::fem::far_field::FarField;
-use ringcontact::fem::mesh::Degree;
+use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
+use ringcontact::mesh::triangulation::Degree;
 use ringcontact::punch::PunchKind;
 
 fn solve_on(mesh: &str, kind: PunchKind, load: FemLoad, far_field: FarField) -> FemState {
@@ -87,9 +87,9 @@ fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
     // the solve (after the far-field arc is restored). The bubble lies inside its cell, with no
     // load or constraint: its rows of the full, uncondensed `K u` must vanish. Checked against
     // `assemble_stiffness` (no condensation) with the field the solver returns.
-    use ringcontact::fem::assembly::assemble_stiffness;
-    use ringcontact::fem::element::Lame;
-    use ringcontact::fem::solver::stiffness_rule;
+    use ringcontact::discretisation::assembly::assemble_stiffness;
+    use ringcontact::discretisation::element::Lame;
+    use ringcontact::discretisation::quadrature::stiffness_rule;
     for far_field in [FarField::Boussinesq, FarField::Fixed] {
         let options = FemOptions {
             linear_solver: Default::default(),

@@ -8,12 +8,12 @@
 //! `b = -div σ` in cylindrical coordinates (derivation in the comments below) makes it an exact
 //! solution; `u = u*` is prescribed on the top, side and bottom, `u_r = 0` on the axis.
 
-use ringcontact::fem::assembly::assemble_stiffness;
-use ringcontact::fem::element::Lame;
-use ringcontact::fem::linear_solver::ConstrainedCholesky;
-use ringcontact::fem::mesh::{structured_rectangle, tags, Degree, Mesh};
-use ringcontact::fem::norms::{body_force_vector, errors, ExactField};
-use ringcontact::fem::quadrature::TriangleRule;
+use ringcontact::discretisation::assembly::assemble_stiffness;
+use ringcontact::discretisation::element::Lame;
+use ringcontact::discretisation::norms::{body_force_vector, errors, ExactField};
+use ringcontact::discretisation::quadrature::TriangleRule;
+use ringcontact::mesh::triangulation::{structured_rectangle, tags, Degree, Mesh};
+use ringcontact::sparse::constrained::ConstrainedCholesky;
 
 struct Manufactured;
 

@@ -6,8 +6,8 @@ mod common;
 use common::gmsh_available;
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::fem::mesh::Degree;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
+use ringcontact::mesh::triangulation::Degree;
 use ringcontact::punch::PunchKind;
 use ringcontact::Error;
 
@@ -23,7 +23,7 @@ fn ladder_options(degree: Degree, tolerance: f64) -> FemOptions {
         tolerance,
         mesh: None,
         poisson_ratio: 0.0,
-        far_field: ringcontact::fem::far_field::FarField::Boussinesq,
+        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
     }
 }
 
@@ -161,7 +161,7 @@ fn linear_elements_converge_toward_the_ring_bem() {
                 tolerance: 1e-3,
                 mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
                 poisson_ratio: 0.3,
-                far_field: ringcontact::fem::far_field::FarField::Boussinesq,
+                far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
             };
             let s = solver::solve(PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, &options).unwrap();
             assert!(s.error_estimate.is_none(), "a single mesh has no estimate");
@@ -186,7 +186,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
             tolerance: 1e-3,
             mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
             poisson_ratio: nu,
-            far_field: ringcontact::fem::far_field::FarField::Boussinesq,
+            far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
         };
         solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.0), &options).unwrap()
     };
@@ -202,7 +202,7 @@ fn mismatched_mesh_and_scene_are_errors() {
         tolerance: 1e-3,
         mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),
         poisson_ratio: 0.0,
-        far_field: ringcontact::fem::far_field::FarField::Boussinesq,
+        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
     };
     let e = solver::solve(PunchKind::FlatAnnulus, 0.9, FemLoad::Flat, &options).unwrap_err();
     assert!(matches!(e, Error::InvalidMesh { .. }), "{e}");

@@ -8,9 +8,9 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use ringcontact::fem::export::{assemble_system, load_mesh, read_matrix, write_system};
-use ringcontact::fem::mesh::{structured_rectangle, tags, Degree};
-use ringcontact::harness::operator::{compare_operator, load_records, OPERATOR_GOAL};
+use ringcontact::discretisation::export::{assemble_system, load_mesh, read_matrix, write_system};
+use ringcontact::harness::records::operator::{compare_operator, load_records, OPERATOR_GOAL};
+use ringcontact::mesh::triangulation::{structured_rectangle, tags, Degree};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

@@ -4,7 +4,7 @@
 //! set. A result whose mesh changed is caught as stale and not used.
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::harness::fenicsx::{
+use ringcontact::harness::records::fenicsx::{
     self, compare, large_results_directory, load_results, results_directory, FORCE_AGREEMENT,
 };
 
@@ -16,8 +16,8 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
         "expected the default suite of stored results, found {}",
         rows.len()
     );
-    let gmsh = ringcontact::fem::gmsh::Gmsh::find(&ringcontact::fem::mesh_provider::project_root())
-        .is_some();
+    let gmsh =
+        ringcontact::mesh::gmsh::Gmsh::find(&ringcontact::mesh::provider::project_root()).is_some();
     for row in &rows {
         if row.status == "needs-gmsh" {
             // Results on meshes made by gmsh are remade before the comparison; without gmsh

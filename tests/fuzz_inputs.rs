@@ -7,14 +7,14 @@
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::PathBuf;
 
-use ringcontact::fem::assembly::assemble_stiffness;
+use ringcontact::discretisation::assembly::assemble_stiffness;
+use ringcontact::discretisation::element::Lame;
+use ringcontact::discretisation::quadrature::TriangleRule;
 use ringcontact::fem::contact::ContactModel;
-use ringcontact::fem::element::Lame;
-use ringcontact::fem::linear_solver::ConstrainedCholesky;
-use ringcontact::fem::mesh::{tags, Degree};
-use ringcontact::fem::msh::parse_msh;
-use ringcontact::fem::quadrature::TriangleRule;
+use ringcontact::mesh::msh::parse_msh;
+use ringcontact::mesh::triangulation::{tags, Degree};
 use ringcontact::scene::SceneSpec;
+use ringcontact::sparse::constrained::ConstrainedCholesky;
 
 /// xorshift64*: deterministic, no dependency.
 struct Rng(u64);
@@ -244,7 +244,7 @@ fn mutated_meshes_never_panic() {
 
 #[test]
 fn mutated_scenes_never_panic() {
-    let dir = ringcontact::fem::mesh_provider::project_root().join("verify/scenes");
+    let dir = ringcontact::mesh::provider::project_root().join("verify/scenes");
     let mut inputs = Vec::new();
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();

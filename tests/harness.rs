@@ -5,7 +5,7 @@ use std::process::Command;
 
 mod common;
 
-use ringcontact::harness::stability;
+use ringcontact::harness::studies::stability;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::SceneSpec;

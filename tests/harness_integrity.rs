@@ -4,7 +4,10 @@
 
 use std::path::PathBuf;
 
-use ringcontact::harness::{fenicsx, history, peers, stored};
+use ringcontact::harness::records::fenicsx;
+use ringcontact::harness::records::peers;
+use ringcontact::harness::records::stored;
+use ringcontact::harness::report::history;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(

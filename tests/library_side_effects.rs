@@ -1,6 +1,7 @@
 //! The library sets nothing process-wide: no global allocator, no allocator options, no
-//! transparent-huge-page or thread-affinity calls, no environment variable set at run time, and
-//! the panic hook installed at most once (by `fem::msh`'s quiet catch, which keeps the previous
+//! transparent-huge-page or thread-affinity calls, no environment variable set at run time, no
+//! global parallelism of `faer`, and
+//! the panic hook installed at most once (by `mesh::msh`'s quiet catch, which keeps the previous
 //! hook). Those choices belong to a program (`src/bin/`), so a program that links `ringcontact`
 //! gets none of them. Checked on the sources, where a regression would be written.
 
@@ -34,6 +35,7 @@ fn the_library_sets_no_process_state() {
         "sched_setaffinity",
         "env::set_var",
         "env::remove_var",
+        "set_global_parallelism",
     ];
     for file in &files {
         let whole = std::fs::read_to_string(file).unwrap();
@@ -47,7 +49,7 @@ fn the_library_sets_no_process_state() {
             );
         }
         let hooks = text.matches("panic::set_hook").count();
-        let allowed = usize::from(file.ends_with("fem/msh.rs"));
+        let allowed = usize::from(file.ends_with("mesh/msh.rs"));
         assert!(
             hooks <= allowed,
             "{} sets the panic hook {hooks} times",

@@ -5,13 +5,14 @@
 //! constrained solves themselves are checked against the definition `K_C x = b`.
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::fem::assembly::assemble_stiffness;
-use ringcontact::fem::element::Lame;
-use ringcontact::fem::far_field::FarField;
-use ringcontact::fem::linear_solver::ConstrainedCholesky;
-use ringcontact::fem::mesh::{structured_rectangle, Degree};
-use ringcontact::fem::solver::{self, stiffness_rule, FemLoad, FemOptions, FemState};
+use ringcontact::discretisation::assembly::assemble_stiffness;
+use ringcontact::discretisation::element::Lame;
+use ringcontact::discretisation::far_field::FarField;
+use ringcontact::discretisation::quadrature::stiffness_rule;
+use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
+use ringcontact::mesh::triangulation::{structured_rectangle, Degree};
 use ringcontact::punch::PunchKind;
+use ringcontact::sparse::constrained::ConstrainedCholesky;
 use ringcontact::sparse::Backend;
 
 const BACKENDS: [Backend; 2] = [Backend::Native, Backend::Faer];
@@ -46,9 +47,27 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
     // unknowns) are split over two cores by the native backend.
     let states = [
         (PunchKind::Flat, 0.0, FemLoad::Flat, Degree::Linear, 1e-3),
-        (PunchKind::FlatAnnulus, 0.5, FemLoad::Flat, Degree::Quadratic, 1e-3),
-        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0), Degree::Quadratic, 1e-3),
-        (PunchKind::Sphere, 0.0, FemLoad::ConcaveForce(1.5), Degree::Cubic, 1e-3),
+        (
+            PunchKind::FlatAnnulus,
+            0.5,
+            FemLoad::Flat,
+            Degree::Quadratic,
+            1e-3,
+        ),
+        (
+            PunchKind::Cone,
+            0.0,
+            FemLoad::ConcaveDepth(2.0),
+            Degree::Quadratic,
+            1e-3,
+        ),
+        (
+            PunchKind::Sphere,
+            0.0,
+            FemLoad::ConcaveForce(1.5),
+            Degree::Cubic,
+            1e-3,
+        ),
     ];
     for (kind, eps, load, degree, tolerance) in states {
         let (reference, reference_eps) = ring_bem(kind, eps, load);
@@ -87,7 +106,8 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
                 unreachable!()
             };
             assert!(
-                (native - faer).abs() <= 1e-10 * native.abs() && (native_eps - faer_eps).abs() <= 1e-10,
+                (native - faer).abs() <= 1e-10 * native.abs()
+                    && (native_eps - faer_eps).abs() <= 1e-10,
                 "{kind} {far:?}: native {native} / {native_eps}, faer {faer} / {faer_eps}"
             );
         }
@@ -109,8 +129,12 @@ fn product(k: &nalgebra_sparse::CscMatrix<f64>, x: &[f64]) -> Vec<f64> {
 fn every_backend_solves_constrained_systems_and_unit_responses_by_their_definition() {
     for degree in [Degree::Linear, Degree::Quadratic, Degree::Cubic] {
         let mesh = structured_rectangle(2.0, 1.0, 12, 8, 1, 2, 3).with_degree(degree);
-        let k = assemble_stiffness(&mesh, &Lame::from_young_poisson(1.0, 0.3), &stiffness_rule(degree))
-            .unwrap();
+        let k = assemble_stiffness(
+            &mesh,
+            &Lame::from_young_poisson(1.0, 0.3),
+            &stiffness_rule(degree),
+        )
+        .unwrap();
         let n = k.nrows();
         let mut constrained = vec![false; n];
         let mut prescribed = vec![0.0; n];
@@ -122,7 +146,9 @@ fn every_backend_solves_constrained_systems_and_unit_responses_by_their_definiti
             constrained[2 * m + 1] = true;
             prescribed[2 * m + 1] = -0.01;
         }
-        let force: Vec<f64> = (0..n).map(|i| if i % 7 == 0 { 1e-3 } else { 0.0 }).collect();
+        let force: Vec<f64> = (0..n)
+            .map(|i| if i % 7 == 0 { 1e-3 } else { 0.0 })
+            .collect();
         let free: Vec<usize> = (0..n).filter(|&i| !constrained[i]).step_by(5).collect();
         let mut solutions = Vec::new();
         for backend in BACKENDS {
@@ -132,9 +158,15 @@ fn every_backend_solves_constrained_systems_and_unit_responses_by_their_definiti
             let scale = kx.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
             for i in 0..n {
                 if constrained[i] {
-                    assert!((x[i] - prescribed[i]).abs() < 1e-14, "{backend:?} {degree:?} {i}");
+                    assert!(
+                        (x[i] - prescribed[i]).abs() < 1e-14,
+                        "{backend:?} {degree:?} {i}"
+                    );
                 } else {
-                    assert!((kx[i] - force[i]).abs() < 1e-12 * scale, "{backend:?} {degree:?} {i}");
+                    assert!(
+                        (kx[i] - force[i]).abs() < 1e-12 * scale,
+                        "{backend:?} {degree:?} {i}"
+                    );
                 }
             }
             // K_C w_j = e_j on the free rows, w_j = 0 on the constrained ones.
@@ -143,7 +175,10 @@ fn every_backend_solves_constrained_systems_and_unit_responses_by_their_definiti
                 let kw = product(&k, w);
                 for i in (0..n).filter(|&i| !constrained[i]) {
                     let expected = if i == j { 1.0 } else { 0.0 };
-                    assert!((kw[i] - expected).abs() < 1e-9, "{backend:?} {degree:?} w_{j} row {i}");
+                    assert!(
+                        (kw[i] - expected).abs() < 1e-9,
+                        "{backend:?} {degree:?} w_{j} row {i}"
+                    );
                 }
                 assert!(constrained.iter().zip(w).all(|(&c, &v)| !c || v == 0.0));
             }
@@ -153,6 +188,9 @@ fn every_backend_solves_constrained_systems_and_unit_responses_by_their_definiti
             .iter()
             .zip(&solutions[1])
             .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
-        assert!(difference < 1e-12, "{degree:?}: backends differ by {difference:.1e}");
+        assert!(
+            difference < 1e-12,
+            "{degree:?}: backends differ by {difference:.1e}"
+        );
     }
 }

@@ -5,9 +5,9 @@
 
 use std::path::PathBuf;
 
-use ringcontact::fem::far_field::FarField;
-use ringcontact::fem::mesh::Degree;
+use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions};
+use ringcontact::mesh::triangulation::Degree;
 use ringcontact::punch::PunchKind;
 
 fn original() -> String {

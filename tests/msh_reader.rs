@@ -1,8 +1,8 @@
 //! The gmsh reader: a valid file is read with its physical tags; every kind of malformed input is
 //! a clear error naming the file and the problem, never a panic.
 
-use ringcontact::fem::mesh::{tags, Degree};
-use ringcontact::fem::msh::{parse_msh, read_msh};
+use ringcontact::mesh::msh::{parse_msh, read_msh};
+use ringcontact::mesh::triangulation::{tags, Degree};
 
 /// Unit square `[0, 1] x [-1, 0]` in `(r, z)`: two triangles; top = contact (1), right and
 /// bottom = far (3), left = axis (4); solid = 10.
@@ -150,7 +150,7 @@ fn nodes_are_read_by_tag_in_any_order() {
     let a = parse_msh(VALID.as_bytes(), "test.msh").unwrap();
     let b = parse_msh(shuffled.as_bytes(), "test.msh").unwrap();
     b.validate(&REQUIRED).unwrap();
-    let area = |m: &ringcontact::fem::mesh::Mesh| -> Vec<[f64; 2]> {
+    let area = |m: &ringcontact::mesh::triangulation::Mesh| -> Vec<[f64; 2]> {
         let mut cells: Vec<[f64; 2]> = (0..m.cell_count())
             .map(|c| {
                 let cell = m.cell(c);
@@ -199,7 +199,7 @@ fn with_irregular_blanks(text: &str) -> String {
 }
 
 /// What a mesh holds, for comparing two reads: nodes, cells and tagged boundary edges.
-fn contents(mesh: &ringcontact::fem::mesh::Mesh) -> String {
+fn contents(mesh: &ringcontact::mesh::triangulation::Mesh) -> String {
     let boundary: Vec<(i32, Vec<usize>)> = mesh
         .boundary
         .iter()

@@ -6,8 +6,8 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use ringcontact::harness::parts::{self, Part};
 use ringcontact::harness::plan::Plan;
+use ringcontact::harness::report_jobs::{self, Part};
 use ringcontact::methods::Method;
 use ringcontact::punch::PunchKind;
 
@@ -177,7 +177,7 @@ fn the_plan_is_the_same_from_run_to_run_and_parses_back() {
 fn every_job_is_in_exactly_one_shard_and_the_shards_are_balanced() {
     let plan = Plan::new(
         "test",
-        parts::nightly_parts(1e-9, &[1e-3, 1e-4, 1e-6, 1e-8]),
+        report_jobs::nightly_parts(1e-9, &[1e-3, 1e-4, 1e-6, 1e-8]),
     );
     let total: f64 = plan.jobs.iter().map(|j| j.expected_s).sum();
     let longest = plan.jobs.iter().map(|j| j.expected_s).fold(0.0, f64::max);

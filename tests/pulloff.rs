@@ -16,8 +16,8 @@ use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::cohesive::equilibrium::CohesiveSurface;
 use ringcontact::cohesive::law::ExponentialLaw;
 use ringcontact::cohesive::study;
-use ringcontact::fem::mesh_provider::{provide, MeshRequest};
 use ringcontact::fem::solver::surface_response_on_mesh;
+use ringcontact::mesh::provider::{provide, MeshRequest};
 use ringcontact::punch::PunchKind;
 
 /// The study's FE model of the committed disk mesh `level`, condensed onto its contact line (no
@@ -304,7 +304,7 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
 /// uncertainty under 3 % of F0 with gmsh's study meshes).
 #[test]
 fn tamaas_pulloff_agrees_with_the_simulation_at_the_same_range() {
-    let rows = ringcontact::harness::adhesion_peers::run().expect("the comparison runs");
+    let rows = ringcontact::harness::records::adhesion_peers::run().expect("the comparison runs");
     // The stored peer results (verify/peers/adhesion/, Tamaas 2.9): the flat punch, the cone
     // and the sphere at d0/h = 10.
     for wanted in [
@@ -344,8 +344,7 @@ fn tamaas_pulloff_agrees_with_the_simulation_at_the_same_range() {
 }
 
 /// The cone at `d0/h = 0.3` (its hole open at `3h`) and level 2 of the adapted family.
-fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::fem::mesh_provider::ProvidedMesh)
-{
+fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::mesh::provider::ProvidedMesh) {
     let case = study::Case {
         punch: PunchKind::Cone,
         eps: 0.0,

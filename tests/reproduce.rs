@@ -54,7 +54,7 @@ fn long_tests() -> bool {
 
 fn gmsh_usable() -> bool {
     std::env::var_os("RINGCONTACT_REQUIRE_GMSH").is_some()
-        || ringcontact::fem::mesh_provider::gmsh_available()
+        || ringcontact::mesh::provider::gmsh_available()
 }
 
 /// Run a stored command of ours and parse its JSON output.
@@ -136,7 +136,10 @@ fn the_stored_grid_peer_results_are_reproduced_by_their_commands() {
         .filter(|(name, _)| !name.starts_with("peers/adhesion/"))
         .collect();
     assert!(records.len() >= 16, "found {} peer records", records.len());
-    check_forces(&records, ringcontact::harness::peers::PEER_AGREEMENT);
+    check_forces(
+        &records,
+        ringcontact::harness::records::peers::PEER_AGREEMENT,
+    );
 }
 
 /// The numbers of a pull-off record that must come out again.

@@ -1,4 +1,4 @@
-//! The punch problems on the square-grid BEM ([`super::grid`]), dimensionless (`a = 1`,
+//! The punch problems on the square-grid BEM ([`crate::bem::grid`]), dimensionless (`a = 1`,
 //! `E* = 1`, `d = 1` or `h = 1`).
 //!
 //! The grid spans the punch's bounding square `[-a, a]²` with `N x N` cells; a cell belongs to the
@@ -9,7 +9,7 @@
 
 use std::time::Instant;
 
-use super::grid::{solve_contact, GridLoad, GridOperator};
+use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
@@ -84,7 +84,7 @@ pub fn solve(
 ) -> Result<GridState> {
     if !(8..=MAX_GRID).contains(&n) {
         return Err(Error::OutOfRange {
-            method: super::grid::METHOD.into(),
+            method: crate::bem::grid::METHOD.into(),
             reason: format!(
                 "grid {n} outside 8..={MAX_GRID} cells per side (a {n} x {n} grid needs about \
                  {:.1} GB and far longer than minutes on this kind of machine)",
@@ -97,7 +97,7 @@ pub fn solve(
     let cell = 2.0 / n as f64;
     if kind == PunchKind::FlatAnnulus && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
         return Err(Error::OutOfRange {
-            method: super::grid::METHOD.into(),
+            method: crate::bem::grid::METHOD.into(),
             reason: format!(
                 "the ring b/a = {} is {:.2} cells wide on a {n} x {n} grid; at least {MIN_CELLS_ACROSS} cells are needed \
                  (use --grid {} or more, or the ring BEM)",
@@ -134,7 +134,7 @@ pub fn solve(
     };
     if concave && (1.0 - eps_out) < MIN_CELLS_ACROSS * cell {
         return Err(Error::OutOfRange {
-            method: super::grid::METHOD.into(),
+            method: crate::bem::grid::METHOD.into(),
             reason: format!(
                 "the contact ring (b/a = {eps_out:.4}) is {:.2} cells wide on a {n} x {n} grid; at least \
                  {MIN_CELLS_ACROSS} cells are needed (refine the grid or use the ring BEM)",

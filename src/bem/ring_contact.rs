@@ -1,4 +1,4 @@
-//! The punch problems solved with the ring BEM ([`super::ring`]): fixed contact for the flat
+//! The punch problems solved with the ring BEM ([`crate::bem::ring`]): fixed contact for the flat
 //! punches, the free inner radius of the concave punches, depth and force control, and the
 //! self-convergence error estimate. Dimensionless throughout (`a = 1`, `E* = 1`, and `d = 1` for
 //! flat punches or `h = 1` for concave ones).

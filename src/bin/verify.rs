@@ -7,7 +7,7 @@ use std::process::ExitCode;
 use clap::{CommandFactory, FromArgMatches};
 
 use ringcontact::cli::{self, args::Cli};
-use ringcontact::fem::mesh_provider;
+use ringcontact::mesh::provider;
 use ringcontact::sparse::{self, Backend};
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
@@ -71,8 +71,8 @@ fn main() -> ExitCode {
         Err(e) => e.exit(),
     };
     if let Some(dir) = &cli.data_dir {
-        // Read by the data lookups of the library (mesh_provider::find_project_root).
-        mesh_provider::set_data_directory(dir.clone());
+        // Read by the data lookups of the library (provider::find_project_root).
+        provider::set_data_directory(dir.clone());
     }
     // Chosen before any solver thread starts; plan jobs get it passed on (harness::plan).
     let linear_solver = match cli.linear_solver.as_deref().map(str::parse::<Backend>) {
@@ -96,7 +96,7 @@ fn main() -> ExitCode {
         sparse::set_process_backend(backend);
     }
     if cli::needs_data(&cli.command) {
-        if let Err(e) = mesh_provider::find_project_root() {
+        if let Err(e) = provider::find_project_root() {
             eprintln!("error: {e}");
             return ExitCode::FAILURE;
         }

@@ -1,11 +1,11 @@
 //! The command line's arguments (clap derive): what `verify --help` and each subcommand's
-//! `--help` teach. The binary parses them and hands them to [`super::dispatch`].
+//! `--help` teach. The binary parses them and hands them to [`crate::cli::dispatch`].
 
 use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
-use crate::harness::report;
+use crate::harness::report::document;
 use crate::methods::Method;
 use crate::punch::PunchKind;
 use crate::scene::DEFAULT_TOLERANCE;
@@ -488,7 +488,7 @@ pub struct SolveArgs {
     /// the classical truncation (too stiff by about 1.2 a/R), the model of the stored FEniCSx
     /// results.
     #[arg(long, value_enum)]
-    pub far_field: Option<crate::fem::far_field::FarField>,
+    pub far_field: Option<crate::discretisation::far_field::FarField>,
     /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
     /// made by gmsh, 2 on the committed meshes and with --mesh].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
@@ -522,7 +522,7 @@ pub struct CompareArgs {
     pub no_report: bool,
     /// Tolerances of the FEM's full solve in the report's speed-against-accuracy charts (meshes
     /// made by gmsh; left out without it), comma-separated. The nightly run adds 1e-8.
-    #[arg(long, value_delimiter = ',', default_values_t = report::DEFAULT_FEM_TOLERANCES)]
+    #[arg(long, value_delimiter = ',', default_values_t = document::DEFAULT_FEM_TOLERANCES)]
     pub fem_tolerances: Vec<f64>,
     /// A directory of fresh peer and pull-off results laid out as verify/ (fenicsx/, peers/,
     /// pulloff/; what scripts/nightly.sh writes into REPORT/fresh): each is compared with its

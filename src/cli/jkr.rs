@@ -1,19 +1,19 @@
 //! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
 
-use super::args::JkrArgs;
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
 use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
 use crate::bem::ring_contact::RingBemSolver;
+use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
-use crate::harness::sweeps::{self, Sweep};
-use crate::harness::table::{Cell, Column, Format, Table};
+use crate::harness::report::table::{Cell, Column, Format, Table};
+use crate::harness::studies::sweeps::{self, Sweep};
 use crate::punch::PunchKind;
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
-    let out = super::output_directory(args.out.as_deref(), "reports/jkr");
+    let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match args.punch {
         PunchKind::FlatAnnulus if args.sweep => sweep_output(
             &sweeps::flat_annulus_sweep(&solver, &out).map_err(message)?,

@@ -2,7 +2,7 @@
 //! arguments ([`args`]) and returns a [`Reply`] (the text for standard output and whether every
 //! verdict passed). The binary `src/bin/verify.rs` only parses, dispatches and prints.
 //!
-//! Tables come from [`crate::harness::table::Table`]; `--json` prints the typed results.
+//! Tables come from [`crate::harness::report::table::Table`]; `--json` prints the typed results.
 
 pub mod args;
 mod jkr;
@@ -14,7 +14,7 @@ mod studies;
 
 use args::{Command, CompareArgs};
 
-use crate::harness::report;
+use crate::harness::report::document;
 use crate::scene::DEFAULT_TOLERANCE;
 
 /// What a command prints on standard output, and its verdict (exit status 0 when `success`).
@@ -64,7 +64,7 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
             json: false,
             report: None,
             no_report: false,
-            fem_tolerances: report::DEFAULT_FEM_TOLERANCES.to_vec(),
+            fem_tolerances: document::DEFAULT_FEM_TOLERANCES.to_vec(),
             fresh: None,
         }),
         Some(Command::Compare(args)) => studies::compare(args),
@@ -96,7 +96,7 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, String> {
 /// A result with a non-finite number is an error naming the field, never `inf` or `null` on
 /// standard output with exit 0.
 fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), String> {
-    crate::finite::check_finite(value).map_err(|field| {
+    crate::finite_guard::check_finite(value).map_err(|field| {
         format!(
             "{what} produced a non-finite result ({field}): the input is beyond the range where \
              the numbers are representable"
@@ -138,9 +138,8 @@ fn chosen_mesh(
     match (mesh, parameters) {
         (Some(path), _) => Ok(Some(path.to_path_buf())),
         (None, Some(text)) => {
-            let parameters = crate::fem::mesh_provider::parse_parameters(text).map_err(message)?;
-            let provided =
-                crate::fem::mesh_provider::generate(&parameters, why).map_err(message)?;
+            let parameters = crate::mesh::provider::parse_parameters(text).map_err(message)?;
+            let provided = crate::mesh::provider::generate(&parameters, why).map_err(message)?;
             Ok(Some(provided.path))
         }
         (None, None) => Ok(None),
@@ -153,7 +152,7 @@ fn chosen_mesh(
 fn output_directory(given: Option<&std::path::Path>, default: &str) -> std::path::PathBuf {
     match given {
         Some(path) => path.to_path_buf(),
-        None => crate::fem::mesh_provider::find_project_root()
+        None => crate::mesh::provider::find_project_root()
             .map(|root| root.join(default))
             .unwrap_or_else(|_| default.into()),
     }

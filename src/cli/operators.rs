@@ -1,12 +1,13 @@
 //! The commands around meshes and FEniCSx: `fenicsx` (stored results), `export` (the assembled
 //! operator, and its comparison with FEniCSx's) and `mesh` (a gmsh mesh of the adapted family).
 
-use super::args::{ExportArgs, FenicsxArgs, MeshArgs};
 use super::{message, to_json, Reply};
-use crate::fem::export::export_mesh;
-use crate::fem::mesh::Degree;
-use crate::fem::mesh_provider::{self, MeshRequest};
-use crate::harness::{fenicsx, operator};
+use crate::cli::args::{ExportArgs, FenicsxArgs, MeshArgs};
+use crate::discretisation::export::export_mesh;
+use crate::harness::records::fenicsx;
+use crate::harness::records::operator;
+use crate::mesh::provider::{self, MeshRequest};
+use crate::mesh::triangulation::Degree;
 
 /// `verify fenicsx`: every stored FEniCSx result against our FEM, and the stored operator
 /// comparisons (`--operators`: those alone).
@@ -39,7 +40,7 @@ pub fn export(args: ExportArgs) -> Result<Reply, String> {
     if args.json && args.compare.is_none() {
         return Err("--json prints the comparison: give --compare DIR as well".into());
     }
-    let mesh = super::chosen_mesh(
+    let mesh = crate::cli::chosen_mesh(
         args.mesh.as_deref(),
         args.mesh_parameters.as_deref(),
         "verify export --mesh-parameters",
@@ -93,15 +94,15 @@ fn export_and_compare(
 /// object naming it.
 pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
     if let Some(text) = &args.parameters {
-        let parameters = mesh_provider::parse_parameters(text).map_err(message)?;
+        let parameters = provider::parse_parameters(text).map_err(message)?;
         let provided =
-            mesh_provider::generate(&parameters, "verify mesh --parameters").map_err(message)?;
+            provider::generate(&parameters, "verify mesh --parameters").map_err(message)?;
         return describe_mesh(&provided, None, &parameters);
     }
     if !(0.0..1.0).contains(&args.eps) {
         return Err(format!("--eps {}: need 0 <= b/a < 1", args.eps));
     }
-    let levels = mesh_provider::ADAPTED_MIN_LEVEL..=mesh_provider::ADAPTED_MAX_LEVEL;
+    let levels = provider::ADAPTED_MIN_LEVEL..=provider::ADAPTED_MAX_LEVEL;
     if !levels.contains(&args.level) {
         return Err(format!(
             "--level {}: the adapted family has levels {} to {}",
@@ -133,7 +134,7 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
             return Err(format!("--tol {tol}: need 0 < tolerance < 1"));
         }
     }
-    let target = args.tol.map(|tolerance| mesh_provider::SizeTarget {
+    let target = args.tol.map(|tolerance| provider::SizeTarget {
         tolerance,
         degree: args.degree as usize,
     });
@@ -146,8 +147,8 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
         edge_uncertainty: args.edge_uncertainty,
         target,
     };
-    let provided = mesh_provider::provide(&request, "verify mesh").map_err(message)?;
-    let parameters = mesh_provider::adapted_parameters(
+    let provided = provider::provide(&request, "verify mesh").map_err(message)?;
+    let parameters = provider::adapted_parameters(
         args.eps,
         args.level,
         free_edge,
@@ -160,7 +161,7 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
 /// The JSON object `verify mesh` prints: where the mesh is, its hash and origin, and the
 /// parameters that remake it (as a list and as `--mesh-parameters` text).
 fn describe_mesh(
-    provided: &mesh_provider::ProvidedMesh,
+    provided: &provider::ProvidedMesh,
     label: Option<String>,
     parameters: &[(String, f64)],
 ) -> Result<Reply, String> {
@@ -171,7 +172,7 @@ fn describe_mesh(
         "gmsh_version": provided.gmsh_version,
         "label": label,
         "parameters": parameters,
-        "mesh_parameters": mesh_provider::format_parameters(parameters),
+        "mesh_parameters": provider::format_parameters(parameters),
         "corner_refinement": provided.corner_refinement.as_ref().map(|r| r.describe()),
     });
     Ok(Reply::ok(to_json(&out)?))

@@ -3,13 +3,15 @@
 
 use std::fmt::Write as _;
 
-use super::args::{MergeArgs, PartArgs, PlanArgs, RunArgs};
-use super::studies::{compare_reply, study_case, CompareInputs};
 use super::{message, to_json, Reply};
-use crate::harness::parts::{self, Assembled, EdgeMemo, Part};
+use crate::cli::args::{MergeArgs, PartArgs, PlanArgs, RunArgs};
+use crate::cli::studies::{compare_reply, study_case, CompareInputs};
 use crate::harness::plan::{self, Plan};
 use crate::harness::progress::Progress;
-use crate::harness::{convergence, report, stability};
+use crate::harness::report::document;
+use crate::harness::report_jobs::{self, Assembled, EdgeMemo, Part};
+use crate::harness::studies::convergence;
+use crate::harness::studies::stability;
 
 /// FEM tolerances of the nightly suite's speed-accuracy jobs.
 pub const NIGHTLY_FEM_TOLERANCES: [f64; 4] = [1e-3, 1e-4, 1e-6, 1e-8];
@@ -47,7 +49,7 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
                 case.eps,
                 case.depth
             ),
-            parts::convergence_parts(case, method, levels),
+            report_jobs::convergence_parts(case, method, levels),
         )
     } else if args.nightly {
         let tolerances = args
@@ -59,19 +61,19 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
                 args.tol,
                 list(&tolerances)
             ),
-            parts::nightly_parts(args.tol, &tolerances),
+            report_jobs::nightly_parts(args.tol, &tolerances),
         )
     } else {
         let tolerances = args
             .fem_tolerances
-            .unwrap_or(report::DEFAULT_FEM_TOLERANCES.to_vec());
+            .unwrap_or(document::DEFAULT_FEM_TOLERANCES.to_vec());
         Plan::new(
             &format!(
                 "verify plan --tol {:e} --fem-tolerances {}",
                 args.tol,
                 list(&tolerances)
             ),
-            parts::report_parts(args.tol, &tolerances),
+            report_jobs::report_parts(args.tol, &tolerances),
         )
     };
     let text = the_plan.to_text();
@@ -131,10 +133,10 @@ pub fn run(args: RunArgs) -> Result<Reply, String> {
 pub fn merge(args: MergeArgs) -> Result<Reply, String> {
     let the_plan = Plan::read(&args.plan).map_err(message)?;
     let results = plan::load_results(&the_plan, &args.results).map_err(message)?;
-    match parts::assemble(results).map_err(message)? {
+    match report_jobs::assemble(results).map_err(message)? {
         Assembled::Report { inputs, stability } => {
-            let mut bar = Progress::new("merge", report::STAGES);
-            let extras = report::write_report(&args.report, &inputs, |stage| bar.tick(stage))
+            let mut bar = Progress::new("merge", document::STAGES);
+            let extras = document::write_report(&args.report, &inputs, |stage| bar.tick(stage))
                 .map_err(message)?;
             let mut reply = compare_reply(
                 &CompareInputs::of(&inputs),

@@ -1,12 +1,12 @@
 //! `verify pulloff`: the pull-off by direct simulation (cohesive zone on the FE model).
 
-use super::args::PulloffArgs;
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
+use crate::cli::args::PulloffArgs;
 use crate::cohesive::study::{self, PulloffStudy};
-use crate::fem::mesh_provider::{MeshOrigin, ProvidedMesh};
 use crate::harness::progress::Progress;
-use crate::harness::table::{Column, Format, Table};
+use crate::harness::report::table::{Column, Format, Table};
 use crate::heartbeat::Heartbeat;
+use crate::mesh::provider::{MeshOrigin, ProvidedMesh};
 use crate::punch::PunchKind;
 
 /// The `d0/h` of a concave punch's direct simulation: its load path takes about `250 h/d0`

@@ -1,9 +1,9 @@
 //! `verify solve`: one scene, one method.
 
-use super::args::SolveArgs;
 use super::{message, to_json, Reply};
-use crate::fem::mesh::Degree;
-use crate::harness::table::{readable, Column, Table};
+use crate::cli::args::SolveArgs;
+use crate::harness::report::table::{readable, Column, Table};
+use crate::mesh::triangulation::Degree;
 use crate::methods::{self, MethodOptions};
 use crate::punch::PunchKind;
 use crate::scene::{Scene, SceneSpec};
@@ -19,7 +19,7 @@ pub fn solve(args: SolveArgs) -> Result<Reply, String> {
             args.method.name()
         ));
     }
-    let mesh = super::chosen_mesh(
+    let mesh = crate::cli::chosen_mesh(
         args.mesh.as_deref(),
         args.mesh_parameters.as_deref(),
         "verify solve --mesh-parameters",

@@ -3,15 +3,22 @@
 
 use std::fmt::Write as _;
 
-use super::args::{CompareArgs, ConvergenceArgs, HistoryArgs, JsonArgs};
 use super::{message, to_json, Reply};
 use crate::bem::ring_contact::RingBemSolver;
+use crate::cli::args::{CompareArgs, ConvergenceArgs, HistoryArgs, JsonArgs};
 use crate::harness::progress::Progress;
-use crate::harness::table::{Column, Format, Table};
-use crate::harness::{
-    baselines, comparison, convergence, fenicsx, history, html, operator, parts, peers, report,
-    stability,
-};
+use crate::harness::records::baselines;
+use crate::harness::records::fenicsx;
+use crate::harness::records::operator;
+use crate::harness::records::peers;
+use crate::harness::report::document;
+use crate::harness::report::history;
+use crate::harness::report::html;
+use crate::harness::report::table::{Column, Format, Table};
+use crate::harness::report_jobs;
+use crate::harness::studies::comparison;
+use crate::harness::studies::convergence;
+use crate::harness::studies::stability;
 use crate::punch::PunchKind;
 use crate::reference;
 
@@ -46,30 +53,30 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         let inputs = CompareInputs {
             comparison: comparison::run(args.tol).map_err(message)?,
             fenicsx: fenicsx::run().map_err(message)?,
-            peers: peers::run(parts::PEER_MAX_GRID).map_err(message)?,
+            peers: peers::run(report_jobs::PEER_MAX_GRID).map_err(message)?,
             operators: operator::load_records().map_err(message)?,
             adhesion_peers: Vec::new(),
         };
         return compare_reply(&inputs, None, None, args.json);
     }
-    let report_dir = super::output_directory(args.report.as_deref(), "reports/latest");
+    let report_dir = crate::cli::output_directory(args.report.as_deref(), "reports/latest");
     eprintln!(
         "verify: writing the report into {} (every method against the references; about a \
          minute)",
         absolute(&report_dir)
     );
-    let plan = parts::report_parts(args.tol, &args.fem_tolerances);
-    let mut bar = Progress::new("report", plan.len() + report::STAGES);
-    let assembled = parts::compute_all(&plan, |id| bar.tick(id)).map_err(message)?;
-    let parts::Assembled::Report { mut inputs, .. } = assembled else {
+    let plan = report_jobs::report_parts(args.tol, &args.fem_tolerances);
+    let mut bar = Progress::new("report", plan.len() + document::STAGES);
+    let assembled = report_jobs::compute_all(&plan, |id| bar.tick(id)).map_err(message)?;
+    let report_jobs::Assembled::Report { mut inputs, .. } = assembled else {
         return Err("the report's parts did not make a report".into());
     };
     if let Some(fresh) = &args.fresh {
-        let committed = crate::fem::mesh_provider::project_root().join("verify");
+        let committed = crate::mesh::provider::project_root().join("verify");
         inputs.baselines = baselines::compare(fresh, &committed).map_err(message)?;
     }
     let extras =
-        report::write_report(&report_dir, &inputs, |stage| bar.tick(stage)).map_err(message)?;
+        document::write_report(&report_dir, &inputs, |stage| bar.tick(stage)).map_err(message)?;
     compare_reply(
         &CompareInputs::of(&inputs),
         Some(&report_dir),
@@ -85,12 +92,12 @@ pub(super) struct CompareInputs {
     pub peers: Vec<peers::PeerComparison>,
     pub operators: Vec<operator::OperatorStatus>,
     /// The stored Tamaas pull-offs against our simulations (with a report only).
-    pub adhesion_peers: Vec<crate::harness::adhesion_peers::AdhesionPeerComparison>,
+    pub adhesion_peers: Vec<crate::harness::records::adhesion_peers::AdhesionPeerComparison>,
 }
 
 impl CompareInputs {
     /// The parts of a report's inputs `verify compare` prints.
-    pub fn of(inputs: &report::ReportInputs) -> Self {
+    pub fn of(inputs: &document::ReportInputs) -> Self {
         Self {
             comparison: inputs.comparison.clone(),
             fenicsx: inputs.fenicsx.clone(),
@@ -106,7 +113,7 @@ impl CompareInputs {
             + fenicsx::failures(&self.fenicsx)
             + operator::failures(&self.operators)
             + peers::failures(&self.peers)
-            + crate::harness::adhesion_peers::failures(&self.adhesion_peers)
+            + crate::harness::records::adhesion_peers::failures(&self.adhesion_peers)
     }
 }
 
@@ -115,7 +122,7 @@ impl CompareInputs {
 pub(super) fn compare_reply(
     inputs: &CompareInputs,
     report_dir: Option<&std::path::Path>,
-    extras: Option<&report::ReportExtras>,
+    extras: Option<&document::ReportExtras>,
     json: bool,
 ) -> Result<Reply, String> {
     // With a report, its headline counts every check (error bars, fresh baselines too).
@@ -146,7 +153,8 @@ pub(super) fn compare_reply(
     text += &peers::render(peer_rows);
     if !inputs.adhesion_peers.is_empty() {
         text += "\n";
-        text += &crate::harness::adhesion_peers::table(&inputs.adhesion_peers).to_terminal();
+        text +=
+            &crate::harness::records::adhesion_peers::table(&inputs.adhesion_peers).to_terminal();
     }
     let _ = writeln!(
         text,
@@ -187,7 +195,7 @@ pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
         ))
     })
     .map_err(message)?;
-    let out = super::output_directory(args.out.as_deref(), "reports/convergence");
+    let out = crate::cli::output_directory(args.out.as_deref(), "reports/convergence");
     let [csv_path, svg_path] = convergence::write_files(&study, &out).map_err(message)?;
     // A bar that does not bound the actual error, or a study cut short, is not a success.
     let success = convergence::failures(&study) == 0 && study.stopped.is_none();

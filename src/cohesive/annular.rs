@@ -1,7 +1,7 @@
 //! The annular branch of a concave punch by direct simulation: touched with the hole open, then
 //! pulled, the inner edge of the contact moving outward until the annulus lets go. Its JKR limit
 //! is the fixed-load pull-off of the annular contact (`verify jkr`, the paper's route), the value
-//! the closed hole's study ([`super::study::run`]) does not reach.
+//! the closed hole's study ([`crate::cohesive::study::run`]) does not reach.
 //!
 //! The inner edge travels a large part of the contact line (the cone at `d0/h = 1`: from
 //! `b/a = 0.33` at first touch to `0.78` at pull-off), so the line is meshed uniformly, with
@@ -13,30 +13,18 @@
 
 use std::time::Instant;
 
-use super::law::ExponentialLaw;
-use super::study::{
+use crate::cohesive::study::{
     check_d0_over_h, check_ranges, extrapolate, file_simulation, jkr_values, simulate, Branch,
     Case, PulloffStudy, SequenceEntry, ANNULAR_ELEMENTS_PER_ZONE, ANNULAR_HOP_FORCE,
     ANNULAR_PRELOAD, STUDY_LEVEL,
 };
 use crate::error::{Error, Result};
-use crate::fem::mesh_provider::{self, ProvidedMesh};
 use crate::fem::solver::surface_response_on_mesh;
+use crate::mesh::provider::{self, ProvidedMesh};
 
 /// Most contact-line elements an annular mesh may ask for (the condensed model is dense: 1000
 /// elements are about 2000 nodes, a few seconds per Newton step).
 pub const MAX_LINE_ELEMENTS: f64 = 600.0;
-
-/// Cohesive-zone length `ℓ = π E* Δw/(4σ0²)` of the law at range `range` (units of `d0`) for
-/// `case` (units of `a`): `π² (ρ/d0)²/2`, whatever `d0`.
-pub fn zone_length(case: &Case, range: f64) -> f64 {
-    let d0 = case.d0();
-    ExponentialLaw {
-        work: d0 * d0 / (2.0 * std::f64::consts::PI),
-        range: range * d0,
-    }
-    .zone_length()
-}
 
 /// Smallest range `ρ/d0` whose uniform contact line at `ℓ / elements_per_zone` stays within
 /// [`MAX_LINE_ELEMENTS`]: `ℓ = π² (ρ/d0)²/2 >= elements_per_zone / MAX_LINE_ELEMENTS`.
@@ -51,7 +39,7 @@ pub fn annular_mesh(
     range: f64,
     elements_per_zone: f64,
 ) -> Result<(ProvidedMesh, f64)> {
-    let size = zone_length(case, range) / elements_per_zone;
+    let size = case.zone_length(range) / elements_per_zone;
     if 1.0 / size > MAX_LINE_ELEMENTS {
         return Err(Error::invalid(
             "ranges",
@@ -64,13 +52,13 @@ pub fn annular_mesh(
             ),
         ));
     }
-    let mut parameters = mesh_provider::adapted_parameters(0.0, STUDY_LEVEL, None, 0.0, None);
+    let mut parameters = provider::adapted_parameters(0.0, STUDY_LEVEL, None, 0.0, None);
     for (name, value) in parameters.iter_mut() {
         if name == "hline" {
             *value = size;
         }
     }
-    let mesh = mesh_provider::generate(&parameters, "the annular branch's pull-off simulation")?;
+    let mesh = provider::generate(&parameters, "the annular branch's pull-off simulation")?;
     Ok((mesh, size))
 }
 
@@ -123,7 +111,7 @@ pub fn run_annular(
         .iter()
         .map(|&r| annular_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
-    let options = super::study::study_options();
+    let options = crate::cohesive::study::study_options();
     let (mut sequence, mut excluded, mut curves) = (Vec::new(), Vec::new(), Vec::new());
     let mut finest = None;
     for (&range, (mesh, size)) in ranges.iter().zip(&meshes) {

@@ -16,10 +16,10 @@
 
 use faer::Mat;
 
-use super::law::ExponentialLaw;
+use crate::cohesive::law::ExponentialLaw;
 use crate::error::{Error, Result};
-use crate::fem::dense_cholesky::{zero_padded, DenseCholesky};
 use crate::fem::surface_response::SurfaceResponse;
+use crate::sparse::native::dense::{zero_padded, DenseCholesky};
 
 /// Most Newton iterations per state.
 const MAX_ITERATIONS: usize = 300;

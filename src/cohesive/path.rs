@@ -14,7 +14,7 @@
 
 use serde::Serialize;
 
-use super::equilibrium::{CohesiveSurface, Equilibrium};
+use crate::cohesive::equilibrium::{CohesiveSurface, Equilibrium};
 use crate::error::{Error, Result};
 
 /// Largest force change per accepted step, in units of Kendall's `F0`.

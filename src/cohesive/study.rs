@@ -11,16 +11,16 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::equilibrium::CohesiveSurface;
-use super::law::ExponentialLaw;
-use super::path::{follow, PathOptions};
 use crate::bem::ring_contact::RingBemSolver;
+use crate::cohesive::equilibrium::CohesiveSurface;
+use crate::cohesive::law::ExponentialLaw;
+use crate::cohesive::path::{follow, PathOptions};
+use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
-use crate::fem::far_field::FarField;
-use crate::fem::mesh::Degree;
-use crate::fem::mesh_provider::{self, MeshRequest, ProvidedMesh};
 use crate::fem::solver::{surface_response_on_mesh, FemOptions};
 use crate::fem::surface_response::SurfaceResponse;
+use crate::mesh::provider::{self, MeshRequest, ProvidedMesh};
+use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;
 
 /// Default ranges `ρ/d0`: Tabor parameter `λ` 9, 18, 36 and 90 (a factor 10).
@@ -35,7 +35,7 @@ pub const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
 /// The default ranges where the study runs: [`DEFAULT_RANGES`] with gmsh (rim bands), else
 /// [`COMMITTED_MESH_RANGES`].
 pub fn default_ranges() -> Vec<f64> {
-    if mesh_provider::gmsh_available() {
+    if provider::gmsh_available() {
         DEFAULT_RANGES.to_vec()
     } else {
         COMMITTED_MESH_RANGES.to_vec()
@@ -116,6 +116,17 @@ pub struct Case {
 }
 
 impl Case {
+    /// Cohesive-zone length `ℓ = π E* Δw/(4σ0²)` of the law at range `range` (units of `d0`), in
+    /// units of `a`: `π² (ρ/d0)²/2`, whatever `d0`.
+    pub fn zone_length(&self, range: f64) -> f64 {
+        let d0 = self.d0();
+        ExponentialLaw {
+            work: d0 * d0 / (2.0 * std::f64::consts::PI),
+            range: range * d0,
+        }
+        .zone_length()
+    }
+
     /// Kendall's depth `d0` in units of `a` (`h = 1` for the concave punches).
     pub fn d0(&self) -> f64 {
         if self.punch.is_concave() {
@@ -375,13 +386,13 @@ pub fn study_mesh(eps: f64, level: i32) -> Result<ProvidedMesh> {
         edge_uncertainty: 0.0,
         target: None,
     };
-    match mesh_provider::provide(&adapted, "the pull-off simulation") {
+    match provider::provide(&adapted, "the pull-off simulation") {
         Ok(mesh) => Ok(mesh),
-        Err(gmsh_error) => match mesh_provider::committed_family(eps) {
-            Some(family) => mesh_provider::provide(
+        Err(gmsh_error) => match provider::committed_family(eps) {
+            Some(family) => provider::provide(
                 &MeshRequest::Committed {
                     family,
-                    level: (level - 1).clamp(0, mesh_provider::COMMITTED_MAX_LEVEL as i32) as usize,
+                    level: (level - 1).clamp(0, provider::COMMITTED_MAX_LEVEL as i32) as usize,
                 },
                 "pull-off",
             ),
@@ -459,7 +470,7 @@ pub fn run_on_study_meshes(
     ranges: &[f64],
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
-    if mesh_provider::gmsh_available() {
+    if provider::gmsh_available() {
         return run_rim_band(case, ranges, progress);
     }
     let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
@@ -468,7 +479,7 @@ pub fn run_on_study_meshes(
     study.note += &format!(
         " (gmsh not found: the committed meshes, no rim band; `{}` installs it for the banded \
          study)",
-        crate::fem::gmsh::INSTALL_COMMAND
+        crate::mesh::gmsh::INSTALL_COMMAND
     );
     Ok(study)
 }
@@ -482,27 +493,27 @@ pub fn rim_band_mesh(
     elements_per_zone: f64,
     level: i32,
 ) -> Result<(ProvidedMesh, f64, f64)> {
-    let zone = super::annular::zone_length(case, range);
+    let zone = case.zone_length(range);
     let width = (RIM_BAND_ZONES * zone).min(1.0 - case.eps);
     let size = zone / elements_per_zone;
-    if size < mesh_provider::GMSH_MIN_ELEMENT_SIZE {
+    if size < provider::GMSH_MIN_ELEMENT_SIZE {
         // ℓ = π² ρ²/2 >= per · (the smallest size gmsh meshes well at the rim).
-        let smallest = (2.0 * elements_per_zone * mesh_provider::GMSH_MIN_ELEMENT_SIZE).sqrt()
+        let smallest = (2.0 * elements_per_zone * provider::GMSH_MIN_ELEMENT_SIZE).sqrt()
             / std::f64::consts::PI;
         return Err(Error::invalid(
             "ranges",
             format!(
                 "range rho/d0 = {range}: the rim band would need elements of {size:.1e} a, below \
                  what gmsh meshes well at the rim ({:.0e} a); use ranges rho/d0 >= {:.1e}",
-                mesh_provider::GMSH_MIN_ELEMENT_SIZE,
+                provider::GMSH_MIN_ELEMENT_SIZE,
                 smallest * 1.01
             ),
         ));
     }
-    let mut parameters = mesh_provider::adapted_parameters(case.eps, level, None, 0.0, None);
+    let mut parameters = provider::adapted_parameters(case.eps, level, None, 0.0, None);
     parameters.push(("band".to_string(), width));
     parameters.push(("hband".to_string(), size));
-    let mesh = mesh_provider::generate(&parameters, "the pull-off simulation's rim band")?;
+    let mesh = provider::generate(&parameters, "the pull-off simulation's rim band")?;
     Ok((mesh, width, size))
 }
 
@@ -864,7 +875,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
 pub fn study_options() -> FemOptions {
     FemOptions {
-    linear_solver: Default::default(),
+        linear_solver: Default::default(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,
@@ -893,7 +904,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
 /// study mesh (the committed level closest to it without gmsh). A concave case whose hole opens
 /// is declined.
 pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
-    if !mesh_provider::gmsh_available() {
+    if !provider::gmsh_available() {
         return simulate_once(case, range, &study_mesh(case.eps, STUDY_LEVEL)?);
     }
     let start = Instant::now();

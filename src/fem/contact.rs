@@ -13,11 +13,11 @@
 //! The force is the sum of the nodal reactions of the contact line (consistent, since the element
 //! stiffness carries the `2π r` factor).
 
-use super::contact_band::BandedSystem;
-use super::linear_solver::ConstrainedCholesky;
-use super::mesh::{tags, Degree, Mesh};
 use crate::error::{Error, Result};
+use crate::fem::contact_band::BandedSystem;
+use crate::mesh::triangulation::{tags, Degree, Mesh};
 use crate::punch::PunchKind;
+use crate::sparse::constrained::ConstrainedCholesky;
 
 /// Times a banded solve whose core was released is retried with a higher core before the
 /// factorisation-per-iteration loop takes over.
@@ -112,7 +112,7 @@ pub enum BandOutcome {
     /// The solution releases a core node (the band was too narrow): the largest radius released,
     /// and the active set reached.
     CoreReleased(f64, Vec<bool>),
-    /// The band holds more than [`super::contact_band::MAX_BAND_NODES`] nodes.
+    /// The band holds more than [`crate::fem::contact_band::MAX_BAND_NODES`] nodes.
     TooWide,
 }
 
@@ -349,7 +349,7 @@ impl<'m> ContactModel<'m> {
     /// edge within a band: the contact nodes at `r >= core_radius` (the core) are held in
     /// contact in the factorised matrix, and the active-set iteration runs on the nodes below
     /// through their unit responses ([`BandedSystem`]). Returns `None` when the solution releases
-    /// a core node (the band was too narrow) or the band needs more than [`super::contact_band::MAX_BAND_NODES`]
+    /// a core node (the band was too narrow) or the band needs more than [`crate::fem::contact_band::MAX_BAND_NODES`]
     /// responses; the caller then falls back to [`Self::concave`].
     pub fn concave_banded(
         &self,

@@ -19,8 +19,8 @@ use std::collections::HashMap;
 
 use nalgebra::{DMatrix, DVector};
 
-use super::linear_solver::ConstrainedCholesky;
 use crate::error::{Error, Result};
+use crate::sparse::constrained::ConstrainedCholesky;
 
 /// Most band nodes held by condensation: beyond it a factorisation is cheaper (one unit response
 /// costs about 1/20 of a numeric factorisation in blocks of 16, measured on P2/P3 models of

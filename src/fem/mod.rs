@@ -1,29 +1,10 @@
-//! Axisymmetric finite-element solver for the punch problems, on gmsh meshes.
+//! The finite-element contact solve: the active set of the unilateral contact line
+//! ([`contact`]), the band of nodes where the free edge can sit ([`contact_band`]), the contact
+//! line condensed to a surface response ([`surface_response`]) and the mesh ladder with its error
+//! estimate ([`solver`]). Built on [`crate::mesh`], [`crate::discretisation`] and the SPD seam
+//! [`crate::sparse`].
 
-pub mod assembly;
 pub mod contact;
 pub mod contact_band;
-pub mod corner_refinement;
-pub mod dense_cholesky;
-pub mod element;
-pub mod export;
-pub mod far_field;
-pub mod gmsh;
-pub mod linear_solver;
-pub mod mesh;
-pub mod mesh_provider;
-pub mod msh;
-pub mod node_ordered_cholesky;
-pub mod node_pair_analysis;
-pub mod norms;
-pub mod permuted_lower;
-pub mod prefetch;
-pub mod quadrature;
-pub mod separator;
 pub mod solver;
-pub mod split_cholesky;
-pub mod supernodal_numeric;
 pub mod surface_response;
-pub mod vertex_ordering;
-pub mod vtu;
-pub mod zeroed;

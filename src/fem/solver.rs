@@ -3,7 +3,7 @@
 //!
 //! **Meshes.** A sequence of models for the scene and tolerance ([`mesh_sequence`]): the committed
 //! families in `meshes/` (`disk`, `annulus-0.5`, `annulus-0.9`, levels L0-L2), continued by the
-//! adapted family made by gmsh at run time ([`super::mesh_provider`]); `--mesh PATH` uses one
+//! adapted family made by gmsh at run time ([`crate::mesh::provider`]); `--mesh PATH` uses one
 //! given file instead.
 //!
 //! **Error estimate and model choice.** Levels are climbed until the change of the result from
@@ -24,18 +24,20 @@ use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 use std::time::Instant;
 
-use super::assembly::{BubbleRecovery, StiffnessPattern};
-use super::contact::{ContactModel, ContactSolution};
-use super::element::Lame;
-use super::far_field::{FarField, FarFieldCondition};
-use super::linear_solver::{Analysis, ConstrainedCholesky, MeshOrdering};
-use super::mesh::{tags, Degree, Mesh};
-use super::mesh_provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
-use super::msh::{read_msh_hashed, PendingHash};
-use super::quadrature::TriangleRule;
+use crate::discretisation::assembly::{BubbleRecovery, StiffnessPattern};
+use crate::discretisation::element::Lame;
+use crate::discretisation::far_field::{FarField, FarFieldCondition};
+use crate::discretisation::node_ordering::node_ordering_of_raised;
+use crate::discretisation::quadrature::stiffness_rule;
 use crate::error::{Error, Result};
+use crate::fem::contact::{ContactModel, ContactSolution};
 use crate::heartbeat::Heartbeat;
+use crate::mesh::msh::{read_msh_hashed, PendingHash};
+use crate::mesh::provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
+use crate::mesh::triangulation::{tags, Degree, Mesh};
 use crate::punch::PunchKind;
+use crate::sparse::constrained::ConstrainedCholesky;
+use crate::sparse::{analyse_beside, Analysis, Pattern};
 
 /// Name of the method.
 pub const METHOD: &str = "fem";
@@ -56,8 +58,8 @@ pub const MIN_TOLERANCE: f64 = 1e-8;
 /// 0.1-0.99 (levels 3 and 4, 0.5-1.4 M unknowns) and stays at 3.7e-10 to 1.2e-9 on the 29 states
 /// of the 1e-8 benchmark; the bound exceeds every one by a factor 1.7 or more. It was 5e-9 +
 /// 2e-9 a/(a - b) (5.5e-8 at `b/a = 0.99`) until gmsh's slivers at rim sizes below `1e-8 a` were
-/// found to be its cause ([`mesh_provider::GMSH_MIN_ELEMENT_SIZE`]); the corner refinement
-/// ([`super::corner_refinement`]) removed them, and with them the growth on narrow rings
+/// found to be its cause ([`provider::GMSH_MIN_ELEMENT_SIZE`]); the corner refinement
+/// ([`crate::mesh::corner_refinement`]) removed them, and with them the growth on narrow rings
 /// (`b/a = 0.97`, level 3: 1.4e-8 before, 6.1e-10 after). What is left is not the quadrature (a
 /// 10 x 10 collapsed Gauss rule changed the old component by 2e-14) nor the domain (`R` from 1e7
 /// to 1e8: 1e-11).
@@ -161,7 +163,7 @@ pub struct FemState {
     /// Wall time of the phases of the finest solve: assembly, first factorisation, contact loop.
     pub timings: FemTimings,
     /// Concave punches: the located edge's conditioning `κ = |db/dd| d` on the final model
-    /// ([`super::contact::ContactModel::edge_depth_sensitivity`]).
+    /// ([`crate::fem::contact::ContactModel::edge_depth_sensitivity`]).
     pub edge_conditioning: Option<f64>,
     /// The sparse Cholesky backend that factorised the final model.
     pub linear_solver: crate::sparse::Backend,
@@ -213,9 +215,9 @@ fn fem_error(reason: String) -> Error {
     }
 }
 
-/// Directory of the committed meshes (see [`mesh_provider::mesh_directory`]).
+/// Directory of the committed meshes (see [`provider::mesh_directory`]).
 pub fn mesh_directory() -> PathBuf {
-    mesh_provider::mesh_directory()
+    provider::mesh_directory()
 }
 
 /// Where the contact line of the punch's mesh starts: `b/a` for the flat annulus, else 0.
@@ -235,8 +237,8 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
     let mut sequence = Vec::new();
     let mut first_adapted: i32 = 0;
     if tolerance >= COMMITTED_TOLERANCE_FLOOR {
-        if let Some(family) = mesh_provider::committed_family(start_line) {
-            for level in 0..=mesh_provider::COMMITTED_MAX_LEVEL {
+        if let Some(family) = provider::committed_family(start_line) {
+            for level in 0..=provider::COMMITTED_MAX_LEVEL {
                 sequence.push(MeshRequest::Committed {
                     family: family.clone(),
                     level,
@@ -250,7 +252,7 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
             first_adapted += 1;
         }
     }
-    for level in first_adapted..=mesh_provider::ADAPTED_MAX_LEVEL {
+    for level in first_adapted..=provider::ADAPTED_MAX_LEVEL {
         sequence.push(MeshRequest::Adapted {
             contact_start: start_line,
             level,
@@ -263,7 +265,7 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
 }
 
 fn display_path(path: &Path) -> String {
-    let root = mesh_provider::project_root();
+    let root = provider::project_root();
     path.strip_prefix(&root)
         .unwrap_or(path)
         .display()
@@ -421,7 +423,7 @@ fn assemble_model(
         };
     let order_nodes = || {
         let start = Instant::now();
-        let ordering = MeshOrdering::of_raised(&vertex_mesh, linear_solver, || {
+        let ordering = node_ordering_of_raised(&vertex_mesh, linear_solver, || {
             raised.wait().as_ref().unwrap_or(&vertex_mesh)
         });
         (ordering, start.elapsed().as_secs_f64())
@@ -434,10 +436,10 @@ fn assemble_model(
         .ok_or_else(|| unraisable_mesh_error(provided, degree))?;
     // The symbolic analysis needs only the pattern: the values are assembled beside it.
     let analysis_start = Instant::now();
-    let (symbolic, values) = Analysis::of_ordering_beside(
+    let (symbolic, values) = analyse_beside(
+        Pattern::new(pattern.col_offsets(), pattern.row_indices()),
         &ordering,
-        pattern.col_offsets(),
-        pattern.row_indices(),
+        linear_solver,
         || pattern.condensed_values(&mesh, &material, &rule),
     );
     let symbolic_seconds = ordering_seconds + analysis_start.elapsed().as_secs_f64();
@@ -477,17 +479,6 @@ fn unraisable_mesh_error(provided: &ProvidedMesh, degree: Degree) -> Error {
             "internal: its degree could not be raised to {}",
             degree as usize
         ),
-    }
-}
-
-/// The quadrature rule of the stiffness: degree 2 (3 points) for linear, degree 4 (6 points)
-/// for quadratic, degree 6 (12 points) for cubic elements (degree `2p`: exact for the
-/// polynomial part `∇N·∇N r` of the integrand up to one degree of the `r` factor).
-pub fn stiffness_rule(degree: Degree) -> TriangleRule {
-    match degree {
-        Degree::Linear => TriangleRule::degree2(),
-        Degree::Quadratic => TriangleRule::degree4(),
-        Degree::Cubic => TriangleRule::degree6(),
     }
 }
 
@@ -830,9 +821,9 @@ pub fn default_degree(tolerance: f64) -> Degree {
     }
 }
 
-/// Whether gmsh can make meshes here (found once per process, see [`super::gmsh::Gmsh::get`]).
+/// Whether gmsh can make meshes here (found once per process, see [`crate::mesh::gmsh::Gmsh::get`]).
 pub fn gmsh_found() -> bool {
-    super::gmsh::Gmsh::get(&mesh_provider::project_root(), "").is_ok()
+    crate::mesh::gmsh::Gmsh::get(&provider::project_root(), "").is_ok()
 }
 
 /// Share of the edge's conditioning times the model's force error that bounds the located
@@ -942,9 +933,9 @@ fn predicted_force_error(degree: Degree, level: i32) -> f64 {
 /// First adapted level climbed without committed meshes: the lowest `k` whose step to `k + 1` is
 /// predicted to meet the tolerance (`richardson_factor · error(k) <= tol`).
 pub fn first_adapted_level(degree: Degree, tolerance: f64) -> i32 {
-    (mesh_provider::ADAPTED_MIN_LEVEL..mesh_provider::ADAPTED_MAX_LEVEL)
+    (provider::ADAPTED_MIN_LEVEL..provider::ADAPTED_MAX_LEVEL)
         .find(|&k| richardson_factor(degree) * predicted_force_error(degree, k) <= tolerance)
-        .unwrap_or(mesh_provider::ADAPTED_MAX_LEVEL - 1)
+        .unwrap_or(provider::ADAPTED_MAX_LEVEL - 1)
 }
 
 /// The committed levels climbed first: L0-L2 of the family for this contact line, when there is
@@ -954,10 +945,10 @@ fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReques
     if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found() {
         return Vec::new();
     }
-    let Some(family) = mesh_provider::committed_family(contact_start(kind, eps)) else {
+    let Some(family) = provider::committed_family(contact_start(kind, eps)) else {
         return Vec::new();
     };
-    (0..=mesh_provider::COMMITTED_MAX_LEVEL)
+    (0..=provider::COMMITTED_MAX_LEVEL)
         .map(|level| MeshRequest::Committed {
             family: family.clone(),
             level,
@@ -970,7 +961,7 @@ fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReques
 /// adapted mesh to refine around. Its force, whose error is dominated by the unrefined edge, does
 /// not enter a Richardson estimate.
 fn edge_locator(kind: PunchKind, eps: f64) -> Vec<MeshRequest> {
-    mesh_provider::committed_family(contact_start(kind, eps))
+    provider::committed_family(contact_start(kind, eps))
         .map(|family| MeshRequest::Committed { family, level: 0 })
         .into_iter()
         .collect()
@@ -1142,7 +1133,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         return solve_on_mesh(kind, eps, load, &provided, options);
     }
     // The mesh families live in the project's data directory: say so if it cannot be found.
-    mesh_provider::find_project_root()?;
+    provider::find_project_root()?;
     // A long ladder (fine tolerances, linear elements, gmsh meshing a large model) says which
     // step it is at every 10 s; a short one writes nothing.
     let progress = Heartbeat::start("fem");
@@ -1160,7 +1151,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
     let mut next_level = if ladder.is_empty() {
         first_adapted_level(options.degree, options.tolerance)
     } else {
-        mesh_provider::COMMITTED_MAX_LEVEL as i32 + 1
+        provider::COMMITTED_MAX_LEVEL as i32 + 1
     };
     let locating = ladder.is_empty() && concave;
     let mut committed = if locating {
@@ -1188,7 +1179,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
     loop {
         let (request, level) = match committed.next() {
             Some(request) => (request, None),
-            None if next_level > mesh_provider::ADAPTED_MAX_LEVEL => break,
+            None if next_level > provider::ADAPTED_MAX_LEVEL => break,
             None => {
                 // Concave punches: refine around the free edge located on the previous solve.
                 let edge = previous.as_ref().filter(|_| concave);
@@ -1198,7 +1189,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                 let hidden_hole = edge
                     .filter(|p| p.hole_inside_first_node)
                     .map(|p| 0.5 * p.spacing)
-                    .filter(|&b| 0.25 * b >= mesh_provider::AXIS_MIN_ELEMENT_SIZE);
+                    .filter(|&b| 0.25 * b >= provider::AXIS_MIN_ELEMENT_SIZE);
                 let request = MeshRequest::Adapted {
                     contact_start: start_line,
                     level: next_level,
@@ -1216,7 +1207,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             Some(k) => format!("level {k}: making its mesh (gmsh, or the cache)"),
             None => "a committed mesh".to_string(),
         });
-        let provided = mesh_provider::provide(&request, &why)?;
+        let provided = provider::provide(&request, &why)?;
         // The edge locator only places the next mesh's refinement, and its domain need not meet
         // the tolerance. At the loose tolerances it is quadratic (3.4 k unknowns on disk-L0, a
         // third of the cubic model's time, most of a 1e-3 solve); below 1e-4 it keeps the
@@ -1391,8 +1382,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
             last_estimate = estimate;
             // Full contact whose first node off the axis is already as close to it as gmsh's
             // elements there go: finer models cannot bound a hole inside it any better.
-            let axis_spacing =
-                mesh_provider::AXIS_MIN_ELEMENT_SIZE / f64::from(options.degree as u8);
+            let axis_spacing = provider::AXIS_MIN_ELEMENT_SIZE / f64::from(options.degree as u8);
             if current.full_contact && current.spacing <= 2.0 * axis_spacing {
                 return Err(Error::OutOfRange {
                     method: METHOD.into(),
@@ -1403,7 +1393,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
                          make in reasonable time; loosen --tol or use the ring BEM",
                         current.spacing,
                         options.tolerance,
-                        mesh_provider::AXIS_MIN_ELEMENT_SIZE
+                        provider::AXIS_MIN_ELEMENT_SIZE
                     ),
                 });
             }
@@ -1483,7 +1473,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
 }
 
 /// The ladder ended on full contact that its last model's error could open
-/// (`(opening margin, depth error)`, see [`super::contact::Conditioning::opening_margin`]).
+/// (`(opening margin, depth error)`, see [`crate::fem::contact::Conditioning::opening_margin`]).
 fn closure_unresolved_error(last_mesh: &str, (margin, depth_error): (f64, f64)) -> Error {
     Error::OutOfRange {
         method: METHOD.into(),
@@ -1497,12 +1487,12 @@ fn closure_unresolved_error(last_mesh: &str, (margin, depth_error): (f64, f64)) 
 
 /// The FE model of `provided` (degree, far field and Poisson's ratio of `options`) condensed onto
 /// its contact line, which starts at `contact_start = b/a` (see
-/// [`super::surface_response::condense`]); with the mesh's display path.
+/// [`crate::fem::surface_response::condense`]); with the mesh's display path.
 pub fn surface_response_on_mesh(
     provided: &ProvidedMesh,
     options: &FemOptions,
     contact_start: f64,
-) -> Result<(super::surface_response::SurfaceResponse, String)> {
+) -> Result<(crate::fem::surface_response::SurfaceResponse, String)> {
     let model = prepare_checked(provided, options, contact_start, options.tolerance)?;
     let mut solver = ConstrainedCholesky::with_symbolic_and_diagonal(
         &model.stiffness,
@@ -1522,7 +1512,7 @@ pub fn surface_response_on_mesh(
         });
     }
     let supports = contact.supports().to_vec();
-    let response = super::surface_response::condense(&contact, &mut solver, &supports)?;
+    let response = crate::fem::surface_response::condense(&contact, &mut solver, &supports)?;
     Ok((response, model.path.clone()))
 }
 

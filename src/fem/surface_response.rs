@@ -8,10 +8,10 @@
 
 use nalgebra::DMatrix;
 
-use super::contact::ContactModel;
-use super::export::unit_pressure_load;
-use super::linear_solver::ConstrainedCholesky;
+use crate::discretisation::export::unit_pressure_load;
 use crate::error::{Error, Result};
+use crate::fem::contact::ContactModel;
+use crate::sparse::constrained::ConstrainedCholesky;
 
 /// Unit responses computed per blocked triangular solve.
 const BLOCK: usize = 64;

@@ -1,24 +1,11 @@
-//! The verification harness: tables comparing methods with each other and with the references.
+//! The verification harness: studies that compare the methods with each other and with the
+//! references ([`studies`]), the stored results of other codes and of earlier runs compared
+//! with ours ([`records`]), the report that shows them ([`report`]), and the report's work as
+//! independent jobs ([`report_jobs`], [`plan`]).
 
-pub mod adhesion_peers;
-pub mod baselines;
-pub mod benchmarks;
-pub mod comparison;
-pub mod convergence;
-pub mod fenicsx;
-pub mod history;
-pub mod html;
-pub mod operator;
-pub mod parts;
-pub mod peers;
 pub mod plan;
 pub mod progress;
-pub mod pulloff_records;
+pub mod records;
 pub mod report;
-pub mod report_tables;
-pub mod speed_accuracy;
-pub mod stability;
-pub mod stored;
-pub mod svg;
-pub mod sweeps;
-pub mod table;
+pub mod report_jobs;
+pub mod studies;

@@ -7,15 +7,15 @@
 //! `I` ([`Plan::shard`]: longest expected time first, each to the least-loaded shard, ties to the
 //! lower index), each in its own process, writing one file per job (an error record when the job
 //! fails, never nothing). `verify merge` reads every job's file ([`load_results`]) and builds the
-//! report with the code a single-process run uses ([`super::parts::assemble`]).
+//! report with the code a single-process run uses ([`crate::harness::report_jobs::assemble`]).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use super::parts::{JobRecord, Part, PartResult};
 use crate::error::{Error, Result};
+use crate::harness::report_jobs::{JobRecord, Part, PartResult};
 
 /// The first line of every plan file.
 pub const MAGIC: &str = "# ringcontact plan v1";
@@ -232,8 +232,8 @@ fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
     let args: Vec<&str> = job.command.split_whitespace().skip(1).collect();
     // The job reads the data directory this process reads (`--data-dir` is not inherited).
     let mut command = Command::new(executable);
-    if let Ok(root) = crate::fem::mesh_provider::find_project_root() {
-        command.env(crate::fem::mesh_provider::DATA_DIR_VARIABLE, root);
+    if let Ok(root) = crate::mesh::provider::find_project_root() {
+        command.env(crate::mesh::provider::DATA_DIR_VARIABLE, root);
         command.env(
             crate::sparse::ENVIRONMENT_VARIABLE,
             crate::sparse::Backend::of_process().name(),

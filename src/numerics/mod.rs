@@ -4,5 +4,7 @@
 
 pub mod chebyshev;
 pub mod elliptic;
+pub mod prefetch;
 pub mod roots;
 pub mod tanh_sinh;
+pub mod zeroed;

@@ -90,7 +90,7 @@ impl FaerFactor {
                 MemStack::new(&mut memory),
                 Default::default(),
             )
-            .map_err(|_| super::not_positive_definite())?;
+            .map_err(|_| crate::sparse::not_positive_definite())?;
         Ok(Self {
             symbolic: Arc::clone(symbolic),
             values: factor,
@@ -126,4 +126,3 @@ impl Pattern<'_> {
         ))
     }
 }
-

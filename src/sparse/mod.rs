@@ -2,23 +2,39 @@
 //! elements and the linear algebra.
 //!
 //! The FE code asks this layer for four things, on a matrix `K` stored as compressed columns
-//! with both triangles:
+//! with both triangles ([`Pattern`]):
 //!
-//! - [`analyse`]`(pattern, ordering)`: the symbolic Cholesky analysis of `K`'s pattern in a
-//!   given elimination order (done once per model);
-//! - [`SpdAnalysis::factorise`]`(values, constrained)`: the numeric factorisation
+//! - [`analyse`]`(pattern, ordering, backend)`: the symbolic Cholesky analysis of `K`'s pattern
+//!   in the elimination order the mesh gives ([`NodeOrdering`]; done once per model);
+//! - [`Analysis::factorise`]`(pattern, values, constrained)`: the numeric factorisation
 //!   `P K_C Pᵀ = L Lᵀ` of `K` with the rows and columns of the constrained dofs reduced to their
 //!   diagonal (`K_C`; the pattern, hence the analysis, is the same for every constraint set);
-//! - [`SpdFactor::solve`] and [`SpdFactor::solve_many`]: `x = K_C⁻¹ b` for one or many `b`.
+//! - [`Factor::solve`] and [`Factor::solve_many`]: `x = K_C⁻¹ b` for one or many `b`.
 //!
-//! Two backends implement it, chosen at run time ([`Backend`]): `faer`'s public sparse Cholesky
-//! ([`faer_llt`], the default) and this crate's own factorisation on `faer`'s supernodal layout
-//! ([`native`]), kept where it was measured faster on a user's path (docs/decisions.md).
+//! [`constrained::ConstrainedCholesky`] builds the FEM's solves on them (prescribed values,
+//! iterative refinement, unit responses). Two backends implement the seam, chosen at run time
+//! ([`Backend`], `verify --linear-solver`): `faer`'s public sparse Cholesky ([`faer_llt`]) and
+//! this crate's own factorisation on `faer`'s supernodal layout ([`native`], split over two cores
+//! where the model admits a separator). The native one is the default because it was measured
+//! 1.2-2.8x faster on the user's paths (`benches/records/linear-solver.md`,
+//! `docs/decisions.md`); `tests/linear_solver_contract.rs` runs the FE suite on both. Only
+//! [`native`] reads `faer`'s internal layouts or holds `unsafe` code.
 
+pub mod constrained;
 pub mod faer_llt;
+pub mod native;
 
 use std::str::FromStr;
-use std::sync::OnceLock;
+use std::sync::{Arc, OnceLock};
+
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::amd;
+use faer::sparse::SymbolicSparseColMatRef;
+use faer::MatMut;
+
+use self::faer_llt::{FaerAnalysis, FaerFactor};
+use self::native::split::{SplitAnalysis, SplitFactor};
+use self::native::whole::{NumericFactor, SymbolicFactor};
 
 use crate::error::{Error, Result};
 
@@ -95,6 +111,188 @@ pub fn set_process_backend(backend: Backend) -> bool {
     PROCESS_BACKEND.set(backend).is_ok() || PROCESS_BACKEND.get() == Some(&backend)
 }
 
+/// The symbolic analysis of one pattern on one backend ([`analyse`], [`analyse_bare`]): what
+/// every numeric factorisation of that pattern reuses.
+#[derive(Clone, Debug)]
+pub struct Analysis {
+    kind: AnalysisKind,
+    /// Rows and stored entries of the analysed pattern.
+    shape: (usize, usize),
+}
+
+#[derive(Clone, Debug)]
+enum AnalysisKind {
+    Faer(FaerAnalysis),
+    NativeWhole(SymbolicFactor),
+    NativeSplit(Arc<SplitAnalysis>),
+}
+
+/// A numeric factorisation `P K_C Pᵀ = L Lᵀ` ([`Analysis::factorise`]).
+pub struct Factor {
+    kind: FactorKind,
+}
+
+enum FactorKind {
+    Faer(FaerFactor),
+    NativeWhole(NumericFactor),
+    NativeSplit(SplitFactor),
+}
+
+/// [`analyse`] with `beside` run on the other core meanwhile (the FEM assembles the values
+/// there): returns both results.
+///
+/// The native backend splits the model in two parts by `ordering`'s separator when it has at
+/// least [`split_min_dofs`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] and no
+/// entry of `K` couples the parts; otherwise it factorises the whole matrix.
+pub fn analyse_beside<R: Send>(
+    pattern: Pattern<'_>,
+    ordering: &NodeOrdering,
+    backend: Backend,
+    beside: impl FnOnce() -> R + Send,
+) -> (Result<Analysis>, R) {
+    let (col_offsets, row_indices) = (pattern.col_offsets, pattern.row_indices);
+    let shape = (pattern.n(), pattern.nnz());
+    let dofs = pattern.n();
+    let order = &ordering.order;
+    let done = |kind: Result<AnalysisKind>| kind.map(|kind| Analysis { kind, shape });
+    if backend == Backend::Faer {
+        let analyse = || {
+            let order = DofOrder::of_nodes(order, dofs)?;
+            FaerAnalysis::new(&pattern, &order).map(AnalysisKind::Faer)
+        };
+        let (kind, result) = rayon::join(analyse, beside);
+        return (done(kind), result);
+    }
+    let whole = || {
+        SymbolicFactor::with_node_order(col_offsets, row_indices, order)
+            .map(AnalysisKind::NativeWhole)
+    };
+    let split = ordering.split.as_ref().filter(|split| {
+        dofs >= split_min_dofs()
+            && 2 * split.count(Side::Separator) + dofs % 2 <= SPLIT_MAX_SEPARATOR_DOFS
+    });
+    let Some(split) = split else {
+        let (kind, result) = rayon::join(whole, beside);
+        return (done(kind), result);
+    };
+    match SplitAnalysis::new_beside(col_offsets, row_indices, order, split, beside) {
+        (Ok(Some(analysis)), result) => (
+            done(Ok(AnalysisKind::NativeSplit(Arc::new(analysis)))),
+            result,
+        ),
+        (Ok(None), result) => (done(whole()), result),
+        (Err(e), result) => (Err(e), result),
+    }
+}
+
+/// The symbolic analysis of `pattern` (both triangles stored, sorted rows; two dofs per node of
+/// `ordering`'s mesh and an optional trailing dof) eliminated in `ordering` on `backend`.
+pub fn analyse(
+    pattern: Pattern<'_>,
+    ordering: &NodeOrdering,
+    backend: Backend,
+) -> Result<Analysis> {
+    analyse_beside(pattern, ordering, backend, || ()).0
+}
+
+/// The analysis of a pattern that comes without a mesh: ordered on its node graph by the native
+/// backend, by `faer`'s AMD by the other.
+pub fn analyse_bare(pattern: Pattern<'_>, backend: Backend) -> Result<Analysis> {
+    let shape = (pattern.n(), pattern.nnz());
+    let kind = match backend {
+        Backend::Native => AnalysisKind::NativeWhole(SymbolicFactor::of_pattern(
+            pattern.col_offsets,
+            pattern.row_indices,
+        )?),
+        Backend::Faer => AnalysisKind::Faer(FaerAnalysis::with_amd(&pattern)?),
+    };
+    Ok(Analysis { kind, shape })
+}
+
+impl Analysis {
+    /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
+    pub fn fits(&self, n: usize, nnz: usize) -> bool {
+        self.shape == (n, nnz)
+    }
+
+    /// The backend that made it.
+    pub fn backend(&self) -> Backend {
+        match self.kind {
+            AnalysisKind::Faer(_) => Backend::Faer,
+            AnalysisKind::NativeWhole(_) | AnalysisKind::NativeSplit(_) => Backend::Native,
+        }
+    }
+
+    /// One phrase for traces: the backend, whole or split (the parts' and the separator's
+    /// unknowns), and the factor's size or work.
+    pub fn describe(&self) -> String {
+        match &self.kind {
+            AnalysisKind::Faer(analysis) => format!("faer, nnz(L) {}", analysis.factor_len()),
+            AnalysisKind::NativeWhole(symbolic) => {
+                format!("whole, work {:.3e}", symbolic.work())
+            }
+            AnalysisKind::NativeSplit(split) => {
+                let [first, second] = split.part_sizes();
+                let [first_work, second_work] = split.part_work();
+                format!(
+                    "split {first} + {second}, separator {}, work {first_work:.3e} + \
+                     {second_work:.3e}",
+                    split.separator_len()
+                )
+            }
+        }
+    }
+
+    /// Factorise `K_C`: the matrix of the analysed `pattern` with `values`, its rows and columns
+    /// `constrained` reduced to their diagonal (`K_C`'s off-diagonal entries there are zero, so
+    /// the constraint set never changes the pattern). Fails if `K_C` is not positive definite.
+    pub fn factorise(
+        &self,
+        pattern: Pattern<'_>,
+        values: &[f64],
+        constrained: &[bool],
+    ) -> Result<Factor> {
+        if !self.fits(pattern.n(), pattern.nnz())
+            || values.len() != pattern.nnz()
+            || constrained.len() != pattern.n()
+        {
+            return Err(solver_error(
+                "internal: the values or constraints do not fit the analysed pattern".into(),
+            ));
+        }
+        let kind = match &self.kind {
+            AnalysisKind::Faer(analysis) => {
+                FactorKind::Faer(FaerFactor::new(analysis, &pattern, values, constrained)?)
+            }
+            AnalysisKind::NativeWhole(symbolic) => {
+                let lower = symbolic.lower().gathered(values, constrained);
+                FactorKind::NativeWhole(NumericFactor::new(symbolic, &lower)?)
+            }
+            AnalysisKind::NativeSplit(split) => {
+                FactorKind::NativeSplit(SplitFactor::new(split, values, constrained)?)
+            }
+        };
+        Ok(Factor { kind })
+    }
+}
+
+impl Factor {
+    /// Overwrite `rhs` with `K_C⁻¹ rhs`.
+    pub fn solve(&self, rhs: &mut [f64]) {
+        let n = rhs.len();
+        self.solve_many(MatMut::from_column_major_slice_mut(rhs, n, 1));
+    }
+
+    /// Overwrite each column of `rhs` with `K_C⁻¹` times it (one blocked solve).
+    pub fn solve_many(&self, rhs: MatMut<'_, f64>) {
+        match &self.kind {
+            FactorKind::Faer(factor) => factor.solve_in_place(rhs),
+            FactorKind::NativeWhole(factor) => factor.solve_in_place(rhs),
+            FactorKind::NativeSplit(factor) => factor.solve_in_place(rhs),
+        }
+    }
+}
+
 /// A symmetric sparsity pattern as compressed columns: `col_offsets` (`n + 1` entries) and the
 /// sorted `row_indices` of each column, both triangles stored.
 #[derive(Clone, Copy, Debug)]
@@ -137,14 +335,39 @@ impl<'a> Pattern<'a> {
     fn reduced_lower_values(&self, values: &[f64], constrained: &[bool]) -> Vec<f64> {
         let mut reduced = values.to_vec();
         for col in 0..self.n() {
-            for k in self.col_offsets[col]..self.col_offsets[col + 1] {
-                let row = self.row_indices[k];
+            let entries = self.col_offsets[col]..self.col_offsets[col + 1];
+            for (value, &row) in reduced[entries.clone()]
+                .iter_mut()
+                .zip(&self.row_indices[entries])
+            {
                 if row != col && (constrained[row] || constrained[col]) {
-                    reduced[k] = 0.0;
+                    *value = 0.0;
                 }
             }
         }
         reduced
+    }
+}
+
+/// Which part of the split a node belongs to.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Side {
+    First,
+    Second,
+    Separator,
+}
+
+/// The side of every node of a mesh: the two parts a split factorisation
+/// ([`native::split`]) factorises on two cores, and their separator.
+#[derive(Clone, Debug)]
+pub struct NodeSplit {
+    pub sides: Vec<Side>,
+}
+
+impl NodeSplit {
+    /// Number of nodes on `side`.
+    pub fn count(&self, side: Side) -> usize {
+        self.sides.iter().filter(|&&s| s == side).count()
     }
 }
 
@@ -161,18 +384,31 @@ impl DofOrder {
     /// for odd `n` a trailing dof `n - 1` (the far-field amplitude) goes last. An order that is
     /// not a permutation of the `n / 2` nodes is an error.
     pub fn of_nodes(node_order: &[usize], n: usize) -> Result<Self> {
-        let pairs = n / 2;
+        if n.is_multiple_of(2) {
+            return Self::of_node_order(node_order, n);
+        }
+        let mut nodes = Vec::with_capacity(node_order.len() + 1);
+        nodes.extend_from_slice(node_order);
+        nodes.push(n / 2);
+        Self::of_node_order(&nodes, n)
+    }
+
+    /// [`Self::of_nodes`] with the trailing dof of an odd `n` given its place in `node_order`
+    /// as node `n / 2` (a minimum-degree order of the node graph puts it where it falls).
+    pub fn of_node_order(node_order: &[usize], n: usize) -> Result<Self> {
+        let (pairs, nodes) = (n / 2, n / 2 + n % 2);
         let mut perm = Vec::with_capacity(n);
         for &node in node_order {
-            if node >= pairs {
-                return Err(solver_error(format!(
-                    "internal: node {node} of the elimination order is not one of the {pairs} nodes"
-                )));
+            match node {
+                m if m < pairs => perm.extend([2 * m, 2 * m + 1]),
+                m if m < nodes => perm.push(n - 1),
+                m => {
+                    return Err(solver_error(format!(
+                        "internal: node {m} of the elimination order is not one of the {nodes} \
+                         nodes"
+                    )))
+                }
             }
-            perm.extend([2 * node, 2 * node + 1]);
-        }
-        if n % 2 == 1 {
-            perm.push(n - 1);
         }
         let mut inverse = vec![usize::MAX; n];
         for (i, &d) in perm.iter().enumerate() {
@@ -186,12 +422,61 @@ impl DofOrder {
         }
         if perm.len() != n {
             return Err(solver_error(format!(
-                "internal: the elimination order holds {} of the {pairs} nodes",
+                "internal: the elimination order holds {} of the {nodes} nodes",
                 node_order.len()
             )));
         }
         Ok(Self { perm, inverse })
     }
+}
+
+/// What the analysis needs to know of the mesh, computed by the discretisation
+/// (`crate::discretisation::node_ordering::node_ordering`): the order in which to eliminate the nodes
+/// (two dofs each) and, for the native backend, a split of the nodes in two parts and a
+/// separator.
+#[derive(Clone, Debug)]
+pub struct NodeOrdering {
+    pub order: Vec<usize>,
+    pub split: Option<NodeSplit>,
+}
+
+/// Fewest unknowns for which a model's factorisation is split over two cores.
+/// Measured in the FEniCSx comparison (medians of five runs): at 8 008 unknowns 12.8 ms split
+/// against 17.0 ms whole, at 3 700 (P1, and the linear edge locators of P2 models) 8-15 ms
+/// against 9-21 ms.
+pub const SPLIT_MIN_DOFS: usize = 3_000;
+
+/// [`SPLIT_MIN_DOFS`], or the environment's `RINGCONTACT_SPLIT_MIN_DOFS` (to compare the split
+/// factorisation with the whole one on the same model).
+pub fn split_min_dofs() -> usize {
+    std::env::var("RINGCONTACT_SPLIT_MIN_DOFS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(SPLIT_MIN_DOFS)
+}
+
+/// Most separator unknowns a split may have (its Schur complement is dense).
+pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;
+
+/// Approximate-minimum-degree order (`faer`'s AMD) of a graph of `count` vertices given as
+/// compressed columns (`offsets`, sorted `rows`, each vertex its own neighbour): the vertices in
+/// the order to eliminate them.
+pub fn minimum_degree_order(count: usize, offsets: &[usize], rows: &[usize]) -> Vec<usize> {
+    let graph = SymbolicSparseColMatRef::new_checked(count, count, offsets, None, rows);
+    let (mut perm, mut perm_inverse) = (vec![0usize; count], vec![0usize; count]);
+    let mut memory = MemBuffer::new(amd::order_scratch::<usize>(count, graph.compute_nnz()));
+    let ordered = amd::order(
+        &mut perm,
+        &mut perm_inverse,
+        graph.as_ref(),
+        Default::default(),
+        MemStack::new(&mut memory),
+    );
+    if ordered.is_err() {
+        // AMD only fails on allocation; the identity is still a valid (slower) ordering.
+        perm = (0..count).collect();
+    }
+    perm
 }
 
 pub(crate) fn solver_error(message: String) -> Error {

@@ -3,8 +3,8 @@
 /// Whether gmsh is there; when it is not, the tests that need generated meshes are skipped with
 /// a message, unless `RINGCONTACT_REQUIRE_GMSH=1` (set by `.ci/run` after it installs gmsh).
 pub fn gmsh_available(test: &str) -> bool {
-    let root = ringcontact::fem::mesh_provider::project_root();
-    if ringcontact::fem::gmsh::Gmsh::find(&root).is_some() {
+    let root = ringcontact::mesh::provider::project_root();
+    if ringcontact::mesh::gmsh::Gmsh::find(&root).is_some() {
         return true;
     }
     assert!(

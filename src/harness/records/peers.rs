@@ -1,0 +1,167 @@
+//! Tamaas and ContactMechanics (stored results of `scripts/peers/run_peers.sh --out verify/peers`) against our
+//! square-grid BEM on identical grids and profiles: the force at the same depth must agree within
+//! 1e-6 relative (same discretisation: piecewise-constant pressure on square cells, Love kernel,
+//! 2N zero padding).
+
+use std::path::PathBuf;
+
+use serde::{Deserialize, Serialize};
+
+use crate::bem::grid::GridLoad;
+use crate::bem::grid_contact;
+use crate::error::Result;
+use crate::harness::report::table::{verdict, Column, Format, Table};
+use crate::punch::PunchKind;
+
+/// Relative force agreement required on the same grid.
+pub const PEER_AGREEMENT: f64 = 1e-6;
+
+/// One stored peer result (`verify/peers/*.json`).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+pub struct PeerResult {
+    pub package: String,
+    pub package_version: String,
+    pub punch: PunchKind,
+    pub eps: Option<f64>,
+    pub grid: usize,
+    pub depth: f64,
+    pub force: f64,
+    pub wall_s: f64,
+    pub date: String,
+    pub reproduce: String,
+}
+
+/// One comparison.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PeerComparison {
+    pub file: String,
+    pub stored: PeerResult,
+    pub our_force: f64,
+    pub our_iterations: usize,
+    pub our_wall_s: f64,
+    pub relative_difference: f64,
+    pub passed: bool,
+}
+
+/// Directory of the stored peer results.
+pub fn results_directory() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("verify")
+        .join("peers")
+}
+
+/// Load every stored peer result, sorted by file name.
+pub fn load_results() -> Result<Vec<(String, PeerResult)>> {
+    crate::harness::records::stored::load_json_dir(&results_directory(), "peer result")
+}
+
+/// `(punch, b/a bits, grid, depth bits)`: one state of the grid BEM.
+type StateKey = (PunchKind, u64, usize, u64);
+/// `(force, iterations, wall seconds)` of a solved state.
+type Solved = (f64, usize, f64);
+
+/// Compare every stored result with our grid BEM on the same grid (each distinct state solved
+/// once). `max_grid` skips larger grids (to keep quick runs quick).
+pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
+    let mut cache: Vec<(StateKey, Solved)> = Vec::new();
+    let mut rows = Vec::new();
+    for (file, stored) in load_results()? {
+        if stored.grid > max_grid {
+            continue;
+        }
+        let eps = stored.eps.unwrap_or(0.0);
+        let key = (
+            stored.punch,
+            eps.to_bits(),
+            stored.grid,
+            stored.depth.to_bits(),
+        );
+        let (force, iterations, wall) = match cache.iter().find(|(k, _)| *k == key) {
+            Some((_, v)) => *v,
+            None => {
+                let depth = if stored.punch.is_concave() {
+                    stored.depth
+                } else {
+                    1.0
+                };
+                let s = grid_contact::solve(
+                    stored.punch,
+                    eps,
+                    stored.grid,
+                    GridLoad::Depth(depth),
+                    1e-11,
+                )
+                .map_err(|e| {
+                    crate::error::Error::file(
+                        "compare the stored peer result",
+                        &results_directory().join(&file),
+                        e,
+                    )
+                })?;
+                // Flat punches are linear in the depth.
+                let force = if stored.punch.is_concave() {
+                    s.force
+                } else {
+                    s.force * stored.depth
+                };
+                let v = (force, s.iterations, s.wall_s);
+                cache.push((key, v));
+                v
+            }
+        };
+        let relative = (force - stored.force) / stored.force;
+        rows.push(PeerComparison {
+            file,
+            stored,
+            our_force: force,
+            our_iterations: iterations,
+            our_wall_s: wall,
+            relative_difference: relative,
+            passed: relative.abs() <= PEER_AGREEMENT,
+        });
+    }
+    Ok(rows)
+}
+
+/// Number of disagreements, plus one if nothing was compared.
+pub fn failures(rows: &[PeerComparison]) -> usize {
+    rows.iter().filter(|r| !r.passed).count() + usize::from(rows.is_empty())
+}
+
+/// The stored peer results against our grid BEM on the same grids.
+pub fn table(rows: &[PeerComparison]) -> Table {
+    let mut t = Table::new(
+        "Tamaas and ContactMechanics (stored) against our grid BEM on the same grids",
+        vec![
+            Column::text("result", "stored result"),
+            Column::number("grid", "grid", Format::Fixed(0)),
+            Column::number("peer_force", "peer force", Format::Fixed(10)),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(1),
+            ),
+            Column::text("verdict", "verdict"),
+        ],
+    );
+    for r in rows {
+        t.push(vec![
+            r.file.clone().into(),
+            (r.stored.grid as f64).into(),
+            r.stored.force.into(),
+            r.relative_difference.into(),
+            verdict(r.passed, "FAIL"),
+        ]);
+    }
+    t
+}
+
+/// Human-readable: [`table`] under its pass rule.
+pub fn render(rows: &[PeerComparison]) -> String {
+    let mut out = format!("\nPass: force within {PEER_AGREEMENT:.0e}.\n");
+    out += &table(rows).to_terminal();
+    if rows.is_empty() {
+        out += "  (no stored results; run bash scripts/peers/run_peers.sh --out verify/peers)\n";
+    }
+    out
+}

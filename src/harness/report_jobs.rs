@@ -1,0 +1,689 @@
+//! The work of a report as independent parts: each [`Part`] is one job of a plan
+//! ([`crate::harness::plan`]), runs on its own (`verify part ID`, printing a [`JobRecord`]) and needs no
+//! other part's result. [`assemble`] joins the results, in the plan's order, into the
+//! [`ReportInputs`] the report is written from, so one process ([`compute_report`]) and a
+//! sharded run merged from files build their report from the same pieces by the same code.
+//!
+//! A part's id names everything it computes: `kind[:argument][:key=value]...`, e.g.
+//! `comparison:tol=1e-6`, `speed:cone-2:fem-tol=1e-8`,
+//! `convergence:sphere:fem:eps=0:depth=1.5:level=2:of=3`, `pulloff:cone:d0h=10`.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use clap::ValueEnum;
+use serde::{Deserialize, Serialize};
+
+use crate::bem::ring_contact::RingBemSolver;
+use crate::cohesive::study::{self, LiveSimulation};
+use crate::error::{Error, Result};
+use crate::harness::records::adhesion_peers::{self, AdhesionPeerComparison};
+use crate::harness::records::fenicsx::{self, FenicsxComparison};
+use crate::harness::records::operator::{self, OperatorStatus};
+use crate::harness::records::peers::{self, PeerComparison};
+use crate::harness::records::pulloff::{self, PulloffRecord};
+use crate::harness::report::document::{self, PulloffPoint, ReportInputs};
+use crate::harness::studies::comparison::{self, ComparisonReport};
+use crate::harness::studies::convergence::{self, ComputedLevel, StudyCase};
+use crate::harness::studies::speed_accuracy::{self, BasePoints, CostPoint, Problem};
+use crate::harness::studies::stability::{self, Probe};
+use crate::methods::Method;
+use crate::punch::PunchKind;
+
+/// Grid size up to which the stored peer results are compared (as `verify compare`).
+pub const PEER_MAX_GRID: usize = 256;
+
+/// One independent piece of work.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Part {
+    /// The ring BEM against the references, the identities, the FEM cross-checks.
+    Comparison { tolerance: f64 },
+    /// The stored FEniCSx results against this build.
+    Fenicsx,
+    /// The stored peer (Tamaas, ContactMechanics) results against this build's grid BEM.
+    Peers,
+    /// The stored FEniCSx operator comparisons.
+    Operators,
+    /// A speed-accuracy problem's yardstick and base points.
+    SpeedBase(Problem),
+    /// The FEM's full solve at one tolerance on a speed-accuracy problem.
+    SpeedFem { problem: Problem, tolerance: f64 },
+    /// One level of a convergence study.
+    ConvergenceLevel {
+        punch: PunchKind,
+        method: Method,
+        eps: f64,
+        depth: f64,
+        level: usize,
+        levels: usize,
+    },
+    /// Pull-off against `d0/h` by the JKR routes, one concave punch.
+    Adhesion(PunchKind),
+    /// The report's single live pull-off simulation.
+    PulloffLive,
+    /// Our pull-off simulations against the stored Tamaas ones.
+    AdhesionPeers,
+    /// One pull-off simulation of `verify pulloff` (nightly).
+    PulloffSimulation {
+        punch: PunchKind,
+        eps: f64,
+        d0_over_h: f64,
+    },
+    /// The stability probes of `verify stability` (nightly).
+    Stability,
+}
+
+/// What a part computed.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(tag = "part", content = "value", rename_all = "snake_case")]
+#[allow(clippy::large_enum_variant)]
+pub enum PartResult {
+    Comparison(ComparisonReport),
+    Fenicsx(Vec<FenicsxComparison>),
+    Peers(Vec<PeerComparison>),
+    Operators(Vec<OperatorStatus>),
+    SpeedBase(BasePoints),
+    SpeedFem(Option<CostPoint>),
+    ConvergenceLevel(ComputedLevel),
+    Adhesion(Vec<PulloffPoint>),
+    PulloffLive(std::result::Result<LiveSimulation, String>),
+    AdhesionPeers(Vec<AdhesionPeerComparison>),
+    PulloffSimulation(PulloffRecord),
+    Stability(Vec<Probe>),
+}
+
+/// The file a job writes: its id, its command, its wall time and its result or its error.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct JobRecord {
+    pub id: String,
+    pub command: String,
+    pub wall_s: f64,
+    /// The result, absent when the job failed.
+    #[serde(default)]
+    pub result: Option<PartResult>,
+    /// Why the job failed (the error, or the exit status and the end of standard error).
+    #[serde(default)]
+    pub error: Option<String>,
+}
+
+fn fmt_sci(x: f64) -> String {
+    format!("{x:e}")
+}
+
+impl Part {
+    /// The id: the part's kind and every parameter (see the module's documentation).
+    pub fn id(&self) -> String {
+        match self {
+            Part::Comparison { tolerance } => format!("comparison:tol={}", fmt_sci(*tolerance)),
+            Part::Fenicsx => "fenicsx".into(),
+            Part::Peers => "peers".into(),
+            Part::Operators => "operators".into(),
+            Part::SpeedBase(p) => format!("speed:{}", p.slug()),
+            Part::SpeedFem { problem, tolerance } => {
+                format!("speed:{}:fem-tol={}", problem.slug(), fmt_sci(*tolerance))
+            }
+            Part::ConvergenceLevel {
+                punch,
+                method,
+                eps,
+                depth,
+                level,
+                levels,
+            } => format!(
+                "convergence:{}:{}:eps={eps}:depth={depth}:level={level}:of={levels}",
+                punch.name(),
+                method.name()
+            ),
+            Part::Adhesion(kind) => format!("adhesion:{}", kind.name()),
+            Part::PulloffLive => "pulloff-live".into(),
+            Part::AdhesionPeers => "adhesion-peers".into(),
+            Part::PulloffSimulation {
+                punch,
+                eps,
+                d0_over_h,
+            } => match punch {
+                PunchKind::FlatAnnulus => format!("pulloff:{}:eps={eps}", punch.name()),
+                p if p.is_concave() => format!("pulloff:{}:d0h={d0_over_h}", punch.name()),
+                p => format!("pulloff:{}", p.name()),
+            },
+            Part::Stability => "stability".into(),
+        }
+    }
+
+    /// The part an id names; an error says what is wrong with it.
+    pub fn from_id(id: &str) -> Result<Part> {
+        let bad = |why: &str| Error::Plan(format!("job id `{id}`: {why}"));
+        let mut fields = id.split(':');
+        let kind = fields.next().unwrap_or_default();
+        let mut positional = Vec::new();
+        let mut keys: HashMap<&str, &str> = HashMap::new();
+        for f in fields {
+            match f.split_once('=') {
+                Some((k, v)) => {
+                    if keys.insert(k, v).is_some() {
+                        return Err(bad(&format!("`{k}` given twice")));
+                    }
+                }
+                None => positional.push(f),
+            }
+        }
+        let number = |key: &str| -> Result<f64> {
+            let v = keys
+                .get(key)
+                .ok_or_else(|| bad(&format!("needs `{key}=`")))?;
+            v.parse::<f64>()
+                .ok()
+                .filter(|x| x.is_finite())
+                .ok_or_else(|| bad(&format!("`{key}={v}` is not a number")))
+        };
+        let count = |key: &str| -> Result<usize> {
+            let v = keys
+                .get(key)
+                .ok_or_else(|| bad(&format!("needs `{key}=`")))?;
+            v.parse::<usize>()
+                .map_err(|_| bad(&format!("`{key}={v}` is not a count")))
+        };
+        let punch = |name: Option<&&str>| -> Result<PunchKind> {
+            let name = name.ok_or_else(|| bad("needs a punch"))?;
+            PunchKind::from_str(name, false).map_err(|_| bad(&format!("no punch `{name}`")))
+        };
+        let part = match kind {
+            "comparison" => Part::Comparison {
+                tolerance: number("tol")?,
+            },
+            "fenicsx" => Part::Fenicsx,
+            "peers" => Part::Peers,
+            "operators" => Part::Operators,
+            "pulloff-live" => Part::PulloffLive,
+            "adhesion-peers" => Part::AdhesionPeers,
+            "stability" => Part::Stability,
+            "speed" => {
+                let slug = positional.first().ok_or_else(|| bad("needs a problem"))?;
+                let problem = Problem::from_slug(slug).ok_or_else(|| {
+                    bad(&format!(
+                        "no speed-accuracy problem `{slug}` (known: {})",
+                        Problem::ALL.map(|p| p.slug()).join(", ")
+                    ))
+                })?;
+                if keys.contains_key("fem-tol") {
+                    Part::SpeedFem {
+                        problem,
+                        tolerance: number("fem-tol")?,
+                    }
+                } else {
+                    Part::SpeedBase(problem)
+                }
+            }
+            "convergence" => {
+                let method = positional.get(1).ok_or_else(|| bad("needs a method"))?;
+                Part::ConvergenceLevel {
+                    punch: punch(positional.first())?,
+                    method: Method::from_str(method, false)
+                        .map_err(|_| bad(&format!("no method `{method}`")))?,
+                    eps: number("eps")?,
+                    depth: number("depth")?,
+                    level: count("level")?,
+                    levels: count("of")?,
+                }
+            }
+            "adhesion" => Part::Adhesion(punch(positional.first())?),
+            "pulloff" => {
+                let punch = punch(positional.first())?;
+                Part::PulloffSimulation {
+                    punch,
+                    eps: if punch == PunchKind::FlatAnnulus {
+                        number("eps")?
+                    } else {
+                        0.0
+                    },
+                    d0_over_h: if punch.is_concave() {
+                        number("d0h")?
+                    } else {
+                        0.0
+                    },
+                }
+            }
+            _ => return Err(bad("unknown kind of job")),
+        };
+        // Only the canonical spelling is accepted, so that an id names one file.
+        if part.id() != id {
+            return Err(bad(&format!("write it as `{}`", part.id())));
+        }
+        Ok(part)
+    }
+
+    /// The `verify` command that runs this part and prints its [`JobRecord`].
+    pub fn command(&self) -> String {
+        format!("verify part {}", self.id())
+    }
+
+    /// The file of its record in a results directory.
+    pub fn output_file(&self) -> String {
+        format!("{}.json", self.id().replace(':', "_"))
+    }
+
+    /// Expected wall time in seconds on the 2-core development machine with gmsh and a warm
+    /// mesh cache (measured 2026-11-23 from the records of `verify run` on the nightly plan;
+    /// the README's cost table). Only the balance of the shards depends on it.
+    pub fn expected_s(&self) -> f64 {
+        match self {
+            Part::Comparison { .. } => 1.0,
+            Part::Fenicsx => 9.0,
+            Part::Peers => 4.0,
+            Part::Operators => 0.1,
+            Part::SpeedBase(p) => match p {
+                Problem::Sphere => 1.9,
+                Problem::Cone => 1.6,
+                Problem::FlatHalf | Problem::FlatThick => 0.9,
+            },
+            Part::SpeedFem { tolerance, .. } => {
+                if *tolerance >= 1e-3 {
+                    0.1
+                } else if *tolerance >= 1e-4 {
+                    0.2
+                } else if *tolerance >= 1e-6 {
+                    0.6
+                } else {
+                    // 4.8 (flat annulus 0.5) to 12.8 s (sphere).
+                    9.0
+                }
+            }
+            // Grid BEM: 64² .. ; the FEM's level k also solves the coarser ones for their free
+            // edges (concave punches).
+            Part::ConvergenceLevel { method, level, .. } => match method {
+                Method::GridBem => 0.03 * 6f64.powi(*level as i32),
+                Method::Fem => 0.08 * 2.3f64.powi(*level as i32),
+                _ => 0.01,
+            },
+            Part::Adhesion(_) => 4.0,
+            Part::PulloffLive => 7.0,
+            Part::AdhesionPeers => 12.0,
+            // Small d0/h: pressed deeper until the hole closes, and ranges where it reopens
+            // replaced by smaller ones (measured alone on 2 cores: cone 0.3 224 s, sphere 0.3
+            // 155 s, cone and sphere 1 45-48 s).
+            Part::PulloffSimulation {
+                punch, d0_over_h, ..
+            } => match punch {
+                PunchKind::Flat => 15.0,
+                PunchKind::FlatAnnulus => 50.0,
+                PunchKind::Cone if *d0_over_h <= 0.5 => 225.0,
+                _ if *d0_over_h <= 0.5 => 155.0,
+                _ if *d0_over_h <= 1.0 => 47.0,
+                _ => 13.0,
+            },
+            Part::Stability => 3.5,
+        }
+    }
+
+    /// Run the part in this process (`edges` carries the free edges of convergence levels
+    /// already computed here, so that one process does not solve a coarser level twice).
+    pub fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
+        let ring = RingBemSolver::new();
+        Ok(match *self {
+            Part::Comparison { tolerance } => PartResult::Comparison(comparison::run(tolerance)?),
+            Part::Fenicsx => PartResult::Fenicsx(fenicsx::run()?),
+            Part::Peers => PartResult::Peers(peers::run(PEER_MAX_GRID)?),
+            Part::Operators => PartResult::Operators(operator::load_records()?),
+            Part::SpeedBase(problem) => {
+                PartResult::SpeedBase(speed_accuracy::base_points(&ring, problem)?)
+            }
+            Part::SpeedFem { problem, tolerance } => {
+                let yardstick = problem.yardstick(&ring)?;
+                PartResult::SpeedFem(speed_accuracy::ladder_point(problem, yardstick, tolerance))
+            }
+            Part::ConvergenceLevel {
+                punch,
+                method,
+                eps,
+                depth,
+                level,
+                levels,
+            } => {
+                let case = StudyCase { punch, eps, depth };
+                let key = (self.study_key(), level);
+                let known = level
+                    .checked_sub(1)
+                    .and_then(|k| edges.get(&(key.0.clone(), k)).copied());
+                let computed = match known {
+                    Some(edge) => convergence::level_after(case, method, level, levels, edge)?,
+                    None => convergence::level(case, method, level, levels)?,
+                };
+                edges.insert(key, computed.free_edge);
+                PartResult::ConvergenceLevel(computed)
+            }
+            Part::Adhesion(kind) => PartResult::Adhesion(document::pulloff_points(&ring, kind)?),
+            Part::PulloffLive => {
+                PartResult::PulloffLive(document::live_pulloff().map_err(|e| e.to_string()))
+            }
+            Part::AdhesionPeers => PartResult::AdhesionPeers(adhesion_peers::run()?),
+            Part::PulloffSimulation {
+                punch,
+                eps,
+                d0_over_h,
+            } => PartResult::PulloffSimulation(pulloff_simulation(punch, eps, d0_over_h)),
+            Part::Stability => PartResult::Stability(stability::run(|_| {})),
+        })
+    }
+
+    /// The convergence study a level belongs to (the levels of one study share it).
+    fn study_key(&self) -> String {
+        match self {
+            Part::ConvergenceLevel {
+                punch,
+                method,
+                eps,
+                depth,
+                levels,
+                ..
+            } => format!("{}:{}:{eps}:{depth}:{levels}", punch.name(), method.name()),
+            _ => self.id(),
+        }
+    }
+
+    /// Run the part and wrap its result (or its error) with its id, command and time.
+    pub fn record(&self, edges: &mut EdgeMemo) -> JobRecord {
+        let start = Instant::now();
+        let outcome = self.compute(edges);
+        let wall_s = start.elapsed().as_secs_f64();
+        let (result, error) = match outcome {
+            Ok(r) => (Some(r), None),
+            Err(e) => (None, Some(e.to_string())),
+        };
+        JobRecord {
+            id: self.id(),
+            command: self.command(),
+            wall_s,
+            result,
+            error,
+        }
+    }
+}
+
+/// Free edges found by convergence levels run in this process: (study, level) -> edge.
+pub type EdgeMemo = HashMap<(String, usize), Option<f64>>;
+
+/// A pull-off simulation as `verify pulloff --json` runs it (the study meshes, the default
+/// ranges), recorded like `scripts/pulloff/run_all.py` records it: its result, or the reason it
+/// declined the case.
+fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffRecord {
+    let mut command = format!("verify pulloff --punch {}", punch.name());
+    if punch == PunchKind::FlatAnnulus {
+        command += &format!(" --eps {eps}");
+    }
+    if punch.is_concave() {
+        command += &format!(" --d0h {d0_over_h}");
+    }
+    command += " --json";
+    let case = study::Case {
+        punch,
+        eps,
+        d0_over_h,
+    };
+    let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
+    let file = match punch {
+        PunchKind::FlatAnnulus => format!("flat-annulus-{eps}.json"),
+        p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.name()),
+        p => format!("{}.json", p.name()),
+    };
+    let (result, declined) = match outcome {
+        Ok(r) => (Some(r), None),
+        Err(e) => (None, Some(format!("error: {e}"))),
+    };
+    PulloffRecord {
+        file,
+        date: crate::harness::report::html::utc_now_iso(),
+        command,
+        result,
+        declined,
+    }
+}
+
+/// The parts of the default report (`verify compare --report`): the comparison at `tolerance`,
+/// the stored external results, each speed-accuracy problem's base and FEM points at
+/// `fem_tolerances`, the grid BEM's and the FEM's three-level studies of the sphere at
+/// `d = 1.5 h`, the JKR pull-off routes and one live pull-off simulation.
+pub fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
+    let mut parts = vec![
+        Part::Comparison { tolerance },
+        Part::Fenicsx,
+        Part::Peers,
+        Part::Operators,
+    ];
+    for problem in Problem::ALL {
+        parts.push(Part::SpeedBase(problem));
+        for &tolerance in fem_tolerances {
+            parts.push(Part::SpeedFem { problem, tolerance });
+        }
+    }
+    for method in [Method::GridBem, Method::Fem] {
+        parts.extend(convergence_parts(REPORT_STUDY, method, REPORT_STUDY_LEVELS));
+    }
+    parts.push(Part::Adhesion(PunchKind::Cone));
+    parts.push(Part::Adhesion(PunchKind::Sphere));
+    parts.push(Part::PulloffLive);
+    parts.push(Part::AdhesionPeers);
+    parts
+}
+
+/// The convergence study the report shows: the sphere at `d = 1.5 h`.
+pub const REPORT_STUDY: StudyCase = StudyCase {
+    punch: PunchKind::Sphere,
+    eps: 0.0,
+    depth: 1.5,
+};
+/// Levels of the report's convergence studies.
+pub const REPORT_STUDY_LEVELS: usize = 3;
+
+/// The levels of one convergence study, one part each.
+pub fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<Part> {
+    (0..levels)
+        .map(|level| Part::ConvergenceLevel {
+            punch: case.punch,
+            method,
+            eps: case.eps,
+            depth: case.depth,
+            level,
+            levels,
+        })
+        .collect()
+}
+
+/// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.py`'s cases).
+pub fn pulloff_parts() -> Vec<Part> {
+    let mut parts = vec![
+        Part::PulloffSimulation {
+            punch: PunchKind::Flat,
+            eps: 0.0,
+            d0_over_h: 0.0,
+        },
+        Part::PulloffSimulation {
+            punch: PunchKind::FlatAnnulus,
+            eps: 0.5,
+            d0_over_h: 0.0,
+        },
+        Part::PulloffSimulation {
+            punch: PunchKind::FlatAnnulus,
+            eps: 0.9,
+            d0_over_h: 0.0,
+        },
+    ];
+    for x in [0.3, 1.0, 3.0, 10.0] {
+        for punch in [PunchKind::Cone, PunchKind::Sphere] {
+            parts.push(Part::PulloffSimulation {
+                punch,
+                eps: 0.0,
+                d0_over_h: x,
+            });
+        }
+    }
+    parts
+}
+
+/// The nightly suite: the report's parts with the FEM down to `fem_tolerances` (1e-8), the
+/// pull-off simulations and the stability probes.
+pub fn nightly_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
+    let mut parts = report_parts(tolerance, fem_tolerances);
+    parts.extend(pulloff_parts());
+    parts.push(Part::Stability);
+    parts
+}
+
+/// What a plan's results make: a report (with, in the nightly suite, the stability probes), or
+/// convergence studies.
+#[allow(clippy::large_enum_variant)]
+pub enum Assembled {
+    Report {
+        inputs: ReportInputs,
+        stability: Option<Vec<Probe>>,
+    },
+    Convergence(Vec<convergence::Study>),
+}
+
+fn need<T>(value: Option<T>, what: &str) -> Result<T> {
+    value.ok_or_else(|| {
+        Error::Plan(format!(
+            "the plan has no {what} job: a report needs it (make the plan with `verify plan`)"
+        ))
+    })
+}
+
+/// Join parts' results, in the plan's order, into a report's inputs or convergence studies.
+/// Every part must have a result; a report needs the comparison, the stored external results,
+/// the JKR routes and the live simulation.
+pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
+    let wall_s: f64 = results.iter().map(|r| r.2).sum();
+    let mut comparison = None;
+    let (mut fenicsx, mut peers, mut operators) = (None, None, None);
+    let mut bases: Vec<BasePoints> = Vec::new();
+    let mut ladders: HashMap<&'static str, Vec<Option<CostPoint>>> = HashMap::new();
+    let mut studies: Vec<(StudyCase, Method, usize, Vec<ComputedLevel>)> = Vec::new();
+    let mut pulloff = Vec::new();
+    let mut live = None;
+    let mut adhesion = None;
+    let mut simulations = Vec::new();
+    let mut stability = None;
+    let mut report_parts = 0usize;
+    for (part, result, _) in results {
+        let mismatch = || {
+            Error::Plan(format!(
+                "the result of job `{}` is not what that job computes",
+                part.id()
+            ))
+        };
+        if !matches!(part, Part::ConvergenceLevel { .. }) {
+            report_parts += 1;
+        }
+        match (&part, result) {
+            (Part::Comparison { .. }, PartResult::Comparison(c)) => comparison = Some(c),
+            (Part::Fenicsx, PartResult::Fenicsx(f)) => fenicsx = Some(f),
+            (Part::Peers, PartResult::Peers(p)) => peers = Some(p),
+            (Part::Operators, PartResult::Operators(o)) => operators = Some(o),
+            (Part::SpeedBase(_), PartResult::SpeedBase(b)) => bases.push(b),
+            (Part::SpeedFem { problem, .. }, PartResult::SpeedFem(p)) => {
+                ladders.entry(problem.slug()).or_default().push(p)
+            }
+            (
+                Part::ConvergenceLevel {
+                    punch,
+                    method,
+                    eps,
+                    depth,
+                    levels,
+                    ..
+                },
+                PartResult::ConvergenceLevel(l),
+            ) => {
+                let case = StudyCase {
+                    punch: *punch,
+                    eps: *eps,
+                    depth: *depth,
+                };
+                let same = |s: &&mut (StudyCase, Method, usize, Vec<ComputedLevel>)| {
+                    s.0.punch == case.punch
+                        && s.0.eps == case.eps
+                        && s.0.depth == case.depth
+                        && s.1 == *method
+                        && s.2 == *levels
+                };
+                match studies.iter_mut().find(|s| same(s)) {
+                    Some(s) => s.3.push(l),
+                    None => studies.push((case, *method, *levels, vec![l])),
+                }
+            }
+            (Part::Adhesion(_), PartResult::Adhesion(p)) => pulloff.extend(p),
+            (Part::PulloffLive, PartResult::PulloffLive(l)) => live = Some(l),
+            (Part::AdhesionPeers, PartResult::AdhesionPeers(a)) => adhesion = Some(a),
+            (Part::PulloffSimulation { .. }, PartResult::PulloffSimulation(r)) => {
+                simulations.push(r)
+            }
+            (Part::Stability, PartResult::Stability(p)) => stability = Some(p),
+            _ => return Err(mismatch()),
+        }
+    }
+    let mut assembled_studies = Vec::new();
+    for (case, method, levels, computed) in studies {
+        if computed.len() != levels {
+            return Err(Error::Plan(format!(
+                "the {} study of {} has {} of its {levels} levels",
+                method.name(),
+                case.punch,
+                computed.len()
+            )));
+        }
+        let finest_edge = computed.last().and_then(|c| c.free_edge);
+        let yardstick = convergence::yardstick(&case)?;
+        let levels = computed.into_iter().map(|c| c.level).collect();
+        assembled_studies.push(convergence::assemble(
+            &case,
+            method,
+            yardstick,
+            levels,
+            finest_edge,
+        ));
+    }
+    if report_parts == 0 {
+        return Ok(Assembled::Convergence(assembled_studies));
+    }
+    let fenicsx = need(fenicsx, "fenicsx")?;
+    let speed_accuracy = bases
+        .iter()
+        .map(|b| {
+            let ladder = ladders.remove(b.problem.slug()).unwrap_or_default();
+            speed_accuracy::assemble(b, &ladder, &fenicsx)
+        })
+        .collect();
+    if simulations.is_empty() {
+        simulations = pulloff::load()?;
+    }
+    Ok(Assembled::Report {
+        inputs: ReportInputs {
+            comparison: need(comparison, "comparison")?,
+            fenicsx,
+            operators: need(operators, "operators")?,
+            peers: need(peers, "peers")?,
+            speed_accuracy,
+            convergence: assembled_studies,
+            pulloff: need((!pulloff.is_empty()).then_some(pulloff), "adhesion")?,
+            pulloff_simulations: simulations,
+            pulloff_live: need(live, "pulloff-live")?,
+            adhesion_peers: need(adhesion, "adhesion-peers")?,
+            baselines: Vec::new(),
+            wall_s,
+        },
+        stability,
+    })
+}
+
+/// Compute `parts` one after the other in this process (the single-process run), calling
+/// `progress` with each part's id before it runs, and join them.
+pub fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Assembled> {
+    let mut edges = EdgeMemo::new();
+    let mut results = Vec::new();
+    for part in parts {
+        progress(&part.id());
+        let start = Instant::now();
+        let result = part.compute(&mut edges)?;
+        results.push((part.clone(), result, start.elapsed().as_secs_f64()));
+    }
+    assemble(results)
+}

@@ -1,0 +1,529 @@
+//! The default job of `verify`: every method that exists, on the three punches, side by side
+//! with the analytic references, with a verdict wherever a reference declares an error bound, and
+//! the FEM cross-verified against the ring BEM.
+//!
+//! Verdict rule (cross-verification, `docs/methods.md`): a method and a reference
+//! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or bound.
+//! The paper's fits declare no bound: their difference is shown, not judged.
+
+use std::time::Instant;
+
+use serde::Serialize;
+
+use crate::bem::ring_contact::{RingBemSolver, RingState};
+use crate::error::Result;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
+use crate::mesh::triangulation::Degree;
+use crate::punch::PunchKind;
+use crate::reference::{self, Quantity, ReferenceKind};
+
+/// Contact ratios of the flat-annulus table.
+pub const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
+/// Contact ratios of the concave tables.
+pub const CONCAVE_RATIOS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95];
+
+/// One comparison of a computed value with a reference.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct Comparison {
+    pub reference: String,
+    pub reference_kind: ReferenceKind,
+    pub reference_value: f64,
+    /// `(method - reference) / reference`.
+    pub relative_difference: f64,
+    /// `true`/`false` where the reference declares a bound; `None` for fits.
+    pub agrees: Option<bool>,
+}
+
+/// One row: a quantity at one contact ratio, computed by the ring BEM, against every valid
+/// reference.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct Row {
+    pub quantity: Quantity,
+    pub eps: f64,
+    pub method: String,
+    pub value: f64,
+    pub error_estimate: f64,
+    pub unknowns: usize,
+    pub wall_s: f64,
+    pub comparisons: Vec<Comparison>,
+}
+
+/// A consistency check that involves no reference (e.g. `γ2' = γ γ1'`).
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct IdentityCheck {
+    pub name: String,
+    pub eps: f64,
+    pub lhs: f64,
+    pub rhs: f64,
+    pub relative_residual: f64,
+    pub tolerance: f64,
+    pub passed: bool,
+}
+
+/// One state solved by the FEM and by the ring BEM (cross-verification of two discretisations).
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct CrossCheck {
+    pub punch: PunchKind,
+    /// `b/a` (flat annulus) or `d/h` (concave): what was prescribed.
+    pub prescribed: String,
+    /// `γ` (flat) or `γ2` (concave) of each method.
+    pub fem_value: f64,
+    pub ring_bem_value: f64,
+    pub fem_eps: f64,
+    pub ring_bem_eps: f64,
+    pub fem_error_estimate: f64,
+    pub ring_bem_error_estimate: f64,
+    pub relative_difference: f64,
+    pub eps_difference: f64,
+    pub dofs: usize,
+    pub mesh: String,
+    pub fem_wall_s: f64,
+    /// `|f_fem - f_bem| <= U_fem + U_bem` for the value and for eps.
+    pub agrees: bool,
+}
+
+/// The whole comparison.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct ComparisonReport {
+    pub tolerance: f64,
+    pub rows: Vec<Row>,
+    pub identities: Vec<IdentityCheck>,
+    pub fem: Vec<CrossCheck>,
+}
+
+impl ComparisonReport {
+    /// Number of failed verdicts (bounded references that disagree, failed identities).
+    pub fn failures(&self) -> usize {
+        let rows = self
+            .rows
+            .iter()
+            .flat_map(|r| &r.comparisons)
+            .filter(|c| c.agrees == Some(false))
+            .count();
+        rows + self.identities.iter().filter(|i| !i.passed).count()
+            + self.fem.iter().filter(|c| !c.agrees).count()
+    }
+}
+
+fn compare(quantity: Quantity, eps: f64, value: f64, estimate: f64) -> Vec<Comparison> {
+    reference::valid_references(quantity, eps)
+        .iter()
+        .filter_map(|r| {
+            let v = r.evaluate(eps)?;
+            let diff = value - v.value;
+            Some(Comparison {
+                reference: r.name.to_string(),
+                reference_kind: r.kind,
+                reference_value: v.value,
+                relative_difference: diff / v.value,
+                agrees: v
+                    .error_bound
+                    .map(|b| diff.abs() <= b + estimate * value.abs() + 4.0 * f64::EPSILON),
+            })
+        })
+        .collect()
+}
+
+fn row(quantity: Quantity, state: &RingState, value: f64, wall_s: f64) -> Row {
+    Row {
+        quantity,
+        eps: state.eps,
+        method: "ring-bem".into(),
+        value,
+        error_estimate: state.error_estimate,
+        unknowns: state.unknowns,
+        wall_s,
+        comparisons: compare(quantity, state.eps, value, state.error_estimate),
+    }
+}
+
+/// Run the comparison with the ring BEM at `tolerance`.
+pub fn run(tolerance: f64) -> Result<ComparisonReport> {
+    let solver = RingBemSolver::new();
+    let mut rows = Vec::new();
+    for &eps in &FLAT_RATIOS {
+        let start = Instant::now();
+        let state = solver.flat(eps, tolerance)?;
+        let wall = start.elapsed().as_secs_f64();
+        rows.push(row(
+            Quantity::FlatGamma,
+            &state,
+            state.gamma.unwrap_or(f64::NAN),
+            wall,
+        ));
+    }
+    for (kind, q1, q2) in [
+        (PunchKind::Cone, Quantity::ConeGamma1, Quantity::ConeGamma2),
+        (
+            PunchKind::Sphere,
+            Quantity::SphereGamma1,
+            Quantity::SphereGamma2,
+        ),
+    ] {
+        for &eps in &CONCAVE_RATIOS {
+            let start = Instant::now();
+            let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+            let wall = start.elapsed().as_secs_f64();
+            rows.push(row(q1, &state, state.gamma1.unwrap_or(f64::NAN), wall));
+            rows.push(row(q2, &state, state.gamma2.unwrap_or(f64::NAN), wall));
+        }
+    }
+    // Sphere at the onset of full contact (eps -> 0 limit, exact d = 3h, F = 16/3 E* h a),
+    // reached from the full-contact side by the disk discretisation.
+    let start = Instant::now();
+    let onset = solver.sphere_full_contact(3.0, tolerance)?;
+    let wall = start.elapsed().as_secs_f64();
+    rows.push(row(
+        Quantity::SphereGamma2,
+        &onset,
+        onset.gamma2.unwrap_or(f64::NAN),
+        wall,
+    ));
+
+    rows.sort_by_key(|r| r.quantity as u8);
+    let mut identities = incremental_stiffness_checks(&solver, tolerance)?;
+    identities.extend(full_contact_limit_checks(&solver, tolerance)?);
+    identities.extend(edge_intensity_checks(&solver, tolerance)?);
+    let fem = fem_cross_checks(&solver, tolerance)?;
+    Ok(ComparisonReport {
+        tolerance,
+        rows,
+        identities,
+        fem,
+    })
+}
+
+/// The FEM (default tolerance, P2, committed meshes) against the ring BEM on states of all
+/// punches.
+pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
+    let options = FemOptions {
+        linear_solver: Default::default(),
+        degree: Degree::Quadratic,
+        tolerance: fem_solver::DEFAULT_TOLERANCE,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    };
+    let mut checks = Vec::new();
+    let cases = [
+        (PunchKind::Flat, 0.0, FemLoad::Flat),
+        (PunchKind::FlatAnnulus, 0.5, FemLoad::Flat),
+        (PunchKind::FlatAnnulus, 0.9, FemLoad::Flat),
+        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(0.5)),
+        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
+        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)),
+        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5)),
+    ];
+    for (kind, eps, load) in cases {
+        let fem = fem_solver::solve(kind, eps, load, &options)?;
+        let (bem_value, bem_eps, bem_estimate, prescribed, fem_value) = match load {
+            FemLoad::ConcaveDepth(d) => {
+                let s = solver.concave_at_depth(kind, d, tolerance)?;
+                (
+                    s.gamma2.unwrap_or(f64::NAN),
+                    s.eps,
+                    s.error_estimate,
+                    format!("d/h = {d}"),
+                    fem.gamma2.unwrap_or(f64::NAN),
+                )
+            }
+            _ => {
+                let s = solver.flat(eps, tolerance)?;
+                (
+                    s.gamma.unwrap_or(f64::NAN),
+                    eps,
+                    s.error_estimate,
+                    format!("b/a = {eps}"),
+                    fem.gamma.unwrap_or(f64::NAN),
+                )
+            }
+        };
+        let fem_estimate = fem.error_estimate.unwrap_or(f64::INFINITY);
+        let relative_difference = (fem_value - bem_value) / bem_value;
+        let eps_difference = fem.eps - bem_eps;
+        let allowed = fem_estimate + bem_estimate;
+        checks.push(CrossCheck {
+            punch: kind,
+            prescribed,
+            fem_value,
+            ring_bem_value: bem_value,
+            fem_eps: fem.eps,
+            ring_bem_eps: bem_eps,
+            fem_error_estimate: fem_estimate,
+            ring_bem_error_estimate: bem_estimate,
+            relative_difference,
+            eps_difference,
+            dofs: fem.dofs,
+            mesh: fem.mesh,
+            fem_wall_s: fem.wall_s,
+            agrees: relative_difference.abs() <= allowed && eps_difference.abs() <= allowed,
+        });
+    }
+    Ok(checks)
+}
+
+/// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
+/// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
+/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve.
+pub fn incremental_stiffness_checks(
+    solver: &RingBemSolver,
+    tolerance: f64,
+) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+        for &eps in &[0.1_f64, 0.5, 0.9] {
+            let step = 1e-3 * eps.min(1.0 - eps);
+            let at = |e: f64| solver.concave_at_ratio(kind, e, tolerance);
+            let (p2, p1, m1, m2) = (
+                at(eps + 2.0 * step)?,
+                at(eps + step)?,
+                at(eps - step)?,
+                at(eps - 2.0 * step)?,
+            );
+            let derivative = |f: fn(&RingState) -> f64| {
+                (-f(&p2) + 8.0 * f(&p1) - 8.0 * f(&m1) + f(&m2)) / (12.0 * step)
+            };
+            let d1 = derivative(|s| s.gamma1.unwrap_or(f64::NAN));
+            let d2 = derivative(|s| s.gamma2.unwrap_or(f64::NAN));
+            let gamma = solver.flat(eps, tolerance)?.gamma.unwrap_or(f64::NAN);
+            let residual = (d2 - gamma * d1).abs() / d2.abs();
+            // Difference-quotient error: O(step⁴) truncation plus rounding amplified by 1/step.
+            let allowed = 1e-6_f64.max(100.0 * tolerance);
+            checks.push(IdentityCheck {
+                name: format!("{kind}: gamma2' = gamma * gamma1'"),
+                eps,
+                lhs: d2,
+                rhs: gamma * d1,
+                relative_residual: residual,
+                tolerance: allowed,
+                passed: residual <= allowed,
+            });
+        }
+    }
+    Ok(checks)
+}
+
+/// Small-`eps` limits from the full-contact solutions (method of dimensionality reduction): a
+/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0`
+/// `γ1 - γ2 -> 1 - π/4` (cone: `F = 2 E* a (d - h (1 - π/4))` in full contact) and
+/// `γ1 - γ2 -> 1/3` (sphere: `F = 2 E* a (d - h/3)`). Checked at `eps = 0.01` with the bound
+/// `eps³`.
+pub fn full_contact_limit_checks(
+    solver: &RingBemSolver,
+    tolerance: f64,
+) -> Result<Vec<IdentityCheck>> {
+    let eps = 0.01_f64;
+    let mut checks = Vec::new();
+    for (kind, limit, label) in [
+        (
+            PunchKind::Cone,
+            1.0 - std::f64::consts::FRAC_PI_4,
+            "1 - pi/4",
+        ),
+        (PunchKind::Sphere, 1.0 / 3.0, "1/3"),
+    ] {
+        let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+        let difference = state.gamma1.unwrap_or(f64::NAN) - state.gamma2.unwrap_or(f64::NAN);
+        let residual = (difference - limit).abs() / limit;
+        let allowed = eps.powi(3);
+        checks.push(IdentityCheck {
+            name: format!("{kind}: gamma1 - gamma2 -> {label} (MDR)"),
+            eps,
+            lhs: difference,
+            rhs: limit,
+            relative_residual: residual,
+            tolerance: allowed,
+            passed: residual <= allowed,
+        });
+    }
+    Ok(checks)
+}
+
+/// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
+/// from the derivative of its force: `κ_out² = γ - eps γ'` and `κ_in² = -γ'/eps` (energy release
+/// rate at a fixed-depth edge). Left: the ring BEM's edge coefficients (local); right: a
+/// fourth-order difference of its force (global).
+pub fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    let root_pi = std::f64::consts::PI.sqrt();
+    for &eps in &[0.2_f64, 0.5, 0.8] {
+        let step = 1e-3 * eps.min(1.0 - eps);
+        let gamma =
+            |e: f64| -> Result<f64> { Ok(solver.flat(e, tolerance)?.gamma.unwrap_or(f64::NAN)) };
+        let slope = (-gamma(eps + 2.0 * step)? + 8.0 * gamma(eps + step)?
+            - 8.0 * gamma(eps - step)?
+            + gamma(eps - 2.0 * step)?)
+            / (12.0 * step);
+        let state = solver.flat(eps, tolerance)?;
+        let g = state.gamma.unwrap_or(f64::NAN);
+        let allowed = 1e-6_f64.max(100.0 * tolerance);
+        for (edge, kappa, expected) in [
+            (
+                "outer",
+                state.rim_stress_intensity * root_pi,
+                g - eps * slope,
+            ),
+            (
+                "inner",
+                state.inner_stress_intensity * root_pi,
+                -slope / eps,
+            ),
+        ] {
+            let lhs = kappa * kappa;
+            let residual = (lhs - expected).abs() / expected.abs();
+            checks.push(IdentityCheck {
+                name: format!("flat-annulus: kappa_{edge}^2 from gamma'"),
+                eps,
+                lhs,
+                rhs: expected,
+                relative_residual: residual,
+                tolerance: allowed,
+                passed: residual <= allowed,
+            });
+        }
+    }
+    Ok(checks)
+}
+
+/// The ring BEM against every bounded reference.
+pub fn reference_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Ring BEM against the references",
+        vec![
+            Column::text("quantity", "quantity"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("ring_bem", "ring BEM", Format::Fixed(12)),
+            Column::number("error_estimate", "est. error", Format::Scientific(0)),
+            Column::number("unknowns", "N", Format::Fixed(0)),
+            Column::number("wall_ms", "time (one run)", Format::Fixed(3)).with_unit("ms"),
+            Column::text("references", "references (rel. difference, verdict)"),
+        ],
+    );
+    for r in &comparison.rows {
+        let refs: Vec<String> = r
+            .comparisons
+            .iter()
+            .map(|c| {
+                format!(
+                    "{} {:+.1e} {}",
+                    c.reference,
+                    c.relative_difference,
+                    match c.agrees {
+                        Some(true) => "ok",
+                        Some(false) => "FAIL",
+                        None => "",
+                    }
+                )
+            })
+            .collect();
+        let failed = r.comparisons.iter().any(|c| c.agrees == Some(false));
+        let refs = refs.join("; ");
+        t.push(vec![
+            r.quantity.label().into(),
+            r.eps.into(),
+            r.value.into(),
+            r.error_estimate.into(),
+            (r.unknowns as f64).into(),
+            (r.wall_s * 1e3).into(),
+            if failed {
+                Cell::Flag(refs)
+            } else {
+                Cell::Text(refs)
+            },
+        ]);
+    }
+    t
+}
+
+/// The consistency identities (no reference involved).
+pub fn identity_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "Consistency identities",
+        vec![
+            Column::text("check", "check"),
+            Column::number("eps", "eps", Format::Fixed(2)),
+            Column::number("residual", "residual", Format::Scientific(1)),
+            Column::number("allowed", "allowed", Format::Scientific(0)),
+            Column::text("verdict", "verdict"),
+        ],
+    );
+    for c in &comparison.identities {
+        t.push(vec![
+            c.name.clone().into(),
+            c.eps.into(),
+            c.relative_residual.into(),
+            c.tolerance.into(),
+            verdict(c.passed, "FAIL"),
+        ]);
+    }
+    t
+}
+
+/// The FEM against the ring BEM.
+pub fn fem_table(comparison: &ComparisonReport) -> Table {
+    let mut t = Table::new(
+        "FEM against the ring BEM at the default tolerance",
+        vec![
+            Column::text("punch", "punch"),
+            Column::text("state", "state"),
+            Column::number(
+                "relative_difference",
+                "rel. diff",
+                Format::SignedScientific(2),
+            ),
+            Column::number("fem_value", "FEM gamma/gamma2", Format::Fixed(10)),
+            Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
+            Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),
+            Column::number("dofs", "dofs", Format::Fixed(0)),
+            Column::number("wall_s", "time (one run)", Format::Fixed(2)).with_unit("s"),
+            Column::text("mesh", "mesh"),
+            Column::text("verdict", "verdict"),
+        ],
+    );
+    for c in &comparison.fem {
+        t.push(vec![
+            c.punch.to_string().into(),
+            c.prescribed.clone().into(),
+            c.relative_difference.into(),
+            c.fem_value.into(),
+            c.eps_difference.into(),
+            c.fem_error_estimate.into(),
+            (c.dofs as f64).into(),
+            c.fem_wall_s.into(),
+            c.mesh.clone().into(),
+            verdict(c.agrees, "FAIL"),
+        ]);
+    }
+    t
+}
+
+/// Human-readable tables: [`reference_table`], [`identity_table`], [`fem_table`] and the count of
+/// verdicts.
+pub fn render(report: &ComparisonReport) -> String {
+    let mut out = format!(
+        "Ring BEM (the yardstick) against the analytic references; tolerance {:.0e}.\n\
+         rel. difference = (ring-bem - reference)/reference; verdicts where the reference declares \
+         a bound.\n",
+        report.tolerance
+    );
+    out += &reference_table(report).to_terminal();
+    out += "\nNo reference involved: docs/conventions.md facts 6 and 7, full-contact limits.\n";
+    out += &identity_table(report).to_terminal();
+    out += "\nFEM (P2, default tolerance, on the meshes named in the mesh column) against the \
+            ring BEM; agree when |diff| <= U_fem + U_bem (value relative, eps absolute).\n";
+    out += &fem_table(report).to_terminal();
+    let checked = report
+        .rows
+        .iter()
+        .flat_map(|r| &r.comparisons)
+        .filter(|c| c.agrees.is_some())
+        .count()
+        + report.identities.len()
+        + report.fem.len();
+    out += &format!(
+        "\n{checked} checks with a verdict, {} failed.\n",
+        report.failures()
+    );
+    out
+}

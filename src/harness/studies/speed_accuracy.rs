@@ -1,0 +1,516 @@
+//! Speed against accuracy: error against wall time of every method on four problems (the flat
+//! annulus `b/a = 0.5` and `0.3`, the sphere at `d = 1.5 h`, the cone at `d = 2 h`).
+//!
+//! Each problem's points come from independent pieces, so that a run can be split into jobs
+//! ([`crate::harness::report_jobs`]): the base points ([`base_points`]: ring BEM, FEM on the committed levels,
+//! grid BEM), one point per FEM tolerance ([`ladder_point`]), and the stored FEniCSx results;
+//! [`assemble`] joins them and marks the Pareto front.
+
+use std::time::Instant;
+
+use serde::{Deserialize, Serialize};
+
+use crate::bem::grid::GridLoad;
+use crate::bem::grid_contact;
+use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::harness::records::fenicsx::FenicsxComparison;
+use crate::mesh::triangulation::Degree;
+use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
+
+/// One (time, error) point of a method on a problem.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct CostPoint {
+    pub method: String,
+    pub resolution: String,
+    /// Median wall time of [`TIMING_RUNS`] runs in this process (a stored peer's: see
+    /// `resolution`), seconds.
+    pub wall_s: f64,
+    /// Shortest and longest of those runs (`None` for a single stored time).
+    #[serde(default)]
+    pub wall_s_range: Option<(f64, f64)>,
+    /// How many runs the time is the median of.
+    #[serde(default = "one")]
+    pub runs: usize,
+    /// `|value - yardstick| / |yardstick|`, floored at 1e-16.
+    pub error: f64,
+    /// The method's own estimate of that error, where it makes one (drawn as an error bar from
+    /// the actual error up to the estimate: the point must lie below the bar's top).
+    pub estimate: Option<f64>,
+    pub on_pareto_front: bool,
+}
+
+/// Speed against accuracy on one problem.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct SpeedAccuracy {
+    pub problem: String,
+    pub yardstick: f64,
+    pub points: Vec<CostPoint>,
+}
+
+/// Tolerances of the FEM's full solve (meshes made for the scene) in the speed-accuracy study
+/// of the default run; the nightly run adds 1e-8 (`verify compare --fem-tolerances`).
+pub const DEFAULT_FEM_TOLERANCES: [f64; 3] = [1e-3, 1e-4, 1e-6];
+
+fn floor(e: f64) -> f64 {
+    e.abs().max(1e-16)
+}
+
+fn mark_pareto(points: &mut [CostPoint]) {
+    let mut order: Vec<usize> = (0..points.len()).collect();
+    order.sort_by(|&a, &b| points[a].wall_s.total_cmp(&points[b].wall_s));
+    let mut best = f64::INFINITY;
+    for i in order {
+        if points[i].error < best {
+            best = points[i].error;
+            points[i].on_pareto_front = true;
+        }
+    }
+}
+
+fn one() -> usize {
+    1
+}
+
+/// Runs of each timed point: its time is their median, shown with their range.
+pub const TIMING_RUNS: usize = 3;
+
+/// The median wall time of [`TIMING_RUNS`] runs of `f`, and their range.
+#[derive(Clone, Copy, Debug)]
+struct Timing {
+    median: f64,
+    range: (f64, f64),
+}
+
+/// Run `f` [`TIMING_RUNS`] times one after the other; its (last) value and the [`Timing`].
+fn timed<T>(mut f: impl FnMut() -> Result<T>) -> Result<(T, Timing)> {
+    let mut times = Vec::with_capacity(TIMING_RUNS);
+    let mut value = None;
+    for _ in 0..TIMING_RUNS {
+        let start = Instant::now();
+        value = Some(f()?);
+        times.push(start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    let timing = Timing {
+        median: times[times.len() / 2],
+        range: (times[0], times[times.len() - 1]),
+    };
+    Ok((value.expect("TIMING_RUNS > 0"), timing))
+}
+
+fn point(method: &str, resolution: String, time: Timing, value: f64, yardstick: f64) -> CostPoint {
+    CostPoint {
+        method: method.into(),
+        resolution,
+        wall_s: time.median,
+        wall_s_range: Some(time.range),
+        runs: TIMING_RUNS,
+        error: floor((value - yardstick) / yardstick),
+        estimate: None,
+        on_pareto_front: false,
+    }
+}
+
+/// [`point`] with the method's own error estimate.
+fn estimated_point(
+    method: &str,
+    resolution: String,
+    time: Timing,
+    value: f64,
+    yardstick: f64,
+    estimate: Option<f64>,
+) -> CostPoint {
+    CostPoint {
+        estimate,
+        ..point(method, resolution, time, value, yardstick)
+    }
+}
+
+impl CostPoint {
+    /// Whether the method's own estimate bounds its actual error (`None`: no estimate).
+    pub fn estimate_bounds_error(&self) -> Option<bool> {
+        self.estimate
+            .map(|e| self.error <= e * (1.0 + 1e-9) || self.error <= 1e-15)
+    }
+}
+
+/// Points whose own estimate does not bound their actual error (failed checks of the report).
+pub fn unbounded_estimates(studies: &[SpeedAccuracy]) -> usize {
+    studies
+        .iter()
+        .flat_map(|s| &s.points)
+        .filter(|p| p.estimate_bounds_error() == Some(false))
+        .count()
+}
+
+/// A problem of the speed-accuracy study.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Problem {
+    /// Flat annulus `b/a = 0.5`, `γ` (ring BEM at several node counts).
+    FlatHalf,
+    /// Sphere under depth control `d = 1.5 h`, `γ2` (ring BEM at several tolerances).
+    Sphere,
+    /// Cone under depth control `d = 2 h`, `γ2`.
+    Cone,
+    /// Flat annulus `b/a = 0.3`, `γ`.
+    FlatThick,
+}
+
+impl Problem {
+    /// Every problem, in the report's order.
+    pub const ALL: [Problem; 4] = [
+        Problem::FlatHalf,
+        Problem::Sphere,
+        Problem::Cone,
+        Problem::FlatThick,
+    ];
+
+    /// Short name (job ids, file names).
+    pub fn slug(self) -> &'static str {
+        match self {
+            Problem::FlatHalf => "flat-annulus-0.5",
+            Problem::Sphere => "sphere-1.5",
+            Problem::Cone => "cone-2",
+            Problem::FlatThick => "flat-annulus-0.3",
+        }
+    }
+
+    /// The problem named `slug`.
+    pub fn from_slug(slug: &str) -> Option<Problem> {
+        Problem::ALL.into_iter().find(|p| p.slug() == slug)
+    }
+
+    /// The chart's title.
+    pub fn title(self) -> &'static str {
+        match self {
+            Problem::FlatHalf => "flat annulus b/a = 0.5, gamma",
+            Problem::Sphere => "sphere d/h = 1.5, gamma2",
+            Problem::Cone => "cone d/h = 2, gamma2",
+            Problem::FlatThick => "flat annulus b/a = 0.3, gamma",
+        }
+    }
+
+    /// The ring BEM's value the points are measured against: `γ` of the flat annulus 0.5 at
+    /// tolerance 1e-12, the others' `γ` or `γ2` at 1e-11.
+    pub fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
+        match self {
+            Problem::FlatHalf => Ok(ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN)),
+            _ => self.cost_problem().value_of_ring_bem(ring, 1e-11),
+        }
+    }
+
+    fn cost_problem(self) -> CostProblem {
+        match self {
+            Problem::FlatHalf => CostProblem {
+                kind: PunchKind::FlatAnnulus,
+                eps: 0.5,
+                family: Some("annulus-0.5"),
+                load: FemLoad::Flat,
+            },
+            Problem::Sphere => CostProblem {
+                kind: PunchKind::Sphere,
+                eps: 0.0,
+                family: Some("disk"),
+                load: FemLoad::ConcaveDepth(1.5),
+            },
+            // The cone and the flat annulus 0.3: the FEM's full solve against FEniCSx on the
+            // meshes the FEM makes (and the committed ones), with the ring BEM and the grid BEM.
+            Problem::Cone => CostProblem {
+                kind: PunchKind::Cone,
+                eps: 0.0,
+                family: None,
+                load: FemLoad::ConcaveDepth(2.0),
+            },
+            Problem::FlatThick => CostProblem {
+                kind: PunchKind::FlatAnnulus,
+                eps: 0.3,
+                family: None,
+                load: FemLoad::Flat,
+            },
+        }
+    }
+}
+
+/// The base points of one problem and the yardstick they are measured against.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct BasePoints {
+    pub problem: Problem,
+    /// The ring BEM's value at tolerance 1e-11 (flat `b/a = 0.5`: 1e-12).
+    pub yardstick: f64,
+    pub points: Vec<CostPoint>,
+}
+
+/// The yardstick and the base points of `problem`: the ring BEM (at several node counts for the
+/// flat annulus 0.5, at tolerances 1e-2 .. 1e-9 otherwise), the FEM with P1 and P2 on the
+/// committed levels L0-L2 where the problem has a committed family, and the grid BEM at 64² to
+/// 256² cells.
+pub fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints> {
+    let cost = problem.cost_problem();
+    let yardstick = problem.yardstick(ring)?;
+    let mut points = match problem {
+        Problem::FlatHalf => {
+            let rule = TanhSinhRule::new(1.0 / 16.0);
+            // The ring BEM at a few node counts (it converges geometrically).
+            let mut points = Vec::new();
+            for n in [3usize, 4, 5, 6, 8] {
+                let (g, t) = timed(|| {
+                    let region = ContactRegion::Annulus { eps: 0.5 };
+                    let settings = RingBemSettings {
+                        nodes: n,
+                        quadrature_step: 1.0 / 16.0,
+                    };
+                    RingSystem::assemble(region, settings, &rule)
+                        .solve(&vec![1.0; n])
+                        .map(|f| 0.5 * f.force)
+                        .ok_or_else(|| Error::NoConvergence {
+                            method: "ring-bem".into(),
+                            reason: "singular".into(),
+                        })
+                })?;
+                points.push(point("ring-bem", format!("N = {n}"), t, g, yardstick));
+            }
+            points
+        }
+        Problem::Sphere => {
+            let mut points = Vec::new();
+            for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
+                let (s, t) = timed(|| ring.concave_at_depth(PunchKind::Sphere, 1.5, tol))?;
+                points.push(estimated_point(
+                    "ring-bem",
+                    format!("tol {tol:.0e}"),
+                    t,
+                    s.gamma2.unwrap_or(f64::NAN),
+                    yardstick,
+                    Some(s.error_estimate),
+                ));
+            }
+            points
+        }
+        Problem::Cone | Problem::FlatThick => {
+            let mut points = Vec::new();
+            for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
+                let (value, t) = timed(|| cost.value_of_ring_bem(ring, tol))?;
+                points.push(point(
+                    "ring-bem",
+                    format!("tol {tol:.0e}"),
+                    t,
+                    value,
+                    yardstick,
+                ));
+            }
+            points
+        }
+    };
+    points.extend(fem_and_grid_points(&cost, yardstick)?);
+    Ok(BasePoints {
+        problem,
+        yardstick,
+        points,
+    })
+}
+
+/// The FEM's full solve (`--method fem --tol X`, default degree, meshes made for the scene) at
+/// `tolerance`, when gmsh is there (`None` without gmsh, and when the solve fails: the reason is
+/// written to standard error and the point left out).
+pub fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
+    if !fem_solver::gmsh_found() {
+        return None;
+    }
+    let cost = problem.cost_problem();
+    let degree = fem_solver::default_degree(tolerance);
+    let options = FemOptions {
+        linear_solver: Default::default(),
+        degree,
+        tolerance,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    };
+    match timed(|| fem_solver::solve(cost.kind, cost.eps, cost.load, &options)) {
+        Ok((s, t)) => Some(estimated_point(
+            "fem --tol",
+            format!("tol {tolerance:.0e}, P{}", degree as u8),
+            t,
+            s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+            yardstick,
+            s.error_estimate,
+        )),
+        Err(e) => {
+            eprintln!("speed-accuracy: fem at tolerance {tolerance:e} left out: {e}");
+            None
+        }
+    }
+}
+
+/// One problem's chart data: the base points, the FEM's points in the order of `ladder`, the
+/// stored FEniCSx results of the same state; the Pareto front marked.
+pub fn assemble(
+    base: &BasePoints,
+    ladder: &[Option<CostPoint>],
+    fenicsx: &[FenicsxComparison],
+) -> SpeedAccuracy {
+    let mut points = base.points.clone();
+    points.extend(ladder.iter().flatten().cloned());
+    let benchmark = crate::harness::records::benchmarks::FenicsxSpeed::load().ok();
+    points.extend(fenicsx_points(
+        &base.problem.cost_problem(),
+        base.yardstick,
+        fenicsx,
+        benchmark.as_ref(),
+    ));
+    mark_pareto(&mut points);
+    SpeedAccuracy {
+        problem: base.problem.title().into(),
+        yardstick: base.yardstick,
+        points,
+    }
+}
+
+/// Error against wall time on every problem, in one process: [`base_points`], a
+/// [`ladder_point`] per entry of `fem_tolerances` and the stored FEniCSx results, [`assemble`]d.
+pub fn speed_accuracy(
+    ring: &RingBemSolver,
+    fenicsx: &[FenicsxComparison],
+    fem_tolerances: &[f64],
+) -> Result<Vec<SpeedAccuracy>> {
+    let mut out = Vec::new();
+    for problem in Problem::ALL {
+        let base = base_points(ring, problem)?;
+        let ladder: Vec<Option<CostPoint>> = fem_tolerances
+            .iter()
+            .map(|&t| ladder_point(problem, base.yardstick, t))
+            .collect();
+        out.push(assemble(&base, &ladder, fenicsx));
+    }
+    Ok(out)
+}
+
+/// The stored FEniCSx results of this state (punch, `b/a` or depth): their time is the
+/// interleaved benchmark record's median (`benches/records/fenicsx-speed.json`, fastest
+/// configuration) where it has the row, else the stored single run, said so in `resolution`
+/// (the value is `F/2`, i.e. `γ` at unit depth or `γ2` at `h = 1`).
+fn fenicsx_points(
+    problem: &CostProblem,
+    yardstick: f64,
+    fenicsx: &[FenicsxComparison],
+    benchmark: Option<&crate::harness::records::benchmarks::FenicsxSpeed>,
+) -> Vec<CostPoint> {
+    fenicsx
+        .iter()
+        .filter(|c| {
+            let r = &c.stored;
+            r.punch == problem.kind
+                && match problem.load {
+                    FemLoad::ConcaveDepth(d) => (r.depth - d).abs() < 1e-12,
+                    _ => {
+                        (r.eps.unwrap_or(0.0) - problem.eps).abs() < 1e-12
+                            && (r.depth - 1.0).abs() < 1e-12
+                    }
+                }
+        })
+        .map(|c| {
+            let r = &c.stored;
+            let name = c.file.trim_end_matches(".json");
+            // The interleaved record's median where it has the row, else the stored single run.
+            let (time, runs, origin) = match benchmark.and_then(|b| b.row(name)) {
+                Some(row) => (
+                    Timing {
+                        median: row.median,
+                        range: (row.min, row.max),
+                    },
+                    row.runs,
+                    format!("{}, median of the interleaved record", row.configuration),
+                ),
+                None => (
+                    Timing {
+                        median: r.wall_s,
+                        range: (r.wall_s, r.wall_s),
+                    },
+                    1,
+                    "one stored run, not interleaved".to_string(),
+                ),
+            };
+            CostPoint {
+                runs,
+                wall_s_range: (runs > 1).then_some(time.range),
+                ..point(
+                    "FEniCSx (stored)",
+                    format!("{name}, {} dofs; {origin}", r.dofs),
+                    time,
+                    0.5 * r.force,
+                    yardstick,
+                )
+            }
+        })
+        .collect()
+}
+
+/// A problem of the speed-accuracy study, as the FEM and the grid BEM see it.
+struct CostProblem {
+    kind: PunchKind,
+    eps: f64,
+    /// Committed mesh family, if there is one for this contact line.
+    family: Option<&'static str>,
+    load: FemLoad,
+}
+
+impl CostProblem {
+    /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
+    fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
+        let value = match self.load {
+            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(self.kind, d, tolerance)?.gamma2,
+            _ => ring.flat(self.eps, tolerance)?.gamma,
+        };
+        Ok(value.unwrap_or(f64::NAN))
+    }
+}
+
+/// The FEM (P1 and P2 on levels L0-L2) and the grid BEM (64² to 256²) on one problem; the value
+/// is `γ` (flat) or `γ2` (concave).
+fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<CostPoint>> {
+    let mut points = Vec::new();
+    for (degree, name) in [(Degree::Linear, "fem P1"), (Degree::Quadratic, "fem P2")] {
+        let Some(family) = problem.family else {
+            break;
+        };
+        for level in 0..3 {
+            let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
+            let options = FemOptions {
+                linear_solver: Default::default(),
+                degree,
+                tolerance: 1e-3,
+                mesh: Some(mesh),
+                poisson_ratio: 0.0,
+                far_field: crate::discretisation::far_field::FarField::Boussinesq,
+            };
+            let (s, t) =
+                timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options))?;
+            points.push(point(
+                name,
+                format!("L{level}"),
+                t,
+                s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+                yardstick,
+            ));
+        }
+    }
+    let grid_load = match problem.load {
+        FemLoad::ConcaveDepth(d) => GridLoad::Depth(d),
+        _ => GridLoad::Depth(1.0),
+    };
+    for n in [64usize, 128, 256] {
+        let (s, t) = timed(|| grid_contact::solve(problem.kind, problem.eps, n, grid_load, 1e-10))?;
+        points.push(point(
+            "grid-bem",
+            format!("{n}²"),
+            t,
+            s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
+            yardstick,
+        ));
+    }
+    Ok(points)
+}

@@ -1,0 +1,176 @@
+//! The library's layout keeps its layers (docs/architecture.md): each top-level module belongs
+//! to a layer, and no file imports a module of a higher layer; no files import each other,
+//! directly or around a circle; no folder holds more than twelve files; `unsafe` code and
+//! `faer`'s internal supernodal layouts stay inside the native linear-algebra backend
+//! (`src/sparse/native/`; the one CPU prefetch hint in `src/numerics/prefetch.rs` aside).
+//! Read from the sources (`crate::` paths outside comments and unit tests).
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::{Path, PathBuf};
+
+/// Layer of each top-level module, from the ground up.
+const LAYERS: [(&str, u8); 21] = [
+    ("error", 0),
+    ("finite_guard", 0),
+    ("heartbeat", 0),
+    ("numerics", 0),
+    ("sparse", 1),
+    ("punch", 1),
+    ("mesh", 2),
+    ("discretisation", 3),
+    ("fem", 4),
+    ("bem", 4),
+    ("reference", 4),
+    ("fit", 5),
+    ("scene", 6),
+    ("solution", 6),
+    ("methods", 6),
+    ("adhesion", 7),
+    ("cohesive", 7),
+    ("harness", 8),
+    ("cli", 9),
+    ("lib", 10),
+    ("bin", 10),
+];
+
+fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
+        let path = entry.path();
+        if path.is_dir() {
+            sources(&path, out);
+        } else if path.extension().is_some_and(|x| x == "rs") {
+            out.push(path);
+        }
+    }
+}
+
+/// `src/a/b.rs` -> `a::b`, `src/a/mod.rs` -> `a`.
+fn module_of(src: &Path, file: &Path) -> String {
+    let relative = file.strip_prefix(src).unwrap().with_extension("");
+    let parts: Vec<String> = relative
+        .components()
+        .map(|c| c.as_os_str().to_string_lossy().into_owned())
+        .filter(|p| p != "mod")
+        .collect();
+    parts.join("::")
+}
+
+/// The code of a file without its unit tests and comments.
+fn code_of(file: &Path) -> String {
+    let whole = std::fs::read_to_string(file).unwrap();
+    let code = whole.split("#[cfg(test)]").next().unwrap_or_default();
+    code.lines()
+        .map(|line| line.split("//").next().unwrap_or_default())
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The modules `code` names through `crate::` paths (the longest path that is a module).
+fn imports(code: &str, modules: &BTreeSet<String>) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for (i, _) in code.match_indices("crate::") {
+        let rest = &code[i + "crate::".len()..];
+        let path: String = rest
+            .chars()
+            .take_while(|c| c.is_ascii_alphanumeric() || *c == '_' || *c == ':')
+            .collect();
+        let parts: Vec<&str> = path.split("::").filter(|p| !p.is_empty()).collect();
+        for k in (1..=parts.len()).rev() {
+            let candidate = parts[..k].join("::");
+            if modules.contains(&candidate) {
+                out.insert(candidate);
+                break;
+            }
+        }
+    }
+    out
+}
+
+fn layer(module: &str) -> u8 {
+    let top = module.split("::").next().unwrap();
+    LAYERS
+        .iter()
+        .find(|(name, _)| *name == top)
+        .unwrap_or_else(|| panic!("module {module} has no layer in tests/layering.rs"))
+        .1
+}
+
+#[test]
+fn no_import_runs_up_a_layer_and_no_files_import_each_other() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    let modules: BTreeSet<String> = files.iter().map(|f| module_of(&src, f)).collect();
+    let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
+    for file in &files {
+        let module = module_of(&src, file);
+        let mut uses = imports(&code_of(file), &modules);
+        uses.remove(&module);
+        for used in &uses {
+            assert!(
+                layer(used) <= layer(&module),
+                "{module} imports {used}, a higher layer"
+            );
+        }
+        graph.insert(module, uses);
+    }
+    // A circle: a module reached again from itself.
+    for start in graph.keys() {
+        let mut stack: Vec<(String, Vec<String>)> = vec![(start.clone(), vec![start.clone()])];
+        let mut seen = BTreeSet::new();
+        while let Some((module, path)) = stack.pop() {
+            for next in graph.get(&module).into_iter().flatten() {
+                if next == start {
+                    panic!("import circle: {} -> {start}", path.join(" -> "));
+                }
+                if seen.insert(next.clone()) {
+                    let mut longer = path.clone();
+                    longer.push(next.clone());
+                    stack.push((next.clone(), longer));
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src, &mut files);
+    let mut per_folder: BTreeMap<PathBuf, usize> = BTreeMap::new();
+    for file in &files {
+        *per_folder
+            .entry(file.parent().unwrap().to_path_buf())
+            .or_default() += 1;
+    }
+    for (folder, count) in per_folder {
+        assert!(count <= 12, "{} holds {count} files", folder.display());
+    }
+    let native = src.join("sparse").join("native");
+    let faer_internals = [
+        "supernodal::",
+        "EliminationTreeRef",
+        "SymbolicSupernodalCholesky",
+    ];
+    for file in &files {
+        if file.starts_with(&native) {
+            continue;
+        }
+        let code = code_of(file);
+        if !file.ends_with("numerics/prefetch.rs") {
+            assert!(
+                !code.contains("unsafe"),
+                "{} holds unsafe code outside the native backend",
+                file.display()
+            );
+        }
+        for word in faer_internals {
+            assert!(
+                !code.contains(word),
+                "{} reads faer's internal layout ({word}) outside the native backend",
+                file.display()
+            );
+        }
+    }
+}
