@@ -16,7 +16,7 @@
 //! ([`Backend`], `verify --linear-solver`): `faer`'s public sparse Cholesky ([`faer_llt`]) and
 //! this crate's own factorisation on `faer`'s supernodal layout ([`native`], split over two cores
 //! where the model admits a separator). The native one is the default because it was measured
-//! 1.2-2.8x faster on the user's paths (`benches/records/linear-solver.md`,
+//! 1.3-2.2x faster on the user's paths (`benches/records/linear-solver.md`,
 //! `docs/decisions.md`); `tests/linear_solver_contract.rs` runs the FE suite on both. Only
 //! [`native`] reads `faer`'s internal layouts or holds `unsafe` code.
 
@@ -67,7 +67,7 @@ impl Backend {
         }
     }
 
-    /// The backend a model gets unless its options name another: measured 1.2-2x faster than
+    /// The backend a model gets unless its options name another: measured 1.3-2.2x faster than
     /// [`Backend::Faer`] on the FEM's targets (docs/decisions.md, `benches/records/linear-solver.md`).
     pub const BUILT_IN: Backend = Backend::Native;
 
