@@ -74,26 +74,25 @@ fn main() -> ExitCode {
         // Read by the data lookups of the library (provider::find_project_root).
         provider::set_data_directory(dir.clone());
     }
-    // Chosen before any solver thread starts; plan jobs get it passed on (harness::plan).
-    let linear_solver = match cli.linear_solver.as_deref().map(str::parse::<Backend>) {
-        Some(Ok(backend)) => Some(backend),
+    // Chosen before any solver thread starts; plan jobs get it passed on (harness::plan). The
+    // environment's choice is read by the library itself (`Backend::of_process`): here an
+    // unknown name is refused rather than ignored.
+    match cli.linear_solver.as_deref().map(str::parse::<Backend>) {
+        Some(Ok(backend)) => {
+            sparse::set_process_backend(backend);
+        }
         Some(Err(e)) => {
             eprintln!("error: {e}");
             return ExitCode::from(2);
         }
-        None => match std::env::var(sparse::ENVIRONMENT_VARIABLE) {
-            Ok(name) => match name.parse::<Backend>() {
-                Ok(backend) => Some(backend),
-                Err(e) => {
-                    eprintln!("error: {}: {e}", sparse::ENVIRONMENT_VARIABLE);
-                    return ExitCode::from(2);
-                }
-            },
-            Err(_) => None,
-        },
-    };
-    if let Some(backend) = linear_solver {
-        sparse::set_process_backend(backend);
+        None => {
+            if let Ok(Err(e)) =
+                std::env::var(sparse::ENVIRONMENT_VARIABLE).map(|n| n.parse::<Backend>())
+            {
+                eprintln!("error: {}: {e}", sparse::ENVIRONMENT_VARIABLE);
+                return ExitCode::from(2);
+            }
+        }
     }
     if cli::needs_data(&cli.command) {
         if let Err(e) = provider::find_project_root() {

@@ -773,7 +773,7 @@ fn finish(
             .map(|r| r.describe()),
         timings: model.timings,
         edge_conditioning,
-        linear_solver: model.spec.linear_solver,
+        linear_solver: model.symbolic.backend(),
     }
 }
 
@@ -1412,7 +1412,7 @@ impl<'o> Ladder<'o> {
             },
             ..options.clone()
         };
-        let (model_options, domain_tolerance) = if rung.locator && rung.level.is_none() {
+        let (model_options, domain_tolerance) = if rung.locator {
             (&locator_options, DEFAULT_TOLERANCE.max(options.tolerance))
         } else {
             (options, options.tolerance)
@@ -1465,7 +1465,7 @@ impl<'o> Ladder<'o> {
             spacing: s.inner_node_spacing,
             eps_error: INNER_RADIUS_BOUND * s.inner_node_spacing,
             level: rung.level,
-            locator: rung.locator && rung.level.is_none(),
+            locator: rung.locator,
             axis: AxisContact::Open,
             edge_bound: INNER_RADIUS_BOUND,
         };
