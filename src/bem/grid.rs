@@ -236,22 +236,7 @@ pub fn solve_contact(
             reason: "no grid cell lies under the punch: the grid is coarser than the punch".into(),
         });
     }
-    // Start: uniform pressure on the allowed cells carrying a plausible load.
-    let start_load = if force_control {
-        force_target
-    } else {
-        2.0 * depth * (allowed_count as f64 * area / std::f64::consts::PI).sqrt()
-    };
-    let mut p: Vec<f64> = allowed
-        .iter()
-        .map(|&a| {
-            if a {
-                start_load / (allowed_count as f64 * area)
-            } else {
-                0.0
-            }
-        })
-        .collect();
+    let mut p = initial_pressure(allowed, allowed_count, area, load);
     let mut u = vec![0.0; cells];
     let mut gap = vec![0.0; cells];
     let mut t = vec![0.0; cells];
@@ -259,16 +244,9 @@ pub fn solve_contact(
     let (mut delta, mut g_old) = (0.0_f64, 1.0_f64);
     let mut residual = f64::INFINITY;
     // Long solves (large grids) say where they are on standard error every 10 s.
-    let started = std::time::Instant::now();
-    let mut reported = started;
+    let mut report = IterationReport::start(n);
     for iteration in 1..=max_iterations {
-        if reported.elapsed().as_secs_f64() >= 10.0 {
-            reported = std::time::Instant::now();
-            eprintln!(
-                "grid-bem {n} x {n}: iteration {iteration}, residual {residual:.1e}, {:.0} s",
-                started.elapsed().as_secs_f64()
-            );
-        }
+        report.every_ten_seconds(iteration, residual);
         op.apply(&p, &mut u);
         // Gap: u - (d - g); under force control d is eliminated by the mean over the contact set.
         let mut contact = 0usize;
@@ -298,18 +276,7 @@ pub fn solve_contact(
         }
         // Convergence: complementarity (Σ p |gap| relative to F d) and penetration of free cells.
         let total: f64 = p.iter().sum();
-        let scale = depth.abs().max(f64::MIN_POSITIVE);
-        let complementarity: f64 = (0..cells)
-            .filter(|&i| p[i] > 0.0)
-            .map(|i| p[i] * gap[i].abs())
-            .sum::<f64>()
-            / (total * scale);
-        let penetration = (0..cells)
-            .filter(|&i| allowed[i] && p[i] == 0.0)
-            .map(|i| (-gap[i]).max(0.0))
-            .fold(0.0, f64::max)
-            / scale;
-        residual = complementarity.max(penetration);
+        residual = complementarity_residual(&p, &gap, allowed, depth, total);
         if residual <= tolerance && iteration > 1 {
             return Ok(GridContact {
                 force: area * total,
@@ -320,50 +287,19 @@ pub fn solve_contact(
                 residual,
             });
         }
-        // Conjugate direction on the contact set.
-        let g_norm: f64 = (0..cells)
-            .filter(|&i| p[i] > 0.0)
-            .map(|i| gap[i] * gap[i])
-            .sum();
-        for i in 0..cells {
-            t[i] = if p[i] > 0.0 {
-                gap[i] + delta * (g_norm / g_old) * t[i]
-            } else {
-                0.0
-            };
-        }
-        g_old = g_norm;
-        op.apply(&t, &mut r);
-        if force_control {
-            let mean_r = (0..cells)
-                .filter(|&i| p[i] > 0.0)
-                .map(|i| r[i])
-                .sum::<f64>()
-                / contact as f64;
-            r.iter_mut().for_each(|v| *v -= mean_r);
-        }
-        let num: f64 = (0..cells)
-            .filter(|&i| p[i] > 0.0)
-            .map(|i| gap[i] * t[i])
-            .sum();
-        let den: f64 = (0..cells)
-            .filter(|&i| p[i] > 0.0)
-            .map(|i| r[i] * t[i])
-            .sum();
-        let tau = if den > 0.0 { num / den } else { 0.0 };
-        for i in 0..cells {
-            if p[i] > 0.0 {
-                p[i] = (p[i] - tau * t[i]).max(0.0);
-            }
-        }
-        // Cells that penetrate enter the contact set; the conjugacy restarts.
-        let mut entered = false;
-        for i in 0..cells {
-            if allowed[i] && p[i] == 0.0 && gap[i] < 0.0 {
-                p[i] = -tau * gap[i];
-                entered = true;
-            }
-        }
+        let entered = conjugate_step(
+            op,
+            ConjugateVectors {
+                p: &mut p,
+                gap: &gap,
+                t: &mut t,
+                r: &mut r,
+            },
+            allowed,
+            &mut g_old,
+            delta,
+            force_control.then_some(contact),
+        );
         delta = if entered { 0.0 } else { 1.0 };
         if force_control {
             let total: f64 = p.iter().sum::<f64>() * area;
@@ -379,4 +315,149 @@ pub fn solve_contact(
             "Polonsky-Keer stopped at the cap of {max_iterations} iterations with complementarity residual {residual:.2e} (tolerance {tolerance:.1e})"
         ),
     })
+}
+
+/// The start of the iteration: uniform pressure on the `allowed_count` allowed cells carrying a
+/// plausible load (the force, or `2 d sqrt(A/π)` of the covered area `A` under depth control).
+fn initial_pressure(allowed: &[bool], allowed_count: usize, area: f64, load: GridLoad) -> Vec<f64> {
+    let start_load = match load {
+        GridLoad::Force(force) => force,
+        GridLoad::Depth(depth) => {
+            2.0 * depth * (allowed_count as f64 * area / std::f64::consts::PI).sqrt()
+        }
+    };
+    allowed
+        .iter()
+        .map(|&a| {
+            if a {
+                start_load / (allowed_count as f64 * area)
+            } else {
+                0.0
+            }
+        })
+        .collect()
+}
+
+/// A line on standard error every ten seconds of a long solve of an `n x n` grid.
+struct IterationReport {
+    n: usize,
+    started: std::time::Instant,
+    reported: std::time::Instant,
+}
+
+impl IterationReport {
+    fn start(n: usize) -> Self {
+        let now = std::time::Instant::now();
+        IterationReport {
+            n,
+            started: now,
+            reported: now,
+        }
+    }
+
+    /// Say the iteration and the residual if ten seconds passed since the last line.
+    fn every_ten_seconds(&mut self, iteration: usize, residual: f64) {
+        if self.reported.elapsed().as_secs_f64() >= 10.0 {
+            self.reported = std::time::Instant::now();
+            let n = self.n;
+            eprintln!(
+                "grid-bem {n} x {n}: iteration {iteration}, residual {residual:.1e}, {:.0} s",
+                self.started.elapsed().as_secs_f64()
+            );
+        }
+    }
+}
+
+/// The Polonsky-Keer residual: complementarity `Σ p |gap| / (F d)` (`total = Σ p`) or the
+/// largest penetration of a free cell over `d`, whichever is larger.
+fn complementarity_residual(
+    p: &[f64],
+    gap: &[f64],
+    allowed: &[bool],
+    depth: f64,
+    total: f64,
+) -> f64 {
+    let cells = p.len();
+    let scale = depth.abs().max(f64::MIN_POSITIVE);
+    let complementarity: f64 = (0..cells)
+        .filter(|&i| p[i] > 0.0)
+        .map(|i| p[i] * gap[i].abs())
+        .sum::<f64>()
+        / (total * scale);
+    let penetration = (0..cells)
+        .filter(|&i| allowed[i] && p[i] == 0.0)
+        .map(|i| (-gap[i]).max(0.0))
+        .fold(0.0, f64::max)
+        / scale;
+    complementarity.max(penetration)
+}
+
+/// The vectors of a Polonsky-Keer step: pressure `p` (updated), the gap on the allowed cells,
+/// the conjugate direction `t` (updated) and its response `r` (work space).
+struct ConjugateVectors<'a> {
+    p: &'a mut [f64],
+    gap: &'a [f64],
+    t: &'a mut [f64],
+    r: &'a mut [f64],
+}
+
+/// One Polonsky-Keer step: a conjugate direction on the contact set (restarted when `delta` is
+/// 0; `g_old` the previous squared gap norm, updated), a step that keeps `p >= 0`, penetrating
+/// cells entering the contact set (whether any did is returned). Under force control
+/// (`contact_for_mean`: the contact cells) the response's mean over the contact is removed.
+fn conjugate_step(
+    op: &GridOperator,
+    vectors: ConjugateVectors,
+    allowed: &[bool],
+    g_old: &mut f64,
+    delta: f64,
+    contact_for_mean: Option<usize>,
+) -> bool {
+    let ConjugateVectors { p, gap, t, r } = vectors;
+    let cells = p.len();
+    // Conjugate direction on the contact set.
+    let g_norm: f64 = (0..cells)
+        .filter(|&i| p[i] > 0.0)
+        .map(|i| gap[i] * gap[i])
+        .sum();
+    for i in 0..cells {
+        t[i] = if p[i] > 0.0 {
+            gap[i] + delta * (g_norm / *g_old) * t[i]
+        } else {
+            0.0
+        };
+    }
+    *g_old = g_norm;
+    op.apply(t, r);
+    if let Some(contact) = contact_for_mean {
+        let mean_r = (0..cells)
+            .filter(|&i| p[i] > 0.0)
+            .map(|i| r[i])
+            .sum::<f64>()
+            / contact as f64;
+        r.iter_mut().for_each(|v| *v -= mean_r);
+    }
+    let num: f64 = (0..cells)
+        .filter(|&i| p[i] > 0.0)
+        .map(|i| gap[i] * t[i])
+        .sum();
+    let den: f64 = (0..cells)
+        .filter(|&i| p[i] > 0.0)
+        .map(|i| r[i] * t[i])
+        .sum();
+    let tau = if den > 0.0 { num / den } else { 0.0 };
+    for i in 0..cells {
+        if p[i] > 0.0 {
+            p[i] = (p[i] - tau * t[i]).max(0.0);
+        }
+    }
+    // Cells that penetrate enter the contact set; the conjugacy restarts.
+    let mut entered = false;
+    for i in 0..cells {
+        if allowed[i] && p[i] == 0.0 && gap[i] < 0.0 {
+            p[i] = -tau * gap[i];
+            entered = true;
+        }
+    }
+    entered
 }

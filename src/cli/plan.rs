@@ -135,8 +135,11 @@ pub fn merge(args: MergeArgs) -> Result<Reply, String> {
     let results = plan::load_results(&the_plan, &args.results).map_err(message)?;
     match report_jobs::assemble(results).map_err(message)? {
         Assembled::Report { inputs, stability } => {
-            let mut bar = Progress::new("merge", document::STAGES);
-            let extras = document::write_report(&args.report, &inputs, |stage| bar.tick(stage))
+            let mut bar = Progress::new("merge", crate::harness::report_jobs::REPORT_STAGES);
+            let extras =
+                crate::harness::report_jobs::write_report(&args.report, &inputs, |stage| {
+                    bar.tick(stage)
+                })
                 .map_err(message)?;
             let mut reply = compare_reply(
                 &CompareInputs::of(&inputs),

@@ -16,6 +16,23 @@ pub const PULLOFF_D0H_RANGE: (f64, f64) = (0.1, 100.0);
 /// `verify pulloff`: the sequence at decreasing ranges, its extrapolate and the JKR route's
 /// value.
 pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
+    let (case, ranges) = checked_case_and_ranges(&args)?;
+    // A range takes from a few seconds to a minute (meshing, condensation, the load path): a
+    // plain line every ten seconds between the bar's ticks says which one is running.
+    let heartbeat = Heartbeat::start("pull-off");
+    if let Some(first) = ranges.first() {
+        heartbeat.set(format!("the first range, rho/d0 = {first}"));
+    }
+    if args.branch == study::Branch::Annular {
+        annular_branch(&args, case, &ranges, &heartbeat)
+    } else {
+        closed_branch(&args, case, &ranges, &heartbeat)
+    }
+}
+
+/// The case and the decreasing ranges of `verify pulloff`, every flag checked against the punch
+/// and the branch.
+fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>), String> {
     let eps = match args.punch {
         PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
         _ => 0.0,
@@ -91,34 +108,46 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         eps,
         d0_over_h,
     };
-    // A range takes from a few seconds to a minute (meshing, condensation, the load path): a
-    // plain line every ten seconds between the bar's ticks says which one is running.
-    let heartbeat = Heartbeat::start("pull-off");
-    if let Some(first) = ranges.first() {
-        heartbeat.set(format!("the first range, rho/d0 = {first}"));
+    Ok((case, ranges))
+}
+
+/// The annular branch: touched with the hole open, then pulled, at each range.
+fn annular_branch(
+    args: &PulloffArgs,
+    case: study::Case,
+    ranges: &[f64],
+    heartbeat: &Heartbeat,
+) -> Result<Reply, String> {
+    let mut bar = Progress::new("pull-off (annular branch)", ranges.len() + 1);
+    let result = crate::cohesive::annular::run_annular(case, ranges, |entry| {
+        heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
+        bar.tick(&format!(
+            "rho/a = {}: F/F0 = {:.4}{}",
+            entry.range_over_a,
+            entry.pulloff_over_f0,
+            if entry.hole_closed_at.is_some() {
+                " (the hole closed: excluded)"
+            } else {
+                ""
+            }
+        ))
+    })
+    .map_err(message)?;
+    refuse_non_finite("pulloff", &result.sequence)?;
+    if args.json {
+        return Ok(Reply::ok(to_json(&result)?));
     }
-    if annular {
-        let mut bar = Progress::new("pull-off (annular branch)", ranges.len() + 1);
-        let result = crate::cohesive::annular::run_annular(case, &ranges, |entry| {
-            heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
-            bar.tick(&format!(
-                "rho/a = {}: F/F0 = {:.4}{}",
-                entry.range_over_a,
-                entry.pulloff_over_f0,
-                if entry.hole_closed_at.is_some() {
-                    " (the hole closed: excluded)"
-                } else {
-                    ""
-                }
-            ))
-        })
-        .map_err(message)?;
-        refuse_non_finite("pulloff", &result.sequence)?;
-        if args.json {
-            return Ok(Reply::ok(to_json(&result)?));
-        }
-        return Ok(Reply::ok(render(&result)));
-    }
+    Ok(Reply::ok(render(&result)))
+}
+
+/// The closed branch (the punch pressed until its hole closes, then pulled): a rim-band mesh
+/// per range, or the given mesh for every range.
+fn closed_branch(
+    args: &PulloffArgs,
+    case: study::Case,
+    ranges: &[f64],
+    heartbeat: &Heartbeat,
+) -> Result<Reply, String> {
     // Without --mesh: a mesh per range with a refined band at the rim (gmsh), else the study
     // meshes; with it, that mesh for every range and no check mesh.
     let checked = args.mesh.is_none();
@@ -139,7 +168,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
         if !repeat
             && seen.len() >= given
-            && study::smaller_range(&ranges, range, &usable, any_left).is_some()
+            && study::smaller_range(ranges, range, &usable, any_left).is_some()
         {
             bar.grow(1);
         }
@@ -162,9 +191,9 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
                 gmsh_version: None,
                 corner_refinement: None,
             };
-            study::run(case, &ranges, &mesh, None, on_entry)
+            study::run(case, ranges, &mesh, None, on_entry)
         }
-        None => study::run_on_study_meshes(case, &ranges, on_entry),
+        None => study::run_on_study_meshes(case, ranges, on_entry),
     }
     .map_err(message)?;
     refuse_non_finite("pulloff", &result.sequence)?;

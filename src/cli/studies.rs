@@ -66,7 +66,10 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         absolute(&report_dir)
     );
     let plan = report_jobs::report_parts(args.tol, &args.fem_tolerances);
-    let mut bar = Progress::new("report", plan.len() + document::STAGES);
+    let mut bar = Progress::new(
+        "report",
+        plan.len() + crate::harness::report_jobs::REPORT_STAGES,
+    );
     let assembled = report_jobs::compute_all(&plan, |id| bar.tick(id)).map_err(message)?;
     let report_jobs::Assembled::Report { mut inputs, .. } = assembled else {
         return Err("the report's parts did not make a report".into());
@@ -76,7 +79,8 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         inputs.baselines = baselines::compare(fresh, &committed).map_err(message)?;
     }
     let extras =
-        document::write_report(&report_dir, &inputs, |stage| bar.tick(stage)).map_err(message)?;
+        crate::harness::report_jobs::write_report(&report_dir, &inputs, |stage| bar.tick(stage))
+            .map_err(message)?;
     compare_reply(
         &CompareInputs::of(&inputs),
         Some(&report_dir),

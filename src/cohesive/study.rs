@@ -607,54 +607,55 @@ fn simulate_in_rim_band(
     Ok((entry, curve, edges, info))
 }
 
-/// The study's loop: `fixed` = one mesh (and a check mesh) for every range, `None` = a rim-band
-/// mesh per range.
-fn run_sequence(
-    case: Case,
+/// One range on its model: the shared one, or its own rim band (`per` elements per zone on
+/// `level`); the model is returned only for a rim band.
+type RangeSimulation = (
+    SequenceEntry,
+    Vec<CurveSample>,
+    Vec<CurveEdges>,
+    Option<ModelInfo>,
+);
+
+/// Simulate one range on the shared model, or on a rim-band mesh of its own.
+fn simulate_range(
+    shared: Option<&crate::fem::surface_response::SurfaceResponse>,
+    case: &Case,
+    range: f64,
+    per: f64,
+    level: i32,
+) -> Result<RangeSimulation> {
+    match shared {
+        Some(response) => {
+            let (entry, curve, edges) = simulate(response, case, range, Branch::Closed, None)?;
+            Ok((entry, curve, edges, None))
+        }
+        None => {
+            let (entry, curve, edges, model) = simulate_in_rim_band(case, range, per, level)?;
+            Ok((entry, curve, edges, Some(model)))
+        }
+    }
+}
+
+/// The ranges a study simulated: those on the preload's branch, those left out with why,
+/// the stored curves, the model of the smallest range kept (rim bands) and why the sequence
+/// stopped early (a range that failed after others succeeded).
+struct RangeSequence {
+    sequence: Vec<SequenceEntry>,
+    excluded: Vec<ExcludedEntry>,
+    curves: Vec<StoredCurve>,
+    smallest_model: Option<ModelInfo>,
+    stopped: Option<String>,
+}
+
+/// Simulate `ranges`, then smaller ones while a range left the branch or the sequence is short
+/// ([`smaller_range`]), calling `progress` after each.
+fn simulate_ranges(
+    case: &Case,
     ranges: &[f64],
-    fixed: Option<(&ProvidedMesh, Option<&ProvidedMesh>)>,
-    mut progress: impl FnMut(&SequenceEntry),
-) -> Result<PulloffStudy> {
-    let start = Instant::now();
-    let punch = case.punch;
-    let eps = if punch == PunchKind::FlatAnnulus {
-        case.eps
-    } else {
-        0.0
-    };
-    if punch.is_concave() {
-        check_d0_over_h(&case)?;
-    }
-    let case = Case { eps, ..case };
-    if punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
-        return Err(Error::invalid(
-            "eps",
-            format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
-        ));
-    }
-    check_ranges(ranges)?;
-    let options = study_options();
-    let shared = match fixed {
-        Some((mesh, _)) => {
-            let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
-            Some((ModelInfo::of(mesh, name, &response)?, response))
-        }
-        None => None,
-    };
-    // One range on its model: the shared one, or its own rim band (`per` elements per zone on
-    // `level`).
-    let simulate_range = |range: f64, per: f64, level: i32| -> Result<_> {
-        match &shared {
-            Some((_, response)) => {
-                let (entry, curve, edges) = simulate(response, &case, range, Branch::Closed, None)?;
-                Ok((entry, curve, edges, None))
-            }
-            None => {
-                let (entry, curve, edges, model) = simulate_in_rim_band(&case, range, per, level)?;
-                Ok((entry, curve, edges, Some(model)))
-            }
-        }
-    };
+    shared: Option<&crate::fem::surface_response::SurfaceResponse>,
+    progress: &mut impl FnMut(&SequenceEntry),
+) -> Result<RangeSequence> {
+    let case = *case;
     let mut sequence = Vec::new();
     let mut excluded = Vec::new();
     let mut curves = Vec::new();
@@ -681,15 +682,20 @@ fn run_sequence(
         let range = queue[next];
         next += 1;
         // A range that fails after others succeeded ends the sequence there; they are kept.
-        let (entry, curve, edges, model) =
-            match simulate_range(range, RIM_BAND_ELEMENTS_PER_ZONE, RIM_BAND_LEVEL) {
-                Ok(simulated) => simulated,
-                Err(e) if !sequence.is_empty() => {
-                    stopped = Some(format!("the range rho/d0 = {range} failed: {e}"));
-                    break;
-                }
-                Err(e) => return Err(e),
-            };
+        let (entry, curve, edges, model) = match simulate_range(
+            shared,
+            &case,
+            range,
+            RIM_BAND_ELEMENTS_PER_ZONE,
+            RIM_BAND_LEVEL,
+        ) {
+            Ok(simulated) => simulated,
+            Err(e) if !sequence.is_empty() => {
+                stopped = Some(format!("the range rho/d0 = {range} failed: {e}"));
+                break;
+            }
+            Err(e) => return Err(e),
+        };
         progress(&entry);
         let left = branch_left(&case, &entry);
         if left.is_none() && model.is_some() {
@@ -702,6 +708,85 @@ fn run_sequence(
             left,
         );
     }
+    Ok(RangeSequence {
+        sequence,
+        excluded,
+        curves,
+        smallest_model,
+        stopped,
+    })
+}
+
+/// The case with `eps` zero unless the punch is a flat annulus, checked: `d0/h` of a concave
+/// punch, `0 < b/a < 1` of a flat annulus, the ranges.
+fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
+    let eps = if case.punch == PunchKind::FlatAnnulus {
+        case.eps
+    } else {
+        0.0
+    };
+    if case.punch.is_concave() {
+        check_d0_over_h(&case)?;
+    }
+    if case.punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
+        return Err(Error::invalid(
+            "eps",
+            format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
+        ));
+    }
+    check_ranges(ranges)?;
+    Ok(Case { eps, ..case })
+}
+
+/// What a study's pull-off means on its meshes: one mesh for every range (`fixed_mesh`), or a
+/// rim band per range.
+fn study_note(fixed_mesh: bool) -> String {
+    if fixed_mesh {
+        "pull-off: the most tensile force of the branch the preload is on, which ends where \
+         the crack front first runs (a jump under fixed grips); past it the discrete front \
+         is pinned node by node (lattice trapping) and the path is not followed"
+            .into()
+    } else {
+        format!(
+            "pull-off: the most tensile force of the branch the preload is on while its crack \
+             front lies in the rim band (each range on its own mesh: the band [a - w, a], w = \
+             {RIM_BAND_ZONES} zone lengths, meshed at 1/{RIM_BAND_ELEMENTS_PER_ZONE} of the \
+             zone on level {RIM_BAND_LEVEL} of the adapted family; rim_band in each entry); \
+             node hops of the front there (force steps under {RIM_BAND_HOP_FORCE} F0) \
+             continue the branch; the check: the smallest range with half the band's \
+             elements on level {}; mesh and contact_nodes: the smallest range's",
+            RIM_BAND_LEVEL - 1
+        )
+    }
+}
+
+/// The study's loop: `fixed` = one mesh (and a check mesh) for every range, `None` = a rim-band
+/// mesh per range.
+fn run_sequence(
+    case: Case,
+    ranges: &[f64],
+    fixed: Option<(&ProvidedMesh, Option<&ProvidedMesh>)>,
+    mut progress: impl FnMut(&SequenceEntry),
+) -> Result<PulloffStudy> {
+    let start = Instant::now();
+    let case = checked_case(case, ranges)?;
+    let (punch, eps) = (case.punch, case.eps);
+    let options = study_options();
+    let shared = match fixed {
+        Some((mesh, _)) => {
+            let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
+            Some((ModelInfo::of(mesh, name, &response)?, response))
+        }
+        None => None,
+    };
+    let shared_response = shared.as_ref().map(|(_, response)| response);
+    let RangeSequence {
+        sequence,
+        excluded,
+        curves,
+        smallest_model,
+        stopped,
+    } = simulate_ranges(&case, ranges, shared_response, &mut progress)?;
     if sequence.is_empty() {
         let reasons: Vec<&str> = excluded.iter().map(|e| e.reason.as_str()).collect();
         return Err(Error::Unsupported {
@@ -718,6 +803,8 @@ fn run_sequence(
         Some((_, None)) => None,
         None => Some(
             simulate_range(
+                shared_response,
+                &case,
                 smallest,
                 0.5 * RIM_BAND_ELEMENTS_PER_ZONE,
                 RIM_BAND_LEVEL - 1,
@@ -764,23 +851,7 @@ fn run_sequence(
         jkr_fixed_load_over_f0: jkr,
         full_contact_over_f0: full_contact,
         paper_route_over_f0: paper,
-        note: if fixed.is_some() {
-            "pull-off: the most tensile force of the branch the preload is on, which ends where \
-             the crack front first runs (a jump under fixed grips); past it the discrete front \
-             is pinned node by node (lattice trapping) and the path is not followed"
-                .into()
-        } else {
-            format!(
-                "pull-off: the most tensile force of the branch the preload is on while its crack \
-                 front lies in the rim band (each range on its own mesh: the band [a - w, a], w = \
-                 {RIM_BAND_ZONES} zone lengths, meshed at 1/{RIM_BAND_ELEMENTS_PER_ZONE} of the \
-                 zone on level {RIM_BAND_LEVEL} of the adapted family; rim_band in each entry); \
-                 node hops of the front there (force steps under {RIM_BAND_HOP_FORCE} F0) \
-                 continue the branch; the check: the smallest range with half the band's \
-                 elements on level {}; mesh and contact_nodes: the smallest range's",
-                RIM_BAND_LEVEL - 1
-            )
-        },
+        note: study_note(fixed.is_some()),
         wall_s: start.elapsed().as_secs_f64(),
     })
 }

@@ -161,6 +161,74 @@ struct ColumnRange<'v, T> {
     values: &'v mut [T],
 }
 
+/// The element matrices of a block of cells and where their entries go.
+struct ScatterBlock<'a> {
+    mesh: &'a Mesh,
+    /// [`StiffnessPattern`]'s positions of the cells' nodes in the neighbour lists.
+    positions: &'a [u32],
+    col_offsets: &'a [usize],
+    /// The block's `K_e`, `(2k)²` values each, in cell order.
+    locals: &'a [f64],
+    /// The block's cells.
+    cells: std::ops::Range<usize>,
+}
+
+/// Add the block's element matrices into the entries of `range`'s node columns (`K += K_e`
+/// where a cell's node lies in the range), asking for the entries a few cells ahead.
+#[inline]
+fn scatter_block(range: &mut ColumnRange<'_, f64>, block: ScatterBlock<'_>) {
+    let ScatterBlock {
+        mesh,
+        positions,
+        col_offsets,
+        locals,
+        cells,
+    } = block;
+    let (block_start, block_end) = (cells.start, cells.end);
+    let k = mesh.degree.nodes_per_cell();
+    let size = 2 * k;
+    for c in block_start..block_end {
+        // The entries a few cells ahead, asked for now: the cells' nodes are spread
+        // over K's columns.
+        let ahead = c + SCATTER_PREFETCH_CELLS;
+        if ahead < block_end {
+            for (b, &nb) in mesh.cell(ahead).iter().enumerate() {
+                if nb < range.first_node || nb >= range.end_node {
+                    continue;
+                }
+                let slot = &positions[(ahead * k + b) * k..(ahead * k + b + 1) * k];
+                for cb in 0..2 {
+                    let column = col_offsets[2 * nb + cb] - range.value_start;
+                    for &pos in slot {
+                        prefetch(range.values, column + 2 * pos as usize);
+                    }
+                }
+            }
+        }
+        let local = &locals[(c - block_start) * size * size..][..size * size];
+        for (b, &nb) in mesh.cell(c).iter().enumerate() {
+            if nb < range.first_node || nb >= range.end_node {
+                continue;
+            }
+            let slot = &positions[(c * k + b) * k..(c * k + b + 1) * k];
+            for cb in 0..2 {
+                let column = col_offsets[2 * nb + cb] - range.value_start;
+                let values = &mut range.values[column..];
+                // Column `2b + cb` of the symmetric `K_e`, read as its row.
+                let row = &local[(2 * b + cb) * size..][..size];
+                for (&pos, pair) in slot.iter().zip(row.chunks_exact(2)) {
+                    if pos == NO_ENTRY {
+                        continue;
+                    }
+                    let base = 2 * pos as usize;
+                    values[base] += pair[0];
+                    values[base + 1] += pair[1];
+                }
+            }
+        }
+    }
+}
+
 /// Split the entry array (of the node columns, `col_offsets[2 × nodes]` entries) into `parts`
 /// ranges of whole nodes with about equal numbers of entries.
 fn column_ranges<'v, T>(
@@ -507,46 +575,16 @@ impl StiffnessPattern {
             let locals = &locals;
             let positions = &nodes.positions;
             ranges.par_iter_mut().for_each(|range| {
-                for c in block_start..block_end {
-                    // The entries a few cells ahead, asked for now: the cells' nodes are spread
-                    // over K's columns.
-                    let ahead = c + SCATTER_PREFETCH_CELLS;
-                    if ahead < block_end {
-                        for (b, &nb) in mesh.cell(ahead).iter().enumerate() {
-                            if nb < range.first_node || nb >= range.end_node {
-                                continue;
-                            }
-                            let slot = &positions[(ahead * k + b) * k..(ahead * k + b + 1) * k];
-                            for cb in 0..2 {
-                                let column = col_offsets[2 * nb + cb] - range.value_start;
-                                for &pos in slot {
-                                    prefetch(range.values, column + 2 * pos as usize);
-                                }
-                            }
-                        }
-                    }
-                    let local = &locals[(c - block_start) * size * size..][..size * size];
-                    for (b, &nb) in mesh.cell(c).iter().enumerate() {
-                        if nb < range.first_node || nb >= range.end_node {
-                            continue;
-                        }
-                        let slot = &positions[(c * k + b) * k..(c * k + b + 1) * k];
-                        for cb in 0..2 {
-                            let column = col_offsets[2 * nb + cb] - range.value_start;
-                            let values = &mut range.values[column..];
-                            // Column `2b + cb` of the symmetric `K_e`, read as its row.
-                            let row = &local[(2 * b + cb) * size..][..size];
-                            for (&pos, pair) in slot.iter().zip(row.chunks_exact(2)) {
-                                if pos == NO_ENTRY {
-                                    continue;
-                                }
-                                let base = 2 * pos as usize;
-                                values[base] += pair[0];
-                                values[base + 1] += pair[1];
-                            }
-                        }
-                    }
-                }
+                scatter_block(
+                    range,
+                    ScatterBlock {
+                        mesh,
+                        positions,
+                        col_offsets,
+                        locals,
+                        cells: block_start..block_end,
+                    },
+                );
             });
         }
         drop(ranges);

@@ -365,6 +365,45 @@ fn prepare(provided: &ProvidedMesh, spec: ModelSpec) -> Result<PreparedModel> {
     Ok(model)
 }
 
+/// What the raised mesh gives before any value is assembled: its domain radius `R` (the far
+/// arc's largest `|x|`), the far arc's grading (largest edge over `R`), the far-field condition
+/// ([`FarField::Boussinesq`]) and the stiffness pattern with it.
+struct ModelPattern {
+    domain_radius: f64,
+    arc_grading: f64,
+    far_field: Option<FarFieldCondition>,
+    pattern: StiffnessPattern,
+}
+
+/// The raised mesh's [`ModelPattern`] under `far_field`.
+fn model_pattern(mesh: &Mesh, far_field: FarField, material: &Lame) -> Result<ModelPattern> {
+    let domain_radius = mesh
+        .boundary_nodes(tags::FAR)
+        .iter()
+        .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
+        .fold(0.0, f64::max);
+    let arc_grading = mesh
+        .boundary
+        .iter()
+        .filter(|e| e.tag == tags::FAR)
+        .map(|e| {
+            let (p, q) = (mesh.nodes[e.nodes[0]], mesh.nodes[e.nodes[1]]);
+            (p[0] - q[0]).hypot(p[1] - q[1]) / domain_radius
+        })
+        .fold(0.0, f64::max);
+    let far_field = match far_field {
+        FarField::Fixed => None,
+        FarField::Boussinesq => Some(FarFieldCondition::new(mesh, material, domain_radius)),
+    };
+    let pattern = StiffnessPattern::of_model(mesh, far_field.as_ref())?;
+    Ok(ModelPattern {
+        domain_radius,
+        arc_grading,
+        far_field,
+        pattern,
+    })
+}
+
 /// Raise `vertex_mesh` to the spec's degree, assemble its stiffness `K = Σ_e K_e` and, with
 /// [`FarField::Boussinesq`], slave the far arc to the point-force field.
 fn assemble_model(
@@ -393,34 +432,12 @@ fn assemble_model(
             std::panic::catch_unwind(AssertUnwindSafe(|| vertex_mesh.with_degree(degree))).ok()
         })
     };
-    let raise_and_build_pattern =
-        || -> Result<(f64, f64, Option<FarFieldCondition>, StiffnessPattern)> {
-            let mesh = raise()
-                .as_ref()
-                .ok_or_else(|| unraisable_mesh_error(provided, degree))?;
-            let domain_radius = mesh
-                .boundary_nodes(tags::FAR)
-                .iter()
-                .map(|&n| mesh.nodes[n][0].hypot(mesh.nodes[n][1]))
-                .fold(0.0, f64::max);
-            let arc_grading = mesh
-                .boundary
-                .iter()
-                .filter(|e| e.tag == tags::FAR)
-                .map(|e| {
-                    let (p, q) = (mesh.nodes[e.nodes[0]], mesh.nodes[e.nodes[1]]);
-                    (p[0] - q[0]).hypot(p[1] - q[1]) / domain_radius
-                })
-                .fold(0.0, f64::max);
-            let far_field = match far_field {
-                FarField::Fixed => None,
-                FarField::Boussinesq => {
-                    Some(FarFieldCondition::new(mesh, &material, domain_radius))
-                }
-            };
-            let pattern = StiffnessPattern::of_model(mesh, far_field.as_ref())?;
-            Ok((domain_radius, arc_grading, far_field, pattern))
-        };
+    let raise_and_build_pattern = || -> Result<ModelPattern> {
+        let mesh = raise()
+            .as_ref()
+            .ok_or_else(|| unraisable_mesh_error(provided, degree))?;
+        model_pattern(mesh, far_field, &material)
+    };
     let order_nodes = || {
         let start = Instant::now();
         let ordering = node_ordering_of_raised(&vertex_mesh, linear_solver, || {
@@ -429,7 +446,12 @@ fn assemble_model(
         (ordering, start.elapsed().as_secs_f64())
     };
     let (built, (ordering, ordering_seconds)) = rayon::join(raise_and_build_pattern, order_nodes);
-    let (domain_radius, arc_grading, far_field, pattern) = built?;
+    let ModelPattern {
+        domain_radius,
+        arc_grading,
+        far_field,
+        pattern,
+    } = built?;
     let mesh = raised
         .into_inner()
         .flatten()

@@ -22,11 +22,12 @@ use crate::harness::records::fenicsx::{self, FenicsxComparison};
 use crate::harness::records::operator::{self, OperatorStatus};
 use crate::harness::records::peers::{self, PeerComparison};
 use crate::harness::records::pulloff::{self, PulloffRecord};
-use crate::harness::report::document::{self, PulloffPoint, ReportInputs};
+use crate::harness::report::document::{self, Findings, PulloffPoint, ReportExtras, ReportInputs};
 use crate::harness::studies::comparison::{self, ComparisonReport};
 use crate::harness::studies::convergence::{self, ComputedLevel, StudyCase};
 use crate::harness::studies::speed_accuracy::{self, BasePoints, CostPoint, Problem};
 use crate::harness::studies::stability::{self, Probe};
+use crate::harness::studies::{claims, figures};
 use crate::methods::Method;
 use crate::punch::PunchKind;
 
@@ -351,9 +352,9 @@ impl Part {
                 edges.insert(key, computed.free_edge);
                 PartResult::ConvergenceLevel(computed)
             }
-            Part::Adhesion(kind) => PartResult::Adhesion(document::pulloff_points(&ring, kind)?),
+            Part::Adhesion(kind) => PartResult::Adhesion(claims::pulloff_points(&ring, kind)?),
             Part::PulloffLive => {
-                PartResult::PulloffLive(document::live_pulloff().map_err(|e| e.to_string()))
+                PartResult::PulloffLive(claims::live_pulloff().map_err(|e| e.to_string()))
             }
             Part::AdhesionPeers => PartResult::AdhesionPeers(adhesion_peers::run()?),
             Part::PulloffSimulation {
@@ -686,4 +687,44 @@ pub fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Ass
         results.push((part.clone(), result, start.elapsed().as_secs_f64()));
     }
     assemble(results)
+}
+
+/// Number of progress stages of [`write_report`].
+pub const REPORT_STAGES: usize = 5;
+
+/// Compute what the report draws and states beyond its inputs ([`Findings`]: the function
+/// curves, the pressure profiles, the JKR annular branches, the verdicts on the paper's
+/// claims), then write the report directory from both; returns the extras (also in
+/// report.json). `progress` is called with each of [`REPORT_STAGES`] stages as it starts.
+pub fn write_report(
+    dir: &std::path::Path,
+    inputs: &ReportInputs,
+    mut progress: impl FnMut(&str),
+) -> Result<ReportExtras> {
+    let start = Instant::now();
+    let ring = RingBemSolver::new();
+    progress("functions against eps");
+    let functions = figures::function_curves(&ring)?;
+    progress("pressure profiles");
+    let pressure = figures::pressure_profiles(&ring)?;
+    progress("adhesion");
+    let annular_jkr = pulloff::annular(&inputs.pulloff_simulations)
+        .iter()
+        .map(|record| {
+            let study = record.result.as_ref()?;
+            let d0_over_h = study.d0_over_h?;
+            Some(figures::annular_jkr_branch(&ring, study.punch, d0_over_h))
+        })
+        .collect();
+    progress("verdicts");
+    let verdicts = claims::verdicts(&ring, &inputs.pulloff, &inputs.pulloff_simulations)?;
+    let findings = Findings {
+        functions,
+        pressure,
+        annular_jkr,
+        verdicts,
+        wall_s: start.elapsed().as_secs_f64(),
+    };
+    progress("tables and pages");
+    document::write_files(dir, inputs, &findings)
 }

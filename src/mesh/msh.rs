@@ -400,12 +400,33 @@ fn with_regular_blanks(bytes: &[u8]) -> Option<Vec<u8>> {
     changed.then(|| regular.into_bytes())
 }
 
-/// [`parse_msh_beside`] for a file whose format line is checked and whose blanks mshio accepts.
-fn parse_regular_msh_beside<T: Send>(
+/// The mesh file as mshio returns it.
+type MshFile = mshio::MshFile<u64, i32, f64>;
+/// Its `$Entities` section (physical tags of curves and surfaces).
+type MshEntities = mshio::mshfile::Entities<i32, f64>;
+/// Its `$Nodes` section.
+type MshNodes = mshio::mshfile::Nodes<u64, i32, f64>;
+/// Its `$Elements` section.
+type MshElements = mshio::mshfile::Elements<u64, i32>;
+
+/// mshio's parse of a file beside our own scans of its text and the caller's work.
+struct Scanned<T> {
+    /// mshio's parse, its errors (and panics) described.
+    file: Result<MshFile>,
+    /// Node tags in file order with their lines.
+    tags: Result<Vec<(u64, usize)>>,
+    /// Each element's line by element tag (ASCII files).
+    element_lines: TagTable<usize>,
+    /// What the caller's `beside` returned.
+    beside: T,
+}
+
+/// Run mshio's parse, our scans of the text and `beside` at the same time.
+fn parse_and_scan<T: Send>(
     bytes: &[u8],
     name: &str,
     beside: &(impl Fn() -> T + Sync),
-) -> Result<(Mesh, T)> {
+) -> Scanned<T> {
     // mshio unwraps in places (e.g. header numbers that overflow): a panic inside it is turned
     // into an error naming the file, never a crash.
     let parse = || catch_quietly(|| mshio::parse_msh_bytes(bytes));
@@ -414,7 +435,7 @@ fn parse_regular_msh_beside<T: Send>(
     // mshio's parse against 1.70-1.77 times one after the other. A thread, not the rayon pool:
     // the pool's sleeping workers took 1-2 ms to start a job here, about what the scans take.
     let scans = || (node_tags_in_file_order(bytes, name), element_lines(bytes));
-    let (parsed, ((tags, lines), side)) = std::thread::scope(|scope| {
+    let (parsed, ((tags, element_lines), beside)) = std::thread::scope(|scope| {
         let scan_thread = std::thread::Builder::new();
         let scans = &scans;
         let scan_and_beside = move || (scans(), beside());
@@ -440,14 +461,22 @@ fn parse_regular_msh_beside<T: Send>(
                     describe_parse_error(bytes, &format!("{e}"))
                 ),
             )
-        })?,
-        Err(_) => {
-            return Err(err(
-                name,
-                "not a readable gmsh 4.1 mesh: the parser (mshio) failed on malformed content",
-            ))
-        }
+        }),
+        Err(_) => Err(err(
+            name,
+            "not a readable gmsh 4.1 mesh: the parser (mshio) failed on malformed content",
+        )),
     };
+    Scanned {
+        file,
+        tags,
+        element_lines,
+        beside,
+    }
+}
+
+/// The three sections the solver needs, from a file of version 4.1.
+fn required_sections(file: MshFile, name: &str) -> Result<(MshEntities, MshNodes, MshElements)> {
     if (file.header.version - 4.1).abs() > 1e-9 {
         return Err(err(
             name,
@@ -463,11 +492,67 @@ fn parse_regular_msh_beside<T: Send>(
         .elements
         .ok_or_else(|| err(name, "no $Elements section"))?;
 
-    // Node coordinates by tag. mshio drops the tags when they look dense (max - min = count - 1)
-    // and then only the position is known, so the tags are read here, in file order, and paired
-    // with mshio's coordinates (same order): nodes are found by their tag, in any order, and a
-    // tag given twice is an error.
-    let tags = tags?;
+    Ok((entities, nodes_section, elements))
+}
+
+/// [`parse_msh_beside`] for a file whose format line is checked and whose blanks mshio accepts:
+/// parse, check the sections, pair coordinates with tags, read the elements, compact, orient.
+fn parse_regular_msh_beside<T: Send>(
+    bytes: &[u8],
+    name: &str,
+    beside: &(impl Fn() -> T + Sync),
+) -> Result<(Mesh, T)> {
+    let scanned = parse_and_scan(bytes, name, beside);
+    let (entities, nodes_section, elements) = required_sections(scanned.file?, name)?;
+    let tags = scanned.tags?;
+    let (coords, index_of_tag) = coordinates_by_tag(&nodes_section, &tags, name)?;
+    let ElementsRead {
+        degree,
+        cells,
+        cell_tags,
+        boundary,
+    } = read_elements(&entities, &elements, &index_of_tag, name)?;
+    if boundary
+        .iter()
+        .any(|e| e.nodes.len() != degree.nodes_per_edge())
+    {
+        return Err(err(
+            name,
+            "boundary lines and triangles are of different order",
+        ));
+    }
+    // Only nodes used by the elements: gmsh keeps geometry points that no element references.
+    let mut mesh = compact(Mesh {
+        nodes: coords,
+        cells,
+        degree,
+        boundary,
+        source: name.to_string(),
+        file_tags: FileTags {
+            nodes: tags.iter().map(|&(tag, _)| tag).collect(),
+            node_lines: tags.iter().map(|&(_, line)| line).collect(),
+            cell_lines: {
+                cell_tags
+                    .iter()
+                    .map(|&t| scanned.element_lines.get(t).unwrap_or(0))
+                    .collect()
+            },
+            cells: cell_tags,
+        },
+    });
+    orient_counter_clockwise(&mut mesh);
+    Ok((mesh, scanned.beside))
+}
+
+/// Node coordinates in file order and each node's index by tag. mshio drops the tags when they
+/// look dense (max - min = count - 1) and then only the position is known, so the tags are read
+/// by our scan, in file order, and paired with mshio's coordinates (same order): nodes are found
+/// by their tag, in any order, and a tag given twice is an error.
+fn coordinates_by_tag(
+    nodes_section: &MshNodes,
+    tags: &[(u64, usize)],
+    name: &str,
+) -> Result<(Vec<[f64; 2]>, TagTable<usize>)> {
     let max_tag = tags.iter().map(|&(tag, _)| tag).max().unwrap_or(0);
     let mut index_of_tag: TagTable<usize> = TagTable::for_tags(max_tag, tags.len());
     // Never sized from the header's count: a file may claim 2^60 nodes (it is compared with the
@@ -516,6 +601,29 @@ fn parse_regular_msh_beside<T: Send>(
         ));
     }
 
+    Ok((coords, index_of_tag))
+}
+
+/// The triangles and boundary lines of a mesh file, checked.
+struct ElementsRead {
+    /// Linear (3-node) or quadratic (6-node) triangles.
+    degree: Degree,
+    /// Node indices of the triangles, `degree.nodes_per_cell()` a triangle.
+    cells: Vec<usize>,
+    /// Each triangle's element tag in the file.
+    cell_tags: Vec<u64>,
+    /// The boundary lines with their physical tags.
+    boundary: Vec<BoundaryEdge>,
+}
+
+/// Read the element blocks: triangles on physical surfaces, lines on physical curves (points
+/// skipped), one triangle order throughout, nodes that exist.
+fn read_elements(
+    entities: &MshEntities,
+    elements: &MshElements,
+    index_of_tag: &TagTable<usize>,
+    name: &str,
+) -> Result<ElementsRead> {
     // Physical tag of each curve and surface entity.
     let curve_tag: HashMap<i32, i32> = entities
         .curves
@@ -598,36 +706,12 @@ fn parse_regular_msh_beside<T: Send>(
     }
     let degree =
         degree.ok_or_else(|| err(name, "no triangles (is the solid a physical surface?)"))?;
-    if boundary
-        .iter()
-        .any(|e| e.nodes.len() != degree.nodes_per_edge())
-    {
-        return Err(err(
-            name,
-            "boundary lines and triangles are of different order",
-        ));
-    }
-    // Only nodes used by the elements: gmsh keeps geometry points that no element references.
-    let mut mesh = compact(Mesh {
-        nodes: coords,
-        cells,
+    Ok(ElementsRead {
         degree,
+        cells,
+        cell_tags,
         boundary,
-        source: name.to_string(),
-        file_tags: FileTags {
-            nodes: tags.iter().map(|&(tag, _)| tag).collect(),
-            node_lines: tags.iter().map(|&(_, line)| line).collect(),
-            cell_lines: {
-                cell_tags
-                    .iter()
-                    .map(|&t| lines.get(t).unwrap_or(0))
-                    .collect()
-            },
-            cells: cell_tags,
-        },
-    });
-    orient_counter_clockwise(&mut mesh);
-    Ok((mesh, side))
+    })
 }
 
 /// gmsh orients triangles by the surface normal: a surface drawn clockwise in `(r, z)` gives

@@ -12,12 +12,7 @@ pub use crate::harness::studies::speed_accuracy::{
     CostPoint, SpeedAccuracy, DEFAULT_FEM_TOLERANCES,
 };
 
-use crate::adhesion;
-use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
-use crate::bem::grid_contact::{self, cell_centre, discretise};
-use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::harness::records::fenicsx::FenicsxComparison;
 use crate::harness::records::operator::OperatorStatus;
 use crate::harness::records::peers::PeerComparison;
@@ -29,190 +24,11 @@ use crate::harness::report::svg::{linear_chart, log_log_chart, Series};
 use crate::harness::report::tables::{report_tables, ReportTable};
 use crate::harness::studies::comparison::ComparisonReport;
 use crate::harness::studies::convergence;
-use crate::mesh::triangulation::Degree;
+use crate::harness::studies::figures::{
+    concave_ratios, flat_ratios, FunctionCurves, Points, PressureProfiles,
+};
 use crate::punch::PunchKind;
 use crate::reference::paper_fits;
-
-fn verdicts(
-    ring: &RingBemSolver,
-    pulloff: &[PulloffPoint],
-    simulations: &[crate::harness::records::pulloff::PulloffRecord],
-) -> Result<Vec<Verdict>> {
-    let mut out = Vec::new();
-    // Section 2: the fits.
-    let fits = crate::fit::run(ring)?;
-    let worst: Vec<String> = fits
-        .iter()
-        .map(|f| {
-            format!(
-                "{} {:.1e} (best new form {:.1e})",
-                f.name, f.paper_max_rel_err, f.best_max_rel_err
-            )
-        })
-        .collect();
-    out.push(Verdict {
-        claim: "the fitted formulas (3), (8), (10) approximate the BEM data well".into(),
-        numbers: format!("max relative errors on 0.05..0.99: {}", worst.join(", ")),
-        verdict: if fits.iter().all(|f| f.paper_max_rel_err < 1e-2) {
-            "agree".into()
-        } else {
-            "disagree near eps -> 1".into()
-        },
-    });
-    // Section 3: the flat annulus detaches at the outer edge.
-    let ratios = [0.05, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99];
-    let mut outer = 0;
-    for &e in &ratios {
-        if adhesion::flat_annulus(ring, e)?.governing_edge == "outer" {
-            outer += 1;
-        }
-    }
-    out.push(Verdict {
-        claim: "the annular flat punch always starts to detach at the outer boundary".into(),
-        numbers: format!(
-            "outer edge governs at {outer} of {} ratios in 0.05..0.99",
-            ratios.len()
-        ),
-        verdict: if outer == ratios.len() {
-            "agree".into()
-        } else {
-            "disagree".into()
-        },
-    });
-    // Regime independence at d0/h = 1.
-    let mut spreads = Vec::new();
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        let r = adhesion::concave(ring, kind, 1.0)?;
-        if let (Some(l), Some(g)) = (r.fixed_load, r.fixed_grips) {
-            spreads.push(format!(
-                "{kind} {:.0} %",
-                100.0 * (l.force - g.force).abs() / l.force.abs()
-            ));
-        }
-    }
-    out.push(Verdict {
-        claim: "pull-off almost independent of fixed grips / fixed load".into(),
-        numbers: format!("difference at d0/h = 1: {}", spreads.join(", ")),
-        verdict: "holds roughly (where a stable annular state exists)".into(),
-    });
-    // +50 % / +60 % for d0 >> h.
-    let strongest: Vec<String> = pulloff
-        .iter()
-        .filter(|p| p.d0_over_h >= 99.0)
-        .map(|p| {
-            format!(
-                "{}: paper's route on its fits {}, converged annular {}, full contact {:.3} F0",
-                p.punch,
-                p.paper_fits.map_or("-".into(), |v| format!("{v:.3} F0")),
-                p.fixed_load
-                    .map_or("no stable state".into(), |v| format!("{v:.3} F0")),
-                p.full_contact
-            )
-        })
-        .collect();
-    // The direct simulation (a second route, no JKR theory) at the largest d0/h stored.
-    let direct: Vec<&crate::cohesive::study::PulloffStudy> = simulations
-        .iter()
-        .filter_map(|r| r.result.as_ref())
-        .filter(|s| {
-            s.punch.is_concave()
-                && s.d0_over_h.is_some_and(|x| x >= 10.0)
-                && s.branch != Some(crate::cohesive::study::Branch::Annular)
-        })
-        .collect();
-    let direct_numbers: Vec<String> = direct
-        .iter()
-        .filter_map(|s| {
-            let digits = bar_digits(s.error_bar?);
-            Some(format!(
-                "{} d0/h = {}: direct simulation {:.digits$} +- {:.digits$} F0 (full contact \
-                 {:.digits$}, paper's route {})",
-                s.punch,
-                s.d0_over_h?,
-                s.extrapolated_over_f0?,
-                s.error_bar?,
-                s.full_contact_over_f0?,
-                s.paper_route_over_f0
-                    .map_or("-".into(), |v| format!("{v:.digits$}"))
-            ))
-        })
-        .collect();
-    let direct_refutes = !direct.is_empty()
-        && direct.iter().all(|s| {
-            s.agrees_with_jkr() == Some(true)
-                && match (s.extrapolated_over_f0, s.error_bar, s.paper_route_over_f0) {
-                    (Some(x), Some(bar), Some(p)) => (x - p).abs() > 3.0 * bar,
-                    _ => false,
-                }
-        });
-    out.push(Verdict {
-        claim: "pull-off up to +50 % (cone) and +60 % (sphere) above F0 for d0 >> h".into(),
-        numbers: if direct_numbers.is_empty() {
-            format!("at d0/h = 100: {}", strongest.join("; "))
-        } else {
-            format!(
-                "at d0/h = 100: {}; stored direct simulations: {}",
-                strongest.join("; "),
-                direct_numbers.join("; ")
-            )
-        },
-        verdict: if direct_refutes {
-            "disagree: reproduced only with the fitted formulas; the direct simulation (cohesive \
-             zone, extrapolated to the JKR limit) lets go at the full-contact value, not the \
-             paper's"
-                .into()
-        } else {
-            "disagree: reproduced only with the fitted formulas".into()
-        },
-    });
-    // The paper's own branch (the annular contact under fixed load), simulated directly where
-    // it exists (small d0/h).
-    let annular: Vec<&crate::cohesive::study::PulloffStudy> = simulations
-        .iter()
-        .filter_map(|r| r.result.as_ref())
-        .filter(|s| s.branch == Some(crate::cohesive::study::Branch::Annular))
-        .collect();
-    let annular_numbers: Vec<String> = annular
-        .iter()
-        .filter_map(|s| {
-            let digits = bar_digits(s.error_bar?);
-            Some(format!(
-                "{} d0/h = {}: direct simulation {:.digits$} +- {:.digits$} F0, JKR route \
-                 (converged solutions) {:.digits$}, paper's route on its fits {:.digits$}",
-                s.punch,
-                s.d0_over_h?,
-                s.extrapolated_over_f0?,
-                s.error_bar?,
-                s.jkr_fixed_load_over_f0?,
-                s.paper_route_over_f0?
-            ))
-        })
-        .collect();
-    if !annular_numbers.is_empty() {
-        let fits_refuted = annular.iter().all(|s| {
-            s.agrees_with_jkr() == Some(true)
-                && match (s.extrapolated_over_f0, s.error_bar, s.paper_route_over_f0) {
-                    (Some(x), Some(bar), Some(p)) => (x - p).abs() > 3.0 * bar,
-                    _ => false,
-                }
-        });
-        out.push(Verdict {
-            claim: "fixed-load pull-off of the annular contact from the fitted formulas \
-                    (the paper's route, small d0/h)"
-                .into(),
-            numbers: annular_numbers.join("; "),
-            verdict: if fits_refuted {
-                "disagree: the direct simulation of the annular branch lets go at the JKR \
-                 route's value from converged solutions, more than three error bars from the \
-                 fits'"
-                    .into()
-            } else {
-                "open: the direct simulation does not separate the two routes".into()
-            },
-        });
-    }
-    Ok(out)
-}
 
 /// Where each range's pull of `record` ended, against the range: on the closed hole's branch
 /// (the rim's pull-off, extrapolated to zero range beside the JKR route's full-contact value),
@@ -280,14 +96,14 @@ fn pulloff_branches_chart(record: &crate::harness::records::pulloff::PulloffReco
 
 /// The annular branch of each stored `--branch annular` study: the pull of its smallest range
 /// (force against depth, compression positive) and the JKR route's adhesive annular branch
-/// from the ring BEM at `b/a` = 0.30-0.995 (`d/h = γ1 - (d0/h)/κ_in`,
-/// `F/F0 = (h/d0) γ2 - γ/κ_in`), which ends at its fixed-load pull-off.
+/// ([`crate::harness::studies::figures::annular_jkr_branch`], one for each record), which ends
+/// at its fixed-load pull-off.
 fn pulloff_annular_chart(
-    ring: &RingBemSolver,
     records: &[crate::harness::records::pulloff::PulloffRecord],
+    jkr_branches: &[Option<Points>],
 ) -> String {
     let mut series = Vec::new();
-    for record in records {
+    for (record, jkr) in records.iter().zip(jkr_branches) {
         let Some(s) = &record.result else { continue };
         let Some(x) = s.d0_over_h else { continue };
         let case = format!("{} {x}", s.punch);
@@ -303,32 +119,9 @@ fn pulloff_annular_chart(
                 bars: Vec::new(),
             });
         }
-        // The pulled part of the branch: from its fixed-grips end (the most negative depth)
-        // back toward smaller b/a while the depth rises, up to d = 0.
-        // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets
-        // go near the rim: the cone at d0/h = 0.3 at b/a = 0.98).
-        let ratios = (0..=66)
-            .map(|k| 0.30 + 0.01 * k as f64)
-            .chain((1..=7).map(|k| 0.96 + 0.005 * k as f64));
-        let all: Vec<(f64, f64)> = ratios
-            .filter_map(|ratio| {
-                let p = crate::adhesion::branch_point(ring, s.punch, ratio).ok()?;
-                let point = (p.depth(x) / x, p.force(x));
-                (point.0.is_finite() && point.1.is_finite()).then_some(point)
-            })
-            .collect();
-        let mut jkr: Vec<(f64, f64)> = Vec::new();
-        if let Some(end) = (0..all.len()).min_by(|&i, &j| all[i].0.total_cmp(&all[j].0)) {
-            for point in all[..=end].iter().rev() {
-                if point.0 > 0.0 || jkr.last().is_some_and(|last| point.0 < last.0) {
-                    break;
-                }
-                jkr.push(*point);
-            }
-        }
         series.push(Series {
             name: format!("{case}: JKR route"),
-            points: jkr,
+            points: jkr.clone().unwrap_or_default(),
             bars: Vec::new(),
         });
     }
@@ -416,28 +209,6 @@ fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String 
     )
 }
 
-/// The cone at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
-/// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
-pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
-    use crate::cohesive::study;
-    let case = study::Case {
-        punch: PunchKind::Cone,
-        eps: 0.0,
-        d0_over_h: 10.0,
-    };
-    let ranges = study::default_ranges();
-    study::simulate_as_studied(case, ranges[ranges.len() - 1])
-}
-
-/// Decimals that show an error bar `bar` to two significant digits (at least three).
-fn bar_digits(bar: f64) -> usize {
-    if bar.is_finite() && bar > 0.0 {
-        ((-bar.log10()).ceil() as i64 + 1).clamp(3, 12) as usize
-    } else {
-        3
-    }
-}
-
 fn speed_chart(sa: &SpeedAccuracy) -> String {
     let mut methods: Vec<String> = sa.points.iter().map(|p| p.method.clone()).collect();
     methods.dedup();
@@ -479,126 +250,71 @@ fn speed_chart(sa: &SpeedAccuracy) -> String {
     )
 }
 
-/// The dimensionless functions against eps: ring BEM curves, references, other methods' points.
-fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Path) -> Result<()> {
-    let ratios: Vec<f64> = (0..=60).map(|k| 0.99 * k as f64 / 60.0).collect();
-    let flat: Vec<(f64, f64)> = ratios
-        .iter()
-        .map(|&e| Ok((e, ring.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN))))
-        .collect::<Result<_>>()?;
-    let fem_points: Vec<(f64, f64)> = comparison
+/// The dimensionless functions against eps: ring BEM curves, the paper's fits, other methods'
+/// points.
+fn function_charts(
+    curves: &FunctionCurves,
+    comparison: &ComparisonReport,
+    dir: &Path,
+) -> Result<()> {
+    let series = |name: &str, points: Points| Series {
+        name: name.into(),
+        points,
+        bars: Vec::new(),
+    };
+    let fem_points: Points = comparison
         .fem
         .iter()
         .filter(|c| !c.punch.is_concave())
         .map(|c| (c.fem_eps, c.fem_value))
         .collect();
-    let mut grid_points = Vec::new();
-    for e in [0.0, 0.5, 0.9] {
-        if let Ok(s) = grid_contact::solve(
-            if e == 0.0 {
-                PunchKind::Flat
-            } else {
-                PunchKind::FlatAnnulus
-            },
-            e,
-            128,
-            GridLoad::Depth(1.0),
-            1e-10,
-        ) {
-            grid_points.push((e, s.gamma.unwrap_or(f64::NAN)));
-        }
-    }
+    let fit: Points = flat_ratios()
+        .into_iter()
+        .map(|e| (e, paper_fits::flat_gamma(e)))
+        .collect();
     let chart = linear_chart(
         "flat annulus: gamma = F/(2 E* d a) against b/a",
         "eps = b/a",
         "gamma",
         &[
-            Series {
-                name: "ring BEM".into(),
-                points: flat,
-                bars: Vec::new(),
-            },
-            Series {
-                name: "paper fit (3)".into(),
-                points: ratios
-                    .iter()
-                    .map(|&e| (e, paper_fits::flat_gamma(e)))
-                    .collect(),
-                bars: Vec::new(),
-            },
-            Series {
-                name: "FEM P2 (points)".into(),
-                points: fem_points,
-                bars: Vec::new(),
-            },
-            Series {
-                name: "grid BEM 128² (points)".into(),
-                points: grid_points,
-                bars: Vec::new(),
-            },
+            series("ring BEM", curves.flat_ring_bem.clone()),
+            series("paper fit (3)", fit),
+            series("FEM P2 (points)", fem_points),
+            series("grid BEM 128² (points)", curves.flat_grid_bem.clone()),
         ],
     );
     write(dir, "gamma-flat-annulus.svg", &chart)?;
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        let ratios: Vec<f64> = (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect();
-        let mut g1 = Vec::new();
-        let mut g2 = Vec::new();
-        for &e in &ratios {
-            let s = ring.concave_at_ratio(kind, e, 1e-10)?;
-            g1.push((e, s.gamma1.unwrap_or(f64::NAN)));
-            g2.push((e, s.gamma2.unwrap_or(f64::NAN)));
-        }
-        let fit = |i: usize| -> Vec<(f64, f64)> {
-            ratios
-                .iter()
-                .map(|&e| {
-                    (
-                        e,
-                        if kind == PunchKind::Cone {
-                            paper_fits::cone_gamma(i, e)
-                        } else {
-                            paper_fits::sphere_gamma(i, e)
-                        },
-                    )
+    for c in &curves.concave {
+        let kind = c.punch;
+        let fit = |i: usize| -> Points {
+            concave_ratios()
+                .into_iter()
+                .map(|e| {
+                    let value = if kind == PunchKind::Cone {
+                        paper_fits::cone_gamma(i, e)
+                    } else {
+                        paper_fits::sphere_gamma(i, e)
+                    };
+                    (e, value)
                 })
                 .collect()
         };
-        let fem: Vec<(f64, f64)> = comparison
+        let fem: Points = comparison
             .fem
             .iter()
-            .filter(|c| c.punch == kind && c.fem_eps > 0.0)
-            .map(|c| (c.fem_eps, c.fem_value))
+            .filter(|f| f.punch == kind && f.fem_eps > 0.0)
+            .map(|f| (f.fem_eps, f.fem_value))
             .collect();
         let chart = linear_chart(
             &format!("{kind}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a"),
             "eps = b/a",
             "gamma1, gamma2",
             &[
-                Series {
-                    name: "gamma1 ring BEM".into(),
-                    points: g1,
-                    bars: Vec::new(),
-                },
-                Series {
-                    name: "gamma2 ring BEM".into(),
-                    points: g2,
-                    bars: Vec::new(),
-                },
-                Series {
-                    name: "gamma1 paper fit".into(),
-                    points: fit(1),
-                    bars: Vec::new(),
-                },
-                Series {
-                    name: "gamma2 paper fit".into(),
-                    points: fit(2),
-                    bars: Vec::new(),
-                },
-                Series {
-                    name: "gamma2 FEM P2".into(),
-                    points: fem,
-                    bars: Vec::new(),
-                },
+                series("gamma1 ring BEM", c.gamma1.clone()),
+                series("gamma2 ring BEM", c.gamma2.clone()),
+                series("gamma1 paper fit", fit(1)),
+                series("gamma2 paper fit", fit(2)),
+                series("gamma2 FEM P2", fem),
             ],
         );
         write(dir, &format!("gammas-{}.svg", kind.name()), &chart)?;
@@ -606,77 +322,22 @@ fn function_charts(ring: &RingBemSolver, comparison: &ComparisonReport, dir: &Pa
     Ok(())
 }
 
-/// Pressure profiles of the sphere at `d = 1.5 h`: ring BEM and azimuthally averaged grid BEM.
-fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
-    let state = ring.concave_at_depth(PunchKind::Sphere, 1.5, 1e-10)?;
-    let bem: Vec<(f64, f64)> = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
-    let n = 256;
-    let op = GridOperator::new(n, 2.0 / n as f64);
-    let punch = discretise(PunchKind::Sphere, 0.0, n);
-    let c = solve_contact(
-        &op,
-        &punch.allowed,
-        &punch.profile,
-        GridLoad::Depth(1.5),
-        1e-10,
-        10_000,
-    )?;
-    let bins = 64;
-    let mut sum = vec![0.0; bins];
-    let mut count = vec![0usize; bins];
-    for i in 0..n {
-        for j in 0..n {
-            let r = cell_centre(n, i).hypot(cell_centre(n, j));
-            if r < 1.0 {
-                let b = ((r * bins as f64) as usize).min(bins - 1);
-                sum[b] += c.pressure[i * n + j];
-                count[b] += 1;
-            }
-        }
-    }
-    let grid: Vec<(f64, f64)> = (0..bins)
-        .filter(|&b| count[b] > 0)
-        .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
-        .collect();
-    let options = FemOptions {
-        linear_solver: Default::default(),
-        degree: Degree::Quadratic,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
-    };
-    let fem_state =
-        fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
-    // Nodal estimates in the contact, clipped near the rim singularity for the chart.
-    let fem: Vec<(f64, f64)> =
-        crate::fem::contact::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
-            .into_iter()
-            .filter(|&(r, p)| p > 0.0 && r < 0.99)
-            .collect();
-    let clip = |v: Vec<(f64, f64)>| -> Vec<(f64, f64)> {
-        v.into_iter().filter(|&(r, _)| r < 0.99).collect()
+/// Pressure profiles of the sphere at `d = 1.5 h`: ring BEM, azimuthally averaged grid BEM, FEM.
+fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
+    let clip = |v: &Points| -> Points { v.iter().copied().filter(|&(r, _)| r < 0.99).collect() };
+    let series = |name: &str, points: Points| Series {
+        name: name.into(),
+        points,
+        bars: Vec::new(),
     };
     let chart = linear_chart(
         "sphere d/h = 1.5: contact pressure p/(E* h/a) against r/a (r < 0.99 a)",
         "r/a",
         "p a / (E* h)",
         &[
-            Series {
-                name: "ring BEM (nodes)".into(),
-                points: clip(bem),
-                bars: Vec::new(),
-            },
-            Series {
-                name: "grid BEM 256², averaged".into(),
-                points: clip(grid),
-                bars: Vec::new(),
-            },
-            Series {
-                name: "FEM P2 (nodal)".into(),
-                points: fem,
-                bars: Vec::new(),
-            },
+            series("ring BEM (nodes)", clip(&profiles.ring_bem)),
+            series("grid BEM 256², averaged", clip(&profiles.grid_bem)),
+            series("FEM P2 (nodal)", profiles.fem.clone()),
         ],
     );
     write(dir, "pressure-sphere.svg", &chart)
@@ -685,9 +346,6 @@ fn pressure_chart(ring: &RingBemSolver, dir: &Path) -> Result<()> {
 fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
     std::fs::write(dir.join(name), text).map_err(|e| Error::file("write", &dir.join(name), e))
 }
-
-/// Number of progress stages of [`write_report`].
-pub const STAGES: usize = 5;
 
 /// Everything a report is made of: computed in one process ([`crate::harness::report_jobs::compute_report`])
 /// or merged from the result files of a plan's jobs ([`crate::harness::plan::merge`]).
@@ -713,28 +371,6 @@ pub struct ReportInputs {
     pub baselines: Vec<crate::harness::records::baselines::BaselineCheck>,
     /// Wall time of the computations (their sum when merged from jobs), seconds.
     pub wall_s: f64,
-}
-
-/// `d0/h` of the pull-off charts: nine points from 0.1 to 100.
-pub fn pulloff_scales() -> impl Iterator<Item = f64> {
-    (0..=8).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0))
-}
-
-/// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
-/// load on the annular branch, the paper's route on its fits, from full contact.
-pub fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
-    pulloff_scales()
-        .map(|s| {
-            let r = adhesion::concave(ring, kind, s)?;
-            Ok(PulloffPoint {
-                punch: kind.name().to_string(),
-                d0_over_h: s,
-                fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
-                paper_fits: r.paper_fits_fixed_load.map(|p| -p.1),
-                full_contact: -r.full_contact.pulloff.force,
-            })
-        })
-        .collect()
 }
 
 /// The chart of one punch's pull-off against `d0/h` by each route.
@@ -771,19 +407,31 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
     )
 }
 
-/// Write the report directory from its inputs; returns the extras (also in report.json).
-pub fn write_report(
-    dir: &Path,
-    inputs: &ReportInputs,
-    mut progress: impl FnMut(&str),
-) -> Result<ReportExtras> {
+/// What the report draws and states beyond its inputs, computed by the methods before it is
+/// written ([`crate::harness::report_jobs::write_report`]).
+#[derive(Clone, Debug)]
+pub struct Findings {
+    /// The dimensionless functions against `eps`.
+    pub functions: FunctionCurves,
+    /// The sphere's pressure profiles at `d = 1.5 h`.
+    pub pressure: PressureProfiles,
+    /// The JKR route's annular branch for each stored annular study (in the order of
+    /// [`crate::harness::records::pulloff::annular`]; none where a record has no result).
+    pub annular_jkr: Vec<Option<Points>>,
+    /// The paper's claims with this run's numbers.
+    pub verdicts: Vec<Verdict>,
+    /// Wall time of computing these, seconds.
+    pub wall_s: f64,
+}
+
+/// Write the report directory (charts, tables, Markdown, JSON, HTML) from its inputs and
+/// findings; returns the extras (also in report.json). Draws and formats only.
+pub fn write_files(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<ReportExtras> {
     let start = Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| Error::file("create the directory", dir, e))?;
-    let ring = RingBemSolver::new();
     let comparison = &inputs.comparison;
     let (fenicsx, operators, peers) = (&inputs.fenicsx, &inputs.operators, &inputs.peers);
-    progress("functions against eps");
-    function_charts(&ring, comparison, dir)?;
+    function_charts(&findings.functions, comparison, dir)?;
     for (k, sa) in inputs.speed_accuracy.iter().enumerate() {
         write(dir, &format!("speed-accuracy-{k}.svg"), &speed_chart(sa))?;
     }
@@ -799,56 +447,22 @@ pub fn write_report(
             &convergence::csv(study)?,
         )?;
     }
-    progress("pressure profiles");
-    pressure_chart(&ring, dir)?;
-    progress("adhesion");
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        write(
-            dir,
-            &format!("pulloff-{}.svg", kind.name()),
-            &pulloff_chart(kind, &inputs.pulloff),
-        )?;
-    }
-    if let Ok(l) = &inputs.pulloff_live {
-        write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
-    }
-    if let Some(record) =
-        crate::harness::records::pulloff::with_branches(&inputs.pulloff_simulations)
-    {
-        write(dir, PULLOFF_BRANCHES_CHART, &pulloff_branches_chart(record))?;
-    }
-    let annular = crate::harness::records::pulloff::annular(&inputs.pulloff_simulations);
-    if !annular.is_empty() {
-        write(
-            dir,
-            PULLOFF_ANNULAR_CHART,
-            &pulloff_annular_chart(&ring, &annular),
-        )?;
-    }
-    if !inputs.adhesion_peers.is_empty() {
-        write(
-            dir,
-            ADHESION_PEER_CHART,
-            &adhesion_peer_chart(&inputs.adhesion_peers),
-        )?;
-    }
-    progress("verdicts");
+    pressure_chart(&findings.pressure, dir)?;
+    adhesion_charts(dir, inputs, findings)?;
     let simulations = inputs.pulloff_simulations.clone();
-    let verdicts = verdicts(&ring, &inputs.pulloff, &simulations)?;
     let mut extras = ReportExtras {
         baselines: inputs.baselines.clone(),
         headline: Headline::default(),
-        verdicts,
+        verdicts: findings.verdicts.clone(),
         pulloff_simulations: simulations,
         pulloff_live: inputs.pulloff_live.clone(),
         adhesion_peers: inputs.adhesion_peers.clone(),
         speed_accuracy: inputs.speed_accuracy.clone(),
         convergence: inputs.convergence.clone(),
         pulloff: inputs.pulloff.clone(),
-        wall_s: inputs.wall_s + start.elapsed().as_secs_f64(),
+        wall_s: inputs.wall_s + findings.wall_s + start.elapsed().as_secs_f64(),
     };
     extras.headline = headline(comparison, fenicsx, operators, peers, &extras);
-    progress("tables and pages");
     let json = serde_json::json!({
         "comparison": comparison,
         "fenicsx": fenicsx,
@@ -872,6 +486,42 @@ pub fn write_report(
     )?;
     crate::harness::report::html::write_index(dir, None)?;
     Ok(extras)
+}
+
+/// The pull-off charts: the JKR routes against `d0/h`, this run's simulation, the stored
+/// studies' branches, the annular route, Tamaas's curves.
+fn adhesion_charts(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<()> {
+    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+        write(
+            dir,
+            &format!("pulloff-{}.svg", kind.name()),
+            &pulloff_chart(kind, &inputs.pulloff),
+        )?;
+    }
+    if let Ok(l) = &inputs.pulloff_live {
+        write(dir, PULLOFF_CURVE_CHART, &pulloff_curve_chart(l))?;
+    }
+    if let Some(record) =
+        crate::harness::records::pulloff::with_branches(&inputs.pulloff_simulations)
+    {
+        write(dir, PULLOFF_BRANCHES_CHART, &pulloff_branches_chart(record))?;
+    }
+    let annular = crate::harness::records::pulloff::annular(&inputs.pulloff_simulations);
+    if !annular.is_empty() {
+        write(
+            dir,
+            PULLOFF_ANNULAR_CHART,
+            &pulloff_annular_chart(&annular, &findings.annular_jkr),
+        )?;
+    }
+    if !inputs.adhesion_peers.is_empty() {
+        write(
+            dir,
+            ADHESION_PEER_CHART,
+            &adhesion_peer_chart(&inputs.adhesion_peers),
+        )?;
+    }
+    Ok(())
 }
 
 /// Count every check of a report: one per bounded reference, identity, FEM comparison, stored

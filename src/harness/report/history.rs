@@ -36,14 +36,33 @@ fn get<'a>(v: &'a serde_json::Value, path: &[&str]) -> Option<&'a serde_json::Va
 
 /// Headline figures from a report directory (`report.json`, optional `stability.json`).
 pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<Headline> {
-    let read = |name: &str| -> Result<serde_json::Value> {
-        let path = dir.join(name);
-        let text = std::fs::read_to_string(&path).map_err(|e| Error::file("read", &path, e))?;
-        serde_json::from_str(&text).map_err(|e| Error::file("parse the report", &path, e))
-    };
-    let report = read("report.json")?;
-    // A report of `verify compare` has these sections; anything else (`{}`, another JSON file) is
-    // an error, never "no failures".
+    let path = dir.join("report.json");
+    let report = read_json(&path)?;
+    check_report_sections(&report, &path)?;
+    let accuracy = accuracy_figures(&report);
+    let failures = failure_count(&report);
+    let times = timing_figures(&report);
+    let stability_wrong_numbers = stability_wrong_numbers(dir)?;
+    Ok(Headline {
+        date: date.into(),
+        failures,
+        stability_wrong_numbers,
+        accuracy,
+        times,
+        fenicsx: fenicsx.into(),
+        peers: peers.into(),
+    })
+}
+
+/// A JSON file, read and parsed.
+fn read_json(path: &Path) -> Result<serde_json::Value> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::file("read", path, e))?;
+    serde_json::from_str(&text).map_err(|e| Error::file("parse the report", path, e))
+}
+
+/// A report of `verify compare` has these sections; anything else (`{}`, another JSON file) is
+/// an error, never "no failures".
+fn check_report_sections(report: &serde_json::Value, path: &Path) -> Result<()> {
     for section in [
         &["comparison", "rows"][..],
         &["comparison", "fem"],
@@ -51,10 +70,10 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
         &["fenicsx"],
         &["peers"],
     ] {
-        if !get(&report, section).is_some_and(|v| v.is_array()) {
+        if !get(report, section).is_some_and(|v| v.is_array()) {
             return Err(Error::file(
                 "take the headline figures of",
-                &dir.join("report.json"),
+                path,
                 format!(
                     "it has no `{}` list: not a report written by `verify compare`",
                     section.join(".")
@@ -62,6 +81,12 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
             ));
         }
     }
+    Ok(())
+}
+
+/// The worst relative differences (FEM against the ring BEM, FEniCSx against the FEM, peers
+/// against the grid BEM) and identity residuals, each with its tolerance.
+fn accuracy_figures(report: &serde_json::Value) -> BTreeMap<String, (f64, f64)> {
     let max_abs = |items: Option<&serde_json::Value>, key: &str| -> f64 {
         items.and_then(|v| v.as_array()).map_or(0.0, |a| {
             a.iter()
@@ -74,14 +99,14 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
     accuracy.insert(
         "fem_vs_ring_bem".into(),
         (
-            max_abs(get(&report, &["comparison", "fem"]), "relative_difference"),
+            max_abs(get(report, &["comparison", "fem"]), "relative_difference"),
             1e-3,
         ),
     );
     accuracy.insert(
         "fem_vs_ring_bem_eps".into(),
         (
-            max_abs(get(&report, &["comparison", "fem"]), "eps_difference"),
+            max_abs(get(report, &["comparison", "fem"]), "eps_difference"),
             1e-3,
         ),
     );
@@ -93,7 +118,7 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
         "peers_vs_grid_bem".into(),
         (max_abs(report.get("peers"), "relative_difference"), 1e-6),
     );
-    let identities = get(&report, &["comparison", "identities"])
+    let identities = get(report, &["comparison", "identities"])
         .and_then(|v| v.as_array())
         .cloned()
         .unwrap_or_default();
@@ -105,8 +130,18 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
         "identities_residual_over_tolerance".into(),
         (worst_identity, 1.0),
     );
+    accuracy
+}
+
+/// Failed checks: the report's own count (error bars and fresh baselines included) where it
+/// has one, else the failed comparisons, identities, FEM checks, FEniCSx and peer results.
+fn failure_count(report: &serde_json::Value) -> usize {
+    let identities = get(report, &["comparison", "identities"])
+        .and_then(|v| v.as_array())
+        .cloned()
+        .unwrap_or_default();
     let failures = [
-        get(&report, &["comparison", "rows"])
+        get(report, &["comparison", "rows"])
             .and_then(|v| v.as_array())
             .map_or(0, |rows| {
                 rows.iter()
@@ -123,7 +158,7 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
             .iter()
             .filter(|i| i.get("passed") == Some(&serde_json::Value::Bool(false)))
             .count(),
-        get(&report, &["comparison", "fem"])
+        get(report, &["comparison", "fem"])
             .and_then(|v| v.as_array())
             .map_or(0, |a| {
                 a.iter()
@@ -153,11 +188,16 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
     .iter()
     .sum::<usize>();
     // The report's own count (error bars and fresh baselines included) where it has one.
-    let failures = get(&report, &["extras", "headline", "failed"])
+    let failures = get(report, &["extras", "headline", "failed"])
         .and_then(|v| v.as_u64())
         .map_or(failures, |n| n as usize);
+    failures
+}
+
+/// Wall time of each speed-accuracy point and of the report's extras, seconds.
+fn timing_figures(report: &serde_json::Value) -> BTreeMap<String, f64> {
     let mut times = BTreeMap::new();
-    if let Some(problems) = get(&report, &["extras", "speed_accuracy"]).and_then(|v| v.as_array()) {
+    if let Some(problems) = get(report, &["extras", "speed_accuracy"]).and_then(|v| v.as_array()) {
         for (k, problem) in problems.iter().enumerate() {
             for p in problem
                 .get("points")
@@ -176,38 +216,34 @@ pub fn headline(dir: &Path, date: &str, fenicsx: &str, peers: &str) -> Result<He
             }
         }
     }
-    if let Some(t) = get(&report, &["extras", "wall_s"]).and_then(|v| v.as_f64()) {
+    if let Some(t) = get(report, &["extras", "wall_s"]).and_then(|v| v.as_f64()) {
         times.insert("report extras total".into(), t);
     }
-    // stability.json is optional (a run without `verify stability`); if present it must be the
-    // probe list that command writes, every probe with an outcome.
-    let stability_wrong_numbers = if dir.join("stability.json").exists() {
-        let probes = read("stability.json")?;
-        let outcomes: Option<Vec<&str>> = probes.as_array().and_then(|a| {
-            a.iter()
-                .map(|p| p.get("outcome").and_then(|o| o.as_str()))
-                .collect()
-        });
-        match outcomes {
-            Some(list) if !list.is_empty() => list.iter().filter(|&&o| o == "WRONG").count(),
-            _ => return Err(Error::file(
-                "count the wrong numbers of",
-                &dir.join("stability.json"),
-                "not a list of probes with an `outcome` each (as `verify stability --json` writes)",
-            )),
-        }
-    } else {
-        0
-    };
-    Ok(Headline {
-        date: date.into(),
-        failures,
-        stability_wrong_numbers,
-        accuracy,
-        times,
-        fenicsx: fenicsx.into(),
-        peers: peers.into(),
-    })
+    times
+}
+
+/// Wrong numbers among the stability probes: `stability.json` is optional (a run without
+/// `verify stability`); if present it must be the probe list that command writes, every probe
+/// with an outcome.
+fn stability_wrong_numbers(dir: &Path) -> Result<usize> {
+    let path = dir.join("stability.json");
+    if !path.exists() {
+        return Ok(0);
+    }
+    let probes = read_json(&path)?;
+    let outcomes: Option<Vec<&str>> = probes.as_array().and_then(|a| {
+        a.iter()
+            .map(|p| p.get("outcome").and_then(|o| o.as_str()))
+            .collect()
+    });
+    match outcomes {
+        Some(list) if !list.is_empty() => Ok(list.iter().filter(|&&o| o == "WRONG").count()),
+        _ => Err(Error::file(
+            "count the wrong numbers of",
+            &path,
+            "not a list of probes with an `outcome` each (as `verify stability --json` writes)",
+        )),
+    }
 }
 
 /// Regressions of `current` (against its tolerances and against `previous`'s times).

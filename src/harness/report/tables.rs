@@ -158,6 +158,17 @@ pub fn report_tables(
             external(fenicsx, peers),
         ),
     ];
+    out.extend(baseline_and_speed_tables(extras));
+    out.push(operator_table(operator_rows));
+    out.extend(pulloff_tables(extras));
+    out.extend(speed_accuracy_tables(extras));
+    out
+}
+
+/// The fresh-against-baseline table (when the run made fresh results) and the
+/// interleaved speed records against the peers (when stored).
+fn baseline_and_speed_tables(extras: &ReportExtras) -> Vec<ReportTable> {
+    let mut out = Vec::new();
     if !extras.baselines.is_empty() {
         out.push(ReportTable {
             intro: Some(
@@ -192,7 +203,12 @@ pub fn report_tables(
             ..entry(None, "speed-tamaas", record.table())
         });
     }
-    out.push(ReportTable {
+    out
+}
+
+/// Our assembled operator against FEniCSx's on the same mesh and degree.
+fn operator_table(operator_rows: &[OperatorStatus]) -> ReportTable {
+    ReportTable {
         intro: Some(
             "Our stiffness matrix and unit-pressure load vector against FEniCSx's on the same \
                  mesh and degree, dofs matched by position (`scripts/fenicsx/operators.py`); \
@@ -204,58 +220,14 @@ pub fn report_tables(
             "operators",
             operators(operator_rows),
         )
-    });
-    {
-        let mut table = crate::harness::records::pulloff::table(&extras.pulloff_simulations);
-        match &extras.pulloff_live {
-            Ok(live) => table.push(vec![
-                format!(
-                    "cone-d0h10, this run (Tabor {:.0} only; {} contact nodes, {})",
-                    live.entry.tabor, live.contact_nodes, live.mesh
-                )
-                .into(),
-                format!("{:.0}: {:.4}", live.entry.tabor, live.entry.pulloff_over_f0).into(),
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                live.wall_s.into(),
-                "this run".into(),
-                Cell::Missing,
-            ]),
-            Err(why) => table.push(crate::harness::records::pulloff::row_without_result(
-                "cone-d0h10, this run".into(),
-                "this run",
-                Cell::Flag(format!("FAILED: {why}")),
-            )),
-        }
-        out.push(ReportTable {
-            intro: Some(
-                "A second route to the pull-off, with no JKR energy balance: an exponential \
-                 adhesion law on the FE model's contact line, pressed and pulled under \
-                 displacement control at ranges spanning a factor 10 in the Tabor parameter \
-                 (the closed branch: each on its own mesh, a band at the rim refined to the \
-                 cohesive zone), extrapolated to zero range (`verify pulloff`; stored by \
-                 `scripts/pulloff/run_all.py --out verify/pulloff`; the nightly run compares fresh runs with them). JKR route: fixed-load pull-off (flat punches), from full contact \
-                 (concave punches, pressed until their hole closes: 3h, or deeper for small \
-                 d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
-                 contact (touched with the hole open, then pulled). A range at which the closed \
-                 hole reopens on the way out is on another branch: it is left out (named) and a \
-                 smaller range replaces it."
-                    .into(),
-            ),
-            chart: extras
-                .pulloff_live
-                .is_ok()
-                .then(|| crate::harness::report::contents::PULLOFF_CURVE_CHART.to_string()),
-            ..entry(
-                Some("Pull-off by direct simulation"),
-                "pulloff-simulation",
-                table,
-            )
-        });
     }
+}
+
+/// The direct pull-off simulations: the stored sequences with this run's live
+/// point, the branches a concave punch's hole takes, the annular route, Tamaas.
+fn pulloff_tables(extras: &ReportExtras) -> Vec<ReportTable> {
+    let mut out = Vec::new();
+    out.push(pulloff_simulation_table(extras));
     if let Some(record) =
         crate::harness::records::pulloff::with_branches(&extras.pulloff_simulations)
     {
@@ -320,6 +292,65 @@ pub fn report_tables(
             )
         });
     }
+    out
+}
+
+/// The stored pull-off sequences with this run's live point (or why it failed).
+fn pulloff_simulation_table(extras: &ReportExtras) -> ReportTable {
+    let mut table = crate::harness::records::pulloff::table(&extras.pulloff_simulations);
+    match &extras.pulloff_live {
+        Ok(live) => table.push(vec![
+            format!(
+                "cone-d0h10, this run (Tabor {:.0} only; {} contact nodes, {})",
+                live.entry.tabor, live.contact_nodes, live.mesh
+            )
+            .into(),
+            format!("{:.0}: {:.4}", live.entry.tabor, live.entry.pulloff_over_f0).into(),
+            Cell::Missing,
+            Cell::Missing,
+            Cell::Missing,
+            Cell::Missing,
+            Cell::Missing,
+            live.wall_s.into(),
+            "this run".into(),
+            Cell::Missing,
+        ]),
+        Err(why) => table.push(crate::harness::records::pulloff::row_without_result(
+            "cone-d0h10, this run".into(),
+            "this run",
+            Cell::Flag(format!("FAILED: {why}")),
+        )),
+    }
+    ReportTable {
+        intro: Some(
+            "A second route to the pull-off, with no JKR energy balance: an exponential \
+             adhesion law on the FE model's contact line, pressed and pulled under \
+             displacement control at ranges spanning a factor 10 in the Tabor parameter \
+             (the closed branch: each on its own mesh, a band at the rim refined to the \
+             cohesive zone), extrapolated to zero range (`verify pulloff`; stored by \
+             `scripts/pulloff/run_all.py --out verify/pulloff`; the nightly run compares fresh runs with them). JKR route: fixed-load pull-off (flat punches), from full contact \
+             (concave punches, pressed until their hole closes: 3h, or deeper for small \
+             d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
+             contact (touched with the hole open, then pulled). A range at which the closed \
+             hole reopens on the way out is on another branch: it is left out (named) and a \
+             smaller range replaces it."
+                .into(),
+        ),
+        chart: extras
+            .pulloff_live
+            .is_ok()
+            .then(|| crate::harness::report::contents::PULLOFF_CURVE_CHART.to_string()),
+        ..entry(
+            Some("Pull-off by direct simulation"),
+            "pulloff-simulation",
+            table,
+        )
+    }
+}
+
+/// One table (and chart) per speed-against-accuracy problem.
+fn speed_accuracy_tables(extras: &ReportExtras) -> Vec<ReportTable> {
+    let mut out = Vec::new();
     for (k, sa) in extras.speed_accuracy.iter().enumerate() {
         let mut t = Table::new(
             &sa.problem,

@@ -286,6 +286,16 @@ pub fn level_after(
     compute_level(&case, method, k, previous_edge, yardstick(&case)?)
 }
 
+/// One level's solve: its label, size `h`, unknowns and value, and (FEM, concave punches) the
+/// free edge found.
+struct Sized {
+    label: String,
+    size: f64,
+    unknowns: usize,
+    value: f64,
+    free_edge: Option<f64>,
+}
+
 /// Level `k` of a study, the FEM refining around `previous_edge` (concave punches).
 fn compute_level(
     case: &StudyCase,
@@ -294,82 +304,11 @@ fn compute_level(
     previous_edge: Option<f64>,
     yardstick: f64,
 ) -> Result<ComputedLevel> {
-    let concave = case.punch.is_concave();
-    let mut free_edge = None;
     let start = Instant::now();
-    let (label, size, unknowns, value) = match method {
-        Method::GridBem => {
-            let n = 64usize << k;
-            let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
-            let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
-            let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-            (format!("{n}x{n}"), 2.0 / n as f64, n * n, value)
-        }
-        Method::Fem => {
-            let (sequence, degree) = fem_study_ladder(case);
-            let Some(request) = sequence.get(k).cloned() else {
-                return Err(Error::OutOfRange {
-                    method: "fem".into(),
-                    reason: format!("the FEM has {} mesh levels", sequence.len()),
-                });
-            };
-            // Concave punches: refine around the free edge of the previous level's solve.
-            let request = request.with_free_edge(previous_edge, 0.0);
-            let label = request.label();
-            let provided = provider::provide(&request, "the FEM convergence study")?;
-            let load = if concave {
-                FemLoad::ConcaveDepth(case.depth)
-            } else {
-                FemLoad::Flat
-            };
-            let options = FemOptions {
-                linear_solver: Default::default(),
-                degree,
-                tolerance: 1e-3,
-                mesh: None,
-                poisson_ratio: 0.0,
-                far_field: crate::discretisation::far_field::FarField::Boussinesq,
-            };
-            let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
-            free_edge = concave.then_some(s.eps);
-            let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-            (
-                format!("{label} P{}", degree as u8),
-                1.0 / (s.dofs as f64).sqrt(),
-                s.dofs,
-                value,
-            )
-        }
-        Method::RingBem => {
-            let n = 6 + 2 * k;
-            let rule = TanhSinhRule::new(1.0 / 16.0);
-            let region = if case.eps > 0.0 {
-                ContactRegion::Annulus { eps: case.eps }
-            } else {
-                ContactRegion::Disk
-            };
-            if concave {
-                return Err(Error::Unsupported {
-                    method: "ring-bem".into(),
-                    reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
-                });
-            }
-            let system = RingSystem::assemble(
-                region,
-                RingBemSettings {
-                    nodes: n,
-                    quadrature_step: 1.0 / 16.0,
-                },
-                &rule,
-            );
-            let field = system
-                .solve(&vec![1.0; n])
-                .ok_or_else(|| Error::NoConvergence {
-                    method: "ring-bem".into(),
-                    reason: "singular system".into(),
-                })?;
-            (format!("N = {n}"), 1.0 / n as f64, n, 0.5 * field.force)
-        }
+    let solved = match method {
+        Method::GridBem => grid_bem_level(case, k)?,
+        Method::Fem => fem_level(case, k, previous_edge)?,
+        Method::RingBem => ring_bem_level(case, k)?,
         Method::Reference | Method::Auto => {
             return Err(Error::Unsupported {
                 method: method.name().into(),
@@ -378,6 +317,13 @@ fn compute_level(
             })
         }
     };
+    let Sized {
+        label,
+        size,
+        unknowns,
+        value,
+        free_edge,
+    } = solved;
     let level = Level {
         label,
         size,
@@ -388,6 +334,99 @@ fn compute_level(
         observed_order: None,
     };
     Ok(ComputedLevel { level, free_edge })
+}
+
+/// The grid BEM on `(64 · 2^k)²` cells.
+fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
+    let concave = case.punch.is_concave();
+    let n = 64usize << k;
+    let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
+    let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
+    let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+    Ok(Sized {
+        label: format!("{n}x{n}"),
+        size: 2.0 / n as f64,
+        unknowns: n * n,
+        value,
+        free_edge: None,
+    })
+}
+
+/// The FEM on level `k` of its study ladder, refined around `previous_edge` (concave punches).
+fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<Sized> {
+    let concave = case.punch.is_concave();
+    let (sequence, degree) = fem_study_ladder(case);
+    let Some(request) = sequence.get(k).cloned() else {
+        return Err(Error::OutOfRange {
+            method: "fem".into(),
+            reason: format!("the FEM has {} mesh levels", sequence.len()),
+        });
+    };
+    // Concave punches: refine around the free edge of the previous level's solve.
+    let request = request.with_free_edge(previous_edge, 0.0);
+    let label = request.label();
+    let provided = provider::provide(&request, "the FEM convergence study")?;
+    let load = if concave {
+        FemLoad::ConcaveDepth(case.depth)
+    } else {
+        FemLoad::Flat
+    };
+    let options = FemOptions {
+        linear_solver: Default::default(),
+        degree,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    };
+    let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
+    let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+    Ok(Sized {
+        label: format!("{label} P{}", degree as u8),
+        size: 1.0 / (s.dofs as f64).sqrt(),
+        unknowns: s.dofs,
+        value,
+        free_edge: concave.then_some(s.eps),
+    })
+}
+
+/// The ring BEM with `6 + 2k` nodes (flat punches).
+fn ring_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
+    let concave = case.punch.is_concave();
+    let n = 6 + 2 * k;
+    let rule = TanhSinhRule::new(1.0 / 16.0);
+    let region = if case.eps > 0.0 {
+        ContactRegion::Annulus { eps: case.eps }
+    } else {
+        ContactRegion::Disk
+    };
+    if concave {
+        return Err(Error::Unsupported {
+            method: "ring-bem".into(),
+            reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
+        });
+    }
+    let system = RingSystem::assemble(
+        region,
+        RingBemSettings {
+            nodes: n,
+            quadrature_step: 1.0 / 16.0,
+        },
+        &rule,
+    );
+    let field = system
+        .solve(&vec![1.0; n])
+        .ok_or_else(|| Error::NoConvergence {
+            method: "ring-bem".into(),
+            reason: "singular system".into(),
+        })?;
+    Ok(Sized {
+        label: format!("N = {n}"),
+        size: 1.0 / n as f64,
+        unknowns: n,
+        value: 0.5 * field.force,
+        free_edge: None,
+    })
 }
 
 /// The observed order of the last level from it and the two coarser ones.

@@ -182,26 +182,36 @@ fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<
 /// Number of probes [`run`] makes (for progress display).
 pub const PROBES: usize = 43;
 
-/// Run all probes.
+/// Run all probes, calling `progress` as each one ends.
 pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
     let ring = RingBemSolver::new();
     let mut probes = Vec::new();
-    let mut push = |p: Probe, probes: &mut Vec<Probe>| {
+    let mut push = |p: Probe| {
         progress(&p);
         probes.push(p);
     };
+    ring_bem_probes(&ring, &mut push);
+    fem_probes(&ring, &mut push);
+    grid_bem_probes(&ring, &mut push);
+    push(iteration_cap_probe());
+    declined_probes(&mut push);
+    reference_probes(&ring, &mut push);
+    probes
+}
+
+/// Ring BEM: eps -> 0 and -> 1, the cone's blow-up, the sphere at the edge of full contact,
+/// a tolerance below its rounding floor.
+fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
-    // Ring BEM: eps -> 0 and -> 1, the cone's blow-up, the sphere at the edge of full contact,
-    // a tolerance below its rounding floor.
     for eps in [0.0, 1e-5, 1e-4, 1e-3, 0.5, 0.999, 0.9999, 0.99999] {
         let p = probe(
             Method::RingBem,
             &none,
             format!("flat annulus b/a = {eps}"),
             flat_scene(eps),
-            flat_reference(&ring, eps),
+            flat_reference(ring, eps),
         );
-        push(p, &mut probes);
+        push(p);
     }
     for depth in [1e-3, 0.01, 5.0, 10.0, 14.0, 40.0] {
         let reference = None; // the ring BEM is its own yardstick here; MDR limits are in the tests
@@ -212,7 +222,7 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             concave_scene(PunchKind::Cone, depth, None),
             reference,
         );
-        push(p, &mut probes);
+        push(p);
     }
     for depth in [2.99, 2.999999, 3.0, 3.5] {
         let reference = if depth >= 3.0 {
@@ -227,7 +237,7 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             concave_scene(PunchKind::Sphere, depth, None),
             reference,
         );
-        push(p, &mut probes);
+        push(p);
     }
     let p = probe(
         Method::RingBem,
@@ -238,10 +248,14 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             .inner_ratio(0.5)
             .tolerance(1e-15)
             .validate(),
-        flat_reference(&ring, 0.5),
+        flat_reference(ring, 0.5),
     );
-    push(p, &mut probes);
-    // FEM: default ladder, tolerances it cannot reach, coarse single meshes, P1.
+    push(p);
+}
+
+/// FEM: default ladder, tolerances it cannot reach, coarse single meshes, P1.
+fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+    let none = MethodOptions::default();
     for (eps, tol) in [(0.0, 1e-3), (0.5, 1e-4), (0.9, 1e-5)] {
         let scene = flat_scene(eps).map(|s| Scene {
             tolerance: Some(tol),
@@ -252,9 +266,9 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             &none,
             format!("flat b/a = {eps}, tolerance {tol:.0e}"),
             scene,
-            flat_reference(&ring, eps),
+            flat_reference(ring, eps),
         );
-        push(p, &mut probes);
+        push(p);
     }
     for (kind, depth) in [
         (PunchKind::Cone, 0.2),
@@ -266,9 +280,9 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             &none,
             format!("{kind} d/h = {depth}"),
             concave_scene(kind, depth, None),
-            concave_reference(&ring, kind, depth),
+            concave_reference(ring, kind, depth),
         );
-        push(p, &mut probes);
+        push(p);
     }
     let coarse = MethodOptions {
         mesh: Some(crate::fem::solver::mesh_directory().join("disk-L0.msh")),
@@ -280,9 +294,9 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         &coarse,
         "flat, coarsest mesh L0, P1 (single mesh)".into(),
         flat_scene(0.0),
-        flat_reference(&ring, 0.0),
+        flat_reference(ring, 0.0),
     );
-    push(p, &mut probes);
+    push(p);
     let small = MethodOptions {
         mesh: Some(crate::fem::solver::mesh_directory().join("small-domain-R5.msh")),
         ..MethodOptions::default()
@@ -292,10 +306,13 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         &small,
         "flat, small domain R = 5a (single mesh)".into(),
         flat_scene(0.0),
-        flat_reference(&ring, 0.0),
+        flat_reference(ring, 0.0),
     );
-    push(p, &mut probes);
-    // Grid BEM: rings narrower than the cells, coarse grids, near full contact.
+    push(p);
+}
+
+/// Grid BEM: rings narrower than the cells, coarse grids, near full contact.
+fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     for (eps, n) in [(0.9, 64), (0.97, 64), (0.99, 64), (0.99, 512)] {
         let options = MethodOptions {
             grid: Some(n),
@@ -306,9 +323,9 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             &options,
             format!("flat annulus b/a = {eps}, {n}²"),
             flat_scene(eps),
-            flat_reference(&ring, eps),
+            flat_reference(ring, eps),
         );
-        push(p, &mut probes);
+        push(p);
     }
     for (kind, depth, n) in [
         (PunchKind::Cone, 0.05, 64),
@@ -324,41 +341,45 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
             &options,
             format!("{kind} d/h = {depth}, {n}²"),
             concave_scene(kind, depth, None),
-            concave_reference(&ring, kind, depth),
+            concave_reference(ring, kind, depth),
         );
-        push(p, &mut probes);
+        push(p);
     }
-    // Iteration caps: Polonsky-Keer stopped after 3 iterations must be an error, not a number.
-    {
-        use crate::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
-        let op = GridOperator::new(64, 2.0 / 64.0);
-        let punch = crate::bem::grid_contact::discretise(PunchKind::Sphere, 0.0, 64);
-        let outcome = solve_contact(
-            &op,
-            &punch.allowed,
-            &punch.profile,
-            Load::Depth(1.5),
-            1e-10,
-            3,
-        );
-        let p = Probe {
-            method: "grid-bem".into(),
-            probe: "sphere d/h = 1.5, 64², iteration cap 3".into(),
-            outcome: if outcome.is_err() {
-                "error".into()
-            } else {
-                "WRONG".into()
-            },
-            value: outcome.as_ref().ok().map(|c| c.force),
-            reference: None,
-            relative_error: None,
-            error_estimate: None,
-            message: outcome.err().map(|e| e.to_string()),
-        };
-        push(p, &mut probes);
+}
+
+/// Iteration caps: Polonsky-Keer stopped after 3 iterations must be an error, not a number.
+fn iteration_cap_probe() -> Probe {
+    use crate::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
+    let op = GridOperator::new(64, 2.0 / 64.0);
+    let punch = crate::bem::grid_contact::discretise(PunchKind::Sphere, 0.0, 64);
+    let outcome = solve_contact(
+        &op,
+        &punch.allowed,
+        &punch.profile,
+        Load::Depth(1.5),
+        1e-10,
+        3,
+    );
+    Probe {
+        method: "grid-bem".into(),
+        probe: "sphere d/h = 1.5, 64², iteration cap 3".into(),
+        outcome: if outcome.is_err() {
+            "error".into()
+        } else {
+            "WRONG".into()
+        },
+        value: outcome.as_ref().ok().map(|c| c.force),
+        reference: None,
+        relative_error: None,
+        error_estimate: None,
+        message: outcome.err().map(|e| e.to_string()),
     }
-    // Loads whose results overflow, and meshes that do not model the scene: only an error is
-    // right.
+}
+
+/// Loads whose results overflow, and meshes that do not model the scene: only an error is
+/// right.
+fn declined_probes(push: &mut impl FnMut(Probe)) {
+    let none = MethodOptions::default();
     for (kind, depth) in [
         (PunchKind::Flat, 1e308),
         (PunchKind::Cone, 1e308),
@@ -366,7 +387,7 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
     ] {
         let scene = SceneSpec::default().shape(kind).depth(depth).validate();
         let p = must_decline(Method::RingBem, &none, &format!("{kind} d = 1e308"), scene);
-        push(p, &mut probes);
+        push(p);
     }
     let mesh_options = |path: std::path::PathBuf| MethodOptions {
         mesh: Some(path),
@@ -379,7 +400,7 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         "flat on a mesh with far and axis tags swapped",
         flat_scene(0.0),
     );
-    push(p, &mut probes);
+    push(p);
     if let Some(path) = swapped {
         let _ = std::fs::remove_file(path);
     }
@@ -390,26 +411,29 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
         "cone on an annulus mesh (contact line from r = b)",
         concave_scene(PunchKind::Cone, 2.0, None),
     );
-    push(p, &mut probes);
+    push(p);
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus),
         "flat punch on an annulus mesh",
         flat_scene(0.0),
     );
-    push(p, &mut probes);
-    // References outside their ranges.
+    push(p);
+}
+
+/// References outside their ranges.
+fn reference_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+    let none = MethodOptions::default();
     for eps in [0.5, 0.95] {
         let p = probe(
             Method::Reference,
             &none,
             format!("flat annulus b/a = {eps}"),
             flat_scene(eps),
-            flat_reference(&ring, eps),
+            flat_reference(ring, eps),
         );
-        push(p, &mut probes);
+        push(p);
     }
-    probes
 }
 
 /// Number of wrong numbers without an error.

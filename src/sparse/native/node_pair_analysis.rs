@@ -126,8 +126,103 @@ pub fn analyse_node_pairs(
     if (0..pairs).any(|c| !order[2 * c].is_multiple_of(2) || order[2 * c + 1] != order[2 * c] + 1) {
         return Ok(None);
     }
-    // Each node's place in the order (`u32::MAX`: not in it), a quarter of a dof-wise inverse's
-    // memory: the scan's lookups stay in the core's cache.
+    let node_place = node_places(order, dofs)?;
+    // A dof's place in the order (`usize::MAX`: not in it).
+    let place_of_dof = |row: usize| match node_place[row / 2] {
+        u32::MAX => usize::MAX,
+        c => 2 * c as usize + row % 2,
+    };
+
+    let nodes = pairs + usize::from(single);
+    let spans = node_column_spans(col_offsets, order, pairs);
+    let mut layout = LowerLayout::with_capacity(n, nodes, row_indices.len());
+    // (new first dof, index in K's first column, whether a node pair) of one node's column.
+    let mut entries: Vec<(usize, usize, bool)> = Vec::with_capacity(64);
+    for (c, &(start, end, end2)) in spans.iter().enumerate() {
+        // The columns are scattered over K (the order is not K's): ask for those a few nodes
+        // ahead while this one is worked on.
+        if let Some(&(ahead, _, ahead_end)) = spans.get(c + PREFETCH_AHEAD) {
+            prefetch_range(&row_indices[ahead..ahead_end]);
+        }
+        let start2 = end;
+        if end2 - start2 != end - start || row_indices[start..end] != row_indices[start2..end2] {
+            return Ok(None);
+        }
+        let interior = 2 * c < checked;
+        entries.clear();
+        let mut k = start;
+        while k < end {
+            let row = row_indices[k];
+            if Some(row) == amplitude {
+                match place_of_dof(row) {
+                    usize::MAX => layout.outside |= interior,
+                    p => entries.push((p, k, false)),
+                }
+                k += 1;
+            } else if row.is_multiple_of(2) && k + 1 < end && row_indices[k + 1] == row + 1 {
+                match place_of_dof(row) {
+                    usize::MAX => layout.outside |= interior,
+                    p => entries.push((p, k, true)),
+                }
+                k += 2;
+            } else {
+                return Ok(None);
+            }
+        }
+        layout.push_node_pair(&entries, c, start2 - start, pairs);
+    }
+    if single {
+        // The trailing dof's column: only entries at or after it (its diagonal) are kept.
+        let last = order[n - 1];
+        let range = col_offsets[last]..col_offsets[last + 1];
+        let places = range
+            .clone()
+            .zip(&row_indices[range])
+            .map(|(k, &row)| (k, place_of_dof(row)));
+        layout.push_trailing_dof(places, n - 1, checked, pairs);
+    }
+    let LowerLayout {
+        offsets,
+        rows,
+        source,
+        node_lower,
+        outside,
+    } = layout;
+    let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, offsets, None, rows);
+    let node_upper = node_lower.transposed();
+    drop(node_lower);
+    let symbolic = supernodal_of_node_pairs(&node_upper, pairs, single)?;
+    let lower = PermutedLower::from_parts(pattern, source, order.to_vec());
+    Ok(Some(NodePairAnalysis {
+        lower,
+        couples: outside,
+        symbolic,
+    }))
+}
+
+/// Each node pair's two columns in K (the first's start, the second's start, which is the
+/// first's end, and the second's end), gathered in one pass of independent loads.
+fn node_column_spans(
+    col_offsets: &[usize],
+    order: &[usize],
+    pairs: usize,
+) -> Vec<(usize, usize, usize)> {
+    (0..pairs)
+        .map(|c| {
+            let first = order[2 * c];
+            (
+                col_offsets[first],
+                col_offsets[first + 1],
+                col_offsets[first + 2],
+            )
+        })
+        .collect()
+}
+
+/// Each node's place in the elimination `order` of `dofs` dofs (`u32::MAX`: not in it), a
+/// quarter of a dof-wise inverse's memory: the scan's lookups stay in the core's cache. An
+/// order with a dof out of range or twice is an internal error.
+fn node_places(order: &[usize], dofs: usize) -> Result<Vec<u32>> {
     let absent = u32::MAX;
     let mut node_place = vec![absent; dofs.div_ceil(2)];
     for (new, &old) in order.iter().enumerate() {
@@ -145,71 +240,52 @@ pub fn analyse_node_pairs(
             node_place[old / 2] = (new / 2) as u32;
         }
     }
-    // A dof's place in the order (`usize::MAX`: not in it).
-    let place_of_dof = |row: usize| match node_place[row / 2] {
-        u32::MAX => usize::MAX,
-        c => 2 * c as usize + row % 2,
-    };
+    Ok(node_place)
+}
 
-    let nodes = pairs + usize::from(single);
-    // Each node's two columns in K (the first's start, the second's start, which is the first's
-    // end, and the second's end), gathered in one pass of independent loads.
-    let spans: Vec<(usize, usize, usize)> = (0..pairs)
-        .map(|c| {
-            let first = order[2 * c];
-            (
-                col_offsets[first],
-                col_offsets[first + 1],
-                col_offsets[first + 2],
-            )
-        })
-        .collect();
-    let mut offsets = Vec::with_capacity(n + 1);
-    let mut rows = Vec::with_capacity((row_indices.len() + n) / 2);
-    let mut source: Vec<u32> = Vec::with_capacity((row_indices.len() + n) / 2);
-    let mut node_lower = NodeColumns {
-        offsets: Vec::with_capacity(nodes + 1),
-        rows: Vec::with_capacity(row_indices.len() / 8 + nodes),
-    };
-    offsets.push(0);
-    node_lower.offsets.push(0);
-    let mut outside = false;
-    // (new first dof, index in K's first column, whether a node pair) of one node's column.
-    let mut entries: Vec<(usize, usize, bool)> = Vec::with_capacity(64);
-    for (c, &(start, end, end2)) in spans.iter().enumerate() {
-        // The columns are scattered over K (the order is not K's): ask for those a few nodes
-        // ahead while this one is worked on.
-        if let Some(&(ahead, _, ahead_end)) = spans.get(c + PREFETCH_AHEAD) {
-            prefetch_range(&row_indices[ahead..ahead_end]);
+/// The lower triangle of `P K Pᵀ` being laid out column by column: its dof-wise pattern, each
+/// entry's index in `K` (`source`), the node-wise lower pattern, and whether an interior
+/// column couples to a dof outside the order.
+struct LowerLayout {
+    offsets: Vec<usize>,
+    rows: Vec<usize>,
+    source: Vec<u32>,
+    node_lower: NodeColumns,
+    outside: bool,
+}
+
+impl LowerLayout {
+    /// Empty, with room for `n` dofs in `nodes` nodes and about half of `entries` entries.
+    fn with_capacity(n: usize, nodes: usize, entries: usize) -> Self {
+        let mut node_lower = NodeColumns {
+            offsets: Vec::with_capacity(nodes + 1),
+            rows: Vec::with_capacity(entries / 8 + nodes),
+        };
+        node_lower.offsets.push(0);
+        let mut offsets = Vec::with_capacity(n + 1);
+        offsets.push(0);
+        LowerLayout {
+            offsets,
+            rows: Vec::with_capacity((entries + n) / 2),
+            source: Vec::with_capacity((entries + n) / 2),
+            node_lower,
+            outside: false,
         }
-        let start2 = end;
-        if end2 - start2 != end - start || row_indices[start..end] != row_indices[start2..end2] {
-            return Ok(None);
-        }
-        let shift = start2 - start;
-        let interior = 2 * c < checked;
-        entries.clear();
-        let mut k = start;
-        while k < end {
-            let row = row_indices[k];
-            if Some(row) == amplitude {
-                match place_of_dof(row) {
-                    usize::MAX => outside |= interior,
-                    p => entries.push((p, k, false)),
-                }
-                k += 1;
-            } else if row.is_multiple_of(2) && k + 1 < end && row_indices[k + 1] == row + 1 {
-                match place_of_dof(row) {
-                    usize::MAX => outside |= interior,
-                    p => entries.push((p, k, true)),
-                }
-                k += 2;
-            } else {
-                return Ok(None);
-            }
-        }
+    }
+
+    /// The two columns of node pair `c` from its `entries` (new first dof, index in K's first
+    /// column, whether a node pair); K's second column is `shift` entries after the first.
+    #[inline]
+    fn push_node_pair(
+        &mut self,
+        entries: &[(usize, usize, bool)],
+        c: usize,
+        shift: usize,
+        pairs: usize,
+    ) {
         let (x, z) = (2 * c, 2 * c + 1);
-        for &(p, k, pair) in &entries {
+        let (rows, source) = (&mut self.rows, &mut self.source);
+        for &(p, k, pair) in entries {
             if p >= x {
                 rows.push(p);
                 source.push(k as u32);
@@ -217,11 +293,11 @@ pub fn analyse_node_pairs(
                     rows.push(p + 1);
                     source.push(k as u32 + 1);
                 }
-                node_lower.rows.push(if pair { p / 2 } else { pairs });
+                self.node_lower.rows.push(if pair { p / 2 } else { pairs });
             }
         }
-        offsets.push(rows.len());
-        for &(p, k, pair) in &entries {
+        self.offsets.push(rows.len());
+        for &(p, k, pair) in entries {
             let k = k + shift;
             if pair && p >= x {
                 if p > x {
@@ -235,37 +311,31 @@ pub fn analyse_node_pairs(
                 source.push(k as u32);
             }
         }
-        offsets.push(rows.len());
-        node_lower.offsets.push(node_lower.rows.len());
+        self.offsets.push(rows.len());
+        self.node_lower.offsets.push(self.node_lower.rows.len());
     }
-    if single {
-        // The trailing dof's column: only entries at or after it (its diagonal) are kept.
-        let last = order[n - 1];
-        let new_col = n - 1;
-        let range = col_offsets[last]..col_offsets[last + 1];
-        for (k, &row) in range.clone().zip(&row_indices[range]) {
-            let p = place_of_dof(row);
+
+    /// The trailing dof's column `new_col` from `(index in K, new place)` of its entries: only
+    /// those at or after it (its diagonal) are kept.
+    fn push_trailing_dof(
+        &mut self,
+        places: impl Iterator<Item = (usize, usize)>,
+        new_col: usize,
+        checked: usize,
+        pairs: usize,
+    ) {
+        for (k, p) in places {
             if p == usize::MAX {
-                outside |= new_col < checked;
+                self.outside |= new_col < checked;
             } else if p >= new_col {
-                rows.push(p);
-                source.push(k as u32);
-                node_lower.rows.push(pairs);
+                self.rows.push(p);
+                self.source.push(k as u32);
+                self.node_lower.rows.push(pairs);
             }
         }
-        offsets.push(rows.len());
-        node_lower.offsets.push(node_lower.rows.len());
+        self.offsets.push(self.rows.len());
+        self.node_lower.offsets.push(self.node_lower.rows.len());
     }
-    let pattern = SymbolicSparseColMat::new_unsorted_checked(n, n, offsets, None, rows);
-    let node_upper = node_lower.transposed();
-    drop(node_lower);
-    let symbolic = supernodal_of_node_pairs(&node_upper, pairs, single)?;
-    let lower = PermutedLower::from_parts(pattern, source, order.to_vec());
-    Ok(Some(NodePairAnalysis {
-        lower,
-        couples: outside,
-        symbolic,
-    }))
 }
 
 /// How many node columns ahead of the scan the prefetch asks for.
@@ -283,29 +353,7 @@ fn supernodal_of_node_pairs(
     if n == 0 {
         return Err(analysis_error("internal: nothing to analyse".into()));
     }
-    // The node graph's elimination tree and column counts.
-    let upper = SymbolicSparseColMatRef::new_checked(
-        nodes,
-        nodes,
-        &node_upper.offsets,
-        None,
-        &node_upper.rows,
-    );
-    let mut node_parent = vec![0isize; nodes];
-    let mut node_counts = vec![0usize; nodes];
-    {
-        let mut memory = MemBuffer::try_new(prefactorize_symbolic_cholesky_scratch::<usize>(
-            nodes,
-            node_upper.rows.len(),
-        ))
-        .map_err(|_| analysis_error("out of memory for the symbolic analysis".into()))?;
-        prefactorize_symbolic_cholesky(
-            &mut node_parent,
-            &mut node_counts,
-            upper,
-            MemStack::new(&mut memory),
-        );
-    }
+    let (node_parent, node_counts) = node_elimination_tree(node_upper)?;
     // Whether each node's column of the factor reaches the single node: it does where the
     // single node couples to the node or to one of its descendants.
     let mut reaches_single = vec![false; nodes];
@@ -348,22 +396,7 @@ fn supernodal_of_node_pairs(
             "internal: the expanded elimination tree is not a tree".into(),
         ));
     }
-    // The upper triangle with one row per coupled node (its first dof), and a node's first dof
-    // in its second dof's column.
-    let mut dof_offsets = Vec::with_capacity(n + 1);
-    let mut dof_rows = Vec::with_capacity(2 * node_upper.rows.len());
-    dof_offsets.push(0);
-    for c in 0..nodes {
-        let earlier = node_upper.column(c).iter().filter(|&&r| r < c);
-        let widths = if c < pairs { 2 } else { 1 };
-        for dof in 0..widths {
-            dof_rows.extend(earlier.clone().map(|&r| first_dof(r)));
-            if dof == 1 {
-                dof_rows.push(first_dof(c));
-            }
-            dof_offsets.push(dof_rows.len());
-        }
-    }
+    let (dof_offsets, dof_rows) = dof_upper_pattern(node_upper, pairs);
     let dof_upper = SymbolicSparseColMatRef::new_checked(n, n, &dof_offsets, None, &dof_rows);
     let mut memory = MemBuffer::try_new(factorize_supernodal_symbolic_cholesky_scratch::<usize>(n))
         .map_err(|_| analysis_error("out of memory for the symbolic analysis".into()))?;
@@ -380,6 +413,58 @@ fn supernodal_of_node_pairs(
         SymbolicSupernodalParams::default(),
     )
     .map_err(|e| analysis_error(format!("symbolic Cholesky analysis failed: {e:?}")))
+}
+
+/// The node graph's elimination tree (parent of each node, -1 at a root) and the factor's
+/// column counts, by `faer`'s `prefactorize_symbolic_cholesky` on the upper triangle.
+fn node_elimination_tree(node_upper: &NodeColumns) -> Result<(Vec<isize>, Vec<usize>)> {
+    let nodes = node_upper.offsets.len() - 1;
+    let upper = SymbolicSparseColMatRef::new_checked(
+        nodes,
+        nodes,
+        &node_upper.offsets,
+        None,
+        &node_upper.rows,
+    );
+    let mut node_parent = vec![0isize; nodes];
+    let mut node_counts = vec![0usize; nodes];
+    {
+        let mut memory = MemBuffer::try_new(prefactorize_symbolic_cholesky_scratch::<usize>(
+            nodes,
+            node_upper.rows.len(),
+        ))
+        .map_err(|_| analysis_error("out of memory for the symbolic analysis".into()))?;
+        prefactorize_symbolic_cholesky(
+            &mut node_parent,
+            &mut node_counts,
+            upper,
+            MemStack::new(&mut memory),
+        );
+    }
+    Ok((node_parent, node_counts))
+}
+
+/// The dofs' upper triangle from the nodes': one row per coupled node (its first dof), and a
+/// node's first dof in its second dof's column; the first `pairs` nodes have two dofs, the rest
+/// one.
+fn dof_upper_pattern(node_upper: &NodeColumns, pairs: usize) -> (Vec<usize>, Vec<usize>) {
+    let nodes = node_upper.offsets.len() - 1;
+    let first_dof = |node: usize| 2 * node;
+    let mut dof_offsets = Vec::with_capacity(2 * pairs + nodes - pairs + 1);
+    let mut dof_rows = Vec::with_capacity(2 * node_upper.rows.len());
+    dof_offsets.push(0);
+    for c in 0..nodes {
+        let earlier = node_upper.column(c).iter().filter(|&&r| r < c);
+        let widths = if c < pairs { 2 } else { 1 };
+        for dof in 0..widths {
+            dof_rows.extend(earlier.clone().map(|&r| first_dof(r)));
+            if dof == 1 {
+                dof_rows.push(first_dof(c));
+            }
+            dof_offsets.push(dof_rows.len());
+        }
+    }
+    (dof_offsets, dof_rows)
 }
 
 /// `faer`'s supernodal symbolic analysis of the lower triangle `lower` (compressed columns,

@@ -78,19 +78,12 @@ pub fn factorise(
     let end = symbolic.supernode_end();
     // A supernode's rows below its diagonal block, in increasing order.
     let pattern_of = |s: usize| symbolic.supernode(s).pattern();
-    let mut super_of = vec![0usize; n];
-    let mut widest = 0;
-    let mut tallest = 0;
-    for s in 0..n_super {
-        super_of[begin[s]..end[s]].fill(s);
-        widest = widest.max(end[s] - begin[s]);
-        tallest = tallest.max(end[s] - begin[s] + pattern_of(s).len());
-    }
-    // Descendant lists: head[s], next[d]; position[d] is where in d's pattern the rows of the
-    // supernode whose list d is in begin.
-    let mut head = vec![NONE; n_super];
-    let mut next = vec![NONE; n_super];
-    let mut position = vec![0usize; n_super];
+    let Extents {
+        super_of,
+        widest,
+        tallest,
+    } = Extents::of(symbolic);
+    let mut lists = DescendantLists::new(n_super);
     // The current panel's row of each global row (its own columns, then its pattern), or NONE.
     let mut local = vec![NONE; n];
     let mut row_map = vec![0usize; tallest];
@@ -101,8 +94,6 @@ pub fn factorise(
         Par::Seq,
         Default::default(),
     ));
-    let a_offsets = a_lower.col_ptr();
-    let a_rows = a_lower.row_idx();
     // The factor's values, each panel zeroed just before it is formed (while it is about to be
     // in cache) instead of in a pass over the whole factor first.
     let mut values: Vec<f64> = Vec::with_capacity(len);
@@ -113,12 +104,7 @@ pub fn factorise(
         let pattern = pattern_of(s);
         let rows = width + pattern.len();
         // Every row of the panel by its global index: its own columns first, then its pattern.
-        for (i, slot) in local[s_start..s_end].iter_mut().enumerate() {
-            *slot = i;
-        }
-        for (i, &row) in pattern.iter().enumerate() {
-            local[row] = width + i;
-        }
+        set_local_rows(&mut local, s_start..s_end, pattern);
         let (panel_start, panel_end) = (val_ptr[s], val_ptr[s + 1]);
         // SAFETY: `values` has room for `len ≥ panel_end` values, so the panel's range lies in
         // its allocation; zero bytes are the value +0.0.
@@ -127,25 +113,15 @@ pub fn factorise(
         // formed, this one just now), and no other reference to the buffer exists meanwhile.
         let written = unsafe { std::slice::from_raw_parts_mut(base, panel_end) };
         let (done, panel) = written.split_at_mut(panel_start);
-        // A's columns.
-        for j in s_start..s_end {
-            let column = &mut panel[(j - s_start) * rows..][..rows];
-            for k in a_offsets[j]..a_offsets[j + 1] {
-                let i = a_rows[k];
-                if i < j {
-                    continue;
-                }
-                column[local[i]] += a_values[k];
-            }
-        }
+        add_columns_of_a(panel, rows, s_start..s_end, (a_lower, a_values), &local);
         // The descendants' updates.
-        let mut d = std::mem::replace(&mut head[s], NONE);
+        let mut d = lists.take(s);
         while d != NONE {
-            let following = next[d];
+            let following = lists.next[d];
             let d_width = end[d] - begin[d];
             let d_pattern = pattern_of(d);
             let d_rows = d_width + d_pattern.len();
-            let first = position[d];
+            let first = lists.position[d];
             let below = &d_pattern[first..];
             let mid = below.partition_point(|&r| r < s_end);
             let d_values = &done[val_ptr[d]..val_ptr[d + 1]];
@@ -169,28 +145,121 @@ pub fn factorise(
             // On to the next supernode d's pattern reaches.
             let after = first + mid;
             if after < d_pattern.len() {
-                let t = super_of[d_pattern[after]];
-                position[d] = after;
-                next[d] = head[t];
-                head[t] = d;
+                lists.link(d, after, super_of[d_pattern[after]]);
             }
             d = following;
         }
         factor_panel(panel, rows, width, s_start, &mut memory)?;
-        local[s_start..s_end].fill(NONE);
-        for &row in pattern {
-            local[row] = NONE;
-        }
+        clear_local_rows(&mut local, s_start..s_end, pattern);
         if let Some(&row) = pattern.first() {
-            let t = super_of[row];
-            position[s] = 0;
-            next[s] = head[t];
-            head[t] = s;
+            lists.link(s, 0, super_of[row]);
         }
     }
     // SAFETY: the panels cover `0..len` (`val_ptr` runs from 0 to `len`), each written above.
     unsafe { values.set_len(len) };
     Ok(values)
+}
+
+/// Each column's supernode, and the widest and the tallest panel (columns, rows).
+struct Extents {
+    super_of: Vec<usize>,
+    widest: usize,
+    tallest: usize,
+}
+
+impl Extents {
+    fn of(symbolic: &SymbolicSupernodalCholesky<usize>) -> Self {
+        let (begin, end) = (symbolic.supernode_begin(), symbolic.supernode_end());
+        let mut super_of = vec![0usize; symbolic.nrows()];
+        let (mut widest, mut tallest) = (0, 0);
+        for s in 0..symbolic.n_supernodes() {
+            super_of[begin[s]..end[s]].fill(s);
+            widest = widest.max(end[s] - begin[s]);
+            tallest = tallest.max(end[s] - begin[s] + symbolic.supernode(s).pattern().len());
+        }
+        Extents {
+            super_of,
+            widest,
+            tallest,
+        }
+    }
+}
+
+/// The supernodes whose updates each supernode still awaits, as linked lists: `head[s]`, then
+/// `next[d]`; `position[d]` is where in `d`'s pattern the rows of the supernode whose list `d`
+/// is in begin.
+struct DescendantLists {
+    head: Vec<usize>,
+    next: Vec<usize>,
+    position: Vec<usize>,
+}
+
+impl DescendantLists {
+    fn new(supernodes: usize) -> Self {
+        DescendantLists {
+            head: vec![NONE; supernodes],
+            next: vec![NONE; supernodes],
+            position: vec![0; supernodes],
+        }
+    }
+
+    /// The first of `s`'s list, the list emptied.
+    #[inline]
+    fn take(&mut self, s: usize) -> usize {
+        std::mem::replace(&mut self.head[s], NONE)
+    }
+
+    /// Put `d` on the list of supernode `t`, whose rows begin at `position` in `d`'s pattern.
+    #[inline]
+    fn link(&mut self, d: usize, position: usize, t: usize) {
+        self.position[d] = position;
+        self.next[d] = self.head[t];
+        self.head[t] = d;
+    }
+}
+
+/// The panel's row of each global row: its own `columns` first, then its `pattern`.
+#[inline]
+fn set_local_rows(local: &mut [usize], columns: std::ops::Range<usize>, pattern: &[usize]) {
+    let width = columns.len();
+    for (i, slot) in local[columns].iter_mut().enumerate() {
+        *slot = i;
+    }
+    for (i, &row) in pattern.iter().enumerate() {
+        local[row] = width + i;
+    }
+}
+
+/// Add `A`'s `columns` (its lower triangle, rows in any order) into the panel of `rows` rows,
+/// each row at its `local` place.
+#[inline]
+fn add_columns_of_a(
+    panel: &mut [f64],
+    rows: usize,
+    columns: std::ops::Range<usize>,
+    (a_lower, a_values): (SymbolicSparseColMatRef<'_, usize>, &[f64]),
+    local: &[usize],
+) {
+    let (a_offsets, a_rows) = (a_lower.col_ptr(), a_lower.row_idx());
+    let first = columns.start;
+    for j in columns {
+        let column = &mut panel[(j - first) * rows..][..rows];
+        for k in a_offsets[j]..a_offsets[j + 1] {
+            let i = a_rows[k];
+            if i >= j {
+                column[local[i]] += a_values[k];
+            }
+        }
+    }
+}
+
+/// Undo [`set_local_rows`]: every row of the panel back to `NONE`.
+#[inline]
+fn clear_local_rows(local: &mut [usize], columns: std::ops::Range<usize>, pattern: &[usize]) {
+    local[columns].fill(NONE);
+    for &row in pattern {
+        local[row] = NONE;
+    }
 }
 
 /// `panel −= below · below[..mid]ᵀ`, scattered: `below` is a descendant's `L_d,below` (its

@@ -1,0 +1,183 @@
+//! The data behind the report's charts that the methods compute: the dimensionless functions
+//! against `eps` ([`FunctionCurves`]), the sphere's pressure profile by three methods
+//! ([`PressureProfiles`]) and the JKR route's adhesive annular branch ([`annular_jkr_branch`]).
+//! The report only draws them.
+
+use serde::{Deserialize, Serialize};
+
+use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
+use crate::bem::grid_contact::{self, cell_centre, discretise};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::Result;
+use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::mesh::triangulation::Degree;
+use crate::punch::PunchKind;
+
+/// A curve or a set of points `(x, y)`.
+pub type Points = Vec<(f64, f64)>;
+
+/// `b/a` of the flat annulus's curve: 61 points on `[0, 0.99]`.
+pub fn flat_ratios() -> Vec<f64> {
+    (0..=60).map(|k| 0.99 * k as f64 / 60.0).collect()
+}
+
+/// `b/a` of the concave punches' curves: 50 points on `(0.05, 0.95]`.
+pub fn concave_ratios() -> Vec<f64> {
+    (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect()
+}
+
+/// `gamma1 = d/h` and `gamma2 = F/(2 E* h a)` of one concave punch against `b/a` by the ring BEM.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct ConcaveCurves {
+    pub punch: PunchKind,
+    pub gamma1: Points,
+    pub gamma2: Points,
+}
+
+/// The dimensionless functions against `eps` that the methods compute for the report's charts.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct FunctionCurves {
+    /// `gamma = F/(2 E* d a)` of the flat annulus by the ring BEM at [`flat_ratios`].
+    pub flat_ring_bem: Points,
+    /// The same by the grid BEM on 128² at `b/a` = 0, 0.5, 0.9 (those that solved).
+    pub flat_grid_bem: Points,
+    /// The cone's and the sphere's functions at [`concave_ratios`].
+    pub concave: Vec<ConcaveCurves>,
+}
+
+/// Compute the function curves (ring BEM to 1e-10, grid BEM on 128²).
+pub fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
+    let flat_ring_bem = flat_ratios()
+        .into_iter()
+        .map(|e| Ok((e, ring.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN))))
+        .collect::<Result<_>>()?;
+    let mut flat_grid_bem = Vec::new();
+    for e in [0.0, 0.5, 0.9] {
+        let kind = if e == 0.0 {
+            PunchKind::Flat
+        } else {
+            PunchKind::FlatAnnulus
+        };
+        if let Ok(s) = grid_contact::solve(kind, e, 128, GridLoad::Depth(1.0), 1e-10) {
+            flat_grid_bem.push((e, s.gamma.unwrap_or(f64::NAN)));
+        }
+    }
+    let mut concave = Vec::new();
+    for punch in [PunchKind::Cone, PunchKind::Sphere] {
+        let (mut gamma1, mut gamma2) = (Vec::new(), Vec::new());
+        for e in concave_ratios() {
+            let s = ring.concave_at_ratio(punch, e, 1e-10)?;
+            gamma1.push((e, s.gamma1.unwrap_or(f64::NAN)));
+            gamma2.push((e, s.gamma2.unwrap_or(f64::NAN)));
+        }
+        concave.push(ConcaveCurves {
+            punch,
+            gamma1,
+            gamma2,
+        });
+    }
+    Ok(FunctionCurves {
+        flat_ring_bem,
+        flat_grid_bem,
+        concave,
+    })
+}
+
+/// Contact pressure `p a/(E* h)` against `r/a` of the sphere at `d = 1.5 h` by three methods.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PressureProfiles {
+    /// The ring BEM's nodal pressures.
+    pub ring_bem: Points,
+    /// The grid BEM on 256², averaged over 64 rings of width `a/64`.
+    pub grid_bem: Points,
+    /// The FEM's (P2, tolerance 1e-3) nodal estimates where positive, `r < 0.99 a`.
+    pub fem: Points,
+}
+
+/// Compute the sphere's pressure profiles at `d = 1.5 h`.
+pub fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
+    let state = ring.concave_at_depth(PunchKind::Sphere, 1.5, 1e-10)?;
+    let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
+    let grid_bem = ring_averaged_grid_pressure(256, 64)?;
+    let options = FemOptions {
+        linear_solver: Default::default(),
+        degree: Degree::Quadratic,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    };
+    let fem_state =
+        fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
+    // Nodal estimates in the contact, clipped near the rim singularity.
+    let fem = crate::fem::contact::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
+        .into_iter()
+        .filter(|&(r, p)| p > 0.0 && r < 0.99)
+        .collect();
+    Ok(PressureProfiles {
+        ring_bem,
+        grid_bem,
+        fem,
+    })
+}
+
+/// The grid BEM's pressure of the sphere at `d = 1.5 h` on `n²` cells, averaged over `bins`
+/// rings of equal width inside `r < a`.
+fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
+    let op = GridOperator::new(n, 2.0 / n as f64);
+    let punch = discretise(PunchKind::Sphere, 0.0, n);
+    let c = solve_contact(
+        &op,
+        &punch.allowed,
+        &punch.profile,
+        GridLoad::Depth(1.5),
+        1e-10,
+        10_000,
+    )?;
+    let mut sum = vec![0.0; bins];
+    let mut count = vec![0usize; bins];
+    for i in 0..n {
+        for j in 0..n {
+            let r = cell_centre(n, i).hypot(cell_centre(n, j));
+            if r < 1.0 {
+                let b = ((r * bins as f64) as usize).min(bins - 1);
+                sum[b] += c.pressure[i * n + j];
+                count[b] += 1;
+            }
+        }
+    }
+    Ok((0..bins)
+        .filter(|&b| count[b] > 0)
+        .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
+        .collect())
+}
+
+/// The pulled part of the JKR route's adhesive annular branch of `punch` at `d0/h`, from the
+/// ring BEM at `b/a` = 0.30-0.995 (`d/h = γ1 - (d0/h)/κ_in`, `F/F0 = (h/d0) γ2 - γ/κ_in`), as
+/// `(d/d0, F/F0)`: from its fixed-grips end (the most negative depth) back toward smaller
+/// `b/a` while the depth rises, up to `d = 0`.
+pub fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over_h: f64) -> Points {
+    // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets go
+    // near the rim: the cone at d0/h = 0.3 at b/a = 0.98).
+    let ratios = (0..=66)
+        .map(|k| 0.30 + 0.01 * k as f64)
+        .chain((1..=7).map(|k| 0.96 + 0.005 * k as f64));
+    let x = d0_over_h;
+    let all: Vec<(f64, f64)> = ratios
+        .filter_map(|ratio| {
+            let p = crate::adhesion::branch_point(ring, punch, ratio).ok()?;
+            let point = (p.depth(x) / x, p.force(x));
+            (point.0.is_finite() && point.1.is_finite()).then_some(point)
+        })
+        .collect();
+    let mut jkr: Vec<(f64, f64)> = Vec::new();
+    if let Some(end) = (0..all.len()).min_by(|&i, &j| all[i].0.total_cmp(&all[j].0)) {
+        for point in all[..=end].iter().rev() {
+            if point.0 > 0.0 || jkr.last().is_some_and(|last| point.0 < last.0) {
+                break;
+            }
+            jkr.push(*point);
+        }
+    }
+    jkr
+}
