@@ -21,7 +21,7 @@ use crate::numerics::roots::find_root;
 use crate::punch::PunchKind;
 use crate::reference::{self, Quantity, ReferenceValue};
 use crate::scene::{Load, Scene};
-use crate::solution::{PressureSample, Solution};
+use crate::solution::{FemProvenance, PressureSample, Solution};
 
 /// The methods `verify solve --method` accepts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize, clap::ValueEnum)]
@@ -241,15 +241,17 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         error_estimate: state.error_estimate,
         unknowns: state.dofs,
         iterations: state.iterations,
-        dofs: Some(state.dofs),
-        mesh: Some(state.mesh.clone()),
-        mesh_sha256: Some(state.mesh_sha256.clone()),
-        mesh_origin: Some(state.mesh_origin),
-        gmsh_version: state.gmsh_version.clone(),
-        mesh_refinement: state.mesh_refinement.clone(),
-        far_field: Some(state.far_field),
-        fem_timings: Some(state.timings),
-        degree: Some(state.degree as u8),
+        fem: Some(FemProvenance {
+            dofs: state.dofs,
+            mesh: state.mesh.clone(),
+            mesh_sha256: state.mesh_sha256.clone(),
+            mesh_origin: state.mesh_origin,
+            gmsh_version: state.gmsh_version.clone(),
+            mesh_refinement: state.mesh_refinement.clone(),
+            far_field: state.far_field,
+            fem_timings: state.timings,
+            degree: state.degree as u8,
+        }),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
         edge_conditioning: state.edge_conditioning,
         provenance: format!(
@@ -340,15 +342,7 @@ fn base(
         wall_s,
         unknowns: 0,
         iterations: 0,
-        dofs: None,
-        mesh: None,
-        mesh_sha256: None,
-        mesh_origin: None,
-        gmsh_version: None,
-        mesh_refinement: None,
-        far_field: None,
-        fem_timings: None,
-        degree: None,
+        fem: None,
         complementarity_residual: None,
         edge_conditioning: None,
         grid: None,

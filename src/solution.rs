@@ -58,34 +58,10 @@ pub struct Solution {
     pub unknowns: usize,
     /// Factorisations (ring BEM) or active-set iterations (FEM) spent.
     pub iterations: usize,
-    /// Degrees of freedom of the finest finite-element model used (FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub dofs: Option<usize>,
-    /// Mesh used, relative to the repository root (FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mesh: Option<String>,
-    /// SHA-256 of that mesh file (FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mesh_sha256: Option<String>,
-    /// Where the mesh came from: `committed`, `cache`, `gmsh` (made for this run) or `user`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mesh_origin: Option<crate::mesh::provider::MeshOrigin>,
-    /// Version of the gmsh that made the mesh (generated meshes only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub gmsh_version: Option<String>,
-    /// Refinement applied to that file's mesh when it was read (corner halvings around the
-    /// singular edges below the element sizes gmsh makes well; FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub mesh_refinement: Option<String>,
-    /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub far_field: Option<crate::discretisation::far_field::FarField>,
-    /// Where the finest FEM model's time went (FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub fem_timings: Option<crate::fem::solver::FemTimings>,
-    /// Element degree, 1, 2 or 3 (FEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub degree: Option<u8>,
+    /// Where the FEM's numbers come from (FEM only): its model, mesh and times, written as keys
+    /// of the solution itself (`dofs`, `mesh`, `mesh_sha256`, ...).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub fem: Option<FemProvenance>,
     /// Complementarity residual of the contact solution (FEM concave punches, grid BEM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub complementarity_residual: Option<f64>,
@@ -104,6 +80,33 @@ pub struct Solution {
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.
     pub provenance: String,
+}
+
+/// The FEM's part of a [`Solution`]: the finest model's size, its mesh with where it came from,
+/// the far field and where the time went. Its keys are the solution's own in JSON.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct FemProvenance {
+    /// Degrees of freedom of the finest finite-element model used.
+    pub dofs: usize,
+    /// Mesh used, relative to the repository root.
+    pub mesh: String,
+    /// SHA-256 of that mesh file.
+    pub mesh_sha256: String,
+    /// Where the mesh came from: `committed`, `cache`, `gmsh` (made for this run) or `user`.
+    pub mesh_origin: crate::mesh::provider::MeshOrigin,
+    /// Version of the gmsh that made the mesh (generated meshes only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub gmsh_version: Option<String>,
+    /// Refinement applied to that file's mesh when it was read (corner halvings around the
+    /// singular edges below the element sizes gmsh makes well; FEM only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mesh_refinement: Option<String>,
+    /// Far-field treatment of the FEM domain: `fixed` or `boussinesq`.
+    pub far_field: crate::discretisation::far_field::FarField,
+    /// Where the finest FEM model's time went.
+    pub fem_timings: crate::fem::solver::FemTimings,
+    /// Element degree, 1, 2 or 3.
+    pub degree: u8,
 }
 
 /// The conical punch's hole `b/a` at depth `d/h` (`γ1(b/a) = d/h`), ascending in depth: the ring
@@ -312,6 +315,40 @@ impl Solution {
 mod tests {
     use super::*;
 
+    /// The FEM's part is written as the solution's own keys (the JSON of `verify solve --json`
+    /// before it had a part of its own), absent for other methods, and read back as it was.
+    #[test]
+    fn fem_provenance_keys_are_the_solutions_own() {
+        let other = state(PunchKind::Sphere, 0.2, 1.5, 2.0);
+        let json = serde_json::to_value(&other).unwrap();
+        assert!(json.get("dofs").is_none() && json.get("fem").is_none());
+        let back: Solution = serde_json::from_value(json).unwrap();
+        assert!(back.fem.is_none());
+        let fem = Solution {
+            fem: Some(FemProvenance {
+                dofs: 1234,
+                mesh: "meshes/disk-L2.msh".into(),
+                mesh_sha256: "ab".repeat(32),
+                mesh_origin: crate::mesh::provider::MeshOrigin::Committed,
+                gmsh_version: None,
+                mesh_refinement: None,
+                far_field: crate::discretisation::far_field::FarField::Boussinesq,
+                fem_timings: Default::default(),
+                degree: 2,
+            }),
+            ..other
+        };
+        let json = serde_json::to_value(&fem).unwrap();
+        assert_eq!(json["dofs"], 1234);
+        assert_eq!(json["mesh"], "meshes/disk-L2.msh");
+        assert_eq!(json["far_field"], "boussinesq");
+        assert_eq!(json["degree"], 2);
+        assert!(json.get("fem").is_none() && json.get("gmsh_version").is_none());
+        let back: Solution = serde_json::from_value(json).unwrap();
+        let part = back.fem.expect("the FEM's keys read back into its part");
+        assert_eq!((part.dofs, part.degree), (1234, 2));
+    }
+
     fn state(punch: PunchKind, eps: f64, depth: f64, force: f64) -> Solution {
         Solution {
             punch,
@@ -330,15 +367,7 @@ mod tests {
             wall_s: 0.0,
             unknowns: 0,
             iterations: 0,
-            dofs: None,
-            mesh: None,
-            mesh_sha256: None,
-            mesh_origin: None,
-            gmsh_version: None,
-            mesh_refinement: None,
-            far_field: None,
-            fem_timings: None,
-            degree: None,
+            fem: None,
             complementarity_residual: None,
             edge_conditioning: None,
             grid: None,

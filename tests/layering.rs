@@ -174,3 +174,33 @@ fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
         }
     }
 }
+
+/// The harness asks the methods for solutions (`methods::Method`) and the FEM only through the
+/// names `src/fem/mod.rs` exports for what only the FEM offers: never a module inside the FEM,
+/// the discretisation or the linear algebra's backends.
+#[test]
+fn the_harness_reaches_the_fem_only_through_its_api() {
+    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut files = Vec::new();
+    sources(&src.join("harness"), &mut files);
+    assert!(!files.is_empty(), "no harness sources found");
+    let internals = [
+        "fem::solver",
+        "fem::contact",
+        "fem::surface_response",
+        "discretisation::assembly",
+        "discretisation::element",
+        "sparse::native",
+        "sparse::constrained",
+    ];
+    for file in &files {
+        let code = code_of(file);
+        for internal in internals {
+            assert!(
+                !code.contains(internal),
+                "{} reaches into {internal} (use methods::Method or the names in src/fem/mod.rs)",
+                file.display()
+            );
+        }
+    }
+}

@@ -137,10 +137,10 @@ pub fn describe(scene: &Scene, s: &Solution) -> Table {
             None => "none (see provenance: a fit, or a single mesh)".to_string(),
         },
     );
-    if let (Some(dofs), Some(mesh)) = (s.dofs, &s.mesh) {
+    if let Some(fem) = &s.fem {
         row(
             "model",
-            format!("{dofs} dofs, P{} on {mesh}", s.degree.unwrap_or(0)),
+            format!("{} dofs, P{} on {}", fem.dofs, fem.degree, fem.mesh),
         );
     }
     if let Some(k) = s.edge_conditioning {

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;

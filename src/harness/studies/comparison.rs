@@ -12,7 +12,8 @@ use serde::Serialize;
 
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::fem::FemLoad;
+use crate::methods::{self, Method, MethodOptions};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;
@@ -197,13 +198,10 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
 /// The FEM (default tolerance, P2, committed meshes) against the ring BEM on states of all
 /// punches.
 pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
-    let options = FemOptions {
-        linear_solver: Default::default(),
-        degree: Degree::Quadratic,
-        tolerance: fem_solver::DEFAULT_TOLERANCE,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    // `--method fem` at its default tolerance, P2, on the meshes it picks.
+    let options = MethodOptions {
+        degree: Some(Degree::Quadratic),
+        ..MethodOptions::default()
     };
     let mut checks = Vec::new();
     let cases = [
@@ -216,7 +214,13 @@ pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Cr
         (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5)),
     ];
     for (kind, eps, load) in cases {
-        let fem = fem_solver::solve(kind, eps, load, &options)?;
+        let scene = super::scene_of_fem_load(kind, eps, load, None)?;
+        let fem = methods::solve_with(&scene, Method::Fem, &options)?;
+        // A FEM solution always carries its model's part.
+        let (dofs, mesh) = fem
+            .fem
+            .as_ref()
+            .map_or((0, String::new()), |m| (m.dofs, m.mesh.clone()));
         let (bem_value, bem_eps, bem_estimate, prescribed, fem_value) = match load {
             FemLoad::ConcaveDepth(d) => {
                 let s = solver.concave_at_depth(kind, d, tolerance)?;
@@ -254,8 +258,8 @@ pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Cr
             ring_bem_error_estimate: bem_estimate,
             relative_difference,
             eps_difference,
-            dofs: fem.dofs,
-            mesh: fem.mesh,
+            dofs,
+            mesh,
             fem_wall_s: fem.wall_s,
             agrees: relative_difference.abs() <= allowed && eps_difference.abs() <= allowed,
         });

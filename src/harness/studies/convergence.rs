@@ -20,7 +20,7 @@ use crate::bem::grid_contact;
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::provider;
 use crate::mesh::triangulation::Degree;
 use crate::methods::Method;

@@ -9,7 +9,7 @@ use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
 use crate::bem::grid_contact::{self, cell_centre, discretise};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::Result;
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;
 
@@ -110,7 +110,7 @@ pub fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
     let fem_state =
         fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
     // Nodal estimates in the contact, clipped near the rim singularity.
-    let fem = crate::fem::contact::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
+    let fem = crate::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
         .into_iter()
         .filter(|&(r, p)| p > 0.0 && r < 0.99)
         .collect();

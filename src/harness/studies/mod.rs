@@ -9,3 +9,30 @@ pub mod figures;
 pub mod speed_accuracy;
 pub mod stability;
 pub mod sweeps;
+
+use crate::error::Result;
+use crate::fem::FemLoad;
+use crate::punch::PunchKind;
+use crate::scene::{Scene, SceneSpec};
+
+/// The scene a FEM load describes, for a solve through [`crate::methods::Method`]: punch
+/// `kind`, `b/a = eps` (flat annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
+/// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
+pub fn scene_of_fem_load(
+    kind: PunchKind,
+    eps: f64,
+    load: FemLoad,
+    tolerance: Option<f64>,
+) -> Result<Scene> {
+    let spec = SceneSpec::default().shape(kind);
+    let spec = match load {
+        FemLoad::Flat if kind == PunchKind::FlatAnnulus => spec.inner_ratio(eps),
+        FemLoad::Flat => spec,
+        FemLoad::ConcaveDepth(depth) => spec.depth(depth),
+        FemLoad::ConcaveForce(force) => spec.force(2.0 * force),
+    };
+    match tolerance {
+        Some(t) => spec.tolerance(t).validate(),
+        None => spec.validate(),
+    }
+}

@@ -15,7 +15,8 @@ use crate::bem::grid_contact;
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::fem::{self as fem_solver, FemLoad, FemOptions};
+use crate::methods::{self, Method, MethodOptions};
 use crate::harness::records::fenicsx::FenicsxComparison;
 use crate::mesh::triangulation::Degree;
 use crate::numerics::tanh_sinh::TanhSinhRule;
@@ -322,15 +323,11 @@ pub fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<
     }
     let cost = problem.cost_problem();
     let degree = fem_solver::default_degree(tolerance);
-    let options = FemOptions {
-        linear_solver: Default::default(),
-        degree,
-        tolerance,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    let solve = || {
+        let scene = super::scene_of_fem_load(cost.kind, cost.eps, cost.load, Some(tolerance))?;
+        methods::solve_with(&scene, Method::Fem, &MethodOptions::default())
     };
-    match timed(|| fem_solver::solve(cost.kind, cost.eps, cost.load, &options)) {
+    match timed(solve) {
         Ok((s, t)) => Some(estimated_point(
             "fem --tol",
             format!("tol {tolerance:.0e}, P{}", degree as u8),

@@ -135,7 +135,7 @@ fn must_decline(
 /// swapped, written to a temporary file.
 fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
     let text =
-        std::fs::read_to_string(crate::fem::solver::mesh_directory().join("small-domain-R5.msh"))
+        std::fs::read_to_string(crate::fem::mesh_directory().join("small-domain-R5.msh"))
             .ok()?;
     let swapped: Vec<String> = text
         .lines()
@@ -285,7 +285,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         push(p);
     }
     let coarse = MethodOptions {
-        mesh: Some(crate::fem::solver::mesh_directory().join("disk-L0.msh")),
+        mesh: Some(crate::fem::mesh_directory().join("disk-L0.msh")),
         degree: Some(crate::mesh::triangulation::Degree::Linear),
         ..MethodOptions::default()
     };
@@ -298,7 +298,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     );
     push(p);
     let small = MethodOptions {
-        mesh: Some(crate::fem::solver::mesh_directory().join("small-domain-R5.msh")),
+        mesh: Some(crate::fem::mesh_directory().join("small-domain-R5.msh")),
         ..MethodOptions::default()
     };
     let p = probe(
@@ -404,7 +404,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     if let Some(path) = swapped {
         let _ = std::fs::remove_file(path);
     }
-    let annulus = crate::fem::solver::mesh_directory().join("annulus-0.5-L0.msh");
+    let annulus = crate::fem::mesh_directory().join("annulus-0.5-L0.msh");
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus.clone()),
