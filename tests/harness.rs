@@ -96,7 +96,10 @@ fn fem_fields_are_written_as_vtk() {
             && text.contains("UnstructuredGrid")
             && text.contains("Name=\"displacement\"")
     );
-    assert!(text.contains(&format!("NumberOfPoints=\"{}\"", s.fem.as_ref().unwrap().dofs / 2)));
+    assert!(text.contains(&format!(
+        "NumberOfPoints=\"{}\"",
+        s.fem.as_ref().unwrap().dofs / 2
+    )));
     let e = methods::solve_with(&scene, Method::RingBem, &options).unwrap_err();
     assert!(e.to_string().contains("--vtu"));
 }

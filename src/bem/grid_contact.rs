@@ -14,7 +14,7 @@ use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
 /// Fewest cells across the contact ring for a result (fewer: an error, not a number).
-pub const MIN_CELLS_ACROSS: f64 = 2.0;
+const MIN_CELLS_ACROSS: f64 = 2.0;
 
 /// Largest grid accepted: memory about 100 N² bytes (0.4 GB at 2048), time growing like
 /// `N² log N` per iteration times an iteration count that grows with `N` (measured 4-17 s at 512 on

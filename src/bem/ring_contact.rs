@@ -42,13 +42,13 @@ pub const MIN_TOLERANCE: f64 = 1e-12;
 /// Rounding floor of the method's dimensionless results (relative): node counts that agree better
 /// than this are not taken as proof of a smaller error. Measured: results at N = 16..64 scatter by
 /// 1e-14 to 1e-13 once converged.
-pub const ROUNDING_FLOOR: f64 = 1e-13;
+const ROUNDING_FLOOR: f64 = 1e-13;
 
 /// Tanh-sinh step used for every row integral (about 1e-15 relative per row).
 const QUADRATURE_STEP: f64 = 1.0 / 16.0;
 
 /// A dimensionless pressure sample `(r/a, p a/(E* L))` with `L = d` (flat) or `L = h` (concave).
-pub type ScaledPressure = (f64, f64);
+type ScaledPressure = (f64, f64);
 
 /// Result of a ring-BEM state in dimensionless form.
 #[derive(Clone, Debug)]

@@ -14,7 +14,7 @@ use crate::harness::studies::convergence;
 use crate::harness::studies::stability;
 
 /// FEM tolerances of the nightly suite's speed-accuracy jobs.
-pub const NIGHTLY_FEM_TOLERANCES: [f64; 4] = [1e-3, 1e-4, 1e-6, 1e-8];
+const NIGHTLY_FEM_TOLERANCES: [f64; 4] = [1e-3, 1e-4, 1e-6, 1e-8];
 
 /// `verify plan`: the default report, the nightly suite or a convergence study as a plan.
 pub fn plan(args: PlanArgs) -> Result<Reply, String> {

@@ -11,7 +11,7 @@ use crate::punch::PunchKind;
 
 /// The `d0/h` of a concave punch's direct simulation: its load path takes about `250 h/d0`
 /// steps per range below `d0/h = 1` and `200 d0/h` above.
-pub const PULLOFF_D0H_RANGE: (f64, f64) = (0.1, 100.0);
+const PULLOFF_D0H_RANGE: (f64, f64) = (0.1, 100.0);
 
 /// `verify pulloff`: the sequence at decreasing ranges, its extrapolate and the JKR route's
 /// value.

@@ -24,21 +24,17 @@ use crate::mesh::provider::{self, ProvidedMesh};
 
 /// Most contact-line elements an annular mesh may ask for (the condensed model is dense: 1000
 /// elements are about 2000 nodes, a few seconds per Newton step).
-pub const MAX_LINE_ELEMENTS: f64 = 600.0;
+const MAX_LINE_ELEMENTS: f64 = 600.0;
 
 /// Smallest range `ρ/d0` whose uniform contact line at `ℓ / elements_per_zone` stays within
 /// [`MAX_LINE_ELEMENTS`]: `ℓ = π² (ρ/d0)²/2 >= elements_per_zone / MAX_LINE_ELEMENTS`.
-pub fn smallest_range(elements_per_zone: f64) -> f64 {
+fn smallest_range(elements_per_zone: f64) -> f64 {
     (2.0 * elements_per_zone / (MAX_LINE_ELEMENTS * std::f64::consts::PI.powi(2))).sqrt()
 }
 
 /// The mesh of the annular branch at `range`: level [`STUDY_LEVEL`] of the adapted family with
 /// a uniform contact line of `ℓ / elements_per_zone` (gmsh; there is no committed fallback).
-pub fn annular_mesh(
-    case: &Case,
-    range: f64,
-    elements_per_zone: f64,
-) -> Result<(ProvidedMesh, f64)> {
+fn annular_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(ProvidedMesh, f64)> {
     let size = case.zone_length(range) / elements_per_zone;
     if 1.0 / size > MAX_LINE_ELEMENTS {
         return Err(Error::invalid(

@@ -31,7 +31,7 @@ impl ExponentialLaw {
     }
 
     /// Peak tension `σ0 = Δw/ρ`.
-    pub fn peak(&self) -> f64 {
+    fn peak(&self) -> f64 {
         self.work / self.range
     }
 

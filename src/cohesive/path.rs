@@ -18,7 +18,7 @@ use crate::cohesive::equilibrium::{CohesiveSurface, Equilibrium};
 use crate::error::{Error, Result};
 
 /// Largest force change per accepted step, in units of Kendall's `F0`.
-pub const JUMP_FORCE: f64 = 0.05;
+const JUMP_FORCE: f64 = 0.05;
 
 /// Separations up to this many ranges count as the cohesive zone (tension above `e^-3 σ0`).
 const ZONE_RANGES: f64 = 3.0;

@@ -30,7 +30,7 @@ pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
 /// ranges there end at a mesh-dependent node hop or find no equilibrium (the cone at
 /// `d0/h = 10`, Tabor 90, on the committed disk level 2: none at touch after 300 Newton
 /// iterations).
-pub const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
+const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
 
 /// The default ranges where the study runs: [`DEFAULT_RANGES`] with gmsh (rim bands), else
 /// [`COMMITTED_MESH_RANGES`].
@@ -45,35 +45,35 @@ pub fn default_ranges() -> Vec<f64> {
 /// Width of the refined band at the rim, in cohesive-zone lengths `ℓ`: the crack front runs in
 /// from the rim before the tension peaks (the flat punch: `3.4 ℓ` at Tabor 9, `7.5 ℓ` at 36,
 /// `9-13 ℓ` at 90), and the mesh must resolve the zone all that way.
-pub const RIM_BAND_ZONES: f64 = 20.0;
+const RIM_BAND_ZONES: f64 = 20.0;
 
 /// Elements per zone length `ℓ` in the rim band (uniform size `ℓ / 6`); the mesh check uses
 /// half as many on the level below [`RIM_BAND_LEVEL`].
-pub const RIM_BAND_ELEMENTS_PER_ZONE: f64 = 6.0;
+const RIM_BAND_ELEMENTS_PER_ZONE: f64 = 6.0;
 
 /// Level of the adapted family under the rim band (the rest of the contact line and the
 /// body): the band resolves the zone, so the coarse level 1 suffices (the flat punch at Tabor
 /// 90: level 2 under a band gives the same pull-off to 1e-5).
-pub const RIM_BAND_LEVEL: i32 = 1;
+const RIM_BAND_LEVEL: i32 = 1;
 
 /// Largest force step, in `F0`, accepted as the crack front hopping a node inside the rim band
 /// (measured hops there at six elements per zone: 1e-6 to 1e-4 F0).
-pub const RIM_BAND_HOP_FORCE: f64 = 1e-3;
+const RIM_BAND_HOP_FORCE: f64 = 1e-3;
 
 /// Preload of the flat punches, in units of `d0`.
-pub const FLAT_PRELOAD: f64 = 0.5;
+const FLAT_PRELOAD: f64 = 0.5;
 
 /// Preload of the concave punches, in units of `h`: past the depth where the sphere's hole closes
 /// without adhesion (`3h`); with adhesion both punches' holes close earlier where `d0/h` is large.
-pub const CONCAVE_PRELOAD: f64 = 3.0;
+const CONCAVE_PRELOAD: f64 = 3.0;
 
 /// Deepest preload of a concave punch, in units of `h`: where its hole is still open at
 /// [`CONCAVE_PRELOAD`] (small `d0/h`: the JKR route closes the cone's hole at `d0/h = 0.3` only
 /// past `3.8 h`), it is pressed on in steps of `3h` until the hole closes, down to this depth.
-pub const MAX_CONCAVE_PRELOAD: f64 = 24.0;
+const MAX_CONCAVE_PRELOAD: f64 = 24.0;
 
 /// Widest error bar, relative to the extrapolate, that still gives a verdict.
-pub const CONCLUSIVE_BAR: f64 = 0.1;
+const CONCLUSIVE_BAR: f64 = 0.1;
 
 /// Which branch of a concave punch's contact a study follows.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize, Deserialize, clap::ValueEnum)]
@@ -217,7 +217,7 @@ pub struct RimBand {
 }
 
 /// Points a stored curve is thinned to (about; its jumps are all kept).
-pub const STORED_CURVE_POINTS: usize = 300;
+const STORED_CURVE_POINTS: usize = 300;
 
 /// One simulation's force-displacement curve, thinned for storage.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -253,7 +253,7 @@ pub fn thin(curve: &[CurveSample], most: usize) -> Vec<CurveSample> {
 }
 
 /// The indices [`thin`] keeps, increasing.
-pub fn thinned_indices(curve: &[CurveSample], most: usize) -> Vec<usize> {
+fn thinned_indices(curve: &[CurveSample], most: usize) -> Vec<usize> {
     let n = curve.len();
     if n <= most {
         return (0..n).collect();
@@ -283,7 +283,7 @@ pub struct ExcludedEntry {
 }
 
 /// Smallest range `ρ/d0` a study extends its sequence to when a range is excluded (Tabor 450).
-pub const MIN_RANGE: f64 = 0.001;
+const MIN_RANGE: f64 = 0.001;
 
 /// The study of one punch.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -487,7 +487,7 @@ pub fn run_on_study_meshes(
 /// The mesh of one range of the closed branch: level `level` of the adapted family with the band
 /// `[a - w, a]`, `w` = [`RIM_BAND_ZONES`] zone lengths (at most the contact line), meshed
 /// uniformly at `ℓ / elements_per_zone` (gmsh; `ℓ = π² (ρ/d0)²/2 a`).
-pub fn rim_band_mesh(
+fn rim_band_mesh(
     case: &Case,
     range: f64,
     elements_per_zone: f64,
@@ -1026,7 +1026,7 @@ pub fn simulate_cases(
 }
 
 /// One point of a force-displacement curve: `(d/d0, F/F0, unloading)`.
-pub type CurveSample = (f64, f64, bool);
+type CurveSample = (f64, f64, bool);
 
 /// A single simulation run by the report (the stored studies are too slow for the default run).
 #[derive(Clone, Debug, Serialize, Deserialize)]

@@ -592,7 +592,7 @@ impl StiffnessPattern {
     }
 
     /// The matrix of this pattern with `values` ([`Self::values`]).
-    pub fn into_matrix(self, values: Vec<f64>) -> Result<CscMatrix<f64>> {
+    fn into_matrix(self, values: Vec<f64>) -> Result<CscMatrix<f64>> {
         self.into_matrix_and_diagonal(values)
             .map(|(matrix, _)| matrix)
     }

@@ -64,7 +64,7 @@ impl FarField {
 
 /// Boussinesq's displacement per unit compressive force at the origin, `(G_r, G_z)` at `(r, z)`,
 /// `z <= 0` (see the module documentation).
-pub fn boussinesq_displacement(material: &Lame, r: f64, z: f64) -> [f64; 2] {
+fn boussinesq_displacement(material: &Lame, r: f64, z: f64) -> [f64; 2] {
     let nu = material.lambda / (2.0 * (material.lambda + material.mu));
     let zeta = -z;
     let rho = r.hypot(zeta);
@@ -78,7 +78,7 @@ pub fn boussinesq_displacement(material: &Lame, r: f64, z: f64) -> [f64; 2] {
 /// `∫_arc f(t, G) 2π r R dφ` over the quarter arc `r = R cos φ`, `z = -R sin φ`, where
 /// `t = σ(G) ρ̂` is the traction of the unit Boussinesq field on the arc (Gauss-Legendre in `φ`;
 /// strains by central differences of the closed form).
-pub fn arc_integral(material: &Lame, radius: f64, f: impl Fn([f64; 2], [f64; 2]) -> f64) -> f64 {
+fn arc_integral(material: &Lame, radius: f64, f: impl Fn([f64; 2], [f64; 2]) -> f64) -> f64 {
     let (x, w) = gauss_legendre(48);
     let half_pi = 0.5 * std::f64::consts::PI;
     let step = 1e-5 * radius;

@@ -21,26 +21,26 @@ use crate::sparse::constrained::ConstrainedCholesky;
 
 /// Times a banded solve whose core was released is retried with a higher core before the
 /// factorisation-per-iteration loop takes over.
-pub const BAND_RETRIES: usize = 2;
+const BAND_RETRIES: usize = 2;
 
 /// An active-set iteration that changes at most this many nodes is creeping: the hybrid loop
 /// hands over to the banded solve. Cold starts change about half as many nodes per iteration as
 /// the one before (measured: 266, 48, 20, 10, 4, 2 on a 7e4-unknown cone model).
-pub const CREEP_CHANGES: usize = 12;
+const CREEP_CHANGES: usize = 12;
 
 /// Fewest nodes above the inner edge left in the band when the hybrid loop hands over (at least
 /// twice the last iteration's changes, plus four).
-pub const CREEP_BAND_NODES: usize = 8;
+const CREEP_BAND_NODES: usize = 8;
 
 /// Window of the free-edge secant step: two successive plain steps of the edge whose ratio lies in
 /// it (same direction, shrinking about by half, as near a free edge) are extrapolated
 /// (`ContactModel::edge_secant`). Steps still far from the edge shrink more slowly (0.68 on a P1
 /// model whose edge lies off its refined zone: the jump overshot and cost a factorisation) or
 /// faster (0.03 where the first steps cross the coarse part of the line).
-pub const EDGE_SECANT_RATIO: std::ops::RangeInclusive<f64> = 0.25..=0.6;
+const EDGE_SECANT_RATIO: std::ops::RangeInclusive<f64> = 0.25..=0.6;
 
 /// Iteration cap of the active-set loop.
-pub const MAX_ACTIVE_SET_ITERATIONS: usize = 100;
+const MAX_ACTIVE_SET_ITERATIONS: usize = 100;
 
 /// Result of one contact solve.
 #[derive(Clone, Debug)]
@@ -106,7 +106,7 @@ enum Extrapolated {
 }
 
 /// How a banded contact solve ended.
-pub enum BandOutcome {
+enum BandOutcome {
     /// Converged, with its active set.
     Solved(ContactSolution, Vec<bool>),
     /// The solution releases a core node (the band was too narrow): the largest radius released,
@@ -234,7 +234,7 @@ impl<'m> ContactModel<'m> {
     /// and the remaining steps cost unit responses instead of factorisations. Near a free edge the
     /// primal-dual iteration otherwise releases one node per factorisation (measured: 4-7 such
     /// steps per model).
-    pub fn concave_hybrid(
+    fn concave_hybrid(
         &self,
         system: &mut BandedSystem,
         kind: PunchKind,
@@ -351,7 +351,7 @@ impl<'m> ContactModel<'m> {
     /// through their unit responses ([`BandedSystem`]). Returns `None` when the solution releases
     /// a core node (the band was too narrow) or the band needs more than [`crate::fem::contact_band::MAX_BAND_NODES`]
     /// responses; the caller then falls back to [`Self::concave`].
-    pub fn concave_banded(
+    fn concave_banded(
         &self,
         system: &mut BandedSystem,
         kind: PunchKind,
@@ -792,7 +792,7 @@ impl<'m> ContactModel<'m> {
     /// A hole opens as the innermost node releases: when the model's own error, as a relative
     /// depth error, exceeds `μ1`, the model cannot tell a closed contact from an open hole; when
     /// it is below `μ0_low`, no hole is open at all.
-    pub fn opening_margins(
+    fn opening_margins(
         &self,
         solver: &ConstrainedCholesky,
         depth: f64,

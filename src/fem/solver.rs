@@ -76,7 +76,7 @@ pub fn unresolved_component(contact_ratio: f64) -> f64 {
 /// level). Zero for linear and quadratic elements: unmeasured, and their ladders (the committed
 /// families without gmsh, `--degree`) were verified without it; a coefficient of 0.3 taken from
 /// the committed disk's rim study pushed the annulus 0.9's estimate past 1e-3.
-pub fn edge_error_coefficient(degree: Degree) -> f64 {
+fn edge_error_coefficient(degree: Degree) -> f64 {
     match degree {
         Degree::Linear | Degree::Quadratic => 0.0,
         Degree::Cubic => 0.05,
@@ -84,20 +84,20 @@ pub fn edge_error_coefficient(degree: Degree) -> f64 {
 }
 
 /// Below this tolerance the committed family is skipped and the adapted family starts directly.
-pub const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
+const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
 
 /// Fewest free contact nodes in a concave punch's hole for the located edge to be bounded by
 /// [`INNER_RADIUS_BOUND`] of the spacing: the edge is extrapolated from the three free nodes
 /// before the last (P3) or the last three (P1, P2); with fewer the bound is two spacings (the
 /// cone at `d = 12 h`, hole `9.1e-4 a` inside 1-2 nodes, was located 5.9e-4 off).
-pub const MIN_FREE_NODES: usize = 5;
+const MIN_FREE_NODES: usize = 5;
 
 /// Bound on the error of the located inner radius, as a fraction of the contact-node spacing
 /// there. The force is stationary in `b` (Barber), so the discrete free edge converges more slowly
 /// than the force: against the ring BEM, P2 on the committed meshes showed errors up to 0.12 of
 /// the spacing (12 states, levels 1-3), and P3 on the adapted meshes up to 0.20 (the sphere at
 /// `d = 2.8 h`, `--tol 1e-6`; 0.04-0.14 elsewhere); the bound takes 0.3.
-pub const INNER_RADIUS_BOUND: f64 = 0.3;
+const INNER_RADIUS_BOUND: f64 = 0.3;
 
 /// What to solve.
 #[derive(Clone, Copy, Debug)]
@@ -506,7 +506,7 @@ fn unraisable_mesh_error(provided: &ProvidedMesh, degree: Degree) -> Error {
 
 /// What a coarser model tells the next one about a concave punch's free edge.
 #[derive(Clone, Copy, Debug)]
-pub struct WarmStart {
+struct WarmStart {
     /// Inner contact radius located on the coarser model.
     pub inner_radius: f64,
     /// Half-width of the band around it where the finer model's edge is expected: twice the
@@ -527,7 +527,7 @@ fn core_radius(warm: Option<WarmStart>) -> f64 {
 /// 4e-9 on the most graded 10^6-unknown models (against the ring BEM, earlier builds): 250 times
 /// below this tolerance. The step costs a residual and a second triangular solve, 8-12 % of a
 /// single-mesh flat solve at 6e4-9e4 unknowns.
-pub const REFINE_BELOW_TOLERANCE: f64 = 1e-6;
+const REFINE_BELOW_TOLERANCE: f64 = 1e-6;
 
 /// Solve one prepared model.
 fn solve_model(
@@ -616,7 +616,7 @@ fn solve_model(
 /// beyond the linear model's reach it can miss by more (5 spacings on the cone's `--tol 1e-6`
 /// P3 mesh): the banded solve then moves its core up, at one factorisation per move, and the
 /// answer is the same.
-pub const LINEAR_LOCATOR_BAND_SPACINGS: f64 = 4.0;
+const LINEAR_LOCATOR_BAND_SPACINGS: f64 = 4.0;
 
 /// Locate a concave punch's free edge on the linear model of the same mesh (its vertices only,
 /// about a quarter of the quadratic model's unknowns and an eighth of its factorisation time),
@@ -830,7 +830,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
 /// family their force error falls like `g⁶` against `g⁴` for quadratic ones, so they reach 1e-6
 /// on a level whose quadratic model is 1e-4 off (measured: flat annulus 0.3 at `g = 0.19`, 2.2e-7
 /// with P3 and 4.4e-5 with P2 on the same mesh).
-pub const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
+const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
 
 /// Element degree when none is asked for: cubic on meshes made for the scene (gmsh found, or a
 /// tolerance below [`CUBIC_BELOW_TOLERANCE`]); quadratic on the committed ladder, whose levels
@@ -858,7 +858,7 @@ pub fn gmsh_found() -> bool {
 /// the ring BEM's edge and force as reference: the edge error was 0.10-0.25 of `κ` times the
 /// actual force error, which the force estimate exceeds by 2-10; 0.5 keeps a factor of 2 on
 /// the largest share.
-pub const EDGE_FIELD_FRACTION: f64 = 0.5;
+const EDGE_FIELD_FRACTION: f64 = 0.5;
 
 /// The whole shift `κ ε` of a field error that acted as a depth error, with a margin for `κ`'s
 /// own error (below), taken instead of [`EDGE_FIELD_FRACTION`] where the reasons for a smaller
@@ -878,33 +878,33 @@ pub const EDGE_FIELD_FRACTION: f64 = 0.5;
 /// the actual depth error, so the whole shift alone left no margin: the sphere under 5.3328 (P3,
 /// `--tol 1e-3`) was bound by a factor of 1.02 (`eps` off by 9.3e-4 under
 /// 9.5e-4; with 1.5 it climbs to 135 356 unknowns and answers within 2.6e-5 under 2.4e-4).
-pub const EDGE_FIELD_FRACTION_WHOLE: f64 = 1.5;
+const EDGE_FIELD_FRACTION_WHOLE: f64 = 1.5;
 
 /// Safety factor on the Richardson estimate between two grading levels (Roache's `F_s = 3` for
 /// two grids).
-pub const RICHARDSON_SAFETY: f64 = 3.0;
+const RICHARDSON_SAFETY: f64 = 3.0;
 
 /// Largest model after which the ladder still climbs: the next level has about 2.7 times as many
 /// unknowns, so no model beyond about 2 M unknowns is made (P3 at 4e6 needs about 10 GB and half
 /// a minute per factorisation here).
-pub const MAX_LADDER_UNKNOWNS: usize = 750_000;
+const MAX_LADDER_UNKNOWNS: usize = 750_000;
 
 /// Most refinements of one adapted level around the free edge before the next level.
-pub const MAX_EDGE_REPEATS: usize = 2;
+const MAX_EDGE_REPEATS: usize = 2;
 
 /// Force error of the finer of two consecutive adapted levels per unit change between them:
 /// the force converges like `g^{2p}` asymptotically (a functional, twice the energy norm's order
 /// `p`), but on the coarse levels the measured ratio per level is lower (P3: 12 from `g = 0.89`
 /// to 0.53, 12.5 to 0.32, 18 to 0.19, against `0.6^-6 = 21`), so the order taken is `2p - 1`: the
 /// finer error is `|ΔF| / (0.6^{1-2p} - 1)`, times [`RICHARDSON_SAFETY`].
-pub fn richardson_factor(degree: Degree) -> f64 {
+fn richardson_factor(degree: Degree) -> f64 {
     RICHARDSON_SAFETY / (known_order_ratio(degree) - 1.0)
 }
 
 /// Smallest ratio of consecutive grading steps' force changes that [`grading_step_estimate`]
 /// divides by: a ratio nearer 1 (changes that do not shrink) is taken as this one, an estimate
 /// of twice the change times [`RICHARDSON_SAFETY`].
-pub const MIN_OBSERVED_RATIO: f64 = 1.5;
+const MIN_OBSERVED_RATIO: f64 = 1.5;
 
 /// Force error of the finer model of a grading step whose force changed by `change`, the step
 /// before having changed it by `previous_change`: Richardson with the known order
@@ -914,7 +914,7 @@ pub const MIN_OBSERVED_RATIO: f64 = 1.5;
 /// 2.9998 h with P3 at `--tol 1e-3`: consecutive levels changed the force by
 /// 1.6e-3 and 1.9e-4, a ratio of 8.5 against the assumed 12.9, and the known order's estimate
 /// (9.2e-6) was below the actual error (1.26e-5, ring BEM); the observed ratio's is 1.45e-5.
-pub fn grading_step_estimate(degree: Degree, change: f64, previous_change: Option<f64>) -> f64 {
+fn grading_step_estimate(degree: Degree, change: f64, previous_change: Option<f64>) -> f64 {
     let assumed = known_order_ratio(degree);
     let ratio = observed_ratio(change, previous_change).map_or(assumed, |r| r.min(assumed));
     RICHARDSON_SAFETY * change / (ratio.max(MIN_OBSERVED_RATIO) - 1.0)
@@ -936,7 +936,7 @@ fn observed_ratio(change: f64, previous_change: Option<f64>) -> Option<f64> {
 /// Whether a grading step whose force changed by `change`, after a step that changed it by
 /// `previous_change`, converged more slowly than the known order says (the observed ratio is the
 /// one [`grading_step_estimate`] used): the model is outside the asymptotic range.
-pub fn below_known_order(degree: Degree, change: f64, previous_change: Option<f64>) -> bool {
+fn below_known_order(degree: Degree, change: f64, previous_change: Option<f64>) -> bool {
     observed_ratio(change, previous_change).is_some_and(|r| r < known_order_ratio(degree))
 }
 
@@ -954,7 +954,7 @@ fn predicted_force_error(degree: Degree, level: i32) -> f64 {
 
 /// First adapted level climbed without committed meshes: the lowest `k` whose step to `k + 1` is
 /// predicted to meet the tolerance (`richardson_factor · error(k) <= tol`).
-pub fn first_adapted_level(degree: Degree, tolerance: f64) -> i32 {
+fn first_adapted_level(degree: Degree, tolerance: f64) -> i32 {
     (provider::ADAPTED_MIN_LEVEL..provider::ADAPTED_MAX_LEVEL)
         .find(|&k| richardson_factor(degree) * predicted_force_error(degree, k) <= tolerance)
         .unwrap_or(provider::ADAPTED_MAX_LEVEL - 1)

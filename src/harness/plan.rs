@@ -18,7 +18,7 @@ use crate::error::{Error, Result};
 use crate::harness::report_jobs::{JobRecord, Part, PartResult};
 
 /// The first line of every plan file.
-pub const MAGIC: &str = "# ringcontact plan v1";
+const MAGIC: &str = "# ringcontact plan v1";
 /// The column header line.
 const COLUMNS: &str = "id\texpected_s\toutput\tcommand";
 

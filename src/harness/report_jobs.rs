@@ -467,13 +467,13 @@ pub fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
 }
 
 /// The convergence study the report shows: the sphere at `d = 1.5 h`.
-pub const REPORT_STUDY: StudyCase = StudyCase {
+const REPORT_STUDY: StudyCase = StudyCase {
     punch: PunchKind::Sphere,
     eps: 0.0,
     depth: 1.5,
 };
 /// Levels of the report's convergence studies.
-pub const REPORT_STUDY_LEVELS: usize = 3;
+const REPORT_STUDY_LEVELS: usize = 3;
 
 /// The levels of one convergence study, one part each.
 pub fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<Part> {
@@ -490,7 +490,7 @@ pub fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<
 }
 
 /// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.py`'s cases).
-pub fn pulloff_parts() -> Vec<Part> {
+fn pulloff_parts() -> Vec<Part> {
     let mut parts = vec![
         Part::PulloffSimulation {
             punch: PunchKind::Flat,

@@ -18,10 +18,10 @@ use crate::error::{Error, Result};
 use crate::mesh::triangulation::{BoundaryEdge, Degree, Mesh};
 
 /// Ratio `σ` of the element sizes of consecutive corner layers (halving).
-pub const CORNER_RATIO: f64 = 0.5;
+const CORNER_RATIO: f64 = 0.5;
 
 /// Most halvings made around one corner (from `1e-8 a` down to `1e-10 a` takes 7).
-pub const MAX_CORNER_STEPS: usize = 40;
+const MAX_CORNER_STEPS: usize = 40;
 
 /// A request to refine around points of the surface `z = 0` until the elements there are no
 /// larger than `size`.
@@ -89,7 +89,7 @@ fn corner_size(mesh: &Mesh, corner: usize) -> f64 {
 /// A triangle `(P, A, B)` (counter-clockwise) becomes `(P, A', B')`, with
 /// `A' = P + σ (A - P)`, `B' = P + σ (B - P)`, and the trapezoid `A' A B B'` cut along its
 /// shorter diagonal; a boundary edge `(P, A)` becomes `(P, A')` and `(A', A)` with its tag.
-pub fn refine_around(mesh: &Mesh, corner: usize, size: f64) -> Result<Mesh> {
+fn refine_around(mesh: &Mesh, corner: usize, size: f64) -> Result<Mesh> {
     if mesh.degree != Degree::Linear {
         return Err(Error::InvalidMesh {
             path: mesh.source.clone(),

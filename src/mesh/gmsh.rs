@@ -16,7 +16,7 @@ use crate::mesh::files::{cache_directory_of, sha256_hex};
 
 /// Longest a single gmsh run may take before it is stopped (the finest adapted level takes
 /// about 5 s on 2 cores).
-pub const MESHING_TIME_LIMIT_S: u64 = 300;
+const MESHING_TIME_LIMIT_S: u64 = 300;
 
 /// The command that installs gmsh for this project (quoted in errors).
 pub const INSTALL_COMMAND: &str = "bash scripts/install_gmsh.sh";

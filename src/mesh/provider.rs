@@ -32,7 +32,7 @@ use crate::mesh::gmsh::Gmsh;
 use sha2::{Digest, Sha256};
 
 /// Domain radius of the adapted family, in units of `a`.
-pub const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
+const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 
 /// Smallest element size (in units of `a`) asked of gmsh. Its 2-D mesher keeps the elements'
 /// shape only down to about `1e-8` of the coordinates' magnitude (here `a`): at a rim size of
@@ -53,7 +53,7 @@ pub const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
 
 /// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
 /// have vertex coordinates good to `1e-6` of their size.
-pub const MIN_RIM_SIZE: f64 = 1e-10;
+const MIN_RIM_SIZE: f64 = 1e-10;
 
 /// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k` for `k >= 0` (1e-4
 /// on the coarse levels `k < 0`), floored at 1e-10.
@@ -61,19 +61,19 @@ pub const MIN_RIM_SIZE: f64 = 1e-10;
 /// `hmin` costs only `ln(10)/g` more element layers, so the rim is refined well past the graded
 /// zone's error. (The free surface is cut at `r = 2a`: gmsh 4.15 stalls meshing one curve from
 /// `a` to `R = 1e7 a` with elements of 1e-7 at one end.)
-pub fn adapted_rim_size(level: i32) -> f64 {
+fn adapted_rim_size(level: i32) -> f64 {
     (1e-4 * 0.01f64.powi(level.max(0))).max(MIN_RIM_SIZE)
 }
 
 /// Width of the contact ring (in units of `a`) below which the ring's own width, not `a`, sets
 /// the size of the elements at its edges ([`ring_width_scale`]).
-pub const NARROW_RING_WIDTH: f64 = 0.1;
+const NARROW_RING_WIDTH: f64 = 0.1;
 
 /// Width `1 - b/a` of the contact ring (units of `a`), `b/a` being the annulus' inner edge
 /// `contact_start` or a concave punch's located `free_edge`; no narrower than the located edge's
 /// `edge_uncertainty` (an edge found at the rim, only the rim node in contact on the coarser
 /// model, bounds a ring narrower than that model's spacing there).
-pub fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: f64) -> f64 {
+fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: f64) -> f64 {
     let inner = contact_start.max(free_edge.unwrap_or(0.0));
     (1.0 - inner).max(edge_uncertainty).clamp(0.0, 1.0)
 }
@@ -84,7 +84,7 @@ pub fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: 
 /// the ring BEM at `--tol 1e-3`): the flat annulus `b/a = 0.9999` had a force error of 9e-3 under
 /// an estimate of 3e-5, the cone at `d = 0.003 h` 2.4e-3 under 6.2e-4 and the sphere at
 /// `d = 0.003 h` 4.5e-3 under 1.2e-4, every level of the ladder wrong alike.
-pub fn ring_width_scale(width: f64) -> f64 {
+fn ring_width_scale(width: f64) -> f64 {
     (width / NARROW_RING_WIDTH).clamp(0.0, 1.0)
 }
 
@@ -92,7 +92,7 @@ pub fn ring_width_scale(width: f64) -> f64 {
 /// the target's tolerance (the innermost element's force error is about `0.16 hmin` for P2, and
 /// `0.5 hmin` for P3 on the flat annulus `b/a = 0.97`), both times `ring_scale`
 /// ([`ring_width_scale`]); never below [`MIN_RIM_SIZE`].
-pub fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f64 {
+fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f64 {
     let size = match target {
         Some(t) => adapted_rim_size(level).min(0.1 * t.tolerance),
         None => adapted_rim_size(level),
@@ -107,7 +107,7 @@ pub fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) 
 /// the edges leave (measured on the flat annulus `b/a = 0.999` at `--tol 1e-8` with the rim at
 /// the floor and the edges' share left out of the estimate: a force error of 1.4e-8 under an
 /// estimate of 3.6e-9).
-pub fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
+fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
     let ring_scale = ring_width_scale(width);
     let needed = 0.1 * target.tolerance * ring_scale;
     // A relative slack for the rounding of the product: a need of exactly the floor is met.
@@ -134,7 +134,7 @@ pub fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
 /// arguments): the singular edges `r = a` (and `r = b` for `contact_start > 0`) halved down to
 /// [`wanted_rim_size`] (for the ring's [`ring_width`]) when that is below
 /// [`GMSH_MIN_ELEMENT_SIZE`].
-pub fn adapted_corner_refinement(
+fn adapted_corner_refinement(
     contact_start: f64,
     level: i32,
     free_edge: Option<f64>,
@@ -190,7 +190,7 @@ pub struct SizeTarget {
 /// element size at the edge is chosen so that the graded sizes `hb + g |r - b̃|` put about this
 /// many contact nodes (elements times degree) in it, which keeps the banded contact solve
 /// (at most [`crate::fem::contact_band::MAX_BAND_NODES`] nodes) in play.
-pub const EDGE_WINDOW_NODES: f64 = 24.0;
+const EDGE_WINDOW_NODES: f64 = 24.0;
 
 impl MeshRequest {
     /// Short name for tables: `disk-L1`, `adapted-0.3-L4`.
@@ -278,7 +278,7 @@ pub fn committed_family(contact_start: f64) -> Option<String> {
 }
 
 /// Grading `g_k = 0.32 · 0.6^k` of level `k` of the adapted family.
-pub fn adapted_grading(level: i32) -> f64 {
+fn adapted_grading(level: i32) -> f64 {
     0.32 * 0.6f64.powi(level)
 }
 
@@ -420,7 +420,7 @@ fn ends_with_a_section_end(path: &Path) -> bool {
 
 /// The parameters `meshes/half_space.geo` declares (its `DefineConstant` block): the names
 /// [`parse_parameters`] accepts.
-pub const GEO_PARAMETERS: [&str; 12] = [
+const GEO_PARAMETERS: [&str; 12] = [
     "a", "b", "R", "hmin", "hline", "grading", "bref", "hb", "band", "hband", "split", "order",
 ];
 

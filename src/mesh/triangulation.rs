@@ -184,7 +184,7 @@ impl Mesh {
     }
 
     /// `element tag T` (the file's tag) where known, else `triangle c` (0-based, internal).
-    pub fn cell_name(&self, c: usize) -> String {
+    fn cell_name(&self, c: usize) -> String {
         match (
             self.file_tags.cells.get(c),
             self.file_tags.cell_lines.get(c),
@@ -239,7 +239,7 @@ impl Mesh {
     }
 
     /// Whether any boundary edge carries `tag`.
-    pub fn has_tag(&self, tag: i32) -> bool {
+    fn has_tag(&self, tag: i32) -> bool {
         self.boundary.iter().any(|e| e.tag == tag)
     }
 
@@ -595,7 +595,7 @@ impl Mesh {
     /// The same mesh with cubic (10-node) triangles on its vertices: two nodes on every edge at
     /// 1/3 and 2/3, one at the centroid; cell order as gmsh's and VTK's: vertices, edge 0-1 (from
     /// vertex 0), edge 1-2, edge 2-0, centre.
-    pub fn to_cubic(&self) -> Mesh {
+    fn to_cubic(&self) -> Mesh {
         if self.degree == Degree::Cubic {
             return self.clone();
         }

@@ -74,7 +74,7 @@ impl<'a> ConstrainedCholesky<'a> {
 
     /// [`Self::new`] with the symbolic analysis of `matrix`'s pattern already done (for example
     /// while the matrix was assembled); an analysis of another pattern is an error.
-    pub fn with_symbolic(matrix: &'a CscMatrix<f64>, analysis: Analysis) -> Result<Self> {
+    fn with_symbolic(matrix: &'a CscMatrix<f64>, analysis: Analysis) -> Result<Self> {
         let n = matrix.nrows();
         let mut diagonal = vec![usize::MAX; n];
         for (col, slot) in diagonal.iter_mut().enumerate() {

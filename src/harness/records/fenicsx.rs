@@ -344,7 +344,7 @@ pub fn render(rows: &[FenicsxComparison]) -> String {
 
 /// Where the two codes' speeds are compared: the interleaved benchmark record (the times of the
 /// rows above are single runs on different days, so their quotient is no result).
-pub fn speed_note() -> String {
+fn speed_note() -> String {
     match crate::harness::records::benchmarks::FenicsxSpeed::load() {
         Ok(record) => {
             let (lo, hi) = record.ratio_range();

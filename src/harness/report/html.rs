@@ -17,7 +17,7 @@ use crate::harness::report::history::{Headline, MIN_TIME, SLOWDOWN};
 use crate::harness::report::svg::{escape, Series};
 
 /// Name of the page in the report directory.
-pub const INDEX: &str = "index.html";
+const INDEX: &str = "index.html";
 
 const STYLE: &str = "
 body { font-family: system-ui, sans-serif; margin: 0 auto; max-width: 1100px; padding: 0 16px 48px; color: #1a1a1a; }
@@ -161,7 +161,7 @@ fn trend_chart(title: &str, unit: &str, values: &[(usize, f64)], regressed: &[us
 /// Trend charts of every headline figure over `history` (oldest first): accuracy figures as
 /// `log10 |value|` (regression: beyond their tolerance) and times (regression: over [`SLOWDOWN`] times the
 /// previous run, both at least [`MIN_TIME`]).
-pub fn trend_section(history: &[Headline]) -> String {
+fn trend_section(history: &[Headline]) -> String {
     if history.is_empty() {
         return String::new();
     }

@@ -9,7 +9,6 @@ use std::fmt::Write as _;
 use serde_json::{Map, Value};
 
 use crate::error::{Error, Result};
-use crate::harness::report::svg::escape;
 
 /// How a numeric column is shown to people (CSV and JSON always carry full precision).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -212,11 +211,6 @@ impl Table {
         out
     }
 
-    /// A Markdown table under a level-3 heading.
-    pub fn to_markdown(&self) -> String {
-        format!("### {}\n\n{}", self.title, self.to_markdown_table())
-    }
-
     /// The Markdown table alone.
     pub fn to_markdown_table(&self) -> String {
         let mut out = String::from("|");
@@ -294,32 +288,6 @@ impl Table {
                 .collect(),
         )
     }
-
-    /// An HTML table with a caption (text escaped).
-    pub fn to_html(&self) -> String {
-        let mut out = format!("<table>\n<caption>{}</caption>\n<tr>", escape(&self.title));
-        for c in &self.columns {
-            let _ = write!(out, "<th>{}</th>", escape(&c.header()));
-        }
-        out.push_str("</tr>\n");
-        for r in &self.rows {
-            out.push_str("<tr>");
-            for (c, v) in r.iter().enumerate() {
-                let text = escape(&self.shown(c, v));
-                match v {
-                    Cell::Flag(_) => {
-                        let _ = write!(out, "<td><strong>{text}</strong></td>");
-                    }
-                    _ => {
-                        let _ = write!(out, "<td>{text}</td>");
-                    }
-                }
-            }
-            out.push_str("</tr>\n");
-        }
-        out.push_str("</table>\n");
-        out
-    }
 }
 
 #[cfg(test)]
@@ -363,7 +331,7 @@ mod tests {
             terminal.contains("F [E* a d]") && terminal.contains("1.96e0"),
             "{terminal}"
         );
-        let md = t.to_markdown();
+        let md = t.to_markdown_table();
         assert!(md.contains("| 0.500 | 1.96e0 |"), "{md}");
         // CSV: quoted where needed, full precision, empty for missing.
         let csv = t.to_csv().unwrap();
@@ -376,7 +344,5 @@ mod tests {
         let json = t.to_json();
         assert_eq!(json[0]["force"], 1.9620357938451314);
         assert!(json[1]["force"].is_null());
-        let html = t.to_html();
-        assert!(html.contains("<td>a, &quot;quoted&quot;</td>"), "{html}");
     }
 }

@@ -13,16 +13,16 @@ use serde::Serialize;
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
 use crate::fem::FemLoad;
-use crate::methods::{self, Method, MethodOptions};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use crate::mesh::triangulation::Degree;
+use crate::methods::{self, Method, MethodOptions};
 use crate::punch::PunchKind;
 use crate::reference::{self, Quantity, ReferenceKind};
 
 /// Contact ratios of the flat-annulus table.
-pub const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
+const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
 /// Contact ratios of the concave tables.
-pub const CONCAVE_RATIOS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95];
+const CONCAVE_RATIOS: [f64; 9] = [0.05, 0.1, 0.2, 0.3, 0.5, 0.7, 0.8, 0.9, 0.95];
 
 /// One comparison of a computed value with a reference.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
@@ -197,7 +197,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
 
 /// The FEM (default tolerance, P2, committed meshes) against the ring BEM on states of all
 /// punches.
-pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
+fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
     // `--method fem` at its default tolerance, P2, on the meshes it picks.
     let options = MethodOptions {
         degree: Some(Degree::Quadratic),
@@ -270,7 +270,7 @@ pub fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Cr
 /// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
 /// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
 /// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve.
-pub fn incremental_stiffness_checks(
+fn incremental_stiffness_checks(
     solver: &RingBemSolver,
     tolerance: f64,
 ) -> Result<Vec<IdentityCheck>> {
@@ -313,10 +313,7 @@ pub fn incremental_stiffness_checks(
 /// `γ1 - γ2 -> 1 - π/4` (cone: `F = 2 E* a (d - h (1 - π/4))` in full contact) and
 /// `γ1 - γ2 -> 1/3` (sphere: `F = 2 E* a (d - h/3)`). Checked at `eps = 0.01` with the bound
 /// `eps³`.
-pub fn full_contact_limit_checks(
-    solver: &RingBemSolver,
-    tolerance: f64,
-) -> Result<Vec<IdentityCheck>> {
+fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let eps = 0.01_f64;
     let mut checks = Vec::new();
     for (kind, limit, label) in [
@@ -348,7 +345,7 @@ pub fn full_contact_limit_checks(
 /// from the derivative of its force: `κ_out² = γ - eps γ'` and `κ_in² = -γ'/eps` (energy release
 /// rate at a fixed-depth edge). Left: the ring BEM's edge coefficients (local); right: a
 /// fourth-order difference of its force (global).
-pub fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let root_pi = std::f64::consts::PI.sqrt();
     for &eps in &[0.2_f64, 0.5, 0.8] {

@@ -102,7 +102,7 @@ pub fn observed_order(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<f
 }
 
 /// `(f_ext, GCI_fine, asymptotic ratio)` from the three finest levels (finest first).
-pub fn richardson(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<(f64, f64, f64)> {
+fn richardson(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<(f64, f64, f64)> {
     let p = observed_order(f1, f2, f3, r21, r32)?;
     let extrapolate = f1 + (f1 - f2) / (r21.powf(p) - 1.0);
     let gci12 = 1.25 * ((f1 - f2) / f1).abs() / (r21.powf(p) - 1.0);
@@ -122,15 +122,15 @@ pub struct StudyCase {
 
 /// Finest adapted mesh level a FEM convergence study runs with quadratic elements (about 1.7 M
 /// unknowns).
-pub const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
+const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
 /// Finest adapted level with cubic elements (level 3: about 0.6 M unknowns, force error near
 /// 2e-9).
-pub const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
+const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
 
 /// The FEM study's meshes and degree: with gmsh, the adapted family from its coarsest level
 /// (`g = 0.89`) with cubic elements (errors from about 5e-4 down to a few 1e-9 in six
 /// levels); without, the committed levels with quadratic elements.
-pub fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
+fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
     if fem_solver::gmsh_found() {
         let start = fem_solver::contact_start(case.punch, case.eps);
         let ladder = (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
@@ -520,7 +520,7 @@ pub fn assemble(
 /// grid BEM's piecewise-constant pressure 1 (observed nearer 0.7 with the staircase edge), the
 /// FEM's force, a functional of the solution, `2p` for elements of degree `p` on meshes graded
 /// toward the singular edges. The ring BEM converges faster than any power (none).
-pub fn expected_order(case: &StudyCase, method: Method) -> Option<f64> {
+fn expected_order(case: &StudyCase, method: Method) -> Option<f64> {
     match method {
         Method::GridBem => Some(1.0),
         Method::Fem => Some(2.0 * fem_study_ladder(case).1 as u8 as f64),

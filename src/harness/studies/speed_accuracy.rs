@@ -16,9 +16,9 @@ use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::{self as fem_solver, FemLoad, FemOptions};
-use crate::methods::{self, Method, MethodOptions};
 use crate::harness::records::fenicsx::FenicsxComparison;
 use crate::mesh::triangulation::Degree;
+use crate::methods::{self, Method, MethodOptions};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 
@@ -77,7 +77,7 @@ fn one() -> usize {
 }
 
 /// Runs of each timed point: its time is their median, shown with their range.
-pub const TIMING_RUNS: usize = 3;
+const TIMING_RUNS: usize = 3;
 
 /// The median wall time of [`TIMING_RUNS`] runs of `f`, and their range.
 #[derive(Clone, Copy, Debug)]

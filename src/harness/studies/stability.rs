@@ -135,8 +135,7 @@ fn must_decline(
 /// swapped, written to a temporary file.
 fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
     let text =
-        std::fs::read_to_string(crate::fem::mesh_directory().join("small-domain-R5.msh"))
-            .ok()?;
+        std::fs::read_to_string(crate::fem::mesh_directory().join("small-domain-R5.msh")).ok()?;
     let swapped: Vec<String> = text
         .lines()
         .map(|line| {

@@ -55,7 +55,7 @@ const NONE: usize = usize::MAX;
 
 /// Panels at most this many columns wide are factorised in plain loops, wider ones by `faer`'s
 /// blocked kernels (measured on the 92 528-unknown model: 8 and 32 were no faster).
-pub const SMALL_WIDTH: usize = 16;
+const SMALL_WIDTH: usize = 16;
 
 /// Factorise `A = L Lᵀ` (module documentation) and return `L`'s values (`symbolic.len_val()` of
 /// them, in `faer`'s layout); `a_lower` and `a_values` hold `A`'s lower triangle in elimination

@@ -120,7 +120,7 @@ fn node_graph(pattern: SymbolicSparseColMatRef<'_, usize>) -> (Vec<usize>, Vec<u
 
 /// Approximate-minimum-degree ordering of the node graph of `pattern`, expanded to the dofs:
 /// `(perm, perm_inverse)`.
-pub fn node_graph_ordering(
+fn node_graph_ordering(
     pattern: SymbolicSparseColMatRef<'_, usize>,
 ) -> Result<(Vec<usize>, Vec<usize>)> {
     let n = pattern.nrows();
