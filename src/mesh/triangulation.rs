@@ -385,6 +385,28 @@ impl Mesh {
                 ),
             ));
         }
+        self.check_boundary_placement(contact_start, radius, tolerance)?;
+        if radius <= 1.0 {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "the far boundary has radius R = {radius}, inside the punch (R > a needed)"
+                ),
+            ));
+        }
+        self.check_tiling()
+    }
+
+    /// Every boundary group on its line: the contact line spans `[contact_start, 1]`; axis at
+    /// `r = 0`, contact, free surface and hole at `z = 0`, free surface at `r >= 1`, hole at
+    /// `r <= contact_start`, far boundary on the arc of `radius` (within `tolerance`).
+    fn check_boundary_placement(
+        &self,
+        contact_start: f64,
+        radius: f64,
+        tolerance: f64,
+    ) -> Result<()> {
+        let src = &self.source;
         let role_of = |tag: i32| match tag {
             tags::CONTACT => "contact",
             tags::FREE => "free surface",
@@ -440,14 +462,13 @@ impl Mesh {
                 }
             }
         }
-        if radius <= 1.0 {
-            return Err(mesh_error(
-                src,
-                format!(
-                    "the far boundary has radius R = {radius}, inside the punch (R > a needed)"
-                ),
-            ));
-        }
+        Ok(())
+    }
+
+    /// The triangles' areas sum to the area the far arc encloses, to 1e-9: none overlap and none
+    /// is missing.
+    fn check_tiling(&self) -> Result<()> {
+        let src = &self.source;
         let enclosed: f64 = self
             .boundary
             .iter()
