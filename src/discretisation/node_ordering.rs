@@ -10,8 +10,8 @@ use crate::discretisation::vertex_ordering::{
 use crate::mesh::triangulation::Mesh;
 use crate::sparse::{split_min_dofs, Backend, NodeOrdering};
 
-/// What a model's analysis ([`crate::sparse::constrained::Analysis`]) needs from its mesh alone:
-/// the vertex-led node order ([`vertex_led_node_order`]) and, for the native backend and a model
+/// What a model's analysis ([`crate::sparse::Analysis`]) needs from its mesh alone:
+/// the vertex-led node order ([`crate::discretisation::vertex_ordering::vertex_led_node_order`]) and, for the native backend and a model
 /// of at least [`split_min_dofs`] unknowns, a split by a separator read off that order's
 /// elimination tree or a ring of the mesh, whichever promises the shorter factorisation
 /// ([`crate::discretisation::separator`]). Needs no pattern, so it is computed while the pattern

@@ -1,7 +1,7 @@
 //! The work of a report as independent parts: each [`Part`] is one job of a plan
 //! ([`crate::harness::plan`]), runs on its own (`verify part ID`, printing a [`JobRecord`]) and needs no
 //! other part's result. [`assemble`] joins the results, in the plan's order, into the
-//! [`ReportInputs`] the report is written from, so one process ([`compute_report`]) and a
+//! [`ReportInputs`] the report is written from, so one process ([`compute_all`]) and a
 //! sharded run merged from files build their report from the same pieces by the same code.
 //!
 //! A part's id names everything it computes: `kind[:argument][:key=value]...`, e.g.

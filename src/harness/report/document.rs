@@ -347,8 +347,9 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
     std::fs::write(dir.join(name), text).map_err(|e| Error::file("write", &dir.join(name), e))
 }
 
-/// Everything a report is made of: computed in one process ([`crate::harness::report_jobs::compute_report`])
-/// or merged from the result files of a plan's jobs ([`crate::harness::plan::merge`]).
+/// Everything a report is made of: computed in one process ([`crate::harness::report_jobs::compute_all`])
+/// or read from the result files of a plan's jobs ([`crate::harness::plan::load_results`]),
+/// both joined by [`crate::harness::report_jobs::assemble`].
 #[derive(Clone, Debug)]
 pub struct ReportInputs {
     pub comparison: ComparisonReport,
