@@ -7,7 +7,7 @@
 use serde::ser::{self, Serialize};
 
 /// `Err(path)` for the first non-finite number inside `value`.
-pub fn check_finite<T: Serialize + ?Sized>(value: &T) -> Result<(), String> {
+pub(crate) fn check_finite<T: Serialize + ?Sized>(value: &T) -> Result<(), String> {
     let mut walker = Walker {
         path: Vec::new(),
         found: None,

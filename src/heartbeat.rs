@@ -22,7 +22,7 @@ pub fn plain_interval() -> Duration {
 }
 
 /// A watcher thread reporting the step a piece of work is at; stops when dropped.
-pub struct Heartbeat {
+pub(crate) struct Heartbeat {
     step: Arc<Mutex<String>>,
     stop: Option<mpsc::Sender<()>>,
     watcher: Option<std::thread::JoinHandle<()>>,

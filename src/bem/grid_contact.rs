@@ -19,7 +19,7 @@ const MIN_CELLS_ACROSS: f64 = 2.0;
 /// Largest grid accepted: memory about 100 N² bytes (0.4 GB at 2048), time growing like
 /// `N² log N` per iteration times an iteration count that grows with `N` (measured 4-17 s at 512 on
 /// 2 cores; 2048 takes some minutes and reports progress). 4096 would take hours.
-pub const MAX_GRID: usize = 2048;
+pub(crate) const MAX_GRID: usize = 2048;
 
 /// A grid solve of a punch state.
 #[derive(Clone, Debug)]

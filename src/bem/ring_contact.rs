@@ -31,13 +31,13 @@ pub const METHOD: &str = "ring-bem";
 const NODE_LADDER: [usize; 9] = [12, 16, 20, 24, 32, 40, 48, 64, 80];
 
 /// Smallest contact ratio `b/a` of an annulus the method accepts (validated down to here).
-pub const MIN_CONTACT_RATIO: f64 = 1e-4;
+pub(crate) const MIN_CONTACT_RATIO: f64 = 1e-4;
 /// Largest contact ratio `b/a` the method accepts (a ring of width `1e-4 a`).
-pub const MAX_CONTACT_RATIO: f64 = 0.9999;
+pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 
 /// Below this relative tolerance the method's rounding floor (about 1e-13 relative) would be
 /// mistaken for convergence.
-pub const MIN_TOLERANCE: f64 = 1e-12;
+pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 
 /// Rounding floor of the method's dimensionless results (relative): node counts that agree better
 /// than this are not taken as proof of a smaller error. Measured: results at N = 16..64 scatter by

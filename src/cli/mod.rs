@@ -34,7 +34,7 @@ impl Reply {
     }
 
     /// A reply printing `text` whose verdict is `success`.
-    pub fn verdict(text: String, success: bool) -> Self {
+    pub(crate) fn verdict(text: String, success: bool) -> Self {
         Self { text, success }
     }
 }

@@ -95,7 +95,7 @@ fn scene_file_kind(args: &SolveArgs) -> Option<PunchKind> {
 /// The solved state as a two-column table: quantity and value (the dimensionless functions
 /// `gamma = F/(2 E* d a)`, `gamma1 = d/h`, `gamma2 = F/(2 E* h a)`, the estimate, the model,
 /// the cost and the provenance).
-pub fn describe(scene: &Scene, s: &Solution) -> Table {
+pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
     let p = &scene.punch;
     let es = scene.material.effective_modulus;
     let geometry = match p.kind {

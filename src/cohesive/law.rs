@@ -26,7 +26,7 @@ impl ExponentialLaw {
     }
 
     /// `φ''(s) = -(Δw/ρ²) e^{-s/ρ}`.
-    pub fn curvature(&self, s: f64) -> f64 {
+    pub(crate) fn curvature(&self, s: f64) -> f64 {
         -self.work / (self.range * self.range) * (-s / self.range).exp()
     }
 
@@ -37,7 +37,7 @@ impl ExponentialLaw {
 
     /// Length of the cohesive zone at a crack tip, `ℓ = π E* Δw / (4 σ0²)` (Dugdale's zone for the
     /// energy release rate `Δw`, `K² = 2 E* Δw`), with `E* = 1`.
-    pub fn zone_length(&self) -> f64 {
+    pub(crate) fn zone_length(&self) -> f64 {
         std::f64::consts::PI * self.work / (4.0 * self.peak().powi(2))
     }
 

@@ -34,7 +34,7 @@ const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
 
 /// The default ranges where the study runs: [`DEFAULT_RANGES`] with gmsh (rim bands), else
 /// [`COMMITTED_MESH_RANGES`].
-pub fn default_ranges() -> Vec<f64> {
+pub(crate) fn default_ranges() -> Vec<f64> {
     if provider::gmsh_available() {
         DEFAULT_RANGES.to_vec()
     } else {
@@ -91,19 +91,19 @@ pub enum Branch {
 /// Default ranges `ρ/d0` of the annular branch (Tabor 4.5 to 9): its contact line is uniformly
 /// refined to [`ANNULAR_ELEMENTS_PER_ZONE`] elements per zone length along the inner edge's
 /// whole path, which makes smaller ranges cost `O(ρ⁻⁶)` in the dense condensed model.
-pub const ANNULAR_RANGES: [f64; 3] = [0.1, 0.07, 0.05];
+pub(crate) const ANNULAR_RANGES: [f64; 3] = [0.1, 0.07, 0.05];
 
 /// Preload of the annular branch, in units of `h`: the rim plane at the undeformed surface
 /// (adhesion alone pulls the rim into contact; the hole stays open).
-pub const ANNULAR_PRELOAD: f64 = 0.0;
+pub(crate) const ANNULAR_PRELOAD: f64 = 0.0;
 
 /// Elements per cohesive-zone length `ℓ` along the annular branch's contact line (its
 /// uniform size `ℓ / 3`); the mesh check uses half as many.
-pub const ANNULAR_ELEMENTS_PER_ZONE: f64 = 3.0;
+pub(crate) const ANNULAR_ELEMENTS_PER_ZONE: f64 = 3.0;
 
 /// Largest force step, in `F0`, accepted as the inner edge hopping a node on the annular
 /// branch (measured hops at three elements per zone: 4e-4 F0; the branch's end: 0.25-0.5 F0).
-pub const ANNULAR_HOP_FORCE: f64 = 0.01;
+pub(crate) const ANNULAR_HOP_FORCE: f64 = 0.01;
 
 /// What to simulate.
 #[derive(Clone, Copy, Debug)]
@@ -118,7 +118,7 @@ pub struct Case {
 impl Case {
     /// Cohesive-zone length `ℓ = π E* Δw/(4σ0²)` of the law at range `range` (units of `d0`), in
     /// units of `a`: `π² (ρ/d0)²/2`, whatever `d0`.
-    pub fn zone_length(&self, range: f64) -> f64 {
+    pub(crate) fn zone_length(&self, range: f64) -> f64 {
         let d0 = self.d0();
         ExponentialLaw {
             work: d0 * d0 / (2.0 * std::f64::consts::PI),
@@ -355,7 +355,7 @@ impl PulloffStudy {
 
     /// Whether the extrapolate meets the JKR route's value within its error bar; `None` (no
     /// verdict) without one, or when the bar is wider than [`CONCLUSIVE_BAR`] of the value.
-    pub fn agrees_with_jkr(&self) -> Option<bool> {
+    pub(crate) fn agrees_with_jkr(&self) -> Option<bool> {
         match (
             self.extrapolated_over_f0,
             self.error_bar,
@@ -465,7 +465,7 @@ pub fn left_the_branch(case: &Case, entry: &SequenceEntry) -> bool {
 /// with a refined band at the rim), else, where gmsh cannot make those, [`run`] on the study
 /// meshes (level [`STUDY_LEVEL`], or the committed level closest to it, and the level below as
 /// the check mesh).
-pub fn run_on_study_meshes(
+pub(crate) fn run_on_study_meshes(
     case: Case,
     ranges: &[f64],
     mut progress: impl FnMut(&SequenceEntry),
@@ -547,7 +547,7 @@ pub fn run(
 /// were left out (another branch), half the smallest simulated so far (`smallest`), while
 /// fewer than three are usable (`usable`, decreasing) or their Tabor span falls short of the
 /// given ranges' (at most 10), and not below [`MIN_RANGE`].
-pub fn smaller_range(
+pub(crate) fn smaller_range(
     ranges: &[f64],
     smallest: f64,
     usable: &[f64],
@@ -974,7 +974,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
 /// it: on its own [`rim_band_mesh`] where gmsh is available, else [`simulate_once`] on the
 /// study mesh (the committed level closest to it without gmsh). A concave case whose hole opens
 /// is declined.
-pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
+pub(crate) fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
     if !provider::gmsh_available() {
         return simulate_once(case, range, &study_mesh(case.eps, STUDY_LEVEL)?);
     }
@@ -993,7 +993,7 @@ pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
 /// range `range` (units of `d0`) on `mesh`, the mesh condensed once for all; each as
 /// [`simulate_once`] (a concave case whose hole opens is declined). The cases run in parallel;
 /// each one's wall time is its own (measured 3-5 % longer than alone, the cores being shared).
-pub fn simulate_cases(
+pub(crate) fn simulate_cases(
     cases: &[Case],
     range: f64,
     mesh: &ProvidedMesh,

@@ -296,7 +296,7 @@ fn condense_bubble(local: &mut [f64], operator: &mut [f64]) {
 /// What recovers the condensed bubbles' displacements of a cubic model
 /// ([`StiffnessPattern::condensed_values`]): `u_b = -K_bb⁻¹ K_bi u_i` cell by cell.
 #[derive(Clone, Debug)]
-pub struct BubbleRecovery {
+pub(crate) struct BubbleRecovery {
     /// [`BUBBLE_OPERATOR_LEN`] values of `K_bb⁻¹ K_bi` per cell, rows of 18.
     operators: Vec<f64>,
 }
@@ -304,7 +304,7 @@ pub struct BubbleRecovery {
 impl BubbleRecovery {
     /// Write every bubble's displacement into the nodal field `u` (`(u_r, u_z)` per node of the
     /// cubic `mesh` the model was assembled on, the other nodes' values final).
-    pub fn recover(&self, mesh: &Mesh, u: &mut [f64]) {
+    pub(crate) fn recover(&self, mesh: &Mesh, u: &mut [f64]) {
         for (c, operator) in self.operators.chunks_exact(BUBBLE_OPERATOR_LEN).enumerate() {
             let cell = mesh.cell(c);
             let Some(bubble) = bubble_node(cell, mesh.degree) else {
@@ -366,7 +366,7 @@ impl StiffnessPattern {
     /// `K`'s values, so the symbolic analysis of `K̃` runs while `K` is assembled; the values then
     /// go straight into the extended layout and [`FarFieldCondition::fill_extension`] adds the
     /// new entries: no copy of `K`).
-    pub fn of_model(mesh: &Mesh, far_field: Option<&FarFieldCondition>) -> Result<Self> {
+    pub(crate) fn of_model(mesh: &Mesh, far_field: Option<&FarFieldCondition>) -> Result<Self> {
         Self::build(mesh, true, far_field)
     }
 
@@ -497,7 +497,7 @@ impl StiffnessPattern {
     /// bubble `b` (a block of its own), and the bubble's displacement is recovered after the
     /// solve from `u_b = -K_bb⁻¹ K_bi u_i` ([`BubbleRecovery`]; the bubble's load is zero).
     /// `None` for the recovery when the pattern condenses nothing.
-    pub fn condensed_values(
+    pub(crate) fn condensed_values(
         &self,
         mesh: &Mesh,
         material: &Lame,
@@ -609,7 +609,7 @@ impl StiffnessPattern {
     /// increasing order and its own diagonal last. The test
     /// `built_patterns_pass_the_checked_constructor` holds every kind of pattern to
     /// `nalgebra_sparse`'s check.
-    pub fn into_matrix_and_diagonal(
+    pub(crate) fn into_matrix_and_diagonal(
         self,
         values: Vec<f64>,
     ) -> Result<(CscMatrix<f64>, Vec<usize>)> {

@@ -104,7 +104,7 @@ pub fn shape(degree: Degree, xi: f64, eta: f64, n: &mut [f64], dxi: &mut [f64], 
 
 /// Geometry of one affine triangle: vertices and the inverse Jacobian.
 #[derive(Clone, Copy, Debug)]
-pub struct AffineTriangle {
+pub(crate) struct AffineTriangle {
     origin: [f64; 2],
     jacobian: [[f64; 2]; 2],
     inverse: [[f64; 2]; 2],
@@ -143,7 +143,7 @@ impl AffineTriangle {
 
     /// Physical gradient `(∂/∂r, ∂/∂z)` from the reference gradient: `J^{-T} ∇_ξ`.
     #[inline]
-    pub fn gradient(&self, dxi: f64, deta: f64) -> [f64; 2] {
+    pub(crate) fn gradient(&self, dxi: f64, deta: f64) -> [f64; 2] {
         [
             self.inverse[0][0] * dxi + self.inverse[1][0] * deta,
             self.inverse[0][1] * dxi + self.inverse[1][1] * deta,
@@ -178,7 +178,7 @@ pub fn stiffness(
 /// `Σ_q w_q N_a N_b / r_q` is summed cell by cell. The same finite sums as the rule applied
 /// point by point (equal to rounding), at a quarter to a third of the operations.
 #[derive(Clone, Debug)]
-pub struct ElementKernel {
+pub(crate) struct ElementKernel {
     nodes: usize,
     /// The node pairs `(a, b)`, `a <= b`.
     pairs: Vec<(usize, usize)>,

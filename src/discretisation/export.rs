@@ -48,7 +48,7 @@ fn io_error(path: &Path, message: String) -> Error {
 /// Consistent nodal forces of a unit pressure on the edges tagged [`tags::CONTACT`]:
 /// `f_{2n+1} = -Σ_edges ∫ φ_n(t) 2π r(t) L dt` (5-point Gauss, exact for degree 3 times the
 /// linear `r`).
-pub fn unit_pressure_load(mesh: &Mesh) -> Vec<f64> {
+pub(crate) fn unit_pressure_load(mesh: &Mesh) -> Vec<f64> {
     let mut load = vec![0.0; 2 * mesh.nodes.len()];
     let (points, weights) = gauss_legendre(5);
     // Positions of an edge's nodes on [0, 1]: ends, then interior nodes from the first end.
@@ -143,7 +143,7 @@ pub fn write_system(system: &AssembledSystem, dir: &Path) -> Result<Vec<PathBuf>
 }
 
 /// Assemble the system of `mesh` at `degree` ([`load_mesh`]) and write it into `dir`.
-pub fn export_mesh(mesh: &Path, degree: Degree, dir: &Path) -> Result<Vec<PathBuf>> {
+pub(crate) fn export_mesh(mesh: &Path, degree: Degree, dir: &Path) -> Result<Vec<PathBuf>> {
     write_system(&assemble_system(&load_mesh(mesh, degree)?)?, dir)
 }
 
@@ -169,7 +169,7 @@ pub fn read_matrix(path: &Path) -> Result<TriMat<f64>> {
 }
 
 /// Read `dofs.csv` as written by [`write_system`] (or `scripts/fenicsx/export.py`).
-pub fn read_dofs(path: &Path) -> Result<Vec<DofRecord>> {
+pub(crate) fn read_dofs(path: &Path) -> Result<Vec<DofRecord>> {
     let text =
         std::fs::read_to_string(path).map_err(|e| io_error(path, format!("cannot read: {e}")))?;
     let mut out = Vec::new();

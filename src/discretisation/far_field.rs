@@ -38,7 +38,7 @@ pub enum FarField {
 
 impl FarField {
     /// Human-readable name for provenance lines.
-    pub fn describe(self) -> &'static str {
+    pub(crate) fn describe(self) -> &'static str {
         match self {
             FarField::Fixed => "a fixed (u = 0)",
             FarField::Boussinesq => "a Boussinesq point-force",
@@ -111,7 +111,7 @@ fn arc_integral(material: &Lame, radius: f64, f: impl Fn([f64; 2], [f64; 2]) -> 
 
 /// Strain energy coefficient of the exterior `ρ > R` under the unit Boussinesq field:
 /// `k_ext = -∫_arc (σ(G) ρ̂)·G dA` ([`arc_integral`]).
-pub fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
+pub(crate) fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
     arc_integral(material, radius, |t, g| -(t[0] * g[0] + t[1] * g[1]))
 }
 
@@ -119,7 +119,7 @@ pub fn exterior_stiffness(material: &Lame, radius: f64) -> f64 {
 /// `K̃ = K + [0, K T g; gᵀ Tᵀ K, gᵀ K_aa g + k_ext]` where `g` holds the Boussinesq values at the
 /// arc dofs. The arc dofs themselves must then be constrained to zero (their true value is
 /// `α g`, restored by [`FarFieldCondition::expand`]); every other row of `K̃ ũ` equals `K u`.
-pub struct FarFieldCondition {
+pub(crate) struct FarFieldCondition {
     /// `(dof, G value)` of every arc dof.
     pub arc: Vec<(usize, f64)>,
     /// Index of the amplitude dof.
@@ -160,7 +160,12 @@ impl FarFieldCondition {
     /// those rows and its diagonal), given `K`'s values in the extended
     /// layout (`values`, zero at the added entries): `(K T g)_i = Σ_arc K_ik g_k` for the coupled
     /// rows and the diagonal `gᵀ K_aa g + k_ext`.
-    pub fn fill_extension(&self, col_offsets: &[usize], row_indices: &[usize], values: &mut [f64]) {
+    pub(crate) fn fill_extension(
+        &self,
+        col_offsets: &[usize],
+        row_indices: &[usize],
+        values: &mut [f64],
+    ) {
         let n = col_offsets.len() - 2;
         let is_arc = self.arc_mask(n);
         let mut value = vec![0.0; n];
@@ -192,7 +197,7 @@ impl FarFieldCondition {
     }
 
     /// Full nodal displacement (`2 × nodes`) from the extended solution: arc dofs `α g`.
-    pub fn expand(&self, extended: &[f64]) -> Vec<f64> {
+    pub(crate) fn expand(&self, extended: &[f64]) -> Vec<f64> {
         let alpha = extended[self.amplitude_dof];
         let mut u = extended[..self.amplitude_dof].to_vec();
         for &(dof, g) in &self.arc {

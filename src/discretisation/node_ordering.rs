@@ -17,7 +17,7 @@ use crate::sparse::{split_min_dofs, Backend, NodeOrdering};
 /// ([`crate::discretisation::separator`]). Needs no pattern, so it is computed while the pattern
 /// is built (one vertex graph and one minimum-degree order of it serve the node order and the
 /// split, which are then found side by side).
-pub fn node_ordering(mesh: &Mesh, backend: Backend) -> NodeOrdering {
+pub(crate) fn node_ordering(mesh: &Mesh, backend: Backend) -> NodeOrdering {
     node_ordering_of_raised(mesh, backend, || mesh)
 }
 
@@ -26,7 +26,7 @@ pub fn node_ordering(mesh: &Mesh, backend: Backend) -> NodeOrdering {
 /// `vertex_mesh` before `raised` is called, so that the raising can run beside them. If the
 /// raised mesh's cells do not have `vertex_mesh`'s vertices (in the same order), they are
 /// found again on the raised mesh.
-pub fn node_ordering_of_raised<'m>(
+pub(crate) fn node_ordering_of_raised<'m>(
     vertex_mesh: &Mesh,
     backend: Backend,
     raised: impl FnOnce() -> &'m Mesh,

@@ -102,7 +102,7 @@ impl TriangleRule {
 }
 
 /// Gauss-Legendre nodes and weights on `[0, 1]` (Newton on the Legendre recurrence).
-pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
+pub(crate) fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
     let mut nodes = vec![0.0; n];
     let mut weights = vec![0.0; n];
     for i in 0..n {

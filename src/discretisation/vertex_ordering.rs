@@ -81,7 +81,7 @@ pub(super) struct VertexGraph {
 
 impl VertexGraph {
     /// The neighbours of graph vertex `i` (itself included).
-    pub fn neighbours(&self, i: usize) -> &[usize] {
+    pub(crate) fn neighbours(&self, i: usize) -> &[usize] {
         &self.rows[self.offsets[i]..self.offsets[i + 1]]
     }
 }

@@ -9,7 +9,7 @@ use crate::error::{Error, Result};
 use crate::mesh::triangulation::{Degree, Mesh};
 
 /// Write `mesh` with the nodal displacement `u` (`(u_r, u_z)` per node) to `path`.
-pub fn write_vtu(path: &Path, mesh: &Mesh, u: &[f64]) -> Result<()> {
+pub(crate) fn write_vtu(path: &Path, mesh: &Mesh, u: &[f64]) -> Result<()> {
     let k = mesh.degree.nodes_per_cell();
     let cell_type = match mesh.degree {
         Degree::Linear => 5,

@@ -164,12 +164,12 @@ impl<'m> ContactModel<'m> {
     }
 
     /// The fixed supports (far arc, axis): one flag per dof of the system.
-    pub fn supports(&self) -> &[bool] {
+    pub(crate) fn supports(&self) -> &[bool] {
         &self.supports
     }
 
     /// Inner end `b/a` of the contact line of the mesh.
-    pub fn contact_line_start(&self) -> f64 {
+    pub(crate) fn contact_line_start(&self) -> f64 {
         self.contact_nodes
             .first()
             .map(|&n| self.mesh.nodes[n][0])
@@ -744,7 +744,7 @@ impl<'m> ContactModel<'m> {
     /// ([`Self::edge_depth_sensitivity`], [`Self::opening_margins`]) filled in:
     /// [`Self::concave_with`] and one more solve on the converged constraint set (a
     /// back-substitution, or the band's responses).
-    pub fn concave_with_sensitivity(
+    pub(crate) fn concave_with_sensitivity(
         &self,
         system: &mut BandedSystem,
         kind: PunchKind,
@@ -868,7 +868,7 @@ impl<'m> ContactModel<'m> {
     /// It measures how well the edge is conditioned: near a closing hole (the sphere as
     /// `d → 3h`) the edge moves tens of times the relative depth, so a small error of the
     /// displacement field (of the size of the relative force error) moves it that much more.
-    pub fn edge_depth_sensitivity(
+    pub(crate) fn edge_depth_sensitivity(
         &self,
         kind: PunchKind,
         depth: f64,

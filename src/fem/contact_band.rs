@@ -25,7 +25,7 @@ use crate::sparse::constrained::ConstrainedCholesky;
 /// Most band nodes held by condensation: beyond it a factorisation is cheaper (one unit response
 /// costs about 1/20 of a numeric factorisation in blocks of 16, measured on P2/P3 models of
 /// 7e4-5e5 unknowns).
-pub const MAX_BAND_NODES: usize = 64;
+pub(crate) const MAX_BAND_NODES: usize = 64;
 
 /// The core-held factorisation and the band's unit responses.
 pub struct BandedSystem<'s, 'a> {
@@ -86,7 +86,7 @@ impl<'s, 'a> BandedSystem<'s, 'a> {
     }
 
     /// Hold another core (the next solve refactorises; cached solutions are dropped).
-    pub fn set_core(&mut self, core: Vec<bool>, core_radius: f64) {
+    pub(crate) fn set_core(&mut self, core: Vec<bool>, core_radius: f64) {
         for ((&dof, &old), &new) in self.contact_dofs.iter().zip(&self.core).zip(&core) {
             if old && !new {
                 self.base_mask[dof] = false;

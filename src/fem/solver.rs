@@ -47,7 +47,7 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-3;
 /// and 17 others, `FEM_TARGETS_EXTRA=1 FEM_TARGETS_TOLS=1e-8 cargo bench --bench fem_targets`)
 /// met it, its estimate bounding its errors (force errors 3.7e-10 to 1.2e-9, `eps` errors up to
 /// 3.6e-9); below it the estimates are unmeasured.
-pub const MIN_TOLERANCE: f64 = 1e-8;
+pub(crate) const MIN_TOLERANCE: f64 = 1e-8;
 
 /// An error component that level-to-level changes do not capture, added to every estimate:
 /// `2e-9` (the argument, the contact ratio `b/a`, is kept for the callers: no dependence on it

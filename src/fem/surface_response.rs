@@ -31,7 +31,7 @@ pub struct SurfaceResponse {
 }
 
 /// Condense `model` (its stiffness factorised by `solver`) onto the contact line.
-pub fn condense(
+pub(crate) fn condense(
     model: &ContactModel,
     solver: &mut ConstrainedCholesky,
     supports: &[bool],

@@ -186,7 +186,7 @@ impl Plan {
 }
 
 /// `I/N` of `--shard` as (I, N).
-pub fn parse_shard(text: &str) -> std::result::Result<(usize, usize), String> {
+pub(crate) fn parse_shard(text: &str) -> std::result::Result<(usize, usize), String> {
     let (i, n) = text
         .split_once('/')
         .ok_or_else(|| format!("`{text}`: write the shard as I/N, e.g. 2/3"))?;

@@ -10,7 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 pub use crate::heartbeat::{plain_interval, PLAIN_INTERVAL_S};
 
 /// Progress of a sweep of known length.
-pub struct Progress {
+pub(crate) struct Progress {
     label: String,
     total: usize,
     done: usize,
@@ -54,7 +54,7 @@ impl Progress {
     }
 
     /// One step done; `what` names it.
-    pub fn tick(&mut self, what: &str) {
+    pub(crate) fn tick(&mut self, what: &str) {
         self.done = (self.done + 1).min(self.total);
         if let Some(bar) = &self.bar {
             bar.set_message(what.chars().take(60).collect::<String>());

@@ -32,7 +32,7 @@ use crate::methods::Method;
 use crate::punch::PunchKind;
 
 /// Grid size up to which the stored peer results are compared (as `verify compare`).
-pub const PEER_MAX_GRID: usize = 256;
+pub(crate) const PEER_MAX_GRID: usize = 256;
 
 /// One independent piece of work.
 #[derive(Clone, Debug, PartialEq)]
@@ -318,7 +318,7 @@ impl Part {
 
     /// Run the part in this process (`edges` carries the free edges of convergence levels
     /// already computed here, so that one process does not solve a coarser level twice).
-    pub fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
+    pub(crate) fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
         let ring = RingBemSolver::new();
         Ok(match *self {
             Part::Comparison { tolerance } => PartResult::Comparison(comparison::run(tolerance)?),
@@ -401,7 +401,7 @@ impl Part {
 }
 
 /// Free edges found by convergence levels run in this process: (study, level) -> edge.
-pub type EdgeMemo = HashMap<(String, usize), Option<f64>>;
+pub(crate) type EdgeMemo = HashMap<(String, usize), Option<f64>>;
 
 /// A pull-off simulation as `verify pulloff --json` runs it (the study meshes, the default
 /// ranges), recorded like `scripts/pulloff/run_all.py` records it: its result, or the reason it
@@ -443,7 +443,7 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
 /// the stored external results, each speed-accuracy problem's base and FEM points at
 /// `fem_tolerances`, the grid BEM's and the FEM's three-level studies of the sphere at
 /// `d = 1.5 h`, the JKR pull-off routes and one live pull-off simulation.
-pub fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
+pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
     let mut parts = vec![
         Part::Comparison { tolerance },
         Part::Fenicsx,
@@ -476,7 +476,7 @@ const REPORT_STUDY: StudyCase = StudyCase {
 const REPORT_STUDY_LEVELS: usize = 3;
 
 /// The levels of one convergence study, one part each.
-pub fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<Part> {
+pub(crate) fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<Part> {
     (0..levels)
         .map(|level| Part::ConvergenceLevel {
             punch: case.punch,
@@ -677,7 +677,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
 
 /// Compute `parts` one after the other in this process (the single-process run), calling
 /// `progress` with each part's id before it runs, and join them.
-pub fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Assembled> {
+pub(crate) fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Assembled> {
     let mut edges = EdgeMemo::new();
     let mut results = Vec::new();
     for part in parts {
@@ -690,13 +690,13 @@ pub fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Ass
 }
 
 /// Number of progress stages of [`write_report`].
-pub const REPORT_STAGES: usize = 5;
+pub(crate) const REPORT_STAGES: usize = 5;
 
 /// Compute what the report draws and states beyond its inputs ([`Findings`]: the function
 /// curves, the pressure profiles, the JKR annular branches, the verdicts on the paper's
 /// claims), then write the report directory from both; returns the extras (also in
 /// report.json). `progress` is called with each of [`REPORT_STAGES`] stages as it starts.
-pub fn write_report(
+pub(crate) fn write_report(
     dir: &std::path::Path,
     inputs: &ReportInputs,
     mut progress: impl FnMut(&str),

@@ -35,7 +35,7 @@ pub struct CornerRefinement {
 
 impl CornerRefinement {
     /// One line for provenance: what was refined, and to what size.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         let radii: Vec<String> = self.radii.iter().map(|r| format!("{r}")).collect();
         format!(
             "refined by halving around r = {} to elements of {:e} a",

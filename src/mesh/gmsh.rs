@@ -19,7 +19,7 @@ use crate::mesh::files::{cache_directory_of, sha256_hex};
 const MESHING_TIME_LIMIT_S: u64 = 300;
 
 /// The command that installs gmsh for this project (quoted in errors).
-pub const INSTALL_COMMAND: &str = "bash scripts/install_gmsh.sh";
+pub(crate) const INSTALL_COMMAND: &str = "bash scripts/install_gmsh.sh";
 
 /// A runnable gmsh: program plus leading arguments, and its version.
 #[derive(Clone, Debug)]

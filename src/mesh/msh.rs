@@ -294,7 +294,7 @@ pub(crate) fn catch_quietly<R>(
 /// rest of the parse and whatever the caller does next on one core (checks, refinement);
 /// [`Self::finish`] waits for it.
 #[derive(Debug)]
-pub enum PendingHash {
+pub(crate) enum PendingHash {
     /// Computed on this thread (no other could be started).
     Done(String),
     /// Still running, or finished and not yet joined.
@@ -333,7 +333,7 @@ impl PendingHash {
 /// parse's own steps after it (pairing tags, cells, orientation) and the caller's checks need
 /// one core. A caller about to use both cores waits for it first: left running beside the
 /// assembly, it delayed the second core's start (measured on the 12 880-unknown annulus).
-pub fn read_msh_hashed(path: &Path) -> Result<(Mesh, PendingHash)> {
+pub(crate) fn read_msh_hashed(path: &Path) -> Result<(Mesh, PendingHash)> {
     let (name, bytes) = file_bytes(path)?;
     let bytes = Arc::new(bytes);
     // Started once, even when the parse is retried with regular blanks.

@@ -40,7 +40,7 @@ const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 /// 0.007 (`4 √3 A / Σ l²`; 0.50-0.60 is gmsh's usual), whatever the 2-D algorithm, random factor,
 /// geometric tolerance or domain radius; moving the rim to the origin restored 0.60 at
 /// `1e-10 a`. Smaller rim sizes come from [`CornerRefinement`].
-pub const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
+pub(crate) const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
 
 /// Smallest element size (units of `a`) asked of gmsh around the axis point (a full contact's
 /// refinement) and, by the solver, around a hole hidden inside the first node. There gmsh's time
@@ -49,7 +49,7 @@ pub const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
 /// at `1e-7` and `2.25e-8`; around `1.86e-7 a` more than 40 s at `4.6e-8`). A located hole keeps
 /// [`GMSH_MIN_ELEMENT_SIZE`]: around `5.6e-6 a` gmsh made `2.25e-8` in seconds, around `2.3e-7 a`
 /// `5.7e-8` within a 36 s solve, and around `2.1e-7 a` not `2.25e-8` in 300 s.
-pub const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
+pub(crate) const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
 
 /// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
 /// have vertex coordinates good to `1e-6` of their size.
@@ -154,12 +154,12 @@ fn adapted_corner_refinement(
 }
 
 /// Highest level of the adapted family.
-pub const ADAPTED_MAX_LEVEL: i32 = 7;
+pub(crate) const ADAPTED_MAX_LEVEL: i32 = 7;
 /// Lowest level of the adapted family: `g = 0.89`, a few thousand unknowns, enough for the
 /// default tolerance with cubic elements.
-pub const ADAPTED_MIN_LEVEL: i32 = -2;
+pub(crate) const ADAPTED_MIN_LEVEL: i32 = -2;
 /// Highest committed level.
-pub const COMMITTED_MAX_LEVEL: usize = 2;
+pub(crate) const COMMITTED_MAX_LEVEL: usize = 2;
 
 /// A mesh the FEM asks for.
 #[derive(Clone, Debug, PartialEq)]
@@ -207,7 +207,7 @@ impl MeshRequest {
 
     /// The same request refined around a free edge at `b/a`, known to within `uncertainty`
     /// (adapted family only).
-    pub fn with_free_edge(self, edge: Option<f64>, uncertainty: f64) -> MeshRequest {
+    pub(crate) fn with_free_edge(self, edge: Option<f64>, uncertainty: f64) -> MeshRequest {
         match self {
             MeshRequest::Adapted {
                 contact_start,
@@ -254,7 +254,7 @@ impl ProvidedMesh {
     /// solve reports the hash of the bytes it read (computed beside the parse, at no cost to its
     /// time), and hashing a cached file when it is looked up as well cost about 5.6 ms per MB
     /// for every rung of a ladder.
-    pub fn sha256(&self) -> Result<String> {
+    pub(crate) fn sha256(&self) -> Result<String> {
         sha256_file(&self.path)
     }
 }
@@ -265,7 +265,7 @@ pub fn gmsh_available() -> bool {
 }
 
 /// Committed family for a contact line starting at `b/a` (`disk` for 0), if there is one.
-pub fn committed_family(contact_start: f64) -> Option<String> {
+pub(crate) fn committed_family(contact_start: f64) -> Option<String> {
     let name = if contact_start == 0.0 {
         "disk".to_string()
     } else {
@@ -296,7 +296,7 @@ fn adapted_grading(level: i32) -> f64 {
 /// force error of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their
 /// changes did not see the edge's share. Around the axis point (full contact) the edge size is
 /// never below [`AXIS_MIN_ELEMENT_SIZE`].
-pub fn adapted_parameters(
+pub(crate) fn adapted_parameters(
     contact_start: f64,
     level: i32,
     free_edge: Option<f64>,
@@ -428,7 +428,7 @@ const GEO_PARAMETERS: [&str; 12] = [
 /// carry in their `reproduce` commands) into `-setnumber` parameters, in the order given (the
 /// cache key depends on it). Unknown names, repeated names and values that are not finite
 /// numbers are refused with the offending item named.
-pub fn parse_parameters(text: &str) -> Result<Vec<(String, f64)>> {
+pub(crate) fn parse_parameters(text: &str) -> Result<Vec<(String, f64)>> {
     let refuse = |message: String| Error::invalid("mesh parameters", message);
     let mut out: Vec<(String, f64)> = Vec::new();
     for item in text.split(',').map(str::trim).filter(|i| !i.is_empty()) {
@@ -498,7 +498,7 @@ fn check_geometry(parameters: &[(String, f64)]) -> std::result::Result<(), Strin
 
 /// `NAME=VALUE,...` with each value in its shortest form that reads back to the same `f64`
 /// (so a mesh remade from the text is the same mesh, byte for byte, as the one stored).
-pub fn format_parameters(parameters: &[(String, f64)]) -> String {
+pub(crate) fn format_parameters(parameters: &[(String, f64)]) -> String {
     parameters
         .iter()
         .map(|(name, value)| {
@@ -514,7 +514,7 @@ pub fn format_parameters(parameters: &[(String, f64)]) -> String {
 }
 
 /// Mesh `meshes/half_space.geo` with `parameters`, through the cache.
-pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
+pub(crate) fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
     let root = project_root();
     let geo = mesh_directory().join("half_space.geo");
     let geo_bytes = std::fs::read(&geo).map_err(|e| Error::InvalidMesh {

@@ -19,7 +19,7 @@ pub mod tags {
     /// Symmetry axis `r = 0`, `u_r = 0`.
     pub const AXIS: i32 = 4;
     /// Free surface under the hole of an annulus, `[0, b]`.
-    pub const HOLE: i32 = 5;
+    pub(crate) const HOLE: i32 = 5;
     /// The solid.
     pub const SOLID: i32 = 10;
 }
@@ -34,7 +34,7 @@ pub enum Degree {
 
 impl Degree {
     /// Nodes per triangle.
-    pub fn nodes_per_cell(self) -> usize {
+    pub(crate) fn nodes_per_cell(self) -> usize {
         match self {
             Degree::Linear => 3,
             Degree::Quadratic => 6,
@@ -43,7 +43,7 @@ impl Degree {
     }
 
     /// Nodes per boundary edge.
-    pub fn nodes_per_edge(self) -> usize {
+    pub(crate) fn nodes_per_edge(self) -> usize {
         match self {
             Degree::Linear => 2,
             Degree::Quadratic => 3,
@@ -172,7 +172,7 @@ impl EdgeIndex {
 
 impl Mesh {
     /// `node tag T` (the file's tag) where known, else `node i` (0-based, internal).
-    pub fn node_name(&self, i: usize) -> String {
+    pub(crate) fn node_name(&self, i: usize) -> String {
         match (
             self.file_tags.nodes.get(i),
             self.file_tags.node_lines.get(i),

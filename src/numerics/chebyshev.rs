@@ -43,7 +43,7 @@ impl ChebyshevNodes {
     ///
     /// `t` is given together with its distances to the ends, `1 + t` and `1 - t`, so that points
     /// next to an end do not lose precision (the caller knows them exactly).
-    pub fn basis_at(&self, t: f64, out: &mut [f64]) {
+    pub(crate) fn basis_at(&self, t: f64, out: &mut [f64]) {
         let mut total = 0.0;
         for (j, (&tj, &wj)) in self.points.iter().zip(&self.weights).enumerate() {
             let diff = t - tj;
@@ -64,7 +64,7 @@ impl ChebyshevNodes {
     /// `Σ_j L_j(t) f_j` with the Lagrange basis of [`Self::basis_at`] (normalised before it
     /// multiplies the values, so values near the largest `f64` do not overflow, as the unnormalised
     /// barycentric sum `Σ_j w_j f_j / (t - t_j)` did).
-    pub fn interpolate(&self, values: &[f64], t: f64) -> f64 {
+    pub(crate) fn interpolate(&self, values: &[f64], t: f64) -> f64 {
         let mut basis = vec![0.0; self.points.len()];
         self.basis_at(t, &mut basis);
         basis.iter().zip(values).map(|(l, f)| l * f).sum()

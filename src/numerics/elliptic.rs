@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 ///
 /// Relative accuracy is a few ulps: the AGM converges quadratically and is stopped once the two
 /// means agree to `4 ε`. `k' = 0` (the singular point) returns `+inf`.
-pub fn complete_k_from_complementary(k_prime: f64) -> f64 {
+pub(crate) fn complete_k_from_complementary(k_prime: f64) -> f64 {
     debug_assert!((0.0..=1.0).contains(&k_prime));
     if k_prime == 0.0 {
         return f64::INFINITY;

@@ -20,7 +20,7 @@ pub fn prefetch<T>(values: &[T], index: usize) {
 
 /// Ask for every cache line of `values`.
 #[inline(always)]
-pub fn prefetch_range<T>(values: &[T]) {
+pub(crate) fn prefetch_range<T>(values: &[T]) {
     let per_line = (LINE_BYTES / std::mem::size_of::<T>().max(1)).max(1);
     for line in values.chunks(per_line) {
         prefetch_address(&line[0]);

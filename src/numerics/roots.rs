@@ -6,7 +6,7 @@
 
 /// Why a root search stopped without a root.
 #[derive(Debug, Clone, PartialEq)]
-pub enum RootError {
+pub(crate) enum RootError {
     /// The function has the same sign at both ends of the admissible interval.
     NotBracketed {
         lo: f64,
@@ -34,7 +34,7 @@ pub struct Root {
 ///
 /// `f` must be continuous and change sign on `[lo, hi]`. Evaluations are counted; at most
 /// `max_evaluations` are spent.
-pub fn find_root<F>(
+pub(crate) fn find_root<F>(
     mut f: F,
     lo: f64,
     hi: f64,

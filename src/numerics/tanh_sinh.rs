@@ -18,7 +18,7 @@ struct ReferenceNode {
 
 /// A node mapped to a panel `[lo, hi]`.
 #[derive(Clone, Copy, Debug)]
-pub struct PanelNode {
+pub(crate) struct PanelNode {
     /// Abscissa `s`.
     pub position: f64,
     /// `s - lo`, without cancellation.
@@ -88,7 +88,7 @@ impl TanhSinhRule {
     }
 
     /// The nodes mapped to `[lo, hi]` (`lo < hi`).
-    pub fn panel(&self, lo: f64, hi: f64) -> impl Iterator<Item = PanelNode> + '_ {
+    pub(crate) fn panel(&self, lo: f64, hi: f64) -> impl Iterator<Item = PanelNode> + '_ {
         let half = 0.5 * (hi - lo);
         self.nodes.iter().map(move |n| {
             let from_lo = half * n.from_lo;

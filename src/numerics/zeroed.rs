@@ -14,7 +14,7 @@ use rayon::prelude::*;
 
 /// `len` zeros, every element written (in parallel) into memory that nothing wrote before: one
 /// pass whether the allocator's memory is fresh or reused (see the module's documentation).
-pub fn zeros_written(len: usize) -> Vec<f64> {
+pub(crate) fn zeros_written(len: usize) -> Vec<f64> {
     rayon::iter::repeat_n(0.0, len).collect()
 }
 

@@ -143,7 +143,7 @@ impl<'a> ConstrainedCholesky<'a> {
     /// Whether [`Self::solve`] refines its solution (one step of iterative refinement, on by
     /// default): worth its second triangular solve only where the answer is asked to within a
     /// few orders of magnitude of rounding (see [`Self::solve`]).
-    pub fn refine_solutions(&mut self, refine: bool) {
+    pub(crate) fn refine_solutions(&mut self, refine: bool) {
         self.refine = refine;
     }
 
@@ -159,7 +159,7 @@ impl<'a> ConstrainedCholesky<'a> {
 
     /// [`Self::solve`] without its step of iterative refinement: for intermediate solutions that
     /// a later refinement corrects (half the triangular solves).
-    pub fn solve_unrefined(
+    pub(crate) fn solve_unrefined(
         &mut self,
         force: &[f64],
         constrained: &[bool],
@@ -292,7 +292,7 @@ impl<'a> ConstrainedCholesky<'a> {
     /// `(K u)_i` for each dof `i` of `dofs`: the reaction at a constrained dof of a solution
     /// without forces there. Read from column `i` (`K` is symmetric), so it costs the entries of
     /// those columns only, not a product with the whole matrix.
-    pub fn product_at(&self, u: &[f64], dofs: &[usize]) -> Vec<f64> {
+    pub(crate) fn product_at(&self, u: &[f64], dofs: &[usize]) -> Vec<f64> {
         dofs.iter().map(|&i| self.column_dot(i, u)).collect()
     }
 

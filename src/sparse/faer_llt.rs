@@ -23,7 +23,7 @@ use crate::error::Result;
 
 /// Symbolic analysis of one pattern in one elimination order.
 #[derive(Clone, Debug)]
-pub struct FaerAnalysis {
+pub(crate) struct FaerAnalysis {
     symbolic: Arc<SymbolicCholesky<usize>>,
 }
 
@@ -36,7 +36,7 @@ impl FaerAnalysis {
 
     /// Analyse `pattern` in `faer`'s own approximate-minimum-degree order (for a pattern that
     /// comes without a mesh).
-    pub fn with_amd(pattern: &Pattern<'_>) -> Result<Self> {
+    pub(crate) fn with_amd(pattern: &Pattern<'_>) -> Result<Self> {
         Self::ordered(pattern, SymmetricOrdering::Amd)
     }
 
@@ -50,13 +50,13 @@ impl FaerAnalysis {
     }
 
     /// Nonzeros of the factor `L`.
-    pub fn factor_len(&self) -> usize {
+    pub(crate) fn factor_len(&self) -> usize {
         self.symbolic.len_val()
     }
 }
 
 /// A numeric factor `P K_C Pᵀ = L Lᵀ` on a [`FaerAnalysis`].
-pub struct FaerFactor {
+pub(crate) struct FaerFactor {
     symbolic: Arc<SymbolicCholesky<usize>>,
     values: Vec<f64>,
 }
@@ -98,7 +98,7 @@ impl FaerFactor {
     }
 
     /// Overwrite `rhs` (one or more columns) with `K_C⁻¹ rhs`.
-    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+    pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
         let par = Par::Seq;
         let mut memory = MemBuffer::new(
             self.symbolic

@@ -16,7 +16,7 @@ use crate::harness::report::table::{Column, Format, Table};
 
 /// Median, range and count of a timed quantity's runs (seconds, or a ratio).
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct Spread {
+pub(crate) struct Spread {
     pub median: f64,
     pub min: f64,
     pub max: f64,
@@ -26,7 +26,7 @@ pub struct Spread {
 
 impl Spread {
     /// `median (min-max)` with `digits` decimals.
-    pub fn describe(&self, digits: usize) -> String {
+    pub(crate) fn describe(&self, digits: usize) -> String {
         format!(
             "{:.digits$} ({:.digits$}-{:.digits$})",
             self.median, self.min, self.max
@@ -36,13 +36,13 @@ impl Spread {
 
 /// The machine a record was measured on.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct Machine {
+pub(crate) struct Machine {
     pub description: String,
 }
 
 /// One row of the FEniCSx record: a stored result's problem, both codes' times.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct FenicsxSpeedRow {
+pub(crate) struct FenicsxSpeedRow {
     pub row: String,
     pub unknowns: usize,
     pub ours: Spread,
@@ -55,7 +55,7 @@ pub struct FenicsxSpeedRow {
 
 /// What every record states about how it was measured.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct Provenance {
+pub(crate) struct Provenance {
     /// The command that wrote the record.
     pub command: String,
     pub date: String,
@@ -69,7 +69,7 @@ pub struct Provenance {
 
 /// The FEniCSx speed record.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct FenicsxSpeed {
+pub(crate) struct FenicsxSpeed {
     #[serde(flatten)]
     pub provenance: Provenance,
     pub configs: Vec<String>,
@@ -77,7 +77,7 @@ pub struct FenicsxSpeed {
 }
 
 /// A FEniCSx row's time as the speed-accuracy chart quotes it.
-pub struct RowTime {
+pub(crate) struct RowTime {
     pub median: f64,
     pub min: f64,
     pub max: f64,
@@ -86,7 +86,7 @@ pub struct RowTime {
 }
 
 /// The records' directory, `benches/records/` of the project.
-pub fn records_directory() -> PathBuf {
+pub(crate) fn records_directory() -> PathBuf {
     crate::mesh::provider::project_root()
         .join("benches")
         .join("records")
@@ -118,7 +118,7 @@ impl FenicsxSpeed {
     }
 
     /// Our time over the fastest FEniCSx configuration's: the row medians' range.
-    pub fn ratio_range(&self) -> (f64, f64) {
+    pub(crate) fn ratio_range(&self) -> (f64, f64) {
         self.rows
             .iter()
             .map(|r| r.ratio.median)
@@ -170,7 +170,7 @@ impl FenicsxSpeed {
     }
 
     /// One paragraph: what was timed, how, and the ratio's range.
-    pub fn summary(&self) -> String {
+    pub(crate) fn summary(&self) -> String {
         let (lo, hi) = self.ratio_range();
         format!(
             "Timed region on both sides: {}. Each configuration is `solver:processes` of \
@@ -184,7 +184,7 @@ impl FenicsxSpeed {
 
 /// The Tamaas speed record (`benches/records/tamaas-speed.json`).
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct TamaasSpeed {
+pub(crate) struct TamaasSpeed {
     #[serde(flatten)]
     pub provenance: Provenance,
     pub problem: String,

@@ -72,7 +72,7 @@ pub struct FenicsxComparison {
 
 /// Root of the repository (where `meshes/` and `verify/` live): the project root the mesh
 /// provider uses ([`crate::mesh::provider::project_root`]).
-pub fn repository_root() -> PathBuf {
+pub(crate) fn repository_root() -> PathBuf {
     crate::mesh::provider::project_root()
 }
 
@@ -215,7 +215,7 @@ pub fn run() -> Result<Vec<FenicsxComparison>> {
 
 /// Compare every stored result, and with `large` those of [`large_results_directory`] too
 /// (their files named `large/NAME.json`), printing one progress line per large model to stderr.
-pub fn run_with(large: bool) -> Result<Vec<FenicsxComparison>> {
+pub(crate) fn run_with(large: bool) -> Result<Vec<FenicsxComparison>> {
     let ring = RingBemSolver::new();
     let mut rows = load_results(&results_directory())?
         .iter()

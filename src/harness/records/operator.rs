@@ -114,7 +114,7 @@ pub struct OperatorStatus {
 }
 
 /// Directory of the stored operator comparisons.
-pub fn records_directory() -> std::path::PathBuf {
+pub(crate) fn records_directory() -> std::path::PathBuf {
     crate::harness::records::fenicsx::results_directory().join("operators")
 }
 
@@ -160,7 +160,7 @@ pub fn failures(rows: &[OperatorStatus]) -> usize {
 }
 
 /// Terminal table of the stored comparisons.
-pub fn render_records(rows: &[OperatorStatus]) -> String {
+pub(crate) fn render_records(rows: &[OperatorStatus]) -> String {
     if rows.is_empty() {
         return format!(
             "Assembled operator against FEniCSx's: NOTHING COMPARED (no stored comparisons in \

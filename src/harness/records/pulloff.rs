@@ -85,7 +85,7 @@ fn tabor_label(tabor: f64) -> String {
 }
 
 /// A row of [`table`] with no simulation result: the case, the date and the verdict cell.
-pub fn row_without_result(case: String, date: &str, verdict: Cell) -> Vec<Cell> {
+pub(crate) fn row_without_result(case: String, date: &str, verdict: Cell) -> Vec<Cell> {
     let mut row = vec![case.into()];
     row.extend(std::iter::repeat_n(Cell::Missing, 7));
     row.push(date.into());
@@ -181,7 +181,7 @@ pub fn table(records: &[PulloffRecord]) -> Table {
 
 /// The first stored record with a simulation that left the closed hole's branch and its
 /// curves (the one the report charts), if any.
-pub fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord> {
+pub(crate) fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord> {
     records.iter().find(|r| {
         r.result.as_ref().is_some_and(|s| {
             s.branch != Some(crate::cohesive::study::Branch::Annular)
@@ -205,7 +205,7 @@ pub fn annular(records: &[PulloffRecord]) -> Vec<PulloffRecord> {
 
 /// Where a stored simulation left the closed hole's branch: one row per left-out range (case,
 /// Tabor, what happened, where), beside the pull-off the smallest range reached on the branch.
-pub fn branches_table(records: &[PulloffRecord]) -> Table {
+pub(crate) fn branches_table(records: &[PulloffRecord]) -> Table {
     let mut t = Table::new(
         "Where the closed hole's branch ended early (stored simulations)",
         vec![

@@ -79,7 +79,7 @@ pub struct Headline {
 
 impl Headline {
     /// `**80 checks, 0 failed, 10 not run: need gmsh (...).** ring BEM against ...: 28; ...`
-    pub fn sentence(&self) -> String {
+    pub(crate) fn sentence(&self) -> String {
         let not_run: usize = self.not_run.iter().map(|(n, _)| n).sum();
         let mut first = format!("{} checks, {} failed", self.checks, self.failed);
         match self.not_run.as_slice() {

@@ -411,7 +411,7 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
 /// What the report draws and states beyond its inputs, computed by the methods before it is
 /// written ([`crate::harness::report_jobs::write_report`]).
 #[derive(Clone, Debug)]
-pub struct Findings {
+pub(crate) struct Findings {
     /// The dimensionless functions against `eps`.
     pub functions: FunctionCurves,
     /// The sphere's pressure profiles at `d = 1.5 h`.
@@ -427,7 +427,11 @@ pub struct Findings {
 
 /// Write the report directory (charts, tables, Markdown, JSON, HTML) from its inputs and
 /// findings; returns the extras (also in report.json). Draws and formats only.
-pub fn write_files(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<ReportExtras> {
+pub(crate) fn write_files(
+    dir: &Path,
+    inputs: &ReportInputs,
+    findings: &Findings,
+) -> Result<ReportExtras> {
     let start = Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| Error::file("create the directory", dir, e))?;
     let comparison = &inputs.comparison;

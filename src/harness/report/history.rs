@@ -11,9 +11,9 @@ use crate::error::{Error, Result};
 use crate::harness::report::table::{Cell, Column, Format, Table};
 
 /// Time ratio over the previous run that counts as a regression.
-pub const SLOWDOWN: f64 = 1.5;
+pub(crate) const SLOWDOWN: f64 = 1.5;
 /// Times shorter than this are not compared (timer noise).
-pub const MIN_TIME: f64 = 0.02;
+pub(crate) const MIN_TIME: f64 = 0.02;
 
 /// Headline figures of one run.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -247,7 +247,7 @@ fn stability_wrong_numbers(dir: &Path) -> Result<usize> {
 }
 
 /// Regressions of `current` (against its tolerances and against `previous`'s times).
-pub fn regressions(current: &Headline, previous: Option<&Headline>) -> Vec<String> {
+pub(crate) fn regressions(current: &Headline, previous: Option<&Headline>) -> Vec<String> {
     let mut out = Vec::new();
     if current.failures > 0 {
         out.push(format!("{} checks failed", current.failures));
@@ -300,7 +300,7 @@ pub fn append(history: &Path, current: &Headline) -> Result<Option<Headline>> {
 
 /// Every record of a history file (none if it does not exist yet). A line that is not a record
 /// (a truncated write, an edit) is an error naming the line: it is never skipped.
-pub fn read_history(history: &Path) -> Result<Vec<Headline>> {
+pub(crate) fn read_history(history: &Path) -> Result<Vec<Headline>> {
     let text = match std::fs::read_to_string(history) {
         Ok(text) => text,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(Vec::new()),
@@ -331,7 +331,7 @@ pub fn trend(history: &Path, last: usize) -> Result<String> {
 
 /// The last `last` runs: failures, wrong numbers, the headline accuracies and the time of the
 /// report's extras.
-pub fn trend_table(runs: &[Headline], last: usize) -> Table {
+pub(crate) fn trend_table(runs: &[Headline], last: usize) -> Table {
     let mut t = Table::new(
         "Trend",
         vec![

@@ -236,7 +236,7 @@ fn utc_now() -> String {
 }
 
 /// The current UTC time as ISO 8601, `YYYY-MM-DDTHH:MM:SS+00:00` (the stored records' dates).
-pub fn utc_now_iso() -> String {
+pub(crate) fn utc_now_iso() -> String {
     let (year, month, day, rem) = utc_civil_now();
     format!(
         "{year:04}-{month:02}-{day:02}T{:02}:{:02}:{:02}+00:00",
@@ -267,7 +267,7 @@ fn utc_civil_now() -> (i64, i64, i64, i64) {
 
 /// Write `dir/index.html` from `dir/report.md` (and the SVG charts it names), with trend charts
 /// of `history` when given.
-pub fn write_index(dir: &Path, history: Option<&[Headline]>) -> Result<PathBuf> {
+pub(crate) fn write_index(dir: &Path, history: Option<&[Headline]>) -> Result<PathBuf> {
     let md_path = dir.join("report.md");
     let markdown =
         std::fs::read_to_string(&md_path).map_err(|e| file_error(&md_path, "read", e))?;

@@ -1,7 +1,7 @@
 //! Minimal log-log line charts as standalone SVG (no system libraries, no fonts to ship).
 
 /// Escape text for XML (`&`, `<`, `>`, quotes).
-pub fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     text.replace('&', "&amp;")
         .replace('<', "&lt;")
         .replace('>', "&gt;")
@@ -10,7 +10,7 @@ pub fn escape(text: &str) -> String {
 }
 
 /// One named series of `(x, y)` points (both positive).
-pub struct Series {
+pub(crate) struct Series {
     pub name: String,
     pub points: Vec<(f64, f64)>,
     /// Error bars: for point `i`, `bars[i] = Some((low, high))` in data units draws a vertical bar
@@ -118,7 +118,12 @@ fn decade_label(e: i32, first: i32, every: i32) -> String {
 }
 
 /// A log-log chart of the series with decade grid lines and a legend.
-pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+pub(crate) fn log_log_chart(
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> String {
     let (title, x_label, y_label) = (escape(title), escape(x_label), escape(y_label));
     let (w, h, left, right, top, bottom) = FRAME;
     let all: Vec<(f64, f64)> = series
@@ -174,12 +179,12 @@ pub fn log_log_chart(title: &str, x_label: &str, y_label: &str, series: &[Series
 }
 
 /// A chart with linear axes (values of either sign), grid lines at "nice" steps.
-pub fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
+pub(crate) fn linear_chart(title: &str, x_label: &str, y_label: &str, series: &[Series]) -> String {
     linear_chart_drawn(title, x_label, y_label, series, false)
 }
 
 /// [`linear_chart`] with a marker at every point (series of one point stay visible).
-pub fn linear_chart_with_markers(
+pub(crate) fn linear_chart_with_markers(
     title: &str,
     x_label: &str,
     y_label: &str,

@@ -47,7 +47,7 @@ impl Column {
     }
 
     /// The same column with a unit (shown in the header as `label [unit]`).
-    pub fn with_unit(mut self, unit: &str) -> Self {
+    pub(crate) fn with_unit(mut self, unit: &str) -> Self {
         self.unit = Some(unit.to_string());
         self
     }
@@ -86,7 +86,7 @@ pub fn readable(x: f64, decimals: usize) -> String {
 }
 
 /// A verdict cell: `ok` when `passed`, else the flagged `failure` text.
-pub fn verdict(passed: bool, failure: &str) -> Cell {
+pub(crate) fn verdict(passed: bool, failure: &str) -> Cell {
     if passed {
         Cell::Text("ok".into())
     } else {
@@ -156,7 +156,7 @@ impl Table {
     }
 
     /// Aligned text for a terminal: the title, then right-aligned columns.
-    pub fn to_terminal(&self) -> String {
+    pub(crate) fn to_terminal(&self) -> String {
         let cells: Vec<Vec<String>> = self
             .rows
             .iter()
@@ -212,7 +212,7 @@ impl Table {
     }
 
     /// The Markdown table alone.
-    pub fn to_markdown_table(&self) -> String {
+    pub(crate) fn to_markdown_table(&self) -> String {
         let mut out = String::from("|");
         for c in &self.columns {
             let _ = write!(out, " {} |", c.header());
@@ -239,7 +239,7 @@ impl Table {
     }
 
     /// CSV with the column keys as header and full-precision numbers.
-    pub fn to_csv(&self) -> Result<String> {
+    pub(crate) fn to_csv(&self) -> Result<String> {
         let mut writer = csv::Writer::from_writer(Vec::new());
         let fail = |e: csv::Error| self.csv_error(e);
         writer

@@ -10,7 +10,7 @@ use crate::harness::studies::comparison::{self, ComparisonReport};
 
 /// One table of the report: the section it opens (if any), a sentence above it, the table, a
 /// chart shown above it, and the file stem of its CSV.
-pub struct ReportTable {
+pub(crate) struct ReportTable {
     pub section: Option<String>,
     pub intro: Option<String>,
     pub chart: Option<String>,
@@ -128,7 +128,7 @@ fn operators(rows: &[OperatorStatus]) -> Table {
 
 /// Every table of the report, in the report's order (charts of the speed-accuracy study above
 /// their tables).
-pub fn report_tables(
+pub(crate) fn report_tables(
     comparison: &ComparisonReport,
     fenicsx: &[FenicsxComparison],
     operator_rows: &[OperatorStatus],

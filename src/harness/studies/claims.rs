@@ -218,7 +218,7 @@ fn refutes_paper_route(studies: &[&PulloffStudy]) -> bool {
 
 /// The cone at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
 /// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
-pub fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
+pub(crate) fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     use crate::cohesive::study;
     let case = study::Case {
         punch: PunchKind::Cone,
@@ -239,13 +239,13 @@ fn bar_digits(bar: f64) -> usize {
 }
 
 /// `d0/h` of the pull-off charts: nine points from 0.1 to 100.
-pub fn pulloff_scales() -> impl Iterator<Item = f64> {
+pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
     (0..=8).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0))
 }
 
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
 /// load on the annular branch, the paper's route on its fits, from full contact.
-pub fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
+pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
     pulloff_scales()
         .map(|s| {
             let r = adhesion::concave(ring, kind, s)?;

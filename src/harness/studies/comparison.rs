@@ -388,7 +388,7 @@ fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<I
 }
 
 /// The ring BEM against every bounded reference.
-pub fn reference_table(comparison: &ComparisonReport) -> Table {
+pub(crate) fn reference_table(comparison: &ComparisonReport) -> Table {
     let mut t = Table::new(
         "Ring BEM against the references",
         vec![
@@ -438,7 +438,7 @@ pub fn reference_table(comparison: &ComparisonReport) -> Table {
 }
 
 /// The consistency identities (no reference involved).
-pub fn identity_table(comparison: &ComparisonReport) -> Table {
+pub(crate) fn identity_table(comparison: &ComparisonReport) -> Table {
     let mut t = Table::new(
         "Consistency identities",
         vec![
@@ -462,7 +462,7 @@ pub fn identity_table(comparison: &ComparisonReport) -> Table {
 }
 
 /// The FEM against the ring BEM.
-pub fn fem_table(comparison: &ComparisonReport) -> Table {
+pub(crate) fn fem_table(comparison: &ComparisonReport) -> Table {
     let mut t = Table::new(
         "FEM against the ring BEM at the default tolerance",
         vec![

@@ -157,7 +157,7 @@ fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
 }
 
 /// Refuse a study whose finest level cannot be run, before running the coarser ones.
-pub fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<()> {
+pub(crate) fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<()> {
     if method == Method::GridBem && (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
         return Err(Error::OutOfRange {
             method: "grid-bem".into(),
@@ -232,7 +232,7 @@ pub fn run(
 
 /// The ring BEM's value the study measures against (tolerance 1e-11): `γ2` at the depth of a
 /// concave punch, `γ` of a flat one.
-pub fn yardstick(case: &StudyCase) -> Result<f64> {
+pub(crate) fn yardstick(case: &StudyCase) -> Result<f64> {
     let ring = RingBemSolver::new();
     Ok(if case.punch.is_concave() {
         ring.concave_at_depth(case.punch, case.depth, 1e-11)?
@@ -275,7 +275,7 @@ pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result
 
 /// Level `k` of a study when level `k - 1` located the free edge `previous_edge` (the FEM on a
 /// concave punch refines around it; other methods ignore it).
-pub fn level_after(
+pub(crate) fn level_after(
     case: StudyCase,
     method: Method,
     k: usize,
@@ -633,7 +633,7 @@ pub fn render(study: &Study) -> String {
 
 /// One sentence: the Richardson extrapolate, its error against the yardstick, the GCI of the
 /// finest level and whether the levels are in the asymptotic range (or why there is none).
-pub fn summary(study: &Study) -> String {
+pub(crate) fn summary(study: &Study) -> String {
     match (study.richardson, study.gci_fine) {
         (Some(e), Some(g)) => {
             let range = match study.asymptotic_ratio {
@@ -695,7 +695,7 @@ pub fn csv(study: &Study) -> Result<String> {
 
 /// Write `<punch>-<method>.csv` and a log-log SVG chart of |error| against the size into `dir`;
 /// returns the two paths.
-pub fn write_files(study: &Study, dir: &std::path::Path) -> Result<[std::path::PathBuf; 2]> {
+pub(crate) fn write_files(study: &Study, dir: &std::path::Path) -> Result<[std::path::PathBuf; 2]> {
     let file_error = |path: &std::path::Path, e: std::io::Error| Error::File {
         action: "write".into(),
         path: path.display().to_string(),

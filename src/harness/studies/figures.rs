@@ -14,21 +14,21 @@ use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;
 
 /// A curve or a set of points `(x, y)`.
-pub type Points = Vec<(f64, f64)>;
+pub(crate) type Points = Vec<(f64, f64)>;
 
 /// `b/a` of the flat annulus's curve: 61 points on `[0, 0.99]`.
-pub fn flat_ratios() -> Vec<f64> {
+pub(crate) fn flat_ratios() -> Vec<f64> {
     (0..=60).map(|k| 0.99 * k as f64 / 60.0).collect()
 }
 
 /// `b/a` of the concave punches' curves: 50 points on `(0.05, 0.95]`.
-pub fn concave_ratios() -> Vec<f64> {
+pub(crate) fn concave_ratios() -> Vec<f64> {
     (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect()
 }
 
 /// `gamma1 = d/h` and `gamma2 = F/(2 E* h a)` of one concave punch against `b/a` by the ring BEM.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct ConcaveCurves {
+pub(crate) struct ConcaveCurves {
     pub punch: PunchKind,
     pub gamma1: Points,
     pub gamma2: Points,
@@ -36,7 +36,7 @@ pub struct ConcaveCurves {
 
 /// The dimensionless functions against `eps` that the methods compute for the report's charts.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct FunctionCurves {
+pub(crate) struct FunctionCurves {
     /// `gamma = F/(2 E* d a)` of the flat annulus by the ring BEM at [`flat_ratios`].
     pub flat_ring_bem: Points,
     /// The same by the grid BEM on 128² at `b/a` = 0, 0.5, 0.9 (those that solved).
@@ -46,7 +46,7 @@ pub struct FunctionCurves {
 }
 
 /// Compute the function curves (ring BEM to 1e-10, grid BEM on 128²).
-pub fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
+pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
     let flat_ring_bem = flat_ratios()
         .into_iter()
         .map(|e| Ok((e, ring.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN))))
@@ -85,7 +85,7 @@ pub fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
 
 /// Contact pressure `p a/(E* h)` against `r/a` of the sphere at `d = 1.5 h` by three methods.
 #[derive(Clone, Debug, Serialize, Deserialize)]
-pub struct PressureProfiles {
+pub(crate) struct PressureProfiles {
     /// The ring BEM's nodal pressures.
     pub ring_bem: Points,
     /// The grid BEM on 256², averaged over 64 rings of width `a/64`.
@@ -95,7 +95,7 @@ pub struct PressureProfiles {
 }
 
 /// Compute the sphere's pressure profiles at `d = 1.5 h`.
-pub fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
+pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
     let state = ring.concave_at_depth(PunchKind::Sphere, 1.5, 1e-10)?;
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
     let grid_bem = ring_averaged_grid_pressure(256, 64)?;
@@ -156,7 +156,7 @@ fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
 /// ring BEM at `b/a` = 0.30-0.995 (`d/h = γ1 - (d0/h)/κ_in`, `F/F0 = (h/d0) γ2 - γ/κ_in`), as
 /// `(d/d0, F/F0)`: from its fixed-grips end (the most negative depth) back toward smaller
 /// `b/a` while the depth rises, up to `d = 0`.
-pub fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over_h: f64) -> Points {
+pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over_h: f64) -> Points {
     // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets go
     // near the rim: the cone at d0/h = 0.3 at b/a = 0.98).
     let ratios = (0..=66)

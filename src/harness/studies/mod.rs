@@ -18,7 +18,7 @@ use crate::scene::{Scene, SceneSpec};
 /// The scene a FEM load describes, for a solve through [`crate::methods::Method`]: punch
 /// `kind`, `b/a = eps` (flat annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
 /// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
-pub fn scene_of_fem_load(
+pub(crate) fn scene_of_fem_load(
     kind: PunchKind,
     eps: f64,
     load: FemLoad,

@@ -133,14 +133,14 @@ fn estimated_point(
 
 impl CostPoint {
     /// Whether the method's own estimate bounds its actual error (`None`: no estimate).
-    pub fn estimate_bounds_error(&self) -> Option<bool> {
+    pub(crate) fn estimate_bounds_error(&self) -> Option<bool> {
         self.estimate
             .map(|e| self.error <= e * (1.0 + 1e-9) || self.error <= 1e-15)
     }
 }
 
 /// Points whose own estimate does not bound their actual error (failed checks of the report).
-pub fn unbounded_estimates(studies: &[SpeedAccuracy]) -> usize {
+pub(crate) fn unbounded_estimates(studies: &[SpeedAccuracy]) -> usize {
     studies
         .iter()
         .flat_map(|s| &s.points)
@@ -163,7 +163,7 @@ pub enum Problem {
 
 impl Problem {
     /// Every problem, in the report's order.
-    pub const ALL: [Problem; 4] = [
+    pub(crate) const ALL: [Problem; 4] = [
         Problem::FlatHalf,
         Problem::Sphere,
         Problem::Cone,
@@ -171,7 +171,7 @@ impl Problem {
     ];
 
     /// Short name (job ids, file names).
-    pub fn slug(self) -> &'static str {
+    pub(crate) fn slug(self) -> &'static str {
         match self {
             Problem::FlatHalf => "flat-annulus-0.5",
             Problem::Sphere => "sphere-1.5",
@@ -181,12 +181,12 @@ impl Problem {
     }
 
     /// The problem named `slug`.
-    pub fn from_slug(slug: &str) -> Option<Problem> {
+    pub(crate) fn from_slug(slug: &str) -> Option<Problem> {
         Problem::ALL.into_iter().find(|p| p.slug() == slug)
     }
 
     /// The chart's title.
-    pub fn title(self) -> &'static str {
+    pub(crate) fn title(self) -> &'static str {
         match self {
             Problem::FlatHalf => "flat annulus b/a = 0.5, gamma",
             Problem::Sphere => "sphere d/h = 1.5, gamma2",
@@ -197,7 +197,7 @@ impl Problem {
 
     /// The ring BEM's value the points are measured against: `γ` of the flat annulus 0.5 at
     /// tolerance 1e-12, the others' `γ` or `γ2` at 1e-11.
-    pub fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
+    pub(crate) fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
         match self {
             Problem::FlatHalf => Ok(ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN)),
             _ => self.cost_problem().value_of_ring_bem(ring, 1e-11),
@@ -249,7 +249,7 @@ pub struct BasePoints {
 /// flat annulus 0.5, at tolerances 1e-2 .. 1e-9 otherwise), the FEM with P1 and P2 on the
 /// committed levels L0-L2 where the problem has a committed family, and the grid BEM at 64² to
 /// 256² cells.
-pub fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints> {
+pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints> {
     let cost = problem.cost_problem();
     let yardstick = problem.yardstick(ring)?;
     let mut points = match problem {
@@ -317,7 +317,7 @@ pub fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints>
 /// The FEM's full solve (`--method fem --tol X`, default degree, meshes made for the scene) at
 /// `tolerance`, when gmsh is there (`None` without gmsh, and when the solve fails: the reason is
 /// written to standard error and the point left out).
-pub fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
+pub(crate) fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
     if !fem_solver::gmsh_found() {
         return None;
     }

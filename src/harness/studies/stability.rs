@@ -436,7 +436,7 @@ fn reference_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 }
 
 /// Number of wrong numbers without an error.
-pub fn wrong_numbers(probes: &[Probe]) -> usize {
+pub(crate) fn wrong_numbers(probes: &[Probe]) -> usize {
     probes.iter().filter(|p| p.outcome == "WRONG").count()
 }
 

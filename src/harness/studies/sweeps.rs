@@ -17,7 +17,7 @@ use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::punch::PunchKind;
 
 /// What a sweep returns: its rows, the table of them, and the files written.
-pub struct Sweep<R> {
+pub(crate) struct Sweep<R> {
     pub rows: Vec<R>,
     pub table: Table,
     pub files: Vec<PathBuf>,
@@ -43,7 +43,10 @@ fn annulus_ratios() -> Vec<f64> {
 
 /// Flat annulus: both edges' critical states against `b/a`; writes
 /// `critical-flat-annulus.{csv,svg}` into `out`.
-pub fn flat_annulus_sweep(solver: &RingBemSolver, out: &Path) -> Result<Sweep<FlatAnnulusJkr>> {
+pub(crate) fn flat_annulus_sweep(
+    solver: &RingBemSolver,
+    out: &Path,
+) -> Result<Sweep<FlatAnnulusJkr>> {
     let rows = annulus_ratios()
         .into_iter()
         .map(|e| adhesion::flat_annulus(solver, e))
@@ -120,7 +123,7 @@ fn pulloff(c: &Option<Critical>) -> Option<f64> {
 /// Concave punch: the pull-off force against `d0/h` by every route, and the adhesive branches;
 /// writes `pulloff-KIND.{csv,svg}` and `branches-KIND.{csv,svg}` into `out`. `progress` is
 /// called after each `d0/h`.
-pub fn pulloff_sweep(
+pub(crate) fn pulloff_sweep(
     solver: &RingBemSolver,
     kind: PunchKind,
     out: &Path,

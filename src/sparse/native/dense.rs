@@ -36,7 +36,7 @@ const VECTOR_VALUES: usize = 8;
 /// An `nrows × ncols` zero matrix whose storage padding is zero as well: allocated with `nrows`
 /// rounded up to a multiple of [`VECTOR_VALUES`] (every row written) and truncated to `nrows`
 /// (which keeps the storage and its values).
-pub fn zero_padded(nrows: usize, ncols: usize) -> Mat<f64> {
+pub(crate) fn zero_padded(nrows: usize, ncols: usize) -> Mat<f64> {
     let mut matrix = Mat::<f64>::zeros(nrows.next_multiple_of(VECTOR_VALUES), ncols);
     matrix.truncate(nrows, ncols);
     matrix
@@ -44,20 +44,20 @@ pub fn zero_padded(nrows: usize, ncols: usize) -> Mat<f64> {
 
 /// Scratch memory for a `faer` kernel that asks for `request`, every byte written with zero
 /// (`MemStack::new` of it): `faer`'s temporary matrices in it are then zero-padded too.
-pub fn zeroed_scratch(request: StackReq) -> Vec<MaybeUninit<u8>> {
+pub(crate) fn zeroed_scratch(request: StackReq) -> Vec<MaybeUninit<u8>> {
     vec![MaybeUninit::new(0u8); request.unaligned_bytes_required()]
 }
 
 /// The Cholesky factor `L` of a dense symmetric positive definite matrix, `A = L Lᵀ`, kept in
 /// zero-padded storage ([`zero_padded`]), its strict upper triangle zero.
 #[derive(Clone, Debug)]
-pub struct DenseCholesky {
+pub(crate) struct DenseCholesky {
     lower: Mat<f64>,
 }
 
 /// A dense factorisation that met a pivot `≤ 0`: the matrix is not positive definite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct NotPositiveDefinite {
+pub(crate) struct NotPositiveDefinite {
     /// The column whose pivot was not positive.
     pub column: usize,
 }
@@ -65,7 +65,7 @@ pub struct NotPositiveDefinite {
 impl DenseCholesky {
     /// Factorise the `n × n` matrix whose lower triangle `lower(i, j)` gives (`i ≥ j`), in
     /// zero-padded storage with zeroed scratch (`faer`'s blocked left-looking `L Lᵀ`).
-    pub fn of_lower(
+    pub(crate) fn of_lower(
         n: usize,
         lower: impl Fn(usize, usize) -> f64,
     ) -> Result<Self, NotPositiveDefinite> {
@@ -96,7 +96,7 @@ impl DenseCholesky {
     }
 
     /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs = L⁻ᵀ L⁻¹ rhs`.
-    pub fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
+    pub(crate) fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
         solve_lower_triangular_in_place(self.lower.as_ref(), rhs.as_mut(), Par::Seq);
         solve_upper_triangular_in_place(self.lower.transpose(), rhs, Par::Seq);
     }

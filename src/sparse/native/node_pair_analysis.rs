@@ -51,7 +51,7 @@ fn analysis_error(message: String) -> Error {
 /// The layout of the permuted lower triangle, whether it couples outside the order, and its
 /// supernodal symbolic analysis.
 #[derive(Debug)]
-pub struct NodePairAnalysis {
+pub(crate) struct NodePairAnalysis {
     /// The permuted lower triangle (as [`PermutedLower::of_part`] lays it out).
     pub lower: PermutedLower,
     /// Whether an entry of one of the first `checked` columns lies outside the order.
@@ -107,7 +107,7 @@ fn transpose(offsets: &[usize], rows: &[usize]) -> NodeColumns {
 /// given as compressed columns with both triangles stored), as [`PermutedLower::of_part`] and
 /// `faer`'s supernodal analysis would, on the node graph (see the module's documentation).
 /// `Ok(None)` when the order or the pattern is not in node pairs.
-pub fn analyse_node_pairs(
+pub(crate) fn analyse_node_pairs(
     col_offsets: &[usize],
     row_indices: &[usize],
     order: &[usize],
@@ -471,7 +471,7 @@ fn dof_upper_pattern(node_upper: &NodeColumns, pairs: usize) -> (Vec<usize>, Vec
 /// rows unsorted, already in elimination order), dof by dof: its transpose's elimination tree
 /// and column counts ([`prefactorize_symbolic_cholesky`]), then the supernodes. For patterns
 /// [`analyse_node_pairs`] does not take.
-pub fn supernodal_of_lower(
+pub(crate) fn supernodal_of_lower(
     lower: SymbolicSparseColMatRef<'_, usize>,
 ) -> Result<SymbolicSupernodalCholesky<usize>> {
     let n = lower.nrows();

@@ -48,7 +48,7 @@ impl PermutedLower {
     /// [`Self::new`] for one part of a split `K` (the part's dofs, then the separator's, in
     /// `order`): `None` when an entry of one of the part's own columns (the first `interior` of
     /// `order`) lies outside the order, that is, when `K` couples the part to the other part.
-    pub fn of_part(
+    pub(crate) fn of_part(
         col_offsets: &[usize],
         row_indices: &[usize],
         order: &[usize],
@@ -173,7 +173,7 @@ impl PermutedLower {
     }
 
     /// [`Self::gather`] into a new vector, each value written once (no zero-filling first).
-    pub fn gathered(&self, values: &[f64], constrained: &[bool]) -> Vec<f64> {
+    pub(crate) fn gathered(&self, values: &[f64], constrained: &[bool]) -> Vec<f64> {
         let mut out = Vec::with_capacity(self.len());
         self.for_each_gathered(values, constrained, |v| out.push(v));
         out

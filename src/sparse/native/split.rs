@@ -138,7 +138,7 @@ impl SplitAnalysis {
     /// 28 ms for the three). Whether an entry couples the parts is found while each part's
     /// layout is made ([`PermutedLower::of_part`]), not in a pass of its own before them (that
     /// pass was 2.5 ms of one core at 9e4 quadratic unknowns).
-    pub fn new_beside<R: Send>(
+    pub(crate) fn new_beside<R: Send>(
         col_offsets: &[usize],
         row_indices: &[usize],
         node_order: &[usize],
@@ -215,19 +215,19 @@ impl SplitAnalysis {
     }
 
     /// Number of separator dofs.
-    pub fn separator_len(&self) -> usize {
+    pub(crate) fn separator_len(&self) -> usize {
         self.separator.len()
     }
 
     /// Each part's numeric factorisation's multiply-adds ([`factorisation_work`]).
-    pub fn part_work(&self) -> [f64; 2] {
+    pub(crate) fn part_work(&self) -> [f64; 2] {
         self.parts
             .each_ref()
             .map(|part| factorisation_work(&part.symbolic))
     }
 
     /// Number of dofs of each part, its separator excluded.
-    pub fn part_sizes(&self) -> [usize; 2] {
+    pub(crate) fn part_sizes(&self) -> [usize; 2] {
         let s = self.separator.len();
         [self.parts[0].interior(s), self.parts[1].interior(s)]
     }
@@ -247,7 +247,7 @@ struct FactoredPart {
 }
 
 /// The numeric factorisation of a split `K_C` (see the module's documentation).
-pub struct SplitFactor {
+pub(crate) struct SplitFactor {
     analysis: Arc<SplitAnalysis>,
     parts: [PartFactor; 2],
     schur: DenseCholesky,
@@ -534,7 +534,7 @@ impl SplitFactor {
     }
 
     /// Overwrite `rhs` (one or more columns) with `K_C⁻¹ rhs`.
-    pub fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
+    pub(crate) fn solve_in_place(&self, mut rhs: MatMut<'_, f64>) {
         let analysis = &self.analysis;
         let separator = analysis.separator.len();
         let k = rhs.ncols();

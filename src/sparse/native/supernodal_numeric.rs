@@ -45,7 +45,7 @@ use crate::sparse::native::dense::zeroed_scratch;
 
 /// A pivot `≤ 0` (or not a number) met: the matrix is not positive definite.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct NonPositivePivot {
+pub(crate) struct NonPositivePivot {
     /// The column (in elimination order) whose pivot it was.
     pub column: usize,
 }
@@ -61,7 +61,7 @@ const SMALL_WIDTH: usize = 16;
 /// them, in `faer`'s layout); `a_lower` and `a_values` hold `A`'s lower triangle in elimination
 /// order (rows in any order; entries above the diagonal are skipped). Fails at the first pivot
 /// that is not positive.
-pub fn factorise(
+pub(crate) fn factorise(
     symbolic: &SymbolicSupernodalCholesky<usize>,
     a_lower: SymbolicSparseColMatRef<'_, usize>,
     a_values: &[f64],

@@ -167,7 +167,7 @@ impl SymbolicFactor {
     }
 
     /// Analyse the pattern given as compressed columns (`col_offsets`, sorted `row_indices`).
-    pub fn of_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
+    pub(crate) fn of_pattern(col_offsets: &[usize], row_indices: &[usize]) -> Result<Self> {
         Self::new(checked_pattern(col_offsets, row_indices)?)
     }
 
@@ -191,7 +191,7 @@ impl SymbolicFactor {
     /// in `node_order` (each of the `n / 2` nodes once, for example
     /// [`crate::discretisation::vertex_ordering::vertex_led_node_order`]); a trailing odd dof (the far-field
     /// amplitude) goes last.
-    pub fn with_node_order(
+    pub(crate) fn with_node_order(
         col_offsets: &[usize],
         row_indices: &[usize],
         node_order: &[usize],
@@ -260,7 +260,7 @@ fn supernodal_of(analysis: &SymbolicCholesky<usize>) -> &SymbolicSupernodalChole
 /// supernodes' dense blocks counted whole, with the zeros `faer`'s relaxed supernodes carry: a
 /// tridiagonal matrix of 10 rows in its own order, 37 without them, counts 385, one dense
 /// supernode), for traces and comparisons of orderings.
-pub fn factorisation_work(supernodal: &SymbolicSupernodalCholesky<usize>) -> f64 {
+pub(crate) fn factorisation_work(supernodal: &SymbolicSupernodalCholesky<usize>) -> f64 {
     let (begin, end) = (supernodal.supernode_begin(), supernodal.supernode_end());
     let rows = supernodal.col_ptr_for_row_idx();
     (0..supernodal.n_supernodes())
@@ -281,7 +281,7 @@ pub fn factorisation_work(supernodal: &SymbolicSupernodalCholesky<usize>) -> f64
 /// order) is `lower` with `lower_values`: `L`'s values in `faer`'s layout, supernode by
 /// supernode ([`supernodal_numeric::factorise`], which zeroes each supernode's values just
 /// before it forms them). Fails if the matrix is not positive definite.
-pub fn factorise_supernodal(
+pub(crate) fn factorise_supernodal(
     supernodal: &SymbolicSupernodalCholesky<usize>,
     lower: &SymbolicSparseColMat<usize>,
     lower_values: &[f64],
@@ -302,7 +302,7 @@ pub fn factorise_supernodal(
 
 /// Numeric Cholesky factor `A = L Lᵀ` on a [`SymbolicFactor`].
 #[derive(Clone, Debug)]
-pub struct NumericFactor {
+pub(crate) struct NumericFactor {
     symbolic: Arc<SymbolicCholesky<usize>>,
     values: Vec<f64>,
 }
@@ -323,7 +323,7 @@ impl NumericFactor {
 
     /// Overwrite `rhs` (one or more columns) with `A⁻¹ rhs`. The scratch is zeroed: `faer`'s
     /// dense kernels compute on its padding ([`crate::sparse::native::dense`]).
-    pub fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
+    pub(crate) fn solve_in_place(&self, rhs: MatMut<'_, f64>) {
         let mut memory = zeroed_scratch(
             self.symbolic
                 .solve_in_place_scratch::<f64>(rhs.ncols(), Par::Seq),
