@@ -14,6 +14,7 @@ use serde::Serialize;
 
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::Result;
+use crate::fem::FemLoad;
 use crate::methods::{self, Method, MethodOptions};
 use crate::punch::PunchKind;
 use crate::reference::asymptotic::{collins_series, narrow_ring};
@@ -157,25 +158,19 @@ fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
     Some(path)
 }
 
+/// The flat punch (`eps = 0`) or the flat annulus of `b/a = eps` on the unit scene.
 fn flat_scene(eps: f64) -> Result<Scene> {
-    let spec = SceneSpec::default().shape(if eps == 0.0 {
+    let kind = if eps == 0.0 {
         PunchKind::Flat
     } else {
         PunchKind::FlatAnnulus
-    });
-    if eps == 0.0 {
-        spec.validate()
-    } else {
-        spec.inner_ratio(eps).validate()
-    }
+    };
+    super::scene_of_fem_load(kind, eps, FemLoad::Flat, None)
 }
 
+/// A concave punch at depth `d/h` on the unit scene.
 fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<Scene> {
-    let spec = SceneSpec::default().shape(kind).depth(depth);
-    match tolerance {
-        Some(t) => spec.tolerance(t).validate(),
-        None => spec.validate(),
-    }
+    super::scene_of_fem_load(kind, 0.0, FemLoad::ConcaveDepth(depth), tolerance)
 }
 
 /// Number of probes [`run`] makes (for progress display).
