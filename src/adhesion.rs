@@ -276,7 +276,7 @@ fn branch_point_at(
     eps: f64,
     tolerance: f64,
 ) -> Result<BranchPoint> {
-    let concave = solver.concave_at_ratio(kind, eps, tolerance)?;
+    let concave = solver.free_inner_edge_field(kind, eps, tolerance)?;
     let flat = solver.flat(eps, tolerance)?;
     Ok(BranchPoint {
         eps,
@@ -330,6 +330,7 @@ pub struct FullContactBranch {
 /// The JKR analysis of a concave punch for one `d0/h`.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct ConcaveJkr {
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub d0_over_h: f64,
     /// Pull-off from the annular contact under fixed load (`dF/deps = 0` or rim), if a stable
@@ -491,13 +492,19 @@ fn annular_pulloff(
 /// the profile `w = d - h ĝ(r)` on the whole disk, `F = 2 E* a (d - c_F h)` and the rim intensity
 /// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (sphere) and `c_F = 1 - π/4`,
 /// `κ_h = π/2 - 1` (cone). (The disk BEM reproduces the sphere's to 1e-12; the cone's profile has a
-/// kink on the axis, where the disk basis converges slowly.)
+/// kink on the axis, where the disk basis converges slowly.) The power law `h (1 - (r/a)^n)`:
+/// `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of [`crate::reference::power_law::kappa`]
+/// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
 pub fn full_contact_constants(kind: PunchKind) -> (f64, f64) {
     match kind {
         PunchKind::Cone => (
             1.0 - std::f64::consts::FRAC_PI_4,
             std::f64::consts::FRAC_PI_2 - 1.0,
         ),
+        PunchKind::Power(n) => {
+            let kappa = crate::reference::power_law::kappa(n.value());
+            (1.0 - kappa / (n.value() + 1.0), kappa - 1.0)
+        }
         _ => (1.0 / 3.0, 1.0),
     }
 }
@@ -699,6 +706,10 @@ pub type EpsForce = (f64, f64);
 /// interior minimum.
 pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<EpsForce>) {
     use crate::reference::paper_fits::{cone_gamma, sphere_gamma};
+    // The paper fitted the cone and the sphere only.
+    if !matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
+        return (None, None);
+    }
     let g = |i: usize, e: f64| match kind {
         PunchKind::Cone => cone_gamma(i, e),
         _ => sphere_gamma(i, e),

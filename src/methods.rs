@@ -19,7 +19,7 @@ use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::triangulation::Degree;
 use crate::numerics::roots::find_root;
 use crate::punch::PunchKind;
-use crate::reference::{self, Quantity, ReferenceValue};
+use crate::reference::{self, power_law, Quantity, ReferenceValue};
 use crate::scene::{Load, Scene};
 use crate::solution::{FemProvenance, PressureSample, Solution};
 
@@ -333,6 +333,7 @@ fn base(
         force,
         inner_radius: eps * a,
         rim_radius: a,
+        outer_radius: a,
         gamma,
         gamma1,
         gamma2,
@@ -525,6 +526,41 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
             solution.error_estimate = bound;
             solution.method = format!("reference:{name}");
             solution.provenance = source.to_string();
+        }
+        PunchKind::Power(n) => {
+            let n = n.value();
+            let full_contact = match scene.load {
+                Load::Depth(d) => power_law::full_contact_gamma2(n, d / h).map(|g2| (d / h, g2)),
+                Load::Force(f) => {
+                    let g2 = f / (2.0 * es * h * a);
+                    power_law::full_contact_gamma1(n, g2).map(|g1| (g1, g2))
+                }
+                Load::ContactRatio(_) => None,
+            };
+            let Some((g1, g2)) = full_contact else {
+                return Err(Error::OutOfRange {
+                    method: "reference".into(),
+                    reason: format!(
+                        "the power-law punch has a closed form only in full contact (n > 1 and \
+                         d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
+                         (--method ring-bem)",
+                        power_law::closure_depth(n)
+                            .map(|d| format!(", here d >= {} h", crate::error::show(d)))
+                            .unwrap_or_default()
+                    ),
+                });
+            };
+            solution.eps = 0.0;
+            solution.inner_radius = 0.0;
+            solution.gamma1 = Some(g1);
+            solution.gamma2 = Some(g2);
+            solution.depth = h * g1;
+            solution.force = 2.0 * es * h * a * g2;
+            solution.error_estimate = Some(0.0);
+            solution.method = "reference:power-full-contact".into();
+            solution.provenance = "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for \
+                                   d >= h (1 + κ_n/(n - 1)), κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)"
+                .into();
         }
     }
     solution.wall_s = start.elapsed().as_secs_f64();

@@ -9,12 +9,124 @@
 //! | flat annular | hole for `r < b`, `0` on `[b, a]` | `[b, a]`, fixed |
 //! | conical concave | `h (1 - r/a)` | `[b(d), a]` |
 //! | spherical (parabolic) concave | `h (1 - r²/a²)` | `[b(d), a]` |
+//! | power-law concave, exponent `n > 0` | `h (1 - (r/a)^n)` | `[b(d), a]` |
+//!
+//! Every concave punch has a sharp rim at `r = a` (fixed edge, pressure singular) and a free
+//! inner edge `b` found by the solution (pressure zero there without adhesion). The power law
+//! holds the cone (`n = 1`) and the sphere (`n = 2`) as special cases; `cone` and `sphere` keep
+//! their own names and evaluate the same gap.
+
+use std::hash::{Hash, Hasher};
 
 use serde::{Deserialize, Serialize};
 
-/// The four punch shapes the project verifies.
+use crate::error::{Error, Result};
+
+/// The names of the punch shapes, as written on the command line (`--punch`), in scene files
+/// (`punch.shape`) and in JSON (`"punch"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
+pub enum PunchName {
+    /// Flat circular punch (Boussinesq): contact is the full disk.
+    Flat,
+    /// Flat annular punch: contact is the fixed annulus `b <= r <= a` (give `--eps b/a`).
+    FlatAnnulus,
+    /// Conical concave punch, gap `h (1 - r/a)`.
+    Cone,
+    /// Spherical (parabolic) concave punch, gap `h (1 - r²/a²)`.
+    Sphere,
+    /// Power-law concave punch, gap `h (1 - (r/a)^n)` (give `--exponent n`, any `n > 0`).
+    Power,
+}
+
+impl PunchName {
+    /// Name used on the command line and in JSON.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            PunchName::Flat => "flat",
+            PunchName::FlatAnnulus => "flat-annulus",
+            PunchName::Cone => "cone",
+            PunchName::Sphere => "sphere",
+            PunchName::Power => "power",
+        }
+    }
+
+    /// The punch of this name; `exponent` is the power law's `n` and is refused for every other
+    /// shape.
+    pub fn with_exponent(self, exponent: Option<f64>) -> Result<PunchKind> {
+        match (self, exponent) {
+            (PunchName::Power, Some(n)) => Ok(PunchKind::Power(Exponent::new(n)?)),
+            (PunchName::Power, None) => Err(Error::InvalidScene {
+                field: "exponent".into(),
+                rule: "the power-law punch needs its exponent n > 0 (--exponent N, or \
+                          punch.exponent in a scene file); n = 1 is the cone, n = 2 the sphere"
+                    .into(),
+            }),
+            (_, Some(_)) => Err(Error::InvalidScene {
+                field: "exponent".into(),
+                rule: format!(
+                    "applies only to shape = power, not {} (the cone is n = 1 and the sphere \
+                     n = 2 by definition)",
+                    self.as_str()
+                ),
+            }),
+            (PunchName::Flat, None) => Ok(PunchKind::Flat),
+            (PunchName::FlatAnnulus, None) => Ok(PunchKind::FlatAnnulus),
+            (PunchName::Cone, None) => Ok(PunchKind::Cone),
+            (PunchName::Sphere, None) => Ok(PunchKind::Sphere),
+        }
+    }
+}
+
+impl std::fmt::Display for PunchName {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
+/// Exponent `n` of the power-law concave punch, gap `h (1 - (r/a)^n)`: finite and positive.
+/// Compared and hashed by its bits, so that punches can be keys.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exponent(f64);
+
+impl Exponent {
+    /// Largest exponent accepted: beyond it `(r/a)^n` is a wall at the rim whose contact ring is
+    /// narrower than any method here resolves (`1 - (1 - 1e-4)^n` stays below 1 % of `h`).
+    pub const MAX: f64 = 100.0;
+
+    /// A checked exponent: finite, `0 < n <= MAX`.
+    pub fn new(n: f64) -> Result<Self> {
+        if !(n.is_finite() && n > 0.0 && n <= Self::MAX) {
+            return Err(Error::InvalidScene {
+                field: "exponent".into(),
+                rule: format!(
+                    "must be finite with 0 < n <= {} (got {})",
+                    Self::MAX,
+                    crate::error::show(n)
+                ),
+            });
+        }
+        Ok(Self(n))
+    }
+
+    /// The value `n`.
+    pub fn value(self) -> f64 {
+        self.0
+    }
+}
+
+impl Eq for Exponent {}
+
+impl Hash for Exponent {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.0.to_bits().hash(state);
+    }
+}
+
+/// A punch shape with its dimensionless parameters. Written in JSON as the keys `punch` (its
+/// [`PunchName`]) and, for the power law, `exponent`; structs holding one flatten it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(into = "PunchRecord", try_from = "PunchRecord")]
 pub enum PunchKind {
     /// Flat circular punch (Boussinesq): contact is the full disk.
     Flat,
@@ -24,30 +136,109 @@ pub enum PunchKind {
     Cone,
     /// Spherical (parabolic) concave punch, gap `h (1 - r²/a²)`.
     Sphere,
+    /// Power-law concave punch, gap `h (1 - (r/a)^n)`.
+    Power(Exponent),
+}
+
+/// How a [`PunchKind`] is written in JSON.
+#[derive(Serialize, Deserialize)]
+struct PunchRecord {
+    punch: PunchName,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    exponent: Option<f64>,
+}
+
+impl From<PunchKind> for PunchRecord {
+    fn from(kind: PunchKind) -> Self {
+        PunchRecord {
+            punch: kind.shape_name(),
+            exponent: kind.exponent(),
+        }
+    }
+}
+
+impl TryFrom<PunchRecord> for PunchKind {
+    type Error = Error;
+    fn try_from(record: PunchRecord) -> Result<Self> {
+        record.punch.with_exponent(record.exponent)
+    }
 }
 
 impl PunchKind {
+    /// The shape's name ([`PunchName`]).
+    pub fn shape_name(self) -> PunchName {
+        match self {
+            PunchKind::Flat => PunchName::Flat,
+            PunchKind::FlatAnnulus => PunchName::FlatAnnulus,
+            PunchKind::Cone => PunchName::Cone,
+            PunchKind::Sphere => PunchName::Sphere,
+            PunchKind::Power(_) => PunchName::Power,
+        }
+    }
+
     /// Name used on the command line and in JSON.
     pub fn name(self) -> &'static str {
+        self.shape_name().as_str()
+    }
+
+    /// A name unique to the shape and its parameters, for file names and labels: the name, and
+    /// for the power law `power-n<n>` (`power-n2.5`).
+    pub fn label(self) -> String {
         match self {
-            PunchKind::Flat => "flat",
-            PunchKind::FlatAnnulus => "flat-annulus",
-            PunchKind::Cone => "cone",
-            PunchKind::Sphere => "sphere",
+            PunchKind::Power(n) => format!("power-n{}", n.value()),
+            _ => self.name().to_string(),
+        }
+    }
+
+    /// The punch of a [`label`](Self::label) (`cone`, `power-n2.5`), if it names one.
+    pub fn from_label(label: &str) -> Option<PunchKind> {
+        if let Some(n) = label.strip_prefix("power-n") {
+            return Exponent::new(n.parse().ok()?).ok().map(PunchKind::Power);
+        }
+        let name = <PunchName as clap::ValueEnum>::from_str(label, false).ok()?;
+        name.with_exponent(None).ok()
+    }
+
+    /// The command-line flags that name this punch: `--punch cone`, `--punch power --exponent
+    /// 2.5`.
+    pub fn flags(self) -> String {
+        match self {
+            PunchKind::Power(n) => format!("--punch power --exponent {}", n.value()),
+            _ => format!("--punch {}", self.name()),
+        }
+    }
+
+    /// The power law's exponent `n` (`None` for the other shapes, even the cone and sphere).
+    pub fn exponent(self) -> Option<f64> {
+        match self {
+            PunchKind::Power(n) => Some(n.value()),
+            _ => None,
+        }
+    }
+
+    /// The exponent `n` of the concave profile `h (1 - (r/a)^n)`: 1 for the cone, 2 for the
+    /// sphere, `n` for the power law; `None` for the flat punches.
+    pub fn concave_exponent(self) -> Option<f64> {
+        match self {
+            PunchKind::Cone => Some(1.0),
+            PunchKind::Sphere => Some(2.0),
+            PunchKind::Power(n) => Some(n.value()),
+            PunchKind::Flat | PunchKind::FlatAnnulus => None,
         }
     }
 
     /// Whether the inner contact radius is found by the solver (concave punches).
     pub fn is_concave(self) -> bool {
-        matches!(self, PunchKind::Cone | PunchKind::Sphere)
+        self.concave_exponent().is_some()
     }
 
-    /// Whether the concave profile is smooth at the axis (`g(r)` even and analytic there: the
-    /// sphere), so that the full-contact pressure is smooth there and the contact can close.
-    /// The cone's apex (`g = h (1 - r/a)`, a kink) makes the pressure there log-singular: a
-    /// hole stays open at every depth.
+    /// Whether the concave profile is flat at the axis (`g'(0) = 0`: the sphere, the power law
+    /// with `n > 1`), so that the full-contact pressure is bounded there and the contact can
+    /// close at a finite depth ([`crate::reference::power_law`]). The cone's apex
+    /// (`g = h (1 - r/a)`, a kink) and every `n <= 1` make the pressure there singular and
+    /// tensile: a hole stays open at every depth.
     pub fn profile_smooth_at_axis(self) -> bool {
-        matches!(self, PunchKind::Sphere)
+        self.concave_exponent().is_some_and(|n| n > 1.0)
     }
 
     /// Dimensionless gap `g(r)/h` of a concave punch at `rho = r/a` (0 for flat punches).
@@ -56,13 +247,17 @@ impl PunchKind {
             PunchKind::Flat | PunchKind::FlatAnnulus => 0.0,
             PunchKind::Cone => 1.0 - rho,
             PunchKind::Sphere => 1.0 - rho * rho,
+            PunchKind::Power(n) => 1.0 - rho.powf(n.value()),
         }
     }
 }
 
 impl std::fmt::Display for PunchKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
+        match self {
+            PunchKind::Power(n) => write!(f, "power (n = {})", n.value()),
+            _ => f.write_str(self.name()),
+        }
     }
 }
 

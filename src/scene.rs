@@ -2,9 +2,10 @@
 //!
 //! ```toml
 //! [punch]
-//! shape = "cone"            # flat | flat-annulus | cone | sphere
+//! shape = "cone"            # flat | flat-annulus | cone | sphere | power
 //! rim_radius = 1.0          # a, length unit of your choice
-//! hole_depth = 0.1          # h, cone and sphere only
+//! hole_depth = 0.1          # h, concave punches (cone, sphere, power) only
+//! # exponent = 2.5          # n of the power law, gap h (1 - (r/a)^n); power only
 //! # inner_radius = 0.5      # b, flat-annulus only, 0 <= b < a
 //!
 //! [material]
@@ -24,7 +25,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::punch::{Punch, PunchKind};
+use crate::punch::{Punch, PunchKind, PunchName};
 
 /// Default tolerance of the ring BEM (each method has its own default; see `methods`).
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
@@ -65,7 +66,8 @@ pub struct Scene {
 #[derive(Deserialize, Default)]
 #[serde(deny_unknown_fields)]
 struct RawPunch {
-    shape: Option<PunchKind>,
+    shape: Option<PunchName>,
+    exponent: Option<f64>,
     rim_radius: Option<f64>,
     inner_radius: Option<f64>,
     hole_depth: Option<f64>,
@@ -144,10 +146,31 @@ impl SceneSpec {
         Self::from_toml(&text, &path.display().to_string())
     }
 
-    /// Set the punch shape.
+    /// Set the punch shape (with the power law's exponent).
     pub fn shape(mut self, kind: PunchKind) -> Self {
-        self.punch.shape = Some(kind);
+        self.punch.shape = Some(kind.shape_name());
+        self.punch.exponent = kind.exponent();
         self
+    }
+
+    /// Set the punch shape by name and the power law's exponent, each only where given (a
+    /// scene file's values stay where the command line is silent).
+    pub fn shape_named(mut self, name: Option<PunchName>, exponent: Option<f64>) -> Self {
+        if let Some(name) = name {
+            if name != self.punch.shape.unwrap_or(name) {
+                self.punch.exponent = None;
+            }
+            self.punch.shape = Some(name);
+        }
+        if exponent.is_some() {
+            self.punch.exponent = exponent;
+        }
+        self
+    }
+
+    /// The punch shape named so far (file or command line), if any.
+    pub fn shape_name(&self) -> Option<PunchName> {
+        self.punch.shape
     }
 
     /// Set `b/a` of a flat annulus (with the rim radius of the scene, default 1).
@@ -224,12 +247,18 @@ impl SceneSpec {
     /// left to the method when not given)
     /// and check every rule. The error names the field and the rule it breaks.
     pub fn validate(self) -> Result<Scene> {
-        let kind = self.punch.shape.ok_or_else(|| {
+        let name = self.punch.shape.ok_or_else(|| {
             Error::invalid(
                 "punch.shape",
-                "is required: one of flat, flat-annulus, cone, sphere",
+                "is required: one of flat, flat-annulus, cone, sphere, power",
             )
         })?;
+        let kind = name
+            .with_exponent(self.punch.exponent)
+            .map_err(|e| match e {
+                Error::InvalidScene { rule, .. } => Error::invalid("punch.exponent", rule),
+                other => other,
+            })?;
         let rim_radius = positive("punch.rim_radius", self.punch.rim_radius.unwrap_or(1.0))?;
 
         let inner_radius = match (kind, self.punch.inner_radius, self.inner_ratio) {
@@ -252,7 +281,7 @@ impl SceneSpec {
                     "punch.inner_radius",
                     format!(
                         "applies only to shape = flat-annulus, not {kind} \
-                         (for cone and sphere the inner radius is found by the solver; \
+                         (for the concave punches the inner radius is found by the solver; \
                          prescribe it with load.contact_ratio)"
                     ),
                 ))
@@ -276,7 +305,7 @@ impl SceneSpec {
             (false, Some(_)) => {
                 return Err(Error::invalid(
                     "punch.hole_depth",
-                    format!("applies only to shape = cone or sphere, not {kind}"),
+                    format!("applies only to the concave shapes (cone, sphere, power), not {kind}"),
                 ))
             }
             (false, None) => 0.0,
@@ -392,7 +421,7 @@ impl RawLoad {
                 return Err(Error::invalid(
                     "load.contact_ratio",
                     format!(
-                        "applies only to cone and sphere (for {kind} the contact is fixed by the \
+                        "applies only to the concave punches (cone, sphere, power) (for {kind} the contact is fixed by the \
                          geometry; use punch.inner_radius or --eps)"
                     ),
                 ));

@@ -20,7 +20,8 @@ pub struct PressureSample {
 /// punches `d = h γ1(eps)`, `F = 2 E* h a γ2(eps)`.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Solution {
-    /// Punch shape.
+    /// Punch shape: the key `punch` (its name), and `exponent` for the power law.
+    #[serde(flatten)]
     pub punch: PunchKind,
     /// Method that produced the numbers (`ring-bem`, `reference:<name>`, ...).
     pub method: String,
@@ -34,6 +35,9 @@ pub struct Solution {
     pub inner_radius: f64,
     /// Rim radius `a` (length units).
     pub rim_radius: f64,
+    /// Outer contact radius `c` (length units): the contact is the annulus
+    /// `inner_radius <= r <= outer_radius`. At the rim (`c = a`) for every punch with one.
+    pub outer_radius: f64,
     /// `γ = F / (2 E* d a)` (flat punches).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gamma: Option<f64>,
@@ -284,6 +288,32 @@ impl Solution {
                         ));
                     }
                 }
+                PunchKind::Power(n) => {
+                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
+                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
+                    match crate::reference::power_law::closure_depth(n.value()) {
+                        Some(closure) if depth_over_hole >= closure * (1.0 - slack) => {}
+                        Some(closure) => {
+                            return fail(format!(
+                                "full contact at d/h = {}: the power-law punch (n = {}) reaches \
+                                 it only at d/h >= {}",
+                                crate::error::show(depth_over_hole),
+                                n.value(),
+                                crate::error::show(closure)
+                            ))
+                        }
+                        // Like the cone's, the hole of n <= 1 never closes; a discretisation
+                        // may resolve it as closed only with an estimate to say how wide it is.
+                        None if self.error_estimate.is_some() => {}
+                        None => {
+                            return fail(format!(
+                                "full contact without an error estimate: the power-law punch \
+                                 with n = {} <= 1 never closes",
+                                n.value()
+                            ))
+                        }
+                    }
+                }
                 PunchKind::FlatAnnulus => {
                     return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
                 }
@@ -358,6 +388,7 @@ mod tests {
             force,
             inner_radius: eps,
             rim_radius: 1.0,
+            outer_radius: 1.0,
             gamma: None,
             gamma1: Some(depth),
             gamma2: Some(0.5 * force),

@@ -198,6 +198,45 @@ impl RingSystem {
         phi * edge_weight(self.region, r - inner, 1.0 - r, r)
     }
 
+    /// Surface deflection `w(r)` (units of `a`) of a solved field at a radius `r` inside the
+    /// annulus's hole (`0 <= r < b`), where the punch does not touch:
+    /// `w(r) = (4/π) ∫_b^a φ(s) W(s) s K(m) / (r + s) ds`, integrated by tanh-sinh on panels no
+    /// longer than their distance to `r` (the kernel's logarithm at `s = r` stays outside).
+    /// `None` for a disk or a radius outside the hole.
+    pub fn deflection_in_hole(
+        &self,
+        field: &RingField,
+        r: f64,
+        rule: &TanhSinhRule,
+    ) -> Option<f64> {
+        let inner = match self.region {
+            ContactRegion::Annulus { eps } if (0.0..eps).contains(&r) => eps,
+            _ => return None,
+        };
+        let mut total = 0.0;
+        let mut lo = inner;
+        loop {
+            let mut hi = lo + (lo - r);
+            if hi >= 0.75 {
+                hi = 1.0;
+            }
+            let panel = Panel { lo, hi };
+            for node in rule.panel(lo, hi) {
+                let (s, from_inner, from_rim, _) = panel.locate(&node, inner, f64::NAN);
+                let phi = self
+                    .nodes
+                    .interpolate(&field.phi, parameter_of(self.region, s));
+                let weight = edge_weight(self.region, from_inner, from_rim, s);
+                total += node.weight * phi * weight * ring_kernel(r, s, s - r);
+            }
+            if hi == 1.0 {
+                break;
+            }
+            lo = hi;
+        }
+        Some(4.0 / PI * total)
+    }
+
     /// Mode-I stress intensity factor at the rim, `K = lim sqrt(2π (a - r)) p(r)`, in units of
     /// `E* sqrt(a)`.
     pub fn rim_stress_intensity(&self, field: &RingField) -> f64 {

@@ -22,7 +22,7 @@ use crate::error::{Error, Result};
 use crate::numerics::roots::{find_root, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
-use crate::reference::paper_fits;
+use crate::reference::{paper_fits, power_law};
 
 /// Name of this method on the command line and in JSON.
 pub const METHOD: &str = "ring-bem";
@@ -43,6 +43,13 @@ pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 /// than this are not taken as proof of a smaller error. Measured: results at N = 16..64 scatter by
 /// 1e-14 to 1e-13 once converged.
 const ROUNDING_FLOOR: f64 = 1e-13;
+
+/// Radii `r = b k / HOLE_PROBES`, `k = 0..HOLE_PROBES`, at which the hole's floor is checked.
+const HOLE_PROBES: usize = 8;
+
+/// Overlap of the surface and the hole's floor, relative to the depth, above which the punch
+/// touches the floor (far above the method's rounding and its 1e-9 default tolerance).
+const HOLE_OVERLAP_TOLERANCE: f64 = 1e-7;
 
 /// Tanh-sinh step used for every row integral (about 1e-15 relative per row).
 const QUADRATURE_STEP: f64 = 1.0 / 16.0;
@@ -246,40 +253,86 @@ impl RingBemSolver {
         })
     }
 
+    /// The punch must not touch the floor of the hole: the surface there stays clear of the
+    /// punch, `w(r) >= d - g(r)` for `r < b` (deflection positive into the solid), checked at
+    /// [`HOLE_PROBES`] radii. A profile flatter than the sphere at the axis (the power law with
+    /// `n > 2`) touches the floor before the ring closes: its contact is then a disk and an
+    /// annulus, which one annulus does not model.
+    fn check_hole_clear(&self, kind: PunchKind, eps: f64, sample: &ConcaveSample) -> Result<()> {
+        let depth = sample.gamma1;
+        for k in 0..HOLE_PROBES {
+            let r = eps * k as f64 / HOLE_PROBES as f64;
+            let Some(w) = sample
+                .system
+                .deflection_in_hole(&sample.field, r, &self.rule)
+            else {
+                continue;
+            };
+            let overlap = (depth - kind.gap_shape(r)) - w;
+            if overlap > HOLE_OVERLAP_TOLERANCE * depth.abs().max(1.0) {
+                return Err(out_of_range(format!(
+                    "the {kind} touches the floor of its hole at r/a = {} before the ring \
+                     [{}, 1] closes (the surface would rise {overlap:.2e} h into the punch): the \
+                     contact there is a disk and an annulus, which the ring BEM's single annulus \
+                     does not model",
+                    crate::error::show(r),
+                    crate::error::show(eps)
+                )));
+            }
+        }
+        Ok(())
+    }
+
     fn concave_state(
         &self,
+        kind: PunchKind,
         eps: f64,
         fine: ConcaveSample,
         n: usize,
         estimate: f64,
         solves: usize,
     ) -> Result<RingState> {
-        let pressure = pressure_profile(&fine.system, &fine.field);
-        check_compressive(&pressure, eps)?;
-        Ok(RingState {
-            eps,
-            gamma: None,
-            gamma1: Some(fine.gamma1),
-            gamma2: Some(fine.gamma2),
-            rim_stress_intensity: fine.system.rim_stress_intensity(&fine.field),
-            inner_stress_intensity: 0.0,
-            pressure,
-            error_estimate: estimate,
-            unknowns: n,
-            solves,
-        })
+        self.check_hole_clear(kind, eps, &fine)?;
+        let state = free_edge_state(eps, fine, n, estimate, solves);
+        check_compressive(&state.pressure, eps)?;
+        Ok(state)
     }
 
-    /// Concave punch with the contact ratio prescribed: `γ1(eps)` and `γ2(eps)`.
+    /// Concave punch with the contact ratio prescribed: `γ1(eps)` and `γ2(eps)` of the
+    /// non-adhesive state, refused where that state is not one (tension at the inner edge, or
+    /// the punch touching the hole's floor).
     pub fn concave_at_ratio(&self, kind: PunchKind, eps: f64, tolerance: f64) -> Result<RingState> {
+        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
+        self.concave_state(kind, eps, fine, n, estimate, solves)
+    }
+
+    /// The field with a free inner edge at a prescribed `eps` (zero inverse-square-root
+    /// coefficient there), whether or not it is a non-adhesive contact: the JKR branches add the
+    /// flat annulus's field to it, and their own edges decide. No check of its sign or of the
+    /// hole's floor.
+    pub fn free_inner_edge_field(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
+        Ok(free_edge_state(eps, fine, n, estimate, solves))
+    }
+
+    fn concave_refined(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        tolerance: f64,
+    ) -> Result<(ConcaveSample, usize, f64, usize)> {
         Self::check_tolerance(tolerance)?;
         Self::check_ratio(eps)?;
-        let (fine, n, estimate, solves) = self.refine(
+        self.refine(
             tolerance,
             |n| self.concave_sample(kind, eps, n),
             |s| vec![s.gamma1, s.gamma2],
-        )?;
-        self.concave_state(eps, fine, n, estimate, solves)
+        )
     }
 
     /// Concave punch under depth control, `target = d/h`: finds `eps` with `γ1(eps) = d/h`.
@@ -289,8 +342,8 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if kind == PunchKind::Sphere && target >= 3.0 {
-            return self.sphere_full_contact(target, tolerance);
+        if closure(kind).is_some_and(|(depth, _)| target >= depth) {
+            return self.full_contact(kind, target, tolerance);
         }
         self.concave_inverse(kind, target, tolerance, Controlled::Depth)
     }
@@ -303,10 +356,11 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if kind == PunchKind::Sphere && target >= 8.0 / 3.0 {
+        if closure(kind).is_some_and(|(_, force)| target >= force) {
             // Full contact: the solver finds the depth from its own force (not from the MDR
-            // relation F = 2 E* a (d - h/3), which the tests check it against).
-            return self.sphere_full_contact_at_force(target, tolerance);
+            // relation F = 2 E* a (d - h/3) of the sphere, or its power-law form, which the
+            // tests check it against).
+            return self.full_contact_at_force(kind, target, tolerance);
         }
         self.concave_inverse(kind, target, tolerance, Controlled::Force)
     }
@@ -395,7 +449,7 @@ impl RingBemSolver {
                 .max(other_error / other_fine.abs())
                 .max(ROUNDING_FLOOR);
             if estimate <= tolerance {
-                return self.concave_state(eps, fine, n, estimate, solves);
+                return self.concave_state(kind, eps, fine, n, estimate, solves);
             }
             if rung + 1 >= NODE_LADDER.len() {
                 return Err(no_convergence(format!(
@@ -407,10 +461,11 @@ impl RingBemSolver {
         }
     }
 
-    /// The disk with `w = d - h (1 - r²)` refined to `tolerance`: `((system, field), N, estimate,
+    /// The disk with `w = d - g(r)` refined to `tolerance`: `((system, field), N, estimate,
     /// factorisations)`.
-    fn sphere_disk(
+    fn full_contact_disk(
         &self,
+        kind: PunchKind,
         depth_over_hole: f64,
         tolerance: f64,
     ) -> Result<((RingSystem, RingField), usize, f64, usize)> {
@@ -421,7 +476,7 @@ impl RingBemSolver {
                 let target: Vec<f64> = system
                     .radii()
                     .iter()
-                    .map(|&r| depth_over_hole - PunchKind::Sphere.gap_shape(r))
+                    .map(|&r| depth_over_hole - kind.gap_shape(r))
                     .collect();
                 let field = system
                     .solve(&target)
@@ -434,9 +489,20 @@ impl RingBemSolver {
 
     /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
     pub fn sphere_full_contact(&self, depth_over_hole: f64, tolerance: f64) -> Result<RingState> {
+        self.full_contact(PunchKind::Sphere, depth_over_hole, tolerance)
+    }
+
+    /// A concave punch whose contact closes (the sphere at `d >= 3h`, the power law with
+    /// `n > 1` at `d >= h (1 + κ_n/(n - 1))`) in full contact: the disk with `w = d - g(r)`.
+    pub fn full_contact(
+        &self,
+        kind: PunchKind,
+        depth_over_hole: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
         let ((system, field), n, estimate, solves) =
-            self.sphere_disk(depth_over_hole, tolerance)?;
+            self.full_contact_disk(kind, depth_over_hole, tolerance)?;
         let pressure = pressure_profile(&system, &field);
         check_compressive(&pressure, 0.0)?;
         Ok(RingState {
@@ -453,16 +519,45 @@ impl RingBemSolver {
         })
     }
 
-    /// Spherical punch in full contact under force control. In full contact the force is linear
-    /// in the depth, `F(d) = F(0) + d F'`, so two disk solves give the depth exactly.
-    fn sphere_full_contact_at_force(&self, target: f64, tolerance: f64) -> Result<RingState> {
-        let gamma2 =
-            |d: f64| -> Result<f64> { Ok(0.5 * self.sphere_disk(d, tolerance)?.0 .1.force) };
+    /// A closing concave punch in full contact under force control. In full contact the force
+    /// is linear in the depth, `F(d) = F(0) + d F'`, so two disk solves give the depth exactly.
+    fn full_contact_at_force(
+        &self,
+        kind: PunchKind,
+        target: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        let gamma2 = |d: f64| -> Result<f64> {
+            Ok(0.5 * self.full_contact_disk(kind, d, tolerance)?.0 .1.force)
+        };
         let (at_zero, at_one) = (gamma2(0.0)?, gamma2(1.0)?);
         let depth = (target - at_zero) / (at_one - at_zero);
-        let mut state = self.sphere_full_contact(depth, tolerance)?;
+        let mut state = self.full_contact(kind, depth, tolerance)?;
         state.solves += 4;
         Ok(state)
+    }
+}
+
+/// The state of a concave sample with a free inner edge at `eps` (no check of its sign or of the
+/// hole's floor).
+fn free_edge_state(
+    eps: f64,
+    fine: ConcaveSample,
+    n: usize,
+    estimate: f64,
+    solves: usize,
+) -> RingState {
+    RingState {
+        eps,
+        gamma: None,
+        gamma1: Some(fine.gamma1),
+        gamma2: Some(fine.gamma2),
+        rim_stress_intensity: fine.system.rim_stress_intensity(&fine.field),
+        inner_stress_intensity: 0.0,
+        pressure: pressure_profile(&fine.system, &fine.field),
+        error_estimate: estimate,
+        unknowns: n,
+        solves,
     }
 }
 
@@ -483,10 +578,22 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
             } else {
                 String::new()
             },
-            match (kind, f_lo < 0.0) {
-                (PunchKind::Cone, true) => "; the cone's contact closes only as d -> infinity",
-                (PunchKind::Sphere, true) => "; this is within a hair of full contact (d = 3h)",
-                _ => "; the contact ring would be narrower than 1e-4 a",
+            match (closure(kind), f_lo < 0.0) {
+                (Some((depth, _)), true) if flatter_than_the_sphere(kind) => format!(
+                    "; a profile flatter than the sphere at the axis (n > 2) touches the floor \
+                     of its hole before the ring closes: up to full contact at d = {} h the \
+                     contact is a disk and an annulus, which the ring BEM does not model",
+                    crate::error::show(depth)
+                ),
+                (None, true) => format!(
+                    "; the {}'s contact closes only as d -> infinity",
+                    kind.name()
+                ),
+                (Some((depth, _)), true) => format!(
+                    "; this is within a hair of full contact (d = {} h)",
+                    crate::error::show(depth)
+                ),
+                _ => "; the contact ring would be narrower than 1e-4 a".into(),
             }
         )),
         RootError::NoConvergence { iterations, last_step } => no_convergence(format!(
@@ -494,6 +601,27 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
         )),
         RootError::Evaluation(m) => no_convergence(m),
     }
+}
+
+/// Where a concave punch's contact closes, `(d/h, F/(2 E* h a))`: exactly `(3, 8/3)` for the
+/// sphere, the MDR's closed form for the power law with `n > 1`
+/// ([`crate::reference::power_law`]); `None` for the cone and every `n <= 1`, whose hole never
+/// closes.
+fn closure(kind: PunchKind) -> Option<(f64, f64)> {
+    match kind {
+        PunchKind::Sphere => Some((3.0, 8.0 / 3.0)),
+        PunchKind::Power(n) => {
+            let depth = power_law::closure_depth(n.value())?;
+            Some((depth, power_law::full_contact_gamma2(n.value(), depth)?))
+        }
+        _ => None,
+    }
+}
+
+/// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`):
+/// its contact closes from a disk and an annulus, not by a shrinking hole.
+fn flatter_than_the_sphere(kind: PunchKind) -> bool {
+    kind.concave_exponent().is_some_and(|n| n > 2.0)
 }
 
 /// Which quantity a concave inverse problem prescribes.
@@ -537,6 +665,8 @@ fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
     };
     let fit = |eps: f64| match kind {
         PunchKind::Cone => paper_fits::cone_gamma(i, eps),
+        // The power law starts from the nearer of the two fitted profiles.
+        PunchKind::Power(n) if n.value() < 1.5 => paper_fits::cone_gamma(i, eps),
         _ => paper_fits::sphere_gamma(i, eps),
     };
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.

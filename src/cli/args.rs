@@ -7,7 +7,7 @@ use clap::{Args, Parser, Subcommand};
 
 use crate::harness::report::document;
 use crate::methods::Method;
-use crate::punch::PunchKind;
+use crate::punch::PunchName;
 use crate::scene::DEFAULT_TOLERANCE;
 
 /// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
@@ -57,6 +57,7 @@ Examples:
   verify solve --punch cone --depth 2 --json             eps and gamma2 at d = 2h
   verify solve --punch sphere --eps 0.3                  gamma1(0.3), gamma2(0.3)
   verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
+  verify solve --punch power --exponent 1.5 --depth 2    gap h (1 - (r/a)^1.5)
   verify solve --punch flat-annulus --eps 0.5 --method reference
   verify solve --punch cone --depth 2 --method fem --json        FEM, tolerance 1e-3
   verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
@@ -286,7 +287,11 @@ pub struct HistoryArgs {
 pub struct PulloffArgs {
     /// Punch shape (cone and sphere: from full contact, pressed until the hole closes).
     #[arg(long, value_enum)]
-    pub punch: PunchKind,
+    pub punch: PunchName,
+    /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
+    /// (n = 1 is the cone, n = 2 the sphere).
+    #[arg(long)]
+    pub exponent: Option<f64>,
     /// b/a of the flat annulus.
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
@@ -317,9 +322,13 @@ pub struct PulloffArgs {
 // The arguments of `verify jkr`.
 #[derive(Args)]
 pub struct JkrArgs {
-    /// Punch shape: flat-annulus, cone or sphere.
+    /// Punch shape: flat-annulus or a concave one (cone, sphere, power).
     #[arg(long, value_enum)]
-    pub punch: PunchKind,
+    pub punch: PunchName,
+    /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
+    /// (n = 1 is the cone, n = 2 the sphere).
+    #[arg(long)]
+    pub exponent: Option<f64>,
     /// b/a of the flat annulus.
     #[arg(long)]
     pub eps: Option<f64>,
@@ -343,7 +352,11 @@ pub struct JkrArgs {
 pub struct ConvergenceArgs {
     /// Punch shape.
     #[arg(long, value_enum)]
-    pub punch: PunchKind,
+    pub punch: PunchName,
+    /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
+    /// (n = 1 is the cone, n = 2 the sphere).
+    #[arg(long)]
+    pub exponent: Option<f64>,
     /// Method to refine.
     #[arg(long, value_enum)]
     pub method: Method,
@@ -451,8 +464,12 @@ pub struct JsonArgs {
 pub struct SolveArgs {
     /// Punch shape.
     #[arg(long, value_enum)]
-    pub punch: Option<PunchKind>,
-    /// Contact ratio b/a: fixes the flat annulus; for cone and sphere it prescribes the contact
+    pub punch: Option<PunchName>,
+    /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
+    /// (n = 1 is the cone, n = 2 the sphere).
+    #[arg(long)]
+    pub exponent: Option<f64>,
+    /// Contact ratio b/a: fixes the flat annulus; for a concave punch it prescribes the contact
     /// (depth and force are then computed).
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
@@ -550,7 +567,10 @@ pub struct PlanArgs {
     pub fem_tolerances: Option<Vec<f64>>,
     /// Convergence plan: punch shape.
     #[arg(long, value_enum, requires = "convergence")]
-    pub punch: Option<PunchKind>,
+    pub punch: Option<PunchName>,
+    /// Convergence plan: the power law's exponent n (`--punch power`).
+    #[arg(long, requires = "convergence")]
+    pub exponent: Option<f64>,
     /// Convergence plan: the method to refine.
     #[arg(long, value_enum, requires = "convergence")]
     pub method: Option<Method>,

@@ -11,10 +11,11 @@ use crate::punch::PunchKind;
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
-    refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
+    let punch = super::punch_kind(args.punch, args.exponent)?;
+    refuse_other_family_flags(punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
-    let text = match args.punch {
+    let text = match punch {
         PunchKind::FlatAnnulus if args.sweep => sweep_output(
             &sweeps::flat_annulus_sweep(&solver, &out).map_err(message)?,
             args.json,
@@ -31,25 +32,25 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
                 flat_annulus_text(&r)
             }
         }
-        PunchKind::Cone | PunchKind::Sphere if args.sweep => {
+        concave if concave.is_concave() && args.sweep => {
             let mut bar = Progress::new("sweep", 25);
-            let sweep = sweeps::pulloff_sweep(&solver, args.punch, &out, |s| bar.tick(s))
-                .map_err(message)?;
+            let sweep =
+                sweeps::pulloff_sweep(&solver, concave, &out, |s| bar.tick(s)).map_err(message)?;
             sweep_output(&sweep, args.json)?
         }
-        PunchKind::Cone | PunchKind::Sphere => {
+        concave if concave.is_concave() => {
             let s = args
                 .d0h
-                .ok_or("cone and sphere need --d0h D0_OVER_H (or --sweep)")?;
-            let r = adhesion::concave(&solver, args.punch, s).map_err(message)?;
-            refuse_non_finite(&format!("jkr {} --d0h {s:e}", args.punch), &r)?;
+                .ok_or("the concave punches need --d0h D0_OVER_H (or --sweep)")?;
+            let r = adhesion::concave(&solver, concave, s).map_err(message)?;
+            refuse_non_finite(&format!("jkr {concave} --d0h {s:e}"), &r)?;
             if args.json {
                 to_json(&r)?
             } else {
                 concave_text(&r)
             }
         }
-        PunchKind::Flat => {
+        _ => {
             return Err(
                 "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)".into(),
             )

@@ -108,6 +108,14 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 /// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
 /// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
 /// `F0` already). Used by `verify jkr` and `verify pulloff`.
+/// The punch named on the command line, with the power law's `--exponent`.
+pub(crate) fn punch_kind(
+    name: crate::punch::PunchName,
+    exponent: Option<f64>,
+) -> Result<crate::punch::PunchKind, String> {
+    name.with_exponent(exponent).map_err(message)
+}
+
 fn refuse_other_family_flags(
     punch: crate::punch::PunchKind,
     eps: Option<f64>,

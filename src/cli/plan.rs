@@ -33,9 +33,10 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
         ));
     }
     let the_plan = if args.convergence {
-        let (Some(punch), Some(method)) = (args.punch, args.method) else {
+        let (Some(name), Some(method)) = (args.punch, args.method) else {
             return Err("--convergence needs --punch and --method".into());
         };
+        let punch = super::punch_kind(name, args.exponent)?;
         // A flat punch's study does not depend on --depth: the plan names one value.
         let depth = if punch.is_concave() { args.depth } else { 1.5 };
         let case = study_case(punch, args.eps, depth)?;

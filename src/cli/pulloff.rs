@@ -33,12 +33,13 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
 /// The case and the decreasing ranges of `verify pulloff`, every flag checked against the punch
 /// and the branch.
 fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>), String> {
-    let eps = match args.punch {
+    let punch = super::punch_kind(args.punch, args.exponent)?;
+    let eps = match punch {
         PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
         _ => 0.0,
     };
-    let d0_over_h = match (args.punch.is_concave(), args.d0h) {
-        (true, None) => return Err("cone and sphere need --d0h D0_OVER_H".into()),
+    let d0_over_h = match (punch.is_concave(), args.d0h) {
+        (true, None) => return Err("the concave punches need --d0h D0_OVER_H".into()),
         (true, Some(s)) if !(s.is_finite() && s > 0.0) => {
             return Err(format!("--d0h {s}: need d0/h > 0"))
         }
@@ -53,24 +54,24 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
                 crate::error::show(s),
                 PULLOFF_D0H_RANGE.0,
                 PULLOFF_D0H_RANGE.1,
-                args.punch,
+                punch.shape_name(),
                 crate::error::show(s)
             ));
         }
         (_, s) => s.unwrap_or(0.0),
     };
-    if args.punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
+    if punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
         return Err(format!(
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
         ));
     }
-    refuse_other_family_flags(args.punch, args.eps, args.d0h)?;
+    refuse_other_family_flags(punch, args.eps, args.d0h)?;
     let annular = args.branch == study::Branch::Annular;
-    if annular && !args.punch.is_concave() {
+    if annular && !punch.is_concave() {
         return Err(format!(
             "--branch annular: the annular branch is a concave punch's (cone, sphere); the {} \
              has none",
-            args.punch
+            punch
         ));
     }
     if annular && args.mesh.is_some() {
@@ -104,7 +105,7 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         ));
     }
     let case = study::Case {
-        punch: args.punch,
+        punch,
         eps,
         d0_over_h,
     };

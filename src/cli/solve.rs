@@ -5,7 +5,7 @@ use crate::cli::args::SolveArgs;
 use crate::harness::report::table::{readable, Column, Table};
 use crate::mesh::triangulation::Degree;
 use crate::methods::{self, MethodOptions};
-use crate::punch::PunchKind;
+use crate::punch::{PunchKind, PunchName};
 use crate::scene::{Scene, SceneSpec};
 use crate::solution::Solution;
 
@@ -45,16 +45,19 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
         Some(path) => SceneSpec::from_file(path).map_err(message)?,
         None => SceneSpec::default(),
     };
-    if let Some(kind) = args.punch {
-        spec = spec.shape(kind);
-    } else if args.scene.is_none() {
-        return Err("give --punch {flat|flat-annulus|cone|sphere} or --scene FILE".into());
+    if args.punch.is_none() && args.scene.is_none() {
+        return Err(
+            "give --punch {flat|flat-annulus|cone|sphere|power} (power with --exponent N) \
+             or --scene FILE"
+                .into(),
+        );
     }
+    spec = spec.shape_named(args.punch, args.exponent);
     // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
-    let kind = args.punch.or_else(|| scene_file_kind(args));
+    let kind = spec.shape_name();
     if let Some(eps) = args.eps {
         match kind {
-            Some(PunchKind::Cone | PunchKind::Sphere) => {
+            Some(PunchName::Cone | PunchName::Sphere | PunchName::Power) => {
                 if args.depth.is_some() || args.force.is_some() {
                     return Err("--eps prescribes the contact of a concave punch; \
                                 do not combine it with --depth or --force"
@@ -62,7 +65,7 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
                 }
                 spec = spec.contact_ratio(eps);
             }
-            Some(PunchKind::Flat) => {
+            Some(PunchName::Flat) => {
                 return Err("--eps does not apply to the flat circular punch; \
                             use --punch flat-annulus --eps B_OVER_A"
                     .into())
@@ -80,16 +83,6 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
         spec = spec.tolerance(tol);
     }
     spec.validate().map_err(message)
-}
-
-/// The punch kind named in the scene file, if any (to interpret `--eps`).
-fn scene_file_kind(args: &SolveArgs) -> Option<PunchKind> {
-    let path = args.scene.as_ref()?;
-    SceneSpec::from_file(path)
-        .ok()?
-        .validate()
-        .ok()
-        .map(|s| s.punch.kind)
 }
 
 /// The solved state as a two-column table: quantity and value (the dimensionless functions

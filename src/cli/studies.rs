@@ -189,7 +189,8 @@ pub(super) fn compare_reply(
 /// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
 /// and the chart into `--out`.
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
-    let case = study_case(args.punch, args.eps, args.depth)?;
+    let punch = super::punch_kind(args.punch, args.exponent)?;
+    let case = study_case(punch, args.eps, args.depth)?;
     let levels = args.levels as usize;
     let mut bar = Progress::new("convergence", levels);
     let study = convergence::run(case, args.method, levels, |level| {
@@ -437,5 +438,58 @@ pub fn references(args: JsonArgs) -> Result<Reply, String> {
             r.source.into(),
         ]);
     }
-    Ok(Reply::ok(t.to_terminal()))
+    Ok(Reply::ok(format!(
+        "{}\n{}",
+        t.to_terminal(),
+        punch_table().to_terminal()
+    )))
+}
+
+/// The built-in punches: the flags that name each, its gap, its edges and its closed forms.
+fn punch_table() -> Table {
+    let mut t = Table::new(
+        "Punches (gap g(r) at zero depth, 0 <= r <= a; contact b <= r <= a)",
+        vec![
+            Column::text("flags", "flags"),
+            Column::text("gap", "gap g(r)"),
+            Column::text("edges", "edges"),
+            Column::text("closed_forms", "closed forms"),
+        ],
+    );
+    let rows = [
+        (
+            "--punch flat",
+            "0",
+            "rim at a (disk)",
+            "Boussinesq F = 2 E* a d",
+        ),
+        (
+            "--punch flat-annulus --eps B",
+            "0 on [b, a], hole inside",
+            "rims at b and a",
+            "Collins series, narrow-ring asymptote",
+        ),
+        (
+            "--punch cone",
+            "h (1 - r/a)",
+            "rim at a, free inner edge",
+            "none in partial contact; never closes",
+        ),
+        (
+            "--punch sphere",
+            "h (1 - r²/a²)",
+            "rim at a, free inner edge",
+            "full contact d >= 3h: F = 2 E* a (d - h/3)",
+        ),
+        (
+            "--punch power --exponent N",
+            "h (1 - (r/a)^n), n > 0",
+            "rim at a, free inner edge",
+            "full contact (n > 1) by the MDR, `verify solve --method reference`",
+        ),
+    ];
+    for (flags, gap, edges, closed) in rows {
+        t.push(vec![flags.into(), gap.into(), edges.into(), closed.into()]);
+    }
+    t
 }

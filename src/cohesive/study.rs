@@ -292,6 +292,7 @@ pub struct PulloffStudy {
     /// did.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
+    #[serde(flatten)]
     pub punch: PunchKind,
     /// `b/a` of the flat annulus.
     pub eps: Option<f64>,
@@ -932,7 +933,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
             };
             (Some(-edge), None, None)
         }
-        PunchKind::Cone | PunchKind::Sphere => {
+        PunchKind::Cone | PunchKind::Sphere | PunchKind::Power(_) => {
             let r = crate::adhesion::concave(&ring, case.punch, case.d0_over_h)?;
             (
                 r.fixed_load.map(|c| -c.force),
@@ -1031,6 +1032,7 @@ type CurveSample = (f64, f64, bool);
 /// A single simulation run by the report (the stored studies are too slow for the default run).
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct LiveSimulation {
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub d0_over_h: Option<f64>,
     pub mesh: String,

@@ -132,10 +132,10 @@ impl Part {
                 levels,
             } => format!(
                 "convergence:{}:{}:eps={eps}:depth={depth}:level={level}:of={levels}",
-                punch.name(),
+                punch.label(),
                 method.name()
             ),
-            Part::Adhesion(kind) => format!("adhesion:{}", kind.name()),
+            Part::Adhesion(kind) => format!("adhesion:{}", kind.label()),
             Part::PulloffLive => "pulloff-live".into(),
             Part::AdhesionPeers => "adhesion-peers".into(),
             Part::PulloffSimulation {
@@ -144,7 +144,7 @@ impl Part {
                 d0_over_h,
             } => match punch {
                 PunchKind::FlatAnnulus => format!("pulloff:{}:eps={eps}", punch.name()),
-                p if p.is_concave() => format!("pulloff:{}:d0h={d0_over_h}", punch.name()),
+                p if p.is_concave() => format!("pulloff:{}:d0h={d0_over_h}", punch.label()),
                 p => format!("pulloff:{}", p.name()),
             },
             Part::Stability => "stability".into(),
@@ -186,7 +186,7 @@ impl Part {
         };
         let punch = |name: Option<&&str>| -> Result<PunchKind> {
             let name = name.ok_or_else(|| bad("needs a punch"))?;
-            PunchKind::from_str(name, false).map_err(|_| bad(&format!("no punch `{name}`")))
+            PunchKind::from_label(name).ok_or_else(|| bad(&format!("no punch `{name}`")))
         };
         let part = match kind {
             "comparison" => Part::Comparison {
@@ -376,7 +376,7 @@ impl Part {
                 depth,
                 levels,
                 ..
-            } => format!("{}:{}:{eps}:{depth}:{levels}", punch.name(), method.name()),
+            } => format!("{}:{}:{eps}:{depth}:{levels}", punch.label(), method.name()),
             _ => self.id(),
         }
     }
@@ -407,7 +407,7 @@ pub(crate) type EdgeMemo = HashMap<(String, usize), Option<f64>>;
 /// ranges), recorded like `scripts/pulloff/run_all.py` records it: its result, or the reason it
 /// declined the case.
 fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffRecord {
-    let mut command = format!("verify pulloff --punch {}", punch.name());
+    let mut command = format!("verify pulloff {}", punch.flags());
     if punch == PunchKind::FlatAnnulus {
         command += &format!(" --eps {eps}");
     }
@@ -423,7 +423,7 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
     let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
     let file = match punch {
         PunchKind::FlatAnnulus => format!("flat-annulus-{eps}.json"),
-        p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.name()),
+        p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.label()),
         p => format!("{}.json", p.name()),
     };
     let (result, declined) = match outcome {
@@ -459,8 +459,9 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
     for method in [Method::GridBem, Method::Fem] {
         parts.extend(convergence_parts(REPORT_STUDY, method, REPORT_STUDY_LEVELS));
     }
-    parts.push(Part::Adhesion(PunchKind::Cone));
-    parts.push(Part::Adhesion(PunchKind::Sphere));
+    for punch in crate::harness::studies::figures::report_concave_punches() {
+        parts.push(Part::Adhesion(punch));
+    }
     parts.push(Part::PulloffLive);
     parts.push(Part::AdhesionPeers);
     parts

@@ -7,6 +7,7 @@
 
 pub mod asymptotic;
 pub mod paper_fits;
+pub mod power_law;
 
 use serde::Serialize;
 

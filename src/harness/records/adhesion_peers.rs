@@ -29,6 +29,7 @@ pub struct TamaasRun {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct TamaasPulloff {
     pub package_version: String,
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub d0_over_h: Option<f64>,
     pub range_over_d0: f64,
@@ -45,6 +46,7 @@ pub struct TamaasPulloff {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct AdhesionPeerComparison {
     pub file: String,
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub d0_over_h: Option<f64>,
     pub range_over_d0: f64,

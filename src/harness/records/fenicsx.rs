@@ -25,6 +25,7 @@ pub const FORCE_AGREEMENT: f64 = 1e-8;
 /// One stored FEniCSx result (`verify/fenicsx/*.json`).
 #[derive(Clone, Debug, Deserialize, Serialize)]
 pub struct FenicsxResult {
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub mesh: String,
     pub mesh_sha256: String,

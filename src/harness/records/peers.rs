@@ -21,6 +21,7 @@ pub const PEER_AGREEMENT: f64 = 1e-6;
 pub struct PeerResult {
     pub package: String,
     pub package_version: String,
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub eps: Option<f64>,
     pub grid: usize,

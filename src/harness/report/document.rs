@@ -305,19 +305,24 @@ fn function_charts(
             .filter(|f| f.punch == kind && f.fem_eps > 0.0)
             .map(|f| (f.fem_eps, f.fem_value))
             .collect();
-        let chart = linear_chart(
+        let mut lines = vec![
+            series("gamma1 ring BEM", c.gamma1.clone()),
+            series("gamma2 ring BEM", c.gamma2.clone()),
+        ];
+        // The paper fitted the cone and the sphere only.
+        if matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
+            lines.push(series("gamma1 paper fit", fit(1)));
+            lines.push(series("gamma2 paper fit", fit(2)));
+        }
+        lines.push(series("gamma2 FEM P2", fem));
+        // Markers: the FEM's one or two states stay visible.
+        let chart = crate::harness::report::svg::linear_chart_with_markers(
             &format!("{kind}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a"),
             "eps = b/a",
             "gamma1, gamma2",
-            &[
-                series("gamma1 ring BEM", c.gamma1.clone()),
-                series("gamma2 ring BEM", c.gamma2.clone()),
-                series("gamma1 paper fit", fit(1)),
-                series("gamma2 paper fit", fit(2)),
-                series("gamma2 FEM P2", fem),
-            ],
+            &lines,
         );
-        write(dir, &format!("gammas-{}.svg", kind.name()), &chart)?;
+        write(dir, &format!("gammas-{}.svg", kind.label()), &chart)?;
     }
     Ok(())
 }
@@ -376,7 +381,7 @@ pub struct ReportInputs {
 
 /// The chart of one punch's pull-off against `d0/h` by each route.
 fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
-    let mine: Vec<&PulloffPoint> = points.iter().filter(|p| p.punch == kind.name()).collect();
+    let mine: Vec<&PulloffPoint> = points.iter().filter(|p| p.punch == kind.label()).collect();
     let series = [
         Series {
             name: "fixed load".into(),
@@ -400,6 +405,11 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
             bars: Vec::new(),
         },
     ];
+    // The paper fitted the cone and the sphere only: no empty legend entry for other punches.
+    let series: Vec<Series> = series
+        .into_iter()
+        .filter(|s| s.name != "paper fits" || matches!(kind, PunchKind::Cone | PunchKind::Sphere))
+        .collect();
     log_log_chart(
         &format!("{kind}: pull-off / F0 against d0/h"),
         "d0/h",
@@ -496,10 +506,10 @@ pub(crate) fn write_files(
 /// The pull-off charts: the JKR routes against `d0/h`, this run's simulation, the stored
 /// studies' branches, the annular route, Tamaas's curves.
 fn adhesion_charts(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<()> {
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+    for kind in crate::harness::studies::figures::report_concave_punches() {
         write(
             dir,
-            &format!("pulloff-{}.svg", kind.name()),
+            &format!("pulloff-{}.svg", kind.label()),
             &pulloff_chart(kind, &inputs.pulloff),
         )?;
     }
@@ -658,6 +668,6 @@ fn markdown(
             convergence::summary(s)
         );
     }
-    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n";
+    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](gammas-power-n1.5.svg)\n![](gammas-power-n3.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n![](pulloff-power-n1.5.svg)\n![](pulloff-power-n3.svg)\n";
     md
 }

@@ -16,8 +16,8 @@ use crate::fem::FemLoad;
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use crate::mesh::triangulation::Degree;
 use crate::methods::{self, Method, MethodOptions};
-use crate::punch::PunchKind;
-use crate::reference::{self, Quantity, ReferenceKind};
+use crate::punch::{Exponent, PunchKind};
+use crate::reference::{self, power_law, Quantity, ReferenceKind};
 
 /// Contact ratios of the flat-annulus table.
 const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
@@ -65,6 +65,7 @@ pub struct IdentityCheck {
 /// One state solved by the FEM and by the ring BEM (cross-verification of two discretisations).
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct CrossCheck {
+    #[serde(flatten)]
     pub punch: PunchKind,
     /// `b/a` (flat annulus) or `d/h` (concave): what was prescribed.
     pub prescribed: String,
@@ -186,6 +187,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     let mut identities = incremental_stiffness_checks(&solver, tolerance)?;
     identities.extend(full_contact_limit_checks(&solver, tolerance)?);
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
+    identities.extend(power_law_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
     Ok(ComparisonReport {
         tolerance,
@@ -212,6 +214,8 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
         (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
         (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)),
         (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5)),
+        (power(1.5), 0.0, FemLoad::ConcaveDepth(2.0)),
+        (power(3.0), 0.0, FemLoad::ConcaveDepth(2.0)),
     ];
     for (kind, eps, load) in cases {
         let scene = super::scene_of_fem_load(kind, eps, load, None)?;
@@ -275,8 +279,16 @@ fn incremental_stiffness_checks(
     tolerance: f64,
 ) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        for &eps in &[0.1_f64, 0.5, 0.9] {
+    // The power law with n = 3 is one annulus only down to b ≈ 0.55 a (docs/conventions.md
+    // fact 8).
+    let cases: [(PunchKind, &[f64]); 4] = [
+        (PunchKind::Cone, &[0.1, 0.5, 0.9]),
+        (PunchKind::Sphere, &[0.1, 0.5, 0.9]),
+        (power(1.5), &[0.1, 0.5, 0.9]),
+        (power(3.0), &[0.6, 0.9]),
+    ];
+    for (kind, ratios) in cases {
+        for &eps in ratios {
             let step = 1e-3 * eps.min(1.0 - eps);
             let at = |e: f64| solver.concave_at_ratio(kind, e, tolerance);
             let (p2, p1, m1, m2) = (
@@ -316,6 +328,7 @@ fn incremental_stiffness_checks(
 fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let eps = 0.01_f64;
     let mut checks = Vec::new();
+    let power_limit = 1.0 - power_law::kappa(1.5) / 2.5;
     for (kind, limit, label) in [
         (
             PunchKind::Cone,
@@ -323,6 +336,7 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
             "1 - pi/4",
         ),
         (PunchKind::Sphere, 1.0 / 3.0, "1/3"),
+        (power(1.5), power_limit, "1 - kappa_n/(n + 1)"),
     ] {
         let state = solver.concave_at_ratio(kind, eps, tolerance)?;
         let difference = state.gamma1.unwrap_or(f64::NAN) - state.gamma2.unwrap_or(f64::NAN);
@@ -339,6 +353,58 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
         });
     }
     Ok(checks)
+}
+
+/// The power-law punch `h (1 - (r/a)^n)`: with `n = 1` and `n = 2` it is the cone and the
+/// sphere (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past its closure depth
+/// its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at `d = 3h`, where the
+/// disk basis is exact to rounding; docs/conventions.md fact 8).
+fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    let eps = 0.3;
+    for (named, n) in [(PunchKind::Cone, 1.0), (PunchKind::Sphere, 2.0)] {
+        let lhs = solver
+            .concave_at_ratio(power(n), eps, tolerance)?
+            .gamma2
+            .unwrap_or(f64::NAN);
+        let rhs = solver
+            .concave_at_ratio(named, eps, tolerance)?
+            .gamma2
+            .unwrap_or(f64::NAN);
+        let residual = (lhs - rhs).abs() / rhs.abs();
+        checks.push(IdentityCheck {
+            name: format!("power (n = {n}): gamma2 = {named}'s"),
+            eps,
+            lhs,
+            rhs,
+            relative_residual: residual,
+            tolerance: 1e-12,
+            passed: residual <= 1e-12,
+        });
+    }
+    let (n, depth) = (4.0, 3.0);
+    let lhs = solver
+        .concave_at_depth(power(n), depth, tolerance)?
+        .gamma2
+        .unwrap_or(f64::NAN);
+    let rhs = power_law::full_contact_gamma2(n, depth).unwrap_or(f64::NAN);
+    let residual = (lhs - rhs).abs() / rhs.abs();
+    let allowed = tolerance.max(1e-12);
+    checks.push(IdentityCheck {
+        name: "power (n = 4) at d = 3h: gamma2 = gamma1 - 1 + kappa_n/(n + 1) (MDR)".into(),
+        eps: 0.0,
+        lhs,
+        rhs,
+        relative_residual: residual,
+        tolerance: allowed,
+        passed: residual <= allowed,
+    });
+    Ok(checks)
+}
+
+/// The power-law punch of exponent `n` (a valid exponent: the harness names only fixed ones).
+fn power(n: f64) -> PunchKind {
+    PunchKind::Power(Exponent::new(n).expect("a positive finite exponent"))
 }
 
 /// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow

@@ -48,6 +48,7 @@ pub struct Level {
 /// A convergence study.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Study {
+    #[serde(flatten)]
     pub punch: PunchKind,
     pub method: String,
     pub quantity: String,
