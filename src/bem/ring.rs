@@ -37,6 +37,9 @@ pub enum ContactRegion {
     Disk,
     /// Annulus `eps <= r <= 1`, `0 < eps < 1`.
     Annulus { eps: f64 },
+    /// Band `inner <= r <= outer`, `0 < inner < outer` (either edge may lie beyond `a = 1`: the
+    /// contact of a convex ring, or any prescribed annulus).
+    Band { inner: f64, outer: f64 },
 }
 
 impl ContactRegion {
@@ -44,6 +47,15 @@ impl ContactRegion {
         match *self {
             ContactRegion::Disk => 0.0,
             ContactRegion::Annulus { eps } => eps,
+            ContactRegion::Band { inner, .. } => inner,
+        }
+    }
+
+    /// The outer edge: the rim `1` for the disk and the annulus.
+    fn outer(&self) -> f64 {
+        match *self {
+            ContactRegion::Band { outer, .. } => outer,
+            _ => 1.0,
         }
     }
 }
@@ -107,16 +119,16 @@ impl RingSystem {
     pub fn assemble(region: ContactRegion, settings: RingBemSettings, rule: &TanhSinhRule) -> Self {
         let n = settings.nodes;
         let nodes = ChebyshevNodes::new(n);
-        let inner = region.inner();
+        let (inner, outer) = (region.inner(), region.outer());
         let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
         let mut matrix = DMatrix::<f64>::zeros(n, n);
         let mut basis = vec![0.0; n];
         let mut row = vec![0.0; n];
         for (i, &r) in radii.iter().enumerate() {
             row.iter_mut().for_each(|v| *v = 0.0);
-            for panel in row_panels(inner, r) {
+            for panel in row_panels(inner, outer, r) {
                 for node in rule.panel(panel.lo, panel.hi) {
-                    let (s, from_inner, from_rim, distance) = panel.locate(&node, inner, r);
+                    let (s, from_inner, from_rim, distance) = panel.locate(&node, inner, outer, r);
                     let weight = edge_weight(region, from_inner, from_rim, s);
                     let c = node.weight * weight * ring_kernel(r, s, distance);
                     nodes.basis_at(parameter_of(region, s), &mut basis);
@@ -131,7 +143,7 @@ impl RingSystem {
         }
         // Force weights: F = 2π ∫ φ W s ds over the whole region.
         let mut force_weights = vec![0.0; n];
-        for node in rule.panel(inner, 1.0) {
+        for node in rule.panel(inner, outer) {
             let s = node.position;
             let weight = edge_weight(region, node.from_lo, node.from_hi, s);
             let c = 2.0 * PI * node.weight * weight * s;
@@ -183,7 +195,9 @@ impl RingSystem {
             rim_coefficient: dot(&self.rim_basis),
             inner_coefficient: match self.region {
                 ContactRegion::Disk => 0.0,
-                ContactRegion::Annulus { .. } => dot(&self.inner_basis),
+                ContactRegion::Annulus { .. } | ContactRegion::Band { .. } => {
+                    dot(&self.inner_basis)
+                }
             },
             phi,
         })
@@ -195,7 +209,7 @@ impl RingSystem {
         let phi = self
             .nodes
             .interpolate(&field.phi, parameter_of(self.region, r));
-        phi * edge_weight(self.region, r - inner, 1.0 - r, r)
+        phi * edge_weight(self.region, r - inner, self.region.outer() - r, r)
     }
 
     /// Surface deflection `w(r)` (units of `a`) of a solved field at a radius `r` inside the
@@ -211,25 +225,27 @@ impl RingSystem {
     ) -> Option<f64> {
         let inner = match self.region {
             ContactRegion::Annulus { eps } if (0.0..eps).contains(&r) => eps,
+            ContactRegion::Band { inner, .. } if (0.0..inner).contains(&r) => inner,
             _ => return None,
         };
+        let outer = self.region.outer();
         let mut total = 0.0;
         let mut lo = inner;
         loop {
             let mut hi = lo + (lo - r);
-            if hi >= 0.75 {
-                hi = 1.0;
+            if hi >= 0.75 * outer {
+                hi = outer;
             }
             let panel = Panel { lo, hi };
             for node in rule.panel(lo, hi) {
-                let (s, from_inner, from_rim, _) = panel.locate(&node, inner, f64::NAN);
+                let (s, from_inner, from_rim, _) = panel.locate(&node, inner, outer, f64::NAN);
                 let phi = self
                     .nodes
                     .interpolate(&field.phi, parameter_of(self.region, s));
                 let weight = edge_weight(self.region, from_inner, from_rim, s);
                 total += node.weight * phi * weight * ring_kernel(r, s, s - r);
             }
-            if hi == 1.0 {
+            if hi == outer {
                 break;
             }
             lo = hi;
@@ -245,6 +261,9 @@ impl RingSystem {
             ContactRegion::Annulus { eps } => {
                 field.rim_coefficient * (2.0 * PI / (1.0 - eps)).sqrt()
             }
+            ContactRegion::Band { inner, outer } => {
+                field.rim_coefficient * (2.0 * PI / (outer - inner)).sqrt()
+            }
         }
     }
 
@@ -255,6 +274,9 @@ impl RingSystem {
             ContactRegion::Annulus { eps } => {
                 field.inner_coefficient * (2.0 * PI / (1.0 - eps)).sqrt()
             }
+            ContactRegion::Band { inner, outer } => {
+                field.inner_coefficient * (2.0 * PI / (outer - inner)).sqrt()
+            }
         }
     }
 }
@@ -264,6 +286,7 @@ fn parameter_of(region: ContactRegion, s: f64) -> f64 {
     match region {
         ContactRegion::Disk => 2.0 * s * s - 1.0,
         ContactRegion::Annulus { eps } => 2.0 * (s / eps).ln() / (1.0 / eps).ln() - 1.0,
+        ContactRegion::Band { inner, outer } => 2.0 * (s / inner).ln() / (outer / inner).ln() - 1.0,
     }
 }
 
@@ -272,6 +295,7 @@ fn radius_of(region: ContactRegion, t: f64) -> f64 {
     match region {
         ContactRegion::Disk => (0.5 * (1.0 + t)).sqrt(),
         ContactRegion::Annulus { eps } => eps.powf(0.5 * (1.0 - t)),
+        ContactRegion::Band { inner, outer } => inner * (outer / inner).powf(0.5 * (1.0 + t)),
     }
 }
 
@@ -280,7 +304,9 @@ fn radius_of(region: ContactRegion, t: f64) -> f64 {
 fn edge_weight(region: ContactRegion, from_inner: f64, from_rim: f64, s: f64) -> f64 {
     match region {
         ContactRegion::Disk => 1.0 / (from_rim * (1.0 + s)).sqrt(),
-        ContactRegion::Annulus { .. } => 1.0 / (from_rim * from_inner).sqrt(),
+        ContactRegion::Annulus { .. } | ContactRegion::Band { .. } => {
+            1.0 / (from_rim * from_inner).sqrt()
+        }
     }
 }
 
@@ -294,7 +320,7 @@ struct Panel {
 impl Panel {
     /// Position of a node plus its exact distances to the inner edge, the rim and `r`.
     #[inline]
-    fn locate(&self, node: &PanelNode, inner: f64, r: f64) -> (f64, f64, f64, f64) {
+    fn locate(&self, node: &PanelNode, inner: f64, outer: f64, r: f64) -> (f64, f64, f64, f64) {
         let s = node.position;
         // Distances measured from the nearest panel end that coincides with a singular point.
         let from_inner = if self.lo == inner {
@@ -302,10 +328,10 @@ impl Panel {
         } else {
             s - inner
         };
-        let from_rim = if self.hi == 1.0 {
+        let from_rim = if self.hi == outer {
             node.from_hi
         } else {
-            1.0 - s
+            outer - s
         };
         let distance = if self.hi == r {
             node.from_hi
@@ -321,14 +347,14 @@ impl Panel {
 /// Panels for row `r`: `[b, r]` and `[r, a]`, the latter cut geometrically when the kernel's
 /// near-singularity at `s = -r` is close relative to the panel length (collocation points near the
 /// axis).
-fn row_panels(inner: f64, r: f64) -> Vec<Panel> {
+fn row_panels(inner: f64, outer: f64, r: f64) -> Vec<Panel> {
     let mut panels = vec![Panel { lo: inner, hi: r }];
     let mut lo = r;
     loop {
         // A panel [lo, hi] is kept no longer than its distance lo + r to the point s = -r.
         let hi = lo + (lo + r);
-        if hi >= 0.75 {
-            panels.push(Panel { lo, hi: 1.0 });
+        if hi >= 0.75 * outer {
+            panels.push(Panel { lo, hi: outer });
             break;
         }
         panels.push(Panel { lo, hi });

@@ -17,6 +17,8 @@
 //! conservative choice, since convergence is geometric). The ladder is climbed until the estimate
 //! meets the tolerance; if it never does, that is an error, not a result.
 
+use std::f64::consts::PI;
+
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingField, RingSystem};
 use crate::error::{Error, Result};
 use crate::numerics::roots::{find_root, RootError};
@@ -81,6 +83,35 @@ pub struct RingState {
     /// Number of collocation systems factorised.
     pub solves: usize,
 }
+
+/// A prescribed contact band `[b, c]` pressed to depth `d` by a punch of gap `g(r)`: the force
+/// and the stress intensity factors at both edges (dimensionless, `a = E* = 1`; `K` in units of
+/// `E* sqrt(a)`). An edge where `K = 0` is free (non-adhesive); `K > 0` a compressive edge, the
+/// Griffith condition `K² = 2 E* Δw` an adhesive one.
+#[derive(Clone, Debug)]
+pub struct BandState {
+    /// Inner edge `b/a`.
+    pub inner: f64,
+    /// Outer edge `c/a`.
+    pub outer: f64,
+    /// Depth `d/a` of the punch's reference plane (where `g = 0`).
+    pub depth: f64,
+    /// `F / (E* a²)`.
+    pub force: f64,
+    /// `K` at the inner edge, `lim sqrt(2π (r - b)) p(r)`.
+    pub inner_stress_intensity: f64,
+    /// `K` at the outer edge, `lim sqrt(2π (c - r)) p(r)`.
+    pub outer_stress_intensity: f64,
+    /// Largest change of the force (relative) and of either intensity (relative to the larger
+    /// intensity or to the band's natural scale `F / (2π r_mid sqrt(c - b))`) between the last
+    /// two node counts of the ladder.
+    pub error_estimate: f64,
+    /// Unknowns of the finer discretisation.
+    pub unknowns: usize,
+}
+
+/// Narrowest band accepted, `c/b - 1` (the annulus's `1 - 0.9999`).
+const MIN_BAND_RATIO: f64 = 1e-4;
 
 /// A concave state at fixed `eps` and fixed node count.
 struct ConcaveSample {
@@ -185,6 +216,78 @@ impl RingBemSolver {
         }
         Err(no_convergence(format!(
             "self-convergence estimate {last_estimate:.2e} at N = {} nodes exceeds the tolerance {tolerance:.1e}",
+            NODE_LADDER[NODE_LADDER.len() - 1]
+        )))
+    }
+
+    /// The band `[inner, outer]` held in contact at `depth` by a punch of gap `gap(r)` (any
+    /// profile, `r` in units of `a`): `w(r) = depth - gap(r)` on the band, the force and both
+    /// edges' stress intensity factors, refined until the estimate meets `tolerance`.
+    pub fn prescribed_band(
+        &self,
+        gap: impl Fn(f64) -> f64,
+        inner: f64,
+        outer: f64,
+        depth: f64,
+        tolerance: f64,
+    ) -> Result<BandState> {
+        Self::check_tolerance(tolerance)?;
+        if !(inner.is_finite() && outer.is_finite() && depth.is_finite())
+            || inner <= 0.0
+            || outer <= inner * (1.0 + MIN_BAND_RATIO)
+        {
+            return Err(out_of_range(format!(
+                "band [{}, {}] at depth {}: need finite 0 < b and c > b (1 + {MIN_BAND_RATIO})",
+                crate::error::show(inner),
+                crate::error::show(outer),
+                crate::error::show(depth)
+            )));
+        }
+        let region = ContactRegion::Band { inner, outer };
+        let sample = |n: usize| -> Result<BandState> {
+            let system = self.system(region, n);
+            let target: Vec<f64> = system.radii().iter().map(|&r| depth - gap(r)).collect();
+            if target.iter().any(|w| !w.is_finite()) {
+                return Err(out_of_range("the gap is not finite on the band".into()));
+            }
+            let field = system
+                .solve(&target)
+                .ok_or_else(|| no_convergence("singular collocation matrix".into()))?;
+            Ok(BandState {
+                inner,
+                outer,
+                depth,
+                force: field.force,
+                inner_stress_intensity: system.inner_stress_intensity(&field),
+                outer_stress_intensity: system.rim_stress_intensity(&field),
+                error_estimate: f64::NAN,
+                unknowns: n,
+            })
+        };
+        let mut coarse = sample(NODE_LADDER[0])?;
+        let mut last = f64::INFINITY;
+        for &n in &NODE_LADDER[1..] {
+            let mut fine = sample(n)?;
+            let scale = fine
+                .inner_stress_intensity
+                .abs()
+                .max(fine.outer_stress_intensity.abs())
+                .max(fine.force.abs() / (PI * (inner + outer) * (outer - inner).sqrt()))
+                .max(f64::MIN_POSITIVE);
+            let estimate = relative_change(fine.force, coarse.force)
+                .max((fine.inner_stress_intensity - coarse.inner_stress_intensity).abs() / scale)
+                .max((fine.outer_stress_intensity - coarse.outer_stress_intensity).abs() / scale)
+                .max(ROUNDING_FLOOR);
+            if estimate <= tolerance {
+                fine.error_estimate = estimate;
+                return Ok(fine);
+            }
+            last = estimate;
+            coarse = fine;
+        }
+        Err(no_convergence(format!(
+            "band [{inner}, {outer}]: estimate {last:.2e} at N = {} nodes exceeds the tolerance \
+             {tolerance:.1e}",
             NODE_LADDER[NODE_LADDER.len() - 1]
         )))
     }
