@@ -276,29 +276,19 @@ impl Solution {
                         });
                     }
                 }
-                PunchKind::Sphere => {
+                // The sphere is the power law with n = 2 (closure at d = 3h).
+                PunchKind::Sphere | PunchKind::Power(_) => {
+                    let n = self.punch.concave_exponent().unwrap_or(f64::NAN);
                     let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
                     // Allow the method's own error in the depth.
                     let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
-                    if depth_over_hole.is_nan() || depth_over_hole < 3.0 * (1.0 - slack) {
-                        return fail(format!(
-                            "full contact at d/h = {}: the spherical punch reaches it only at \
-                             d/h >= 3",
-                            crate::error::show(depth_over_hole)
-                        ));
-                    }
-                }
-                PunchKind::Power(n) => {
-                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
-                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
-                    match crate::reference::power_law::closure_depth(n.value()) {
+                    match crate::reference::power_law::closure_depth(n) {
                         Some(closure) if depth_over_hole >= closure * (1.0 - slack) => {}
                         Some(closure) => {
                             return fail(format!(
-                                "full contact at d/h = {}: the power-law punch (n = {}) reaches \
-                                 it only at d/h >= {}",
+                                "full contact at d/h = {}: the {} reaches it only at d/h >= {}",
                                 crate::error::show(depth_over_hole),
-                                n.value(),
+                                self.punch,
                                 crate::error::show(closure)
                             ))
                         }
@@ -307,9 +297,9 @@ impl Solution {
                         None if self.error_estimate.is_some() => {}
                         None => {
                             return fail(format!(
-                                "full contact without an error estimate: the power-law punch \
-                                 with n = {} <= 1 never closes",
-                                n.value()
+                                "full contact without an error estimate: the {} with n <= 1 \
+                                 never closes",
+                                self.punch
                             ))
                         }
                     }

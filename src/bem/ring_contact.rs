@@ -194,8 +194,25 @@ impl RingBemSolver {
     fn refine<T>(
         &self,
         tolerance: f64,
-        mut sample: impl FnMut(usize) -> Result<T>,
+        sample: impl FnMut(usize) -> Result<T>,
         values: impl Fn(&T) -> Vec<f64>,
+    ) -> Result<(T, usize, f64, usize)> {
+        self.refine_by(tolerance, sample, |fine, coarse| {
+            values(fine)
+                .iter()
+                .zip(values(coarse))
+                .map(|(f, c)| relative_change(*f, c))
+                .fold(0.0, f64::max)
+        })
+    }
+
+    /// [`Self::refine`] with the change between two rungs measured by `change(fine, coarse)`
+    /// (never below the rounding floor).
+    fn refine_by<T>(
+        &self,
+        tolerance: f64,
+        mut sample: impl FnMut(usize) -> Result<T>,
+        change: impl Fn(&T, &T) -> f64,
     ) -> Result<(T, usize, f64, usize)> {
         let mut coarse = sample(NODE_LADDER[0])?;
         let mut solves = 1;
@@ -203,11 +220,7 @@ impl RingBemSolver {
         for &n in &NODE_LADDER[1..] {
             let fine = sample(n)?;
             solves += 1;
-            let estimate = values(&fine)
-                .iter()
-                .zip(values(&coarse))
-                .map(|(f, c)| relative_change(*f, c))
-                .fold(ROUNDING_FLOOR, f64::max);
+            let estimate = change(&fine, &coarse).max(ROUNDING_FLOOR);
             if estimate <= tolerance {
                 return Ok((fine, n, estimate, solves));
             }
@@ -264,32 +277,29 @@ impl RingBemSolver {
                 unknowns: n,
             })
         };
-        let mut coarse = sample(NODE_LADDER[0])?;
-        let mut last = f64::INFINITY;
-        for &n in &NODE_LADDER[1..] {
-            let mut fine = sample(n)?;
+        // Intensities near zero (a free edge) are compared on the larger intensity or the band's
+        // natural scale `F / (2π r_mid sqrt(c - b))`, not on themselves.
+        let change = |fine: &BandState, coarse: &BandState| {
             let scale = fine
                 .inner_stress_intensity
                 .abs()
                 .max(fine.outer_stress_intensity.abs())
                 .max(fine.force.abs() / (PI * (inner + outer) * (outer - inner).sqrt()))
                 .max(f64::MIN_POSITIVE);
-            let estimate = relative_change(fine.force, coarse.force)
+            relative_change(fine.force, coarse.force)
                 .max((fine.inner_stress_intensity - coarse.inner_stress_intensity).abs() / scale)
                 .max((fine.outer_stress_intensity - coarse.outer_stress_intensity).abs() / scale)
-                .max(ROUNDING_FLOOR);
-            if estimate <= tolerance {
-                fine.error_estimate = estimate;
-                return Ok(fine);
-            }
-            last = estimate;
-            coarse = fine;
-        }
-        Err(no_convergence(format!(
-            "band [{inner}, {outer}]: estimate {last:.2e} at N = {} nodes exceeds the tolerance \
-             {tolerance:.1e}",
-            NODE_LADDER[NODE_LADDER.len() - 1]
-        )))
+        };
+        let (mut state, _, estimate, _) =
+            self.refine_by(tolerance, sample, change)
+                .map_err(|e| match e {
+                    Error::NoConvergence { reason, .. } => {
+                        no_convergence(format!("band [{inner}, {outer}]: {reason}"))
+                    }
+                    other => other,
+                })?;
+        state.error_estimate = estimate;
+        Ok(state)
     }
 
     /// Flat punch (`eps = 0`) or flat annulus (`0 < eps <= 0.9999`) at unit depth: `γ(eps)`.
