@@ -31,6 +31,9 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::asymptotic::collins_series;
 
+mod torus;
+pub use torus::{plane_strain_pulloff, torus_jkr, TorusCritical, TorusJkr};
+
 const TOL: f64 = 1e-11;
 const ROOT_PI: f64 = 1.772_453_850_905_516;
 
@@ -586,8 +589,17 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
     if !kind.is_concave() {
         return Err(Error::invalid(
             "punch",
-            "the concave JKR analysis applies to cone and sphere",
+            "the concave JKR analysis applies to cone, sphere and power",
         ));
+    }
+    if !kind.has_rim() {
+        return Err(Error::Unsupported {
+            method: "jkr".into(),
+            reason: format!(
+                "the {kind}'s contact has two free edges and no rim: its JKR analysis is \
+                 `adhesion::torus_jkr` (`verify jkr --punch torus`)"
+            ),
+        });
     }
     if !(s.is_finite() && s > 0.0) {
         return Err(Error::invalid(

@@ -99,6 +99,17 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
             reason: "--grid applies to --method grid-bem only".into(),
         });
     }
+    if !scene.punch.kind.has_rim() && method == Method::Fem {
+        return Err(Error::Unsupported {
+            method: method.name().into(),
+            reason: format!(
+                "the {}'s contact has two free edges, which the {} does not locate yet; the \
+                 ring BEM solves it (--method ring-bem or auto)",
+                scene.punch.kind,
+                method.name()
+            ),
+        });
+    }
     let solution = match method {
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
@@ -179,15 +190,16 @@ pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
     let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
     let state = grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?;
     Ok(Solution {
+        outer_radius: state.outer_edge * a,
         unknowns: n * n,
         iterations: state.iterations,
         complementarity_residual: Some(state.residual),
         grid: Some(n),
         provenance: format!(
             "square-grid FFT BEM (Love kernel, 2N zero padding, Polonsky-Keer CG), {n} x {n} cells on \
-             [-a, a]^2, {} contact cells, {} iterations, complementarity residual {:.1e}; no \
+             [-L, L]^2 with L = {} a, {} contact cells, {} iterations, complementarity residual {:.1e}; no \
              discretisation error estimate on a single grid",
-            state.contact_cells, state.iterations, state.residual
+            crate::error::show(state.square_half_size), state.contact_cells, state.iterations, state.residual
         ),
         ..base(
             scene,
@@ -297,6 +309,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
 /// Solve with a given ring-BEM solver (reuse it across many scenes to keep its quadrature).
 pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution> {
     let start = Instant::now();
+    let factorised = solver.factorisations();
     let kind = scene.punch.kind;
     let tol = scene.tolerance.unwrap_or(crate::scene::DEFAULT_TOLERANCE);
     let h = scene.punch.hole_depth;
@@ -311,7 +324,16 @@ pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution>
         (_, Load::Force(f)) => solver.concave_at_force(kind, f / (2.0 * es * h * a), tol)?,
     };
     let wall_s = start.elapsed().as_secs_f64();
-    ring_state_to_solution(scene, &state, wall_s)
+    let iterations = solver.factorisations() - factorised;
+    Ok(Solution {
+        iterations,
+        provenance: format!(
+            "ring BEM, Gauss-Chebyshev collocation, N = {} nodes, {iterations} factorisations, \
+             self-convergence estimate against the previous ladder rung",
+            state.unknowns
+        ),
+        ..ring_state_to_solution(scene, &state, wall_s)?
+    })
 }
 
 /// A solution of `scene` by `method` with the physical state filled in from the dimensionless
@@ -334,6 +356,7 @@ fn base(
         inner_radius: eps * a,
         rim_radius: a,
         outer_radius: a,
+        tube_radius: scene.punch.tube_radius(),
         gamma,
         gamma1,
         gamma2,
@@ -410,11 +433,16 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Resu
     let pressure_scale = es * length / a;
     let k_scale = es * length / a.sqrt();
     Ok(Solution {
-        stress_intensity_rim: Some(state.rim_stress_intensity * k_scale),
+        outer_radius: state.outer_edge * a,
+        // The torus has no rim (its outer edge is free: K = 0 there).
+        stress_intensity_rim: scene
+            .punch
+            .kind
+            .has_rim()
+            .then_some(state.rim_stress_intensity * k_scale),
         stress_intensity_inner: Some(state.inner_stress_intensity * k_scale),
         error_estimate: Some(state.error_estimate),
         unknowns: state.unknowns,
-        iterations: state.solves,
         pressure: state
             .pressure
             .iter()
@@ -423,11 +451,6 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Resu
                 p: p * pressure_scale,
             })
             .collect(),
-        provenance: format!(
-            "ring BEM, Gauss-Chebyshev collocation, N = {} nodes, {} factorisations, \
-             self-convergence estimate against the previous ladder rung",
-            state.unknowns, state.solves
-        ),
         ..base
     })
 }
@@ -465,6 +488,15 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
     // Every field below is set from the reference that applies.
     let mut solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
     match kind {
+        PunchKind::Torus => {
+            return Err(Error::OutOfRange {
+                method: "reference".into(),
+                reason: "the torus has no closed form (its narrow limit, the plane-strain Hertz \
+                         cylinder, is an asymptote without an error bound); it is the ring BEM's \
+                         (--method ring-bem)"
+                    .into(),
+            })
+        }
         PunchKind::Flat | PunchKind::FlatAnnulus => {
             let eps = scene.punch.inner_ratio();
             let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;

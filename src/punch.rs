@@ -10,11 +10,15 @@
 //! | conical concave | `h (1 - r/a)` | `[b(d), a]` |
 //! | spherical (parabolic) concave | `h (1 - r²/a²)` | `[b(d), a]` |
 //! | power-law concave, exponent `n > 0` | `h (1 - (r/a)^n)` | `[b(d), a]` |
+//! | torus (parabolic section), tube radius `ρ` | `(r - a)²/(2ρ) = h (1 - r/a)²`, `h = a²/(2ρ)` | `[b(d), c(d)]` |
 //!
 //! Every concave punch has a sharp rim at `r = a` (fixed edge, pressure singular) and a free
 //! inner edge `b` found by the solution (pressure zero there without adhesion). The power law
 //! holds the cone (`n = 1`) and the sphere (`n = 2`) as special cases; `cone` and `sphere` keep
-//! their own names and evaluate the same gap.
+//! their own names and evaluate the same gap. The torus has no rim: both edges of its contact
+//! are free, and its gap is defined on both sides of the ring radius `a`. Written as
+//! `h (1 - r/a)²` it is one dimensionless shape for every tube radius (the tube radius only sets
+//! the depth scale `h`), so it shares the concave punches' `γ1 = d/h` and `γ2 = F/(2 E* h a)`.
 
 use std::hash::{Hash, Hasher};
 
@@ -37,6 +41,9 @@ pub enum PunchName {
     Sphere,
     /// Power-law concave punch, gap `h (1 - (r/a)^n)` (give `--exponent n`, any `n > 0`).
     Power,
+    /// Torus: a convex ring of radius `a` with parabolic section, gap `(r - a)²/(2ρ)`, both
+    /// contact edges free (give `--tube-radius ρ`).
+    Torus,
 }
 
 impl PunchName {
@@ -48,6 +55,7 @@ impl PunchName {
             PunchName::Cone => "cone",
             PunchName::Sphere => "sphere",
             PunchName::Power => "power",
+            PunchName::Torus => "torus",
         }
     }
 
@@ -74,6 +82,7 @@ impl PunchName {
             (PunchName::FlatAnnulus, None) => Ok(PunchKind::FlatAnnulus),
             (PunchName::Cone, None) => Ok(PunchKind::Cone),
             (PunchName::Sphere, None) => Ok(PunchKind::Sphere),
+            (PunchName::Torus, None) => Ok(PunchKind::Torus),
         }
     }
 }
@@ -138,6 +147,9 @@ pub enum PunchKind {
     Sphere,
     /// Power-law concave punch, gap `h (1 - (r/a)^n)`.
     Power(Exponent),
+    /// Torus of ring radius `a`, parabolic section: gap `h (1 - r/a)²` with `h = a²/(2ρ)`,
+    /// defined on both sides of `a`; both contact edges free.
+    Torus,
 }
 
 /// How a [`PunchKind`] is written in JSON.
@@ -173,6 +185,7 @@ impl PunchKind {
             PunchKind::Cone => PunchName::Cone,
             PunchKind::Sphere => PunchName::Sphere,
             PunchKind::Power(_) => PunchName::Power,
+            PunchKind::Torus => PunchName::Torus,
         }
     }
 
@@ -223,13 +236,20 @@ impl PunchKind {
             PunchKind::Cone => Some(1.0),
             PunchKind::Sphere => Some(2.0),
             PunchKind::Power(n) => Some(n.value()),
-            PunchKind::Flat | PunchKind::FlatAnnulus => None,
+            PunchKind::Flat | PunchKind::FlatAnnulus | PunchKind::Torus => None,
         }
     }
 
-    /// Whether the inner contact radius is found by the solver (concave punches).
+    /// Whether the inner contact radius is found by the solver, with the depth scale `h` and
+    /// the functions `γ1 = d/h`, `γ2 = F/(2 E* h a)`: the concave punches and the torus.
     pub fn is_concave(self) -> bool {
-        self.concave_exponent().is_some()
+        self.concave_exponent().is_some() || self == PunchKind::Torus
+    }
+
+    /// Whether the contact's outer edge is a sharp rim at `r = a` (every punch but the torus,
+    /// whose outer edge is free).
+    pub fn has_rim(self) -> bool {
+        self != PunchKind::Torus
     }
 
     /// Whether the concave profile is flat at the axis (`g'(0) = 0`: the sphere, the power law
@@ -241,10 +261,12 @@ impl PunchKind {
         self.concave_exponent().is_some_and(|n| n > 1.0)
     }
 
-    /// Dimensionless gap `g(r)/h` of a concave punch at `rho = r/a` (0 for flat punches).
+    /// Dimensionless gap `g(r)/h` of a concave punch or the torus at `rho = r/a` (0 for flat
+    /// punches).
     pub fn gap_shape(self, rho: f64) -> f64 {
         match self {
             PunchKind::Flat | PunchKind::FlatAnnulus => 0.0,
+            PunchKind::Torus => (1.0 - rho) * (1.0 - rho),
             PunchKind::Cone => 1.0 - rho,
             PunchKind::Sphere => 1.0 - rho * rho,
             PunchKind::Power(n) => 1.0 - rho.powf(n.value()),
@@ -269,7 +291,8 @@ pub struct Punch {
     pub rim_radius: f64,
     /// Inner radius `b` of the flat annulus (`0 <= b < a`; `b = 0` is the flat circular punch).
     pub inner_radius: f64,
-    /// Depth `h` of the concave hole at `r = 0` (concave punches only; 0 otherwise).
+    /// Depth `h` of the concave hole at `r = 0` (concave punches only; 0 otherwise). For the
+    /// torus the gap at the axis, `h = a²/(2ρ)`.
     pub hole_depth: f64,
 }
 
@@ -282,5 +305,11 @@ impl Punch {
     /// `b/a` of a flat annulus (0 for the other shapes).
     pub fn inner_ratio(&self) -> f64 {
         self.inner_radius / self.rim_radius
+    }
+
+    /// The torus's tube radius `ρ = a²/(2h)` (`None` for the other shapes).
+    pub fn tube_radius(&self) -> Option<f64> {
+        (self.kind == PunchKind::Torus)
+            .then(|| self.rim_radius * self.rim_radius / (2.0 * self.hole_depth))
     }
 }

@@ -2,10 +2,11 @@
 //!
 //! ```toml
 //! [punch]
-//! shape = "cone"            # flat | flat-annulus | cone | sphere | power
-//! rim_radius = 1.0          # a, length unit of your choice
+//! shape = "cone"            # flat | flat-annulus | cone | sphere | power | torus
+//! rim_radius = 1.0          # a, length unit of your choice (the torus's ring radius)
 //! hole_depth = 0.1          # h, concave punches (cone, sphere, power) only
 //! # exponent = 2.5          # n of the power law, gap h (1 - (r/a)^n); power only
+//! # tube_radius = 0.2       # rho of the torus, gap (r - a)²/(2 rho); torus only
 //! # inner_radius = 0.5      # b, flat-annulus only, 0 <= b < a
 //!
 //! [material]
@@ -71,6 +72,7 @@ struct RawPunch {
     rim_radius: Option<f64>,
     inner_radius: Option<f64>,
     hole_depth: Option<f64>,
+    tube_radius: Option<f64>,
 }
 
 #[derive(Deserialize, Default)]
@@ -158,7 +160,12 @@ impl SceneSpec {
     pub fn shape_named(mut self, name: Option<PunchName>, exponent: Option<f64>) -> Self {
         if let Some(name) = name {
             if name != self.punch.shape.unwrap_or(name) {
+                // The other shape's parameters do not carry over.
                 self.punch.exponent = None;
+                self.punch.tube_radius = None;
+                if name == PunchName::Torus {
+                    self.punch.hole_depth = None;
+                }
             }
             self.punch.shape = Some(name);
         }
@@ -171,6 +178,12 @@ impl SceneSpec {
     /// The punch shape named so far (file or command line), if any.
     pub fn shape_name(&self) -> Option<PunchName> {
         self.punch.shape
+    }
+
+    /// Set the torus's tube radius `ρ` (length units).
+    pub fn tube_radius(mut self, rho: f64) -> Self {
+        self.punch.tube_radius = Some(rho);
+        self
     }
 
     /// Set `b/a` of a flat annulus (with the rim radius of the scene, default 1).
@@ -250,7 +263,7 @@ impl SceneSpec {
         let name = self.punch.shape.ok_or_else(|| {
             Error::invalid(
                 "punch.shape",
-                "is required: one of flat, flat-annulus, cone, sphere, power",
+                "is required: one of flat, flat-annulus, cone, sphere, power, torus",
             )
         })?;
         let kind = name
@@ -300,15 +313,40 @@ impl SceneSpec {
             ));
         }
 
-        let hole_depth = match (kind.is_concave(), self.punch.hole_depth) {
-            (true, h) => positive("punch.hole_depth", h.unwrap_or(1.0))?,
-            (false, Some(_)) => {
+        let hole_depth = match (kind, self.punch.hole_depth, self.punch.tube_radius) {
+            (_, _, Some(_)) if kind != PunchKind::Torus => {
+                return Err(Error::invalid(
+                    "punch.tube_radius",
+                    format!("applies only to shape = torus, not {kind}"),
+                ))
+            }
+            (PunchKind::Torus, Some(_), _) => {
+                return Err(Error::invalid(
+                    "punch.hole_depth",
+                    "does not apply to the torus: its depth scale h = a²/(2 rho) follows from \
+                     punch.tube_radius",
+                ))
+            }
+            (PunchKind::Torus, None, Some(rho)) => {
+                let rho = positive("punch.tube_radius", rho)?;
+                let h = rim_radius * rim_radius / (2.0 * rho);
+                finite("punch.tube_radius", h).and_then(|h| positive("punch.tube_radius", h))?
+            }
+            (PunchKind::Torus, None, None) => {
+                return Err(Error::invalid(
+                    "punch.tube_radius",
+                    "is required for shape = torus (--tube-radius RHO): the gap is \
+                     (r - a)²/(2 rho)",
+                ))
+            }
+            (_, h, None) if kind.is_concave() => positive("punch.hole_depth", h.unwrap_or(1.0))?,
+            (_, Some(_), None) => {
                 return Err(Error::invalid(
                     "punch.hole_depth",
                     format!("applies only to the concave shapes (cone, sphere, power), not {kind}"),
                 ))
             }
-            (false, None) => 0.0,
+            _ => 0.0,
         };
 
         let material = self.material.validate()?;
@@ -421,7 +459,7 @@ impl RawLoad {
                 return Err(Error::invalid(
                     "load.contact_ratio",
                     format!(
-                        "applies only to the concave punches (cone, sphere, power) (for {kind} the contact is fixed by the \
+                        "applies only to the concave punches (cone, sphere, power) and the torus (for {kind} the contact is fixed by the \
                          geometry; use punch.inner_radius or --eps)"
                     ),
                 ));

@@ -38,6 +38,9 @@ pub struct Solution {
     /// Outer contact radius `c` (length units): the contact is the annulus
     /// `inner_radius <= r <= outer_radius`. At the rim (`c = a`) for every punch with one.
     pub outer_radius: f64,
+    /// Tube radius `ρ` of the torus (length units; its depth scale is `h = a²/(2ρ)`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tube_radius: Option<f64>,
     /// `γ = F / (2 E* d a)` (flat punches).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub gamma: Option<f64>,
@@ -307,6 +310,13 @@ impl Solution {
                 PunchKind::FlatAnnulus => {
                     return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
                 }
+                PunchKind::Torus => {
+                    return fail(
+                        "full contact: the torus's contact never reaches the axis (its gap is a \
+                         conical dimple there, tensile at the apex in full contact)"
+                            .into(),
+                    )
+                }
                 PunchKind::Flat => {}
             }
         }
@@ -379,6 +389,7 @@ mod tests {
             inner_radius: eps,
             rim_radius: 1.0,
             outer_radius: 1.0,
+            tube_radius: None,
             gamma: None,
             gamma1: Some(depth),
             gamma2: Some(0.5 * force),

@@ -26,6 +26,10 @@ pub(crate) const MAX_GRID: usize = 2048;
 pub struct GridState {
     pub grid: usize,
     pub eps: f64,
+    /// Outer contact edge `c/a` (1, the rim, for every punch but the torus).
+    pub outer_edge: f64,
+    /// Half-size `L/a` of the square `[-L, L]²` the grid covers (1 but for the torus).
+    pub square_half_size: f64,
     pub gamma: Option<f64>,
     pub gamma1: Option<f64>,
     pub gamma2: Option<f64>,
@@ -73,6 +77,22 @@ pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
     }
 }
 
+/// The grid sizes accepted, `8..=MAX_GRID` cells per side.
+fn check_grid(n: usize) -> Result<()> {
+    if !(8..=MAX_GRID).contains(&n) {
+        Err(Error::OutOfRange {
+            method: crate::bem::grid::METHOD.into(),
+            reason: format!(
+                "grid {n} outside 8..={MAX_GRID} cells per side (a {n} x {n} grid needs about \
+                 {:.1} GB and far longer than minutes on this kind of machine)",
+                100.0 * (n as f64).powi(2) / 1e9
+            ),
+        })
+    } else {
+        Ok(())
+    }
+}
+
 /// Solve a punch state on an `n x n` grid. `load`: depth `d` (flat: 1; concave: `d/h`) or force
 /// `F/(2 E* h a)` for concave punches.
 pub fn solve(
@@ -82,16 +102,10 @@ pub fn solve(
     load: GridLoad,
     tolerance: f64,
 ) -> Result<GridState> {
-    if !(8..=MAX_GRID).contains(&n) {
-        return Err(Error::OutOfRange {
-            method: crate::bem::grid::METHOD.into(),
-            reason: format!(
-                "grid {n} outside 8..={MAX_GRID} cells per side (a {n} x {n} grid needs about \
-                 {:.1} GB and far longer than minutes on this kind of machine)",
-                100.0 * (n as f64).powi(2) / 1e9
-            ),
-        });
+    if kind == PunchKind::Torus {
+        return solve_torus(n, load, tolerance);
     }
+    check_grid(n)?;
     // A ring narrower than two cells is not resolved: the staircase would carry most of the error
     // and the number would look plausible. Refuse it instead.
     let cell = 2.0 / n as f64;
@@ -145,6 +159,8 @@ pub fn solve(
     Ok(GridState {
         grid: n,
         eps: eps_out,
+        outer_edge: 1.0,
+        square_half_size: 1.0,
         gamma: (!concave).then(|| c.force / (2.0 * c.depth)),
         gamma1: concave.then_some(c.depth),
         gamma2: concave.then_some(0.5 * c.force),
@@ -154,5 +170,117 @@ pub fn solve(
         residual: c.residual,
         contact_cells: c.contact_cells,
         wall_s,
+    })
+}
+
+/// Half-size of the first (coarse) square the torus is solved on, in units of `a`: it holds the
+/// contact up to `c = 2.9 a` (the ring BEM's `c` at `b = 0.2 a`).
+const TORUS_FIRST_HALF_SIZE: f64 = 3.0;
+
+/// The torus `g = h (1 - r/a)²` (`h = 1`) on an `n x n` grid over `[-L, L]²`: every cell of the
+/// inscribed disk may touch. Its contact band is found by the complementarity iteration, both
+/// edges at once; the edges are read off the contact cells as the smallest and largest centre
+/// radius in contact (staircase, `O(cell)`). The square is sized in two passes: a grid of
+/// `n/4` cells on `[-3a, 3a]²` finds the band, and the final grid spans the band's outer edge
+/// plus a quarter of its width (at least four coarse cells); a contact reaching within two cells
+/// of the square's edge is refused.
+pub fn solve_torus(n: usize, load: GridLoad, tolerance: f64) -> Result<GridState> {
+    check_grid(n)?;
+    let start = Instant::now();
+    let coarse_n = (n / 4).max(32);
+    let coarse = torus_on_square(coarse_n, TORUS_FIRST_HALF_SIZE, load, tolerance)?;
+    let coarse_cell = 2.0 * TORUS_FIRST_HALF_SIZE / coarse_n as f64;
+    let half_size = coarse.outer + (0.25 * (coarse.outer - coarse.inner)).max(4.0 * coarse_cell);
+    let fine = torus_on_square(n, half_size, load, tolerance)?;
+    let cell = 2.0 * half_size / n as f64;
+    if (fine.outer - fine.inner) < MIN_CELLS_ACROSS * cell {
+        return Err(Error::OutOfRange {
+            method: crate::bem::grid::METHOD.into(),
+            reason: format!(
+                "the torus's contact band [{:.4}, {:.4}] a is {:.2} cells wide on a {n} x {n} grid \
+                 over [-{half_size:.3}, {half_size:.3}]² a; at least {MIN_CELLS_ACROSS} cells are \
+                 needed (refine the grid or use the ring BEM)",
+                fine.inner,
+                fine.outer,
+                (fine.outer - fine.inner) / cell
+            ),
+        });
+    }
+    Ok(GridState {
+        wall_s: start.elapsed().as_secs_f64(),
+        ..fine.state
+    })
+}
+
+/// A torus solve on one square: the state and the band read off the contact cells.
+struct TorusOnSquare {
+    state: GridState,
+    inner: f64,
+    outer: f64,
+}
+
+fn torus_on_square(
+    n: usize,
+    half_size: f64,
+    load: GridLoad,
+    tolerance: f64,
+) -> Result<TorusOnSquare> {
+    let cell = 2.0 * half_size / n as f64;
+    let op = GridOperator::new(n, cell);
+    let mut allowed = vec![false; n * n];
+    let mut profile = vec![0.0; n * n];
+    let radius = |i: usize, j: usize| half_size * cell_centre(n, i).hypot(cell_centre(n, j));
+    for i in 0..n {
+        for j in 0..n {
+            let r = radius(i, j);
+            if r <= half_size {
+                allowed[i * n + j] = true;
+                profile[i * n + j] = PunchKind::Torus.gap_shape(r);
+            }
+        }
+    }
+    let load = match load {
+        GridLoad::Force(f) => GridLoad::Force(2.0 * f),
+        other => other,
+    };
+    let c = solve_contact(&op, &allowed, &profile, load, tolerance, 50 + 20 * n)?;
+    let (mut inner, mut outer) = (f64::INFINITY, 0.0_f64);
+    for i in 0..n {
+        for j in 0..n {
+            if c.pressure[i * n + j] > 0.0 {
+                let r = radius(i, j);
+                inner = inner.min(r);
+                outer = outer.max(r);
+            }
+        }
+    }
+    if outer > half_size - 2.0 * cell {
+        return Err(Error::OutOfRange {
+            method: crate::bem::grid::METHOD.into(),
+            reason: format!(
+                "the torus's contact reaches r = {outer:.3} a, within two cells of the grid's \
+                 square [-{half_size:.3}, {half_size:.3}]² a: the load is beyond the range the \
+                 grid BEM sizes its square for (use the ring BEM)"
+            ),
+        });
+    }
+    Ok(TorusOnSquare {
+        state: GridState {
+            grid: n,
+            eps: inner,
+            outer_edge: outer,
+            square_half_size: half_size,
+            gamma: None,
+            gamma1: Some(c.depth),
+            gamma2: Some(0.5 * c.force),
+            force: c.force,
+            depth: c.depth,
+            iterations: c.iterations,
+            residual: c.residual,
+            contact_cells: c.contact_cells,
+            wall_s: 0.0,
+        },
+        inner,
+        outer,
     })
 }

@@ -43,7 +43,8 @@ pub enum ContactRegion {
 }
 
 impl ContactRegion {
-    fn inner(&self) -> f64 {
+    /// The inner edge: 0 for the disk.
+    pub(crate) fn inner(&self) -> f64 {
         match *self {
             ContactRegion::Disk => 0.0,
             ContactRegion::Annulus { eps } => eps,
@@ -52,7 +53,7 @@ impl ContactRegion {
     }
 
     /// The outer edge: the rim `1` for the disk and the annulus.
-    fn outer(&self) -> f64 {
+    pub(crate) fn outer(&self) -> f64 {
         match *self {
             ContactRegion::Band { outer, .. } => outer,
             _ => 1.0,
@@ -229,28 +230,68 @@ impl RingSystem {
             _ => return None,
         };
         let outer = self.region.outer();
-        let mut total = 0.0;
+        let mut panels = Vec::new();
         let mut lo = inner;
         loop {
             let mut hi = lo + (lo - r);
             if hi >= 0.75 * outer {
                 hi = outer;
             }
-            let panel = Panel { lo, hi };
-            for node in rule.panel(lo, hi) {
-                let (s, from_inner, from_rim, _) = panel.locate(&node, inner, outer, f64::NAN);
-                let phi = self
-                    .nodes
-                    .interpolate(&field.phi, parameter_of(self.region, s));
-                let weight = edge_weight(self.region, from_inner, from_rim, s);
-                total += node.weight * phi * weight * ring_kernel(r, s, s - r);
-            }
+            panels.push(Panel { lo, hi });
             if hi == outer {
                 break;
             }
             lo = hi;
         }
-        Some(4.0 / PI * total)
+        Some(self.deflection_over(field, r, &panels, rule))
+    }
+
+    /// Surface deflection `w(r)` (units of `a`) of a solved field at a radius `r` beyond the
+    /// contact's outer edge (`r > c`), as [`Self::deflection_in_hole`] inside: panels from the
+    /// edge inward, each no longer than its distance to `r`. `None` for `r <= c`.
+    pub fn deflection_beyond(&self, field: &RingField, r: f64, rule: &TanhSinhRule) -> Option<f64> {
+        let (inner, outer) = (self.region.inner(), self.region.outer());
+        if !(r > outer && r.is_finite()) {
+            return None;
+        }
+        let mut panels = Vec::new();
+        let mut hi = outer;
+        loop {
+            let mut lo = hi - (r - hi);
+            if lo <= inner + 0.25 * (outer - inner) {
+                lo = inner;
+            }
+            panels.push(Panel { lo, hi });
+            if lo == inner {
+                break;
+            }
+            hi = lo;
+        }
+        Some(self.deflection_over(field, r, &panels, rule))
+    }
+
+    /// `(4/π) ∫ φ(s) W(s) s K(m) / (r + s) ds` over `panels` (which cover the contact and keep
+    /// `s = r` outside).
+    fn deflection_over(
+        &self,
+        field: &RingField,
+        r: f64,
+        panels: &[Panel],
+        rule: &TanhSinhRule,
+    ) -> f64 {
+        let (inner, outer) = (self.region.inner(), self.region.outer());
+        let mut total = 0.0;
+        for panel in panels {
+            for node in rule.panel(panel.lo, panel.hi) {
+                let (s, from_inner, from_rim, _) = panel.locate(&node, inner, outer, f64::NAN);
+                let phi = self
+                    .nodes
+                    .interpolate(&field.phi, parameter_of(self.region, s));
+                let weight = edge_weight(self.region, from_inner, from_rim, s);
+                total += node.weight * phi * weight * ring_kernel(r, s, (s - r).abs());
+            }
+        }
+        4.0 / PI * total
     }
 
     /// Mode-I stress intensity factor at the rim, `K = lim sqrt(2π (a - r)) p(r)`, in units of

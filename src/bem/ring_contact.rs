@@ -18,6 +18,7 @@
 //! meets the tolerance; if it never does, that is an error, not a result.
 
 use std::f64::consts::PI;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingField, RingSystem};
 use crate::error::{Error, Result};
@@ -25,6 +26,8 @@ use crate::numerics::roots::{find_root, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
+
+mod torus;
 
 /// Name of this method on the command line and in JSON.
 pub const METHOD: &str = "ring-bem";
@@ -64,6 +67,8 @@ type ScaledPressure = (f64, f64);
 pub struct RingState {
     /// Contact ratio `b/a` (0 for full contact).
     pub eps: f64,
+    /// Outer contact edge `c/a`: 1 (the rim) for every punch but the torus.
+    pub outer_edge: f64,
     /// Flat punches: `γ`. Concave punches: `γ2` is in `gamma2` and this is `None`.
     pub gamma: Option<f64>,
     /// `γ1 = d/h` (concave).
@@ -121,9 +126,11 @@ struct ConcaveSample {
     field: RingField,
 }
 
-/// The ring-BEM solver; holds the quadrature rule so it is built once.
+/// The ring-BEM solver; holds the quadrature rule so it is built once, and counts the
+/// collocation systems it assembles and factorises.
 pub struct RingBemSolver {
     rule: TanhSinhRule,
+    factorisations: AtomicUsize,
 }
 
 impl Default for RingBemSolver {
@@ -155,10 +162,18 @@ impl RingBemSolver {
     pub fn new() -> Self {
         Self {
             rule: TanhSinhRule::new(QUADRATURE_STEP),
+            factorisations: AtomicUsize::new(0),
         }
     }
 
+    /// Collocation systems assembled and factorised by this solver so far (every node count,
+    /// every step of every edge search).
+    pub fn factorisations(&self) -> usize {
+        self.factorisations.load(Ordering::Relaxed)
+    }
+
     fn system(&self, region: ContactRegion, nodes: usize) -> RingSystem {
+        self.factorisations.fetch_add(1, Ordering::Relaxed);
         RingSystem::assemble(
             region,
             RingBemSettings {
@@ -325,6 +340,7 @@ impl RingBemSolver {
         let (system, field) = sample;
         Ok(RingState {
             eps,
+            outer_edge: 1.0,
             gamma: Some(0.5 * field.force),
             gamma1: None,
             gamma2: None,
@@ -338,7 +354,18 @@ impl RingBemSolver {
     }
 
     /// Concave punch at a fixed node count and contact ratio.
-    fn concave_sample(&self, kind: PunchKind, eps: f64, n: usize) -> Result<ConcaveSample> {
+    /// `outer_hint`: a guess of the torus's outer edge (from a nearby state), ignored by the
+    /// punches whose outer edge is the rim.
+    fn concave_sample(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        n: usize,
+        outer_hint: Option<f64>,
+    ) -> Result<ConcaveSample> {
+        if kind == PunchKind::Torus {
+            return self.torus_sample(eps, n, outer_hint);
+        }
         let system = self.system(ContactRegion::Annulus { eps }, n);
         let unit_depth = vec![1.0; n];
         let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap_shape(r)).collect();
@@ -372,26 +399,48 @@ impl RingBemSolver {
     /// `n > 2`) touches the floor before the ring closes: its contact is then a disk and an
     /// annulus, which one annulus does not model.
     fn check_hole_clear(&self, kind: PunchKind, eps: f64, sample: &ConcaveSample) -> Result<()> {
-        let depth = sample.gamma1;
-        for k in 0..HOLE_PROBES {
-            let r = eps * k as f64 / HOLE_PROBES as f64;
-            let Some(w) = sample
+        if !kind.has_rim() {
+            self.check_clear_beyond(kind, sample)?;
+        }
+        let radii = (0..HOLE_PROBES).map(|k| eps * k as f64 / HOLE_PROBES as f64);
+        let inside = |r| {
+            sample
                 .system
                 .deflection_in_hole(&sample.field, r, &self.rule)
-            else {
-                continue;
-            };
-            let overlap = (depth - kind.gap_shape(r)) - w;
-            if overlap > HOLE_OVERLAP_TOLERANCE * depth.abs().max(1.0) {
-                return Err(out_of_range(format!(
-                    "the {kind} touches the floor of its hole at r/a = {} before the ring \
-                     [{}, 1] closes (the surface would rise {overlap:.2e} h into the punch): the \
-                     contact there is a disk and an annulus, which the ring BEM's single annulus \
-                     does not model",
-                    crate::error::show(r),
-                    crate::error::show(eps)
-                )));
-            }
+        };
+        if let Some((r, overlap)) = first_overlap(kind, sample.gamma1, radii, inside) {
+            return Err(out_of_range(format!(
+                "the {kind} touches the floor of its hole at r/a = {} before the ring \
+                 [{}, 1] closes (the surface would rise {overlap:.2e} h into the punch): the \
+                 contact there is a disk and an annulus, which the ring BEM's single annulus \
+                 does not model",
+                crate::error::show(r),
+                crate::error::show(eps)
+            )));
+        }
+        Ok(())
+    }
+
+    /// Beyond a free outer edge `c` the surface stays clear of the punch as well,
+    /// `w(r) >= d - g(r)`, checked at [`HOLE_PROBES`] radii `c + (c - b) k / HOLE_PROBES`.
+    fn check_clear_beyond(&self, kind: PunchKind, sample: &ConcaveSample) -> Result<()> {
+        let region = sample.system.region();
+        let (inner, outer) = (region.inner(), region.outer());
+        let radii =
+            (1..=HOLE_PROBES).map(|k| outer + (outer - inner) * k as f64 / HOLE_PROBES as f64);
+        let beyond = |r| {
+            sample
+                .system
+                .deflection_beyond(&sample.field, r, &self.rule)
+        };
+        if let Some((r, overlap)) = first_overlap(kind, sample.gamma1, radii, beyond) {
+            return Err(out_of_range(format!(
+                "the {kind} touches the surface at r/a = {} beyond its contact's outer edge \
+                 c/a = {} (the surface would rise {overlap:.2e} h into the punch): the contact \
+                 there is not one band",
+                crate::error::show(r),
+                crate::error::show(outer)
+            )));
         }
         Ok(())
     }
@@ -441,10 +490,16 @@ impl RingBemSolver {
     ) -> Result<(ConcaveSample, usize, f64, usize)> {
         Self::check_tolerance(tolerance)?;
         Self::check_ratio(eps)?;
+        // Each node count's edge search starts from the previous one's edge.
+        let last_outer = std::cell::Cell::new(None);
         self.refine(
             tolerance,
-            |n| self.concave_sample(kind, eps, n),
-            |s| vec![s.gamma1, s.gamma2],
+            |n| {
+                let sample = self.concave_sample(kind, eps, n, last_outer.get())?;
+                last_outer.set(Some(sample.system.region().outer()));
+                Ok(sample)
+            },
+            |s| vec![s.gamma1, s.gamma2, s.system.region().outer()],
         )
     }
 
@@ -492,6 +547,7 @@ impl RingBemSolver {
         };
         let mut guess = initial_ratio(kind, target, controlled);
         let mut rung = starting_rung(guess);
+        let mut outer_guess = None;
         let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
@@ -500,8 +556,9 @@ impl RingBemSolver {
             let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
             let root = find_root(
                 |eps| {
+                    let hint = outer_edge_hint(&history, eps).or(outer_guess);
                     let sample = self
-                        .concave_sample(kind, eps, n)
+                        .concave_sample(kind, eps, n, hint)
                         .map_err(|e| e.to_string())?;
                     let value = pick(&sample) - target;
                     if history.len() == 2 {
@@ -522,28 +579,31 @@ impl RingBemSolver {
             let neighbour = history
                 .iter()
                 .find(|(at, _)| *at != eps)
-                .map(|(at, s)| (*at, s.gamma1, s.gamma2));
+                .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
             let fine = match history.pop() {
                 Some((at, sample)) if at == eps => sample,
                 _ => {
                     solves += 1;
-                    self.concave_sample(kind, eps, n)?
+                    self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?
                 }
             };
-            let coarse = self.concave_sample(kind, eps, NODE_LADDER[rung - 1])?;
+            let fine_outer = Some(fine.system.region().outer());
+            let coarse = self.concave_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
             solves += 1;
             // Slopes dγ1/deps and dγ2/deps from the last two iterates (or a small step).
-            let (at, g1, g2) = match neighbour {
+            let (at, g1, g2, c) = match neighbour {
                 Some(pair) => pair,
                 None => {
                     let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
                     solves += 1;
-                    let s = self.concave_sample(kind, eps + step, n)?;
-                    (eps + step, s.gamma1, s.gamma2)
+                    let s = self.concave_sample(kind, eps + step, n, fine_outer)?;
+                    (eps + step, s.gamma1, s.gamma2, s.system.region().outer())
                 }
             };
             let slope1 = (fine.gamma1 - g1) / (eps - at);
             let slope2 = (fine.gamma2 - g2) / (eps - at);
+            let outer_fine = fine.system.region().outer();
+            let outer_slope = (outer_fine - c) / (eps - at);
             let (slope, other_slope, other_fine, other_coarse) = match controlled {
                 Controlled::Depth => (slope1, slope2, fine.gamma2, coarse.gamma2),
                 Controlled::Force => (slope2, slope1, fine.gamma1, coarse.gamma1),
@@ -558,8 +618,12 @@ impl RingBemSolver {
                 + 2.0 * (pick(&fine) - target).abs())
                 / slope.abs();
             let other_error = (other_fine - other_coarse).abs() + other_slope.abs() * eps_error;
+            // The outer edge (the torus's; the rim, exactly 1, for the others).
+            let outer_error =
+                (outer_fine - coarse.system.region().outer()).abs() + outer_slope.abs() * eps_error;
             let estimate = eps_error
                 .max(other_error / other_fine.abs())
+                .max(outer_error)
                 .max(ROUNDING_FLOOR);
             if estimate <= tolerance {
                 return self.concave_state(kind, eps, fine, n, estimate, solves);
@@ -571,6 +635,7 @@ impl RingBemSolver {
             }
             rung += 1;
             guess = eps;
+            outer_guess = fine_outer;
         }
     }
 
@@ -620,6 +685,7 @@ impl RingBemSolver {
         check_compressive(&pressure, 0.0)?;
         Ok(RingState {
             eps: 0.0,
+            outer_edge: 1.0,
             gamma: None,
             gamma1: Some(depth_over_hole),
             gamma2: Some(0.5 * field.force),
@@ -662,6 +728,7 @@ fn free_edge_state(
 ) -> RingState {
     RingState {
         eps,
+        outer_edge: fine.system.region().outer(),
         gamma: None,
         gamma1: Some(fine.gamma1),
         gamma2: Some(fine.gamma2),
@@ -671,6 +738,33 @@ fn free_edge_state(
         error_estimate: estimate,
         unknowns: n,
         solves,
+    }
+}
+
+/// The first of `radii` where the surface `w(r)` (from `deflection`, `None`: not evaluated
+/// there) rises into the punch at depth `d/h = depth`, `(d - g(r)) - w(r)` above
+/// [`HOLE_OVERLAP_TOLERANCE`] (relative to the depth, at least 1): the radius and the overlap.
+fn first_overlap(
+    kind: PunchKind,
+    depth: f64,
+    radii: impl Iterator<Item = f64>,
+    deflection: impl Fn(f64) -> Option<f64>,
+) -> Option<(f64, f64)> {
+    radii
+        .filter_map(|r| deflection(r).map(|w| (r, (depth - kind.gap_shape(r)) - w)))
+        .find(|&(_, overlap)| overlap > HOLE_OVERLAP_TOLERANCE * depth.abs().max(1.0))
+}
+
+/// A guess of the outer edge at `eps` from the last samples of a search: the line through the
+/// last two, or the last one's edge (`None` before any).
+fn outer_edge_hint(history: &[(f64, ConcaveSample)], eps: f64) -> Option<f64> {
+    let edge = |s: &ConcaveSample| s.system.region().outer();
+    match history {
+        [.., (e0, s0), (e1, s1)] if e1 != e0 => {
+            Some(edge(s1) + (edge(s1) - edge(s0)) / (e1 - e0) * (eps - e1))
+        }
+        [.., (_, s1)] => Some(edge(s1)),
+        [] => None,
     }
 }
 
@@ -776,6 +870,9 @@ fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
+    if kind == PunchKind::Torus {
+        return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
+    }
     let fit = |eps: f64| match kind {
         PunchKind::Cone => paper_fits::cone_gamma(i, eps),
         // The power law starts from the nearer of the two fitted profiles.

@@ -58,6 +58,7 @@ Examples:
   verify solve --punch sphere --eps 0.3                  gamma1(0.3), gamma2(0.3)
   verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
   verify solve --punch power --exponent 1.5 --depth 2    gap h (1 - (r/a)^1.5)
+  verify solve --punch torus --tube-radius 0.25 --force 0.1   both edges of the ring found
   verify solve --punch flat-annulus --eps 0.5 --method reference
   verify solve --punch cone --depth 2 --method fem --json        FEM, tolerance 1e-3
   verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
@@ -469,8 +470,12 @@ pub struct SolveArgs {
     /// (n = 1 is the cone, n = 2 the sphere).
     #[arg(long)]
     pub exponent: Option<f64>,
-    /// Contact ratio b/a: fixes the flat annulus; for a concave punch it prescribes the contact
-    /// (depth and force are then computed).
+    /// Tube radius rho of the torus (`--punch torus`), in the length unit of a (1 unless a scene
+    /// file says otherwise): gap (r - a)²/(2 rho), depth scale h = a²/(2 rho).
+    #[arg(long, allow_negative_numbers = true)]
+    pub tube_radius: Option<f64>,
+    /// Contact ratio b/a: fixes the flat annulus; for a concave punch or the torus it prescribes
+    /// the inner contact edge (depth, force and the torus's outer edge are then computed).
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
     /// Indentation depth d of the rim (for concave punches with h = 1 this is d/h).

@@ -1,16 +1,19 @@
 //! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
 
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
-use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
+use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr, TorusJkr};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use crate::punch::PunchKind;
+use crate::punch::{PunchKind, PunchName};
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
+    if args.punch == PunchName::Torus {
+        return torus(&args);
+    }
     let punch = super::punch_kind(args.punch, args.exponent)?;
     refuse_other_family_flags(punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
@@ -245,4 +248,85 @@ fn concave_text(r: &ConcaveJkr) -> String {
             .map_or("-".to_string(), |v| format!("{v:.1e}"))
     );
     text
+}
+
+/// The torus (`--punch torus --d0h S`): a Griffith condition at both edges of its band.
+fn torus(args: &JkrArgs) -> Result<Reply, String> {
+    let punch = args
+        .punch
+        .with_exponent(args.exponent)
+        .map_err(super::message)?;
+    refuse_other_family_flags(punch, args.eps, args.d0h)?;
+    if args.sweep {
+        return Err(
+            "--sweep is built for the cone, the sphere and the power law; for the torus \
+                    give one --d0h D0_OVER_H at a time"
+                .into(),
+        );
+    }
+    let s = args
+        .d0h
+        .ok_or("the torus needs --d0h D0_OVER_H (h = a²/(2 rho), the gap at the axis)")?;
+    let r = adhesion::torus_jkr(&RingBemSolver::new(), s).map_err(message)?;
+    refuse_non_finite(&format!("jkr torus --d0h {s:e}"), &r)?;
+    Ok(Reply::ok(if args.json {
+        to_json(&r)?
+    } else {
+        torus_text(&r)
+    }))
+}
+
+/// The torus's pull-off under fixed load and fixed grips, and the plane-strain asymptote.
+fn torus_text(r: &TorusJkr) -> String {
+    let mut t = Table::new(
+        &format!(
+            "torus d0/h = {} (h = a²/(2 rho)): pull-off, both edges at G = dw (d in d0, F in F0, \
+             negative = tensile)",
+            crate::error::show(r.d0_over_h)
+        ),
+        vec![
+            Column::text("control", "control"),
+            Column::number("eps", "b/a", Format::Fixed(6)),
+            Column::number("outer", "c/a", Format::Fixed(6)),
+            Column::number("depth", "d/d0", Format::Fixed(6)),
+            Column::number("force", "F/F0", Format::Fixed(9)),
+            Column::number("bound", "F error bound", Format::Scientific(1)),
+            Column::text("note", "note"),
+        ],
+    );
+    for (control, critical, note) in [
+        ("fixed load", &r.fixed_load, &r.fixed_load_note),
+        ("fixed grips", &r.fixed_grips, &r.fixed_grips_note),
+    ] {
+        t.push(match critical {
+            Some(c) => vec![
+                control.into(),
+                c.eps.into(),
+                c.outer.into(),
+                c.depth_over_d0.into(),
+                c.force.into(),
+                c.error_bound.into(),
+                "ring BEM, both edges located".into(),
+            ],
+            None => vec![
+                control.into(),
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                Cell::Missing,
+                note.clone().unwrap_or_default().into(),
+            ],
+        });
+    }
+    t.push(vec![
+        "fixed load".into(),
+        Cell::Missing,
+        Cell::Missing,
+        Cell::Missing,
+        r.plane_strain_fixed_load.into(),
+        Cell::Missing,
+        "plane-strain JKR cylinder over 2 pi a (narrow limit d0/h -> 0, asymptote)".into(),
+    ]);
+    t.to_terminal()
 }

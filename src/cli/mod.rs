@@ -104,18 +104,28 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
     })
 }
 
-/// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
-/// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
-/// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
-/// `F0` already). Used by `verify jkr` and `verify pulloff`.
-/// The punch named on the command line, with the power law's `--exponent`.
+/// The punch named on the command line, with the power law's `--exponent`, for the commands
+/// built on punches with a rim (`pulloff`, `convergence`, `plan`, and `jkr` but for its own
+/// torus route): the torus is solved by `verify solve` and `verify jkr`.
 pub(crate) fn punch_kind(
     name: crate::punch::PunchName,
     exponent: Option<f64>,
 ) -> Result<crate::punch::PunchKind, String> {
-    name.with_exponent(exponent).map_err(message)
+    let kind = name.with_exponent(exponent).map_err(message)?;
+    if !kind.has_rim() {
+        return Err(format!(
+            "the {kind} (two free edges) is solved by `verify solve --punch torus` and `verify \
+             jkr --punch torus` (ring BEM) only; its pull-off simulation and convergence studies \
+             are not built yet"
+        ));
+    }
+    Ok(kind)
 }
 
+/// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
+/// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
+/// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
+/// `F0` already). Used by `verify jkr` and `verify pulloff`.
 fn refuse_other_family_flags(
     punch: crate::punch::PunchKind,
     eps: Option<f64>,

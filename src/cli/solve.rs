@@ -47,17 +47,20 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     };
     if args.punch.is_none() && args.scene.is_none() {
         return Err(
-            "give --punch {flat|flat-annulus|cone|sphere|power} (power with --exponent N) \
-             or --scene FILE"
+            "give --punch {flat|flat-annulus|cone|sphere|power|torus} (power with --exponent \
+             N, torus with --tube-radius RHO) or --scene FILE"
                 .into(),
         );
     }
     spec = spec.shape_named(args.punch, args.exponent);
+    if let Some(rho) = args.tube_radius {
+        spec = spec.tube_radius(rho);
+    }
     // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
     let kind = spec.shape_name();
     if let Some(eps) = args.eps {
         match kind {
-            Some(PunchName::Cone | PunchName::Sphere | PunchName::Power) => {
+            Some(PunchName::Cone | PunchName::Sphere | PunchName::Power | PunchName::Torus) => {
                 if args.depth.is_some() || args.force.is_some() {
                     return Err("--eps prescribes the contact of a concave punch; \
                                 do not combine it with --depth or --force"
@@ -94,6 +97,12 @@ pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
     let geometry = match p.kind {
         PunchKind::Flat => format!("a = {}", p.rim_radius),
         PunchKind::FlatAnnulus => format!("a = {}, b = {}", p.rim_radius, p.inner_radius),
+        PunchKind::Torus => format!(
+            "a = {}, rho = {}, h = a²/(2 rho) = {}",
+            p.rim_radius,
+            readable(p.tube_radius().unwrap_or(f64::NAN), 12),
+            readable(p.hole_depth, 12)
+        ),
         _ => format!("a = {}, h = {}", p.rim_radius, p.hole_depth),
     };
     let mut t = Table::new(
@@ -108,6 +117,16 @@ pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
         "contact ratio",
         format!("eps = b/a = {}", readable(s.eps, 12)),
     );
+    if !p.kind.has_rim() {
+        row(
+            "contact",
+            format!(
+                "b = {} to c = {} (both edges free)",
+                readable(s.inner_radius, 12),
+                readable(s.outer_radius, 12)
+            ),
+        );
+    }
     row("depth", format!("d = {}", readable(s.depth, 12)));
     row("force", format!("F = {}", readable(s.force, 12)));
     if let Some(g) = s.gamma {

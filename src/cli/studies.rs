@@ -448,7 +448,7 @@ pub fn references(args: JsonArgs) -> Result<Reply, String> {
 /// The built-in punches: the flags that name each, its gap, its edges and its closed forms.
 fn punch_table() -> Table {
     let mut t = Table::new(
-        "Punches (gap g(r) at zero depth, 0 <= r <= a; contact b <= r <= a)",
+        "Punches (gap g(r) at zero depth; contact b <= r <= a, or b <= r <= c for the torus)",
         vec![
             Column::text("flags", "flags"),
             Column::text("gap", "gap g(r)"),
@@ -486,6 +486,12 @@ fn punch_table() -> Table {
             "h (1 - (r/a)^n), n > 0",
             "rim at a, free inner edge",
             "full contact (n > 1) by the MDR, `verify solve --method reference`",
+        ),
+        (
+            "--punch torus --tube-radius RHO",
+            "(r - a)²/(2 rho) = h (1 - r/a)², h = a²/(2 rho)",
+            "both free, b < a < c (never closes)",
+            "narrow limit: plane-strain Hertz cylinder (asymptote, tested)",
         ),
     ];
     for (flags, gap, edges, closed) in rows {

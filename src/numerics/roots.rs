@@ -102,7 +102,10 @@ where
                 // A flat or overflowing secant (e.g. a target of 1e308, where f(x0) and f(x1)
                 // round to the same value) cannot step: the interval's ends decide whether a
                 // root exists at all.
-                let stuck = !next.is_finite() || next.clamp(lo, hi) == xb;
+                // (A secant step below rounding inside the interval, `next == xb` at a root,
+                // is convergence, not an end: the evaluation below returns it.)
+                let clamped = next.is_finite() && next.clamp(lo, hi) != next;
+                let stuck = !next.is_finite() || (clamped && next.clamp(lo, hi) == xb);
                 next = if next.is_finite() {
                     next.clamp(lo, hi)
                 } else {

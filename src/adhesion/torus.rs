@@ -1,0 +1,236 @@
+//! JKR adhesion of the torus: a contact band `[b, c]` with a Griffith condition at both edges.
+//!
+//! Units as in the parent module: `d0 = sqrt(2π a Δw / E*)`, `F0 = 2 E* a d0`, `h = a²/(2ρ)`,
+//! `s = d0/h`. An edge is in equilibrium when its energy release rate `K²/(2E*)` equals `Δw`,
+//! i.e. `K = -sqrt(2 E* Δw)`, which is `-s/sqrt(π)` in units of `E* h/sqrt(a)`. For a band
+//! half-width `w` the ring BEM finds the band's centre and the depth `d` with that intensity at
+//! both edges ([`RingBemSolver::torus_with_edge_intensity`]): the equilibrium curve
+//! `(b(w), c(w), d(w), F(w))`, no flat-annulus superposition (the band moves at both ends). The
+//! width parametrises it (the inner edge does not: a narrow adhesive band drifts toward the
+//! axis as it shrinks).
+//!
+//! Along the curve the contact shrinks as `w` falls. Under fixed load the branch is stable
+//! while `dF/dw > 0` (a smaller contact carries less load) and the pull-off is the minimum of
+//! `F`; under fixed grips it is stable while `dd/dw > 0` and the pull-off is at the minimum of
+//! `d`, with the force there. Both minima are bracketed on a scan of `w` and located by golden
+//! section.
+//!
+//! **Narrow limit.** For `d0/h -> 0` the pull-off band is narrow and the ring is a plane-strain
+//! cylinder of radius `ρ` over the length `2π a`: `P = π E* w²/(4ρ) - sqrt(2π E* Δw w)` per unit
+//! length for the half-width `w` (Barquins 1988; the adhesive part is the flat strip's
+//! `K = -P_a/sqrt(π w)`), with the fixed-load pull-off at `w_c = (2 ρ² Δw/(π E*))^(1/3)`,
+//! `P_c = -(3/4) π E* w_c²/ρ`. [`plane_strain_pulloff`] gives it in the torus's units.
+
+use std::f64::consts::PI;
+
+use serde::Serialize;
+
+use super::golden_minimum;
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::punch::PunchKind;
+
+/// Tolerance of the equilibrium states that locate and report the critical ones.
+const STATE_TOLERANCE: f64 = 1e-10;
+/// Tolerance of the scan that brackets them.
+const SCAN_TOLERANCE: f64 = 1e-7;
+/// Points of the scan of half-widths, logarithmic over `[NARROWEST, WIDEST]`.
+const SCAN_POINTS: usize = 48;
+/// Narrowest half-width scanned (units of `a`): the ring BEM's narrowest band, `1e-4 a` wide.
+const NARROWEST: f64 = 5e-5;
+/// Widest half-width scanned (units of `a`): a band from about `0.4 a` to `2.4 a`.
+const WIDEST: f64 = 1.0;
+/// The widest band is halved down to this half-width in search of an equilibrium.
+const MIN_WIDEST: f64 = 0.05;
+
+/// A critical (pull-off) state of the torus.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct TorusCritical {
+    /// Inner edge `b/a`.
+    pub eps: f64,
+    /// Outer edge `c/a`.
+    pub outer: f64,
+    /// `d/h`.
+    pub depth: f64,
+    /// `d/d0`.
+    pub depth_over_d0: f64,
+    /// `F/F0` (negative: tensile).
+    pub force: f64,
+    /// Bound on the error of `force` (`F/F0`, absolute): the ring BEM's estimate of the state
+    /// times `|F|`, plus the force's change over the location's tolerance in `b`.
+    pub error_bound: f64,
+}
+
+/// The JKR analysis of the torus for one `d0/h`.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct TorusJkr {
+    #[serde(flatten)]
+    pub punch: PunchKind,
+    pub d0_over_h: f64,
+    /// Pull-off under fixed load (the minimum of `F` along the equilibrium curve).
+    pub fixed_load: Option<TorusCritical>,
+    /// Pull-off under fixed grips (the minimum of `d`, with its force).
+    pub fixed_grips: Option<TorusCritical>,
+    /// Why there is no fixed-load pull-off state in the ring BEM's range, if there is none.
+    pub fixed_load_note: Option<String>,
+    /// Why there is no fixed-grips pull-off state in the ring BEM's range, if there is none.
+    pub fixed_grips_note: Option<String>,
+    /// The plane-strain JKR cylinder's fixed-load pull-off in the same units (`F/F0`): the
+    /// narrow limit `d0/h -> 0`, an asymptote (no error bound).
+    pub plane_strain_fixed_load: f64,
+}
+
+/// The fixed-load pull-off of the plane-strain JKR cylinder carried over the ring's length
+/// `2π a`, in units of `F0` for `s = d0/h` (see the module docs): with `h = 1`, `ρ = a/2`,
+/// `Δw = s²/(2π)`, `w_c = (s²/(4π²))^(1/3)` and `F_c = 2π P_c = -3π² w_c²`, so
+/// `F_c/F0 = -3π² w_c²/(2s)`.
+pub fn plane_strain_pulloff(s: f64) -> f64 {
+    let w = (s * s / (4.0 * PI * PI)).cbrt();
+    -3.0 * PI * PI * w * w / (2.0 * s)
+}
+
+/// The JKR pull-off of the torus under fixed load and fixed grips for `d0/h = s`.
+pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
+    if !(s.is_finite() && s > 0.0) {
+        return Err(Error::invalid(
+            "d0h",
+            format!("must be a positive number (got {})", crate::error::show(s)),
+        ));
+    }
+    if !(super::D0H_RANGE.0..=super::D0H_RANGE.1).contains(&s) {
+        return Err(Error::invalid(
+            "d0h",
+            format!(
+                "d0/h = {} is outside [{:e}, {:e}]",
+                crate::error::show(s),
+                super::D0H_RANGE.0,
+                super::D0H_RANGE.1
+            ),
+        ));
+    }
+    let intensity = -s / PI.sqrt();
+    let state = |w: f64, tol: f64, hint: Option<f64>| {
+        solver.torus_with_edge_intensity(w, intensity, tol, hint)
+    };
+    let centre = |st: &crate::bem::ring_contact::RingState| 0.5 * (st.eps + st.outer_edge);
+    // The branch is followed from a wide band down to the narrowest, each state's centre
+    // search starting from the previous one's (one connected branch). The widest band is
+    // halved until one is in equilibrium; at strong adhesion none is (the band would close
+    // toward a disk, which this analysis does not model).
+    let mut widest = WIDEST;
+    let first = loop {
+        match state(widest, SCAN_TOLERANCE, None) {
+            Ok(st) => break st,
+            Err(e) if widest < 2.0 * MIN_WIDEST => {
+                return Err(Error::OutOfRange {
+                    method: "jkr".into(),
+                    reason: format!(
+                        "the torus at d0/h = {}: no band of half-width {MIN_WIDEST} a or more \
+                         was found in equilibrium with both edges at G = dw ({e}); at strong \
+                         adhesion the contact may close toward a disk, which the torus's JKR \
+                         analysis does not model (checked for d0/h <= 1)",
+                        crate::error::show(s)
+                    ),
+                })
+            }
+            Err(_) => widest *= 0.5,
+        }
+    };
+    let scan: Vec<f64> = (0..SCAN_POINTS)
+        .map(|k| {
+            let t = k as f64 / (SCAN_POINTS - 1) as f64;
+            widest * (NARROWEST / widest).powf(t)
+        })
+        .collect();
+    // (w, d/h, F/(2E*ha), centre) along the branch, w descending (the contact shrinking).
+    let mut curve = vec![(
+        widest,
+        first.gamma1.unwrap_or(f64::NAN),
+        first.gamma2.unwrap_or(f64::NAN),
+        centre(&first),
+    )];
+    let mut end_note = None;
+    for &w in &scan[1..] {
+        let hint = curve.last().map(|p| p.3);
+        match state(w, SCAN_TOLERANCE, hint) {
+            Ok(st) => curve.push((
+                w,
+                st.gamma1.unwrap_or(f64::NAN),
+                st.gamma2.unwrap_or(f64::NAN),
+                centre(&st),
+            )),
+            Err(e) => {
+                end_note = Some(format!("the branch ends at half-width {w:.3e} a: {e}"));
+                break;
+            }
+        }
+    }
+    // Ascending in w from here on (the contact growing).
+    curve.reverse();
+    let locate =
+        |pick: fn(&(f64, f64, f64, f64)) -> f64,
+         quantity: &str|
+         -> Result<std::result::Result<TorusCritical, String>> {
+            let values: Vec<f64> = curve.iter().map(pick).collect();
+            let Some(k) = (1..values.len() - 1)
+                .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
+            else {
+                let narrowest = values[0] < values[values.len() - 1];
+                return Ok(Err(format!(
+                "no minimum of the {quantity} on the branch of half-widths [{:.3e}, {:.3e}] a: \
+                 it lies in a band {}",
+                curve[0].0,
+                curve[curve.len() - 1].0,
+                if narrowest {
+                    format!(
+                        "narrower than the branch reaches{}",
+                        end_note.as_ref().map(|n| format!(" ({n})")).unwrap_or_default()
+                    )
+                } else {
+                    format!("wider than {widest:.3e} a")
+                }
+            )));
+            };
+            let hint = Some(curve[k].3);
+            let value = |w: f64| -> Result<f64> {
+                let st = state(w, STATE_TOLERANCE, hint)?;
+                Ok(pick(&(
+                    w,
+                    st.gamma1.unwrap_or(f64::NAN),
+                    st.gamma2.unwrap_or(f64::NAN),
+                    centre(&st),
+                )))
+            };
+            let (w, _) = golden_minimum(value, curve[k - 1].0, curve[k + 1].0)?;
+            let st = state(w, STATE_TOLERANCE, hint)?;
+            let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
+            // The golden section stops at 1e-9 in w; the force's change over it is second order
+            // at a minimum of F, first order (dF/dw) at a minimum of d.
+            let step = 1e-9 * w.max(1e-3);
+            let slope = (state(w + step, STATE_TOLERANCE, hint)?
+                .gamma2
+                .unwrap_or(f64::NAN)
+                - g2)
+                / step;
+            let force = g2 / s;
+            Ok(Ok(TorusCritical {
+                eps: st.eps,
+                outer: st.outer_edge,
+                depth: g1,
+                depth_over_d0: g1 / s,
+                force,
+                error_bound: st.error_estimate * force.abs() + (slope * step / s).abs(),
+            }))
+        };
+    let fixed_load = locate(|p| p.2, "force")?;
+    let fixed_grips = locate(|p| p.1, "depth")?;
+    Ok(TorusJkr {
+        punch: PunchKind::Torus,
+        d0_over_h: s,
+        fixed_load_note: fixed_load.as_ref().err().cloned(),
+        fixed_grips_note: fixed_grips.as_ref().err().cloned(),
+        fixed_load: fixed_load.ok(),
+        fixed_grips: fixed_grips.ok(),
+        plane_strain_fixed_load: plane_strain_pulloff(s),
+    })
+}
