@@ -866,13 +866,13 @@ fn starting_rung(eps: f64) -> usize {
 /// Starting contact ratio for the inverse problem. The paper's fits are used only to start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.
 fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
+    if kind == PunchKind::Torus {
+        return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
+    }
     let i = match controlled {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
-    if kind == PunchKind::Torus {
-        return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
-    }
     let fit = |eps: f64| match kind {
         PunchKind::Cone => paper_fits::cone_gamma(i, eps),
         // The power law starts from the nearer of the two fitted profiles.

@@ -39,19 +39,6 @@ use super::{
 const OUTER_EDGE_TOLERANCE: f64 = 1e-13;
 
 impl RingBemSolver {
-    /// The torus at a fixed node count with its inner edge at `eps`: the outer edge `c` where
-    /// both edges are free, the depth `γ1 = d/h` and `γ2 = F/(2 E* h a)` (see the module docs).
-    /// `outer_hint` starts the edge search (a nearby state's edge); without one it starts from
-    /// [`outer_edge_guess`].
-    pub(super) fn torus_sample(
-        &self,
-        eps: f64,
-        n: usize,
-        outer_hint: Option<f64>,
-    ) -> Result<ConcaveSample> {
-        self.torus_edges_sample(eps, n, outer_hint, 0.0)
-    }
-
     /// The torus's band `[b, c]` at a fixed node count: its collocation system and the fields
     /// of `w = 1` and `w = -ĝ`.
     fn torus_band(&self, inner: f64, outer: f64, n: usize) -> Result<TorusBand> {
@@ -67,19 +54,19 @@ impl RingBemSolver {
         Ok(TorusBand { system, one, gap })
     }
 
-    /// The torus's band with inner edge `eps` and the stress intensity `K = intensity` at both
-    /// edges (units of `E* h / sqrt(a)`; 0: free edges): the outer edge by the safeguarded
-    /// secant on [`TorusBand::mismatch`].
-    fn torus_edges_sample(
+    /// The torus at a fixed node count with its inner edge at `eps`: the outer edge `c` where
+    /// both edges are free (by the safeguarded secant on [`TorusBand::mismatch`]), the depth
+    /// `γ1 = d/h` and `γ2 = F/(2 E* h a)` (see the module docs). `outer_hint` starts the edge
+    /// search (a nearby state's edge); without one it starts from [`outer_edge_guess`].
+    pub(super) fn torus_sample(
         &self,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
-        intensity: f64,
     ) -> Result<ConcaveSample> {
         let residual = |outer: f64| -> std::result::Result<f64, String> {
             let band = self.torus_band(eps, outer, n).map_err(|e| e.to_string())?;
-            Ok(band.mismatch(intensity))
+            Ok(band.mismatch(0.0))
         };
         let lo = eps * (1.0 + 2.0 * MIN_BAND_RATIO);
         // Measured: c = 1.0001, 1.62, 3.60, 5.78 a at b = 0.9999, 0.6, 0.1, 0.01 a.
@@ -91,7 +78,7 @@ impl RingBemSolver {
         let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
         let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
             .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
-        self.torus_band(eps, root.x, n)?.sample(intensity)
+        self.torus_band(eps, root.x, n)?.sample(0.0)
     }
 
     /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
