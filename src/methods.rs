@@ -62,6 +62,9 @@ pub struct MethodOptions {
     pub degree: Option<Degree>,
     /// Grid BEM: cells per side (default 256).
     pub grid: Option<usize>,
+    /// Grid BEM, torus only: half-size `L` of the square `[-L, L]²` in units of `a` (default:
+    /// sized from a coarse solve; the other punches' grid is their own `[-a, a]²`).
+    pub grid_extent: Option<f64>,
     /// FEM: write the final displacement field as VTK (`.vtu`) here.
     pub vtu: Option<PathBuf>,
     /// FEM: the condition on the far arc (default [`FarField::Boussinesq`]).
@@ -99,6 +102,16 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
             reason: "--grid applies to --method grid-bem only".into(),
         });
     }
+    if options.grid_extent.is_some()
+        && (method != Method::GridBem || scene.punch.kind != PunchKind::Torus)
+    {
+        return Err(Error::Unsupported {
+            method: method.name().into(),
+            reason: "--grid-extent sets the square of the torus's grid: use --punch torus \
+                     --method grid-bem (the other punches' grid covers their own [-a, a]²)"
+                .into(),
+        });
+    }
     if !scene.punch.kind.has_rim() && method == Method::Fem {
         return Err(Error::Unsupported {
             method: method.name().into(),
@@ -114,7 +127,11 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
         Method::Fem => solve_fem(scene, options),
-        Method::GridBem => solve_grid_bem(scene, options.grid.unwrap_or(DEFAULT_GRID)),
+        Method::GridBem => solve_grid_bem(
+            scene,
+            options.grid.unwrap_or(DEFAULT_GRID),
+            options.grid_extent,
+        ),
         Method::Auto => solve_auto(scene, options),
     }?;
     // Every state is checked before anyone sees it (never a number that cannot exist).
@@ -171,7 +188,9 @@ pub const DEFAULT_GRID: usize = 256;
 /// Solve with the square-grid FFT BEM on an `n x n` grid. Its convergence criterion is the
 /// complementarity residual (tolerance 1e-10, or the scene's if tighter); it has no estimate of
 /// its discretisation error (run `verify convergence --method grid-bem` for one).
-pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
+/// Solve with the square-grid BEM on `n x n` cells; `extent`: the torus's square half-size
+/// `L/a` (see [`MethodOptions::grid_extent`]).
+pub fn solve_grid_bem(scene: &Scene, n: usize, extent: Option<f64>) -> Result<Solution> {
     let kind = scene.punch.kind;
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
@@ -188,13 +207,17 @@ pub fn solve_grid_bem(scene: &Scene, n: usize) -> Result<Solution> {
         }
     };
     let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
-    let state = grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?;
+    let state = match extent {
+        Some(half_size) => grid_contact::solve_torus_on_square(n, half_size, load, tolerance)?,
+        None => grid_contact::solve(kind, scene.punch.inner_ratio(), n, load, tolerance)?,
+    };
     Ok(Solution {
         outer_radius: state.outer_edge * a,
         unknowns: n * n,
         iterations: state.iterations,
         complementarity_residual: Some(state.residual),
         grid: Some(n),
+        grid_extent: Some(state.square_half_size * a),
         provenance: format!(
             "square-grid FFT BEM (Love kernel, 2N zero padding, Polonsky-Keer CG), {n} x {n} cells on \
              [-L, L]^2 with L = {} a, {} contact cells, {} iterations, complementarity residual {:.1e}; no \
@@ -370,6 +393,7 @@ fn base(
         complementarity_residual: None,
         edge_conditioning: None,
         grid: None,
+        grid_extent: None,
         selection: None,
         pressure: Vec::new(),
         provenance: String::new(),

@@ -80,6 +80,9 @@ pub struct Solution {
     /// Cells per side of the square grid (grid BEM only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub grid: Option<usize>,
+    /// Grid BEM: half-size `L` of the grid's square `[-L, L]²`, in the scene's length unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_extent: Option<f64>,
     /// Why this method was chosen (`--method auto`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub selection: Option<String>,
@@ -403,6 +406,7 @@ mod tests {
             complementarity_residual: None,
             edge_conditioning: None,
             grid: None,
+            grid_extent: None,
             selection: None,
             pressure: Vec::new(),
             provenance: String::new(),

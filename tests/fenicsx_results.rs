@@ -47,11 +47,12 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
             "{}: active sets differ",
             row.file
         );
+        let reproduce = &row.stored.reproduce;
         assert!(
-            row.stored
-                .reproduce
-                .starts_with("cargo run --release --quiet -- solve --punch"),
-            "{}: no reproduce line",
+            reproduce.starts_with("cargo run --release --quiet -- solve ")
+                && reproduce.contains(" --method fem")
+                && reproduce.contains(" --punch "),
+            "{}: no reproduce line of our FEM",
             row.file
         );
         assert!(!row.stored.dolfinx_version.is_empty() && !row.stored.petsc_version.is_empty());

@@ -135,7 +135,14 @@ fn the_stored_grid_peer_results_are_reproduced_by_their_commands() {
         .into_iter()
         .filter(|(name, _)| !name.starts_with("peers/adhesion/"))
         .collect();
-    assert!(records.len() >= 16, "found {} peer records", records.len());
+    assert!(records.len() >= 26, "found {} peer records", records.len());
+    // Every punch with a stored peer result: the four of the paper, the power law, the torus.
+    for punch in ["flat", "flat-annulus", "cone", "sphere", "power", "torus"] {
+        assert!(
+            records.values().any(|r| r["punch"] == punch),
+            "no stored peer result for the {punch}"
+        );
+    }
     check_forces(
         &records,
         ringcontact::harness::records::peers::PEER_AGREEMENT,

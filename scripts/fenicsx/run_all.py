@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """FEniCSx on every stored row: one result per row (scripts/fenicsx/solve.py), into --out.
 
-The rows: the committed meshes (flat disk, annuli 0.5 and 0.9, cone and sphere; P1, P2), the
+The rows: the committed meshes (flat disk, annuli 0.5 and 0.9, cone, sphere and the power law
+n = 1.5; P1, P2), the
 meshes the FEM makes for the scene (adapted levels 0-3, the meshes of `--tol 1e-6`, P2 and P3),
 two rows under `mpirun -n 2` (NAME-np2), and with --large the rows of 6e5-1.4e6 unknowns
 (written under large/). Each is solved with the fastest configuration measured
@@ -41,6 +42,13 @@ for degree in (1, 2):
         (f"sphere-d1.5-disk-L1-P{degree}", ["--punch", "sphere", "--depth", "1.5"],
          "meshes/disk-L1.msh", degree, 1, False),
     ]
+# The power-law punch n = 1.5 (gap h (1 - (r/a)^1.5)) at d = h, as the peers' grid runs.
+POWER = ["--punch", "power", "--exponent", "1.5", "--depth", "1"]
+ROWS += [
+    ("power-n1.5-d1-disk-L1-P1", POWER, "meshes/disk-L1.msh", 1, 1, False),
+    ("power-n1.5-d1-disk-L1-P2", POWER, "meshes/disk-L1.msh", 2, 1, False),
+    ("power-n1.5-d1-disk-L2-P2", POWER, "meshes/disk-L2.msh", 2, 1, False),
+]
 ANNULUS = ["--punch", "flat-annulus", "--eps", "0.3"]
 CONE = ["--punch", "cone", "--depth", "2"]
 ROWS += [

@@ -66,11 +66,17 @@ DEFAULT_SOLVER = "mumps-cholesky"
 TIMED_REGION = "mesh file to force: read, function space, assembly, solve, reactions (after imports)"
 
 
-def gap_shape(punch, r):
+CONCAVE = ("cone", "sphere", "power")
+
+
+def gap_shape(punch, r, exponent=None):
+    """The gap at zero depth over h: 1 - r (cone), 1 - r^2 (sphere), 1 - r^n (power), 0 (flat)."""
     if punch == "cone":
         return 1.0 - r
     if punch == "sphere":
         return 1.0 - r * r
+    if punch == "power":
+        return 1.0 - r ** exponent
     return 0.0 * r
 
 
@@ -191,7 +197,7 @@ def solve(args, mesh_path, comm):
         lower = u.vector.duplicate()
         upper.set(BIG)
         lower.set(-BIG)
-        bound = -args.depth + gap_shape(args.punch, contact_r)
+        bound = -args.depth + gap_shape(args.punch, contact_r, args.exponent)
         upper.array[contact_dofs] = bound
         snes = PETSc.SNES().create(mesh.comm)
         snes.setFunction(form_residual, u.vector.duplicate())
@@ -231,7 +237,9 @@ def state_words(args, mesh_rel, parameters):
     words += f" --degree {args.degree}"
     if args.punch == "flat-annulus":
         words += f" --eps {args.eps}"
-    if args.punch in ("cone", "sphere"):
+    if args.punch == "power":
+        words += f" --exponent {args.exponent}"
+    if args.punch in CONCAVE:
         words += f" --depth {args.depth}"
     return words
 
@@ -258,7 +266,10 @@ def write_atomically(path, text):
 
 def main():
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("--punch", required=True, choices=["flat", "flat-annulus", "cone", "sphere"])
+    p.add_argument("--punch", required=True,
+                   choices=["flat", "flat-annulus", "cone", "sphere", "power"])
+    p.add_argument("--exponent", type=float, default=None,
+                   help="n of the power-law punch, gap h (1 - (r/a)^n)")
     p.add_argument("--mesh", help="a gmsh .msh file (or give --mesh-parameters)")
     p.add_argument("--degree", type=int, default=2, choices=[1, 2, 3])
     p.add_argument("--depth", type=float, default=1.0)
@@ -280,6 +291,10 @@ def main():
         p.error(f"--solver {args.solver} is serial: use mumps-lu or mumps-cholesky under mpirun")
     if args.mesh is None and args.mesh_parameters is None:
         p.error("give --mesh FILE or --mesh-parameters NAME=VALUE,...")
+    if (args.punch == "power") != (args.exponent is not None):
+        p.error("--exponent N goes with --punch power, and only with it")
+    if args.exponent is not None and not args.exponent > 0:
+        p.error(f"--exponent must be > 0 (got {args.exponent})")
     if args.punch == "flat-annulus" and args.eps is None:
         p.error("--punch flat-annulus needs --eps B_OVER_A (the mesh's hole)")
     parameters = parameters_text(args.mesh_parameters) if args.mesh_parameters else None
@@ -307,6 +322,7 @@ def main():
     factor, package, _ = SOLVERS[args.solver]
     result = {
         "punch": args.punch,
+        **({"exponent": args.exponent} if args.punch == "power" else {}),
         "mesh": mesh_rel,
         "mesh_sha256": sha256(mesh_path),
         **({"mesh_parameters": parameters_list(parameters)} if parameters else {}),
@@ -315,7 +331,7 @@ def main():
         "depth": args.depth,
         "eps": args.eps if args.punch == "flat-annulus" else None,
         "force": force,
-        "inner_radius": (min(active_r) if active_r else None) if args.punch in ("cone", "sphere") else None,
+        "inner_radius": (min(active_r) if active_r else None) if args.punch in CONCAVE else None,
         "active_contact_radii": active_r,
         "dofs": dofs,
         "iterations": iterations,

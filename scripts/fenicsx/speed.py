@@ -74,7 +74,9 @@ def state_args(row):
     args = ["--punch", row["punch"], "--degree", str(row["degree"])]
     if row["punch"] == "flat-annulus":
         args += ["--eps", str(row["eps"])]
-    if row["punch"] in ("cone", "sphere"):
+    if row["punch"] == "power":
+        args += ["--exponent", str(row["exponent"])]
+    if row["punch"] in ("cone", "sphere", "power"):
         args += ["--depth", str(row["depth"])]
     return args
 

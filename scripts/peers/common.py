@@ -1,29 +1,38 @@
 """Shared set-up of the peer runs: the same grid, profile and mask as `verify --method grid-bem`.
 
-Grid: N x N square cells on [-a, a]^2 (a = 1), cell centres x_i = (i + 1/2) dx - 1, dx = 2/N.
-A cell belongs to the punch when its centre lies in b <= r <= a (flat annulus) or r <= a.
-Gap profile g(r) = h (1 - r) (cone), h (1 - r^2) (sphere), 0 (flat), h = 1; E* = 1.
+Grid: N x N square cells on [-L, L]^2 (a = 1; L = 1 but for the torus, whose square is given),
+cell centres x_i = (i + 1/2) dx - L, dx = 2L/N. A cell belongs to the punch when its centre lies
+in b <= r <= a (flat annulus), r <= a (the other punches with a rim) or r <= L (the torus).
+Gap profile g(r) = h (1 - r) (cone), h (1 - r^2) (sphere), h (1 - r^n) (power law),
+h (1 - r)^2 (torus), 0 (flat), h = 1; E* = 1.
 """
 
 import numpy as np
 
 
-def grid(n):
-    dx = 2.0 / n
-    c = (np.arange(n) + 0.5) * dx - 1.0
+def grid(n, half_size=1.0):
+    dx = 2.0 * half_size / n
+    c = (np.arange(n) + 0.5) * dx - half_size
     x, y = np.meshgrid(c, c, indexing="ij")
     return np.hypot(x, y), dx
 
 
-def punch(kind, n, eps=0.0):
-    r, dx = grid(n)
-    inside = r <= 1.0
+def punch(kind, n, eps=0.0, exponent=None, half_size=1.0):
+    """The cells the punch may touch and its gap there, on the grid of `verify --method grid-bem`."""
+    if kind != "torus" and half_size != 1.0:
+        raise ValueError("only the torus's grid covers a square other than [-a, a]^2")
+    r, dx = grid(n, half_size)
+    inside = r <= half_size
     if kind == "flat-annulus":
         inside &= r >= eps
     if kind == "cone":
         g = 1.0 - r
     elif kind == "sphere":
         g = 1.0 - r * r
+    elif kind == "power":
+        g = 1.0 - r ** exponent
+    elif kind == "torus":
+        g = (1.0 - r) ** 2
     else:
         g = np.zeros_like(r)
     return inside, g, dx

@@ -191,6 +191,35 @@ pub fn solve_torus(n: usize, load: GridLoad, tolerance: f64) -> Result<GridState
     let coarse = torus_on_square(coarse_n, TORUS_FIRST_HALF_SIZE, load, tolerance)?;
     let coarse_cell = 2.0 * TORUS_FIRST_HALF_SIZE / coarse_n as f64;
     let half_size = coarse.outer + (0.25 * (coarse.outer - coarse.inner)).max(4.0 * coarse_cell);
+    let fine = solve_torus_on_square(n, half_size, load, tolerance)?;
+    Ok(GridState {
+        wall_s: start.elapsed().as_secs_f64(),
+        ..fine
+    })
+}
+
+/// The torus on one given square `[-L, L]²` (`half_size = L/a > 1`), `n x n` cells: what
+/// [`solve_torus`] does on its final square, for a grid chosen by the caller (a peer code's).
+/// A band narrower than [`MIN_CELLS_ACROSS`] cells, or a contact reaching within two cells of
+/// the square's edge, is refused.
+pub fn solve_torus_on_square(
+    n: usize,
+    half_size: f64,
+    load: GridLoad,
+    tolerance: f64,
+) -> Result<GridState> {
+    check_grid(n)?;
+    if !(half_size.is_finite() && half_size > 1.0 && half_size <= TORUS_MAX_HALF_SIZE) {
+        return Err(Error::OutOfRange {
+            method: crate::bem::grid::METHOD.into(),
+            reason: format!(
+                "the torus's grid half-size L = {} a must lie in (1, {TORUS_MAX_HALF_SIZE}] a: \
+                 the square [-L, L]² must hold the ring r = a and the band around it",
+                crate::error::show(half_size)
+            ),
+        });
+    }
+    let start = Instant::now();
     let fine = torus_on_square(n, half_size, load, tolerance)?;
     let cell = 2.0 * half_size / n as f64;
     if (fine.outer - fine.inner) < MIN_CELLS_ACROSS * cell {
@@ -211,6 +240,9 @@ pub fn solve_torus(n: usize, load: GridLoad, tolerance: f64) -> Result<GridState
         ..fine.state
     })
 }
+
+/// Largest square half-size `L/a` accepted for the torus (a band up to about `c = 8 a`).
+pub const TORUS_MAX_HALF_SIZE: f64 = 10.0;
 
 /// A torus solve on one square: the state and the band read off the contact cells.
 struct TorusOnSquare {
@@ -259,8 +291,8 @@ fn torus_on_square(
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
                 "the torus's contact reaches r = {outer:.3} a, within two cells of the grid's \
-                 square [-{half_size:.3}, {half_size:.3}]² a: the load is beyond the range the \
-                 grid BEM sizes its square for (use the ring BEM)"
+                 square [-{half_size:.3}, {half_size:.3}]² a: the square must extend past the \
+                 band (a larger --grid-extent, a smaller load, or the ring BEM)"
             ),
         });
     }

@@ -521,6 +521,11 @@ pub struct SolveArgs {
     /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
     #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
     pub grid: Option<u64>,
+    /// Grid BEM with --punch torus only: the grid covers [-L, L]^2 with L = this times a
+    /// (1 < L <= 10) [default: the band's outer edge plus a quarter of its width, from a
+    /// coarse solve]. A peer's grid is reproduced with it.
+    #[arg(long, value_name = "L")]
+    pub grid_extent: Option<f64>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

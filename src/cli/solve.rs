@@ -29,6 +29,7 @@ pub fn solve(args: SolveArgs) -> Result<Reply, String> {
         far_field: args.far_field,
         degree: args.degree.and_then(Degree::from_number),
         grid: args.grid.map(|g| g as usize),
+        grid_extent: args.grid_extent,
         vtu: args.vtu.clone(),
     };
     let solution = methods::solve_with(&scene, args.method, &options).map_err(message)?;

@@ -9,6 +9,7 @@
 //! `convergence:sphere:fem:eps=0:depth=1.5:level=2:of=3`, `pulloff:cone:d0h=10`.
 
 use std::collections::HashMap;
+use std::sync::{Condvar, Mutex};
 use std::time::Instant;
 
 use clap::ValueEnum;
@@ -316,6 +317,33 @@ impl Part {
         }
     }
 
+    /// Whether the part's wall times are among its results (speed-accuracy points, the
+    /// convergence levels' costs, our time beside a peer's): [`compute_all`] runs these alone,
+    /// the others side by side.
+    pub(crate) fn is_timed(&self) -> bool {
+        matches!(
+            self,
+            Part::Comparison { .. }
+                | Part::Fenicsx
+                | Part::Peers
+                | Part::SpeedBase(_)
+                | Part::SpeedFem { .. }
+                | Part::ConvergenceLevel { .. }
+        )
+    }
+
+    /// Whether the part keeps every core busy itself (the cohesive simulations' finite-element
+    /// solves): [`compute_all`] runs no two of these side by side.
+    pub(crate) fn uses_every_core(&self) -> bool {
+        matches!(
+            self,
+            Part::PulloffLive
+                | Part::AdhesionPeers
+                | Part::PulloffSimulation { .. }
+                | Part::Stability
+        )
+    }
+
     /// Run the part in this process (`edges` carries the free edges of convergence levels
     /// already computed here, so that one process does not solve a coarser level twice).
     pub(crate) fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
@@ -459,7 +487,7 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
     for method in [Method::GridBem, Method::Fem] {
         parts.extend(convergence_parts(REPORT_STUDY, method, REPORT_STUDY_LEVELS));
     }
-    for punch in crate::harness::studies::figures::report_concave_punches() {
+    for punch in crate::harness::studies::figures::report_profile_punches() {
         parts.push(Part::Adhesion(punch));
     }
     parts.push(Part::PulloffLive);
@@ -676,18 +704,115 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
     })
 }
 
-/// Compute `parts` one after the other in this process (the single-process run), calling
-/// `progress` with each part's id before it runs, and join them.
-pub(crate) fn compute_all(parts: &[Part], mut progress: impl FnMut(&str)) -> Result<Assembled> {
-    let mut edges = EdgeMemo::new();
-    let mut results = Vec::new();
-    for part in parts {
-        progress(&part.id());
+/// Compute `parts` in this process (the single-process run) and join them in the plan's order:
+/// the untimed parts side by side (one worker per core), then the timed ones ([`Part::is_timed`])
+/// one after another with the machine to themselves. `progress` is called with each part's id
+/// as it starts; the first failed part in the plan's order is the error.
+pub(crate) fn compute_all(parts: &[Part], progress: impl FnMut(&str) + Send) -> Result<Assembled> {
+    let progress = Mutex::new(progress);
+    let tick = |id: &str| {
+        if let Ok(mut report) = progress.lock() {
+            report(id)
+        }
+    };
+    // Longest first ([`Part::expected_s`]), so that no worker is left with a long part at the
+    // end; a part that uses every core itself never runs beside another such part.
+    let mut untimed: Vec<usize> = (0..parts.len()).filter(|&i| !parts[i].is_timed()).collect();
+    untimed.sort_by(|&i, &j| parts[j].expected_s().total_cmp(&parts[i].expected_s()));
+    let queue = PartQueue::new(untimed, |i| parts[i].uses_every_core());
+    let computed: Mutex<Vec<(usize, Result<Computed>)>> = Mutex::new(Vec::new());
+    let run = |i: usize, edges: &mut EdgeMemo| {
+        tick(&parts[i].id());
         let start = Instant::now();
-        let result = part.compute(&mut edges)?;
-        results.push((part.clone(), result, start.elapsed().as_secs_f64()));
+        let result = parts[i]
+            .compute(edges)
+            .map(|r| (r, start.elapsed().as_secs_f64()));
+        if let Ok(mut done) = computed.lock() {
+            done.push((i, result));
+        }
+    };
+    let workers = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .clamp(1, parts.len().max(1));
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            scope.spawn(|| {
+                let mut edges = EdgeMemo::new();
+                while let Some(i) = queue.take() {
+                    run(i, &mut edges);
+                    queue.done(i);
+                }
+            });
+        }
+    });
+    // The timed parts alone, one after another: their timings are not shared with other work.
+    let mut edges = EdgeMemo::new();
+    for i in (0..parts.len()).filter(|&i| parts[i].is_timed()) {
+        run(i, &mut edges);
+    }
+    let mut computed = computed
+        .into_inner()
+        .map_err(|_| Error::Plan("a report part's worker panicked".into()))?;
+    computed.sort_by_key(|(i, _)| *i);
+    let mut results = Vec::with_capacity(parts.len());
+    for (i, result) in computed {
+        let (value, wall_s) = result?;
+        results.push((parts[i].clone(), value, wall_s));
     }
     assemble(results)
+}
+
+/// A part's result and its wall time in seconds.
+type Computed = (PartResult, f64);
+
+/// The untimed parts waiting for a worker of [`compute_all`], in order; a part marked `heavy`
+/// (it uses every core itself) is handed out only while no other heavy part runs.
+struct PartQueue {
+    state: Mutex<(Vec<usize>, bool)>,
+    changed: Condvar,
+    heavy: Vec<bool>,
+}
+
+impl PartQueue {
+    fn new(order: Vec<usize>, heavy: impl Fn(usize) -> bool) -> Self {
+        let size = order.iter().max().map_or(0, |&i| i + 1);
+        Self {
+            heavy: (0..size).map(heavy).collect(),
+            state: Mutex::new((order, false)),
+            changed: Condvar::new(),
+        }
+    }
+
+    /// The next part this worker may run (waiting while only heavy parts are left and one
+    /// runs), or `None` when the queue is empty.
+    fn take(&self) -> Option<usize> {
+        let mut state = self.state.lock().ok()?;
+        loop {
+            let (waiting, heavy_running) = &mut *state;
+            if waiting.is_empty() {
+                return None;
+            }
+            if let Some(k) = waiting
+                .iter()
+                .position(|&i| !(*heavy_running && self.heavy[i]))
+            {
+                let i = waiting.remove(k);
+                *heavy_running |= self.heavy[i];
+                return Some(i);
+            }
+            state = self.changed.wait(state).ok()?;
+        }
+    }
+
+    /// Part `i` has finished.
+    fn done(&self, i: usize) {
+        if self.heavy[i] {
+            if let Ok(mut state) = self.state.lock() {
+                state.1 = false;
+            }
+            self.changed.notify_all();
+        }
+    }
 }
 
 /// Number of progress stages of [`write_report`].
@@ -700,25 +825,45 @@ pub(crate) const REPORT_STAGES: usize = 5;
 pub(crate) fn write_report(
     dir: &std::path::Path,
     inputs: &ReportInputs,
-    mut progress: impl FnMut(&str),
+    progress: impl FnMut(&str) + Send,
 ) -> Result<ReportExtras> {
     let start = Instant::now();
     let ring = RingBemSolver::new();
-    progress("functions against eps");
-    let functions = figures::function_curves(&ring)?;
-    progress("pressure profiles");
-    let pressure = figures::pressure_profiles(&ring)?;
-    progress("adhesion");
-    let annular_jkr = pulloff::annular(&inputs.pulloff_simulations)
-        .iter()
-        .map(|record| {
-            let study = record.result.as_ref()?;
-            let d0_over_h = study.d0_over_h?;
-            Some(figures::annular_jkr_branch(&ring, study.punch, d0_over_h))
-        })
-        .collect();
-    progress("verdicts");
-    let verdicts = claims::verdicts(&ring, &inputs.pulloff, &inputs.pulloff_simulations)?;
+    let progress = Mutex::new(progress);
+    let tick = |stage: &str| {
+        if let Ok(mut report) = progress.lock() {
+            report(stage)
+        }
+    };
+    // The verdicts (the longest stage) beside the rest: none of them is timed.
+    let (curves, verdicts) = std::thread::scope(|scope| {
+        let verdicts = scope.spawn(|| {
+            tick("verdicts");
+            claims::verdicts(&ring, &inputs.pulloff, &inputs.pulloff_simulations)
+        });
+        tick("functions against eps");
+        let curves = figures::function_curves(&ring).and_then(|functions| {
+            tick("pressure profiles");
+            let pressure = figures::pressure_profiles(&ring)?;
+            tick("adhesion");
+            let annular_jkr: Vec<Option<figures::Points>> =
+                pulloff::annular(&inputs.pulloff_simulations)
+                    .iter()
+                    .map(|record| {
+                        let study = record.result.as_ref()?;
+                        let d0_over_h = study.d0_over_h?;
+                        Some(figures::annular_jkr_branch(&ring, study.punch, d0_over_h))
+                    })
+                    .collect();
+            Ok((functions, pressure, annular_jkr))
+        });
+        let verdicts = verdicts
+            .join()
+            .unwrap_or_else(|_| Err(Error::Plan("the verdicts' worker panicked".into())));
+        (curves, verdicts)
+    });
+    let (functions, pressure, annular_jkr) = curves?;
+    let verdicts = verdicts?;
     let findings = Findings {
         functions,
         pressure,
@@ -726,6 +871,6 @@ pub(crate) fn write_report(
         verdicts,
         wall_s: start.elapsed().as_secs_f64(),
     };
-    progress("tables and pages");
+    tick("tables and pages");
     document::write_files(dir, inputs, &findings)
 }

@@ -25,6 +25,9 @@ pub struct PeerResult {
     pub punch: PunchKind,
     pub eps: Option<f64>,
     pub grid: usize,
+    /// The torus's square half-size `L/a` (the other punches' grid is `[-a, a]²`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_extent: Option<f64>,
     pub depth: f64,
     pub force: f64,
     pub wall_s: f64,
@@ -56,8 +59,8 @@ pub fn load_results() -> Result<Vec<(String, PeerResult)>> {
     crate::harness::records::stored::load_json_dir(&results_directory(), "peer result")
 }
 
-/// `(punch, b/a bits, grid, depth bits)`: one state of the grid BEM.
-type StateKey = (PunchKind, u64, usize, u64);
+/// `(punch, b/a bits, grid, square half-size bits, depth bits)`: one state of the grid BEM.
+type StateKey = (PunchKind, u64, usize, u64, u64);
 /// `(force, iterations, wall seconds)` of a solved state.
 type Solved = (f64, usize, f64);
 
@@ -75,6 +78,7 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
             stored.punch,
             eps.to_bits(),
             stored.grid,
+            stored.grid_extent.unwrap_or(1.0).to_bits(),
             stored.depth.to_bits(),
         );
         let (force, iterations, wall) = match cache.iter().find(|(k, _)| *k == key) {
@@ -85,14 +89,22 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                 } else {
                     1.0
                 };
-                let s = grid_contact::solve(
-                    stored.punch,
-                    eps,
-                    stored.grid,
-                    GridLoad::Depth(depth),
-                    1e-11,
-                )
-                .map_err(|e| {
+                let load = GridLoad::Depth(depth);
+                let solved = match stored.grid_extent {
+                    Some(half_size) if stored.punch == PunchKind::Torus => {
+                        grid_contact::solve_torus_on_square(stored.grid, half_size, load, 1e-11)
+                    }
+                    _ if (stored.grid_extent.is_some()) != (stored.punch == PunchKind::Torus) => {
+                        Err(crate::error::Error::Unsupported {
+                            method: crate::bem::grid::METHOD.into(),
+                            reason: "grid_extent (the square's half-size) is stored for the \
+                                     torus, and only for it"
+                                .into(),
+                        })
+                    }
+                    _ => grid_contact::solve(stored.punch, eps, stored.grid, load, 1e-11),
+                };
+                let s = solved.map_err(|e| {
                     crate::error::Error::file(
                         "compare the stored peer result",
                         &results_directory().join(&file),

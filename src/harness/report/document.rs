@@ -25,7 +25,7 @@ use crate::harness::report::tables::{report_tables, ReportTable};
 use crate::harness::studies::comparison::ComparisonReport;
 use crate::harness::studies::convergence;
 use crate::harness::studies::figures::{
-    concave_ratios, flat_ratios, FunctionCurves, Points, PressureProfiles,
+    concave_ratios, flat_ratios, ConcaveCurves, FunctionCurves, Points, PressureProfiles,
 };
 use crate::punch::PunchKind;
 use crate::reference::paper_fits;
@@ -286,6 +286,14 @@ fn function_charts(
     write(dir, "gamma-flat-annulus.svg", &chart)?;
     for c in &curves.concave {
         let kind = c.punch;
+        if !kind.has_rim() {
+            write(
+                dir,
+                &format!("gammas-{}.svg", kind.label()),
+                &torus_chart(c, &curves.torus_grid_bem),
+            )?;
+            continue;
+        }
         let fit = |i: usize| -> Points {
             concave_ratios()
                 .into_iter()
@@ -325,6 +333,40 @@ fn function_charts(
         write(dir, &format!("gammas-{}.svg", kind.label()), &chart)?;
     }
     Ok(())
+}
+
+/// The torus against its depth `d/h` (log-log): the force `gamma2 = F/(2 E* h a)` by the ring
+/// BEM and the grid BEM, and both free edges `b/a`, `c/a`.
+fn torus_chart(c: &ConcaveCurves, grid_bem: &Points) -> String {
+    let against_depth = |values: &Points| -> Points {
+        c.gamma1
+            .iter()
+            .zip(values)
+            .map(|(&(_, depth), &(_, value))| (depth, value))
+            .collect()
+    };
+    let series = |name: &str, points: Points| Series {
+        name: name.into(),
+        points,
+        bars: Vec::new(),
+    };
+    log_log_chart(
+        &format!(
+            "{}: gamma2 = F/(2 E* h a) and the edges b/a, c/a against d/h",
+            c.punch
+        ),
+        "gamma1 = d/h",
+        "gamma2, b/a, c/a",
+        &[
+            series("gamma2 ring BEM", against_depth(&c.gamma2)),
+            series("gamma2 grid BEM 128²", grid_bem.clone()),
+            series(
+                "b/a ring BEM",
+                c.gamma1.iter().map(|&(b, depth)| (depth, b)).collect(),
+            ),
+            series("c/a ring BEM", against_depth(&c.outer)),
+        ],
+    )
 }
 
 /// Pressure profiles of the sphere at `d = 1.5 h`: ring BEM, azimuthally averaged grid BEM, FEM.
@@ -401,14 +443,34 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
         },
         Series {
             name: "full contact".into(),
-            points: mine.iter().map(|p| (p.d0_over_h, p.full_contact)).collect(),
+            points: mine
+                .iter()
+                .filter_map(|p| p.full_contact.map(|v| (p.d0_over_h, v)))
+                .collect(),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "fixed grips".into(),
+            points: mine
+                .iter()
+                .filter_map(|p| p.fixed_grips.map(|v| (p.d0_over_h, v)))
+                .collect(),
+            bars: Vec::new(),
+        },
+        Series {
+            name: "plane-strain JKR cylinder".into(),
+            points: mine
+                .iter()
+                .filter_map(|p| p.plane_strain.map(|v| (p.d0_over_h, v)))
+                .collect(),
             bars: Vec::new(),
         },
     ];
-    // The paper fitted the cone and the sphere only: no empty legend entry for other punches.
+    // The paper fitted the cone and the sphere only, the torus has no full contact and only the
+    // torus shows fixed grips and its narrow-band asymptote: no empty legend entries.
     let series: Vec<Series> = series
         .into_iter()
-        .filter(|s| s.name != "paper fits" || matches!(kind, PunchKind::Cone | PunchKind::Sphere))
+        .filter(|s| !s.points.is_empty())
         .collect();
     log_log_chart(
         &format!("{kind}: pull-off / F0 against d0/h"),
@@ -506,7 +568,7 @@ pub(crate) fn write_files(
 /// The pull-off charts: the JKR routes against `d0/h`, this run's simulation, the stored
 /// studies' branches, the annular route, Tamaas's curves.
 fn adhesion_charts(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<()> {
-    for kind in crate::harness::studies::figures::report_concave_punches() {
+    for kind in crate::harness::studies::figures::report_profile_punches() {
         write(
             dir,
             &format!("pulloff-{}.svg", kind.label()),
@@ -668,6 +730,6 @@ fn markdown(
             convergence::summary(s)
         );
     }
-    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](gammas-power-n1.5.svg)\n![](gammas-power-n3.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n![](pulloff-power-n1.5.svg)\n![](pulloff-power-n3.svg)\n";
+    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](gammas-power-n1.5.svg)\n![](gammas-power-n3.svg)\n![](gammas-torus.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n![](pulloff-power-n1.5.svg)\n![](pulloff-power-n3.svg)\n![](pulloff-torus.svg)\n";
     md
 }

@@ -25,7 +25,41 @@ pub fn verdicts(
         strongest_pulloff_verdict(pulloff, simulations),
     ];
     out.extend(annular_branch_verdict(simulations));
+    out.extend(torus_narrow_verdict(pulloff));
     Ok(out)
+}
+
+/// The narrow-band limit of the torus's JKR pull-off (the introduction's toroidal contacts;
+/// Argatov et al. treat them by asymptotics): as `d0/h -> 0` the fixed-load pull-off tends to
+/// the plane-strain JKR cylinder's carried over `2π a`. Agrees when the relative difference
+/// falls as `d0/h` falls and is below 1e-3 at the smallest `d0/h`.
+fn torus_narrow_verdict(pulloff: &[PulloffPoint]) -> Option<Verdict> {
+    let mut differences: Vec<(f64, f64)> = pulloff
+        .iter()
+        .filter(|p| p.punch == PunchKind::Torus.label())
+        .filter_map(|p| {
+            Some((
+                p.d0_over_h,
+                (p.fixed_load? - p.plane_strain?) / p.plane_strain?,
+            ))
+        })
+        .collect();
+    differences.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let smallest = differences.first()?.1.abs();
+    let falling = differences.windows(2).all(|w| w[0].1.abs() <= w[1].1.abs());
+    Some(Verdict {
+        claim: "a narrow torus pulls off as the plane-strain JKR cylinder (d0/h -> 0)".into(),
+        numbers: differences
+            .iter()
+            .map(|(s, d)| format!("d0/h = {s:.1e}: {d:+.1e}"))
+            .collect::<Vec<_>>()
+            .join(", "),
+        verdict: if falling && smallest < 1e-3 {
+            "agree (the difference falls with d0/h)".into()
+        } else {
+            "disagree".into()
+        },
+    })
 }
 
 /// Section 2: the fitted formulas against the ring BEM's data.
@@ -107,7 +141,7 @@ fn strongest_pulloff_verdict(pulloff: &[PulloffPoint], simulations: &[PulloffRec
                 p.paper_fits.map_or("-".into(), |v| format!("{v:.3} F0")),
                 p.fixed_load
                     .map_or("no stable state".into(), |v| format!("{v:.3} F0")),
-                p.full_contact
+                p.full_contact.unwrap_or(f64::NAN)
             )
         })
         .collect();
@@ -247,6 +281,9 @@ pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
 /// load on the annular branch, the paper's route on its fits, from full contact.
 pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
+    if kind == PunchKind::Torus {
+        return torus_pulloff_points(ring);
+    }
     pulloff_scales()
         .map(|s| {
             let r = adhesion::concave(ring, kind, s)?;
@@ -255,7 +292,34 @@ pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Ve
                 d0_over_h: s,
                 fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
                 paper_fits: r.paper_fits_fixed_load.map(|p| -p.1),
-                full_contact: -r.full_contact.pulloff.force,
+                full_contact: Some(-r.full_contact.pulloff.force),
+                fixed_grips: None,
+                plane_strain: None,
+            })
+        })
+        .collect()
+}
+
+/// `d0/h` of the torus's pull-off curve: `1e-3 ... 1` at half-decade steps (stronger adhesion
+/// closes the band toward a disk, which the torus's JKR analysis refuses).
+pub(crate) fn torus_pulloff_scales() -> impl Iterator<Item = f64> {
+    (0..=6).map(|k| 10f64.powf(-3.0 + 0.5 * k as f64))
+}
+
+/// Pull-off `-F/F0` of the torus against `d0/h` ([`torus_pulloff_scales`]): fixed load, fixed
+/// grips (both edges Griffith) and the plane-strain JKR cylinder's asymptote.
+fn torus_pulloff_points(ring: &RingBemSolver) -> Result<Vec<PulloffPoint>> {
+    torus_pulloff_scales()
+        .map(|s| {
+            let r = adhesion::torus_jkr(ring, s)?;
+            Ok(PulloffPoint {
+                punch: PunchKind::Torus.label(),
+                d0_over_h: s,
+                fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
+                paper_fits: None,
+                full_contact: None,
+                fixed_grips: r.fixed_grips.as_ref().map(|c| -c.force),
+                plane_strain: Some(-r.plane_strain_fixed_load),
             })
         })
         .collect()

@@ -188,6 +188,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(full_contact_limit_checks(&solver, tolerance)?);
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
     identities.extend(power_law_checks(&solver, tolerance)?);
+    identities.extend(torus_free_edge_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
     Ok(ComparisonReport {
         tolerance,
@@ -273,7 +274,9 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
 
 /// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
 /// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
-/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve.
+/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve. The torus's band `[b, c]`
+/// has both edges free, so its stiffness is the flat annulus `b/c` scaled by `c`:
+/// `γ2'(b) = c γ(b/c) γ1'(b)` (`c = a` for the punches with a rim).
 fn incremental_stiffness_checks(
     solver: &RingBemSolver,
     tolerance: f64,
@@ -281,11 +284,12 @@ fn incremental_stiffness_checks(
     let mut checks = Vec::new();
     // The power law with n = 3 is one annulus only down to b ≈ 0.55 a (docs/conventions.md
     // fact 8).
-    let cases: [(PunchKind, &[f64]); 4] = [
+    let cases: [(PunchKind, &[f64]); 5] = [
         (PunchKind::Cone, &[0.1, 0.5, 0.9]),
         (PunchKind::Sphere, &[0.1, 0.5, 0.9]),
         (power(1.5), &[0.1, 0.5, 0.9]),
         (power(3.0), &[0.6, 0.9]),
+        (PunchKind::Torus, &[0.1, 0.5, 0.9]),
     ];
     for (kind, ratios) in cases {
         for &eps in ratios {
@@ -302,12 +306,21 @@ fn incremental_stiffness_checks(
             };
             let d1 = derivative(|s| s.gamma1.unwrap_or(f64::NAN));
             let d2 = derivative(|s| s.gamma2.unwrap_or(f64::NAN));
-            let gamma = solver.flat(eps, tolerance)?.gamma.unwrap_or(f64::NAN);
+            let outer = at(eps)?.outer_edge;
+            let gamma = outer
+                * solver
+                    .flat(eps / outer, tolerance)?
+                    .gamma
+                    .unwrap_or(f64::NAN);
             let residual = (d2 - gamma * d1).abs() / d2.abs();
             // Difference-quotient error: O(step⁴) truncation plus rounding amplified by 1/step.
             let allowed = 1e-6_f64.max(100.0 * tolerance);
             checks.push(IdentityCheck {
-                name: format!("{kind}: gamma2' = gamma * gamma1'"),
+                name: if kind.has_rim() {
+                    format!("{kind}: gamma2' = gamma * gamma1'")
+                } else {
+                    format!("{kind}: gamma2' = c gamma(b/c) * gamma1' (both edges free)")
+                },
                 eps,
                 lhs: d2,
                 rhs: gamma * d1,
@@ -399,6 +412,36 @@ fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Identi
         tolerance: allowed,
         passed: residual <= allowed,
     });
+    Ok(checks)
+}
+
+/// The torus's two edges are free: the ring BEM on the prescribed band `[b, c]` at the state's
+/// depth (the other path: both edges given, both intensities computed) finds `K = 0` at each,
+/// relative to the band's scale `F/(π (b + c) sqrt(c - b))`, and the state's force.
+fn torus_free_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+    let mut checks = Vec::new();
+    for eps in [0.3, 0.8] {
+        let state = solver.concave_at_ratio(PunchKind::Torus, eps, tolerance)?;
+        let (c, depth) = (state.outer_edge, state.gamma1.unwrap_or(f64::NAN));
+        let band = solver.prescribed_band(|r| (1.0 - r) * (1.0 - r), eps, c, depth, tolerance)?;
+        let scale = band.force / (std::f64::consts::PI * (eps + c) * (c - eps).sqrt());
+        let largest = band
+            .inner_stress_intensity
+            .abs()
+            .max(band.outer_stress_intensity.abs());
+        let residual = largest / scale;
+        let allowed = 1e-8_f64.max(100.0 * tolerance);
+        checks.push(IdentityCheck {
+            name: "torus: K = 0 at both edges of its band (prescribed-band solve), |K| / scale"
+                .into(),
+            eps,
+            lhs: residual,
+            rhs: 0.0,
+            relative_residual: residual,
+            tolerance: allowed,
+            passed: residual <= allowed,
+        });
+    }
     Ok(checks)
 }
 

@@ -53,6 +53,9 @@ pub(crate) struct ConcaveCurves {
     pub punch: PunchKind,
     pub gamma1: Points,
     pub gamma2: Points,
+    /// The outer edge `c/a` at the same `b/a` (the torus only; the others' is the rim).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub outer: Points,
 }
 
 /// The dimensionless functions against `eps` that the methods compute for the report's charts.
@@ -62,8 +65,22 @@ pub(crate) struct FunctionCurves {
     pub flat_ring_bem: Points,
     /// The same by the grid BEM on 128² at `b/a` = 0, 0.5, 0.9 (those that solved).
     pub flat_grid_bem: Points,
-    /// The functions of [`report_concave_punches`] at [`concave_ratios`] (where one annulus).
+    /// The functions of [`report_profile_punches`] at [`concave_ratios`] (where one annulus).
     pub concave: Vec<ConcaveCurves>,
+    /// `(d/h, gamma2)` of the torus by the grid BEM at [`TORUS_GRID_DEPTHS`] (128², its own
+    /// square; those that solved).
+    #[serde(default)]
+    pub torus_grid_bem: Points,
+}
+
+/// Depths `d/h` at which the report's torus chart shows the grid BEM.
+pub(crate) const TORUS_GRID_DEPTHS: [f64; 3] = [0.1, 0.5, 2.0];
+
+/// The punches whose functions the report charts: [`report_concave_punches`] and the torus.
+pub(crate) fn report_profile_punches() -> Vec<PunchKind> {
+    let mut punches = report_concave_punches();
+    punches.push(PunchKind::Torus);
+    punches
 }
 
 /// Compute the function curves (ring BEM to 1e-10, grid BEM on 128²).
@@ -84,8 +101,8 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         }
     }
     let mut concave = Vec::new();
-    for punch in report_concave_punches() {
-        let (mut gamma1, mut gamma2) = (Vec::new(), Vec::new());
+    for punch in report_profile_punches() {
+        let (mut gamma1, mut gamma2, mut outer) = (Vec::new(), Vec::new(), Vec::new());
         for e in concave_ratios() {
             let s = match ring.concave_at_ratio(punch, e, 1e-10) {
                 Ok(s) => s,
@@ -96,17 +113,30 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
             };
             gamma1.push((e, s.gamma1.unwrap_or(f64::NAN)));
             gamma2.push((e, s.gamma2.unwrap_or(f64::NAN)));
+            if !punch.has_rim() {
+                outer.push((e, s.outer_edge));
+            }
         }
         concave.push(ConcaveCurves {
             punch,
             gamma1,
             gamma2,
+            outer,
         });
     }
+    let torus_grid_bem = TORUS_GRID_DEPTHS
+        .into_iter()
+        .filter_map(|d| {
+            grid_contact::solve(PunchKind::Torus, 0.0, 128, GridLoad::Depth(d), 1e-10)
+                .ok()
+                .and_then(|s| Some((d, s.gamma2?)))
+        })
+        .collect();
     Ok(FunctionCurves {
         flat_ring_bem,
         flat_grid_bem,
         concave,
+        torus_grid_bem,
     })
 }
 
