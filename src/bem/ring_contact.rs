@@ -551,28 +551,51 @@ impl RingBemSolver {
         let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
+            // The torus: both edges at once where Newton's method converges (a fraction of
+            // the nested search's bands), the nested search otherwise.
+            let direct = (kind == PunchKind::Torus)
+                .then(|| {
+                    let start = (
+                        guess,
+                        outer_guess.unwrap_or_else(|| torus::outer_edge_guess(guess)),
+                    );
+                    let depth = matches!(controlled, Controlled::Depth);
+                    self.torus_at_target(n, target, depth, start, 0.01 * tolerance)
+                })
+                .flatten();
             // The last two samples of the search are kept: the state at the root and the
             // secant slopes of both quantities.
             let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
-            let root = find_root(
-                |eps| {
-                    let hint = outer_edge_hint(&history, eps).or(outer_guess);
-                    let sample = self
-                        .concave_sample(kind, eps, n, hint)
-                        .map_err(|e| e.to_string())?;
-                    let value = pick(&sample) - target;
-                    if history.len() == 2 {
-                        history.remove(0);
-                    }
-                    history.push((eps, sample));
-                    Ok(value)
-                },
-                MIN_CONTACT_RATIO,
-                MAX_CONTACT_RATIO,
-                guess,
-                0.01 * tolerance,
-                60,
-            )
+            let root = match direct {
+                Some(found) => {
+                    history.push((found.eps, found.sample));
+                    let (eps, bands) = (found.eps, found.bands);
+                    Ok(crate::numerics::roots::Root {
+                        x: eps,
+                        evaluations: bands,
+                        slope: f64::NAN,
+                    })
+                }
+                None => find_root(
+                    |eps| {
+                        let hint = outer_edge_hint(&history, eps).or(outer_guess);
+                        let sample = self
+                            .concave_sample(kind, eps, n, hint)
+                            .map_err(|e| e.to_string())?;
+                        let value = pick(&sample) - target;
+                        if history.len() == 2 {
+                            history.remove(0);
+                        }
+                        history.push((eps, sample));
+                        Ok(value)
+                    },
+                    MIN_CONTACT_RATIO,
+                    MAX_CONTACT_RATIO,
+                    guess,
+                    0.01 * tolerance,
+                    60,
+                ),
+            }
             .map_err(|e| inverse_error(e, kind, target, controlled))?;
             solves += root.evaluations;
             let eps = root.x;

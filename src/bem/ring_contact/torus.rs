@@ -13,8 +13,10 @@
 //! The first fixes the depth for a band; the second is one equation for the outer edge `c`
 //! given the inner edge `b`, solved by the safeguarded secant. So the inner edge `b/a` (`eps`)
 //! parametrises the torus's states as it does the concave punches', `γ1(eps) = d/h` and
-//! `γ2(eps) = F/(2 E* h a)` decrease with it, and depth or force control inverts them with the
-//! same search. Both unknown radii are found to rounding at each node count; the
+//! `γ2(eps) = F/(2 E* h a)` decrease with it. Depth or force control finds both edges at once by
+//! Newton's method on `R(b, c) = 0`, `γ(b, c) = target` ([`RingBemSolver::torus_at_target`]),
+//! with the nested search (the edge search inside the concave punches' search on `b`) where
+//! Newton does not converge. Both unknown radii are found to rounding at each node count; the
 //! self-convergence estimate covers `γ1`, `γ2` and `c`.
 //!
 //! **The contact never closes.** Near the axis the gap is `h (1 - 2r/a + ...)`: a conical
@@ -161,6 +163,136 @@ impl RingBemSolver {
     }
 }
 
+/// Iterations of [`RingBemSolver::torus_at_target`] before it gives up (and the nested search
+/// takes over).
+const DIRECT_MAX_ITERATIONS: usize = 40;
+
+/// Consecutive steps of [`RingBemSolver::torus_at_target`] that leave the residual above 0.9 of
+/// its previous size before it gives up. Near the root the residual sits at rounding and the
+/// steps stop on their own size first.
+const DIRECT_MAX_STALLED: usize = 4;
+
+impl RingBemSolver {
+    /// The torus at a fixed node count with the depth (`depth_controlled`) or the force at
+    /// `target` (`γ1` or `γ2`): both unknown edges at once, by Newton's method on
+    ///
+    /// ```text
+    /// R(b, c) = 0              (both edges free, [`TorusBand::mismatch`])
+    /// γ(b, c)/target - 1 = 0   (γ = γ1 or γ2 at the depth of a free inner edge)
+    /// ```
+    ///
+    /// with a Jacobian by differences at the start and Broyden's update after each step (each
+    /// step one band: assembly and two solves), from the start `(b0, c0)`. Stops after a step
+    /// in `b` below `eps_tolerance` and in `c` below [`OUTER_EDGE_TOLERANCE`] (tenfold); a
+    /// step that would leave `MIN_CONTACT_RATIO <= b < c <= hi` is shortened. `None` where it
+    /// does not converge: the caller then runs the nested search (an edge search inside a
+    /// search on `b`), which is safeguarded but costs several times more bands.
+    pub(super) fn torus_at_target(
+        &self,
+        n: usize,
+        target: f64,
+        depth_controlled: bool,
+        start: (f64, f64),
+        eps_tolerance: f64,
+    ) -> Option<TorusTarget> {
+        let pick = if depth_controlled { 1 } else { 2 };
+        let mut bands = 0;
+        let mut residual = |b: f64, c: f64| -> Option<([f64; 2], TorusBand)> {
+            bands += 1;
+            let band = self.torus_band(b, c, n).ok()?;
+            let v = band.values();
+            let r = [v[0], v[pick] / target - 1.0];
+            r.iter().all(|x| x.is_finite()).then_some((r, band))
+        };
+        let admissible = |b: f64, c: f64| {
+            (MIN_CONTACT_RATIO..=super::MAX_CONTACT_RATIO).contains(&b)
+                && c > b * (1.0 + 2.0 * MIN_BAND_RATIO)
+                && c <= 3.0 + 3.0 * (1.0 / b).ln()
+        };
+        let (mut b, mut c) = start;
+        if !(b.is_finite() && c.is_finite() && admissible(b, c)) {
+            return None;
+        }
+        let (mut f, _) = residual(b, c)?;
+        // The Jacobian by forward differences (steps far above rounding, far below the edges'
+        // scales).
+        let (hb, hc) = (1e-7 * b.max(1e-3), 1e-7 * c);
+        let (fb, _) = residual(b + hb, c)?;
+        let (fc, _) = residual(b, c + hc)?;
+        let mut jacobian = [
+            [(fb[0] - f[0]) / hb, (fc[0] - f[0]) / hc],
+            [(fb[1] - f[1]) / hb, (fc[1] - f[1]) / hc],
+        ];
+        // Steps that did not shrink the residual (a start outside Newton's basin): after a few
+        // the nested search takes over.
+        let size = |r: &[f64; 2]| r[0].hypot(r[1]);
+        let mut stalled = 0;
+        for _ in 0..DIRECT_MAX_ITERATIONS {
+            let det = jacobian[0][0] * jacobian[1][1] - jacobian[0][1] * jacobian[1][0];
+            if !(det.is_finite() && det != 0.0) {
+                return None;
+            }
+            let mut step = [
+                -(jacobian[1][1] * f[0] - jacobian[0][1] * f[1]) / det,
+                -(-jacobian[1][0] * f[0] + jacobian[0][0] * f[1]) / det,
+            ];
+            if step[0].abs() <= eps_tolerance && step[1].abs() <= 10.0 * OUTER_EDGE_TOLERANCE {
+                // The last (small) step taken: the state's residual is then far below the
+                // step's, which the caller's estimate counts.
+                let (b, c) = (b + step[0], c + step[1]);
+                if !admissible(b, c) {
+                    return None;
+                }
+                let (_, band) = residual(b, c)?;
+                let sample = band.sample(0.0).ok()?;
+                return Some(TorusTarget {
+                    eps: b,
+                    sample,
+                    bands,
+                });
+            }
+            // Shorten a step that leaves the admissible edges (or moves b by more than half).
+            let mut shortened = 0;
+            while !admissible(b + step[0], c + step[1]) || step[0].abs() > 0.5 * b {
+                step = [0.5 * step[0], 0.5 * step[1]];
+                shortened += 1;
+                if shortened > 30 {
+                    return None;
+                }
+            }
+            let (next, _) = residual(b + step[0], c + step[1])?;
+            // Broyden's update: J += ((Δf - J s) sᵀ) / (sᵀ s).
+            let norm = step[0] * step[0] + step[1] * step[1];
+            for (i, row) in jacobian.iter_mut().enumerate() {
+                let predicted = row[0] * step[0] + row[1] * step[1];
+                let miss = (next[i] - f[i]) - predicted;
+                row[0] += miss * step[0] / norm;
+                row[1] += miss * step[1] / norm;
+            }
+            stalled = if size(&next) < 0.9 * size(&f) {
+                0
+            } else {
+                stalled + 1
+            };
+            if stalled >= DIRECT_MAX_STALLED {
+                return None;
+            }
+            (b, c, f) = (b + step[0], c + step[1], next);
+        }
+        None
+    }
+}
+
+/// What [`RingBemSolver::torus_at_target`] found at one node count.
+pub(super) struct TorusTarget {
+    /// The inner edge `b/a`.
+    pub eps: f64,
+    /// The state there (both edges free, the target met).
+    pub sample: ConcaveSample,
+    /// Bands solved.
+    pub bands: usize,
+}
+
 /// A band of the torus at one node count: its system and the fields of `w = 1` and `w = -ĝ`.
 struct TorusBand {
     system: RingSystem,
@@ -187,6 +319,18 @@ impl TorusBand {
         let depth = self.depth(intensity);
         (self.gap.rim_coefficient + depth * self.one.rim_coefficient - self.coefficient(intensity))
             / self.one.rim_coefficient.abs()
+    }
+
+    /// `[R, γ1, γ2]` with both edges free of intensity: the outer edge's mismatch
+    /// ([`Self::mismatch`]), the depth `d/h` that frees the inner edge and the force
+    /// `F/(2 E* h a)` there.
+    fn values(&self) -> [f64; 3] {
+        let gamma1 = self.depth(0.0);
+        [
+            self.mismatch(0.0),
+            gamma1,
+            0.5 * (gamma1 * self.one.force + self.gap.force),
+        ]
     }
 
     /// The state at the depth of [`Self::depth`].
@@ -233,11 +377,13 @@ fn search_error(e: RootError, what: &str, unknown: &str, lo: f64, hi: f64) -> cr
     }
 }
 
-/// Starting outer edge for the inner edge `eps` (the search finds the exact edge): the band
-/// symmetric about the ring radius, as the narrow torus's plane-strain contact is, or for a wide
-/// band the logarithmic growth measured (`c = 3.60, 4.77, 5.78 a` at `b = 0.1, 0.03, 0.01 a`).
-fn outer_edge_guess(eps: f64) -> f64 {
-    (2.0 - eps).max(1.3 + (1.0 / eps).ln())
+/// Starting outer edge for the inner edge `eps` (the search finds the exact edge): `a²/b` for
+/// a band not far from the ring radius (measured `c = 1.0103, 1.118, 1.62 a` at
+/// `b = 0.99, 0.9, 0.6 a`, where `a²/b` gives 1.0101, 1.111, 1.667), and for a wide band the
+/// logarithmic growth measured (`c = 2.44, 3.60, 4.77, 5.78 a` at `b = 0.3, 0.1, 0.03, 0.01 a`),
+/// whichever is smaller.
+pub(super) fn outer_edge_guess(eps: f64) -> f64 {
+    (1.0 / eps).min(1.3 + (1.0 / eps).ln())
 }
 
 /// Starting inner edge of the torus for a depth (`γ1 = d/h`) or a force (`γ2 = F/(2 E* h a)`)
@@ -269,4 +415,62 @@ pub(super) fn initial_inner_edge(target: f64, depth_controlled: bool) -> f64 {
         }
     }
     0.5 * (lo + hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The direct solve of both edges and the nested search (the edge search inside a secant
+    /// on `b`) find the same state at one node count, under depth and under force control; a
+    /// start outside Newton's basin (a narrow band started at `c = 1.3 a`) gives up rather than
+    /// return a wrong state.
+    #[test]
+    fn newton_on_both_edges_agrees_with_the_nested_search() {
+        let solver = RingBemSolver::new();
+        let n = 16;
+        for (depth_controlled, target) in [(true, 0.01), (true, 1.0), (false, 2.0), (false, 1e-4)] {
+            let pick = |s: &ConcaveSample| if depth_controlled { s.gamma1 } else { s.gamma2 };
+            let start = initial_inner_edge(target, depth_controlled);
+            let direct = solver
+                .torus_at_target(
+                    n,
+                    target,
+                    depth_controlled,
+                    (start, outer_edge_guess(start)),
+                    1e-12,
+                )
+                .expect("Newton converges from the usual start");
+            let nested = find_root(
+                |eps| {
+                    let s = solver
+                        .torus_sample(eps, n, None)
+                        .map_err(|e| e.to_string())?;
+                    Ok(pick(&s) - target)
+                },
+                MIN_CONTACT_RATIO,
+                super::super::MAX_CONTACT_RATIO,
+                start,
+                1e-13,
+                80,
+            )
+            .unwrap();
+            let outer = solver.torus_sample(nested.x, n, None).unwrap();
+            let (b, c) = (direct.eps, direct.sample.system.region().outer());
+            println!(
+                "target {target}: direct b {b:.15} c {c:.15} ({} bands), nested b {:.15} c {:.15}",
+                direct.bands,
+                nested.x,
+                outer.system.region().outer()
+            );
+            assert!((b - nested.x).abs() < 1e-11, "b {b} against {}", nested.x);
+            assert!((c - outer.system.region().outer()).abs() < 1e-11);
+            assert!((pick(&direct.sample) / target - 1.0).abs() < 1e-11);
+        }
+        // A narrow band started far off: no state, or the right one.
+        let wrong = solver.torus_at_target(n, 1e-4, false, (0.9968, 1.303), 1e-12);
+        if let Some(found) = wrong {
+            assert!((found.eps - 0.99683348).abs() < 1e-6, "{}", found.eps);
+        }
+    }
 }
