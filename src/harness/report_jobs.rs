@@ -710,11 +710,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
 /// as it starts; the first failed part in the plan's order is the error.
 pub(crate) fn compute_all(parts: &[Part], progress: impl FnMut(&str) + Send) -> Result<Assembled> {
     let progress = Mutex::new(progress);
-    let tick = |id: &str| {
-        if let Ok(mut report) = progress.lock() {
-            report(id)
-        }
-    };
+    let tick = |what: &str| report_to(&progress, what);
     // Longest first ([`Part::expected_s`]), so that no worker is left with a long part at the
     // end; a part that uses every core itself never runs beside another such part.
     let mut untimed: Vec<usize> = (0..parts.len()).filter(|&i| !parts[i].is_timed()).collect();
@@ -760,6 +756,13 @@ pub(crate) fn compute_all(parts: &[Part], progress: impl FnMut(&str) + Send) -> 
         results.push((parts[i].clone(), value, wall_s));
     }
     assemble(results)
+}
+
+/// Call a progress callback shared between threads (a poisoned lock drops the report).
+fn report_to(progress: &Mutex<impl FnMut(&str)>, what: &str) {
+    if let Ok(mut report) = progress.lock() {
+        report(what)
+    }
 }
 
 /// A part's result and its wall time in seconds.
@@ -830,11 +833,7 @@ pub(crate) fn write_report(
     let start = Instant::now();
     let ring = RingBemSolver::new();
     let progress = Mutex::new(progress);
-    let tick = |stage: &str| {
-        if let Ok(mut report) = progress.lock() {
-            report(stage)
-        }
-    };
+    let tick = |what: &str| report_to(&progress, what);
     // The verdicts (the longest stage) beside the rest: none of them is timed.
     let (curves, verdicts) = std::thread::scope(|scope| {
         let verdicts = scope.spawn(|| {

@@ -70,9 +70,7 @@ impl RingBemSolver {
             let band = self.torus_band(eps, outer, n).map_err(|e| e.to_string())?;
             Ok(band.mismatch(0.0))
         };
-        let lo = eps * (1.0 + 2.0 * MIN_BAND_RATIO);
-        // Measured: c = 1.0001, 1.62, 3.60, 5.78 a at b = 0.9999, 0.6, 0.1, 0.01 a.
-        let hi = 3.0 + 3.0 * (1.0 / eps).ln();
+        let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
             .filter(|c| c.is_finite())
             .unwrap_or_else(|| outer_edge_guess(eps))
@@ -80,7 +78,7 @@ impl RingBemSolver {
         let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
         let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
             .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
-        self.torus_band(eps, root.x, n)?.sample(0.0)
+        Ok(self.torus_band(eps, root.x, n)?.sample(0.0))
     }
 
     /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
@@ -114,8 +112,9 @@ impl RingBemSolver {
         );
         let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
             .map_err(|e| search_error(e, &what, "centre", lo, hi))?;
-        self.torus_band(root.x - half_width, root.x + half_width, n)?
-            .sample(intensity)
+        Ok(self
+            .torus_band(root.x - half_width, root.x + half_width, n)?
+            .sample(intensity))
     }
 
     /// The torus's band of half-width `half_width` (units of `a`) with the stress intensity
@@ -207,7 +206,7 @@ impl RingBemSolver {
         let admissible = |b: f64, c: f64| {
             (MIN_CONTACT_RATIO..=super::MAX_CONTACT_RATIO).contains(&b)
                 && c > b * (1.0 + 2.0 * MIN_BAND_RATIO)
-                && c <= 3.0 + 3.0 * (1.0 / b).ln()
+                && c <= outer_edge_bound(b)
         };
         let (mut b, mut c) = start;
         if !(b.is_finite() && c.is_finite() && admissible(b, c)) {
@@ -244,10 +243,9 @@ impl RingBemSolver {
                     return None;
                 }
                 let (_, band) = residual(b, c)?;
-                let sample = band.sample(0.0).ok()?;
                 return Some(TorusTarget {
                     eps: b,
-                    sample,
+                    sample: band.sample(0.0),
                     bands,
                 });
             }
@@ -334,7 +332,7 @@ impl TorusBand {
     }
 
     /// The state at the depth of [`Self::depth`].
-    fn sample(self, intensity: f64) -> Result<ConcaveSample> {
+    fn sample(self, intensity: f64) -> ConcaveSample {
         let gamma1 = self.depth(intensity);
         let target = self.coefficient(intensity);
         let combine = |a: f64, b: f64| gamma1 * a + b;
@@ -350,12 +348,12 @@ impl TorusBand {
             rim_coefficient: combine(self.one.rim_coefficient, self.gap.rim_coefficient),
             inner_coefficient: target,
         };
-        Ok(ConcaveSample {
+        ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
             system: self.system,
             field,
-        })
+        }
     }
 }
 
@@ -375,6 +373,12 @@ fn search_error(e: RootError, what: &str, unknown: &str, lo: f64, hi: f64) -> cr
         )),
         RootError::Evaluation(m) => no_convergence(m),
     }
+}
+
+/// Largest outer edge searched for the inner edge `eps`, `3 + 3 ln(a/b)` (units of `a`): about
+/// twice the measured `c = 1.0001, 1.62, 3.60, 5.78 a` at `b = 0.9999, 0.6, 0.1, 0.01 a`.
+fn outer_edge_bound(eps: f64) -> f64 {
+    3.0 + 3.0 * (1.0 / eps).ln()
 }
 
 /// Starting outer edge for the inner edge `eps` (the search finds the exact edge): `a²/b` for

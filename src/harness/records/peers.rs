@@ -90,11 +90,12 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                     1.0
                 };
                 let load = GridLoad::Depth(depth);
-                let solved = match stored.grid_extent {
-                    Some(half_size) if stored.punch == PunchKind::Torus => {
+                // The torus's square is stored with it; every other punch's grid is [-a, a]².
+                let solved = match (stored.punch, stored.grid_extent) {
+                    (PunchKind::Torus, Some(half_size)) => {
                         grid_contact::solve_torus_on_square(stored.grid, half_size, load, 1e-11)
                     }
-                    _ if (stored.grid_extent.is_some()) != (stored.punch == PunchKind::Torus) => {
+                    (PunchKind::Torus, None) | (_, Some(_)) => {
                         Err(crate::error::Error::Unsupported {
                             method: crate::bem::grid::METHOD.into(),
                             reason: "grid_extent (the square's half-size) is stored for the \
@@ -102,7 +103,7 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                                 .into(),
                         })
                     }
-                    _ => grid_contact::solve(stored.punch, eps, stored.grid, load, 1e-11),
+                    (punch, None) => grid_contact::solve(punch, eps, stored.grid, load, 1e-11),
                 };
                 let s = solved.map_err(|e| {
                     crate::error::Error::file(
