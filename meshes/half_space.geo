@@ -13,16 +13,18 @@
 // line): graded toward the rim r = a (and r = b), hline along the contact line, growing linearly
 // away from it, so that a domain of R = 1e5 a costs only a few dozen element layers. With
 // bref >= 0, also hb + grading * distance to the point (bref, 0): refinement around the free inner
-// edge of a concave punch located on a coarser solve. With band > 0, also hband + grading *
-// distance to the surface segment [a - band, a] (a Box field one element thick, its transition
-// layer growing at the same slope): the rim band the pull-off simulation resolves its cohesive
-// zone in. Sizes are capped at hmax (0: no cap).
+// edge of a concave punch located on a coarser solve; with cref >= 0, likewise hc + grading *
+// distance to (cref, 0): the second free edge of a contact with two (the torus). With band > 0,
+// also hband + grading * distance to the surface segment [a - band, a] (a Box field one element
+// thick, its transition layer growing at the same slope): the rim band the pull-off simulation
+// resolves its cohesive zone in. Sizes are capped at hmax (0: no cap).
 //
 // Parameters (override with gmsh -setnumber NAME VALUE):
 DefineConstant[
   a = 1, b = 0, R = 1e5,
   hmin = 2e-3, hline = 2e-2, grading = 0.25,
   bref = -1, hb = 1e-3,
+  cref = -1, hc = 1e-3,
   band = 0, hband = 1e-3,
   split = 0,
   order = 1
@@ -113,7 +115,15 @@ ElseIf (band > 0)
 Else
   Field[5].FieldsList = {3, 4};
 EndIf
-Background Field = 5;
+If (cref >= 0)
+  Field[8] = MathEval;
+  Field[8].F = Sprintf("%g + %g * sqrt((x - %g)^2 + y^2)", hc, grading, cref);
+  Field[9] = Min;
+  Field[9].FieldsList = {5, 8};
+  Background Field = 9;
+Else
+  Background Field = 5;
+EndIf
 
 Mesh.MeshSizeExtendFromBoundary = 0;
 Mesh.MeshSizeFromPoints = 0;

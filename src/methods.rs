@@ -112,17 +112,6 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
                 .into(),
         });
     }
-    if !scene.punch.kind.has_rim() && method == Method::Fem {
-        return Err(Error::Unsupported {
-            method: method.name().into(),
-            reason: format!(
-                "the {}'s contact has two free edges, which the {} does not locate yet; the \
-                 ring BEM solves it (--method ring-bem or auto)",
-                scene.punch.kind,
-                method.name()
-            ),
-        });
-    }
     let solution = match method {
         Method::RingBem => solve_ring_bem(scene, &RingBemSolver::new()),
         Method::Reference => solve_reference(scene),
@@ -269,10 +258,12 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         far_field: options.far_field.unwrap_or(FarField::Boussinesq),
     };
     let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
+    let outer_radius = state.outer_edge.map_or(a, |c| c * a);
     if let Some(path) = &options.vtu {
         crate::discretisation::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
     }
     Ok(Solution {
+        outer_radius,
         error_estimate: state.error_estimate,
         unknowns: state.dofs,
         iterations: state.iterations,

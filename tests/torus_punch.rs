@@ -288,12 +288,12 @@ fn command_line_json_and_refusals() {
                 "torus",
                 "--tube-radius",
                 "1",
-                "--depth",
-                "1",
+                "--eps",
+                "0.5",
                 "--method",
                 "fem",
             ],
-            "two free edges",
+            "takes a depth or a force",
         ),
         (
             vec![

@@ -114,9 +114,9 @@ pub(crate) fn punch_kind(
     let kind = name.with_exponent(exponent).map_err(message)?;
     if !kind.has_rim() {
         return Err(format!(
-            "the {kind} (two free edges) is solved by `verify solve --punch torus` and `verify \
-             jkr --punch torus` (ring BEM) only; its pull-off simulation and convergence studies \
-             are not built yet"
+            "the {kind} (two free edges) is solved by `verify solve --punch torus` (ring BEM, \
+             FEM, grid BEM) and `verify jkr --punch torus`; its pull-off simulation and \
+             convergence studies are not built yet"
         ));
     }
     Ok(kind)

@@ -65,6 +65,34 @@ pub struct ContactSolution {
     pub displacement: Vec<f64>,
     /// The located edge's conditioning at the converged active set ([`Conditioning`]).
     pub conditioning: Conditioning,
+    /// Outer contact radius: the rim `r = 1` for a punch with one, else the free outer edge
+    /// located as the inner one is ([`ContactModel::with_free_edges`]).
+    pub outer_radius: f64,
+    /// Spacing of the contact-line nodes around the free outer edge (0 at a rim).
+    pub outer_node_spacing: f64,
+}
+
+impl ContactSolution {
+    /// The solution of a model whose length unit is `frame a` ([`ContactModel::with_free_edges`])
+    /// in units of `a`: radii and spacings times `frame`, forces times `frame²`; the
+    /// displacement stays the model's (its mesh's units), and the conditioning, a ratio of
+    /// lengths, is unchanged.
+    pub fn in_units_of_a(mut self, frame: f64) -> Self {
+        let area = frame * frame;
+        self.force *= area;
+        self.inner_radius *= frame;
+        self.inner_node_spacing *= frame;
+        self.outer_radius *= frame;
+        self.outer_node_spacing *= frame;
+        for (r, lambda) in &mut self.reactions {
+            *r *= frame;
+            *lambda *= area;
+        }
+        for r in &mut self.active_radii {
+            *r *= frame;
+        }
+        self
+    }
 }
 
 /// How a concave solution's located edge, or its full contact, moves with the depth, from one
@@ -122,6 +150,11 @@ pub struct ContactModel<'m> {
     /// Contact-line nodes sorted by `r`.
     pub contact_nodes: Vec<usize>,
     supports: Vec<bool>,
+    /// The mesh's length unit in units of `a`: the contact line `[0, 1]` of the mesh is
+    /// `[0, frame a]` ([`Self::with_free_edges`]; 1 for a punch with a rim).
+    frame: f64,
+    /// Whether the contact line ends at the punch's rim (its last node is a rim held in contact).
+    rim: bool,
 }
 
 fn fem_error(reason: String) -> Error {
@@ -160,7 +193,30 @@ impl<'m> ContactModel<'m> {
             mesh,
             contact_nodes,
             supports,
+            frame: 1.0,
+            rim: true,
         })
+    }
+
+    /// The model of a contact with two free edges (the torus): the mesh's contact line `[0, 1]`
+    /// is `[0, frame a]`, with no rim at its end. By the scaling of linear elasticity, a
+    /// displacement field `u(x)` of the problem in units of `a` is `frame u'(x / frame)` of the
+    /// problem on the mesh, so the gap shape on the mesh is `g(frame r') / frame`, a depth `d`
+    /// is `d / frame` and a force `F` is `F / frame²` (stresses are unchanged).
+    pub fn with_free_edges(mut self, frame: f64) -> Self {
+        self.frame = frame;
+        self.rim = false;
+        self
+    }
+
+    /// Gap shape at the contact node radius `r` of the mesh: `g(frame r) / frame`
+    /// ([`Self::with_free_edges`]; `g(r)` for a punch with a rim).
+    fn gap_at(&self, kind: PunchKind, r: f64) -> f64 {
+        if self.rim {
+            kind.gap_shape(r)
+        } else {
+            kind.gap_shape(self.frame * r) / self.frame
+        }
     }
 
     /// The fixed supports (far arc, axis): one flag per dof of the system.
@@ -210,6 +266,8 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             conditioning: Conditioning::default(),
+            outer_radius: 1.0,
+            outer_node_spacing: 0.0,
         })
     }
 
@@ -397,12 +455,20 @@ impl<'m> ContactModel<'m> {
     }
 
     /// The given start, else the nodes where the rigid punch would penetrate the undeformed
-    /// surface; never empty (the rim node always touches for `d > 0`).
+    /// surface; never empty (the rim node always touches for `d > 0`; with two free edges the
+    /// node nearest the punch's lowest point is taken).
     fn initial_active(&self, given: Option<Vec<bool>>, bound: &[f64]) -> Vec<bool> {
         let mut active = given.unwrap_or_else(|| bound.iter().map(|&b| b < 0.0).collect());
         if !active.iter().any(|&a| a) {
-            if let Some(last) = active.last_mut() {
-                *last = true;
+            // The node that comes nearest the punch: the rim's, or with two free edges the one
+            // nearest the punch's lowest point (the smallest bound).
+            let nearest = if self.rim {
+                Some(active.len().saturating_sub(1))
+            } else {
+                (0..bound.len()).min_by(|&i, &j| bound[i].total_cmp(&bound[j]))
+            };
+            if let Some(node) = nearest.filter(|&n| n < active.len()) {
+                active[node] = true;
             }
         }
         active
@@ -426,7 +492,7 @@ impl<'m> ContactModel<'m> {
     fn bound(&self, kind: PunchKind, depth: f64) -> Vec<f64> {
         self.contact_nodes
             .iter()
-            .map(|&n| -depth + kind.gap_shape(self.mesh.nodes[n][0]))
+            .map(|&n| -depth + self.gap_at(kind, self.mesh.nodes[n][0]))
             .collect()
     }
 
@@ -458,7 +524,7 @@ impl<'m> ContactModel<'m> {
         // iteration cost 11 factorisations on one model (measured). The protected zone is
         // 1 % of the ring's width; what negative reaction remains there is reported in the
         // complementarity residual.
-        if let Some(first) = next.iter().position(|&a| a) {
+        if let Some(first) = next.iter().position(|&a| a).filter(|_| self.rim) {
             let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
             let zone = 1.0 - 0.01 * (1.0 - r(first));
             for (i, a) in next.iter_mut().enumerate().skip(first) {
@@ -499,6 +565,11 @@ impl<'m> ContactModel<'m> {
         }
         let inner_radius = self.locate_inner_radius(active, gaps);
         let inner_node_spacing = self.spacing_at(active);
+        let (outer_radius, outer_node_spacing) = if self.rim {
+            (1.0, 0.0)
+        } else {
+            self.locate_outer_edge(active, gaps)
+        };
         let force = reactions
             .iter()
             .zip(active)
@@ -521,6 +592,8 @@ impl<'m> ContactModel<'m> {
             reactions,
             displacement: u,
             conditioning: Conditioning::default(),
+            outer_radius,
+            outer_node_spacing,
         }
     }
 
@@ -537,7 +610,7 @@ impl<'m> ContactModel<'m> {
         let shape = self
             .contact_nodes
             .iter()
-            .map(|&n| kind.gap_shape(self.mesh.nodes[n][0]))
+            .map(|&n| self.gap_at(kind, self.mesh.nodes[n][0]))
             .collect();
         BandedSystem::new(
             solver,
@@ -563,75 +636,52 @@ impl<'m> ContactModel<'m> {
     }
 
     /// The root of [`Self::locate_inner_radius`]'s extrapolation before it is clamped to the
-    /// element gap between the last free and the first active node (`low`, `high`).
+    /// element gap between the last free and the first active node (`low`, `high`). With two
+    /// free edges, the inner edge of the active ring's nodes up to its outermost.
     fn extrapolated_inner_radius(&self, active: &[bool], gaps: &[f64]) -> Extrapolated {
-        let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
-        let q = |i: usize| gaps[i].max(0.0).powf(2.0 / 3.0);
-        // Innermost node of the active ring that reaches the rim.
-        let mut first = active.len() - 1;
-        while first > 0 && active[first - 1] {
-            first -= 1;
-        }
-        // A node on the axis carries no contact area (for quadratic elements even its consistent
-        // reaction vanishes: the first moment of a vertex shape function is zero there), so a free
-        // axis node alone does not open a hole.
-        if first == 0 || (first == 1 && r(0) == 0.0) {
-            return Extrapolated::NoHole;
-        }
-        let (i1, r_active) = (first - 1, r(first));
-        let between = Extrapolated::Between(r(i1), r_active);
-        // Cubic elements: the last free node lies in the element cut by the edge, where the
-        // cubic cannot follow the `(b - r)^{3/2}` gap; its `q/(b - r)` was measured 30 % off
-        // (the nodes before it: 0.1-1 %; P2's last node: 1.4 %), so the fit starts one node
-        // further out (location error 1.4e-6 -> 8.5e-8 on the adapted level-2 cone model).
-        let skip = usize::from(self.mesh.degree == Degree::Cubic && i1 >= 3);
-        let end = i1 - skip;
-        if end == 0 {
-            return between;
-        }
-        let linear = {
-            let (q1, q2) = (q(end), q(end - 1));
-            if q2 <= q1 {
-                return between;
-            }
-            r(end) + q1 * (r(end) - r(end - 1)) / (q2 - q1)
-        };
-        let estimate = if end >= 2 {
-            // Newton form of the quadratic through (r3, q3), (r2, q2), (r1, q1); root near r1.
-            let (x1, x2, x3) = (r(end), r(end - 1), r(end - 2));
-            let (y1, y2, y3) = (q(end), q(end - 1), q(end - 2));
-            let d12 = (y1 - y2) / (x1 - x2);
-            let d23 = (y2 - y3) / (x2 - x3);
-            let c = (d12 - d23) / (x1 - x3);
-            // q(x) = y1 + (x - x1) (d12 + c (x - x2)) = 0, solved for t = x - x1 by Newton from
-            // the linear estimate (the quadratic term is a small correction).
-            let mut t = linear - x1;
-            for _ in 0..20 {
-                let value = y1 + t * (d12 + c * (t + x1 - x2));
-                let slope = d12 + c * (2.0 * t + x1 - x2);
-                if slope == 0.0 {
-                    break;
-                }
-                let step = value / slope;
-                t -= step;
-                if step.abs() < 1e-15 {
-                    break;
-                }
-            }
-            let root = x1 + t;
-            if root.is_finite() && root >= x1 && root <= r_active {
-                root
-            } else {
-                linear
-            }
+        let radii: Vec<f64> = self
+            .contact_nodes
+            .iter()
+            .map(|&n| self.mesh.nodes[n][0])
+            .collect();
+        let end = if self.rim {
+            active.len()
         } else {
-            linear
+            active
+                .iter()
+                .rposition(|&a| a)
+                .map_or(active.len(), |i| i + 1)
         };
-        Extrapolated::Root {
-            root: estimate,
-            low: r(i1),
-            high: r_active,
+        let cubic = self.mesh.degree == Degree::Cubic;
+        extrapolated_edge(&radii[..end], &active[..end], &gaps[..end], cubic)
+    }
+
+    /// The free outer edge and the node spacing there ([`Self::with_free_edges`]): the inner
+    /// edge's extrapolation ([`extrapolated_edge`]) on the contact line mirrored about the axis
+    /// (`r -> -r`, order reversed) from the active ring's innermost node outwards. The
+    /// line's end `r = 1` when its last node is in contact (no free node beyond: the caller
+    /// widens the line).
+    fn locate_outer_edge(&self, active: &[bool], gaps: &[f64]) -> (f64, f64) {
+        let radius = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
+        let (Some(first), Some(last)) = (
+            active.iter().position(|&a| a),
+            active.iter().rposition(|&a| a),
+        ) else {
+            return (0.0, 0.0);
+        };
+        if last + 1 >= active.len() {
+            return (radius(last), 0.0);
         }
+        let mirrored = |values: &[f64]| values[first..].iter().rev().copied().collect::<Vec<_>>();
+        let radii: Vec<f64> = (first..active.len()).rev().map(|i| -radius(i)).collect();
+        let flags: Vec<bool> = active[first..].iter().rev().copied().collect();
+        let cubic = self.mesh.degree == Degree::Cubic;
+        let edge = match extrapolated_edge(&radii, &flags, &mirrored(gaps), cubic) {
+            Extrapolated::NoHole => radius(last),
+            Extrapolated::Between(low, high) => -0.5 * (low + high),
+            Extrapolated::Root { root, low, high } => -root.clamp(low, high),
+        };
+        (edge, radius(last + 1) - radius(last))
     }
 
     /// Distance between the last free and the first active contact node.
@@ -653,6 +703,13 @@ impl<'m> ContactModel<'m> {
         depth: f64,
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>, bool)> {
+        if !self.rim {
+            // Two free edges: the band's core (every node above a radius) does not apply; one
+            // factorisation per active-set change.
+            let (solution, active) =
+                self.active_set_loop(system, kind, depth, initial_active, false)?;
+            return Ok((solution, active, false));
+        }
         let mut warm = initial_active;
         if let Some(start) = warm.clone() {
             let mut start = start;
@@ -921,6 +978,81 @@ impl<'m> ContactModel<'m> {
             .iter()
             .map(|&n| self.mesh.nodes[n][0] >= inner_radius)
             .collect()
+    }
+}
+
+/// The inner edge of the ring of active nodes that reaches the end of `radii` (ascending), from
+/// the free side: near a non-adhesive edge the gap grows like `(b - r)^{3/2}`, so
+/// `q = gap^{2/3}` is nearly linear in `r`; `q` is interpolated by a quadratic through the three
+/// free nodes next to the innermost active one (a line if only two exist), and its root is
+/// returned with the element gap it lies in ([`ContactModel::locate_inner_radius`] clamps it).
+fn extrapolated_edge(radii: &[f64], active: &[bool], gaps: &[f64], cubic: bool) -> Extrapolated {
+    let r = |i: usize| radii[i];
+    let q = |i: usize| gaps[i].max(0.0).powf(2.0 / 3.0);
+    // Innermost node of the active ring that reaches the rim.
+    let mut first = active.len() - 1;
+    while first > 0 && active[first - 1] {
+        first -= 1;
+    }
+    // A node on the axis carries no contact area (for quadratic elements even its consistent
+    // reaction vanishes: the first moment of a vertex shape function is zero there), so a free
+    // axis node alone does not open a hole.
+    if first == 0 || (first == 1 && r(0) == 0.0) {
+        return Extrapolated::NoHole;
+    }
+    let (i1, r_active) = (first - 1, r(first));
+    let between = Extrapolated::Between(r(i1), r_active);
+    // Cubic elements: the last free node lies in the element cut by the edge, where the
+    // cubic cannot follow the `(b - r)^{3/2}` gap; its `q/(b - r)` was measured 30 % off
+    // (the nodes before it: 0.1-1 %; P2's last node: 1.4 %), so the fit starts one node
+    // further out (location error 1.4e-6 -> 8.5e-8 on the adapted level-2 cone model).
+    let skip = usize::from(cubic && i1 >= 3);
+    let end = i1 - skip;
+    if end == 0 {
+        return between;
+    }
+    let linear = {
+        let (q1, q2) = (q(end), q(end - 1));
+        if q2 <= q1 {
+            return between;
+        }
+        r(end) + q1 * (r(end) - r(end - 1)) / (q2 - q1)
+    };
+    let estimate = if end >= 2 {
+        // Newton form of the quadratic through (r3, q3), (r2, q2), (r1, q1); root near r1.
+        let (x1, x2, x3) = (r(end), r(end - 1), r(end - 2));
+        let (y1, y2, y3) = (q(end), q(end - 1), q(end - 2));
+        let d12 = (y1 - y2) / (x1 - x2);
+        let d23 = (y2 - y3) / (x2 - x3);
+        let c = (d12 - d23) / (x1 - x3);
+        // q(x) = y1 + (x - x1) (d12 + c (x - x2)) = 0, solved for t = x - x1 by Newton from
+        // the linear estimate (the quadratic term is a small correction).
+        let mut t = linear - x1;
+        for _ in 0..20 {
+            let value = y1 + t * (d12 + c * (t + x1 - x2));
+            let slope = d12 + c * (2.0 * t + x1 - x2);
+            if slope == 0.0 {
+                break;
+            }
+            let step = value / slope;
+            t -= step;
+            if step.abs() < 1e-15 {
+                break;
+            }
+        }
+        let root = x1 + t;
+        if root.is_finite() && root >= x1 && root <= r_active {
+            root
+        } else {
+            linear
+        }
+    } else {
+        linear
+    };
+    Extrapolated::Root {
+        root: estimate,
+        low: r(i1),
+        high: r_active,
     }
 }
 

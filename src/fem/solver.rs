@@ -39,6 +39,8 @@ use crate::punch::PunchKind;
 use crate::sparse::constrained::ConstrainedCholesky;
 use crate::sparse::{analyse_beside, Analysis, Pattern};
 
+mod free_edges;
+
 /// Name of the method.
 pub const METHOD: &str = "fem";
 /// Default relative tolerance of the FEM.
@@ -167,6 +169,9 @@ pub struct FemState {
     pub edge_conditioning: Option<f64>,
     /// The sparse Cholesky backend that factorised the final model.
     pub linear_solver: crate::sparse::Backend,
+    /// A contact with two free edges (the torus): the located outer edge `c/a`; `None` where
+    /// the contact ends at the rim.
+    pub outer_edge: Option<f64>,
 }
 
 /// Mesh and displacement `(u_r, u_z)` per node of a solved model.
@@ -311,6 +316,9 @@ struct ModelSpec {
     /// Where the scene's contact line starts, `b/a` (0 for a closed one).
     contact_start: f64,
     linear_solver: crate::sparse::Backend,
+    /// The mesh's length unit in units of `a`: 1, except for a contact with two free edges,
+    /// whose mesh's contact line `[0, 1]` is `[0, frame a]` ([`ContactModel::with_free_edges`]).
+    frame: f64,
 }
 
 /// Physical groups every model needs.
@@ -540,7 +548,7 @@ fn solve_model(
     tolerance: f64,
 ) -> Result<(ContactSolution, f64, f64)> {
     let (warm, depth_guess) = match warm {
-        None if kind.is_concave() && model.mesh.degree != Degree::Linear => {
+        None if kind.is_concave() && kind.has_rim() && model.mesh.degree != Degree::Linear => {
             let start = Instant::now();
             let located = linear_edge_locator(model, kind, eps, load, depth_guess, tolerance);
             model.timings.edge_presolve = start.elapsed().as_secs_f64();
@@ -558,7 +566,24 @@ fn solve_model(
     )?;
     solver.refine_solutions(tolerance < REFINE_BELOW_TOLERANCE);
     let start = Instant::now();
-    let contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
+    let mut contact = ContactModel::new(&model.mesh, model.stiffness.nrows())?;
+    if !kind.has_rim() {
+        let frame = model.spec.frame;
+        contact = contact.with_free_edges(frame);
+        let result = solve_free_edges_model(
+            &contact,
+            &mut solver,
+            kind,
+            load,
+            depth_guess,
+            frame,
+            tolerance,
+        );
+        model.timings.solve = start.elapsed().as_secs_f64();
+        model.timings.factorisations = solver.factorisations;
+        model.timings.factorisation = solver.factorisation_seconds;
+        return result;
+    }
     if kind == PunchKind::FlatAnnulus || kind == PunchKind::Flat {
         let start_line = contact.contact_line_start();
         if (start_line - eps).abs() > 1e-9 {
@@ -607,6 +632,47 @@ fn solve_model(
     model.timings.factorisations = solver.factorisations;
     model.timings.factorisation = solver.factorisation_seconds;
     Ok(result)
+}
+
+/// A contact with two free edges on a model whose length unit is `frame a`
+/// ([`ContactModel::with_free_edges`]): the depth `d/h` and the force `F/(2 E* h a)` of the
+/// scene go in as `d / frame` and `F / frame²`, and the solution, depth and force come back in
+/// units of `a` (`(s, γ1, γ2)` as [`solve_model`] returns them).
+fn solve_free_edges_model(
+    contact: &ContactModel,
+    solver: &mut ConstrainedCholesky,
+    kind: PunchKind,
+    load: FemLoad,
+    depth_guess: Option<f64>,
+    frame: f64,
+    tolerance: f64,
+) -> Result<(ContactSolution, f64, f64)> {
+    let mut system = contact.banded_system(solver, kind, f64::INFINITY);
+    let (s, depth) = match load {
+        FemLoad::ConcaveDepth(depth) => {
+            let s = contact.concave_with_sensitivity(&mut system, kind, depth / frame, None)?;
+            (s, depth)
+        }
+        FemLoad::ConcaveForce(target) => {
+            let (s, depth) = contact.concave_at_force(
+                &mut system,
+                kind,
+                2.0 * target / (frame * frame),
+                depth_guess.unwrap_or(target) / frame,
+                None,
+                tolerance,
+            )?;
+            (s, depth * frame)
+        }
+        FemLoad::Flat => {
+            return Err(fem_error(
+                "a flat punch has a rim: it is not solved as a contact with two free edges".into(),
+            ))
+        }
+    };
+    let s = s.in_units_of_a(frame);
+    let gamma2 = 0.5 * s.force;
+    Ok((s, depth, gamma2))
 }
 
 /// Half-width of the band around the edge the linear locator found, in contact-node spacings
@@ -725,6 +791,7 @@ fn prepare_checked(
         far_field: options.far_field,
         contact_start,
         linear_solver: options.linear_solver,
+        frame: 1.0,
     };
     let model = prepare(provided, spec)?;
     check_domain(&model, domain_tolerance)?;
@@ -796,6 +863,7 @@ fn finish(
         timings: model.timings,
         edge_conditioning,
         linear_solver: model.symbolic.backend(),
+        outer_edge: None,
     }
 }
 
@@ -1077,14 +1145,9 @@ impl LevelResult {
     /// `q` from `previous`, so about `|Δeps| / (q - 1)` (Richardson), never below
     /// [`INNER_RADIUS_BOUND`] of the spacing.
     fn eps_estimate(&self, previous: &LevelResult) -> f64 {
-        let ratio = previous.spacing / self.spacing;
-        let eps_change = (self.values.eps - previous.values.eps).abs();
-        let bound = self.edge_bound * self.spacing;
-        if self.spacing > 0.0 && ratio > 1.5 {
-            (eps_change / (ratio - 1.0)).max(bound)
-        } else {
-            eps_change.max(bound)
-        }
+        let eps_change = self.values.eps - previous.values.eps;
+        free_edges::edge_error(eps_change, previous.spacing, self.spacing)
+            .max(self.edge_bound * self.spacing)
     }
 }
 
@@ -1186,6 +1249,9 @@ pub fn solve_on_mesh(
 pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> Result<FemState> {
     let start = Instant::now();
     check_tolerance(options.tolerance)?;
+    if !kind.has_rim() {
+        return free_edges::solve(kind, load, options);
+    }
     if let Some(path) = &options.mesh {
         // The solution's hash is that of the bytes the solve reads (`PreparedModel::mesh_sha256`),
         // computed beside the parse; a user's mesh is not hashed beforehand.

@@ -84,7 +84,7 @@ fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: f64)
 /// the ring BEM at `--tol 1e-3`): the flat annulus `b/a = 0.9999` had a force error of 9e-3 under
 /// an estimate of 3e-5, the cone at `d = 0.003 h` 2.4e-3 under 6.2e-4 and the sphere at
 /// `d = 0.003 h` 4.5e-3 under 1.2e-4, every level of the ladder wrong alike.
-fn ring_width_scale(width: f64) -> f64 {
+pub(crate) fn ring_width_scale(width: f64) -> f64 {
     (width / NARROW_RING_WIDTH).clamp(0.0, 1.0)
 }
 
@@ -177,6 +177,17 @@ pub enum MeshRequest {
         /// The solve the mesh is made for (sizes at the edges follow its tolerance), if any.
         target: Option<SizeTarget>,
     },
+    /// Level `level` for a contact with two free edges (the torus), in the mesh's units (the
+    /// contact line `[0, 1]`): refined around each located edge `(radius, uncertainty)`
+    /// ([`free_edges_parameters`]).
+    FreeEdges {
+        level: i32,
+        edges: [(f64, f64); 2],
+        /// The solve the mesh is made for, its tolerance in the mesh's units.
+        target: SizeTarget,
+        /// [`ring_width_scale`] of the contact's width.
+        ring_scale: f64,
+    },
 }
 
 /// What a generated mesh is made for: the relative tolerance and the element degree of the solve.
@@ -202,6 +213,7 @@ impl MeshRequest {
                 level,
                 ..
             } => format!("adapted-{contact_start}-L{level}"),
+            MeshRequest::FreeEdges { level, .. } => format!("free-edges-L{level}"),
         }
     }
 
@@ -307,11 +319,8 @@ pub(crate) fn adapted_parameters(
     let degree = target.map_or(2.0, |t| t.degree as f64);
     let ring_scale = ring_width_scale(ring_width(contact_start, free_edge, edge_uncertainty));
     let hmin = wanted_rim_size(level, target, ring_scale).max(GMSH_MIN_ELEMENT_SIZE);
-    let edge_floor = match target {
-        Some(t) => 0.75 * degree * t.tolerance * ring_scale,
-        None => 1e-3 * 0.1f64.powi(level.max(0)),
-    };
-    let window = grading * edge_uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1();
+    let edge_floor = free_edge_floor(level, target, ring_scale);
+    let window = free_edge_window(grading, degree, edge_uncertainty);
     // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
     // of a quarter of its radius. Full contact (`b̃ = 0`) has no hole to keep elements in: its
     // axis refinement stays at the floor (else each level's window, a fraction of the last
@@ -346,6 +355,66 @@ pub(crate) fn adapted_parameters(
         p.push(("hb".to_string(), hb));
     }
     p
+}
+
+/// Smallest element size asked at a free edge for `target` (module documentation of
+/// [`adapted_parameters`]): `0.75 p · tol` times the ring's `ring_scale`, or without a target
+/// `1e-3 · 10^-k`.
+fn free_edge_floor(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f64 {
+    match target {
+        Some(t) => 0.75 * t.degree as f64 * t.tolerance * ring_scale,
+        None => 1e-3 * 0.1f64.powi(level.max(0)),
+    }
+}
+
+/// Element size at a free edge known to within `uncertainty` that puts
+/// [`EDGE_WINDOW_NODES`] contact nodes of degree `p` in the window of that width:
+/// `hb = g δ / (exp(N g / p) - 1)`.
+fn free_edge_window(grading: f64, degree: f64, uncertainty: f64) -> f64 {
+    grading * uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1()
+}
+
+/// `gmsh -setnumber` parameters of level `level` for a contact with two free edges (the torus),
+/// in the mesh's units (the contact line `[0, 1]`): the adapted family's grading, no refinement
+/// at the line's end `r = 1` (not an edge of the contact), and around each located edge
+/// (`inner`, `outer`, known to within `inner_uncertainty`, `outer_uncertainty`) the size of
+/// [`free_edge_window`], no smaller than [`free_edge_floor`] for `target` (whose tolerance the
+/// caller states in the mesh's units) and `ring_scale`, nor than gmsh shapes well.
+pub(crate) fn free_edges_parameters(
+    level: i32,
+    edges: [(f64, f64); 2],
+    target: SizeTarget,
+    ring_scale: f64,
+) -> Vec<(String, f64)> {
+    let grading = adapted_grading(level);
+    let degree = target.degree as f64;
+    let floor = free_edge_floor(level, Some(target), ring_scale);
+    let size = |(edge, uncertainty): (f64, f64)| {
+        let smallest = GMSH_MIN_ELEMENT_SIZE * edge.max(1e-2);
+        let floor = if edge > 0.0 {
+            floor.min(0.25 * edge)
+        } else {
+            floor
+        };
+        free_edge_window(grading, degree, uncertainty)
+            .max(floor)
+            .clamp(smallest, 1e-2)
+    };
+    let [inner, outer] = edges;
+    vec![
+        ("a".to_string(), 1.0),
+        ("b".to_string(), 0.0),
+        ("R".to_string(), ADAPTED_DOMAIN_RADIUS),
+        ("split".to_string(), 2.0),
+        ("hmin".to_string(), 1e-2),
+        ("hline".to_string(), 10.0),
+        ("grading".to_string(), grading),
+        ("order".to_string(), 1.0),
+        ("bref".to_string(), inner.0),
+        ("hb".to_string(), size(inner)),
+        ("cref".to_string(), outer.0),
+        ("hc".to_string(), size(outer)),
+    ]
 }
 
 /// Provide the mesh of `request` (committed file, cache, or gmsh); `why` names the scene for the
@@ -389,6 +458,15 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
                 adapted_corner_refinement(start, level, edge, uncertainty, target);
             Ok(provided)
         }
+        MeshRequest::FreeEdges {
+            level,
+            edges,
+            target,
+            ring_scale,
+        } => generate(
+            &free_edges_parameters(*level, *edges, *target, *ring_scale),
+            why,
+        ),
     }
 }
 
@@ -420,8 +498,9 @@ fn ends_with_a_section_end(path: &Path) -> bool {
 
 /// The parameters `meshes/half_space.geo` declares (its `DefineConstant` block): the names
 /// [`parse_parameters`] accepts.
-const GEO_PARAMETERS: [&str; 12] = [
-    "a", "b", "R", "hmin", "hline", "grading", "bref", "hb", "band", "hband", "split", "order",
+const GEO_PARAMETERS: [&str; 14] = [
+    "a", "b", "R", "hmin", "hline", "grading", "bref", "hb", "cref", "hc", "band", "hband",
+    "split", "order",
 ];
 
 /// Read `NAME=VALUE,NAME=VALUE,...` (the form [`format_parameters`] writes and stored results
@@ -476,7 +555,7 @@ fn check_geometry(parameters: &[(String, f64)]) -> std::result::Result<(), Strin
             "need 0 <= b < a < R (got b = {b}, a = {a}, R = {r})"
         ));
     }
-    for name in ["hmin", "hline", "grading", "hb", "hband"] {
+    for name in ["hmin", "hline", "grading", "hb", "hc", "hband"] {
         if let Some((_, v)) = parameters.iter().find(|(n, _)| n == name) {
             if *v <= 0.0 {
                 return Err(format!("{name} must be positive (got {v})"));

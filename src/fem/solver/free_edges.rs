@@ -1,0 +1,267 @@
+//! The FEM's ladder for a contact with two free edges (the torus): the annulus `b <= r <= c`
+//! has no rim, both edges are found by the solution.
+//!
+//! **The model.** The committed and adapted meshes have a contact line `[0, 1]` in their own
+//! length unit. The torus's contact can reach beyond `r = a`, so its model takes the mesh's unit
+//! as `frame a` ([`ContactModel::with_free_edges`]): the line is `[0, frame a]`, with `frame`
+//! `1.5 (1 + √(d/h))` (beyond the rigid profile's intersection with the surface, which the
+//! contact never passes) and doubled when the located contact reaches the line's end.
+//!
+//! **The ladder**, through the same phases as the one-edge ladder (mesh, model, contact,
+//! estimate, decision): a first model on the adapted level that can meet the tolerance locates
+//! both edges ([`MeshRequest::FreeEdges`], refined around the rigid intersection); then the
+//! same level refined around the located edges, and one level finer at a time, each refined
+//! around the edges of the model below it, within their estimated errors. Each rung's estimate
+//! against the one below:
+//!
+//! - the force-like outputs (`γ2` under depth control, `γ1` and `γ2` under force control): the
+//!   grading step's Richardson estimate ([`grading_step_estimate`]), the same as for one edge;
+//! - each edge: its change between the rungs over the spacing's ratio less one (first order in
+//!   the node spacing there), never below [`INNER_RADIUS_BOUND`] of the spacing, and never below
+//!   the force estimate (the field's error moves an edge as a depth error would, by `κ` times
+//!   it, `κ = |db/dd| d`: measured 0.005-0.19 for the inner edge at `d/h` = 1e-3 ... 10);
+//! - the components finer models do not reduce: the domain's truncation and
+//!   [`unresolved_component`].
+//!
+//! The answer is the first rung whose largest estimate meets the tolerance.
+
+use std::time::Instant;
+
+use super::{
+    fem_error, finish, first_adapted_level, grading_step_estimate, prepare_checked, solve_model,
+    unresolved_component, FemLoad, FemOptions, FemState, INNER_RADIUS_BOUND, MAX_LADDER_UNKNOWNS,
+    METHOD,
+};
+use crate::error::{Error, Result};
+use crate::fem::contact::ContactSolution;
+use crate::heartbeat::Heartbeat;
+use crate::mesh::provider::{self, MeshRequest, SizeTarget};
+use crate::punch::PunchKind;
+
+/// Times the contact line is doubled when the located contact reaches its end.
+const MAX_LINE_WIDENINGS: usize = 3;
+
+/// The depth `d/h` the first model starts from: the scene's under depth control; under force
+/// control `8 γ2 / π²`, the depth whose rigid intersection is twice the half-width
+/// `w = √(2 γ2) / π` of the narrow torus's plane-strain Hertz contact (`F/(2π a) = π E* w²/(4ρ)`
+/// with `ρ = a²/(2h)`), which the contact is narrower than.
+fn depth_guess(load: FemLoad) -> f64 {
+    match load {
+        FemLoad::ConcaveForce(gamma2) => 8.0 * gamma2.max(0.0) / std::f64::consts::PI.powi(2),
+        FemLoad::ConcaveDepth(depth) => depth.max(0.0),
+        FemLoad::Flat => 0.0,
+    }
+}
+
+/// The mesh's unit `frame a` for a load: `1.5 (1 + √(d/h))` for the [`depth_guess`] (the rigid
+/// profile `h (1 - r/a)²` meets the surface at `r = a (1 + √(d/h))`, and the contact lies
+/// inside), at least 2 (the line is widened if the contact reaches its end).
+fn initial_frame(load: FemLoad) -> f64 {
+    (1.5 * (1.0 + depth_guess(load).sqrt())).max(2.0)
+}
+
+/// Edges `(radius, uncertainty)` of the first model, in units of `a`: the rigid profile's
+/// intersection with the surface at the [`depth_guess`], `a (1 ± √(d/h))`, each known to within
+/// half its distance from `a`.
+fn rigid_edges(load: FemLoad) -> [(f64, f64); 2] {
+    let half_width = depth_guess(load).sqrt();
+    [
+        ((1.0 - half_width).max(0.0), 0.5 * half_width),
+        (1.0 + half_width, 0.5 * half_width),
+    ]
+}
+
+/// Error of a located edge that changed by `change` from a model whose node spacing there was
+/// `previous_spacing` to one with `spacing`: first order in the spacing, `|Δ| / (q - 1)` for a
+/// ratio `q > 1.5`, else `|Δ|`, never below [`INNER_RADIUS_BOUND`] of the spacing.
+pub(super) fn edge_error(change: f64, previous_spacing: f64, spacing: f64) -> f64 {
+    let ratio = previous_spacing / spacing;
+    let bound = INNER_RADIUS_BOUND * spacing;
+    if spacing > 0.0 && ratio > 1.5 {
+        (change.abs() / (ratio - 1.0)).max(bound)
+    } else {
+        change.abs().max(bound)
+    }
+}
+
+/// What one model found, in units of `a`.
+#[derive(Clone, Copy, Debug)]
+struct Rung {
+    level: i32,
+    gamma1: f64,
+    gamma2: f64,
+    edges: [f64; 2],
+    spacings: [f64; 2],
+    /// Estimated errors of the edges (for the next mesh's refinement).
+    edge_errors: [f64; 2],
+    /// Only located the edges for the next mesh (no estimate against it).
+    locator: bool,
+}
+
+/// How one climb ended.
+enum Climb {
+    Solved(Box<FemState>),
+    /// The located contact reached the end of the mesh's contact line: widen it.
+    LineTooShort,
+}
+
+/// Solve a punch whose contact has two free edges (the torus) with the FEM (module
+/// documentation).
+pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Result<FemState> {
+    let start = Instant::now();
+    if options.mesh.is_some() {
+        return Err(Error::Unsupported {
+            method: METHOD.into(),
+            reason: format!(
+                "the {kind}'s meshes are made for the scene (their contact line is scaled to the \
+                 load): --mesh applies to the punches with a rim"
+            ),
+        });
+    }
+    if matches!(load, FemLoad::Flat) {
+        return Err(fem_error(format!("the {kind} is not a flat punch")));
+    }
+    provider::find_project_root()?;
+    let progress = Heartbeat::start("fem");
+    let mut frame = initial_frame(load);
+    for _ in 0..=MAX_LINE_WIDENINGS {
+        match climb(kind, load, options, frame, start, &progress)? {
+            Climb::Solved(state) => return Ok(*state),
+            Climb::LineTooShort => frame *= 2.0,
+        }
+    }
+    Err(fem_error(format!(
+        "the {kind}'s contact reached the end of a contact line {} a long, widened \
+         {MAX_LINE_WIDENINGS} times",
+        crate::error::show(frame / 2.0)
+    )))
+}
+
+/// Climb the adapted levels on a contact line `[0, frame a]` until a rung's estimate meets the
+/// tolerance.
+fn climb(
+    kind: PunchKind,
+    load: FemLoad,
+    options: &FemOptions,
+    frame: f64,
+    start: Instant,
+    progress: &Heartbeat,
+) -> Result<Climb> {
+    let tolerance = options.tolerance;
+    let degree = options.degree;
+    let why = format!("the FEM for the {kind} at tolerance {tolerance:e}");
+    let target = SizeTarget {
+        tolerance: tolerance / frame,
+        degree: degree as usize,
+    };
+    let mut level = first_adapted_level(degree, tolerance);
+    let mut edges = rigid_edges(load);
+    let mut previous: Option<Rung> = None;
+    let mut last_change: Option<f64> = None;
+    let mut iterations = 0;
+    let mut last_estimate = f64::INFINITY;
+    let mut last_mesh = String::new();
+    while level <= provider::ADAPTED_MAX_LEVEL {
+        let locator = previous.is_none();
+        let request = MeshRequest::FreeEdges {
+            level,
+            edges: edges.map(|(r, uncertainty)| (r / frame, uncertainty / frame)),
+            target,
+            ring_scale: provider::ring_width_scale(edges[1].0 - edges[0].0),
+        };
+        progress.set(format!(
+            "level {level}: making its mesh (gmsh, or the cache)"
+        ));
+        let provided = provider::provide(&request, &why)?;
+        let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
+        model.spec.frame = frame;
+        last_mesh = model.path.clone();
+        progress.set(format!(
+            "solving {} unknowns on {last_mesh}",
+            model.stiffness.nrows()
+        ));
+        let depth_guess = Some(previous.map_or(depth_guess(load), |p| p.gamma1));
+        let (s, gamma1, gamma2) =
+            solve_model(&mut model, kind, 0.0, load, None, depth_guess, tolerance)?;
+        iterations += s.iterations;
+        if s.outer_node_spacing == 0.0 {
+            return Ok(Climb::LineTooShort);
+        }
+        check_open(kind, &s, &last_mesh)?;
+        let spacings = [s.inner_node_spacing, s.outer_node_spacing];
+        let located = [s.inner_radius, s.outer_radius];
+        let mut rung = Rung {
+            level,
+            gamma1,
+            gamma2,
+            edges: located,
+            spacings,
+            edge_errors: spacings.map(|h| 2.0 * h),
+            locator,
+        };
+        if let Some(below) = previous.filter(|p| !p.locator) {
+            let relative = |x: f64, y: f64| (x - y).abs() / x.abs();
+            let change = relative(gamma1, below.gamma1).max(relative(gamma2, below.gamma2));
+            let force = if level == below.level + 1 {
+                let estimate = grading_step_estimate(degree, change, last_change);
+                last_change = Some(change);
+                estimate
+            } else {
+                change
+            };
+            for k in 0..2 {
+                rung.edge_errors[k] =
+                    edge_error(located[k] - below.edges[k], below.spacings[k], spacings[k])
+                        .max(force);
+            }
+            let floor = model.truncation_bias() + unresolved_component(located[0]);
+            let total = force.max(rung.edge_errors[0]).max(rung.edge_errors[1]) + floor;
+            if total <= tolerance {
+                let state = (located[0], None, Some(gamma1), Some(gamma2));
+                let mut state = finish(&model, s, state, Some(total), iterations, degree, start);
+                state.outer_edge = Some(located[1]);
+                return Ok(Climb::Solved(Box::new(state)));
+            }
+            last_estimate = total;
+            let unknowns = model.stiffness.nrows();
+            if unknowns > MAX_LADDER_UNKNOWNS || floor > 0.5 * tolerance {
+                return Err(fem_error(format!(
+                    "the model {last_mesh} ({unknowns} unknowns) reaches an estimated error of \
+                     {total:.1e}, above the tolerance {tolerance:.1e}, and finer models would be \
+                     too large or cannot reduce it; loosen --tol or use the ring BEM"
+                )));
+            }
+            progress.set(format!(
+                "{unknowns} unknowns on {last_mesh} gave an estimate of {total:.1e}, above the \
+                 tolerance {tolerance:.1e}: refining"
+            ));
+        }
+        // The locator's level is solved again, refined at the edges it found; then one level
+        // finer at a time.
+        if !locator {
+            level += 1;
+        }
+        edges = [0, 1].map(|k| (rung.edges[k], rung.edge_errors[k]));
+        previous = Some(rung);
+    }
+    Err(fem_error(format!(
+        "the finest model ({last_mesh}) reaches an estimated error of {last_estimate:.1e}, above \
+         the tolerance {:.1e}; loosen --tol or use the ring BEM",
+        options.tolerance
+    )))
+}
+
+/// The contact must be a ring: one that reaches the axis (a disk, the torus pressed beyond its
+/// closure) has one free edge, which this ladder does not treat.
+fn check_open(kind: PunchKind, s: &ContactSolution, mesh: &str) -> Result<()> {
+    if s.inner_radius > 0.0 {
+        return Ok(());
+    }
+    Err(Error::OutOfRange {
+        method: METHOD.into(),
+        reason: format!(
+            "the {kind}'s contact on {mesh} reaches the axis (a disk): the FEM locates the two \
+             free edges of a ring only; use the ring BEM"
+        ),
+    })
+}
