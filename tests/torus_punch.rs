@@ -325,7 +325,22 @@ fn command_line_json_and_refusals() {
             ],
             "no closed form",
         ),
-        (vec!["pulloff", "--punch", "torus"], "two free edges"),
+        (
+            vec!["pulloff", "--punch", "torus", "--d0h", "5"],
+            "d0/h <= 1",
+        ),
+        (
+            vec![
+                "pulloff", "--punch", "torus", "--d0h", "1", "--mesh", "x.msh",
+            ],
+            "--mesh does not apply",
+        ),
+        (
+            vec![
+                "pulloff", "--punch", "torus", "--d0h", "1", "--ranges", "0.01",
+            ],
+            "use ranges rho/d0 >=",
+        ),
         (
             vec![
                 "solve",

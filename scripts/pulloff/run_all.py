@@ -3,8 +3,8 @@
 
 Cases: the flat punch, two flat annuli, the concave punches at d0/h = 0.3, 1, 3, 10 (pressed
 until the hole closes), and the annular branch (--branch annular) of both at d0/h = 0.3 and 1 and
-of the cone at 3, where none exists (declined). Needs gmsh (bash scripts/install_gmsh.sh); about
-16 minutes on 2 cores.
+of the cone at 3, where none exists (declined), and the torus at d0/h = 1 and 0.25. Needs gmsh (bash scripts/install_gmsh.sh); about
+25 minutes on 2 cores.
 
 Each record is NAME.json in --out: the result (or why the simulation declined the case), the
 date, the commit and the command that reproduces it. Records are written through a temporary file
@@ -37,6 +37,9 @@ for x in ("0.3", "1", "3", "10"):
 CASES += [(f"{punch}-d0h{x}-annular", ["--punch", punch, "--d0h", x, "--branch", "annular"])
           for punch, x in (("cone", "1"), ("sphere", "1"), ("cone", "3"), ("cone", "0.3"),
                            ("sphere", "0.3"))]
+# The torus (two free edges, touched then pulled) at d0/rho = 2 and 0.5 (rho = a/2: d0/h = 1 and
+# 0.25), against its two-edge JKR solution.
+CASES += [(f"torus-d0h{x}", ["--punch", "torus", "--d0h", x]) for x in ("1", "0.25")]
 
 
 def has_result(path):

@@ -175,6 +175,12 @@ rho/d0 >= 0.032: at most 600 line elements); node hops of the inner edge (force 
 0.01 F0) continue the branch. Where the hole closes first (no stable annular contact, as at
 d0/h >= 3) the range is left out; where it does at every range, the case is declined.
 
+--punch torus (two free edges; d0/h <= 1, h = a²/(2 rho)): touched at its lowest circle (d = 0),
+then pulled, both edges moving until the band lets go; the JKR limit is the two-edge JKR
+solution's fixed-load pull-off (`verify jkr --punch torus`). Its contact line [0, 1.5 a] is
+meshed uniformly at a third of the zone length, one gmsh mesh per range (ranges rho/d0 >= 0.039),
+as the annular branch's; --branch does not apply (the torus has no hole to close).
+
 Units: d0 = sqrt(2 pi a dw / E*) (= a for the flat punches; h = 1 for the concave ones, so
 d0 = d0/h); forces are tensile-positive multiples of Kendall's F0 = sqrt(8 pi E* dw a^3). The
 Tabor-like parameter is sqrt(a/l), l = pi E* dw / (4 sigma0^2) the cohesive zone's length. Beside
@@ -195,6 +201,7 @@ Examples:
   verify pulloff --punch flat-annulus --eps 0.5 --json
   verify pulloff --punch sphere --d0h 3
   verify pulloff --punch cone --d0h 1 --branch annular   about 3 min: the paper's route's branch
+  verify pulloff --punch torus --d0h 1                    about 5 min: two free edges
   verify pulloff --punch flat --ranges 0.1,0.05,0.025")]
     Pulloff(PulloffArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on

@@ -23,7 +23,9 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     if let Some(first) = ranges.first() {
         heartbeat.set(format!("the first range, rho/d0 = {first}"));
     }
-    if args.branch == study::Branch::Annular {
+    if case.punch == PunchKind::Torus {
+        torus_band(&args, case, &ranges, &heartbeat)
+    } else if args.branch == study::Branch::Annular {
         annular_branch(&args, case, &ranges, &heartbeat)
     } else {
         closed_branch(&args, case, &ranges, &heartbeat)
@@ -33,7 +35,11 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
 /// The case and the decreasing ranges of `verify pulloff`, every flag checked against the punch
 /// and the branch.
 fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>), String> {
-    let punch = super::punch_kind(args.punch, args.exponent)?;
+    // The torus (two free edges) has its own route: touched, then pulled.
+    let punch = match args.punch.with_exponent(args.exponent) {
+        Ok(PunchKind::Torus) => PunchKind::Torus,
+        _ => super::punch_kind(args.punch, args.exponent)?,
+    };
     let eps = match punch {
         PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
         _ => 0.0,
@@ -66,7 +72,15 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         ));
     }
     refuse_other_family_flags(punch, args.eps, args.d0h)?;
-    let annular = args.branch == study::Branch::Annular;
+    let torus = punch == PunchKind::Torus;
+    if torus && args.mesh.is_some() {
+        return Err(
+            "the torus's simulation makes its own mesh per range (its contact line uniform at a \
+             third of the zone, 1.5 a long); --mesh does not apply"
+                .into(),
+        );
+    }
+    let annular = args.branch == study::Branch::Annular || torus;
     if annular && !punch.is_concave() {
         return Err(format!(
             "--branch annular: the annular branch is a concave punch's (cone, sphere); the {} \
@@ -131,6 +145,29 @@ fn annular_branch(
             } else {
                 ""
             }
+        ))
+    })
+    .map_err(message)?;
+    refuse_non_finite("pulloff", &result.sequence)?;
+    if args.json {
+        return Ok(Reply::ok(to_json(&result)?));
+    }
+    Ok(Reply::ok(render(&result)))
+}
+
+/// The torus: touched at its lowest circle, then pulled, at each range.
+fn torus_band(
+    args: &PulloffArgs,
+    case: study::Case,
+    ranges: &[f64],
+    heartbeat: &Heartbeat,
+) -> Result<Reply, String> {
+    let mut bar = Progress::new("pull-off (torus)", ranges.len() + 1);
+    let result = crate::cohesive::torus::run_torus(case, ranges, |entry| {
+        heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
+        bar.tick(&format!(
+            "rho/a = {}: F/F0 = {:.4}",
+            entry.range_over_a, entry.pulloff_over_f0
         ))
     })
     .map_err(message)?;
@@ -279,6 +316,12 @@ pub fn render(s: &PulloffStudy) -> String {
         _ => "  no extrapolate: it needs three ranges\n".to_string(),
     };
     match (s.punch.is_concave(), s.jkr_fixed_load_over_f0) {
+        (true, Some(j)) if s.punch == PunchKind::Torus => {
+            text += &format!(
+                "  JKR route (verify jkr --punch torus: both edges at G = dw), fixed load: F/F0 = \
+                 {j:.4}\n"
+            )
+        }
         (false, Some(j)) => {
             text += &format!("  JKR route (verify jkr), fixed load: F/F0 = {j:.4}\n")
         }

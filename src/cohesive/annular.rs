@@ -15,11 +15,12 @@ use std::time::Instant;
 
 use crate::cohesive::study::{
     check_d0_over_h, check_ranges, extrapolate, file_simulation, jkr_values, simulate, Branch,
-    Case, PulloffStudy, SequenceEntry, ANNULAR_ELEMENTS_PER_ZONE, ANNULAR_HOP_FORCE,
-    ANNULAR_PRELOAD, STUDY_LEVEL,
+    Case, CurveEdges, ExcludedEntry, PulloffStudy, SequenceEntry, StoredCurve,
+    ANNULAR_ELEMENTS_PER_ZONE, ANNULAR_HOP_FORCE, ANNULAR_PRELOAD, STUDY_LEVEL,
 };
 use crate::error::{Error, Result};
 use crate::fem::solver::surface_response_on_mesh;
+use crate::fem::surface_response::SurfaceResponse;
 use crate::mesh::provider::{self, ProvidedMesh};
 
 /// Most contact-line elements an annular mesh may ask for (the condensed model is dense: 1000
@@ -108,22 +109,126 @@ pub fn run_annular(
         .map(|&r| annular_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
     let options = crate::cohesive::study::study_options();
+    touched_sequence(
+        &case,
+        ranges,
+        "annular branch",
+        (&meshes, &|range, per_zone| {
+            annular_mesh(&case, range, per_zone)
+        }),
+        &|mesh| surface_response_on_mesh(mesh, &options, 0.0),
+        &|_, entry, _| left_the_annular_branch(&case, entry),
+        &mut progress,
+    )?
+    .into_study(
+        &case,
+        jkr_values(&case)?,
+        format!(
+            "annular branch: touched (rim plane at the surface, hole open), pulled; the contact \
+             line meshed uniformly at a third of the zone length per range (mesh named: the \
+             smallest range's; line_element_size in each entry), the check at two thirds; \
+             steps where the inner edge hops a node (force change under {ANNULAR_HOP_FORCE} F0) \
+             continue the branch; pull-off: its most tensile force before the annulus lets go"
+        ),
+        start,
+    )
+}
+/// A mesh per range and the study's element density per zone:
+/// `(meshes at ANNULAR_ELEMENTS_PER_ZONE, mesh_at(range, elements_per_zone))`.
+pub(super) type RangeMeshes<'m> = (
+    &'m [(ProvidedMesh, f64)],
+    &'m dyn Fn(f64, f64) -> Result<(ProvidedMesh, f64)>,
+);
+
+/// Why a simulation left the branch a study follows, if it did.
+pub(super) type LeftTheBranch<'l> =
+    &'l dyn Fn(&SurfaceResponse, &SequenceEntry, &[CurveEdges]) -> Option<String>;
+
+/// What a touched-and-pulled study found over its ranges.
+pub(super) struct TouchedSequence {
+    pub sequence: Vec<SequenceEntry>,
+    pub excluded: Vec<ExcludedEntry>,
+    pub curves: Vec<StoredCurve>,
+    /// The smallest range's mesh on the branch: its name, file, contact nodes and unknowns.
+    pub mesh_name: String,
+    pub mesh: ProvidedMesh,
+    pub contact_nodes: usize,
+    pub unknowns: usize,
+    /// The smallest range's pull-off change on the mesh with half the elements per zone.
+    pub mesh_difference: f64,
+}
+
+impl TouchedSequence {
+    /// The study: the sequence extrapolated to zero range ([`extrapolate`], the mesh check's
+    /// difference in the bar) beside the JKR route's `(fixed load, full contact, the paper's
+    /// route)` values, with its note and its time since `start`.
+    pub(super) fn into_study(
+        self,
+        case: &Case,
+        (jkr, full_contact, paper): (Option<f64>, Option<f64>, Option<f64>),
+        note: String,
+        start: Instant,
+    ) -> Result<PulloffStudy> {
+        let (extrapolated, error_bar) = extrapolate(&self.sequence, self.mesh_difference);
+        Ok(PulloffStudy {
+            stopped: None,
+            punch: case.punch,
+            eps: None,
+            d0_over_h: Some(case.d0_over_h),
+            branch: Some(Branch::Annular),
+            law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (h = 1); \
+                  non-penetration; nodal quadrature on the FE contact line (P2)"
+                .into(),
+            preload_over_d0: ANNULAR_PRELOAD / case.d0(),
+            mesh: self.mesh_name,
+            mesh_sha256: self.mesh.sha256()?,
+            mesh_gmsh_version: self.mesh.gmsh_version.clone(),
+            contact_nodes: self.contact_nodes,
+            unknowns: self.unknowns,
+            sequence: self.sequence,
+            excluded: self.excluded,
+            curves: self.curves,
+            extrapolated_over_f0: extrapolated,
+            error_bar,
+            mesh_difference: Some(self.mesh_difference),
+            jkr_fixed_load_over_f0: jkr,
+            full_contact_over_f0: full_contact,
+            paper_route_over_f0: paper,
+            note,
+            wall_s: start.elapsed().as_secs_f64(),
+        })
+    }
+}
+
+/// Touch and pull at each range on its mesh (`meshes`), the ranges that leave the branch
+/// (`left`) filed apart with the reason, then the smallest range on the branch again on a mesh
+/// with half the elements per zone (the mesh's share of the error bar): the annular branch's
+/// study and the torus's. `what` names the branch in errors.
+pub(super) fn touched_sequence(
+    case: &Case,
+    ranges: &[f64],
+    what: &str,
+    (meshes, mesh_at): RangeMeshes,
+    response_of: &dyn Fn(&ProvidedMesh) -> Result<(SurfaceResponse, String)>,
+    left: LeftTheBranch,
+    progress: &mut dyn FnMut(&SequenceEntry),
+) -> Result<TouchedSequence> {
     let (mut sequence, mut excluded, mut curves) = (Vec::new(), Vec::new(), Vec::new());
     let mut finest = None;
-    for (&range, (mesh, size)) in ranges.iter().zip(&meshes) {
-        let (response, name) = surface_response_on_mesh(mesh, &options, 0.0)?;
-        let (mut entry, curve, edges) = simulate(&response, &case, range, Branch::Annular, None)?;
+    for (&range, (mesh, size)) in ranges.iter().zip(meshes) {
+        let (response, name) = response_of(mesh)?;
+        let (mut entry, curve, edges) = simulate(&response, case, range, Branch::Annular, None)?;
         entry.line_element_size = Some(*size);
         progress(&entry);
-        let left = left_the_annular_branch(&case, &entry);
-        if left.is_none() {
+        let why = left(&response, &entry, &edges);
+        if why.is_none() {
             finest = Some((name, mesh.clone(), response.radii.len(), response.unknowns));
         }
         file_simulation(
             (&mut sequence, &mut excluded, &mut curves),
             entry,
             (&curve, &edges),
-            left,
+            why,
         );
     }
     let Some((mesh_name, mesh, contact_nodes, unknowns)) = finest else {
@@ -132,60 +237,34 @@ pub fn run_annular(
         return Err(Error::Unsupported {
             method: "cohesive-fem".into(),
             reason: format!(
-                "no annular branch at any range (rho/d0 = {ranges:?}): {}",
+                "no {what} at any range (rho/d0 = {ranges:?}): {}",
                 reasons.join("; ")
             ),
         });
     };
     let smallest = sequence[sequence.len() - 1].range_over_a / case.d0();
-    let (coarser, _) = annular_mesh(&case, smallest, 0.5 * ANNULAR_ELEMENTS_PER_ZONE)?;
-    let (response, _) = surface_response_on_mesh(&coarser, &options, 0.0)?;
-    let (check, _, _) = simulate(&response, &case, smallest, Branch::Annular, None)?;
+    let (coarser, _) = mesh_at(smallest, 0.5 * ANNULAR_ELEMENTS_PER_ZONE)?;
+    let (response, _) = response_of(&coarser)?;
+    let (check, _, edges) = simulate(&response, case, smallest, Branch::Annular, None)?;
     progress(&check);
-    let mesh_difference = match left_the_annular_branch(&case, &check) {
-        None => Some((check.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs()),
-        Some(reason) => {
-            return Err(Error::NoConvergence {
-                method: "cohesive-fem".into(),
-                reason: format!(
-                    "the mesh check (half the elements per zone) left the annular branch: {reason}"
-                ),
-            })
-        }
-    };
-    let (extrapolated, error_bar) = extrapolate(&sequence, mesh_difference.unwrap_or(0.0));
-    let (jkr, full_contact, paper) = jkr_values(&case)?;
-    Ok(PulloffStudy {
-        stopped: None,
-        punch: case.punch,
-        eps: None,
-        d0_over_h: Some(case.d0_over_h),
-        branch: Some(Branch::Annular),
-        law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (h = 1); \
-              non-penetration; nodal quadrature on the FE contact line (P2)"
-            .into(),
-        preload_over_d0: ANNULAR_PRELOAD / case.d0(),
-        mesh: mesh_name,
-        mesh_sha256: mesh.sha256()?,
-        mesh_gmsh_version: mesh.gmsh_version.clone(),
-        contact_nodes,
-        unknowns,
+    if let Some(reason) = left(&response, &check, &edges) {
+        return Err(Error::NoConvergence {
+            method: "cohesive-fem".into(),
+            reason: format!(
+                "the mesh check (half the elements per zone) left the {what}: {reason}"
+            ),
+        });
+    }
+    let mesh_difference =
+        (check.pulloff_over_f0 - sequence[sequence.len() - 1].pulloff_over_f0).abs();
+    Ok(TouchedSequence {
         sequence,
         excluded,
         curves,
-        extrapolated_over_f0: extrapolated,
-        error_bar,
+        mesh_name,
+        mesh,
+        contact_nodes,
+        unknowns,
         mesh_difference,
-        jkr_fixed_load_over_f0: jkr,
-        full_contact_over_f0: full_contact,
-        paper_route_over_f0: paper,
-        note: format!(
-            "annular branch: touched (rim plane at the surface, hole open), pulled; the contact \
-             line meshed uniformly at a third of the zone length per range (mesh named: the \
-             smallest range's; line_element_size in each entry), the check at two thirds; \
-             steps where the inner edge hops a node (force change under {ANNULAR_HOP_FORCE} F0) \
-             continue the branch; pull-off: its most tensile force before the annulus lets go"
-        ),
-        wall_s: start.elapsed().as_secs_f64(),
     })
 }

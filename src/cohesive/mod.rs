@@ -11,3 +11,4 @@ pub mod equilibrium;
 pub mod law;
 pub mod path;
 pub mod study;
+pub mod torus;

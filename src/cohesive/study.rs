@@ -1071,7 +1071,7 @@ impl LiveSimulation {
 /// `band`: the radius from which outward the mesh resolves the zone (a rim band,
 /// [`rim_band_mesh`]): node hops of the crack front there continue the branch, and the pull-off
 /// is the branch's most tensile state there (an error if that is the band's inner edge).
-pub(super) fn simulate(
+pub(crate) fn simulate(
     response: &crate::fem::surface_response::SurfaceResponse,
     case: &Case,
     range: f64,

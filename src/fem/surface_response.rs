@@ -30,6 +30,23 @@ pub struct SurfaceResponse {
     pub unknowns: usize,
 }
 
+impl SurfaceResponse {
+    /// The response of a model whose length unit is `frame a` in units of `a`: radii times
+    /// `frame`, weights (areas) times `frame²`, and the compliance (a displacement per force)
+    /// divided by `frame` (by the scaling of linear elasticity, as
+    /// [`crate::fem::contact::ContactModel::with_free_edges`]).
+    pub fn in_units_of_a(mut self, frame: f64) -> Self {
+        for r in &mut self.radii {
+            *r *= frame;
+        }
+        for w in &mut self.weights {
+            *w *= frame * frame;
+        }
+        self.compliance /= frame;
+        self
+    }
+}
+
 /// Condense `model` (its stiffness factorised by `solver`) onto the contact line.
 pub(crate) fn condense(
     model: &ContactModel,
