@@ -190,14 +190,15 @@ pub(crate) fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord>
     })
 }
 
-/// The stored simulations of the annular branch (`--branch annular`) with a result.
+/// The stored simulations of a concave punch's annular branch (`--branch annular`) with a
+/// result (the torus, touched and pulled as well, has no hole: it is not among them).
 pub fn annular(records: &[PulloffRecord]) -> Vec<PulloffRecord> {
     records
         .iter()
         .filter(|r| {
-            r.result
-                .as_ref()
-                .is_some_and(|s| s.branch == Some(crate::cohesive::study::Branch::Annular))
+            r.result.as_ref().is_some_and(|s| {
+                s.branch == Some(crate::cohesive::study::Branch::Annular) && s.punch.has_rim()
+            })
         })
         .cloned()
         .collect()
