@@ -686,7 +686,13 @@ impl<'m> ContactModel<'m> {
 
     /// Distance between the last free and the first active contact node.
     fn spacing_at(&self, active: &[bool]) -> f64 {
-        let first = active.iter().rposition(|&a| !a).map_or(0, |i| i + 1);
+        // The first node of the ring that reaches the rim; with two free edges, the first
+        // active node (the nodes beyond the outer edge are free too).
+        let first = if self.rim {
+            active.iter().rposition(|&a| !a).map_or(0, |i| i + 1)
+        } else {
+            active.iter().position(|&a| a).unwrap_or(0)
+        };
         let r = |i: usize| self.mesh.nodes[self.contact_nodes[i]][0];
         if first == 0 || first >= active.len() || (first == 1 && r(0) == 0.0) {
             return 0.0;
@@ -970,6 +976,15 @@ impl<'m> ContactModel<'m> {
             (Some(up), Some(down)) if (up - down).is_finite() => (up - down) / (2.0 * step),
             _ => 0.0,
         }
+    }
+
+    /// Active set of a contact band `[inner, outer]` in units of `a` (to warm-start a contact
+    /// with two free edges, [`Self::with_free_edges`]).
+    pub fn active_set_between(&self, inner: f64, outer: f64) -> Vec<bool> {
+        self.contact_nodes
+            .iter()
+            .map(|&n| (inner..=outer).contains(&(self.frame * self.mesh.nodes[n][0])))
+            .collect()
     }
 
     /// Active set of a contact ring `[inner_radius, a]` (to warm-start the iteration).

@@ -520,6 +520,9 @@ struct WarmStart {
     /// Half-width of the band around it where the finer model's edge is expected: twice the
     /// coarser model's estimated error of the inner radius.
     pub band: f64,
+    /// Outer contact radius located on the coarser model: a free edge (the torus), else
+    /// infinite (the rim).
+    pub outer_radius: f64,
 }
 
 /// Core of the banded contact solve: the contact nodes above the band are held in the
@@ -570,11 +573,12 @@ fn solve_model(
     if !kind.has_rim() {
         let frame = model.spec.frame;
         contact = contact.with_free_edges(frame);
+        let initial = warm.map(|w| contact.active_set_between(w.inner_radius, w.outer_radius));
         let result = solve_free_edges_model(
             &contact,
             &mut solver,
-            kind,
-            load,
+            (kind, load),
+            initial,
             depth_guess,
             frame,
             tolerance,
@@ -641,8 +645,8 @@ fn solve_model(
 fn solve_free_edges_model(
     contact: &ContactModel,
     solver: &mut ConstrainedCholesky,
-    kind: PunchKind,
-    load: FemLoad,
+    (kind, load): (PunchKind, FemLoad),
+    initial: Option<Vec<bool>>,
     depth_guess: Option<f64>,
     frame: f64,
     tolerance: f64,
@@ -650,7 +654,7 @@ fn solve_free_edges_model(
     let mut system = contact.banded_system(solver, kind, f64::INFINITY);
     let (s, depth) = match load {
         FemLoad::ConcaveDepth(depth) => {
-            let s = contact.concave_with_sensitivity(&mut system, kind, depth / frame, None)?;
+            let s = contact.concave_with_sensitivity(&mut system, kind, depth / frame, initial)?;
             (s, depth)
         }
         FemLoad::ConcaveForce(target) => {
@@ -659,7 +663,7 @@ fn solve_free_edges_model(
                 kind,
                 2.0 * target / (frame * frame),
                 depth_guess.unwrap_or(target) / frame,
-                None,
+                initial,
                 tolerance,
             )?;
             (s, depth * frame)
@@ -719,6 +723,7 @@ fn linear_edge_locator(
     let warm = WarmStart {
         inner_radius: s.inner_radius,
         band: LINEAR_LOCATOR_BAND_SPACINGS * spacing,
+        outer_radius: f64::INFINITY,
     };
     Some((warm, depth))
 }
@@ -1527,6 +1532,7 @@ impl<'o> Ladder<'o> {
         let guess = self.previous.as_ref().map(|p| WarmStart {
             inner_radius: p.values.eps,
             band: p.eps_error,
+            outer_radius: f64::INFINITY,
         });
         let depth_guess = self.previous.as_ref().map(|p| p.values.primary);
         let (s, x, y) = solve_model(

@@ -158,6 +158,9 @@ fn climb(
     let mut edges = rigid_edges(load);
     let mut previous: Option<Rung> = None;
     let mut last_change: Option<f64> = None;
+    // The grading estimate of the current level, kept when the level is refined at the edges.
+    let mut level_force: Option<f64> = None;
+    let mut repeats = 0;
     let mut iterations = 0;
     let mut last_estimate = f64::INFINITY;
     let mut last_mesh = String::new();
@@ -181,9 +184,22 @@ fn climb(
             model.stiffness.nrows()
         ));
         let depth_guess = Some(previous.map_or(depth_guess(load), |p| p.gamma1));
+        // The model below's band starts the active-set iteration.
+        let warm = previous.map(|p| super::WarmStart {
+            inner_radius: p.edges[0],
+            band: p.edge_errors[0],
+            outer_radius: p.edges[1],
+        });
         let (s, gamma1, gamma2) =
-            solve_model(&mut model, kind, 0.0, load, None, depth_guess, tolerance)?;
+            solve_model(&mut model, kind, 0.0, load, warm, depth_guess, tolerance)?;
         iterations += s.iterations;
+        if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+            super::trace_level(&model, &s);
+            eprintln!(
+                "fem: level {level}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",
+                s.outer_radius, s.outer_node_spacing
+            );
+        }
         if s.outer_node_spacing == 0.0 {
             return Ok(Climb::LineTooShort);
         }
@@ -205,9 +221,11 @@ fn climb(
             let force = if level == below.level + 1 {
                 let estimate = grading_step_estimate(degree, change, last_change);
                 last_change = Some(change);
+                level_force = Some(estimate);
                 estimate
             } else {
-                change
+                // The same level refined at the edges: its grading error, plus the change.
+                level_force.unwrap_or(change) + change
             };
             for k in 0..2 {
                 rung.edge_errors[k] =
@@ -235,12 +253,22 @@ fn climb(
                 "{unknowns} unknowns on {last_mesh} gave an estimate of {total:.1e}, above the \
                  tolerance {tolerance:.1e}: refining"
             ));
-        }
-        // The locator's level is solved again, refined at the edges it found; then one level
-        // finer at a time.
-        if !locator {
+            // Only the edges miss: refine them on the same level (at most twice).
+            let edges_only = level_force.is_some()
+                && force + floor <= tolerance
+                && repeats < super::MAX_EDGE_REPEATS;
+            if edges_only {
+                repeats += 1;
+            } else {
+                level += 1;
+                repeats = 0;
+            }
+        } else if !locator {
+            // The first model refined at the edges: nothing below to estimate against.
             level += 1;
         }
+        // The locator's level is solved again, refined at the edges it found; then the ladder
+        // refines at the edges or climbs a level (above).
         edges = [0, 1].map(|k| (rung.edges[k], rung.edge_errors[k]));
         previous = Some(rung);
     }
