@@ -674,7 +674,8 @@ pub fn headline(
             .sum::<usize>()
         + crate::harness::studies::speed_accuracy::unbounded_estimates(&extras.speed_accuracy);
     let mut not_run = Vec::new();
-    let need_gmsh = fenicsx.len() - fenicsx_compared + operators.len() - operators_compared;
+    let need_gmsh = fenicsx.len() - fenicsx_compared + operators.len() - operators_compared
+        + comparison.fem_not_run;
     if need_gmsh > 0 {
         not_run.push((need_gmsh, "need gmsh (bash scripts/install_gmsh.sh)".into()));
     }

@@ -25,6 +25,12 @@ pub(crate) fn scene_of_fem_load(
     tolerance: Option<f64>,
 ) -> Result<Scene> {
     let spec = SceneSpec::default().shape(kind);
+    // The torus of the dimensionless problem: `h = a²/(2ρ) = a`.
+    let spec = if kind == PunchKind::Torus {
+        spec.tube_radius(0.5)
+    } else {
+        spec
+    };
     let spec = match load {
         FemLoad::Flat if kind == PunchKind::FlatAnnulus => spec.inner_ratio(eps),
         FemLoad::Flat => spec,
