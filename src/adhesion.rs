@@ -508,6 +508,10 @@ pub fn full_contact_constants(kind: PunchKind) -> (f64, f64) {
             let kappa = crate::reference::power_law::kappa(n.value());
             (1.0 - kappa / (n.value() + 1.0), kappa - 1.0)
         }
+        PunchKind::Table(t) => {
+            let fc = crate::reference::mdr::table_full_contact(t.profile());
+            (fc.force_offset, fc.kappa_h)
+        }
         _ => (1.0 / 3.0, 1.0),
     }
 }

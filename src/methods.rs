@@ -503,6 +503,14 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
     // Every field below is set from the reference that applies.
     let mut solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
     match kind {
+        PunchKind::Table(_) => {
+            return Err(Error::OutOfRange {
+                method: "reference".into(),
+                reason: "the table punch has no closed form (its full contact is a quadrature \
+                         of the interpolated profile); it is the ring BEM's (--method ring-bem)"
+                    .into(),
+            })
+        }
         PunchKind::Torus => {
             return Err(Error::OutOfRange {
                 method: "reference".into(),

@@ -11,6 +11,7 @@
 //! | spherical (parabolic) concave | `h (1 - r²/a²)` | `[b(d), a]` |
 //! | power-law concave, exponent `n > 0` | `h (1 - (r/a)^n)` | `[b(d), a]` |
 //! | torus (parabolic section), tube radius `ρ` | `(r - a)²/(2ρ) = h (1 - r/a)²`, `h = a²/(2ρ)` | `[b(d), c(d)]` |
+//! | table (a measured profile) | `h ĝ(r/a)`, `ĝ` interpolated from `(r/a, g/h)` points | `[b(d), a]` |
 //!
 //! Every concave punch has a sharp rim at `r = a` (fixed edge, pressure singular) and a free
 //! inner edge `b` found by the solution (pressure zero there without adhesion). The power law
@@ -19,8 +20,14 @@
 //! are free, and its gap is defined on both sides of the ring radius `a`. Written as
 //! `h (1 - r/a)²` it is one dimensionless shape for every tube radius (the tube radius only sets
 //! the depth scale `h`), so it shares the concave punches' `γ1 = d/h` and `γ2 = F/(2 E* h a)`.
+//! The table punch is a concave punch whose profile is read from a file ([`table`]).
+
+pub mod table;
 
 use std::hash::{Hash, Hasher};
+use std::path::Path;
+
+pub use table::TableProfile;
 
 use serde::{Deserialize, Serialize};
 
@@ -44,6 +51,9 @@ pub enum PunchName {
     /// Torus: a convex ring of radius `a` with parabolic section, gap `(r - a)²/(2ρ)`, both
     /// contact edges free (give `--tube-radius ρ`).
     Torus,
+    /// Concave punch of a measured profile: `(r/a, g/h)` points from a CSV file, rim at the
+    /// last point `r = a`, inner edge free (give `--profile FILE`).
+    Table,
 }
 
 impl PunchName {
@@ -56,12 +66,44 @@ impl PunchName {
             PunchName::Sphere => "sphere",
             PunchName::Power => "power",
             PunchName::Torus => "torus",
+            PunchName::Table => "table",
         }
     }
 
     /// The punch of this name; `exponent` is the power law's `n` and is refused for every other
-    /// shape.
+    /// shape; the table punch needs [`with_parameters`](Self::with_parameters).
     pub fn with_exponent(self, exponent: Option<f64>) -> Result<PunchKind> {
+        self.with_parameters(exponent, None)
+    }
+
+    /// The punch of this name with its parameters: `exponent` the power law's `n`, `profile`
+    /// the table punch's file; each refused for every other shape.
+    pub fn with_parameters(
+        self,
+        exponent: Option<f64>,
+        profile: Option<&Path>,
+    ) -> Result<PunchKind> {
+        match (self, profile) {
+            (PunchName::Table, Some(path)) if exponent.is_none() => {
+                return Ok(PunchKind::Table(TableRef(TableProfile::load(path)?)));
+            }
+            (PunchName::Table, None) => {
+                return Err(Error::InvalidScene {
+                    field: "profile".into(),
+                    rule: "the table punch needs its profile, a CSV file of (r/a, g/h) points \
+                           (--profile FILE, or punch.profile in a scene file)"
+                        .into(),
+                })
+            }
+            (PunchName::Table, Some(_)) => {}
+            (_, Some(_)) => {
+                return Err(Error::InvalidScene {
+                    field: "profile".into(),
+                    rule: format!("applies only to shape = table, not {}", self.as_str()),
+                })
+            }
+            (_, None) => {}
+        }
         match (self, exponent) {
             (PunchName::Power, Some(n)) => Ok(PunchKind::Power(Exponent::new(n)?)),
             (PunchName::Power, None) => Err(Error::InvalidScene {
@@ -83,6 +125,7 @@ impl PunchName {
             (PunchName::Cone, None) => Ok(PunchKind::Cone),
             (PunchName::Sphere, None) => Ok(PunchKind::Sphere),
             (PunchName::Torus, None) => Ok(PunchKind::Torus),
+            (PunchName::Table, None) => unreachable!("the table punch returned above"),
         }
     }
 }
@@ -132,8 +175,36 @@ impl Hash for Exponent {
     }
 }
 
+/// A table punch's profile as a punch holds it: read once per process, compared and hashed by
+/// the SHA-256 of its file.
+#[derive(Clone, Copy, Debug)]
+pub struct TableRef(&'static TableProfile);
+
+impl TableRef {
+    /// The profile.
+    pub fn profile(self) -> &'static TableProfile {
+        self.0
+    }
+}
+
+impl PartialEq for TableRef {
+    fn eq(&self, other: &Self) -> bool {
+        self.0 == other.0
+    }
+}
+
+impl Eq for TableRef {}
+
+impl Hash for TableRef {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.0.sha256().hash(state);
+    }
+}
+
 /// A punch shape with its dimensionless parameters. Written in JSON as the keys `punch` (its
-/// [`PunchName`]) and, for the power law, `exponent`; structs holding one flatten it.
+/// [`PunchName`]), for the power law `exponent`, for the table `profile_file` and
+/// `profile_sha256` (`profile` is taken: peer records describe their grid with it); structs
+/// holding one flatten it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(into = "PunchRecord", try_from = "PunchRecord")]
 pub enum PunchKind {
@@ -150,6 +221,8 @@ pub enum PunchKind {
     /// Torus of ring radius `a`, parabolic section: gap `h (1 - r/a)²` with `h = a²/(2ρ)`,
     /// defined on both sides of `a`; both contact edges free.
     Torus,
+    /// Concave punch of a tabulated profile `h ĝ(r/a)`, rim at `r = a`, inner edge free.
+    Table(TableRef),
 }
 
 /// How a [`PunchKind`] is written in JSON.
@@ -158,6 +231,10 @@ struct PunchRecord {
     punch: PunchName,
     #[serde(default, skip_serializing_if = "Option::is_none")]
     exponent: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    profile_file: Option<String>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    profile_sha256: Option<String>,
 }
 
 impl From<PunchKind> for PunchRecord {
@@ -165,6 +242,8 @@ impl From<PunchKind> for PunchRecord {
         PunchRecord {
             punch: kind.shape_name(),
             exponent: kind.exponent(),
+            profile_file: kind.table().map(|t| t.source().to_string()),
+            profile_sha256: kind.table().map(|t| t.sha256().to_string()),
         }
     }
 }
@@ -172,7 +251,24 @@ impl From<PunchKind> for PunchRecord {
 impl TryFrom<PunchRecord> for PunchKind {
     type Error = Error;
     fn try_from(record: PunchRecord) -> Result<Self> {
-        record.punch.with_exponent(record.exponent)
+        let kind = record.punch.with_parameters(
+            record.exponent,
+            record.profile_file.as_deref().map(Path::new),
+        )?;
+        if let (Some(table), Some(recorded)) = (kind.table(), &record.profile_sha256) {
+            if table.sha256() != recorded {
+                return Err(Error::invalid(
+                    "profile_sha256",
+                    format!(
+                        "the profile `{}` has changed since the record was written (SHA-256 {} \
+                         now, {recorded} recorded)",
+                        table.source(),
+                        table.sha256()
+                    ),
+                ));
+            }
+        }
+        Ok(kind)
     }
 }
 
@@ -186,6 +282,7 @@ impl PunchKind {
             PunchKind::Sphere => PunchName::Sphere,
             PunchKind::Power(_) => PunchName::Power,
             PunchKind::Torus => PunchName::Torus,
+            PunchKind::Table(_) => PunchName::Table,
         }
     }
 
@@ -199,6 +296,7 @@ impl PunchKind {
     pub fn label(self) -> String {
         match self {
             PunchKind::Power(n) => format!("power-n{}", n.value()),
+            PunchKind::Table(t) => format!("table-{}", &t.profile().sha256()[..12]),
             _ => self.name().to_string(),
         }
     }
@@ -217,6 +315,7 @@ impl PunchKind {
     pub fn flags(self) -> String {
         match self {
             PunchKind::Power(n) => format!("--punch power --exponent {}", n.value()),
+            PunchKind::Table(t) => format!("--punch table --profile {}", t.profile().source()),
             _ => format!("--punch {}", self.name()),
         }
     }
@@ -229,6 +328,14 @@ impl PunchKind {
         }
     }
 
+    /// The table punch's profile (`None` for the other shapes).
+    pub fn table(self) -> Option<&'static TableProfile> {
+        match self {
+            PunchKind::Table(t) => Some(t.profile()),
+            _ => None,
+        }
+    }
+
     /// The exponent `n` of the concave profile `h (1 - (r/a)^n)`: 1 for the cone, 2 for the
     /// sphere, `n` for the power law; `None` for the flat punches.
     pub fn concave_exponent(self) -> Option<f64> {
@@ -236,14 +343,16 @@ impl PunchKind {
             PunchKind::Cone => Some(1.0),
             PunchKind::Sphere => Some(2.0),
             PunchKind::Power(n) => Some(n.value()),
-            PunchKind::Flat | PunchKind::FlatAnnulus | PunchKind::Torus => None,
+            PunchKind::Flat | PunchKind::FlatAnnulus | PunchKind::Torus | PunchKind::Table(_) => {
+                None
+            }
         }
     }
 
     /// Whether the inner contact radius is found by the solver, with the depth scale `h` and
     /// the functions `γ1 = d/h`, `γ2 = F/(2 E* h a)`: the concave punches and the torus.
     pub fn is_concave(self) -> bool {
-        self.concave_exponent().is_some() || self == PunchKind::Torus
+        self.concave_exponent().is_some() || matches!(self, PunchKind::Torus | PunchKind::Table(_))
     }
 
     /// Whether the contact's outer edge is a sharp rim at `r = a` (every punch but the torus,
@@ -258,7 +367,10 @@ impl PunchKind {
     /// (`g = h (1 - r/a)`, a kink) and every `n <= 1` make the pressure there singular and
     /// tensile: a hole stays open at every depth.
     pub fn profile_smooth_at_axis(self) -> bool {
-        self.concave_exponent().is_some_and(|n| n > 1.0)
+        match self {
+            PunchKind::Table(t) => t.profile().slope(0.0) == 0.0,
+            _ => self.concave_exponent().is_some_and(|n| n > 1.0),
+        }
     }
 
     /// Dimensionless gap `g(r)/h` of a concave punch or the torus at `rho = r/a` (0 for flat
@@ -270,6 +382,7 @@ impl PunchKind {
             PunchKind::Cone => 1.0 - rho,
             PunchKind::Sphere => 1.0 - rho * rho,
             PunchKind::Power(n) => 1.0 - rho.powf(n.value()),
+            PunchKind::Table(t) => t.profile().value(rho),
         }
     }
 }
@@ -278,6 +391,7 @@ impl std::fmt::Display for PunchKind {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             PunchKind::Power(n) => write!(f, "power (n = {})", n.value()),
+            PunchKind::Table(t) => write!(f, "table ({})", t.profile().source()),
             _ => f.write_str(self.name()),
         }
     }

@@ -7,6 +7,8 @@
 //! hole_depth = 0.1          # h, concave punches (cone, sphere, power) only
 //! # exponent = 2.5          # n of the power law, gap h (1 - (r/a)^n); power only
 //! # tube_radius = 0.2       # rho of the torus, gap (r - a)²/(2 rho); torus only
+//! # profile = "tip.csv"     # (r/a, g/h) points of a measured profile; table only (path
+//! #                         # relative to the scene file)
 //! # inner_radius = 0.5      # b, flat-annulus only, 0 <= b < a
 //!
 //! [material]
@@ -73,6 +75,7 @@ struct RawPunch {
     inner_radius: Option<f64>,
     hole_depth: Option<f64>,
     tube_radius: Option<f64>,
+    profile: Option<std::path::PathBuf>,
 }
 
 #[derive(Deserialize, Default)]
@@ -112,6 +115,9 @@ pub struct SceneSpec {
     /// `b/a` given instead of `b` (command line `--eps`); resolved against the rim radius.
     #[serde(skip)]
     inner_ratio: Option<f64>,
+    /// The directory a relative `punch.profile` of a scene file is read from.
+    #[serde(skip)]
+    profile_base: Option<std::path::PathBuf>,
 }
 
 impl SceneSpec {
@@ -145,7 +151,20 @@ impl SceneSpec {
             path: path.display().to_string(),
             message: e.to_string(),
         })?;
-        Self::from_toml(&text, &path.display().to_string())
+        let mut spec = Self::from_toml(&text, &path.display().to_string())?;
+        if let Some(profile) = &spec.punch.profile {
+            if profile.is_relative() {
+                spec.profile_base = path.parent().map(std::path::Path::to_path_buf);
+            }
+        }
+        Ok(spec)
+    }
+
+    /// Set the table punch's profile file (read relative to the working directory).
+    pub fn profile(mut self, path: &std::path::Path) -> Self {
+        self.punch.profile = Some(path.to_path_buf());
+        self.profile_base = None;
+        self
     }
 
     /// Set the punch shape (with the power law's exponent).
@@ -163,6 +182,7 @@ impl SceneSpec {
                 // The other shape's parameters do not carry over.
                 self.punch.exponent = None;
                 self.punch.tube_radius = None;
+                self.punch.profile = None;
                 if name == PunchName::Torus {
                     self.punch.hole_depth = None;
                 }
@@ -263,13 +283,23 @@ impl SceneSpec {
         let name = self.punch.shape.ok_or_else(|| {
             Error::invalid(
                 "punch.shape",
-                "is required: one of flat, flat-annulus, cone, sphere, power, torus",
+                "is required: one of flat, flat-annulus, cone, sphere, power, torus, table",
             )
         })?;
+        let profile = self
+            .punch
+            .profile
+            .as_ref()
+            .map(|p| match &self.profile_base {
+                Some(base) => base.join(p),
+                None => p.clone(),
+            });
         let kind = name
-            .with_exponent(self.punch.exponent)
+            .with_parameters(self.punch.exponent, profile.as_deref())
             .map_err(|e| match e {
-                Error::InvalidScene { rule, .. } => Error::invalid("punch.exponent", rule),
+                Error::InvalidScene { field, rule } => {
+                    Error::invalid(&format!("punch.{field}"), rule)
+                }
                 other => other,
             })?;
         let rim_radius = positive("punch.rim_radius", self.punch.rim_radius.unwrap_or(1.0))?;
@@ -343,7 +373,10 @@ impl SceneSpec {
             (_, Some(_), None) => {
                 return Err(Error::invalid(
                     "punch.hole_depth",
-                    format!("applies only to the concave shapes (cone, sphere, power), not {kind}"),
+                    format!(
+                        "applies only to the concave shapes (cone, sphere, power, table), not \
+                         {kind}"
+                    ),
                 ))
             }
             _ => 0.0,

@@ -310,6 +310,26 @@ impl Solution {
                         }
                     }
                 }
+                PunchKind::Table(t) => {
+                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
+                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
+                    let closure =
+                        crate::reference::mdr::table_full_contact(t.profile()).closure_depth;
+                    match closure {
+                        Some(closure) if depth_over_hole >= closure * (1.0 - slack) => {}
+                        None if self.error_estimate.is_some() => {}
+                        _ => {
+                            return fail(format!(
+                                "full contact at d/h = {}: the {} reaches it only at d/h >= {}",
+                                crate::error::show(depth_over_hole),
+                                self.punch,
+                                closure.map_or("infinity (a slope at the axis)".into(), |c| {
+                                    crate::error::show(c)
+                                })
+                            ))
+                        }
+                    }
+                }
                 PunchKind::FlatAnnulus => {
                     return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
                 }

@@ -111,6 +111,14 @@ pub(crate) fn punch_kind(
     name: crate::punch::PunchName,
     exponent: Option<f64>,
 ) -> Result<crate::punch::PunchKind, String> {
+    if name == crate::punch::PunchName::Table {
+        return Err(
+            "the table punch is solved by `verify solve --punch table --profile FILE --method \
+             fem` (or grid-bem); its JKR solution, pull-off simulation and convergence studies \
+             are built on the ring BEM, which does not converge on a tabulated (C¹) profile"
+                .into(),
+        );
+    }
     let kind = name.with_exponent(exponent).map_err(message)?;
     if !kind.has_rim() {
         return Err(format!(

@@ -48,8 +48,9 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     };
     if args.punch.is_none() && args.scene.is_none() {
         return Err(
-            "give --punch {flat|flat-annulus|cone|sphere|power|torus} (power with --exponent \
-             N, torus with --tube-radius RHO) or --scene FILE"
+            "give --punch {flat|flat-annulus|cone|sphere|power|torus|table} (power with \
+             --exponent N, torus with --tube-radius RHO, table with --profile FILE) or --scene \
+             FILE"
                 .into(),
         );
     }
@@ -57,11 +58,20 @@ fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     if let Some(rho) = args.tube_radius {
         spec = spec.tube_radius(rho);
     }
+    if let Some(path) = &args.profile {
+        spec = spec.profile(path);
+    }
     // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
     let kind = spec.shape_name();
     if let Some(eps) = args.eps {
         match kind {
-            Some(PunchName::Cone | PunchName::Sphere | PunchName::Power | PunchName::Torus) => {
+            Some(
+                PunchName::Cone
+                | PunchName::Sphere
+                | PunchName::Power
+                | PunchName::Torus
+                | PunchName::Table,
+            ) => {
                 if args.depth.is_some() || args.force.is_some() {
                     return Err("--eps prescribes the contact of a concave punch; \
                                 do not combine it with --depth or --force"

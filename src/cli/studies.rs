@@ -493,6 +493,12 @@ fn punch_table() -> Table {
             "both free, b < a < c (never closes)",
             "narrow limit: plane-strain Hertz cylinder (asymptote, tested)",
         ),
+        (
+            "--punch table --profile FILE",
+            "h ĝ(r/a), ĝ by PCHIP through the file's (r/a, g/h)",
+            "rim at a, free inner edge",
+            "none; FEM and grid BEM only (C¹ profile)",
+        ),
     ];
     for (flags, gap, edges, closed) in rows {
         t.push(vec![flags.into(), gap.into(), edges.into(), closed.into()]);

@@ -933,7 +933,11 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
             };
             (Some(-edge), None, None)
         }
-        PunchKind::Cone | PunchKind::Sphere | PunchKind::Power(_) | PunchKind::Torus => {
+        PunchKind::Cone
+        | PunchKind::Sphere
+        | PunchKind::Power(_)
+        | PunchKind::Torus
+        | PunchKind::Table(_) => {
             let r = crate::adhesion::concave(&ring, case.punch, case.d0_over_h)?;
             (
                 r.fixed_load.map(|c| -c.force),

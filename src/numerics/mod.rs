@@ -4,6 +4,7 @@
 
 pub mod chebyshev;
 pub mod elliptic;
+pub mod golden;
 pub mod prefetch;
 pub mod roots;
 pub mod tanh_sinh;

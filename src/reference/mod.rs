@@ -6,6 +6,7 @@
 //! (measured by the harness), not an input.
 
 pub mod asymptotic;
+pub mod mdr;
 pub mod paper_fits;
 pub mod power_law;
 

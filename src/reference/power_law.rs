@@ -100,17 +100,8 @@ pub fn closure_depth(n: f64) -> Option<f64> {
     let best = (1..SCAN)
         .max_by(|&i, &j| f(at(i)).total_cmp(&f(at(j))))
         .unwrap_or(1);
-    let (mut lo, mut hi) = (at(best - 1), at(best + 1));
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
-    while hi - lo > 1e-10 {
-        let (x1, x2) = (hi - golden * (hi - lo), lo + golden * (hi - lo));
-        if f(x1) < f(x2) {
-            lo = x1;
-        } else {
-            hi = x2;
-        }
-    }
-    let interior = f(0.5 * (lo + hi));
+    let top = crate::numerics::golden::golden_section_max(f, at(best - 1), at(best + 1), 1e-10);
+    let interior = f(top);
     Some(1.0 + kappa * interior.max(1.0 / (n - 1.0)))
 }
 
