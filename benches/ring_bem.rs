@@ -1,5 +1,7 @@
 //! Time per solved state of the ring BEM at the accuracy of the foundation issue (tolerance 1e-9):
-//! flat annulus states (target < 1 ms) and depth-controlled concave states (target < 5 ms).
+//! flat annulus states (target < 1 ms) and depth-controlled concave states (target < 5 ms); the
+//! power law and the torus under depth and force control (target: any built-in punch's state in
+//! at most 10 ms).
 //! Release build, one thread. Run: `cargo bench --bench ring_bem`.
 //!
 //! Prints the median and the spread of repeated solves, the unknowns and the factorisations per
@@ -85,5 +87,34 @@ fn main() {
             );
         }
     }
-    println!("\nworst median: flat annulus {flat_worst:.3} ms (target < 1 ms), depth-controlled concave {concave_worst:.3} ms (target < 5 ms)");
+    let power = |n: f64| PunchKind::Power(ringcontact::punch::Exponent::new(n).expect("n > 0"));
+    let mut other_worst: f64 = 0.0;
+    let states = [
+        (power(1.5), true, [0.3, 1.0, 2.0, 4.0]),
+        (power(4.0), true, [0.3, 1.0, 1.5, 2.0]),
+        (PunchKind::Torus, true, [1e-3, 0.1, 2.0, 10.0]),
+        (PunchKind::Torus, false, [1e-4, 0.01, 0.5, 2.0]),
+    ];
+    for (kind, depth, targets) in states {
+        for &target in &targets {
+            let (med, lo, hi, s) = median_ms(|| {
+                if depth {
+                    solver.concave_at_depth(kind, target, TOLERANCE)
+                } else {
+                    solver.concave_at_force(kind, target, TOLERANCE)
+                }
+                .expect("state")
+            });
+            other_worst = other_worst.max(med);
+            let control = if depth { "d/h" } else { "F/(2E*ha)" };
+            println!(
+                "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
+                format!("{kind} {control} = {target}"),
+                s.unknowns,
+                s.solves,
+                s.error_estimate
+            );
+        }
+    }
+    println!("\nworst median: flat annulus {flat_worst:.3} ms (target < 1 ms), depth-controlled concave {concave_worst:.3} ms (target < 5 ms), power law and torus {other_worst:.3} ms (target <= 10 ms)");
 }

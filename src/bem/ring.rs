@@ -25,6 +25,7 @@
 use std::f64::consts::PI;
 
 use nalgebra::{DMatrix, DVector};
+use rayon::prelude::*;
 
 use crate::numerics::chebyshev::ChebyshevNodes;
 use crate::numerics::elliptic::complete_k_from_complementary;
@@ -122,26 +123,30 @@ impl RingSystem {
         let nodes = ChebyshevNodes::new(n);
         let (inner, outer) = (region.inner(), region.outer());
         let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
-        let mut matrix = DMatrix::<f64>::zeros(n, n);
-        let mut basis = vec![0.0; n];
-        let mut row = vec![0.0; n];
-        for (i, &r) in radii.iter().enumerate() {
-            row.iter_mut().for_each(|v| *v = 0.0);
-            for panel in row_panels(inner, outer, r) {
-                for node in rule.panel(panel.lo, panel.hi) {
-                    let (s, from_inner, from_rim, distance) = panel.locate(&node, inner, outer, r);
-                    let weight = edge_weight(region, from_inner, from_rim, s);
-                    let c = node.weight * weight * ring_kernel(r, s, distance);
-                    nodes.basis_at(parameter_of(region, s), &mut basis);
-                    for (acc, &l) in row.iter_mut().zip(&basis) {
-                        *acc += c * l;
+        // The rows are independent (one collocation radius each): computed in parallel, each
+        // summed in the same order as on one thread, so the matrix is the same to the bit.
+        let rows: Vec<Vec<f64>> = radii
+            .par_iter()
+            .map(|&r| {
+                let mut basis = vec![0.0; n];
+                let mut row = vec![0.0; n];
+                for panel in row_panels(inner, outer, r) {
+                    for node in rule.panel(panel.lo, panel.hi) {
+                        let (s, from_inner, from_rim, distance) =
+                            panel.locate(&node, inner, outer, r);
+                        let weight = edge_weight(region, from_inner, from_rim, s);
+                        let c = node.weight * weight * ring_kernel(r, s, distance);
+                        nodes.basis_at(parameter_of(region, s), &mut basis);
+                        for (acc, &l) in row.iter_mut().zip(&basis) {
+                            *acc += c * l;
+                        }
                     }
                 }
-            }
-            for (j, &v) in row.iter().enumerate() {
-                matrix[(i, j)] = 4.0 / PI * v;
-            }
-        }
+                row
+            })
+            .collect();
+        let matrix = DMatrix::<f64>::from_fn(n, n, |i, j| 4.0 / PI * rows[i][j]);
+        let mut basis = vec![0.0; n];
         // Force weights: F = 2π ∫ φ W s ds over the whole region.
         let mut force_weights = vec![0.0; n];
         for node in rule.panel(inner, outer) {

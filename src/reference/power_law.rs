@@ -31,7 +31,9 @@
 //! shrinking hole. For `n <= 1` the integral for `p(0)` diverges to tension: the hole never
 //! closes.
 
+use std::collections::HashMap;
 use std::f64::consts::PI;
+use std::sync::{Mutex, OnceLock};
 
 use crate::numerics::tanh_sinh::TanhSinhRule;
 
@@ -89,6 +91,26 @@ pub fn closure_depth(n: f64) -> Option<f64> {
     if n <= 1.0 {
         return None;
     }
+    // The scan costs about 1 ms for n > 2, and every state of the punch asks for it: computed
+    // once per exponent and process.
+    static KNOWN: OnceLock<Mutex<HashMap<u64, Option<f64>>>> = OnceLock::new();
+    let known = KNOWN.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(&depth) = known
+        .lock()
+        .ok()
+        .and_then(|m| m.get(&n.to_bits()).copied())
+        .as_ref()
+    {
+        return depth;
+    }
+    let depth = closure_depth_uncached(n);
+    if let Ok(mut m) = known.lock() {
+        m.insert(n.to_bits(), depth);
+    }
+    depth
+}
+
+fn closure_depth_uncached(n: f64) -> Option<f64> {
     let kappa = kappa(n);
     if n <= 2.0 {
         return Some(1.0 + kappa / (n - 1.0));
