@@ -4,6 +4,8 @@
 //! (`ringcontact::reference::power_law`, checked there against Γ values, Wallis's recursion and
 //! a hand calculation at `n = 4`), and the physics of the hole's floor for `n > 2`.
 
+mod common;
+
 use std::process::Command;
 
 use ringcontact::bem::ring_contact::RingBemSolver;
@@ -282,4 +284,34 @@ fn punch_records_round_trip() {
         assert_eq!(PunchKind::from_label(&kind.label()), Some(kind));
     }
     assert!(PunchName::Power.with_exponent(None).is_err());
+}
+
+/// The power law `n = 4` just short of closing (`d = 2.3 h`, closure `7h/3` with the pressure
+/// failing first on the ring `r = a/2`, `reference::power_law`): its contact is a disk and an
+/// annulus. The FEM declines it by name on its first model instead of refining a single free
+/// edge that is not there, as the ring BEM declines it.
+#[test]
+fn the_fem_declines_a_disk_and_an_annulus_by_name() {
+    if !common::gmsh_available("the_fem_declines_a_disk_and_an_annulus_by_name") {
+        return;
+    }
+    let out = Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args([
+            "solve",
+            "--punch",
+            "power",
+            "--exponent",
+            "4",
+            "--depth",
+            "2.3",
+        ])
+        .args(["--method", "fem", "--tol", "1e-4"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!out.status.success(), "{stderr}");
+    assert!(
+        stderr.contains("a disk (r/a <= 0.3") && stderr.contains("an annulus"),
+        "{stderr}"
+    );
 }
