@@ -866,10 +866,6 @@ fn closure(kind: PunchKind) -> Option<(f64, f64)> {
             let depth = power_law::closure_depth(n.value())?;
             Some((depth, power_law::full_contact_gamma2(n.value(), depth)?))
         }
-        PunchKind::Table(t) => {
-            let fc = crate::reference::mdr::table_full_contact(t.profile());
-            Some((fc.closure_depth?, fc.closure_force()?))
-        }
         _ => None,
     }
 }
@@ -877,9 +873,6 @@ fn closure(kind: PunchKind) -> Option<(f64, f64)> {
 /// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`):
 /// its contact closes from a disk and an annulus, not by a shrinking hole.
 fn flatter_than_the_sphere(kind: PunchKind) -> bool {
-    if let PunchKind::Table(t) = kind {
-        return crate::reference::mdr::table_full_contact(t.profile()).opening_radius > 1e-3;
-    }
     kind.concave_exponent().is_some_and(|n| n > 2.0)
 }
 
