@@ -27,6 +27,7 @@ pub mod heartbeat;
 pub mod mesh;
 pub mod methods;
 pub mod numerics;
+pub mod provenance;
 pub mod punch;
 pub mod reference;
 pub mod scene;

@@ -160,6 +160,30 @@ impl SceneSpec {
         Ok(spec)
     }
 
+    /// A scene written as a JSON object with the keys of the TOML file (`{"punch": {"shape":
+    /// "cone"}, "load": {"depth": 2}}`), as `verify solve --batch` reads it; a relative
+    /// `punch.profile` is read from `base` (the batch file's directory). Unknown keys and wrong
+    /// types are errors naming the key.
+    pub fn from_json_value(
+        value: serde_json::Value,
+        origin: &str,
+        base: Option<&std::path::Path>,
+    ) -> Result<Self> {
+        let mut spec: Self = serde_json::from_value(value).map_err(|e| Error::SceneFile {
+            path: origin.to_string(),
+            message: e.to_string(),
+        })?;
+        if spec.punch.profile.as_ref().is_some_and(|p| p.is_relative()) {
+            spec.profile_base = base.map(std::path::Path::to_path_buf);
+        }
+        Ok(spec)
+    }
+
+    /// The tolerance the scene states (`accuracy.tolerance`), if any.
+    pub fn stated_tolerance(&self) -> Option<f64> {
+        self.accuracy.tolerance
+    }
+
     /// Set the table punch's profile file (read relative to the working directory).
     pub fn profile(mut self, path: &std::path::Path) -> Self {
         self.punch.profile = Some(path.to_path_buf());
@@ -203,6 +227,27 @@ impl SceneSpec {
     /// Set the torus's tube radius `ρ` (length units).
     pub fn tube_radius(mut self, rho: f64) -> Self {
         self.punch.tube_radius = Some(rho);
+        self
+    }
+
+    /// Set the rim radius `a` (the torus's ring radius), length units.
+    pub fn rim_radius(mut self, a: f64) -> Self {
+        self.punch.rim_radius = Some(a);
+        self
+    }
+
+    /// Set the hole depth `h` of a concave punch, length units.
+    pub fn hole_depth(mut self, h: f64) -> Self {
+        self.punch.hole_depth = Some(h);
+        self
+    }
+
+    /// Set the effective modulus `E* = E/(1 - ν²)`, stress units.
+    pub fn effective_modulus(mut self, modulus: f64) -> Self {
+        self.material = RawMaterial {
+            effective_modulus: Some(modulus),
+            ..Default::default()
+        };
         self
     }
 

@@ -9,11 +9,12 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Layer of each top-level module, from the ground up.
-const LAYERS: [(&str, u8); 21] = [
+const LAYERS: [(&str, u8); 22] = [
     ("error", 0),
     ("finite_guard", 0),
     ("heartbeat", 0),
     ("numerics", 0),
+    ("provenance", 0),
     ("sparse", 1),
     ("punch", 1),
     ("mesh", 2),

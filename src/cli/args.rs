@@ -21,6 +21,8 @@ Examples:
   verify solve --punch flat-annulus --eps 0.5
   verify solve --punch cone --depth 2 --json
   verify solve --scene verify/scenes/cone-depth.toml
+  verify table --punch cone --eps 0.1:0.9:0.1   one row per state (CSV; --json)
+  verify grade --results mine.csv          another code's results against the references
   verify fenicsx                           stored FEniCSx results against our FEM
   verify plan --nightly --out n.plan       the suite as independent jobs: `verify run --shard I/N`,
                                            `verify merge` (on Slurm: scripts/slurm/submit.sh)
@@ -70,6 +72,55 @@ Examples:
   verify solve --punch sphere --depth 1 --method fem --vtu sphere.vtu   field for ParaView
   verify solve --scene verify/scenes/cone-depth.toml --json")]
     Solve(SolveArgs),
+    /// Solve one punch at many states (a list or range of b/a, depths or forces) in one process
+    /// and write one row per state: every quantity and its error estimate (CSV, or JSON).
+    #[command(after_help = "\
+LIST: numbers and inclusive ranges START:STOP:STEP, comma-separated (0.01:0.99:0.01 is 99
+states, 0.5,1,2 three). Exactly one of --eps, --depth, --force.
+
+Columns (CSV header = JSON keys, the keys of `verify solve --json`): given_eps, given_depth or
+given_force (the state as listed), punch, exponent (power), tube_radius (torus), method, eps,
+inner_radius, outer_radius, rim_radius, depth, force, gamma (flat punches), gamma1, gamma2
+(concave punches), stress_intensity_rim, stress_intensity_inner, error_estimate, unknowns,
+iterations, wall_s; a column without a value in any row is left out. Units: the scene's (a = h =
+E* = 1 without --scene, so depth = d/h, force = F/(E* h a) = 2 gamma2).
+
+All states are checked before the first is solved; a state the method fails on stops the table
+with the state named (exit status 1). Progress on standard error for long tables.
+
+Examples:
+  verify table --punch flat-annulus --eps 0.01:0.99:0.01 > gamma.csv
+  verify table --punch sphere --depth 0.5,1,2,3,4 --json
+  verify table --punch cone --eps 0.1:0.9:0.1 --tol 1e-12
+  verify table --punch torus --tube-radius 0.25 --force 0.01,0.1,1
+  verify table --scene verify/scenes/flat-annulus-half.toml --depth 0.01:0.05:0.01
+  verify table --punch sphere --depth 1,2 --method fem --tol 1e-6 --out sphere-fem.csv")]
+    Table(TableArgs),
+    /// Grade another code's results (CSV or JSON) against the converged references at the same
+    /// states: each value's relative error, the reference's own bound, within --tol or not.
+    #[command(after_help = "\
+Input: CSV with a header row (or JSON: an array of objects, or an object whose `rows` is one, as
+`verify table --json` writes). Columns (case-sensitive; others are kept and ignored):
+  punch          flat, flat-annulus, cone, sphere, power, torus, table (required)
+  depth, force, eps   the state: the column named by `state` (depth, force or eps), else the
+                 first of depth, force, eps given; the others are graded (the flat annulus's
+                 eps is its hole b/a)
+  gamma          F/(2 E* d a), flat punches
+  gamma1, gamma2 d/h and F/(2 E* h a), concave punches and the torus
+  exponent, tube_radius, profile   the power law's n, the torus's rho, the table's file
+  E_star, a, h   the row's units (default 1: the dimensionless functions). Dimensional data:
+                 give E_star, a and h, and depth and force in those units (F = 2 E* h a gamma2).
+
+The reference: the ring BEM at 1e-12 (where it declines: --method auto at T/100). Each value:
+relative_error = |value - reference| / |reference|, within = relative_error <= T. A value closer
+to the reference than 100 times the reference's error bound is said to be so (`resolved`: false).
+Exit status 1 if any value is beyond T.
+
+Examples:
+  verify grade --results verify/grade/paper-fits.csv --tol 0.03   the paper's fits (exit 1: 25 %)
+  verify grade --results mine.csv --json > graded.json
+  verify grade --results mine.csv --svg errors.svg")]
+    Grade(GradeArgs),
     /// Compare the methods with the analytic references on all punches (the default job).
     #[command(after_help = "Example:\n  verify compare --tol 1e-10 --json > comparison.json")]
     Compare(CompareArgs),
@@ -469,7 +520,7 @@ pub struct JsonArgs {
 }
 
 // The arguments of `verify solve`.
-#[derive(Args)]
+#[derive(Args, Clone)]
 pub struct SolveArgs {
     /// Punch shape.
     #[arg(long, value_enum)]
@@ -544,6 +595,86 @@ pub struct SolveArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,
+    /// Solve many scenes in one process: FILE (`-` for standard input) holds one JSON object
+    /// per line, with the keys of a scene file (`{"punch": {"shape": "cone"}, "load":
+    /// {"depth": 2}}`; dimensional ones too) and optionally `"method"`. Prints one JSON line per
+    /// scene, in order: the solution (as `--json`, compact) with `"line"`, or `{"line": N,
+    /// "error": "..."}` for a scene that fails, without stopping the rest. --method and --tol
+    /// apply to lines that do not say. Exit status 1 if any line failed.
+    #[arg(long, value_name = "FILE", conflicts_with_all = ["punch", "exponent", "tube_radius", "profile", "eps", "depth", "force", "scene", "mesh", "mesh_parameters", "vtu"])]
+    pub batch: Option<PathBuf>,
+}
+
+// The arguments of `verify table`.
+#[derive(Args)]
+#[command(group(clap::ArgGroup::new("state").required(true).args(["eps", "depth", "force"])))]
+pub struct TableArgs {
+    /// Punch shape.
+    #[arg(long, value_enum)]
+    pub punch: Option<PunchName>,
+    /// Exponent n of the power-law punch (`--punch power`).
+    #[arg(long)]
+    pub exponent: Option<f64>,
+    /// Tube radius rho of the torus (`--punch torus`).
+    #[arg(long, allow_negative_numbers = true)]
+    pub tube_radius: Option<f64>,
+    /// Profile table of `--punch table` (CSV of `r/a, g/h` points).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// Scene file (TOML) giving the punch, the material and the units; its load is replaced by
+    /// each state of the list.
+    #[arg(long)]
+    pub scene: Option<PathBuf>,
+    /// States by contact ratio b/a: numbers and ranges START:STOP:STEP (inclusive),
+    /// comma-separated. Fixes the flat annulus; prescribes a concave punch's (or the torus's)
+    /// inner contact edge.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub eps: Option<String>,
+    /// States by indentation depth d (d/h for concave punches with h = 1), as a LIST.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub depth: Option<String>,
+    /// States by normal force F (compression positive), as a LIST.
+    #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
+    pub force: Option<String>,
+    /// Method.
+    #[arg(long, value_enum, default_value = "ring-bem")]
+    pub method: Method,
+    /// Relative tolerance wanted [default: the scene's, else the method's].
+    #[arg(long)]
+    pub tol: Option<f64>,
+    /// FEM only: the condition on the far arc (as `verify solve`).
+    #[arg(long, value_enum)]
+    pub far_field: Option<crate::discretisation::far_field::FarField>,
+    /// FEM only: element degree 1, 2 or 3 (as `verify solve`).
+    #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
+    pub degree: Option<u8>,
+    /// Grid BEM only: cells per side (as `verify solve`).
+    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
+    pub grid: Option<u64>,
+    /// Print one JSON object (provenance and `rows`) instead of CSV.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the table to this file instead of standard output.
+    #[arg(long, value_name = "FILE")]
+    pub out: Option<PathBuf>,
+}
+
+// The arguments of `verify grade`.
+#[derive(Args)]
+pub struct GradeArgs {
+    /// The results to grade (CSV with a header row, or JSON).
+    #[arg(long, value_name = "FILE")]
+    pub results: PathBuf,
+    /// Relative error a value may have and pass.
+    #[arg(long, default_value_t = 1e-3, value_name = "T")]
+    pub tol: f64,
+    /// Print one JSON object (`rows`, `summary`, `max_relative_error`, `tolerance`, the
+    /// provenance) instead of the tables.
+    #[arg(long)]
+    pub json: bool,
+    /// Write the chart of the relative error against the state to this SVG file.
+    #[arg(long, value_name = "FILE")]
+    pub svg: Option<PathBuf>,
 }
 
 // The arguments of `verify compare`.

@@ -5,12 +5,16 @@
 //! Tables come from [`crate::harness::report::table::Table`]; `--json` prints the typed results.
 
 pub mod args;
+mod batch;
+mod grade;
 mod jkr;
 mod operators;
 mod plan;
 mod pulloff;
 mod solve;
+mod states;
 mod studies;
+mod table;
 
 use args::{Command, CompareArgs};
 
@@ -69,6 +73,8 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         }),
         Some(Command::Compare(args)) => studies::compare(args),
         Some(Command::Solve(args)) => solve::solve(args),
+        Some(Command::Table(args)) => table::table(args),
+        Some(Command::Grade(args)) => grade::grade(args),
         Some(Command::Fenicsx(args)) => operators::fenicsx(args),
         Some(Command::Mesh(args)) => operators::mesh(args),
         Some(Command::Export(args)) => operators::export(args),

@@ -10,13 +10,35 @@ use crate::scene::{Scene, SceneSpec};
 use crate::solution::Solution;
 
 /// `verify solve`: the scene from `--scene` and the flags (flags override the file), solved by
-/// `--method`; prints the state (or one JSON object).
+/// `--method`; prints the state (or one JSON object). With `--batch FILE`: one scene per line.
 pub fn solve(args: SolveArgs) -> Result<Reply, String> {
+    if let Some(path) = &args.batch {
+        return super::batch::solve_batch(path, &args);
+    }
     let scene = scene_of(&args)?;
-    if args.mesh_parameters.is_some() && args.method != crate::methods::Method::Fem {
+    let solution = solve_scene(&scene, &args)?;
+    Ok(Reply::ok(if args.json {
+        to_json(&solution)?
+    } else {
+        describe(&scene, &solution).to_terminal()
+    }))
+}
+
+/// Solve `scene` by `args.method` with the method options of `args` (mesh, degree, grid, ...).
+pub(crate) fn solve_scene(scene: &Scene, args: &SolveArgs) -> Result<Solution, String> {
+    solve_scene_by(scene, args.method, args)
+}
+
+/// Solve `scene` by `method` with the method options of `args`.
+pub(crate) fn solve_scene_by(
+    scene: &Scene,
+    method: methods::Method,
+    args: &SolveArgs,
+) -> Result<Solution, String> {
+    if args.mesh_parameters.is_some() && method != crate::methods::Method::Fem {
         return Err(format!(
             "--mesh-parameters makes a mesh for --method fem only (not {})",
-            args.method.name()
+            method.name()
         ));
     }
     let mesh = crate::cli::chosen_mesh(
@@ -32,16 +54,11 @@ pub fn solve(args: SolveArgs) -> Result<Reply, String> {
         grid_extent: args.grid_extent,
         vtu: args.vtu.clone(),
     };
-    let solution = methods::solve_with(&scene, args.method, &options).map_err(message)?;
-    Ok(Reply::ok(if args.json {
-        to_json(&solution)?
-    } else {
-        describe(&scene, &solution).to_terminal()
-    }))
+    methods::solve_with(scene, method, &options).map_err(message)
 }
 
 /// The validated scene: the file's (or the defaults), then the flags.
-fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
+pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     let mut spec = match &args.scene {
         Some(path) => SceneSpec::from_file(path).map_err(message)?,
         None => SceneSpec::default(),

@@ -2,6 +2,7 @@
 
 /// Whether gmsh is there; when it is not, the tests that need generated meshes are skipped with
 /// a message, unless `RINGCONTACT_REQUIRE_GMSH=1` (set by `.ci/run` after it installs gmsh).
+#[allow(dead_code)]
 pub fn gmsh_available(test: &str) -> bool {
     let root = ringcontact::mesh::provider::project_root();
     if ringcontact::mesh::gmsh::Gmsh::find(&root).is_some() {
@@ -13,4 +14,40 @@ pub fn gmsh_available(test: &str) -> bool {
     );
     eprintln!("{test}: skipped, gmsh not found (bash scripts/install_gmsh.sh)");
     false
+}
+
+/// Run the `verify` binary with `args` (standard input empty).
+#[allow(dead_code)]
+pub fn verify(args: &[&str]) -> std::process::Output {
+    verify_with_input(args, "")
+}
+
+/// Run the `verify` binary with `args`, `input` on its standard input.
+#[allow(dead_code)]
+pub fn verify_with_input(args: &[&str], input: &str) -> std::process::Output {
+    use std::io::Write;
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
+        .args(args)
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("verify runs");
+    child
+        .stdin
+        .take()
+        .expect("stdin")
+        .write_all(input.as_bytes())
+        .expect("input written");
+    child.wait_with_output().expect("verify finishes")
+}
+
+/// A fresh scratch directory for a test (under the target directory).
+#[allow(dead_code)]
+pub fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).expect("scratch directory");
+    dir
 }

@@ -85,6 +85,21 @@ pub fn readable(x: f64, decimals: usize) -> String {
     }
 }
 
+/// Whether `x` is a whole number that JSON and CSV write without a fraction (`16`, not `16.0`).
+fn is_count(x: f64) -> bool {
+    x.fract() == 0.0 && x.abs() < 9.0e15
+}
+
+/// `x` in the shortest form that reads back to the same `f64`: whole numbers without a
+/// fraction, the exponent form for small and large magnitudes (`1e-13`, never 13 zeros).
+fn shortest(x: f64) -> String {
+    if is_count(x) {
+        format!("{}", x as i64)
+    } else {
+        format!("{x:?}")
+    }
+}
+
 /// A verdict cell: `ok` when `passed`, else the flagged `failure` text.
 pub(crate) fn verdict(passed: bool, failure: &str) -> Cell {
     if passed {
@@ -248,7 +263,7 @@ impl Table {
         for r in &self.rows {
             writer
                 .write_record(r.iter().map(|v| match v {
-                    Cell::Number(x) => x.to_string(),
+                    Cell::Number(x) => shortest(*x),
                     Cell::Text(t) | Cell::Flag(t) => t.clone(),
                     Cell::Missing => String::new(),
                 }))
@@ -275,6 +290,7 @@ impl Table {
                     let mut object = Map::new();
                     for (c, v) in r.iter().enumerate() {
                         let value = match v {
+                            Cell::Number(x) if is_count(*x) => Value::from(*x as i64),
                             Cell::Number(x) => {
                                 serde_json::Number::from_f64(*x).map_or(Value::Null, Value::Number)
                             }
