@@ -5,16 +5,14 @@
 //! Tables come from [`crate::harness::report::table::Table`]; `--json` prints the typed results.
 
 pub mod args;
-mod batch;
+mod dataset;
 mod grade;
 mod jkr;
 mod operators;
 mod plan;
 mod pulloff;
 mod solve;
-mod states;
 mod studies;
-mod table;
 
 use args::{Command, CompareArgs};
 
@@ -73,8 +71,9 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         }),
         Some(Command::Compare(args)) => studies::compare(args),
         Some(Command::Solve(args)) => solve::solve(args),
-        Some(Command::Table(args)) => table::table(args),
+        Some(Command::Table(args)) => solve::table::table(args),
         Some(Command::Grade(args)) => grade::grade(args),
+        Some(Command::Dataset(args)) => dataset::dataset(args),
         Some(Command::Fenicsx(args)) => operators::fenicsx(args),
         Some(Command::Mesh(args)) => operators::mesh(args),
         Some(Command::Export(args)) => operators::export(args),

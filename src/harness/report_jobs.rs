@@ -863,11 +863,14 @@ pub(crate) fn write_report(
     });
     let (functions, pressure, annular_jkr) = curves?;
     let verdicts = verdicts?;
+    tick("stored peer results graded");
+    let peer_grading = crate::harness::grade::grade_stored_peers()?;
     let findings = Findings {
         functions,
         pressure,
         annular_jkr,
         verdicts,
+        peer_grading,
         wall_s: start.elapsed().as_secs_f64(),
     };
     tick("tables and pages");

@@ -8,7 +8,9 @@ use std::path::{Path, PathBuf};
 use crate::punch::PunchName;
 
 /// A quantity a row may give: a state (`eps`, `depth`, `force`) or a graded value.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize)]
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, serde::Serialize, serde::Deserialize,
+)]
 #[serde(rename_all = "lowercase")]
 pub enum Quantity {
     /// Contact ratio `b/a` (the flat annulus's hole; a concave punch's or the torus's inner edge).

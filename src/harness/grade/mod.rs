@@ -9,11 +9,13 @@
 
 pub mod input;
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
 pub use input::{Quantity, ResultRow};
 
 use crate::error::Error;
+use crate::harness::records::peers::PeerResult;
+use crate::harness::report::table::{readable, verdict, Cell, Column, Format, Table};
 use crate::methods::{self, Method};
 use crate::scene::{Scene, SceneSpec};
 use crate::solution::Solution;
@@ -21,11 +23,16 @@ use crate::solution::Solution;
 /// The ring BEM's tolerance for the references.
 pub const REFERENCE_TOLERANCE: f64 = 1e-12;
 
+/// The tolerance the report grades the stored peer results at: their square grids (64 to 256
+/// cells per side) resolve the force to a few parts in 1e3 on these states, a staircase error of
+/// the first order in the cell size.
+pub const PEER_TOLERANCE: f64 = 1e-2;
+
 /// How much smaller than the difference it judges a reference's error bound must be.
 pub const RESOLUTION: f64 = 100.0;
 
 /// One graded value.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct GradedValue {
     /// Where the row is in the results file (`line 7`, `row 3`).
     pub place: String,
@@ -62,7 +69,7 @@ pub struct GradedValue {
 }
 
 /// The largest and the RMS relative error of one quantity of one punch.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Summary {
     pub punch: String,
     pub quantity: Quantity,
@@ -74,7 +81,7 @@ pub struct Summary {
 }
 
 /// A grading of a results file.
-#[derive(Clone, Debug, Serialize)]
+#[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct Grading {
     /// The tolerance `T` every relative error is held to.
     pub tolerance: f64,
@@ -354,3 +361,142 @@ fn state_range(grading: &Grading) -> Option<(f64, f64)> {
     let hi = values.fold(0.0, f64::max);
     (lo.is_finite() && hi > 0.0).then_some((lo, hi))
 }
+
+/// The stored peer results (`verify/peers/*.json`: the force a peer found at a given depth) as
+/// rows to grade. The torus records' gap `(1 - r)²` is the torus of tube radius `a/2`.
+pub fn peer_rows(records: &[(String, PeerResult)]) -> Vec<ResultRow> {
+    records
+        .iter()
+        .map(|(file, r)| ResultRow {
+            place: file.clone(),
+            punch: r.punch.shape_name(),
+            exponent: r.punch.exponent(),
+            tube_radius: (r.punch == crate::punch::PunchKind::Torus).then_some(0.5),
+            profile: r.punch.table().map(|t| t.source().into()),
+            hole_ratio: (r.punch == crate::punch::PunchKind::FlatAnnulus)
+                .then_some(r.eps)
+                .flatten(),
+            state: Some((Quantity::Depth, r.depth)),
+            values: vec![(Quantity::Force, r.force)],
+            effective_modulus: None,
+            rim_radius: None,
+            hole_depth: None,
+            claimed_error: None,
+        })
+        .collect()
+}
+
+/// The graded values as a table (the terminal output of `verify grade` and the report's).
+pub fn rows_table(g: &Grading, title: &str) -> Table {
+    let mut rows = Table::new(
+        title,
+        vec![
+            Column::text("place", "where"),
+            Column::text("punch", "punch"),
+            Column::text("state", "state"),
+            Column::text("quantity", "quantity"),
+            Column::number("value", "value", Format::Scientific(9)),
+            Column::number("reference", "reference", Format::Scientific(9)),
+            Column::number("reference_error", "ref. bound", Format::Scientific(1)),
+            Column::number("relative_error", "rel. error", Format::Scientific(2)),
+            Column::text("within", "within T"),
+            Column::text("claim", "own estimate"),
+        ],
+    );
+    for r in &g.rows {
+        rows.push(vec![
+            r.place.clone().into(),
+            r.punch.clone().into(),
+            format!("{} = {}", r.state, readable(r.state_value, 6)).into(),
+            r.quantity.key().into(),
+            r.value.into(),
+            r.reference.into(),
+            r.reference_error.into(),
+            r.relative_error.into(),
+            if r.resolved {
+                verdict(r.within, "beyond")
+            } else {
+                Cell::Text("yes (not resolved)".into())
+            },
+            match (r.claimed_error, r.claim_holds) {
+                (Some(c), Some(true)) => format!("{c:.1e} holds").into(),
+                (Some(c), _) => Cell::Flag(format!("{c:.1e} broken")),
+                _ => Cell::Missing,
+            },
+        ]);
+    }
+    rows
+}
+
+/// The largest and RMS error per punch and quantity as a table.
+pub fn summary_table(g: &Grading) -> Table {
+    let mut summary = Table::new(
+        "Per punch and quantity",
+        vec![
+            Column::text("punch", "punch"),
+            Column::text("quantity", "quantity"),
+            Column::number("count", "values", Format::Fixed(0)),
+            Column::number("within", "within T", Format::Fixed(0)),
+            Column::number("max", "largest rel. error", Format::Scientific(2)),
+            Column::number("rms", "RMS rel. error", Format::Scientific(2)),
+        ],
+    );
+    for s in &g.summary {
+        summary.push(vec![
+            s.punch.clone().into(),
+            s.quantity.key().into(),
+            (s.count as f64).into(),
+            (s.within as f64).into(),
+            s.max_relative_error.into(),
+            s.rms_relative_error.into(),
+        ]);
+    }
+    summary
+}
+
+/// One sentence: how many values, how many beyond, the largest error, the unresolved and the
+/// broken claims.
+pub fn verdict_sentence(g: &Grading) -> String {
+    let mut text = format!(
+        "{} values graded at T = {:.1e}: {} beyond, largest relative error {:.2e}",
+        g.rows.len(),
+        g.tolerance,
+        g.beyond,
+        g.max_relative_error
+    );
+    if g.unresolved > 0 {
+        text.push_str(&format!(
+            "; {} closer to the reference than {RESOLUTION} times its error bound (agree to the \
+             reference's accuracy, the difference not resolved)",
+            g.unresolved
+        ));
+    }
+    if g.rows.iter().any(|r| r.claimed_error.is_some()) {
+        text.push_str(&format!(
+            "; {} values beyond the error their results claim",
+            g.claims_broken
+        ));
+    }
+    text
+}
+
+/// The stored peer results (`verify/peers/`) graded at [`PEER_TOLERANCE`]; `None` when none
+/// are stored.
+pub fn grade_stored_peers() -> crate::error::Result<Option<Grading>> {
+    let records = crate::harness::records::peers::load_results()?;
+    if records.is_empty() {
+        return Ok(None);
+    }
+    grade(&peer_rows(&records), PEER_TOLERANCE, &|_, _| {})
+        .map(Some)
+        .map_err(|e| Error::File {
+            action: "grade the stored peer results".into(),
+            path: crate::harness::records::peers::results_directory()
+                .display()
+                .to_string(),
+            message: e,
+        })
+}
+
+/// File of the report's chart of the graded peer results.
+pub const PEER_CHART: &str = "grade-peers.svg";

@@ -47,6 +47,10 @@ pub struct ReportExtras {
     /// Fresh peer and pull-off results against the committed baselines (`--fresh DIR`).
     #[serde(default)]
     pub baselines: Vec<crate::harness::records::baselines::BaselineCheck>,
+    /// The stored peer results graded against the converged references by `verify grade`'s
+    /// code path ([`crate::harness::grade`]); none without stored results.
+    #[serde(default)]
+    pub peer_grading: Option<crate::harness::grade::Grading>,
     /// The checks counted, failed and not run (the report's first line).
     #[serde(default)]
     pub headline: Headline,

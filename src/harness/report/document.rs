@@ -390,6 +390,33 @@ fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
     write(dir, "pressure-sphere.svg", &chart)
 }
 
+/// The committed reference dataset (`verify/dataset/`, `verify dataset --small`), copied into
+/// `dir/dataset/` so that the report links it wherever the report is; nothing where the project
+/// has none.
+fn copy_dataset(dir: &Path) -> Result<()> {
+    let Ok(root) = crate::mesh::provider::find_project_root() else {
+        return Ok(());
+    };
+    let source = root.join(DATASET_DIRECTORY);
+    let Ok(entries) = std::fs::read_dir(&source) else {
+        return Ok(());
+    };
+    let target = dir.join("dataset");
+    std::fs::create_dir_all(&target)
+        .map_err(|e| Error::file("create the directory", &target, e))?;
+    for entry in entries.filter_map(|e| e.ok()) {
+        let from = entry.path();
+        if from.is_file() {
+            let to = target.join(entry.file_name());
+            std::fs::copy(&from, &to).map_err(|e| Error::file("copy", &from, e))?;
+        }
+    }
+    Ok(())
+}
+
+/// Where the committed small copy of the reference dataset lives, relative to the project.
+const DATASET_DIRECTORY: &str = "verify/dataset";
+
 fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
     std::fs::write(dir.join(name), text).map_err(|e| Error::file("write", &dir.join(name), e))
 }
@@ -493,6 +520,8 @@ pub(crate) struct Findings {
     pub annular_jkr: Vec<Option<Points>>,
     /// The paper's claims with this run's numbers.
     pub verdicts: Vec<Verdict>,
+    /// The stored peer results graded against the references (`verify grade`'s code path).
+    pub peer_grading: Option<crate::harness::grade::Grading>,
     /// Wall time of computing these, seconds.
     pub wall_s: f64,
 }
@@ -526,9 +555,19 @@ pub(crate) fn write_files(
     }
     pressure_chart(&findings.pressure, dir)?;
     adhesion_charts(dir, inputs, findings)?;
+    copy_dataset(dir)?;
+    if let Some(g) = &findings.peer_grading {
+        let title = "Stored peer results: relative error of the force against the references";
+        write(
+            dir,
+            crate::harness::grade::PEER_CHART,
+            &crate::harness::grade::chart(g, title),
+        )?;
+    }
     let simulations = inputs.pulloff_simulations.clone();
     let mut extras = ReportExtras {
         baselines: inputs.baselines.clone(),
+        peer_grading: findings.peer_grading.clone(),
         headline: Headline::default(),
         verdicts: findings.verdicts.clone(),
         pulloff_simulations: simulations,
@@ -645,6 +684,10 @@ pub fn headline(
         ),
         ("stored peer results".into(), peers.len()),
         (
+            "stored peer results graded against the references".into(),
+            extras.peer_grading.as_ref().map_or(0, |g| g.rows.len()),
+        ),
+        (
             "stored Tamaas pull-offs".into(),
             extras.adhesion_peers.len(),
         ),
@@ -665,6 +708,7 @@ pub fn headline(
         + crate::harness::records::fenicsx::failures(fenicsx)
         + crate::harness::records::operator::failures(operators)
         + crate::harness::records::peers::failures(peers)
+        + extras.peer_grading.as_ref().map_or(0, |g| g.beyond)
         + crate::harness::records::adhesion_peers::failures(&extras.adhesion_peers)
         + crate::harness::records::baselines::failures(&extras.baselines)
         + extras
@@ -685,6 +729,15 @@ pub fn headline(
         not_run,
         groups,
     }
+}
+
+/// Whether the project holds the committed dataset (copied into every report).
+fn dir_has_dataset() -> bool {
+    crate::mesh::provider::find_project_root().is_ok_and(|root| {
+        root.join(DATASET_DIRECTORY)
+            .join("datapackage.json")
+            .is_file()
+    })
 }
 
 fn markdown(
@@ -730,6 +783,14 @@ fn markdown(
             table.to_markdown_table(),
             convergence::summary(s)
         );
+    }
+    if dir_has_dataset() {
+        md += "## Reference dataset\n\nConverged values to download, each with its error bound \
+               and provenance: the non-adhesive functions with their stress intensity factors, \
+               the JKR critical states and pull-off forces, the fitted formulas with their \
+               largest errors ([datapackage.json](dataset/datapackage.json), CSV and JSON; the \
+               small copy committed in `verify/dataset/`). `verify dataset` writes the full \
+               grids, which interpolate to 1e-8.\n\n";
     }
     md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](gammas-power-n1.5.svg)\n![](gammas-power-n3.svg)\n![](gammas-torus.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n![](pulloff-power-n1.5.svg)\n![](pulloff-power-n3.svg)\n![](pulloff-torus.svg)\n";
     md

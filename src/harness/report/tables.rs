@@ -158,6 +158,24 @@ pub(crate) fn report_tables(
             external(fenicsx, peers),
         ),
     ];
+    if let Some(g) = &extras.peer_grading {
+        out.push(ReportTable {
+            section: None,
+            intro: Some(format!(
+                "The same stored results graded against the converged references by the code \
+                 of `verify grade` (`verify grade --results verify/grade/tamaas.csv` grades \
+                 Tamaas's as a user would): the peers' square grids are held to {:.0e}. {}.",
+                g.tolerance,
+                crate::harness::grade::verdict_sentence(g)
+            )),
+            chart: Some(crate::harness::grade::PEER_CHART.to_string()),
+            slug: "peer-grading".into(),
+            table: crate::harness::grade::rows_table(
+                g,
+                "Stored peer results against the converged references",
+            ),
+        });
+    }
     out.extend(baseline_and_speed_tables(extras));
     out.push(operator_table(operator_rows));
     out.extend(pulloff_tables(extras));

@@ -1,4 +1,9 @@
-//! `verify solve`: one scene, one method.
+//! `verify solve`: one scene, one method; with `--batch`, many scenes ([`batch`]); `verify
+//! table`: one punch at many states ([`table`], the lists of [`states`]).
+
+pub(super) mod batch;
+pub(super) mod states;
+pub(super) mod table;
 
 use super::{message, to_json, Reply};
 use crate::cli::args::SolveArgs;
@@ -13,7 +18,7 @@ use crate::solution::Solution;
 /// `--method`; prints the state (or one JSON object). With `--batch FILE`: one scene per line.
 pub fn solve(args: SolveArgs) -> Result<Reply, String> {
     if let Some(path) = &args.batch {
-        return super::batch::solve_batch(path, &args);
+        return batch::solve_batch(path, &args);
     }
     let scene = scene_of(&args)?;
     let solution = solve_scene(&scene, &args)?;

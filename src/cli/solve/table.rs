@@ -1,8 +1,8 @@
 //! `verify table`: one punch at many states, one row per state.
 
-use super::solve::{scene_of, solve_scene};
-use super::{message, states, Reply};
+use super::{scene_of, solve_scene, states};
 use crate::cli::args::{SolveArgs, TableArgs};
+use crate::cli::{message, Reply};
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::heartbeat::Heartbeat;
 use crate::provenance::Provenance;
@@ -64,7 +64,7 @@ pub fn table(args: TableArgs) -> Result<Reply, String> {
                 scenes.len()
             )
         })?;
-        super::refuse_non_finite(&format!("{} = {value}", kind.name()), &solution)?;
+        crate::cli::refuse_non_finite(&format!("{} = {value}", kind.name()), &solution)?;
         solutions.push((*value, solution));
     }
     drop(heartbeat);
@@ -76,7 +76,7 @@ pub fn table(args: TableArgs) -> Result<Reply, String> {
             "method": args.method.name(),
             "rows": table.to_json(),
         });
-        super::to_json(&object)?
+        crate::cli::to_json(&object)?
     } else {
         table.to_csv().map_err(message)?
     };

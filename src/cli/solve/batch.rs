@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
-use super::solve::solve_scene_by;
-use super::{message, Reply};
+use super::solve_scene_by;
 use crate::cli::args::SolveArgs;
+use crate::cli::{message, Reply};
 use crate::heartbeat::Heartbeat;
 use crate::methods::Method;
 use crate::scene::SceneSpec;
@@ -100,7 +100,7 @@ fn solve_line(
     }
     let scene = spec.validate().map_err(message)?;
     let solution = solve_scene_by(&scene, method, args)?;
-    super::refuse_non_finite("the scene", &solution)?;
+    crate::cli::refuse_non_finite("the scene", &solution)?;
     let json = serde_json::to_string(&solution).map_err(message)?;
     // The solution's own keys, in their order, after "line".
     Ok(format!("{{\"line\":{number},{}", &json[1..]))

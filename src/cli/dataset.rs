@@ -1,0 +1,65 @@
+//! `verify dataset`: the converged reference values as CSV and JSON with a datapackage.json.
+
+use super::{message, output_directory, to_json, Reply};
+use crate::cli::args::DatasetArgs;
+use crate::harness::dataset::{self, Size};
+use crate::harness::report::table::{Column, Format, Table};
+use crate::heartbeat::Heartbeat;
+use crate::provenance::Provenance;
+
+/// `verify dataset [--out DIR] [--small]`: compute and write the tables, print what was written.
+pub fn dataset(args: DatasetArgs) -> Result<Reply, String> {
+    let out = output_directory(args.out.as_deref(), "reports/dataset");
+    let size = if args.small { Size::Small } else { Size::Full };
+    let heartbeat = Heartbeat::start("verify dataset");
+    let resources =
+        dataset::build(size, &|step| heartbeat.set(step.to_string())).map_err(message)?;
+    drop(heartbeat);
+    let provenance = Provenance::of_this_process();
+    let files = dataset::write(&out, &resources, &provenance, size).map_err(message)?;
+    if args.json {
+        let summary: Vec<serde_json::Value> = resources
+            .iter()
+            .map(|r| {
+                serde_json::json!({
+                    "name": r.name,
+                    "rows": r.table.rows.len(),
+                    "interpolation_error": r.interpolation_error,
+                })
+            })
+            .collect();
+        return Ok(Reply::ok(to_json(&serde_json::json!({
+            "out": out.display().to_string(),
+            "provenance": provenance,
+            "resources": summary,
+            "files": files,
+        }))?));
+    }
+    let mut table = Table::new(
+        &format!("Dataset written to {}", out.display()),
+        vec![
+            Column::text("name", "table (.csv and .json)"),
+            Column::number("rows", "rows", Format::Fixed(0)),
+            Column::text("interpolation", "interpolation error (measured)"),
+            Column::text("title", "contents"),
+        ],
+    );
+    for r in &resources {
+        let measured: Vec<String> = r
+            .interpolation_error
+            .iter()
+            .map(|(n, e)| format!("{n} {e:.1e}"))
+            .collect();
+        table.push(vec![
+            r.name.clone().into(),
+            (r.table.rows.len() as f64).into(),
+            measured.join(", ").into(),
+            r.title.clone().into(),
+        ]);
+    }
+    Ok(Reply::ok(format!(
+        "{}\ndatapackage.json describes every column (name, type, unit, description) and the \
+         provenance.\n",
+        table.to_terminal()
+    )))
+}

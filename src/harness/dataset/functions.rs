@@ -1,0 +1,264 @@
+//! The non-adhesive functions of the dataset: `γ(ε)` of the flat annulus and `γ1(ε)`, `γ2(ε)`
+//! of the concave punches on a grid uniform in `s = ln(ε/(1 - ε))`, each with the ring BEM's
+//! error estimate, and the measured error of interpolating them.
+//!
+//! Interpolation: Lagrange cubic in `s` through the four nearest grid points. Its error is
+//! measured at the midpoint of every interior interval against a fresh solve there.
+
+use crate::bem::ring_contact::{RingBemSolver, RingState};
+use crate::error::Result;
+use crate::harness::report::table::{Cell, Table};
+use crate::punch::PunchKind;
+
+use super::{Field, Resource};
+
+/// The ring BEM's tolerance for the tables.
+pub const TOLERANCE: f64 = 1e-9;
+
+/// The contact ratios the ring BEM certifies, the ends of the grid.
+pub const EPS_RANGE: (f64, f64) = (1e-4, 0.9999);
+
+/// `s = ln(ε / (1 - ε))`.
+fn logit(eps: f64) -> f64 {
+    (eps / (1.0 - eps)).ln()
+}
+
+/// `ε = 1 / (1 + e^(-s))`.
+fn logistic(s: f64) -> f64 {
+    1.0 / (1.0 + (-s).exp())
+}
+
+/// The grid: `n` intervals uniform in `s` between the ends of [`EPS_RANGE`].
+pub fn grid(intervals: usize) -> Vec<f64> {
+    let (s0, s1) = (logit(EPS_RANGE.0), logit(EPS_RANGE.1));
+    (0..=intervals)
+        .map(|k| {
+            let s = s0 + (s1 - s0) * k as f64 / intervals as f64;
+            match k {
+                0 => EPS_RANGE.0,
+                k if k == intervals => EPS_RANGE.1,
+                _ => logistic(s),
+            }
+        })
+        .collect()
+}
+
+/// The value at `eps` of the cubic in `s` through the four grid points nearest to it.
+pub fn interpolate(grid: &[f64], values: &[f64], eps: f64) -> f64 {
+    let s = logit(eps);
+    let i = grid
+        .partition_point(|&g| logit(g) <= s)
+        .clamp(2, grid.len() - 2)
+        - 2;
+    let nodes: Vec<f64> = grid[i..i + 4].iter().map(|&g| logit(g)).collect();
+    (0..4)
+        .map(|j| {
+            let weight: f64 = (0..4)
+                .filter(|&m| m != j)
+                .map(|m| (s - nodes[m]) / (nodes[j] - nodes[m]))
+                .product();
+            weight * values[i + j]
+        })
+        .sum()
+}
+
+/// One punch's function table: the solve at each state.
+struct Solved {
+    eps: Vec<f64>,
+    states: Vec<RingState>,
+}
+
+fn solve_all(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    eps: &[f64],
+    progress: &dyn Fn(&str),
+) -> Result<Solved> {
+    let mut states = Vec::with_capacity(eps.len());
+    for (k, &e) in eps.iter().enumerate() {
+        if k % 50 == 0 {
+            progress(&format!("{kind}: state {} of {}", k + 1, eps.len()));
+        }
+        states.push(match kind {
+            PunchKind::FlatAnnulus => solver.flat(e, TOLERANCE)?,
+            _ => solver.concave_at_ratio(kind, e, TOLERANCE)?,
+        });
+    }
+    Ok(Solved {
+        eps: eps.to_vec(),
+        states,
+    })
+}
+
+/// The function values of a state (`γ`, or `γ1` and `γ2`).
+fn functions(kind: PunchKind, s: &RingState) -> Vec<f64> {
+    if kind == PunchKind::FlatAnnulus {
+        vec![s.gamma.unwrap_or(f64::NAN)]
+    } else {
+        vec![s.gamma1.unwrap_or(f64::NAN), s.gamma2.unwrap_or(f64::NAN)]
+    }
+}
+
+/// The largest relative error of interpolating each function at the midpoints of the interior
+/// intervals, against fresh solves there.
+fn interpolation_error(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    solved: &Solved,
+    progress: &dyn Fn(&str),
+) -> Result<Vec<f64>> {
+    let grid = &solved.eps;
+    let columns: Vec<Vec<f64>> = (0..functions(kind, &solved.states[0]).len())
+        .map(|c| {
+            solved
+                .states
+                .iter()
+                .map(|s| functions(kind, s)[c])
+                .collect()
+        })
+        .collect();
+    let midpoints: Vec<f64> = grid
+        .windows(2)
+        .skip(1)
+        .take(grid.len().saturating_sub(3))
+        .map(|w| logistic(0.5 * (logit(w[0]) + logit(w[1]))))
+        .collect();
+    let fresh = solve_all(solver, kind, &midpoints, progress)?;
+    let mut worst = vec![0.0f64; columns.len()];
+    for (e, state) in midpoints.iter().zip(&fresh.states) {
+        for (c, exact) in functions(kind, state).into_iter().enumerate() {
+            let error = (interpolate(grid, &columns[c], *e) - exact).abs() / exact.abs();
+            worst[c] = worst[c].max(error);
+        }
+    }
+    Ok(worst)
+}
+
+/// The function table of `kind` on a grid of `intervals` intervals, as a dataset resource.
+pub fn resource(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    intervals: usize,
+    progress: &dyn Fn(&str),
+) -> Result<Resource> {
+    let solved = solve_all(solver, kind, &grid(intervals), progress)?;
+    let worst = interpolation_error(solver, kind, &solved, progress)?;
+    let flat = kind == PunchKind::FlatAnnulus;
+    let mut fields = vec![Field::number(
+        "eps",
+        "1",
+        "contact ratio b/a (the flat annulus's hole; the concave punch's inner contact edge)",
+    )];
+    if flat {
+        fields.push(Field::number(
+            "gamma",
+            "1",
+            "F/(2 E* d a): force of the flat annulus at depth d",
+        ));
+    } else {
+        fields.push(Field::number(
+            "gamma1",
+            "1",
+            "d/h: depth at which the contact ratio is eps",
+        ));
+        fields.push(Field::number(
+            "gamma2",
+            "1",
+            "F/(2 E* h a): force at that depth",
+        ));
+    }
+    fields.push(Field::number(
+        "error_estimate",
+        "1",
+        "relative error bound of the gamma columns (the ring BEM's estimate, tolerance 1e-9; the column gives what it reached)",
+    ));
+    fields.push(Field::number(
+        "stress_intensity_rim",
+        if flat {
+            "E* d / sqrt(a)"
+        } else {
+            "E* h / sqrt(a)"
+        },
+        "mode-I stress intensity factor at the rim r = a, K = lim sqrt(2 pi (a - r)) p(r) \
+         (from the same solution; not separately bounded)",
+    ));
+    if flat {
+        fields.push(Field::number(
+            "stress_intensity_inner",
+            "E* d / sqrt(a)",
+            "mode-I stress intensity factor at the inner edge r = b (from the same solution; \
+             not separately bounded)",
+        ));
+    }
+    let mut table = Table::new(
+        &format!("{kind}"),
+        fields.iter().map(Field::column).collect(),
+    );
+    for (e, s) in solved.eps.iter().zip(&solved.states) {
+        let mut row: Vec<Cell> = vec![(*e).into()];
+        row.extend(functions(kind, s).into_iter().map(Cell::from));
+        row.push(s.error_estimate.into());
+        row.push(s.rim_stress_intensity.into());
+        if flat {
+            row.push(s.inner_stress_intensity.into());
+        }
+        table.push(row);
+    }
+    let names = if flat {
+        vec!["gamma"]
+    } else {
+        vec!["gamma1", "gamma2"]
+    };
+    let measured: Vec<String> = names
+        .iter()
+        .zip(&worst)
+        .map(|(n, w)| format!("{n} {w:.1e}"))
+        .collect();
+    Ok(Resource {
+        name: format!("functions-{}", kind.label()),
+        title: if flat {
+            "Flat annular punch: gamma(eps) = F/(2 E* d a)".into()
+        } else {
+            format!("{kind}: gamma1(eps) = d/h and gamma2(eps) = F/(2 E* h a)")
+        },
+        description: format!(
+            "Non-adhesive {kind}, frictionless, on an elastic half-space (effective modulus E*), \
+             by the ring BEM at tolerance {TOLERANCE:e}; {} states uniform in s = ln(eps/(1 - \
+             eps)) from eps = {} to {}. Interpolation: the cubic in s through the four nearest \
+             rows; its largest relative error measured at the midpoints of the interior \
+             intervals against fresh solves: {}.",
+            solved.eps.len(),
+            EPS_RANGE.0,
+            EPS_RANGE.1,
+            measured.join(", ")
+        ),
+        fields,
+        table,
+        interpolation_error: names
+            .iter()
+            .zip(&worst)
+            .map(|(n, w)| (n.to_string(), *w))
+            .collect(),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_cubic_in_s_reproduces_cubics_and_the_grid_ends_are_exact() {
+        let g = grid(40);
+        assert_eq!((g[0], g[40]), EPS_RANGE);
+        let cubic = |e: f64| {
+            let s = logit(e);
+            1.0 + s - 0.5 * s * s + 0.1 * s * s * s
+        };
+        let values: Vec<f64> = g.iter().map(|&e| cubic(e)).collect();
+        for e in [2e-4, 0.01, 0.3, 0.5, 0.77, 0.9991] {
+            assert!(
+                (interpolate(&g, &values, e) - cubic(e)).abs() < 1e-9 * cubic(e).abs().max(1.0)
+            );
+        }
+    }
+}

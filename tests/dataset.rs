@@ -1,0 +1,154 @@
+//! `verify dataset`: the committed small copy (verify/dataset/) is what the command makes, within
+//! the error bounds it states; every column is described in datapackage.json; and the values
+//! agree with independent references at the ends of their range.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use common::{scratch, verify};
+
+/// The CSV at `path` as columns by name (text cells kept as NaN: only numbers are compared).
+fn columns(path: &Path) -> (Vec<String>, BTreeMap<String, Vec<f64>>) {
+    let mut reader = csv::Reader::from_path(path).unwrap();
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    let mut out: BTreeMap<String, Vec<f64>> =
+        header.iter().map(|h| (h.clone(), Vec::new())).collect();
+    for record in reader.records() {
+        let record = record.unwrap();
+        for (h, cell) in header.iter().zip(record.iter()) {
+            out.get_mut(h)
+                .unwrap()
+                .push(cell.parse().unwrap_or(f64::NAN));
+        }
+    }
+    (header, out)
+}
+
+/// The bound that goes with column `key` of a row: its `_error` column, or the relative
+/// `error_estimate` times the value.
+fn bound(table: &BTreeMap<String, Vec<f64>>, key: &str, row: usize, value: f64) -> f64 {
+    if let Some(b) = table.get(&format!("{key}_error")) {
+        return b[row];
+    }
+    match table.get("error_estimate") {
+        Some(e) if key.starts_with("gamma") => e[row] * value.abs(),
+        _ => 0.0,
+    }
+}
+
+#[test]
+fn the_committed_copy_is_what_the_command_makes_within_its_bounds() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let stored = root.join("verify/dataset");
+    let fresh = scratch("dataset_small");
+    let out = verify(&["dataset", "--small", "--out", fresh.to_str().unwrap()]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let package: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(stored.join("datapackage.json")).unwrap())
+            .unwrap();
+    let resources = package["resources"].as_array().unwrap();
+    assert!(resources.len() >= 8);
+    for resource in resources {
+        let path = resource["path"].as_str().unwrap();
+        let (header, old) = columns(&stored.join(path));
+        let (fresh_header, new) = columns(&fresh.join(path));
+        assert_eq!(header, fresh_header, "{path}");
+        // Every column is described: name, type, and a unit for numbers.
+        let fields = resource["schema"]["fields"].as_array().unwrap();
+        let names: Vec<&str> = fields.iter().map(|f| f["name"].as_str().unwrap()).collect();
+        assert_eq!(
+            names,
+            header.iter().map(String::as_str).collect::<Vec<_>>(),
+            "{path}"
+        );
+        for f in fields {
+            assert!(!f["description"].as_str().unwrap().is_empty());
+            if f["type"] == "number" {
+                assert!(f["unit"].is_string(), "{path}: {f}");
+            }
+        }
+        for key in &header {
+            for (row, (a, b)) in old[key].iter().zip(&new[key]).enumerate() {
+                if a.is_nan() && b.is_nan() {
+                    continue;
+                }
+                if key.ends_with("error") || key.ends_with("estimate") || key.contains("max") {
+                    // Bounds and fit errors: the same to a part in 1e6.
+                    assert!(
+                        (a - b).abs() <= 1e-6 * a.abs().max(1e-300),
+                        "{path} {key} row {row}: {a} {b}"
+                    );
+                    continue;
+                }
+                let allowed =
+                    bound(&old, key, row, *a) + bound(&new, key, row, *b) + 1e-12 * a.abs();
+                assert!(
+                    (a - b).abs() <= allowed,
+                    "{path} {key} row {row}: {a} stored, {b} now"
+                );
+            }
+        }
+        // The JSON copy holds the same rows.
+        let json: serde_json::Value = serde_json::from_str(
+            &std::fs::read_to_string(stored.join(resource["json_copy"].as_str().unwrap())).unwrap(),
+        )
+        .unwrap();
+        assert_eq!(
+            json["rows"].as_array().unwrap().len(),
+            old[&header[0]].len(),
+            "{path}"
+        );
+    }
+    assert!(package["provenance"]["commit"].is_string());
+    assert!(package["provenance"]["command"]
+        .as_str()
+        .unwrap()
+        .contains("dataset --small"));
+}
+
+#[test]
+fn the_functions_meet_independent_references_at_the_ends() {
+    let stored = Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/dataset");
+    let pi = std::f64::consts::PI;
+    // Flat annulus, small hole: Collins's series gamma = 1 - 4 eps^3/(3 pi^2) + O(eps^5).
+    let (_, flat) = columns(&stored.join("functions-flat-annulus.csv"));
+    let (eps, gamma) = (flat["eps"][0], flat["gamma"][0]);
+    assert!(
+        (gamma - (1.0 - 4.0 * eps.powi(3) / (3.0 * pi * pi))).abs() < 1e-12,
+        "{gamma}"
+    );
+    // Sphere: the hole closes at d = 3h with F = 16/3 E* h a (gamma1 -> 3, gamma2 -> 8/3).
+    let (_, sphere) = columns(&stored.join("functions-sphere.csv"));
+    assert!(
+        (sphere["gamma1"][0] - 3.0).abs() < 1e-6,
+        "{}",
+        sphere["gamma1"][0]
+    );
+    assert!(
+        (sphere["gamma2"][0] - 8.0 / 3.0).abs() < 1e-6,
+        "{}",
+        sphere["gamma2"][0]
+    );
+    // Cone, small hole: d/h = (pi/2) ln(a/b) + 1 + o(1) (docs/conventions.md fact 5).
+    let (_, cone) = columns(&stored.join("functions-cone.csv"));
+    let asymptote = pi / 2.0 * (1.0 / cone["eps"][0]).ln() + 1.0;
+    assert!(
+        (cone["gamma1"][0] - asymptote).abs() < 1e-3 * asymptote,
+        "{}",
+        cone["gamma1"][0]
+    );
+    // Every function falls as the contact ratio grows.
+    for table in [&flat, &sphere, &cone] {
+        for key in ["gamma", "gamma1", "gamma2"] {
+            if let Some(v) = table.get(key) {
+                assert!(v.windows(2).all(|w| w[1] < w[0]), "{key}");
+            }
+        }
+    }
+}
