@@ -6,6 +6,15 @@ use crate::harness::grade::{self, Grading};
 use crate::heartbeat::Heartbeat;
 use crate::provenance::Provenance;
 
+/// What `verify grade --json` prints: the grading's keys, the file graded and the provenance.
+#[derive(serde::Serialize)]
+struct GradeReport<'a> {
+    results: String,
+    provenance: Provenance,
+    #[serde(flatten)]
+    grading: &'a Grading,
+}
+
 /// `verify grade --results FILE`: grade every value, print the rows and the summary (or JSON),
 /// write the chart with `--svg`; fails (exit status 1) when a value is beyond `--tol`.
 pub fn grade(args: GradeArgs) -> Result<Reply, String> {
@@ -27,18 +36,11 @@ pub fn grade(args: GradeArgs) -> Result<Reply, String> {
     }
     let success = grading.beyond == 0;
     let text = if args.json {
-        let object = serde_json::json!({
-            "results": args.results.display().to_string(),
-            "provenance": Provenance::of_this_process(),
-            "tolerance": grading.tolerance,
-            "max_relative_error": grading.max_relative_error,
-            "beyond": grading.beyond,
-            "unresolved": grading.unresolved,
-            "claims_broken": grading.claims_broken,
-            "rows": grading.rows,
-            "summary": grading.summary,
-        });
-        to_json(&object)?
+        to_json(&GradeReport {
+            results: args.results.display().to_string(),
+            provenance: Provenance::of_this_process(),
+            grading: &grading,
+        })?
     } else {
         terminal(&grading)
     };

@@ -108,13 +108,14 @@ impl Size {
             .collect()
     }
 
+    /// `d0/h` from 0.1 to 100 evenly in the logarithm, rounded to 12 significant digits.
     fn adhesion_scales(self) -> Vec<f64> {
-        let count = match self {
+        let steps = match self {
             Size::Full => 24,
             Size::Small => 4,
         };
-        (0..=count)
-            .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / count as f64))
+        crate::harness::studies::sweeps::pulloff_scales(steps)
+            .into_iter()
             .map(|s| format!("{s:.11e}").parse().unwrap_or(s))
             .collect()
     }

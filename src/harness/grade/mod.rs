@@ -303,7 +303,7 @@ fn summarise(graded: &[GradedValue]) -> Vec<Summary> {
 }
 
 /// The chart's axis label for the states of `rows`.
-pub fn state_label(rows: &[GradedValue]) -> String {
+fn state_label(rows: &[GradedValue]) -> String {
     let mut states: Vec<&str> = rows.iter().map(|g| g.state.as_str()).collect();
     states.sort_unstable();
     states.dedup();
@@ -315,9 +315,8 @@ pub fn state_label(rows: &[GradedValue]) -> String {
     }
 }
 
-/// A chart of the relative error against the state, one series per punch and quantity
-/// (log-log; exact agreements, which a log axis cannot show, are left out and counted in the
-/// title).
+/// A chart of the relative error against the state, one series per punch and quantity, and
+/// the tolerance (log-log: exact agreements, which a log axis cannot show, are left out).
 pub fn chart(grading: &Grading, title: &str) -> String {
     use crate::harness::report::svg::{log_log_chart, Series};
     let mut series: Vec<Series> = Vec::new();

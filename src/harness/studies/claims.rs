@@ -313,7 +313,7 @@ fn bar_digits(bar: f64) -> usize {
 
 /// `d0/h` of the pull-off charts: nine points from 0.1 to 100.
 pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
-    (0..=8).map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 8.0))
+    crate::harness::studies::sweeps::pulloff_scales(8).into_iter()
 }
 
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed

@@ -108,10 +108,11 @@ pub(crate) fn flat_annulus_sweep(
     Ok(Sweep { rows, table, files })
 }
 
-/// `d0/h = 10^(-1 + k/8)`, `k = 0..24` (0.1 to 100).
-fn pulloff_scales() -> Vec<f64> {
-    (0..=24)
-        .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / 24.0))
+/// `d0/h = 10^(-1 + 3k/steps)`, `k = 0..=steps`: `steps + 1` values from 0.1 to 100, evenly in
+/// the logarithm (the sweep's 25, the report's charts' 9, the dataset's).
+pub(crate) fn pulloff_scales(steps: usize) -> Vec<f64> {
+    (0..=steps)
+        .map(|k| 10f64.powf(-1.0 + 3.0 * k as f64 / steps as f64))
         .collect()
 }
 
@@ -130,7 +131,7 @@ pub(crate) fn pulloff_sweep(
     mut progress: impl FnMut(&str),
 ) -> Result<Sweep<ConcaveJkr>> {
     let mut rows = Vec::new();
-    for s in pulloff_scales() {
+    for s in pulloff_scales(24) {
         rows.push(adhesion::concave(solver, kind, s)?);
         progress(&format!("d0/h = {s:.3}"));
     }
