@@ -150,8 +150,13 @@ fn flat_annulus_bounds(
     let doubled = derivative(gamma, eps, 2.0 * step, MIN_CONTACT_RATIO, MAX_CONTACT_RATIO)?;
     let d_gamma_prime = (doubled - e.gamma_prime).abs() + 1.5 * d_gamma / step;
     let d_kappa_out = (d_gamma + eps * d_gamma_prime) / (2.0 * kappa_out);
+    // The change between two tolerances, floored at the solve's own relative estimate: where
+    // both ladders stop at the same discretisation the change is exactly 0, which bounds
+    // nothing.
     let looser = solver.flat(eps, 1e-8)?;
-    let d_kappa_in = (looser.inner_stress_intensity * ROOT_PI - kappa_in).abs();
+    let d_kappa_in = (looser.inner_stress_intensity * ROOT_PI - kappa_in)
+        .abs()
+        .max(state.error_estimate.max(f64::EPSILON) * kappa_in.abs());
     let of = |kappa: f64, d_kappa: f64| {
         (
             d_kappa / (kappa * kappa),

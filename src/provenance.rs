@@ -22,8 +22,16 @@ pub struct Provenance {
 }
 
 impl Provenance {
-    /// The provenance of a result of this process (its own command line).
+    /// The provenance of a result of this process: its own command line, or the call that
+    /// [`called_as`] names on this thread (a Python call into the library).
     pub fn of_this_process() -> Self {
+        if let Some(call) = CALL.with(|c| c.borrow().clone()) {
+            return Self {
+                ringcontact_version: VERSION.to_string(),
+                commit: COMMIT.to_string(),
+                command: call,
+            };
+        }
         let words: Vec<String> = std::env::args().collect();
         Self::of_command(&words)
     }
@@ -44,6 +52,25 @@ impl Provenance {
             command: quoted.join(" "),
         }
     }
+}
+
+thread_local! {
+    /// The call that produces this thread's results, when it is not the process's command line.
+    static CALL: std::cell::RefCell<Option<String>> = const { std::cell::RefCell::new(None) };
+}
+
+/// Run `work` with `call` (e.g. `ringcontact.dataset(small=True)`, from Python) recorded as the
+/// command of the results it writes; the process's command line again afterwards.
+pub fn called_as<T>(call: &str, work: impl FnOnce() -> T) -> T {
+    /// Puts the previous call back when dropped, even when `work` panics.
+    struct Restore(Option<String>);
+    impl Drop for Restore {
+        fn drop(&mut self) {
+            CALL.with(|c| c.replace(self.0.take()));
+        }
+    }
+    let _restore = Restore(CALL.with(|c| c.replace(Some(call.to_string()))));
+    work()
 }
 
 /// `word` as a POSIX shell reads it back: unchanged when it holds only safe characters, else in
@@ -80,5 +107,15 @@ mod tests {
         );
         assert_eq!(p.ringcontact_version, VERSION);
         assert!(!p.commit.is_empty());
+    }
+
+    #[test]
+    fn a_call_named_on_this_thread_is_the_command() {
+        let inside = called_as(
+            "ringcontact.dataset(small=True)",
+            Provenance::of_this_process,
+        );
+        assert_eq!(inside.command, "ringcontact.dataset(small=True)");
+        assert_ne!(Provenance::of_this_process().command, inside.command);
     }
 }

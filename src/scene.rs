@@ -30,6 +30,9 @@ use serde::{Deserialize, Serialize};
 use crate::error::{Error, Result};
 use crate::punch::{Punch, PunchKind, PunchName};
 
+mod keywords;
+pub use keywords::keyword_names;
+
 /// Default tolerance of the ring BEM (each method has its own default; see `methods`).
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
 
@@ -169,6 +172,7 @@ impl SceneSpec {
         origin: &str,
         base: Option<&std::path::Path>,
     ) -> Result<Self> {
+        keywords::check_types(&value)?;
         let mut spec: Self = serde_json::from_value(value).map_err(|e| Error::SceneFile {
             path: origin.to_string(),
             message: e.to_string(),

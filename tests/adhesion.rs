@@ -162,6 +162,28 @@ fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
     }
 }
 
+/// No bound is zero: a zero bound claims an exact number. (The inner edge's bound, the change
+/// between two tolerances, was exactly 0 where both ladders stopped at the same discretisation,
+/// as at `eps = 1e-3`.)
+#[test]
+fn no_flat_annulus_bound_is_zero() {
+    let solver = RingBemSolver::new();
+    for eps in [1e-3, 0.1, 0.5, 0.9] {
+        let b = adhesion::flat_annulus(&solver, eps)
+            .unwrap()
+            .error_bounds
+            .expect("bounds");
+        for (name, bound) in [
+            ("dc_outer", b.dc_outer),
+            ("fc_outer", b.fc_outer),
+            ("dc_inner", b.dc_inner),
+            ("fc_inner", b.fc_inner),
+        ] {
+            assert!(bound > 0.0, "eps {eps}: {name} bound {bound:e}");
+        }
+    }
+}
+
 /// A concave punch's critical states carry bounds; full contact's closed forms are exact.
 #[test]
 fn the_concave_critical_states_carry_error_bounds() {

@@ -2,18 +2,9 @@
 
 use super::{to_json, Reply};
 use crate::cli::args::GradeArgs;
-use crate::harness::grade::{self, Grading};
+use crate::harness::grade::{self, GradeReport, Grading};
 use crate::heartbeat::Heartbeat;
 use crate::provenance::Provenance;
-
-/// What `verify grade --json` prints: the grading's keys, the file graded and the provenance.
-#[derive(serde::Serialize)]
-struct GradeReport<'a> {
-    results: String,
-    provenance: Provenance,
-    #[serde(flatten)]
-    grading: &'a Grading,
-}
 
 /// `verify grade --results FILE`: grade every value, print the rows and the summary (or JSON),
 /// write the chart with `--svg`; fails (exit status 1) when a value is beyond `--tol`.

@@ -5,6 +5,7 @@
 //! Tables come from [`crate::harness::report::table::Table`]; `--json` prints the typed results.
 
 pub mod args;
+pub mod calls;
 mod dataset;
 mod grade;
 mod jkr;

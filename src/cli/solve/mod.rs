@@ -84,30 +84,22 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
         spec = spec.profile(path);
     }
     // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
-    let kind = spec.shape_name();
     if let Some(eps) = args.eps {
-        match kind {
-            Some(
-                PunchName::Cone
-                | PunchName::Sphere
-                | PunchName::Power
-                | PunchName::Torus
-                | PunchName::Table,
-            ) => {
-                if args.depth.is_some() || args.force.is_some() {
-                    return Err("--eps prescribes the contact of a concave punch; \
-                                do not combine it with --depth or --force"
-                        .into());
-                }
-                spec = spec.contact_ratio(eps);
-            }
+        match spec.shape_name() {
             Some(PunchName::Flat) => {
                 return Err("--eps does not apply to the flat circular punch; \
                             use --punch flat-annulus --eps B_OVER_A"
                     .into())
             }
-            _ => spec = spec.inner_ratio(eps),
+            Some(PunchName::FlatAnnulus) | None => {}
+            Some(_) if args.depth.is_some() || args.force.is_some() => {
+                return Err("--eps prescribes the contact of a concave punch; \
+                            do not combine it with --depth or --force"
+                    .into());
+            }
+            Some(_) => {}
         }
+        spec = spec.eps(eps).map_err(message)?;
     }
     if let Some(d) = args.depth {
         spec = spec.depth(d);

@@ -99,12 +99,22 @@ const KNOWN: [&str; 15] = [
 ];
 
 /// Read the results file `path` (JSON when it ends in `.json` or starts with `[` or `{`,
-/// else CSV).
+/// else CSV); a relative `profile` column is read beside the file.
 pub fn read(path: &Path) -> Result<Vec<ResultRow>, String> {
     let text = std::fs::read_to_string(path)
         .map_err(|e| format!("{}: cannot read: {e}", path.display()))?;
-    let base = path.parent().map(Path::to_path_buf);
-    let origin = path.display().to_string();
+    let json = path.extension().is_some_and(|x| x == "json");
+    parse(&text, &path.display().to_string(), json, path.parent())
+}
+
+/// The rows of results `text` (JSON when `json` or when it starts with `[` or `{`, else CSV),
+/// named `origin` in errors; a relative `profile` column is read from `base`.
+pub fn parse(
+    text: &str,
+    origin: &str,
+    json: bool,
+    base: Option<&Path>,
+) -> Result<Vec<ResultRow>, String> {
     if text
         .lines()
         .all(|l| l.trim().is_empty() || l.trim_start().starts_with('#'))
@@ -114,12 +124,11 @@ pub fn read(path: &Path) -> Result<Vec<ResultRow>, String> {
         ));
     }
     let first = text.trim_start().chars().next();
-    let records =
-        if path.extension().is_some_and(|x| x == "json") || matches!(first, Some('[' | '{')) {
-            json_records(&text, &origin)?
-        } else {
-            csv_records(&text, &origin)?
-        };
+    let records = if json || matches!(first, Some('[' | '{')) {
+        json_records(text, origin)?
+    } else {
+        csv_records(text, origin)?
+    };
     if records.is_empty() {
         return Err(format!(
             "{origin}: no results (a header and at least one row)"
@@ -127,7 +136,7 @@ pub fn read(path: &Path) -> Result<Vec<ResultRow>, String> {
     }
     records
         .into_iter()
-        .map(|(place, cells)| row(&place, &cells, base.as_deref()))
+        .map(|(place, cells)| row(&place, &cells, base))
         .collect::<Result<_, _>>()
         .map_err(|e| format!("{origin}: {e}"))
 }
@@ -180,6 +189,11 @@ fn json_records(text: &str, origin: &str) -> Result<Vec<Record>, String> {
             ))
         }
     };
+    if rows.is_empty() {
+        return Err(format!(
+            "{origin}: no results (at least one row of results)"
+        ));
+    }
     let mut out = Vec::new();
     let mut keys = std::collections::BTreeSet::new();
     for (i, row) in rows.iter().enumerate() {

@@ -99,6 +99,17 @@ pub struct Grading {
     pub claims_broken: usize,
 }
 
+/// A grading as `verify grade --json` prints it (and the Python package returns it): the
+/// grading's keys, what was graded and the provenance.
+#[derive(Serialize)]
+pub struct GradeReport<'a> {
+    /// The results graded: a file's path, or what the caller names them.
+    pub results: String,
+    pub provenance: crate::provenance::Provenance,
+    #[serde(flatten)]
+    pub grading: &'a Grading,
+}
+
 /// Grade `rows` against the references at tolerance `tolerance`; `progress` is told each row.
 pub fn grade(
     rows: &[ResultRow],

@@ -1,0 +1,102 @@
+//! `ringcontact._native`: the Rust library called from Python. Each function converts its
+//! arguments, releases the interpreter lock while the library works (other Python threads and a
+//! notebook's kernel stay responsive), and returns JSON text that the Python package
+//! (`python/ringcontact/`) turns into dicts, NumPy arrays and DataFrames. Every error is a
+//! `RingContactError` carrying the message `verify` would print.
+
+use pyo3::create_exception;
+use pyo3::exceptions::PyException;
+use pyo3::prelude::*;
+
+use ringcontact::cli::calls::{self, SolveOptions};
+use ringcontact::provenance;
+
+create_exception!(
+    ringcontact,
+    RingContactError,
+    PyException,
+    "An input ringcontact refuses or a solve that fails; the message is the tool's own."
+);
+
+/// Solve the scenes `scenes` (a JSON array of keyword objects) by `method`; the JSON array of
+/// the solutions (the objects of `verify solve --json`). `call` names the Python call in the
+/// provenance.
+#[pyfunction]
+#[pyo3(signature = (scenes, method, call, grid=None, grid_extent=None, degree=None, base=None))]
+#[allow(clippy::too_many_arguments)]
+fn solve_scenes(
+    py: Python<'_>,
+    scenes: String,
+    method: String,
+    call: String,
+    grid: Option<usize>,
+    grid_extent: Option<f64>,
+    degree: Option<u8>,
+    base: Option<std::path::PathBuf>,
+) -> PyResult<String> {
+    let options = SolveOptions {
+        grid,
+        grid_extent,
+        degree,
+    };
+    py.detach(|| {
+        provenance::called_as(&call, || {
+            calls::solve_keyword_scenes(&scenes, &method, &options, base.as_deref())
+        })
+    })
+    .map_err(RingContactError::new_err)
+}
+
+/// Run the `verify` subcommand `words` (e.g. `["jkr", "--punch", "cone", "--d0h", "1",
+/// "--json"]`); its standard output and whether its verdict passed. `call` names the Python call
+/// in the provenance of what it writes.
+#[pyfunction]
+fn command(py: Python<'_>, words: Vec<String>, call: String) -> PyResult<(String, bool)> {
+    py.detach(|| provenance::called_as(&call, || calls::command(&words)))
+        .map(|reply| (reply.text, reply.success))
+        .map_err(RingContactError::new_err)
+}
+
+/// Grade the results `text` (CSV, or JSON when `json`), named `origin`, at tolerance `tol`:
+/// the JSON of `verify grade --json` and whether every value is within `tol`.
+#[pyfunction]
+fn grade_text(
+    py: Python<'_>,
+    text: String,
+    origin: String,
+    json: bool,
+    tol: f64,
+    call: String,
+) -> PyResult<(String, bool)> {
+    py.detach(|| provenance::called_as(&call, || calls::grade_text(&text, &origin, json, tol)))
+        .map_err(RingContactError::new_err)
+}
+
+/// The library's version and the commit it was built from.
+#[pyfunction]
+fn build() -> (String, String) {
+    (
+        provenance::VERSION.to_string(),
+        provenance::COMMIT.to_string(),
+    )
+}
+
+/// The keywords a scene takes (`solve(**keywords)`).
+#[pyfunction]
+fn scene_keywords() -> Vec<String> {
+    ringcontact::scene::keyword_names()
+        .into_iter()
+        .map(String::from)
+        .collect()
+}
+
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("RingContactError", m.py().get_type::<RingContactError>())?;
+    m.add_function(wrap_pyfunction!(solve_scenes, m)?)?;
+    m.add_function(wrap_pyfunction!(command, m)?)?;
+    m.add_function(wrap_pyfunction!(grade_text, m)?)?;
+    m.add_function(wrap_pyfunction!(build, m)?)?;
+    m.add_function(wrap_pyfunction!(scene_keywords, m)?)?;
+    Ok(())
+}

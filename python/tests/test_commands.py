@@ -1,0 +1,39 @@
+"""`ringcontact.references` and `ringcontact.jkr`: closed forms and the command line's output."""
+
+import json
+
+import pytest
+
+import ringcontact as rc
+from conftest import run_verify
+
+
+def test_references_are_the_command_lines():
+    refs = rc.references()
+    assert refs == json.loads(run_verify("references", "--json"))
+    assert any(r["name"] == "boussinesq" and r["kind"] == "exact" for r in refs)
+
+
+def test_flat_annulus_with_a_small_hole_pulls_off_as_kendalls_punch():
+    # Kendall (1971): the flat circular punch pulls off at F = -sqrt(8 pi a^3 E* dw) = -F0 and
+    # d = -d0; a hole of b/a = 1e-3 changes that by far less than 1e-6.
+    r = rc.jkr("flat-annulus", eps=1e-3)
+    assert r["governing_edge"] == "outer"
+    assert r["fc_outer"] == pytest.approx(-1.0, abs=1e-6)
+    assert r["dc_outer"] == pytest.approx(-1.0, abs=1e-6)
+
+
+def test_jkr_of_a_concave_punch_is_the_command_lines():
+    mine = rc.jkr("cone", d0h=0.5)
+    theirs = json.loads(run_verify("jkr", "--punch", "cone", "--d0h", "0.5", "--json"))
+    assert mine == theirs
+    assert mine["fixed_load"]["force"] < 0
+
+
+def test_jkr_errors_are_the_tools_messages():
+    with pytest.raises(rc.RingContactError, match="need --d0h"):
+        rc.jkr("cone")
+    with pytest.raises(rc.RingContactError, match="invalid value 'blob'"):
+        rc.jkr("blob", d0h=1)
+    with pytest.raises(rc.RingContactError, match="0 < b/a < 1"):
+        rc.jkr("flat-annulus", eps=0.0)

@@ -1,0 +1,145 @@
+//! The library calls behind the Python package (`python/`): the same work as the subcommands,
+//! with a scene given as keywords and every answer as JSON text, so that the binding only
+//! converts and releases the interpreter lock. Nothing here computes anything the subcommands
+//! do not.
+
+use clap::{CommandFactory, FromArgMatches, ValueEnum};
+
+use super::{message, refuse_non_finite, Reply};
+use crate::harness::grade::{self, GradeReport};
+use crate::heartbeat::Heartbeat;
+use crate::mesh::triangulation::Degree;
+use crate::methods::{self, Method, MethodOptions};
+use crate::provenance::Provenance;
+use crate::scene::SceneSpec;
+
+/// The method options a keyword solve takes besides the scene (as `verify solve`'s flags).
+#[derive(Clone, Debug, Default)]
+pub struct SolveOptions {
+    /// `--grid N`: grid BEM cells per side.
+    pub grid: Option<usize>,
+    /// `--grid-extent L`: grid BEM half-size for the torus, in units of `a`.
+    pub grid_extent: Option<f64>,
+    /// `--degree D`: FEM element degree 1, 2 or 3.
+    pub degree: Option<u8>,
+}
+
+/// Solve each scene of `scenes_json` (a JSON array of objects of scene keywords,
+/// [`SceneSpec::from_keywords`]) by the method named `method`, as `verify solve --json` does;
+/// a relative `profile` is read from `base`. Every scene is validated before the first is
+/// solved; an error names the scene (`state 3 of 10`) when there are several. Returns the JSON
+/// array of the solutions, in order.
+pub fn solve_keyword_scenes(
+    scenes_json: &str,
+    method: &str,
+    options: &SolveOptions,
+    base: Option<&std::path::Path>,
+) -> Result<String, String> {
+    let method = Method::from_str(method, false).map_err(|_| {
+        let names: Vec<&str> = Method::value_variants().iter().map(|m| m.name()).collect();
+        format!("method {method:?} is not one of {}", names.join(", "))
+    })?;
+    let degree = match options.degree {
+        None => None,
+        Some(n) => Some(
+            Degree::from_number(n)
+                .ok_or_else(|| format!("degree {n}: the FEM's elements are of degree 1, 2 or 3"))?,
+        ),
+    };
+    if let Some(n) = options.grid {
+        if !(8..=2048).contains(&n) {
+            return Err(format!(
+                "grid {n}: the grid BEM takes 8 to 2048 cells per side"
+            ));
+        }
+    }
+    let options = MethodOptions {
+        degree,
+        grid: options.grid,
+        grid_extent: options.grid_extent,
+        ..Default::default()
+    };
+    let values: Vec<serde_json::Value> = serde_json::from_str(scenes_json)
+        .map_err(|e| format!("the scenes are not a JSON array: {e}"))?;
+    let count = values.len();
+    // Where the error is: the state among several (a single scene's error speaks for itself).
+    let name = |k: usize| format!("state {} of {count}", k + 1);
+    let named = |k: usize, e: String| {
+        if count == 1 {
+            e
+        } else {
+            format!("{}: {e}", name(k))
+        }
+    };
+    let scenes = values
+        .into_iter()
+        .enumerate()
+        .map(|(k, value)| {
+            let serde_json::Value::Object(object) = value else {
+                return Err(named(k, "a scene is an object of keywords".into()));
+            };
+            SceneSpec::from_keywords(object, &name(k), base)
+                .and_then(SceneSpec::validate)
+                .map_err(|e| named(k, e.to_string()))
+        })
+        .collect::<Result<Vec<_>, _>>()?;
+    let heartbeat = Heartbeat::start("ringcontact.solve");
+    let mut solutions = Vec::with_capacity(count);
+    for (k, scene) in scenes.iter().enumerate() {
+        heartbeat.set(name(k));
+        let solution =
+            methods::solve_with(scene, method, &options).map_err(|e| named(k, e.to_string()))?;
+        refuse_non_finite(&format!("the solve of {}", name(k)), &solution)?;
+        solutions.push(solution);
+    }
+    serde_json::to_string(&solutions).map_err(message)
+}
+
+/// Run the subcommand `words` (without the program name: `["jkr", "--punch", "cone", ...]`) as
+/// `verify` would, and return its reply; parse errors are the message clap prints.
+pub fn command(words: &[String]) -> Result<Reply, String> {
+    let parser = crate::cli::args::Cli::command()
+        .allow_negative_numbers(true)
+        .mut_subcommands(|sub| sub.allow_negative_numbers(true));
+    let everything = std::iter::once("verify".to_string()).chain(words.iter().cloned());
+    let matches = parser.try_get_matches_from(everything).map_err(|e| {
+        // clap's message without its `error: ` and its pointer to --help.
+        let text = e.render().to_string();
+        let kept: Vec<&str> = text
+            .lines()
+            .filter(|l| !l.starts_with("For more information"))
+            .collect();
+        let joined = kept.join("\n");
+        joined.trim().trim_start_matches("error: ").to_string()
+    })?;
+    let cli = crate::cli::args::Cli::from_arg_matches(&matches).map_err(message)?;
+    if cli.command.is_none() {
+        return Err("name a subcommand".into());
+    }
+    super::dispatch(cli.command)
+}
+
+/// Grade the results `text` (CSV, or JSON when `json` or when it starts with `[` or `{`),
+/// named `origin` in messages and in the report, at tolerance `tol`, as `verify grade --json`
+/// does. Returns the report's JSON and whether every value is within `tol`.
+pub fn grade_text(
+    text: &str,
+    origin: &str,
+    json: bool,
+    tol: f64,
+) -> Result<(String, bool), String> {
+    let rows = grade::input::parse(text, origin, json, None)?;
+    let heartbeat = Heartbeat::start("ringcontact.grade");
+    let grading = grade::grade(&rows, tol, &|k, n| {
+        heartbeat.set(format!("row {} of {n}", k + 1))
+    })
+    .map_err(|e| format!("{origin}: {e}"))?;
+    drop(heartbeat);
+    let report = GradeReport {
+        results: origin.to_string(),
+        provenance: Provenance::of_this_process(),
+        grading: &grading,
+    };
+    let text = serde_json::to_string(&report).map_err(message)?;
+    Ok((text, grading.beyond == 0))
+}

@@ -1,0 +1,255 @@
+//! A scene given as one flat set of keywords (`shape`, `depth`, `effective_modulus`, ...), as the
+//! Python package's `solve(**keywords)` passes it: every key of the scene file, without its
+//! sections (no key name repeats across sections), plus `punch` (a name for `shape`, as on the
+//! command line) and `eps` (b/a: the flat annulus's hole, or a concave punch's prescribed contact,
+//! as `--eps`).
+
+use super::{PunchName, SceneSpec};
+use crate::error::{Error, Result};
+
+/// Each flat keyword and the section of the scene file it belongs to.
+const SECTIONS: [(&str, &str); 14] = [
+    ("shape", "punch"),
+    ("exponent", "punch"),
+    ("rim_radius", "punch"),
+    ("inner_radius", "punch"),
+    ("hole_depth", "punch"),
+    ("tube_radius", "punch"),
+    ("profile", "punch"),
+    ("effective_modulus", "material"),
+    ("youngs_modulus", "material"),
+    ("poisson_ratio", "material"),
+    ("depth", "load"),
+    ("force", "load"),
+    ("contact_ratio", "load"),
+    ("tolerance", "accuracy"),
+];
+
+/// The keywords a flat scene takes, in the order the docs list them.
+pub fn keyword_names() -> Vec<&'static str> {
+    let mut names = vec!["punch"];
+    names.extend(SECTIONS.iter().map(|(k, _)| *k));
+    names.push("eps");
+    names
+}
+
+impl SceneSpec {
+    /// The scene of the flat keywords `object` (`{"punch": "cone", "depth": 2}`): each key is
+    /// placed in its section of the scene file and read as the file is
+    /// ([`SceneSpec::from_json_value`]); `eps` is `b/a` as `--eps` takes it. Unknown keys, a key
+    /// given twice (`punch` and `shape`), and `eps` beside another load are errors naming them.
+    pub fn from_keywords(
+        object: serde_json::Map<String, serde_json::Value>,
+        origin: &str,
+        base: Option<&std::path::Path>,
+    ) -> Result<Self> {
+        let mut nested = serde_json::Map::new();
+        let mut eps = None;
+        for (key, value) in object {
+            if value.is_null() {
+                continue;
+            }
+            let (key, section) = match key.as_str() {
+                "eps" => {
+                    eps = Some(value);
+                    continue;
+                }
+                "punch" => ("shape".to_string(), "punch"),
+                _ => match SECTIONS.iter().find(|(k, _)| *k == key) {
+                    Some((_, section)) => (key, *section),
+                    None => {
+                        return Err(Error::invalid(
+                            &key,
+                            format!(
+                                "is not a scene keyword (a scene takes {})",
+                                keyword_names().join(", ")
+                            ),
+                        ))
+                    }
+                },
+            };
+            let entry = nested
+                .entry(section)
+                .or_insert_with(|| serde_json::Value::Object(Default::default()));
+            if let Some(fields) = entry.as_object_mut() {
+                if fields.insert(key.clone(), value).is_some() {
+                    return Err(Error::invalid(
+                        "punch",
+                        "and `shape` both name the shape: give one",
+                    ));
+                }
+            }
+        }
+        let eps =
+            match eps {
+                None => None,
+                Some(value) => Some(value.as_f64().ok_or_else(|| {
+                    Error::invalid("eps", format!("must be a number (got {value})"))
+                })?),
+            };
+        let loads = nested
+            .get("load")
+            .and_then(|l| l.as_object())
+            .map_or(0, |l| l.len());
+        let has_inner_radius = nested
+            .get("punch")
+            .and_then(|p| p.get("inner_radius"))
+            .is_some();
+        let spec = Self::from_json_value(serde_json::Value::Object(nested), origin, base)?;
+        let Some(eps) = eps else {
+            return Ok(spec);
+        };
+        if loads > 0 && spec.shape_name() != Some(PunchName::FlatAnnulus) {
+            return Err(Error::invalid(
+                "eps",
+                "prescribes the contact of a concave punch; do not combine it with `depth`, \
+                 `force` or `contact_ratio`",
+            ));
+        }
+        if has_inner_radius {
+            return Err(Error::invalid(
+                "eps",
+                "and `inner_radius` both give the flat annulus's hole: give one",
+            ));
+        }
+        spec.eps(eps)
+    }
+
+    /// Set `b/a` as `--eps` does: the flat annulus's hole (against the rim radius), or the
+    /// prescribed contact ratio of a punch whose contact is found (cone, sphere, power, torus,
+    /// table). The flat circular punch has no `b/a`: an error.
+    pub fn eps(self, eps: f64) -> Result<Self> {
+        match self.shape_name() {
+            Some(PunchName::Flat) => Err(Error::invalid(
+                "eps",
+                "does not apply to the flat circular punch; use the flat-annulus punch with \
+                 eps = b/a",
+            )),
+            Some(PunchName::FlatAnnulus) | None => Ok(self.inner_ratio(eps)),
+            Some(_) => Ok(self.contact_ratio(eps)),
+        }
+    }
+}
+
+/// Every value of the sectioned scene `nested` has its key's type (a name or path for `shape`
+/// and `profile`, a number otherwise): an error naming `section.key` and the value, where
+/// serde's own message would name only the type.
+pub(super) fn check_types(nested: &serde_json::Value) -> Result<()> {
+    let Some(sections) = nested.as_object() else {
+        return Ok(());
+    };
+    for (section, fields) in sections {
+        let Some(fields) = fields.as_object() else {
+            return Err(Error::invalid(
+                section,
+                format!(
+                    "is a section of keys such as {section}.{} (got {fields})",
+                    {
+                        SECTIONS
+                            .iter()
+                            .find(|(_, s)| s == section)
+                            .map_or("...", |(k, _)| k)
+                    }
+                ),
+            ));
+        };
+        for (key, value) in fields {
+            let text = matches!(key.as_str(), "shape" | "profile");
+            let fits = if text {
+                value.is_string()
+            } else {
+                value.is_number()
+            };
+            if !fits && !value.is_null() {
+                return Err(Error::invalid(
+                    &format!("{section}.{key}"),
+                    format!(
+                        "must be {} (got {value})",
+                        if text { "a name" } else { "a number" }
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn keywords(text: &str) -> Result<SceneSpec> {
+        let serde_json::Value::Object(object) = serde_json::from_str(text).unwrap() else {
+            panic!("not an object: {text}")
+        };
+        SceneSpec::from_keywords(object, "test", None)
+    }
+
+    /// The flat keywords give the scene the sectioned file gives.
+    #[test]
+    fn flat_keywords_equal_the_sectioned_file() {
+        let flat = keywords(
+            r#"{"punch": "cone", "hole_depth": 0.1, "youngs_modulus": 3, "poisson_ratio": 0.45,
+                "depth": 0.2, "tolerance": 1e-6}"#,
+        )
+        .unwrap()
+        .validate()
+        .unwrap();
+        let file = SceneSpec::from_toml(
+            "[punch]\nshape = \"cone\"\nhole_depth = 0.1\n[material]\nyoungs_modulus = 3.0\n\
+             poisson_ratio = 0.45\n[load]\ndepth = 0.2\n[accuracy]\ntolerance = 1e-6\n",
+            "test",
+        )
+        .unwrap()
+        .validate()
+        .unwrap();
+        assert_eq!(flat, file);
+    }
+
+    /// `eps` is the hole of the flat annulus and the prescribed contact of a concave punch.
+    #[test]
+    fn eps_means_what_the_command_line_flag_means() {
+        let annulus = keywords(r#"{"punch": "flat-annulus", "eps": 0.25, "rim_radius": 2}"#)
+            .unwrap()
+            .validate()
+            .unwrap();
+        assert_eq!(annulus.punch.inner_radius, 0.5);
+        let cone = keywords(r#"{"punch": "cone", "eps": 0.4}"#)
+            .unwrap()
+            .validate()
+            .unwrap();
+        assert_eq!(cone.load, crate::scene::Load::ContactRatio(0.4));
+    }
+
+    /// Unknown keys, a shape named twice, `eps` beside a load: errors naming the key.
+    #[test]
+    fn bad_keywords_are_named() {
+        let e = keywords(r#"{"punch": "cone", "dept": 1}"#)
+            .err()
+            .expect("an error");
+        assert!(
+            e.to_string().contains("`dept` is not a scene keyword"),
+            "{e}"
+        );
+        let e = keywords(r#"{"punch": "cone", "shape": "sphere"}"#)
+            .err()
+            .expect("an error");
+        assert!(e.to_string().contains("`punch` and `shape`"), "{e}");
+        let e = keywords(r#"{"punch": "cone", "eps": 0.5, "depth": 1}"#)
+            .err()
+            .expect("an error");
+        assert!(e.to_string().contains("do not combine"), "{e}");
+        let e = keywords(r#"{"punch": "flat", "eps": 0.5}"#)
+            .err()
+            .expect("an error");
+        assert!(e.to_string().contains("flat circular"), "{e}");
+        let e = keywords(r#"{"punch": "cone", "depth": "deep"}"#)
+            .err()
+            .expect("an error");
+        assert!(
+            e.to_string()
+                .contains("`load.depth` must be a number (got \"deep\")"),
+            "{e}"
+        );
+    }
+}
