@@ -143,8 +143,21 @@ fn the_functions_meet_independent_references_at_the_ends() {
         "{}",
         cone["gamma1"][0]
     );
+    // Torus, narrow band: the plane-strain Hertz contact of a cylinder of radius rho, force
+    // per unit length pi E* w^2 / (4 rho) for half-width w, around the ring's circumference
+    // 2 pi a: F = pi^2 E* a w^2 / (2 rho), so gamma2 = F/(2 E* h a) = pi^2 w^2 / 2 in units of
+    // a with h = a^2/(2 rho). At w = 1e-4 a the next term, O((w/a) ln(a/w)), is about 1e-3.
+    let (_, torus) = columns(&stored.join("functions-torus.csv"));
+    let last = torus["eps"].len() - 1;
+    let half_width = 0.5 * (torus["outer_radius"][last] - torus["eps"][last]);
+    let hertz = pi * pi * half_width * half_width / 2.0;
+    assert!(
+        (torus["gamma2"][last] - hertz).abs() < 1e-3 * hertz,
+        "{} against {hertz}",
+        torus["gamma2"][last]
+    );
     // Every function falls as the contact ratio grows.
-    for table in [&flat, &sphere, &cone] {
+    for table in [&flat, &sphere, &cone, &torus] {
         for key in ["gamma", "gamma1", "gamma2"] {
             if let Some(v) = table.get(key) {
                 assert!(v.windows(2).all(|w| w[1] < w[0]), "{key}");

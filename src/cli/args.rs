@@ -127,7 +127,10 @@ Examples:
     #[command(after_help = "\
 Tables (NAME.csv with one header row, NAME.json with the same rows, fields and provenance):
   functions-flat-annulus   gamma(eps), K at both edges, 1e-4 <= eps <= 0.9999
-  functions-cone, functions-sphere   gamma1(eps), gamma2(eps), K at the rim, up to eps = 1e-4
+  functions-cone, functions-sphere, functions-power-n1.5   gamma1(eps), gamma2(eps), K at the
+                           rim, up to eps = 1e-4
+  functions-torus          gamma1(eps), gamma2(eps) and c/a of the band (both edges free),
+                           0.01 <= eps <= 0.9999; one family in units of h = a²/(2 rho)
   jkr-flat-annulus         critical depth and force at either edge against b/a, with bounds
   jkr-cone, jkr-sphere     pull-off against d0/h: fixed load, fixed grips, full contact
   fits                     the paper's formulas, refitted, and the best forms, largest errors
@@ -135,9 +138,10 @@ datapackage.json (Frictionless Data) gives each column's type, unit and meaning,
 interpolation and its measured error, and the provenance (version, commit, command). pandas:
 pd.read_csv('DIR/functions-cone.csv'); R: read.csv(...); frictionless: Package('DIR/datapackage.json').
 
-The function tables are uniform in s = ln(eps/(1 - eps)); the cubic in s through the four
-nearest rows interpolates them to the error stated (measured at every interval's midpoint).
-The full dataset takes about a minute; --small (the copy in verify/dataset/) a few seconds.
+The function tables are uniform in s = ln(eps/(1 - eps)); exp of the cubic in s through
+ln(value) at the four nearest rows interpolates them to the error stated (measured at every
+interval's midpoint). The full dataset takes about two minutes; --small (the copy in
+verify/dataset/) a few seconds.
 
 Examples:
   verify dataset                       into reports/dataset/

@@ -131,6 +131,7 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
         PunchKind::Cone,
         PunchKind::Sphere,
         power,
+        PunchKind::Torus,
     ] {
         resources.push(functions::resource(
             &solver,
@@ -210,10 +211,11 @@ pub fn write(
         "name": "ringcontact-reference-dataset",
         "title": "Converged reference values for rigid punches with ring-shaped contact",
         "description": format!(
-            "Frictionless normal contact of rigid axisymmetric punches (flat annular, conical \
-             and spherical concave) with an elastic half-space, without and with JKR adhesion, \
-             computed by the ring-element BEM of ringcontact. Dimensionless: a = h = E* = 1 \
-             (flat punches F = 2 E* d a gamma; concave d = h gamma1, F = 2 E* h a gamma2). \
+            "Frictionless normal contact of rigid axisymmetric punches (flat annular; conical, \
+             spherical and power-law concave; the parabolic torus) with an elastic half-space, \
+             without and with JKR adhesion, computed by the ring-element BEM of ringcontact. \
+             Dimensionless: a = h = E* = 1 (flat punches F = 2 E* d a gamma; concave punches \
+             and the torus, h = a²/(2 rho), d = h gamma1, F = 2 E* h a gamma2). \
              Every table is given as CSV (the resource's path) and as JSON (json_copy). {}",
             match size {
                 Size::Full => "Full grids.",
