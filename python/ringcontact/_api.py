@@ -239,26 +239,32 @@ def _sequence(value):
     return list(np.asarray(value).tolist()) if hasattr(value, "__array__") else list(value)
 
 
-def _plain(key, value):
-    """A keyword's value as JSON takes it (NumPy scalars, paths); a non-finite number is refused
-    here, where JSON could not carry it."""
+def _scalar(value):
+    """A NumPy scalar as the Python number it holds; a path as its text; anything else as is."""
     if isinstance(value, os.PathLike):
         return os.fspath(value)
     if hasattr(value, "item") and not isinstance(value, (str, bytes)):
-        value = value.item()
+        return value.item()
+    return value
+
+
+def _plain(key, value):
+    """A keyword's value as JSON takes it; a non-finite number is refused here, where JSON could
+    not carry it."""
+    value = _scalar(value)
     if isinstance(value, float) and not math.isfinite(value):
         raise RingContactError(f"invalid scene: `{key}` must be a finite number (got {value})")
     return value
 
 
 def _plain_row(row):
-    """One row of results given as a dict, with JSON's types."""
+    """One row of results given as a dict, with JSON's types (a missing number, NaN, is an empty
+    cell)."""
     if not isinstance(row, dict):
         raise TypeError(f"a row of results is a dict of columns, not {type(row).__name__}")
     plain = {}
     for key, value in row.items():
-        if hasattr(value, "item") and not isinstance(value, (str, bytes)):
-            value = value.item()
+        value = _scalar(value)
         if isinstance(value, float) and not math.isfinite(value):
             value = None
         plain[str(key)] = value

@@ -129,12 +129,8 @@ pub fn grade_text(
     tol: f64,
 ) -> Result<(String, bool), String> {
     let rows = grade::input::parse(text, origin, json, None)?;
-    let heartbeat = Heartbeat::start("ringcontact.grade");
-    let grading = grade::grade(&rows, tol, &|k, n| {
-        heartbeat.set(format!("row {} of {n}", k + 1))
-    })
-    .map_err(|e| format!("{origin}: {e}"))?;
-    drop(heartbeat);
+    let grading = super::grade::grade_rows(&rows, tol, "ringcontact.grade")
+        .map_err(|e| format!("{origin}: {e}"))?;
     let report = GradeReport {
         results: origin.to_string(),
         provenance: Provenance::of_this_process(),

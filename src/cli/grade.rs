@@ -10,11 +10,7 @@ use crate::provenance::Provenance;
 /// write the chart with `--svg`; fails (exit status 1) when a value is beyond `--tol`.
 pub fn grade(args: GradeArgs) -> Result<Reply, String> {
     let rows = grade::input::read(&args.results)?;
-    let heartbeat = Heartbeat::start("verify grade");
-    let grading = grade::grade(&rows, args.tol, &|k, n| {
-        heartbeat.set(format!("row {} of {n}", k + 1))
-    })?;
-    drop(heartbeat);
+    let grading = grade_rows(&rows, args.tol, "verify grade")?;
     if let Some(path) = &args.svg {
         let title = format!(
             "{}: relative error against the reference",
@@ -46,4 +42,17 @@ fn terminal(g: &Grading) -> String {
         grade::summary_table(g).to_terminal(),
         grade::verdict_sentence(g)
     )
+}
+
+/// Grade `rows` at tolerance `tol` with progress on standard error under `label` (the command
+/// line and the Python package's `grade`).
+pub(super) fn grade_rows(
+    rows: &[grade::input::ResultRow],
+    tol: f64,
+    label: &str,
+) -> Result<Grading, String> {
+    let heartbeat = Heartbeat::start(label);
+    grade::grade(rows, tol, &|k, n| {
+        heartbeat.set(format!("row {} of {n}", k + 1))
+    })
 }

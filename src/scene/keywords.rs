@@ -224,32 +224,27 @@ mod tests {
     /// Unknown keys, a shape named twice, `eps` beside a load: errors naming the key.
     #[test]
     fn bad_keywords_are_named() {
-        let e = keywords(r#"{"punch": "cone", "dept": 1}"#)
-            .err()
-            .expect("an error");
-        assert!(
-            e.to_string().contains("`dept` is not a scene keyword"),
-            "{e}"
-        );
-        let e = keywords(r#"{"punch": "cone", "shape": "sphere"}"#)
-            .err()
-            .expect("an error");
-        assert!(e.to_string().contains("`punch` and `shape`"), "{e}");
-        let e = keywords(r#"{"punch": "cone", "eps": 0.5, "depth": 1}"#)
-            .err()
-            .expect("an error");
-        assert!(e.to_string().contains("do not combine"), "{e}");
-        let e = keywords(r#"{"punch": "flat", "eps": 0.5}"#)
-            .err()
-            .expect("an error");
-        assert!(e.to_string().contains("flat circular"), "{e}");
-        let e = keywords(r#"{"punch": "cone", "depth": "deep"}"#)
-            .err()
-            .expect("an error");
-        assert!(
-            e.to_string()
-                .contains("`load.depth` must be a number (got \"deep\")"),
-            "{e}"
-        );
+        for (keywords_text, expected) in [
+            (
+                r#"{"punch": "cone", "dept": 1}"#,
+                "`dept` is not a scene keyword",
+            ),
+            (
+                r#"{"punch": "cone", "shape": "sphere"}"#,
+                "`punch` and `shape`",
+            ),
+            (
+                r#"{"punch": "cone", "eps": 0.5, "depth": 1}"#,
+                "do not combine",
+            ),
+            (r#"{"punch": "flat", "eps": 0.5}"#, "flat circular"),
+            (
+                r#"{"punch": "cone", "depth": "deep"}"#,
+                "`load.depth` must be a number (got \"deep\")",
+            ),
+        ] {
+            let e = keywords(keywords_text).err().expect("an error");
+            assert!(e.to_string().contains(expected), "{keywords_text}: {e}");
+        }
     }
 }
