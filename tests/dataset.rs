@@ -53,7 +53,7 @@ fn the_committed_copy_is_what_the_command_makes_within_its_bounds() {
         serde_json::from_str(&std::fs::read_to_string(stored.join("datapackage.json")).unwrap())
             .unwrap();
     let resources = package["resources"].as_array().unwrap();
-    assert!(resources.len() >= 8);
+    assert!(resources.len() >= 11);
     for resource in resources {
         let path = resource["path"].as_str().unwrap();
         let (header, old) = columns(&stored.join(path));
@@ -156,6 +156,34 @@ fn the_functions_meet_independent_references_at_the_ends() {
         "{} against {hertz}",
         torus["gamma2"][last]
     );
+    // Power law n = 1.5 from full contact (the method of dimensionality reduction): the rim
+    // detaches at d = -d0 - h (kappa - 1), F = 2 E* a (d - h (1 - kappa/(n + 1))), with
+    // kappa = sqrt(pi) Gamma(n/2 + 1) / Gamma(n/2 + 1/2); Gamma(1.75) = 0.919062526848883,
+    // Gamma(1.25) = 0.906402477055477 (Abramowitz and Stegun, table 6.1).
+    let (_, power) = columns(&stored.join("jkr-power-n1.5.csv"));
+    let kappa = pi.sqrt() * 0.919_062_526_848_883 / 0.906_402_477_055_477;
+    for (row, &s) in power["d0_over_h"].iter().enumerate() {
+        let depth = -s - (kappa - 1.0);
+        let force = (depth - (1.0 - kappa / 2.5)) / s;
+        assert!((power["full_contact_depth"][row] - depth).abs() < 1e-12 * depth.abs());
+        assert!((power["full_contact_force"][row] - force).abs() < 1e-12 * force.abs());
+    }
+    // Torus, weak adhesion: the plane-strain JKR cylinder (Barquins 1988) of radius rho over
+    // 2 pi a: w_c = (2 rho^2 dw / (pi E*))^(1/3), P_c = -(3/4) pi E* w_c^2 / rho per unit
+    // length; with h = 1 (rho = a/2), dw = s^2/(2 pi) and F0 = 2 s: F/F0 = -3 pi^2 w_c^2/(2 s).
+    // The torus tends to it as d0/h falls (the band narrows).
+    let (_, torus_jkr) = columns(&stored.join("jkr-torus.csv"));
+    let deviations: Vec<f64> = torus_jkr["d0_over_h"]
+        .iter()
+        .zip(&torus_jkr["fixed_load_force"])
+        .map(|(&s, &force)| {
+            let w = (s * s / (4.0 * pi * pi)).cbrt();
+            let cylinder = -3.0 * pi * pi * w * w / (2.0 * s);
+            ((force - cylinder) / cylinder).abs()
+        })
+        .collect();
+    assert!(deviations[0] < 1e-4, "{deviations:?}");
+    assert!(deviations.windows(2).all(|d| d[0] < d[1]), "{deviations:?}");
     // Every function falls as the contact ratio grows.
     for table in [&flat, &sphere, &cone, &torus] {
         for key in ["gamma", "gamma1", "gamma2"] {

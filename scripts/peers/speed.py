@@ -3,9 +3,10 @@
 Problem: flat circular punch, 512 x 512 cells on [-a, a]^2, E* = 1 (Tamaas is load-controlled at
 F = 2; ours solves at unit depth: for a flat punch the same linear problem). Tamaas runs its
 documented solver (PolonskyKeerRey with the non-periodic "dcfft" operator, tolerance 1e-12) in the
-configuration PyPI gives (its serial C++ backend); ours `verify solve --method grid-bem --grid 512`
-(its own tolerance, 1e-10 complementarity). Each round runs both, each in a fresh process, the
-order alternating; the timed region on both sides is the solve (Tamaas: around solver.solve;
+configuration PyPI gives (its serial C++ backend); ours `verify solve --method grid-bem --grid 512
+--no-grid-estimate` (the one grid, as Tamaas runs it, without the two coarser grids of our error
+estimate; its own tolerance, 1e-10 complementarity). Each round runs both, each in a fresh
+process, the order alternating; the timed region on both sides is the solve (Tamaas: around solver.solve;
 ours: the JSON's wall_s, the whole solve after the process started).
 
 Writes benches/records/tamaas-speed.json (every run, medians, ranges, the ratio per round,
@@ -57,7 +58,7 @@ def run_tamaas():
 
 def run_ours(verify):
     proc = subprocess.run([verify, "solve", "--punch", "flat", "--method", "grid-bem", "--grid",
-                           str(N), "--json"], cwd=ROOT, capture_output=True, text=True, check=True)
+                           str(N), "--no-grid-estimate", "--json"], cwd=ROOT, capture_output=True, text=True, check=True)
     out = json.loads(proc.stdout)
     return {"wall_s": out["wall_s"], "stiffness": out["force"] / out["depth"],
             "iterations": out["iterations"]}

@@ -59,6 +59,8 @@ pub struct TorusCritical {
     /// Bound on the error of `force` (`F/F0`, absolute): the ring BEM's estimate of the state
     /// times `|F|`, plus the force's change over the location's tolerance in `b`.
     pub error_bound: f64,
+    /// Bound on the error of `depth` (`d/h`, absolute), made the same way.
+    pub depth_error_bound: f64,
 }
 
 /// The JKR analysis of the torus for one `d0/h`.
@@ -204,14 +206,12 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
             let (w, _) = golden_minimum(value, curve[k - 1].0, curve[k + 1].0)?;
             let st = state(w, STATE_TOLERANCE, hint)?;
             let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
-            // The golden section stops at 1e-9 in w; the force's change over it is second order
-            // at a minimum of F, first order (dF/dw) at a minimum of d.
+            // The golden section stops at 1e-9 in w; a quantity's change over it is second order
+            // where it is the minimum, first order (its slope in w) for the other one.
             let step = 1e-9 * w.max(1e-3);
-            let slope = (state(w + step, STATE_TOLERANCE, hint)?
-                .gamma2
-                .unwrap_or(f64::NAN)
-                - g2)
-                / step;
+            let beside = state(w + step, STATE_TOLERANCE, hint)?;
+            let force_slope = (beside.gamma2.unwrap_or(f64::NAN) - g2) / step;
+            let depth_slope = (beside.gamma1.unwrap_or(f64::NAN) - g1) / step;
             let force = g2 / s;
             Ok(Ok(TorusCritical {
                 eps: st.eps,
@@ -219,7 +219,8 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
                 depth: g1,
                 depth_over_d0: g1 / s,
                 force,
-                error_bound: st.error_estimate * force.abs() + (slope * step / s).abs(),
+                error_bound: st.error_estimate * force.abs() + (force_slope * step / s).abs(),
+                depth_error_bound: st.error_estimate * g1.abs() + (depth_slope * step).abs(),
             }))
         };
     let fixed_load = locate(|p| p.2, "force")?;

@@ -2,5 +2,6 @@
 
 pub mod grid;
 pub mod grid_contact;
+pub mod grid_estimate;
 pub mod ring;
 pub mod ring_contact;

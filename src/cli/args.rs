@@ -132,7 +132,10 @@ Tables (NAME.csv with one header row, NAME.json with the same rows, fields and p
   functions-torus          gamma1(eps), gamma2(eps) and c/a of the band (both edges free),
                            0.01 <= eps <= 0.9999; one family in units of h = a²/(2 rho)
   jkr-flat-annulus         critical depth and force at either edge against b/a, with bounds
-  jkr-cone, jkr-sphere     pull-off against d0/h: fixed load, fixed grips, full contact
+  jkr-cone, jkr-sphere, jkr-power-n1.5   pull-off against d0/h: fixed load, fixed grips,
+                           full contact
+  jkr-torus                pull-off against d0/h (1e-3 to 1): fixed load, fixed grips (both
+                           edges free), beside the plane-strain JKR cylinder's
   fits                     the paper's formulas, refitted, and the best forms, largest errors
 datapackage.json (Frictionless Data) gives each column's type, unit and meaning, the
 interpolation and its measured error, and the provenance (version, commit, command). pandas:
@@ -618,6 +621,11 @@ pub struct SolveArgs {
     /// coarse solve]. A peer's grid is reproduced with it.
     #[arg(long, value_name = "L")]
     pub grid_extent: Option<f64>,
+    /// Grid BEM only: solve the requested grid alone, without the two coarser grids (N/2, N/4)
+    /// that make its error estimate (about a fifth of the time); the answer then has no
+    /// estimate. For timing the paper's method against codes that run one grid.
+    #[arg(long)]
+    pub no_grid_estimate: bool,
     /// Print one JSON object instead of text.
     #[arg(long)]
     pub json: bool,

@@ -57,6 +57,7 @@ pub(crate) fn solve_scene_by(
         degree: args.degree.and_then(Degree::from_number),
         grid: args.grid.map(|g| g as usize),
         grid_extent: args.grid_extent,
+        grid_without_estimate: args.no_grid_estimate,
         vtu: args.vtu.clone(),
     };
     methods::solve_with(scene, method, &options).map_err(message)
@@ -171,7 +172,7 @@ pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
         "error estimate",
         match s.error_estimate {
             Some(e) => format!("{e:.1e} (relative in gamma's, absolute in eps)"),
-            None => "none (see provenance: a fit, or a single mesh)".to_string(),
+            None => "none (the provenance says why)".to_string(),
         },
     );
     if let Some(fem) = &s.fem {

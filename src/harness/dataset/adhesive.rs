@@ -190,6 +190,108 @@ pub fn concave(
     })
 }
 
+/// The torus: the pull-off under fixed load and fixed grips (Griffith condition at both free
+/// edges, [`adhesion::torus_jkr`]) at each `d0/h` of `scales`, beside the plane-strain JKR
+/// cylinder's fixed-load pull-off (the narrow limit).
+pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) -> Result<Resource> {
+    let mut fields = vec![Field::number(
+        "d0_over_h",
+        "1",
+        "work of adhesion as d0/h, d0 = sqrt(2 pi a dw / E*), h = a^2/(2 rho)",
+    )];
+    for (prefix, what) in [
+        (
+            "fixed_load",
+            "under fixed load (the minimum of F along the equilibria)",
+        ),
+        (
+            "fixed_grips",
+            "under fixed grips (the minimum of d along the equilibria)",
+        ),
+    ] {
+        fields.extend([
+            Field::number(
+                &format!("{prefix}_force"),
+                "F0",
+                &format!("pull-off {what}: force F/F0 (negative: tensile)"),
+            ),
+            Field::number(
+                &format!("{prefix}_force_error"),
+                "F0",
+                "absolute error bound of the force before it (the ring BEM's estimate and the \
+                 location's tolerance)",
+            ),
+            Field::number(
+                &format!("{prefix}_eps"),
+                "1",
+                &format!("pull-off {what}: inner edge of the band, b/a"),
+            ),
+            Field::number(
+                &format!("{prefix}_outer_radius"),
+                "1",
+                &format!("pull-off {what}: outer edge of the band, c/a"),
+            ),
+            Field::number(
+                &format!("{prefix}_depth"),
+                "h",
+                &format!("pull-off {what}: depth d/h (negative: pulled)"),
+            ),
+            Field::number(
+                &format!("{prefix}_depth_error"),
+                "h",
+                "absolute error bound of the depth before it",
+            ),
+        ]);
+    }
+    fields.push(Field::number(
+        "plane_strain_fixed_load_force",
+        "F0",
+        "the plane-strain JKR cylinder's fixed-load pull-off over the length 2 pi a, F/F0: the \
+         narrow limit d0/h -> 0 (an asymptote, no bound)",
+    ));
+    let mut table = Table::new("torus JKR", fields.iter().map(Field::column).collect());
+    let cells = |c: Option<&adhesion::TorusCritical>| -> Vec<Cell> {
+        match c {
+            Some(c) => vec![
+                c.force.into(),
+                c.error_bound.into(),
+                c.eps.into(),
+                c.outer.into(),
+                c.depth.into(),
+                c.depth_error_bound.into(),
+            ],
+            None => vec![Cell::Missing; 6],
+        }
+    };
+    for (k, &s) in scales.iter().enumerate() {
+        progress(&format!(
+            "torus JKR: {} of {} (d0/h = {s:.3e})",
+            k + 1,
+            scales.len()
+        ));
+        let r = adhesion::torus_jkr(solver, s)?;
+        let mut row: Vec<Cell> = vec![s.into()];
+        row.extend(cells(r.fixed_load.as_ref()));
+        row.extend(cells(r.fixed_grips.as_ref()));
+        row.push(r.plane_strain_fixed_load.into());
+        table.push(row);
+    }
+    Ok(Resource {
+        name: "jkr-torus".into(),
+        title: "Torus: JKR pull-off against d0/h (both edges free)".into(),
+        description: "JKR-adhesive parabolic torus of ring radius a and tube radius rho: the \
+                      band b <= r <= c with the Griffith condition at both edges, from the ring \
+                      BEM's equilibria; the pull-off under fixed load and under fixed grips, and \
+                      the plane-strain JKR cylinder's (the narrow limit). In units of \
+                      h = a^2/(2 rho) the torus is one family for every rho. \
+                      Units: F0 = sqrt(8 pi a^3 E* dw), d0 = sqrt(2 pi a dw / E*)."
+            .into(),
+        fields,
+        table,
+        interpolation_error: Vec::new(),
+    })
+}
+
 /// The paper's formulas refitted to converged data and the best forms found, with their
 /// largest relative errors on `0.05 <= eps <= 0.99`.
 pub fn fits(solver: &RingBemSolver) -> Result<Resource> {
