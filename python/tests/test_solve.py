@@ -111,6 +111,8 @@ def test_unknown_keywords_and_methods_are_named():
         rc.solve("cone", depth=1, method="magic")
     with pytest.raises(rc.RingContactError, match="degree 4"):
         rc.solve("cone", depth=1, method="fem", degree=4)
+    with pytest.raises(rc.RingContactError, match="grid 4096 outside 8..=2048 cells per side"):
+        rc.solve("flat", method="grid-bem", grid=4096)
     assert issubclass(rc.RingContactError, Exception)
     assert rc.RingContactError.__module__ == "ringcontact"
     assert "tolerance" in rc.SCENE_KEYWORDS and "eps" in rc.SCENE_KEYWORDS

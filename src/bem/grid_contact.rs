@@ -21,6 +21,9 @@ const MIN_CELLS_ACROSS: f64 = 2.0;
 /// 2 cores; 2048 takes some minutes and reports progress). 4096 would take hours.
 pub(crate) const MAX_GRID: usize = 2048;
 
+/// Smallest grid accepted (cells per side).
+pub(crate) const MIN_GRID: usize = 8;
+
 /// A grid solve of a punch state.
 #[derive(Clone, Debug)]
 pub struct GridState {
@@ -77,13 +80,13 @@ pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
     }
 }
 
-/// The grid sizes accepted, `8..=MAX_GRID` cells per side.
+/// The grid sizes accepted, `MIN_GRID..=MAX_GRID` cells per side.
 fn check_grid(n: usize) -> Result<()> {
-    if !(8..=MAX_GRID).contains(&n) {
+    if !(MIN_GRID..=MAX_GRID).contains(&n) {
         Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
-                "grid {n} outside 8..={MAX_GRID} cells per side (a {n} x {n} grid needs about \
+                "grid {n} outside {MIN_GRID}..={MAX_GRID} cells per side (a {n} x {n} grid needs about \
                  {:.1} GB and far longer than minutes on this kind of machine)",
                 100.0 * (n as f64).powi(2) / 1e9
             ),

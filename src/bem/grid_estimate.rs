@@ -15,14 +15,11 @@
 //! 150 states of every punch on 64², 128² and 256² (`tests/grid_estimate.rs` keeps a sample):
 //! the actual error never exceeded 0.8 of the bar.
 
-use crate::bem::grid_contact::GridState;
+use crate::bem::grid_contact::{GridState, MIN_GRID};
 use crate::error::{Error, Result};
 
 /// The coarser levels' cells per side are the grid's divided by these.
 pub const COARSENING: [usize; 2] = [2, 4];
-
-/// Fewest cells per side of the coarsest level.
-pub const MIN_COARSEST: usize = 8;
 
 /// Safety factor on the steepest pair's first-order extrapolation.
 pub const SAFETY: f64 = 3.0;
@@ -60,7 +57,7 @@ pub fn estimate(
     coarser: impl Fn(usize) -> Result<GridState>,
 ) -> Result<f64> {
     let n = fine.grid;
-    if n / COARSENING[1] < MIN_COARSEST {
+    if n / COARSENING[1] < MIN_GRID {
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
@@ -68,7 +65,7 @@ pub fn estimate(
                  cells; at least {} needed for one)",
                 n / COARSENING[0],
                 n / COARSENING[1],
-                MIN_COARSEST * COARSENING[1]
+                MIN_GRID * COARSENING[1]
             ),
         });
     }

@@ -10,6 +10,10 @@ use crate::methods::Method;
 use crate::punch::PunchName;
 use crate::scene::DEFAULT_TOLERANCE;
 
+/// The cells per side `--grid` takes: the grid BEM's own range.
+const GRID_RANGE: std::ops::RangeInclusive<u64> =
+    (crate::bem::grid_contact::MIN_GRID as u64)..=(crate::bem::grid_contact::MAX_GRID as u64);
+
 /// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
 /// half-space (flat annular, conical concave, spherical concave; flat circular as a check).
 ///
@@ -614,7 +618,7 @@ pub struct SolveArgs {
     #[arg(long)]
     pub vtu: Option<PathBuf>,
     /// Grid BEM only: cells per side of the square grid on [-a, a]^2 [default: 256].
-    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(GRID_RANGE))]
     pub grid: Option<u64>,
     /// Grid BEM with --punch torus only: the grid covers [-L, L]^2 with L = this times a
     /// (1 < L <= 10) [default: the band's outer edge plus a quarter of its width, from a
@@ -683,7 +687,7 @@ pub struct TableArgs {
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub degree: Option<u8>,
     /// Grid BEM only: cells per side (as `verify solve`).
-    #[arg(long, value_parser = clap::value_parser!(u64).range(8..=2048))]
+    #[arg(long, value_parser = clap::value_parser!(u64).range(GRID_RANGE))]
     pub grid: Option<u64>,
     /// Print one JSON object (provenance and `rows`) instead of CSV.
     #[arg(long)]

@@ -46,13 +46,7 @@ pub fn solve_keyword_scenes(
                 .ok_or_else(|| format!("degree {n}: the FEM's elements are of degree 1, 2 or 3"))?,
         ),
     };
-    if let Some(n) = options.grid {
-        if !(8..=2048).contains(&n) {
-            return Err(format!(
-                "grid {n}: the grid BEM takes 8 to 2048 cells per side"
-            ));
-        }
-    }
+    // The grid's range is the grid BEM's own to check (`grid_contact::check_grid`).
     let options = MethodOptions {
         degree,
         grid: options.grid,
