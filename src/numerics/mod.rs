@@ -6,6 +6,7 @@ pub mod chebyshev;
 pub mod elliptic;
 pub mod golden;
 pub mod prefetch;
+pub mod richardson;
 pub mod roots;
 pub mod tanh_sinh;
 pub mod zeroed;
