@@ -11,7 +11,7 @@
 //! `bar = 3 h1 max_{i<j} |f_i - f_j| / |h_i - h_j|`,
 //!
 //! and, where the three converge monotonically but slower than first order, the GCI with its
-//! observed order ([`first_order_bar`]); relative for the `γ`s, absolute (units of `a`) for the
+//! observed order ([`three_level_bar`]); relative for the `γ`s, absolute (units of `a`) for the
 //! free edges, which the staircase cannot place to better than about a cell (the bar is never
 //! below one cell `h1` there). Measured over 192 states of every punch on 64², 128² and 256²
 //! (the narrowest bands, the deepest loads, holes a few cells wide near full contact): the
@@ -40,7 +40,7 @@ pub const SAFETY: f64 = 3.0;
 ///   `min(p, 1)` of the observed order `p` (Roache): `3 |f1 - f2| / (r21^min(p,1) - 1)`, which
 ///   follows levels that converge slower than first order; `p` is taken no lower than
 ///   [`LOWEST_ORDER`].
-pub fn first_order_bar(f: [f64; 3], h: [f64; 3]) -> f64 {
+pub fn three_level_bar(f: [f64; 3], h: [f64; 3]) -> f64 {
     let mut steepest = 0.0f64;
     for i in 0..3 {
         for j in i + 1..3 {
@@ -105,11 +105,11 @@ pub fn estimate(
     let outputs: [fn(&GridState) -> Option<f64>; 3] = [|s| s.gamma, |s| s.gamma1, |s| s.gamma2];
     for output in outputs {
         if let (Some(f1), Some(f2), Some(f3)) = (output(fine), output(&half), output(&quarter)) {
-            bar = bar.max(first_order_bar([f1, f2, f3], h) / f1.abs());
+            bar = bar.max(three_level_bar([f1, f2, f3], h) / f1.abs());
         }
     }
     for edge in free_edges {
-        bar = bar.max(first_order_bar(levels.map(edge), h).max(EDGE_FLOOR_CELLS * h[0]));
+        bar = bar.max(three_level_bar(levels.map(edge), h).max(EDGE_FLOOR_CELLS * h[0]));
     }
     Ok(bar)
 }
@@ -124,7 +124,7 @@ mod tests {
     fn a_clean_first_order_sequence_gets_three_times_its_error() {
         let h = [0.01, 0.02, 0.04];
         let f = h.map(|h| 1.0 + 0.3 * h);
-        let bar = first_order_bar(f, h);
+        let bar = three_level_bar(f, h);
         assert!((bar / (3.0 * 0.3 * 0.01) - 1.0).abs() < 1e-9, "{bar}");
     }
 
@@ -135,7 +135,7 @@ mod tests {
         let h = [0.01, 0.02, 0.04];
         let f = h.map(|h: f64| 1.0 + 0.3 * h.powf(0.5));
         let error = 0.3 * 0.01f64.powf(0.5);
-        let bar = first_order_bar(f, h);
+        let bar = three_level_bar(f, h);
         assert!(bar >= 2.0 * error, "{bar} against {error}");
         let pairs_only = 3.0 * 0.01 * (f[1] - f[0]) / 0.01;
         assert!(
@@ -150,6 +150,6 @@ mod tests {
     fn levels_that_agree_by_chance_do_not_hide_the_error() {
         let f = [0.9990669113578775, 0.9991034962541707, 0.998121510680774];
         let h = [2.0 / 256.0, 2.0 / 128.0, 2.0 / 64.0];
-        assert!(first_order_bar(f, h) >= 9.33e-4);
+        assert!(three_level_bar(f, h) >= 9.33e-4);
     }
 }
