@@ -272,9 +272,18 @@ impl BranchPoint {
     }
 }
 
-/// Ring-BEM quantities at `eps` for a concave punch (tolerance 1e-10).
+/// Ring-BEM quantities at `eps` for a concave punch (tolerance [`branch_tolerance`]).
 pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
-    branch_point_at(solver, kind, eps, 1e-10)
+    branch_point_at(solver, kind, eps, branch_tolerance(kind))
+}
+
+/// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a table punch, whose edge
+/// derivatives settle to about 1e-9 at the scan's smallest contact ratios (`docs/methods.md`).
+pub fn branch_tolerance(kind: PunchKind) -> f64 {
+    match kind {
+        PunchKind::Table(_) => 1e-8,
+        _ => 1e-10,
+    }
 }
 
 /// [`branch_point`] from ring-BEM solves at `tolerance`.
@@ -551,7 +560,8 @@ const LOCATION_TOLERANCE: f64 = 1e-9;
 /// BEM's own estimates propagated through the branch (`d/h = γ1 - s/κ_in`,
 /// `F/F0 = γ2/s - γ/κ_in`: `δF = γ2 e_c/s + γ e_f/κ_in + γ δκ_in/κ_in²`,
 /// `δd = γ1 e_c + s δκ_in/κ_in²`, with `e_c`, `e_f` the concave and flat states' relative
-/// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 and 1e-7,
+/// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 (1e-8 for
+/// a table, [`branch_tolerance`]) and 1e-7,
 /// never below `e_f κ_in`), and the change of the branch's force and depth when every input
 /// comes from the solves at 1e-7. Added to it: each quantity's slope along the branch times
 /// [`LOCATION_TOLERANCE`] (zero at a stationary point, the fixed-load force or the fixed-grips
@@ -598,7 +608,7 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
     if !kind.is_concave() {
         return Err(Error::invalid(
             "punch",
-            "the concave JKR analysis applies to cone, sphere and power",
+            "the concave JKR analysis applies to cone, sphere, power and table",
         ));
     }
     if !kind.has_rim() {
@@ -667,27 +677,8 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
     // Direct route at the fixed-load critical state: solve the adhesive contact itself.
     let (ratio, rim_diff) = match &load {
         Some((c, _)) => {
-            let rule = TanhSinhRule::new(1.0 / 16.0);
-            let n = 40;
-            let system = RingSystem::assemble(
-                ContactRegion::Annulus { eps: c.eps },
-                RingBemSettings {
-                    nodes: n,
-                    quadrature_step: 1.0 / 16.0,
-                },
-                &rule,
-            );
-            let target: Vec<f64> = system
-                .radii()
-                .iter()
-                .map(|&r| c.depth - kind.gap_shape(r))
-                .collect();
-            let field = system.solve(&target).ok_or_else(|| Error::NoConvergence {
-                method: "ring-bem".into(),
-                reason: "singular system".into(),
-            })?;
-            let kin = system.inner_stress_intensity(&field) * ROOT_PI / s;
-            let krim = system.rim_stress_intensity(&field) * ROOT_PI / s;
+            let (kin, krim) = direct_intensities(solver, kind, c)?;
+            let (kin, krim) = (kin * ROOT_PI / s, krim * ROOT_PI / s);
             let formula = branch_point(solver, kind, c.eps)?.rim_intensity(s);
             (Some(kin * kin), Some(krim - formula))
         }
@@ -714,6 +705,39 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
         direct_inner_energy_ratio: ratio,
         direct_rim_difference: rim_diff,
     })
+}
+
+/// Both edges' intensities (units `E* h / sqrt(a)`) of the adhesive contact at a critical
+/// state, solved directly: the annulus `[eps, 1]` pressed to the state's depth, collocated at 40
+/// nodes (the table punch: its band through the flat band's fields, refined to 1e-9).
+fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
+    if let PunchKind::Table(_) = kind {
+        let band = solver.punch_band(kind, c.eps, 1.0, c.depth, 1e-9)?;
+        return Ok((band.inner_stress_intensity, band.outer_stress_intensity));
+    }
+    let rule = TanhSinhRule::new(1.0 / 16.0);
+    let n = 40;
+    let system = RingSystem::assemble(
+        ContactRegion::Annulus { eps: c.eps },
+        RingBemSettings {
+            nodes: n,
+            quadrature_step: 1.0 / 16.0,
+        },
+        &rule,
+    );
+    let target: Vec<f64> = system
+        .radii()
+        .iter()
+        .map(|&r| c.depth - kind.gap_shape(r))
+        .collect();
+    let field = system.solve(&target).ok_or_else(|| Error::NoConvergence {
+        method: "ring-bem".into(),
+        reason: "singular system".into(),
+    })?;
+    Ok((
+        system.inner_stress_intensity(&field),
+        system.rim_stress_intensity(&field),
+    ))
 }
 
 /// `(eps, F/F0)` of a critical state.

@@ -27,6 +27,7 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
 
+mod piecewise_gap;
 mod torus;
 
 /// Name of this method on the command line and in JSON.
@@ -48,6 +49,9 @@ pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 /// than this are not taken as proof of a smaller error. Measured: results at N = 16..64 scatter by
 /// 1e-14 to 1e-13 once converged.
 const ROUNDING_FLOOR: f64 = 1e-13;
+
+/// Tension (relative to the largest pressure sample) above which a sample counts as tensile.
+const TENSION_TOLERANCE: f64 = 1e-9;
 
 /// Radii `r = b k / HOLE_PROBES`, `k = 0..HOLE_PROBES`, at which the hole's floor is checked.
 const HOLE_PROBES: usize = 8;
@@ -122,8 +126,19 @@ const MIN_BAND_RATIO: f64 = 1e-4;
 struct ConcaveSample {
     gamma1: f64,
     gamma2: f64,
+    /// Rim intensity, units of `E* h / sqrt(a)`.
+    rim_stress_intensity: f64,
     system: RingSystem,
+    /// The collocated pressure field (pressure samples, the hole's floor).
     field: RingField,
+    /// The depth `d/h` the field was built with: `gamma1`, except for the table punch, whose
+    /// `γ1`, `γ2` and rim intensity come from [`piecewise_gap`] while its field (collocated,
+    /// converging algebraically at the table's points) only draws the pressure and checks the
+    /// surface.
+    field_depth: f64,
+    /// The table punch's band fields, which draw the surface in the hole to the method's
+    /// accuracy (the collocated field's is algebraic).
+    table_band: Option<piecewise_gap::GapBand>,
 }
 
 /// The ring-BEM solver; holds the quadrature rule so it is built once, and counts the
@@ -204,6 +219,21 @@ impl RingBemSolver {
         Ok(())
     }
 
+    fn check_band(inner: f64, outer: f64, depth: f64) -> Result<()> {
+        if !(inner.is_finite() && outer.is_finite() && depth.is_finite())
+            || inner <= 0.0
+            || outer <= inner * (1.0 + MIN_BAND_RATIO)
+        {
+            return Err(out_of_range(format!(
+                "band [{}, {}] at depth {}: need finite 0 < b and c > b (1 + {MIN_BAND_RATIO})",
+                crate::error::show(inner),
+                crate::error::show(outer),
+                crate::error::show(depth)
+            )));
+        }
+        Ok(())
+    }
+
     /// Climb the node ladder until `values(n)` changes by less than `tolerance` (relative, per
     /// component) between consecutive rungs. Returns the finer sample, its rung and the estimate.
     fn refine<T>(
@@ -260,19 +290,9 @@ impl RingBemSolver {
         tolerance: f64,
     ) -> Result<BandState> {
         Self::check_tolerance(tolerance)?;
-        if !(inner.is_finite() && outer.is_finite() && depth.is_finite())
-            || inner <= 0.0
-            || outer <= inner * (1.0 + MIN_BAND_RATIO)
-        {
-            return Err(out_of_range(format!(
-                "band [{}, {}] at depth {}: need finite 0 < b and c > b (1 + {MIN_BAND_RATIO})",
-                crate::error::show(inner),
-                crate::error::show(outer),
-                crate::error::show(depth)
-            )));
-        }
+        Self::check_band(inner, outer, depth)?;
         let region = ContactRegion::Band { inner, outer };
-        let sample = |n: usize| -> Result<BandState> {
+        self.band_refined(inner, outer, tolerance, |n: usize| -> Result<BandState> {
             let system = self.system(region, n);
             let target: Vec<f64> = system.radii().iter().map(|&r| depth - gap(r)).collect();
             if target.iter().any(|w| !w.is_finite()) {
@@ -291,9 +311,52 @@ impl RingBemSolver {
                 error_estimate: f64::NAN,
                 unknowns: n,
             })
+        })
+    }
+
+    /// The band `[inner, outer]` held in contact at `depth` (`d/h`) by the punch `kind` (gap
+    /// `ĝ(r)`, `h = a = E* = 1`): [`Self::prescribed_band`] for every punch whose gap is
+    /// analytic on the band; the table punch's piecewise cubic through its flat band's fields
+    /// ([`piecewise_gap`]), which keeps the geometric convergence the collocation of its kinks
+    /// loses.
+    pub fn punch_band(
+        &self,
+        kind: PunchKind,
+        inner: f64,
+        outer: f64,
+        depth: f64,
+        tolerance: f64,
+    ) -> Result<BandState> {
+        let PunchKind::Table(table) = kind else {
+            return self.prescribed_band(|r| kind.gap_shape(r), inner, outer, depth, tolerance);
         };
-        // Intensities near zero (a free edge) are compared on the larger intensity or the band's
-        // natural scale `F / (2π r_mid sqrt(c - b))`, not on themselves.
+        Self::check_tolerance(tolerance)?;
+        Self::check_band(inner, outer, depth)?;
+        self.band_refined(inner, outer, tolerance, |n: usize| -> Result<BandState> {
+            let band = self.gap_functionals(table.profile(), inner, outer, n)?;
+            Ok(BandState {
+                inner,
+                outer,
+                depth,
+                force: band.force(depth),
+                inner_stress_intensity: band.inner_intensity(depth),
+                outer_stress_intensity: band.outer_intensity(depth),
+                error_estimate: f64::NAN,
+                unknowns: n,
+            })
+        })
+    }
+
+    /// A band's state refined on the node ladder until the force and both intensities settle
+    /// (intensities near zero, a free edge, are compared on the larger intensity or the band's
+    /// natural scale `F / (2π r_mid sqrt(c - b))`, not on themselves).
+    fn band_refined(
+        &self,
+        inner: f64,
+        outer: f64,
+        tolerance: f64,
+        sample: impl FnMut(usize) -> Result<BandState>,
+    ) -> Result<BandState> {
         let change = |fine: &BandState, coarse: &BandState| {
             let scale = fine
                 .inner_stress_intensity
@@ -385,12 +448,29 @@ impl RingBemSolver {
             rim_coefficient: combine(depth_field.rim_coefficient, gap_field.rim_coefficient),
             inner_coefficient: 0.0,
         };
-        Ok(ConcaveSample {
+        let collocated = ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
+            rim_stress_intensity: system.rim_stress_intensity(&field),
+            field_depth: gamma1,
+            table_band: None,
             system,
             field,
-        })
+        };
+        match kind {
+            PunchKind::Table(table) => {
+                let band = self.gap_band(table.profile(), eps, 1.0, n)?;
+                let gamma1 = band.functionals.free_inner_depth();
+                Ok(ConcaveSample {
+                    gamma1,
+                    gamma2: 0.5 * band.functionals.force(gamma1),
+                    rim_stress_intensity: band.functionals.outer_intensity(gamma1),
+                    table_band: Some(band),
+                    ..collocated
+                })
+            }
+            _ => Ok(collocated),
+        }
     }
 
     /// The punch must not touch the floor of the hole: the surface there stays clear of the
@@ -403,12 +483,24 @@ impl RingBemSolver {
             self.check_clear_beyond(kind, sample)?;
         }
         let radii = (0..HOLE_PROBES).map(|k| eps * k as f64 / HOLE_PROBES as f64);
-        let inside = |r| {
-            sample
-                .system
-                .deflection_in_hole(&sample.field, r, &self.rule)
-        };
-        if let Some((r, overlap)) = first_overlap(kind, sample.gamma1, radii, inside) {
+        let (depth, inside): (f64, Box<dyn Fn(f64) -> Option<f64> + '_>) =
+            match (kind, &sample.table_band) {
+                (PunchKind::Table(table), Some(band)) => (
+                    sample.gamma1,
+                    Box::new(move |r| {
+                        band.deflection_in_hole(table.profile(), sample.gamma1, r, &self.rule)
+                    }),
+                ),
+                _ => (
+                    sample.field_depth,
+                    Box::new(|r| {
+                        sample
+                            .system
+                            .deflection_in_hole(&sample.field, r, &self.rule)
+                    }),
+                ),
+            };
+        if let Some((r, overlap)) = first_overlap(kind, depth, radii, inside) {
             return Err(out_of_range(format!(
                 "the {kind} touches the floor of its hole at r/a = {} before the ring \
                  [{}, 1] closes (the surface would rise {overlap:.2e} h into the punch): the \
@@ -433,7 +525,7 @@ impl RingBemSolver {
                 .system
                 .deflection_beyond(&sample.field, r, &self.rule)
         };
-        if let Some((r, overlap)) = first_overlap(kind, sample.gamma1, radii, beyond) {
+        if let Some((r, overlap)) = first_overlap(kind, sample.field_depth, radii, beyond) {
             return Err(out_of_range(format!(
                 "the {kind} touches the surface at r/a = {} beyond its contact's outer edge \
                  c/a = {} (the surface would rise {overlap:.2e} h into the punch): the contact \
@@ -455,8 +547,15 @@ impl RingBemSolver {
         solves: usize,
     ) -> Result<RingState> {
         self.check_hole_clear(kind, eps, &fine)?;
+        // The collocated field's own error (the table's: its depth against the accurate γ1)
+        // widens the tolerance of the sign check by ten times that error.
+        let field_error = (fine.field_depth - fine.gamma1).abs() / fine.gamma1.abs();
         let state = free_edge_state(eps, fine, n, estimate, solves);
-        check_compressive(&state.pressure, eps)?;
+        check_compressive(
+            &state.pressure,
+            eps,
+            (10.0 * field_error).max(TENSION_TOLERANCE),
+        )?;
         Ok(state)
     }
 
@@ -464,7 +563,6 @@ impl RingBemSolver {
     /// non-adhesive state, refused where that state is not one (tension at the inner edge, or
     /// the punch touching the hole's floor).
     pub fn concave_at_ratio(&self, kind: PunchKind, eps: f64, tolerance: f64) -> Result<RingState> {
-        refuse_tabulated(kind)?;
         let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
         self.concave_state(kind, eps, fine, n, estimate, solves)
     }
@@ -511,7 +609,6 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        refuse_tabulated(kind)?;
         if closure(kind).is_some_and(|(depth, _)| target >= depth) {
             return self.full_contact(kind, target, tolerance);
         }
@@ -526,7 +623,6 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        refuse_tabulated(kind)?;
         if closure(kind).is_some_and(|(_, force)| target >= force) {
             // Full contact: the solver finds the depth from its own force (not from the MDR
             // relation F = 2 E* a (d - h/3) of the sphere, or its power-law form, which the
@@ -705,10 +801,13 @@ impl RingBemSolver {
         tolerance: f64,
     ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
+        if let PunchKind::Table(table) = kind {
+            return Ok(table_full_contact(table.profile(), depth_over_hole));
+        }
         let ((system, field), n, estimate, solves) =
             self.full_contact_disk(kind, depth_over_hole, tolerance)?;
         let pressure = pressure_profile(&system, &field);
-        check_compressive(&pressure, 0.0)?;
+        check_compressive(&pressure, 0.0, TENSION_TOLERANCE)?;
         Ok(RingState {
             eps: 0.0,
             outer_edge: 1.0,
@@ -732,6 +831,10 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
+        if let PunchKind::Table(table) = kind {
+            let offset = crate::reference::mdr::table_full_contact(table.profile()).force_offset;
+            return self.full_contact(kind, target + offset, tolerance);
+        }
         let gamma2 = |d: f64| -> Result<f64> {
             Ok(0.5 * self.full_contact_disk(kind, d, tolerance)?.0 .1.force)
         };
@@ -740,6 +843,28 @@ impl RingBemSolver {
         let mut state = self.full_contact(kind, depth, tolerance)?;
         state.solves += 4;
         Ok(state)
+    }
+}
+
+/// A table punch in full contact at `d/h = depth`, from the method of dimensionality
+/// reduction's quadrature of the interpolated profile ([`crate::reference::mdr`], exact for the
+/// piecewise cubic but for rounding): `γ2 = d/h - c_F` and the rim intensity
+/// `K = (d/h + κ_h) / sqrt(π)` (units `E* h / sqrt(a)`). The collocated disk would converge only
+/// algebraically at the table's points; no pressure samples are drawn.
+fn table_full_contact(table: &crate::punch::TableProfile, depth: f64) -> RingState {
+    let full = crate::reference::mdr::table_full_contact(table);
+    RingState {
+        eps: 0.0,
+        outer_edge: 1.0,
+        gamma: None,
+        gamma1: Some(depth),
+        gamma2: Some(depth - full.force_offset),
+        rim_stress_intensity: (depth + full.kappa_h) / PI.sqrt(),
+        inner_stress_intensity: 0.0,
+        pressure: Vec::new(),
+        error_estimate: ROUNDING_FLOOR,
+        unknowns: 0,
+        solves: 0,
     }
 }
 
@@ -758,7 +883,7 @@ fn free_edge_state(
         gamma: None,
         gamma1: Some(fine.gamma1),
         gamma2: Some(fine.gamma2),
-        rim_stress_intensity: fine.system.rim_stress_intensity(&fine.field),
+        rim_stress_intensity: fine.rim_stress_intensity,
         inner_stress_intensity: 0.0,
         pressure: pressure_profile(&fine.system, &fine.field),
         error_estimate: estimate,
@@ -836,32 +961,18 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
     }
 }
 
-/// The table punch is refused: its interpolant is only `C¹` (piecewise cubic), and the
-/// collocation's polynomial basis does not converge on the pressure's kinks at the table's points
-/// (measured on tables of 11 to 81 points sampled from the sphere: `γ1` changes by 1e-4 to 1e-5
-/// between N = 16 and 80 and does not settle), so no estimate could be trusted.
-fn refuse_tabulated(kind: PunchKind) -> Result<()> {
-    if let PunchKind::Table(table) = kind {
-        return Err(Error::Unsupported {
-            method: METHOD.into(),
-            reason: format!(
-                "the table punch ({}) is interpolated by piecewise cubics, on whose kinks the \
-                 ring BEM's spectral collocation does not converge; solve it with --method fem \
-                 (or --method auto, which picks it)",
-                table.profile().source()
-            ),
-        });
-    }
-    Ok(())
-}
-
 /// Where a concave punch's contact closes, `(d/h, F/(2 E* h a))`: exactly `(3, 8/3)` for the
 /// sphere, the MDR's closed form for the power law with `n > 1`
-/// ([`crate::reference::power_law`]); `None` for the cone and every `n <= 1`, whose hole never
-/// closes.
+/// ([`crate::reference::power_law`]) and its quadrature for a table smooth at the axis
+/// ([`crate::reference::mdr`]); `None` for the cone, every `n <= 1` and a table with a slope at
+/// the axis, whose hole never closes.
 fn closure(kind: PunchKind) -> Option<(f64, f64)> {
     match kind {
         PunchKind::Sphere => Some((3.0, 8.0 / 3.0)),
+        PunchKind::Table(table) => {
+            let full = crate::reference::mdr::table_full_contact(table.profile());
+            Some((full.closure_depth?, full.closure_force()?))
+        }
         PunchKind::Power(n) => {
             let depth = power_law::closure_depth(n.value())?;
             Some((depth, power_law::full_contact_gamma2(n.value(), depth)?))
@@ -950,9 +1061,10 @@ fn pressure_profile(system: &RingSystem, field: &RingField) -> Vec<ScaledPressur
 
 /// A non-adhesive contact must be compressive everywhere; a tensile sample means the assumed
 /// contact region is wrong (or the discretisation is not resolved).
-fn check_compressive(pressure: &[ScaledPressure], eps: f64) -> Result<()> {
+/// `tolerance`: the largest tension accepted, relative to the largest pressure sample.
+fn check_compressive(pressure: &[ScaledPressure], eps: f64, tolerance: f64) -> Result<()> {
     let scale = pressure.iter().map(|s| s.1.abs()).fold(0.0, f64::max);
-    if let Some(&(r, p)) = pressure.iter().find(|s| s.1 < -1e-9 * scale) {
+    if let Some(&(r, p)) = pressure.iter().find(|s| s.1 < -tolerance * scale) {
         return Err(no_convergence(format!(
             "tensile pressure p = {p:.3e} at r/a = {r:.4} for contact ratio {eps}: \
              the contact region is not the non-adhesive one"

@@ -65,7 +65,7 @@ Examples:
   verify solve --punch sphere --force 3                  F/(2E*ha) = 1.5: eps and depth
   verify solve --punch power --exponent 1.5 --depth 2    gap h (1 - (r/a)^1.5)
   verify solve --punch torus --tube-radius 0.25 --force 0.1   both edges of the ring found
-  verify solve --punch table --profile verify/profiles/sphere-21.csv --depth 1 --method fem
+  verify solve --punch table --profile verify/profiles/sphere-21.csv --depth 1   a measured profile
   verify solve --punch flat-annulus --eps 0.5 --method reference
   verify solve --punch cone --depth 2 --method fem --json        FEM, tolerance 1e-3
   verify solve --punch sphere --depth 1 --method fem --tol 1e-6  meshes made by gmsh for the scene
@@ -415,13 +415,16 @@ pub struct PulloffArgs {
 // The arguments of `verify jkr`.
 #[derive(Args)]
 pub struct JkrArgs {
-    /// Punch shape: flat-annulus or a concave one (cone, sphere, power).
+    /// Punch shape: flat-annulus, a concave one (cone, sphere, power, table) or torus.
     #[arg(long, value_enum)]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
     /// (n = 1 is the cone, n = 2 the sphere).
     #[arg(long)]
     pub exponent: Option<f64>,
+    /// Profile table of `--punch table` (CSV of `r/a, g/h` points, as for `verify solve`).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
     /// b/a of the flat annulus.
     #[arg(long)]
     pub eps: Option<f64>,
@@ -569,8 +572,7 @@ pub struct SolveArgs {
     /// Profile table of `--punch table`: a CSV file of `r/a, g/h` points (an optional header
     /// row; `#` comments), sorted by radius from the axis (`0, 1`) to the rim (`1, 0`), the gap
     /// never rising outward. Interpolated by monotone cubics (PCHIP); rim at r = a, inner edge
-    /// free. Solved by `--method fem` (or `auto`, which picks it) and `grid-bem`; the ring BEM
-    /// refuses it.
+    /// free. Every method solves it (the ring BEM by default); `verify jkr` gives its pull-off.
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
     /// Contact ratio b/a: fixes the flat annulus; for a concave punch or the torus it prescribes

@@ -119,9 +119,9 @@ pub(crate) fn punch_kind(
 ) -> Result<crate::punch::PunchKind, String> {
     if name == crate::punch::PunchName::Table {
         return Err(
-            "the table punch is solved by `verify solve --punch table --profile FILE --method \
-             fem` (or grid-bem); its JKR solution, pull-off simulation and convergence studies \
-             are built on the ring BEM, which does not converge on a tabulated (C¹) profile"
+            "the table punch is solved by `verify solve --punch table --profile FILE` and its JKR \
+             solution by `verify jkr --punch table --profile FILE --d0h S`; its pull-off \
+             simulation and convergence studies are not built"
                 .into(),
         );
     }

@@ -69,6 +69,38 @@ impl ChebyshevNodes {
         self.basis_at(t, &mut basis);
         basis.iter().zip(values).map(|(l, f)| l * f).sum()
     }
+
+    /// Chebyshev coefficients `c_k` of the interpolant through `values` at the nodes,
+    /// `p(t) = Σ_k c_k T_k(t)`: `c_k = (2 - δ_k0)/N Σ_j f_j cos(k θ_j)`, `t_j = cos θ_j`
+    /// (the discrete cosine transform of the first-kind points).
+    pub(crate) fn coefficients(&self, values: &[f64]) -> Vec<f64> {
+        let n = self.points.len();
+        (0..n)
+            .map(|k| {
+                let sum: f64 = values
+                    .iter()
+                    .enumerate()
+                    .map(|(j, f)| f * ((k * (2 * j + 1)) as f64 * PI / (2 * n) as f64).cos())
+                    .sum();
+                if k == 0 {
+                    sum / n as f64
+                } else {
+                    2.0 * sum / n as f64
+                }
+            })
+            .collect()
+    }
+}
+
+/// `Σ_k c_k T_k(t)` by Clenshaw's recurrence.
+pub(crate) fn chebyshev_series(coefficients: &[f64], t: f64) -> f64 {
+    let (mut b1, mut b2) = (0.0, 0.0);
+    for &c in coefficients.iter().skip(1).rev() {
+        let b0 = 2.0 * t * b1 - b2 + c;
+        b2 = b1;
+        b1 = b0;
+    }
+    t * b1 - b2 + coefficients.first().copied().unwrap_or(0.0)
 }
 
 #[cfg(test)]
@@ -97,5 +129,19 @@ mod tests {
         nodes.basis_at(0.123, &mut basis);
         let sum: f64 = basis.iter().sum();
         assert!((sum - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_series_of_the_coefficients_is_the_interpolant() {
+        let nodes = ChebyshevNodes::new(30);
+        let f = |t: f64| (2.0 * t).sin() / (2.0 + t);
+        let values: Vec<f64> = nodes.points.iter().map(|&t| f(t)).collect();
+        let c = nodes.coefficients(&values);
+        for &t in &[-1.0, -0.999, -0.3, 0.0, 0.77, 1.0] {
+            assert!(
+                (chebyshev_series(&c, t) - f(t)).abs() < 1e-14,
+                "value at {t}"
+            );
+        }
     }
 }

@@ -123,15 +123,49 @@ impl TableProfile {
     /// `d(g/h)/d(r/a)` at `0 <= rho <= 1` (the derivative of [`value`](Self::value)).
     pub fn slope(&self, rho: f64) -> f64 {
         let (k, width, t) = self.locate(rho.clamp(0.0, 1.0));
+        self.piece_slope(k, width, t)
+    }
+
+    /// `d²(g/h)/d(r/a)²` at `0 <= rho <= 1`, piecewise linear (discontinuous at the points).
+    pub fn curvature(&self, rho: f64) -> f64 {
+        let (k, width, t) = self.locate(rho.clamp(0.0, 1.0));
+        self.piece_curvature(k, width, t)
+    }
+
+    /// `g(rho + offset) - g(rho)` (units of `h`) without the cancellation of subtracting two
+    /// values: where both radii lie on one cubic piece, its Taylor series about `rho`,
+    /// `g' δ + g'' δ²/2 + g''' δ³/6` (exact for a cubic), so the increment keeps its relative
+    /// precision as `offset -> 0`; otherwise the difference of the two values.
+    pub fn increment(&self, rho: f64, offset: f64) -> f64 {
+        let end = rho + offset;
+        let inside = |x: f64| (0.0..=1.0).contains(&x);
+        if !(inside(rho) && inside(end)) {
+            return self.value(end) - self.value(rho);
+        }
+        let (k, width, _) = self.locate(rho + 0.5 * offset);
+        let piece = self.radii[k]..=self.radii[k + 1];
+        if !(piece.contains(&rho) && piece.contains(&end)) {
+            return self.value(end) - self.value(rho);
+        }
+        let t = (rho - self.radii[k]) / width;
+        let slope = self.piece_slope(k, width, t);
+        let curvature = self.piece_curvature(k, width, t);
+        let third = ((self.gaps[k] - self.gaps[k + 1]) * 12.0 / width
+            + 6.0 * (self.slopes[k] + self.slopes[k + 1]))
+            / (width * width);
+        offset * (slope + offset * (0.5 * curvature + offset * third / 6.0))
+    }
+
+    /// Slope of piece `k` (width `width`) at its local coordinate `t`.
+    fn piece_slope(&self, k: usize, width: f64, t: f64) -> f64 {
         let t2 = t * t;
         (self.gaps[k] * (6.0 * t2 - 6.0 * t) + self.gaps[k + 1] * (6.0 * t - 6.0 * t2)) / width
             + self.slopes[k] * (3.0 * t2 - 4.0 * t + 1.0)
             + self.slopes[k + 1] * (3.0 * t2 - 2.0 * t)
     }
 
-    /// `d²(g/h)/d(r/a)²` at `0 <= rho <= 1`, piecewise linear (discontinuous at the points).
-    pub fn curvature(&self, rho: f64) -> f64 {
-        let (k, width, t) = self.locate(rho.clamp(0.0, 1.0));
+    /// Curvature of piece `k` (width `width`) at its local coordinate `t`.
+    fn piece_curvature(&self, k: usize, width: f64, t: f64) -> f64 {
         ((self.gaps[k] - self.gaps[k + 1]) * (12.0 * t - 6.0) / width
             + self.slopes[k] * (6.0 * t - 4.0)
             + self.slopes[k + 1] * (6.0 * t - 2.0))
@@ -352,6 +386,35 @@ mod tests {
                 (curvature - t.curvature(rho)).abs() < 1e-6,
                 "curvature at {rho}"
             );
+        }
+    }
+
+    /// The increment is the difference of two values where that difference is not cancelled
+    /// away, and keeps its relative precision as the offset vanishes (where the difference of
+    /// values would be all rounding): the slope times the offset, to the curvature's order.
+    #[test]
+    fn increments_keep_their_precision_as_the_offset_vanishes() {
+        let t = table(&sphere_table(9)).unwrap();
+        for rho in [0.0, 0.125, 0.3, 0.5, 0.875, 1.0] {
+            for offset in [0.2, -0.2, 0.01, -0.01, 0.125, -0.125] {
+                let end = rho + offset;
+                if !(0.0..=1.0).contains(&end) {
+                    continue;
+                }
+                let difference = t.value(end) - t.value(rho);
+                assert!(
+                    (t.increment(rho, offset) - difference).abs() < 1e-15,
+                    "{rho} {offset}"
+                );
+            }
+            for offset in [1e-9, -1e-13, 1e-300] {
+                if !(0.0..=1.0).contains(&(rho + offset)) {
+                    continue;
+                }
+                let linear = t.slope(rho) * offset;
+                let relative = (t.increment(rho, offset) - linear) / offset.abs();
+                assert!(relative.abs() < 10.0 * offset.abs(), "{rho} {offset}");
+            }
         }
     }
 

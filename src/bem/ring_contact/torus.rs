@@ -351,6 +351,9 @@ impl TorusBand {
         ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
+            rim_stress_intensity: self.system.rim_stress_intensity(&field),
+            field_depth: gamma1,
+            table_band: None,
             system: self.system,
             field,
         }
