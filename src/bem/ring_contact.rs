@@ -8,6 +8,9 @@
 //! and `φ²` the field for `w = -ĝ`. A free (non-adhesive) inner edge carries no singularity, so
 //! `d φ¹(b) + h φ²(b) = 0`, which gives `γ1 = d/h = -φ²(b)/φ¹(b)` and
 //! `γ2 = (γ1 F¹ + F²) / 2` from one factorisation and two right-hand sides.
+//! The table punch's piecewise-cubic gap, whose kinks the collocation converges on only
+//! algebraically, takes `γ1`, `γ2` and the rim intensity from its flat band's fields instead
+//! ([`piecewise_gap`]); its collocated field only draws the pressure samples.
 //!
 //! **Depth or force control** inverts `γ1(eps)` or `γ2(eps)` (both decrease monotonically) by a
 //! safeguarded secant iteration on `eps`.
