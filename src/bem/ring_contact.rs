@@ -10,7 +10,7 @@
 //! `γ2 = (γ1 F¹ + F²) / 2` from one factorisation and two right-hand sides.
 //! The table punch's piecewise-cubic gap, whose kinks the collocation converges on only
 //! algebraically, takes `γ1`, `γ2` and the rim intensity from its flat band's fields instead
-//! ([`piecewise_gap`]); its collocated field only draws the pressure samples.
+//! (`ring_contact/piecewise_gap.rs`); its collocated field only draws the pressure samples.
 //!
 //! **Depth or force control** inverts `γ1(eps)` or `γ2(eps)` (both decrease monotonically) by a
 //! safeguarded secant iteration on `eps`.
@@ -320,7 +320,7 @@ impl RingBemSolver {
     /// The band `[inner, outer]` held in contact at `depth` (`d/h`) by the punch `kind` (gap
     /// `ĝ(r)`, `h = a = E* = 1`): [`Self::prescribed_band`] for every punch whose gap is
     /// analytic on the band; the table punch's piecewise cubic through its flat band's fields
-    /// ([`piecewise_gap`]), which keeps the geometric convergence the collocation of its kinks
+    /// (`ring_contact/piecewise_gap.rs`), which keeps the geometric convergence the collocation of its kinks
     /// loses.
     pub fn punch_band(
         &self,
