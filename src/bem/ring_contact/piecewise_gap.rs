@@ -10,18 +10,21 @@
 //! between the gap's break points (`dA = 2π s ds`, `a = E* = 1`):
 //!
 //! ```text
-//! F[v]   = ∫ p¹ v dA                                          (Betti's reciprocal theorem)
-//! K_b[v] = K_b[1] (v(b) + ∫ ∂_b p¹ (v - v(b)) dA / ∂_b F¹)     (inner edge b)
-//! K_c[v] = K_c[1] (v(c) + ∫ ∂_c p¹ (v - v(c)) dA / ∂_c F¹)     (outer edge c)
+//! F[v]   = ∫ p¹ v dA                                              (Betti's reciprocal theorem)
+//! K_b[v] = K_b[1] v(b) - ∫ ∂_b p¹ (v - v(b)) dA / (2π b K_b[1])    (inner edge b)
+//! K_c[v] = K_c[1] v(c) + ∫ ∂_c p¹ (v - v(c)) dA / (2π c K_c[1])    (outer edge c)
 //! ```
 //!
-//! The intensity formulas are the polarised energy release rate of an edge: for any two
-//! deflections, `∂_b ⟨p[u], v⟩ ∝ K_b[u] K_b[v]` (Irwin's relation for the contact edge), so with
-//! `u = 1`, `K_b[v] / K_b[1] = ∂_b ⟨p¹, v⟩ / ∂_b ⟨p¹, 1⟩`; subtracting `v(b)` keeps the derivative
-//! of the edge's `(s - b)^{-1/2}` singularity integrable (`∂_b p¹ ~ (s - b)^{-3/2}` against
-//! `v - v(b) ~ (s - b)`). The derivatives of `p¹` with respect to the edges at fixed `s` are
-//! fourth-order central differences of the flat band's field in `b` and in `c` (analytic in
-//! both), `∂_b p¹ = ∂_b φ W + φ W / (2 (s - b))`, `∂_c p¹ = ∂_c φ W - φ W / (2 (c - s))`.
+//! The intensity formulas are Irwin's relation for a contact edge, polarised: for any two
+//! deflections `∂_b ⟨p[u], v⟩ = -2π b K_b[u] K_b[v]` (`+2π c` at the outer edge), taken with
+//! `u = 1`; subtracting `v(b)` keeps the derivative of the edge's `(s - b)^{-1/2}` singularity
+//! integrable (`∂_b p¹ ~ (s - b)^{-3/2}` against `v - v(b) ~ (s - b)`). The derivatives of `p¹`
+//! with respect to the edges at fixed `s`, `∂_b p¹ = ∂_b φ W + φ W / (2 (s - b))` and
+//! `∂_c p¹ = ∂_c φ W - φ W / (2 (c - s))`, take `∂φ` from one-sided fifth-order differences
+//! over neighbouring bands that contain the band ([`STENCIL`]). Only the remainder `g - g_s`
+//! goes through them: the gap's smooth part `g_s` ([`SmoothPart`]) is collocated directly, so
+//! the differences' rounding is relative to the small remainder. The surface inside the hole
+//! follows by reciprocity ([`GapBand::deflection_in_hole`]).
 
 use std::f64::consts::PI;
 
@@ -149,11 +152,15 @@ impl Series {
         }
     }
 
-    /// `φ(s)`, continued a little beyond the band's edges where `s` lies outside it.
-    fn at(&self, s: f64) -> f64 {
+    /// The band's parameter `t = 2 ln(s/b) / ln(c/b) - 1` of a radius.
+    fn parameter(&self, s: f64) -> f64 {
         let (inner, outer) = self.band;
-        let t = 2.0 * (s / inner).ln() / (outer / inner).ln() - 1.0;
-        chebyshev_series(&self.coefficients, t)
+        2.0 * (s / inner).ln() / (outer / inner).ln() - 1.0
+    }
+
+    /// The series at radius `s`.
+    fn at(&self, s: f64) -> f64 {
+        chebyshev_series(&self.coefficients, self.parameter(s))
     }
 }
 
@@ -185,9 +192,7 @@ const SMOOTH_PART_NODES: usize = 24;
 /// analytic); only the small remainder `g - g_s` goes through the edge derivatives, whose
 /// rounding is then relative to the remainder, not to the gap.
 struct SmoothPart {
-    band: (f64, f64),
-    span: f64,
-    coefficients: Vec<f64>,
+    series: Series,
 }
 
 impl SmoothPart {
@@ -200,35 +205,34 @@ impl SmoothPart {
             .map(|&t| gap.value(inner * (0.5 * (1.0 + t) * span).exp()))
             .collect();
         Self {
-            band: (inner, outer),
-            span,
-            coefficients: nodes.coefficients(&values),
+            series: Series {
+                band: (inner, outer),
+                coefficients: nodes.coefficients(&values),
+            },
         }
-    }
-
-    fn parameter(&self, s: f64) -> f64 {
-        2.0 * (s / self.band.0).ln() / self.span - 1.0
     }
 }
 
 impl PiecewiseGap for SmoothPart {
     fn value(&self, r: f64) -> f64 {
-        chebyshev_series(&self.coefficients, self.parameter(r))
+        self.series.at(r)
     }
 
     /// `Σ c_k (T_k(x) - T_k(y))` with the factor `x - y` taken out exactly:
     /// `T_k(x) - T_k(y) = (x - y) E_k`, `E_{k+1} = 2 x E_k - E_{k-1} + 2 T_k(y)`, `E_0 = 0`,
     /// `E_1 = 1` (from the three-term recurrence of both).
     fn increment(&self, r: f64, offset: f64) -> f64 {
-        let y = self.parameter(r);
-        let step = 2.0 * (offset / r).ln_1p() / self.span;
+        let (inner, outer) = self.series.band;
+        let coefficients = &self.series.coefficients;
+        let y = self.series.parameter(r);
+        let step = 2.0 * (offset / r).ln_1p() / (outer / inner).ln();
         let x = y + step;
         let (mut e_prev, mut e) = (0.0, 1.0);
         let (mut t_prev, mut t) = (1.0, y);
         let mut sum = 0.0;
-        for (k, &c) in self.coefficients.iter().enumerate().skip(1) {
+        for (k, &c) in coefficients.iter().enumerate().skip(1) {
             sum += c * e;
-            if k + 1 < self.coefficients.len() {
+            if k + 1 < coefficients.len() {
                 let e_next = 2.0 * x * e - e_prev + 2.0 * t;
                 let t_next = 2.0 * y * t - t_prev;
                 (e_prev, e, t_prev, t) = (e, e_next, t, t_next);
