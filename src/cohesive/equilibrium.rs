@@ -120,12 +120,18 @@ impl CohesiveSurface {
         face.iter().zip(x).map(|(c, x)| c + x).collect()
     }
 
-    /// `S w`: the nodal forces on the solid.
+    /// `S w`: the nodal forces on the solid, as the sum of columns `Σ_j S_:j w_j` with `j` in
+    /// order: each entry adds its row's products in the row's own order (the same bits as a
+    /// row-by-row sum), while the inner loop runs down one contiguous column (vectorised).
     fn forces(&self, w: &[f64]) -> Vec<f64> {
-        let n = w.len();
-        (0..n)
-            .map(|i| (0..n).map(|j| self.stiffness[(i, j)] * w[j]).sum())
-            .collect()
+        // `-0.0`: the start of `Iterator::sum` for floats.
+        let mut sw = vec![-0.0; w.len()];
+        for (j, &wj) in w.iter().enumerate() {
+            for (acc, s) in sw.iter_mut().zip(self.stiffness.col_as_slice(j)) {
+                *acc += s * wj;
+            }
+        }
+        sw
     }
 
     /// Total energy `Π(x)` at `depth`.

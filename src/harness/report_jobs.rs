@@ -271,7 +271,7 @@ impl Part {
         match self {
             Part::Comparison { .. } => 1.0,
             Part::Fenicsx => 9.0,
-            Part::Peers => 4.0,
+            Part::Peers => 7.7,
             Part::Operators => 0.1,
             Part::SpeedBase(p) => match p {
                 Problem::Sphere => 1.9,
@@ -297,9 +297,13 @@ impl Part {
                 Method::Fem => 0.08 * 2.3f64.powi(*level as i32),
                 _ => 0.01,
             },
-            Part::Adhesion(_) => 4.0,
-            Part::PulloffLive => 7.0,
-            Part::AdhesionPeers => 12.0,
+            // Measured alone on 2 cores: the concave punches 0.9-1.2 s (one branch for every
+            // d0/h), the torus 3.7 s; the live simulation 9.5 s (one core), the Tamaas cases
+            // 15 s.
+            Part::Adhesion(PunchKind::Torus) => 3.7,
+            Part::Adhesion(_) => 1.2,
+            Part::PulloffLive => 9.5,
+            Part::AdhesionPeers => 15.0,
             // Small d0/h: pressed deeper until the hole closes, and ranges where it reopens
             // replaced by smaller ones (measured alone on 2 cores: cone 0.3 224 s, sphere 0.3
             // 155 s, cone and sphere 1 45-48 s).
@@ -318,29 +322,27 @@ impl Part {
     }
 
     /// Whether the part's wall times are among its results (speed-accuracy points, the
-    /// convergence levels' costs, our time beside a peer's): [`compute_all`] runs these alone,
-    /// the others side by side.
+    /// convergence levels' costs, our time over FEniCSx's): [`compute_all`] runs these alone,
+    /// the others side by side (the stored peers' comparison reports forces; its times are
+    /// records only).
     pub(crate) fn is_timed(&self) -> bool {
         matches!(
             self,
             Part::Comparison { .. }
                 | Part::Fenicsx
-                | Part::Peers
                 | Part::SpeedBase(_)
                 | Part::SpeedFem { .. }
                 | Part::ConvergenceLevel { .. }
         )
     }
 
-    /// Whether the part keeps every core busy itself (the cohesive simulations' finite-element
-    /// solves): [`compute_all`] runs no two of these side by side.
+    /// Whether the part keeps every core busy itself (the cohesive simulations run side by
+    /// side, the stability probes): [`compute_all`] runs no two of these side by side. The live
+    /// pull-off is one simulation on one thread.
     pub(crate) fn uses_every_core(&self) -> bool {
         matches!(
             self,
-            Part::PulloffLive
-                | Part::AdhesionPeers
-                | Part::PulloffSimulation { .. }
-                | Part::Stability
+            Part::AdhesionPeers | Part::PulloffSimulation { .. } | Part::Stability
         )
     }
 

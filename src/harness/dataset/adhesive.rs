@@ -161,13 +161,14 @@ pub fn concave(
         &format!("{kind} JKR"),
         fields.iter().map(Field::column).collect(),
     );
+    let branch = adhesion::ConcaveBranch::new(solver, kind)?;
     for (k, &s) in scales.iter().enumerate() {
         progress(&format!(
             "{kind} JKR: {} of {} (d0/h = {s:.3})",
             k + 1,
             scales.len()
         ));
-        let r = adhesion::concave(solver, kind, s)?;
+        let r = branch.jkr(s)?;
         let mut row: Vec<Cell> = vec![s.into()];
         row.extend(critical_cells(r.fixed_load.as_ref()));
         row.extend(critical_cells(r.fixed_grips.as_ref()));

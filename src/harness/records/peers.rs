@@ -42,6 +42,9 @@ pub struct PeerComparison {
     pub stored: PeerResult,
     pub our_force: f64,
     pub our_iterations: usize,
+    /// Wall time of our solve in this run, seconds (in the report's run it is solved beside
+    /// other parts: a record, not a benchmark; the speed-against-accuracy study times the grid
+    /// BEM alone).
     pub our_wall_s: f64,
     pub relative_difference: f64,
     pub passed: bool,

@@ -322,9 +322,10 @@ pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Ve
     if kind == PunchKind::Torus {
         return torus_pulloff_points(ring);
     }
+    let branch = adhesion::ConcaveBranch::new(ring, kind)?;
     pulloff_scales()
         .map(|s| {
-            let r = adhesion::concave(ring, kind, s)?;
+            let r = branch.jkr(s)?;
             Ok(PulloffPoint {
                 punch: kind.label(),
                 d0_over_h: s,

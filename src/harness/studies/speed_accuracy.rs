@@ -27,8 +27,8 @@ use crate::punch::PunchKind;
 pub struct CostPoint {
     pub method: String,
     pub resolution: String,
-    /// Median wall time of [`TIMING_RUNS`] runs in this process (a stored peer's: see
-    /// `resolution`), seconds.
+    /// Median wall time of up to [`TIMING_RUNS`] runs in this process (fewer for a slow point:
+    /// [`TIMING_BUDGET_S`]; a stored peer's: see `resolution`), seconds.
     pub wall_s: f64,
     /// Shortest and longest of those runs (`None` for a single stored time).
     #[serde(default)]
@@ -76,31 +76,41 @@ fn one() -> usize {
     1
 }
 
-/// Runs of each timed point: its time is their median, shown with their range.
+/// Most runs of each timed point: its time is their median, shown with their range.
 const TIMING_RUNS: usize = 3;
 
-/// The median wall time of [`TIMING_RUNS`] runs of `f`, and their range.
+/// A point stops repeating once its runs have taken this long together (seconds): a run of a
+/// second or more is timed once, of half a second twice. The longer the run, the smaller its
+/// relative spread; the budget keeps the default report's timings within its minute.
+const TIMING_BUDGET_S: f64 = 1.0;
+
+/// The median wall time of a point's runs, and their range.
 #[derive(Clone, Copy, Debug)]
 struct Timing {
     median: f64,
     range: (f64, f64),
+    runs: usize,
 }
 
-/// Run `f` [`TIMING_RUNS`] times one after the other; its (last) value and the [`Timing`].
+/// Run `f` one time after another, [`TIMING_RUNS`] times or until the runs have taken
+/// [`TIMING_BUDGET_S`]; its (last) value and the [`Timing`] (the median of an even number of
+/// runs is the mean of the middle two).
 fn timed<T>(mut f: impl FnMut() -> Result<T>) -> Result<(T, Timing)> {
     let mut times = Vec::with_capacity(TIMING_RUNS);
     let mut value = None;
-    for _ in 0..TIMING_RUNS {
+    while times.len() < TIMING_RUNS && times.iter().sum::<f64>() < TIMING_BUDGET_S {
         let start = Instant::now();
         value = Some(f()?);
         times.push(start.elapsed().as_secs_f64());
     }
     times.sort_by(f64::total_cmp);
+    let n = times.len();
     let timing = Timing {
-        median: times[times.len() / 2],
-        range: (times[0], times[times.len() - 1]),
+        median: 0.5 * (times[(n - 1) / 2] + times[n / 2]),
+        range: (times[0], times[n - 1]),
+        runs: n,
     };
-    Ok((value.expect("TIMING_RUNS > 0"), timing))
+    Ok((value.expect("at least one run"), timing))
 }
 
 fn point(method: &str, resolution: String, time: Timing, value: f64, yardstick: f64) -> CostPoint {
@@ -109,7 +119,7 @@ fn point(method: &str, resolution: String, time: Timing, value: f64, yardstick: 
         resolution,
         wall_s: time.median,
         wall_s_range: Some(time.range),
-        runs: TIMING_RUNS,
+        runs: time.runs,
         error: floor((value - yardstick) / yardstick),
         estimate: None,
         on_pareto_front: false,
@@ -413,27 +423,26 @@ fn fenicsx_points(
             let r = &c.stored;
             let name = c.file.trim_end_matches(".json");
             // The interleaved record's median where it has the row, else the stored single run.
-            let (time, runs, origin) = match benchmark.and_then(|b| b.row(name)) {
+            let (time, origin) = match benchmark.and_then(|b| b.row(name)) {
                 Some(row) => (
                     Timing {
                         median: row.median,
                         range: (row.min, row.max),
+                        runs: row.runs,
                     },
-                    row.runs,
                     format!("{}, median of the interleaved record", row.configuration),
                 ),
                 None => (
                     Timing {
                         median: r.wall_s,
                         range: (r.wall_s, r.wall_s),
+                        runs: 1,
                     },
-                    1,
                     "one stored run, not interleaved".to_string(),
                 ),
             };
             CostPoint {
-                runs,
-                wall_s_range: (runs > 1).then_some(time.range),
+                wall_s_range: (time.runs > 1).then_some(time.range),
                 ..point(
                     "FEniCSx (stored)",
                     format!("{name}, {} dofs; {origin}", r.dofs),

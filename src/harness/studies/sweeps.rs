@@ -131,8 +131,9 @@ pub(crate) fn pulloff_sweep(
     mut progress: impl FnMut(&str),
 ) -> Result<Sweep<ConcaveJkr>> {
     let mut rows = Vec::new();
+    let branch = adhesion::ConcaveBranch::new(solver, kind)?;
     for s in pulloff_scales(24) {
-        rows.push(adhesion::concave(solver, kind, s)?);
+        rows.push(branch.jkr(s)?);
         progress(&format!("d0/h = {s:.3}"));
     }
     let force = |key: &str, label: &str| Column::number(key, label, Format::Fixed(4));

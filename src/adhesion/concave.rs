@@ -1,0 +1,612 @@
+//! The JKR analysis of a concave punch (rim at `r = a`, inner edge free): the non-adhesive
+//! branch's points ([`BranchPoint`]), the critical states on the annular branch under fixed load
+//! and fixed grips with the rim criterion, the full-contact branch by the method of
+//! dimensionality reduction, and the paper's route on its fits. The formulas are in the parent
+//! module's documentation.
+
+use std::collections::HashMap;
+use std::sync::Mutex;
+
+use rayon::prelude::*;
+use serde::Serialize;
+
+use super::ROOT_PI;
+use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
+
+/// The non-adhesive and flat-annulus quantities at one contact ratio (h = 1, a = 1, E* = 1).
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
+pub struct BranchPoint {
+    pub eps: f64,
+    pub gamma1: f64,
+    pub gamma2: f64,
+    pub gamma: f64,
+    /// Rim intensity of the non-adhesive concave state per unit `h`.
+    pub kappa_out_na: f64,
+    pub kappa_out: f64,
+    pub kappa_in: f64,
+    /// The ring BEM's error estimates of the concave state (`γ1`, `γ2`, relative) and of the
+    /// flat annulus (`γ`, relative).
+    #[serde(default)]
+    pub concave_error: f64,
+    #[serde(default)]
+    pub flat_error: f64,
+}
+
+impl BranchPoint {
+    /// `d/h` on the adhesive branch with `s = d0/h`.
+    pub fn depth(&self, s: f64) -> f64 {
+        self.gamma1 - s / self.kappa_in
+    }
+    /// `F/F0` on the adhesive branch.
+    pub fn force(&self, s: f64) -> f64 {
+        self.gamma2 / s - self.gamma / self.kappa_in
+    }
+    /// Rim intensity in units of `d0` (the rim holds while it is above `-1`).
+    pub fn rim_intensity(&self, s: f64) -> f64 {
+        self.kappa_out_na / s - self.kappa_out / self.kappa_in
+    }
+}
+
+/// Ring-BEM quantities at `eps` for a concave punch (tolerance [`branch_tolerance`]).
+pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
+    branch_point_at(solver, kind, eps, branch_tolerance(kind))
+}
+
+/// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a table punch, whose edge
+/// derivatives settle to about 1e-9 at the scan's smallest contact ratios (`docs/methods.md`).
+pub fn branch_tolerance(kind: PunchKind) -> f64 {
+    match kind {
+        PunchKind::Table(_) => 1e-8,
+        _ => 1e-10,
+    }
+}
+
+/// [`branch_point`] from ring-BEM solves at `tolerance`.
+fn branch_point_at(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    eps: f64,
+    tolerance: f64,
+) -> Result<BranchPoint> {
+    let concave = solver.free_inner_edge_field(kind, eps, tolerance)?;
+    let flat = solver.flat(eps, tolerance)?;
+    Ok(BranchPoint {
+        eps,
+        gamma1: concave.gamma1.unwrap_or(f64::NAN),
+        gamma2: concave.gamma2.unwrap_or(f64::NAN),
+        gamma: flat.gamma.unwrap_or(f64::NAN),
+        kappa_out_na: concave.rim_stress_intensity * ROOT_PI,
+        kappa_out: flat.rim_stress_intensity * ROOT_PI,
+        kappa_in: flat.inner_stress_intensity * ROOT_PI,
+        concave_error: concave.error_estimate,
+        flat_error: flat.error_estimate,
+    })
+}
+
+/// A critical (pull-off) state.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct Critical {
+    pub eps: f64,
+    /// `d/h`.
+    pub depth: f64,
+    /// `d/d0`.
+    pub depth_over_d0: f64,
+    /// `F/F0`.
+    pub force: f64,
+    /// `inner` (the hole's edge), `rim` (the sharp outer edge), or `rim (full contact)`.
+    pub governing_edge: String,
+    /// Bound on the error of `force` (F/F0, absolute), propagated from the ring BEM: the
+    /// change of the branch's force when its non-adhesive quantities come from a solve at
+    /// tolerance 1e-7 instead of 1e-10, plus the slope along the branch times the location's
+    /// tolerance in `eps` (see [`ConcaveBranch::bound_critical`]); 0 for the closed forms of full contact.
+    #[serde(default)]
+    pub error_bound: Option<f64>,
+    /// The same for `depth` (d/h, absolute).
+    #[serde(default)]
+    pub depth_error_bound: Option<f64>,
+}
+
+/// Full-contact branch: the disk with `w = d - h ĝ(r)`.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct FullContactBranch {
+    /// `F = 2 E* a (d - c_F h)` in full contact.
+    pub force_offset: f64,
+    /// Rim intensity of the profile part per unit `h` (`κ_rim = d/d0 + (h/d0) κ_h`).
+    pub kappa_h: f64,
+    /// Depth `d/h` at which the hole of the annular branch closes (its maximum depth).
+    pub closing_depth: Option<f64>,
+    /// Pull-off from full contact (rim criterion), the same under fixed load and fixed grips.
+    pub pulloff: Critical,
+}
+
+/// The JKR analysis of a concave punch for one `d0/h`.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct ConcaveJkr {
+    #[serde(flatten)]
+    pub punch: PunchKind,
+    pub d0_over_h: f64,
+    /// Pull-off from the annular contact under fixed load (`dF/deps = 0` or rim), if a stable
+    /// annular branch with the rim attached exists.
+    pub fixed_load: Option<Critical>,
+    /// Pull-off from the annular contact under fixed grips (`dd/deps = 0` or rim).
+    pub fixed_grips: Option<Critical>,
+    /// Why there is no annular pull-off state (fixed load), if there is none.
+    pub fixed_load_note: Option<String>,
+    /// Why there is no annular pull-off state (fixed grips), if there is none.
+    pub fixed_grips_note: Option<String>,
+    /// The paper's route (inner edge only, the rim ignored): fixed load and fixed grips.
+    pub inner_edge_only_fixed_load: Option<Critical>,
+    /// The paper's route evaluated with the paper's fitted formulas, `(eps, F/F0)`: fixed load.
+    pub paper_fits_fixed_load: Option<(f64, f64)>,
+    /// The same, fixed grips.
+    pub paper_fits_fixed_grips: Option<(f64, f64)>,
+    pub inner_edge_only_fixed_grips: Option<Critical>,
+    /// The stable annular branch under fixed load, `[eps_lo, eps_hi]`.
+    pub stable_branch_fixed_load: Option<(f64, f64)>,
+    pub full_contact: FullContactBranch,
+    /// Direct check at the fixed-load critical state: `G_in/Δw` from a fresh BEM solve of the
+    /// adhesive contact (1 if the formula route is right).
+    pub direct_inner_energy_ratio: Option<f64>,
+    /// Direct check: rim intensity from the fresh solve minus the formula's (units `d0`).
+    pub direct_rim_difference: Option<f64>,
+}
+
+pub(super) fn golden_minimum(
+    mut f: impl FnMut(f64) -> Result<f64>,
+    mut lo: f64,
+    mut hi: f64,
+) -> Result<(f64, f64)> {
+    let phi = 0.5 * (5f64.sqrt() - 1.0);
+    let (mut x1, mut x2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
+    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
+    while hi - lo > 1e-9 {
+        if f1 < f2 {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - phi * (hi - lo);
+            f1 = f(x1)?;
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + phi * (hi - lo);
+            f2 = f(x2)?;
+        }
+    }
+    Ok(if f1 < f2 { (x1, f1) } else { (x2, f2) })
+}
+
+fn bisect(mut f: impl FnMut(f64) -> Result<f64>, mut lo: f64, mut hi: f64) -> Result<f64> {
+    let f_lo = f(lo)?;
+    for _ in 0..60 {
+        let mid = 0.5 * (lo + hi);
+        if (f(mid)? > 0.0) == (f_lo > 0.0) {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Ok(0.5 * (lo + hi))
+}
+
+/// Contact ratios of the branch scan: cosine-clustered on `[0.004, 0.99]`, then logarithmic in
+/// `1 - eps` up to the ring BEM's limit 0.9999 (weak adhesion pulls off from narrow rings).
+fn scan_ratios() -> Vec<f64> {
+    let mut ratios: Vec<f64> = (0..160)
+        .map(|k| {
+            let t = k as f64 / 160.0;
+            0.004 + 0.986 * 0.5 * (1.0 - (std::f64::consts::PI * t).cos())
+        })
+        .collect();
+    ratios.extend((0..=40).map(|k| 1.0 - 10f64.powf(-2.0 - 2.0 * k as f64 / 40.0)));
+    ratios
+}
+
+/// The pull-off state and the stable branch `(eps_lo, eps_hi)`, or why there is none.
+type AnnularOutcome = std::result::Result<(Critical, (f64, f64)), String>;
+
+/// Pull-off on the annular branch for one quantity (`F/F0` or `d/h`): the stable part runs from
+/// the maximum to the following minimum; unloading along it, the rim may fail first.
+fn annular_pulloff(
+    branch: &ConcaveBranch,
+    s: f64,
+    value: fn(&BranchPoint, f64) -> f64,
+    check_rim: bool,
+) -> Result<AnnularOutcome> {
+    let points = &branch.scan;
+    let values: Vec<f64> = points.iter().map(|p| value(p, s)).collect();
+    // Interior maximum, then the first interior minimum after it.
+    let Some(max_k) =
+        (1..values.len() - 1).find(|&k| values[k] >= values[k - 1] && values[k] >= values[k + 1])
+    else {
+        return Ok(Err(
+            "no stable annular branch in 0.004 <= eps <= 0.9999".into()
+        ));
+    };
+    let Some(min_k) = (max_k + 1..values.len() - 1)
+        .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
+    else {
+        return Ok(Err(format!(
+            "the stable branch runs beyond eps = {:.4} (the ring BEM's limit): pull-off from a ring narrower than 1e-4 a, with |F|/F0 below {:.2e}",
+            points[points.len() - 1].eps,
+            value(&points[points.len() - 1], s).abs()
+        )));
+    };
+    let eval = |e: f64| -> Result<f64> { Ok(value(&branch.at(e)?, s)) };
+    let (eps_min, value_min) = golden_minimum(eval, points[min_k - 1].eps, points[min_k + 1].eps)?;
+    let (eps_max, _) = golden_minimum(
+        |e| Ok(-eval(e)?),
+        points[max_k - 1].eps,
+        points[max_k + 1].eps,
+    )?;
+    // Rim along the stable branch (unloading: eps grows from eps_max to eps_min).
+    let rim_margin = |e: f64| -> Result<f64> { Ok(branch.at(e)?.rim_intensity(s) + 1.0) };
+    let mut critical_eps = eps_min;
+    let mut edge = "inner";
+    if check_rim && rim_margin(eps_max)? < 0.0 {
+        return Ok(Err(format!(
+            "the rim is already detached at the start of the stable branch (eps = {eps_max:.4}): no annular state with the rim attached"
+        )));
+    }
+    let rim_fails = (max_k..=min_k).find(|&k| points[k].rim_intensity(s) + 1.0 < 0.0);
+    if let Some(k) = rim_fails.filter(|_| check_rim) {
+        let lo = if k > max_k {
+            points[k - 1].eps.max(eps_max)
+        } else {
+            eps_max
+        };
+        let e = bisect(rim_margin, lo, points[k].eps.min(eps_min))?;
+        if e < eps_min {
+            critical_eps = e;
+            edge = "rim";
+        }
+    }
+    let p = branch.at(critical_eps)?;
+    let _ = value_min;
+    Ok(Ok((
+        Critical {
+            eps: critical_eps,
+            depth: p.depth(s),
+            depth_over_d0: p.depth(s) / s,
+            force: p.force(s),
+            governing_edge: edge.into(),
+            error_bound: None,
+            depth_error_bound: None,
+        },
+        (eps_max, eps_min),
+    )))
+}
+
+/// Full-contact constants of a concave punch by the method of dimensionality reduction: with
+/// the profile `w = d - h ĝ(r)` on the whole disk, `F = 2 E* a (d - c_F h)` and the rim intensity
+/// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (sphere) and `c_F = 1 - π/4`,
+/// `κ_h = π/2 - 1` (cone). (The disk BEM reproduces the sphere's to 1e-12; the cone's profile has a
+/// kink on the axis, where the disk basis converges slowly.) The power law `h (1 - (r/a)^n)`:
+/// `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of [`crate::reference::power_law::kappa`]
+/// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
+pub fn full_contact_constants(kind: PunchKind) -> (f64, f64) {
+    match kind {
+        PunchKind::Cone => (
+            1.0 - std::f64::consts::FRAC_PI_4,
+            std::f64::consts::FRAC_PI_2 - 1.0,
+        ),
+        PunchKind::Power(n) => {
+            let kappa = crate::reference::power_law::kappa(n.value());
+            (1.0 - kappa / (n.value() + 1.0), kappa - 1.0)
+        }
+        PunchKind::Table(t) => {
+            let fc = crate::reference::mdr::table_full_contact(t.profile());
+            (fc.force_offset, fc.kappa_h)
+        }
+        _ => (1.0 / 3.0, 1.0),
+    }
+}
+
+/// Full-contact branch of a concave punch (MDR constants).
+fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<FullContactBranch> {
+    let (force_offset, kappa_h) = full_contact_constants(kind);
+    // Rim: κ = d/d0 + (h/d0) κ_h reaches -1 at d = -d0 - h κ_h.
+    let depth = -s - kappa_h;
+    Ok(FullContactBranch {
+        force_offset,
+        kappa_h,
+        closing_depth,
+        pulloff: Critical {
+            eps: 0.0,
+            depth,
+            depth_over_d0: depth / s,
+            force: (depth - force_offset) / s,
+            governing_edge: "rim (full contact)".into(),
+            // Closed forms (the method of dimensionality reduction).
+            error_bound: Some(0.0),
+            depth_error_bound: Some(0.0),
+        },
+    })
+}
+
+/// Location tolerance in `eps` of a critical state (the golden-section and bisection searches
+/// stop at 1e-9).
+const LOCATION_TOLERANCE: f64 = 1e-9;
+
+/// Range of `d0/h` the concave JKR analysis accepts: six decades either side of the paper's
+/// `d0/h` ~ 1 (its figures span 0.1 to 10).
+pub const D0H_RANGE: (f64, f64) = (1e-6, 1e6);
+
+/// The non-adhesive branch of a concave punch: its [`BranchPoint`] at the scan's contact ratios
+/// and at every ratio a search visits, each solved once. The points do not depend on `d0/h`, so
+/// one branch serves the JKR analysis at any number of `d0/h` ([`ConcaveBranch::jkr`]) and the
+/// searches of one analysis share the points they have in common (the paper's route and the
+/// full route minimise the same `F(eps)` and `d(eps)`).
+pub struct ConcaveBranch<'a> {
+    solver: &'a RingBemSolver,
+    kind: PunchKind,
+    /// The points at [`scan_ratios`], in order.
+    scan: Vec<BranchPoint>,
+    /// Every point solved, by the bits of its `eps`.
+    solved: Mutex<HashMap<u64, BranchPoint>>,
+}
+
+impl<'a> ConcaveBranch<'a> {
+    /// Solve the branch of `kind` at the scan's contact ratios (`0.004 ..= 0.9999`, 201 ratios),
+    /// the ratios in parallel. Refuses a punch without a rim or not concave.
+    pub fn new(solver: &'a RingBemSolver, kind: PunchKind) -> Result<Self> {
+        check_concave(kind)?;
+        let scan: Vec<BranchPoint> = scan_ratios()
+            .into_par_iter()
+            .map(|e| branch_point(solver, kind, e))
+            .collect::<Result<_>>()?;
+        let solved = scan.iter().map(|p| (p.eps.to_bits(), *p)).collect();
+        Ok(Self {
+            solver,
+            kind,
+            scan,
+            solved: Mutex::new(solved),
+        })
+    }
+
+    /// The branch's point at `eps` ([`branch_point`]), solved at most once.
+    pub fn at(&self, eps: f64) -> Result<BranchPoint> {
+        let known = self
+            .solved
+            .lock()
+            .ok()
+            .and_then(|m| m.get(&eps.to_bits()).copied());
+        if let Some(p) = known {
+            return Ok(p);
+        }
+        let p = branch_point(self.solver, self.kind, eps)?;
+        if let Ok(mut m) = self.solved.lock() {
+            m.insert(eps.to_bits(), p);
+        }
+        Ok(p)
+    }
+
+    /// JKR analysis of the punch for `d0/h = s` on this branch.
+    pub fn jkr(&self, s: f64) -> Result<ConcaveJkr> {
+        check_scale(s)?;
+        let (solver, kind) = (self.solver, self.kind);
+        let split = |r: AnnularOutcome| match r {
+            Ok(v) => (Some(v), None),
+            Err(note) => (None, Some(note)),
+        };
+        let (load, load_note) = split(annular_pulloff(self, s, |p, s| p.force(s), true)?);
+        let (grips, grips_note) = split(annular_pulloff(self, s, |p, s| p.depth(s), true)?);
+        let paper_load = annular_pulloff(self, s, |p, s| p.force(s), false)?
+            .ok()
+            .map(|(c, _)| c);
+        let paper_grips = annular_pulloff(self, s, |p, s| p.depth(s), false)?
+            .ok()
+            .map(|(c, _)| c);
+        let closing = self
+            .scan
+            .iter()
+            .map(|p| p.depth(s))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let paper_fits = paper_fit_route(kind, s);
+        let full = full_contact(kind, s, closing.is_finite().then_some(closing))?;
+        // Direct route at the fixed-load critical state: solve the adhesive contact itself.
+        let (ratio, rim_diff) = match &load {
+            Some((c, _)) => {
+                let (kin, krim) = direct_intensities(solver, kind, c)?;
+                let (kin, krim) = (kin * ROOT_PI / s, krim * ROOT_PI / s);
+                let formula = self.at(c.eps)?.rim_intensity(s);
+                (Some(kin * kin), Some(krim - formula))
+            }
+            None => (None, None),
+        };
+        let bound = |c: Option<Critical>| -> Result<Option<Critical>> {
+            c.map(|c| self.bound_critical(s, &c)).transpose()
+        };
+        let paper_load = bound(paper_load)?;
+        let paper_grips = bound(paper_grips)?;
+        Ok(ConcaveJkr {
+            punch: kind,
+            d0_over_h: s,
+            stable_branch_fixed_load: load.as_ref().map(|(_, b)| *b),
+            fixed_load: bound(load.map(|(c, _)| c))?,
+            fixed_grips: bound(grips.map(|(c, _)| c))?,
+            fixed_load_note: load_note,
+            fixed_grips_note: grips_note,
+            inner_edge_only_fixed_load: paper_load,
+            paper_fits_fixed_load: paper_fits.0,
+            paper_fits_fixed_grips: paper_fits.1,
+            inner_edge_only_fixed_grips: paper_grips,
+            full_contact: full,
+            direct_inner_energy_ratio: ratio,
+            direct_rim_difference: rim_diff,
+        })
+    }
+
+    /// `c` with its error bounds. The non-adhesive inputs' share is the larger of two: the ring
+    /// BEM's own estimates propagated through the branch (`d/h = γ1 - s/κ_in`,
+    /// `F/F0 = γ2/s - γ/κ_in`: `δF = γ2 e_c/s + γ e_f/κ_in + γ δκ_in/κ_in²`,
+    /// `δd = γ1 e_c + s δκ_in/κ_in²`, with `e_c`, `e_f` the concave and flat states' relative
+    /// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 (1e-8
+    /// for a table, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the change of
+    /// the branch's force and depth when every input comes from the solves at 1e-7. Added to
+    /// it: each quantity's slope along the branch times [`LOCATION_TOLERANCE`] (zero at a
+    /// stationary point, the fixed-load force or the fixed-grips depth; not zero for the other
+    /// quantity).
+    pub fn bound_critical(&self, s: f64, c: &Critical) -> Result<Critical> {
+        let p = self.at(c.eps)?;
+        let looser = branch_point_at(self.solver, self.kind, c.eps, 1e-7)?;
+        let d_kappa_in = (looser.kappa_in - p.kappa_in)
+            .abs()
+            .max(p.flat_error * p.kappa_in);
+        let k2 = p.kappa_in * p.kappa_in;
+        let propagated_force = p.gamma2 * p.concave_error / s
+            + p.gamma * p.flat_error / p.kappa_in
+            + p.gamma * d_kappa_in / k2;
+        let propagated_depth = p.gamma1 * p.concave_error + s * d_kappa_in / k2;
+        let step = 1e-6 * c.eps.min(1.0 - c.eps);
+        let nearby = self.at(c.eps + step)?;
+        let slope_force = ((nearby.force(s) - p.force(s)) / step).abs();
+        let slope_depth = ((nearby.depth(s) - p.depth(s)) / step).abs();
+        Ok(Critical {
+            error_bound: Some(
+                propagated_force.max((looser.force(s) - p.force(s)).abs())
+                    + slope_force * LOCATION_TOLERANCE,
+            ),
+            depth_error_bound: Some(
+                propagated_depth.max((looser.depth(s) - p.depth(s)).abs())
+                    + slope_depth * LOCATION_TOLERANCE,
+            ),
+            ..c.clone()
+        })
+    }
+}
+
+/// Refuse a punch the concave JKR analysis does not apply to.
+fn check_concave(kind: PunchKind) -> Result<()> {
+    if !kind.is_concave() {
+        return Err(Error::invalid(
+            "punch",
+            "the concave JKR analysis applies to cone, sphere, power and table",
+        ));
+    }
+    if !kind.has_rim() {
+        return Err(Error::Unsupported {
+            method: "jkr".into(),
+            reason: format!(
+                "the {kind}'s contact has two free edges and no rim: its JKR analysis is \
+                 `adhesion::torus_jkr` (`verify jkr --punch torus`)"
+            ),
+        });
+    }
+    Ok(())
+}
+
+/// Refuse a `d0/h` outside [`D0H_RANGE`].
+fn check_scale(s: f64) -> Result<()> {
+    if !(s.is_finite() && s > 0.0) {
+        return Err(Error::invalid(
+            "d0h",
+            format!("must be a positive number (got {})", crate::error::show(s)),
+        ));
+    }
+    if !(D0H_RANGE.0..=D0H_RANGE.1).contains(&s) {
+        return Err(Error::invalid(
+            "d0h",
+            format!(
+                "must lie in [{:e}, {:e}] (got {}): the critical depths and forces scale with \
+                 powers of d0/h and lose all meaning, then overflow, beyond",
+                D0H_RANGE.0,
+                D0H_RANGE.1,
+                crate::error::show(s)
+            ),
+        ));
+    }
+    Ok(())
+}
+
+/// JKR analysis of a concave punch for `d0/h = s` (its branch solved for this `s` alone; for
+/// many `d0/h`, solve the [`ConcaveBranch`] once and call [`ConcaveBranch::jkr`]).
+pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
+    check_concave(kind)?;
+    check_scale(s)?;
+    ConcaveBranch::new(solver, kind)?.jkr(s)
+}
+
+/// Both edges' intensities (units `E* h / sqrt(a)`) of the adhesive contact at a critical
+/// state, solved directly: the annulus `[eps, 1]` pressed to the state's depth, collocated at 40
+/// nodes (the table punch: its band through the flat band's fields, refined to 1e-9).
+fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
+    if let PunchKind::Table(_) = kind {
+        let band = solver.punch_band(kind, c.eps, 1.0, c.depth, 1e-9)?;
+        return Ok((band.inner_stress_intensity, band.outer_stress_intensity));
+    }
+    let rule = TanhSinhRule::new(1.0 / 16.0);
+    let n = 40;
+    let system = RingSystem::assemble(
+        ContactRegion::Annulus { eps: c.eps },
+        RingBemSettings {
+            nodes: n,
+            quadrature_step: 1.0 / 16.0,
+        },
+        &rule,
+    );
+    let target: Vec<f64> = system
+        .radii()
+        .iter()
+        .map(|&r| c.depth - kind.gap_shape(r))
+        .collect();
+    let field = system.solve(&target).ok_or_else(|| Error::NoConvergence {
+        method: "ring-bem".into(),
+        reason: "singular system".into(),
+    })?;
+    Ok((
+        system.inner_stress_intensity(&field),
+        system.rim_stress_intensity(&field),
+    ))
+}
+
+/// `(eps, F/F0)` of a critical state.
+pub type EpsForce = (f64, f64);
+
+/// The paper's route evaluated with the paper's own fitted `γ1`, `γ2` (eqs. 8-11), as the paper
+/// did: `Δl_c = d0 sqrt(eps γ1'² / (γ1''γ2' - γ2''γ1'))` (28), `k/(2E*a) = γ2'/γ1'` (25), inner edge
+/// only; the critical states are the interior minima of `F(eps)` (29, fixed load) and `d(eps)`
+/// (30, fixed grips). Derivatives by central differences of the fits. Returns
+/// `(fixed load, fixed grips)` as `(eps, F/F0)`, each `None` where the fitted branch has no
+/// interior minimum.
+pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<EpsForce>) {
+    use crate::reference::paper_fits::{cone_gamma, sphere_gamma};
+    // The paper fitted the cone and the sphere only.
+    if !matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
+        return (None, None);
+    }
+    let g = |i: usize, e: f64| match kind {
+        PunchKind::Cone => cone_gamma(i, e),
+        _ => sphere_gamma(i, e),
+    };
+    let d1 = |i: usize, e: f64| {
+        let h = 1e-6 * e.min(1.0 - e);
+        (g(i, e + h) - g(i, e - h)) / (2.0 * h)
+    };
+    let d2 = |i: usize, e: f64| {
+        let h = 1e-4 * e.min(1.0 - e);
+        (g(i, e + h) - 2.0 * g(i, e) + g(i, e - h)) / (h * h)
+    };
+    // (d/h, F/F0) on the fitted adhesive branch.
+    let state = |e: f64| -> (f64, f64) {
+        let (g1p, g2p) = (d1(1, e), d1(2, e));
+        let shift = s * (e * g1p * g1p / (d2(1, e) * g2p - d2(2, e) * g1p)).sqrt();
+        (g(1, e) - shift, g(2, e) / s - (g2p / g1p) * shift / s)
+    };
+    let ratios: Vec<f64> = (1..2000)
+        .map(|k| 0.01 + 0.985 * k as f64 / 2000.0)
+        .collect();
+    let first_minimum = |pick: fn((f64, f64)) -> f64| -> Option<(f64, f64)> {
+        let v: Vec<f64> = ratios.iter().map(|&e| pick(state(e))).collect();
+        let k =
+            (1..v.len() - 1).find(|&k| v[k].is_finite() && v[k] <= v[k - 1] && v[k] <= v[k + 1])?;
+        let (e, _) = golden_minimum(|e| Ok(pick(state(e))), ratios[k - 1], ratios[k + 1]).ok()?;
+        Some((e, state(e).1))
+    };
+    (first_minimum(|(_, f)| f), first_minimum(|(d, _)| d))
+}
