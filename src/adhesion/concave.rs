@@ -14,6 +14,7 @@ use super::ROOT_PI;
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
+use crate::numerics::brent::brent_minimum;
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 
@@ -102,7 +103,8 @@ pub struct Critical {
     /// Bound on the error of `force` (F/F0, absolute), propagated from the ring BEM: the
     /// change of the branch's force when its non-adhesive quantities come from a solve at
     /// tolerance 1e-7 instead of 1e-10, plus the slope along the branch times the location's
-    /// tolerance in `eps` (see [`ConcaveBranch::bound_critical`]); 0 for the closed forms of full contact.
+    /// uncertainty in `eps` (see [`ConcaveBranch::bound_critical`]); 0 for the closed forms of
+    /// full contact.
     #[serde(default)]
     pub error_bound: Option<f64>,
     /// The same for `depth` (d/h, absolute).
@@ -155,35 +157,68 @@ pub struct ConcaveJkr {
     pub direct_rim_difference: Option<f64>,
 }
 
-pub(super) fn golden_minimum(
-    mut f: impl FnMut(f64) -> Result<f64>,
-    mut lo: f64,
-    mut hi: f64,
+/// A minimum of `f` in `[lo, hi]` and its value, located to [`LOCATION_TOLERANCE`] in the
+/// argument by its values (Brent's search: [`brent_minimum`]).
+pub(super) fn minimum_in(
+    f: impl FnMut(f64) -> Result<f64>,
+    lo: f64,
+    hi: f64,
 ) -> Result<(f64, f64)> {
-    let phi = 0.5 * (5f64.sqrt() - 1.0);
-    let (mut x1, mut x2) = (hi - phi * (hi - lo), lo + phi * (hi - lo));
-    let (mut f1, mut f2) = (f(x1)?, f(x2)?);
-    while hi - lo > 1e-9 {
-        if f1 < f2 {
-            hi = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = hi - phi * (hi - lo);
-            f1 = f(x1)?;
-        } else {
-            lo = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = lo + phi * (hi - lo);
-            f2 = f(x2)?;
-        }
-    }
-    Ok(if f1 < f2 { (x1, f1) } else { (x2, f2) })
+    brent_minimum(f, lo, hi, 0.25 * LOCATION_TOLERANCE)
 }
 
+/// The stationary point of `f` near its minimum `x` in `[lo, hi]` (from [`minimum_in`]) and the
+/// uncertainty of its location. A minimum told by its values is uncertain by `sqrt(2δ/f'')`
+/// when `f` is known to `δ`: on the concave branches the values scatter by 5e-14 to 3e-13
+/// and the minimum by 6e-8 to 1.3e-7 in `eps`, a hundred times the search's tolerance. Told by
+/// its slope it is uncertain by `δ/(h f'')` only: Newton steps on the central differences with
+/// `h = 1e-3 (hi - lo)`, `x ← x - h (f(x+h) - f(x-h)) / (2 (f(x+h) - 2f(x) + f(x-h)))`, at most
+/// three. The uncertainty is [`LOCATION_TOLERANCE`] (the differences' bias `f''' h²/(6f'')`
+/// stays below it on the scan's brackets) plus twice the last step (the scatter left); where no
+/// step can be taken (the curvature not positive, a step leaving `[lo, hi]`), `x` with the
+/// uncertainty `h`.
+pub(super) fn stationary_point(
+    mut f: impl FnMut(f64) -> Result<f64>,
+    x: f64,
+    lo: f64,
+    hi: f64,
+) -> Result<(f64, f64)> {
+    let h = 1e-3 * (hi - lo);
+    let mut at = x;
+    let mut last = None;
+    for _ in 0..3 {
+        if at - h < lo || at + h > hi {
+            break;
+        }
+        let (below, here, above) = (f(at - h)?, f(at)?, f(at + h)?);
+        let curvature = above - 2.0 * here + below;
+        // Not a minimum there (or not a number): no step.
+        if curvature.is_nan() || curvature <= 0.0 {
+            break;
+        }
+        let step = -0.5 * h * (above - below) / curvature;
+        if !(lo..=hi).contains(&(at + step)) {
+            break;
+        }
+        at += step;
+        last = Some(step.abs());
+        if step.abs() <= 0.1 * LOCATION_TOLERANCE {
+            break;
+        }
+    }
+    Ok(match last {
+        Some(step) => (at, LOCATION_TOLERANCE + 2.0 * step),
+        None => (x, h),
+    })
+}
+
+/// The sign change of `f` in `[lo, hi]` by bisection, to [`LOCATION_TOLERANCE`].
 fn bisect(mut f: impl FnMut(f64) -> Result<f64>, mut lo: f64, mut hi: f64) -> Result<f64> {
     let f_lo = f(lo)?;
     for _ in 0..60 {
+        if (hi - lo).abs() <= LOCATION_TOLERANCE {
+            break;
+        }
         let mid = 0.5 * (lo + hi);
         if (f(mid)? > 0.0) == (f_lo > 0.0) {
             lo = mid;
@@ -207,8 +242,9 @@ fn scan_ratios() -> Vec<f64> {
     ratios
 }
 
-/// The pull-off state and the stable branch `(eps_lo, eps_hi)`, or why there is none.
-type AnnularOutcome = std::result::Result<(Critical, (f64, f64)), String>;
+/// The pull-off state, the stable branch `(eps_lo, eps_hi)` and the uncertainty of the state's
+/// `eps`, or why there is none.
+type AnnularOutcome = std::result::Result<(Critical, (f64, f64), f64), String>;
 
 /// Pull-off on the annular branch for one quantity (`F/F0` or `d/h`): the stable part runs from
 /// the maximum to the following minimum; unloading along it, the rim may fail first.
@@ -238,8 +274,10 @@ fn annular_pulloff(
         )));
     };
     let eval = |e: f64| -> Result<f64> { Ok(value(&branch.at(e)?, s)) };
-    let (eps_min, value_min) = golden_minimum(eval, points[min_k - 1].eps, points[min_k + 1].eps)?;
-    let (eps_max, _) = golden_minimum(
+    let bracket = (points[min_k - 1].eps, points[min_k + 1].eps);
+    let (eps_min, _) = minimum_in(eval, bracket.0, bracket.1)?;
+    let (eps_min, min_located_to) = stationary_point(eval, eps_min, bracket.0, bracket.1)?;
+    let (eps_max, _) = minimum_in(
         |e| Ok(-eval(e)?),
         points[max_k - 1].eps,
         points[max_k + 1].eps,
@@ -247,6 +285,7 @@ fn annular_pulloff(
     // Rim along the stable branch (unloading: eps grows from eps_max to eps_min).
     let rim_margin = |e: f64| -> Result<f64> { Ok(branch.at(e)?.rim_intensity(s) + 1.0) };
     let mut critical_eps = eps_min;
+    let mut located_to = min_located_to;
     let mut edge = "inner";
     if check_rim && rim_margin(eps_max)? < 0.0 {
         return Ok(Err(format!(
@@ -263,11 +302,11 @@ fn annular_pulloff(
         let e = bisect(rim_margin, lo, points[k].eps.min(eps_min))?;
         if e < eps_min {
             critical_eps = e;
+            located_to = LOCATION_TOLERANCE;
             edge = "rim";
         }
     }
     let p = branch.at(critical_eps)?;
-    let _ = value_min;
     Ok(Ok((
         Critical {
             eps: critical_eps,
@@ -279,6 +318,7 @@ fn annular_pulloff(
             depth_error_bound: None,
         },
         (eps_max, eps_min),
+        located_to,
     )))
 }
 
@@ -329,9 +369,17 @@ fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<F
     })
 }
 
-/// Location tolerance in `eps` of a critical state (the golden-section and bisection searches
-/// stop at 1e-9).
-const LOCATION_TOLERANCE: f64 = 1e-9;
+/// Scatter of the branch's force `F/F0` and depth `d/h` from one contact ratio to the next,
+/// absolute and relative to the two terms each is the difference of (`γ2/s` and `γ/κ_in`, `γ1`
+/// and `s/κ_in`): the solves' rounding, which no estimate of theirs holds. Measured on the sphere
+/// and the cone at `d0/h = 0.1` and 1 (41 ratios a few `1e-9` apart at each critical state):
+/// 5e-14 to 2e-13 at `d0/h = 1`, up to 1.4e-12 at `d0/h = 0.1` (rings of width `5e-4 a`);
+/// twice that.
+pub(super) const VALUE_SCATTER: f64 = 3e-12;
+
+/// Location tolerance in `eps` of a critical state (the minimum searches, [`minimum_in`], and the
+/// rim's bisection stop at 1e-9).
+pub(super) const LOCATION_TOLERANCE: f64 = 1e-9;
 
 /// Range of `d0/h` the concave JKR analysis accepts: six decades either side of the paper's
 /// `d0/h` ~ 1 (its figures span 0.1 to 10).
@@ -398,10 +446,10 @@ impl<'a> ConcaveBranch<'a> {
         let (grips, grips_note) = split(annular_pulloff(self, s, |p, s| p.depth(s), true)?);
         let paper_load = annular_pulloff(self, s, |p, s| p.force(s), false)?
             .ok()
-            .map(|(c, _)| c);
+            .map(|(c, _, at)| (c, at));
         let paper_grips = annular_pulloff(self, s, |p, s| p.depth(s), false)?
             .ok()
-            .map(|(c, _)| c);
+            .map(|(c, _, at)| (c, at));
         let closing = self
             .scan
             .iter()
@@ -411,7 +459,7 @@ impl<'a> ConcaveBranch<'a> {
         let full = full_contact(kind, s, closing.is_finite().then_some(closing))?;
         // Direct route at the fixed-load critical state: solve the adhesive contact itself.
         let (ratio, rim_diff) = match &load {
-            Some((c, _)) => {
+            Some((c, _, _)) => {
                 let (kin, krim) = direct_intensities(solver, kind, c)?;
                 let (kin, krim) = (kin * ROOT_PI / s, krim * ROOT_PI / s);
                 let formula = self.at(c.eps)?.rim_intensity(s);
@@ -419,17 +467,18 @@ impl<'a> ConcaveBranch<'a> {
             }
             None => (None, None),
         };
-        let bound = |c: Option<Critical>| -> Result<Option<Critical>> {
-            c.map(|c| self.bound_critical(s, &c)).transpose()
+        let bound = |c: Option<(Critical, f64)>| -> Result<Option<Critical>> {
+            c.map(|(c, located_to)| self.bound_critical(s, &c, located_to))
+                .transpose()
         };
         let paper_load = bound(paper_load)?;
         let paper_grips = bound(paper_grips)?;
         Ok(ConcaveJkr {
             punch: kind,
             d0_over_h: s,
-            stable_branch_fixed_load: load.as_ref().map(|(_, b)| *b),
-            fixed_load: bound(load.map(|(c, _)| c))?,
-            fixed_grips: bound(grips.map(|(c, _)| c))?,
+            stable_branch_fixed_load: load.as_ref().map(|(_, b, _)| *b),
+            fixed_load: bound(load.map(|(c, _, at)| (c, at)))?,
+            fixed_grips: bound(grips.map(|(c, _, at)| (c, at)))?,
             fixed_load_note: load_note,
             fixed_grips_note: grips_note,
             inner_edge_only_fixed_load: paper_load,
@@ -449,10 +498,12 @@ impl<'a> ConcaveBranch<'a> {
     /// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 (1e-8
     /// for a table, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the change of
     /// the branch's force and depth when every input comes from the solves at 1e-7. Added to
-    /// it: each quantity's slope along the branch times [`LOCATION_TOLERANCE`] (zero at a
-    /// stationary point, the fixed-load force or the fixed-grips depth; not zero for the other
-    /// quantity).
-    pub fn bound_critical(&self, s: f64, c: &Critical) -> Result<Critical> {
+    /// it: the values' scatter ([`VALUE_SCATTER`] times one plus the two terms' sizes) and
+    /// each quantity's slope along the branch times `located_to`, the uncertainty of the
+    /// state's `eps` ([`stationary_point`] for a minimum, [`LOCATION_TOLERANCE`] for a rim
+    /// crossing; the term is near zero for the quantity that is stationary, the fixed-load
+    /// force or the fixed-grips depth, not for the other one).
+    pub fn bound_critical(&self, s: f64, c: &Critical, located_to: f64) -> Result<Critical> {
         let p = self.at(c.eps)?;
         let looser = branch_point_at(self.solver, self.kind, c.eps, 1e-7)?;
         let d_kappa_in = (looser.kappa_in - p.kappa_in)
@@ -467,14 +518,19 @@ impl<'a> ConcaveBranch<'a> {
         let nearby = self.at(c.eps + step)?;
         let slope_force = ((nearby.force(s) - p.force(s)) / step).abs();
         let slope_depth = ((nearby.depth(s) - p.depth(s)) / step).abs();
+        let force_scatter =
+            VALUE_SCATTER * (1.0 + (p.gamma2 / s).abs() + (p.gamma / p.kappa_in).abs());
+        let depth_scatter = VALUE_SCATTER * (1.0 + p.gamma1.abs() + (s / p.kappa_in).abs());
         Ok(Critical {
             error_bound: Some(
                 propagated_force.max((looser.force(s) - p.force(s)).abs())
-                    + slope_force * LOCATION_TOLERANCE,
+                    + force_scatter
+                    + slope_force * located_to,
             ),
             depth_error_bound: Some(
                 propagated_depth.max((looser.depth(s) - p.depth(s)).abs())
-                    + slope_depth * LOCATION_TOLERANCE,
+                    + depth_scatter
+                    + slope_depth * located_to,
             ),
             ..c.clone()
         })
@@ -605,7 +661,7 @@ pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<Eps
         let v: Vec<f64> = ratios.iter().map(|&e| pick(state(e))).collect();
         let k =
             (1..v.len() - 1).find(|&k| v[k].is_finite() && v[k] <= v[k - 1] && v[k] <= v[k + 1])?;
-        let (e, _) = golden_minimum(|e| Ok(pick(state(e))), ratios[k - 1], ratios[k + 1]).ok()?;
+        let (e, _) = minimum_in(|e| Ok(pick(state(e))), ratios[k - 1], ratios[k + 1]).ok()?;
         Some((e, state(e).1))
     };
     (first_minimum(|(_, f)| f), first_minimum(|(d, _)| d))

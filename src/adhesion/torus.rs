@@ -12,8 +12,9 @@
 //! Along the curve the contact shrinks as `w` falls. Under fixed load the branch is stable
 //! while `dF/dw > 0` (a smaller contact carries less load) and the pull-off is the minimum of
 //! `F`; under fixed grips it is stable while `dd/dw > 0` and the pull-off is at the minimum of
-//! `d`, with the force there. Both minima are bracketed on a scan of `w` and located by golden
-//! section.
+//! `d`, with the force there. Both minima are bracketed on a scan of `w` and located by Brent's
+//! search, then by the slope's zero (`stationary_point`: a minimum told by its values alone
+//! scatters by the square root of their noise).
 //!
 //! **Narrow limit.** For `d0/h -> 0` the pull-off band is narrow and the ring is a plane-strain
 //! cylinder of radius `ρ` over the length `2π a`: `P = π E* w²/(4ρ) - sqrt(2π E* Δw w)` per unit
@@ -25,7 +26,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use super::golden_minimum;
+use super::{minimum_in, stationary_point, VALUE_SCATTER};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
@@ -57,7 +58,8 @@ pub struct TorusCritical {
     /// `F/F0` (negative: tensile).
     pub force: f64,
     /// Bound on the error of `force` (`F/F0`, absolute): the ring BEM's estimate of the state
-    /// times `|F|`, plus the force's change over the location's tolerance in `b`.
+    /// times `|F|`, the values' scatter (`VALUE_SCATTER (1 + |F|)`, as the concave punches'),
+    /// plus the force's change over the location's uncertainty in the half-width.
     pub error_bound: f64,
     /// Bound on the error of `depth` (`d/h`, absolute), made the same way.
     pub depth_error_bound: f64,
@@ -203,11 +205,13 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
                     centre(&st),
                 )))
             };
-            let (w, _) = golden_minimum(value, curve[k - 1].0, curve[k + 1].0)?;
+            let bracket = (curve[k - 1].0, curve[k + 1].0);
+            let (w, _) = minimum_in(value, bracket.0, bracket.1)?;
+            let (w, located_to) = stationary_point(value, w, bracket.0, bracket.1)?;
             let st = state(w, STATE_TOLERANCE, hint)?;
             let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
-            // The golden section stops at 1e-9 in w; a quantity's change over it is second order
-            // where it is the minimum, first order (its slope in w) for the other one.
+            // w is located to `located_to`; a quantity's change over it is second order where
+            // it is the minimum, first order (its slope in w) for the other one.
             let step = 1e-9 * w.max(1e-3);
             let beside = state(w + step, STATE_TOLERANCE, hint)?;
             let force_slope = (beside.gamma2.unwrap_or(f64::NAN) - g2) / step;
@@ -219,8 +223,12 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
                 depth: g1,
                 depth_over_d0: g1 / s,
                 force,
-                error_bound: st.error_estimate * force.abs() + (force_slope * step / s).abs(),
-                depth_error_bound: st.error_estimate * g1.abs() + (depth_slope * step).abs(),
+                error_bound: st.error_estimate * force.abs()
+                    + VALUE_SCATTER * (1.0 + force.abs())
+                    + (force_slope * located_to / s).abs(),
+                depth_error_bound: st.error_estimate * g1.abs()
+                    + VALUE_SCATTER * (1.0 + g1.abs())
+                    + (depth_slope * located_to).abs(),
             }))
         };
     let fixed_load = locate(|p| p.2, "force")?;

@@ -1,7 +1,8 @@
 //! Numerical building blocks shared by the solvers: the complete elliptic integral of the first
-//! kind, tanh-sinh quadrature on panels, Chebyshev interpolation and a safeguarded scalar root
-//! finder. Everything here is dimensionless.
+//! kind, tanh-sinh quadrature on panels, Chebyshev interpolation, a safeguarded scalar root
+//! finder and minimisation on an interval (golden section, Brent). Everything here is dimensionless.
 
+pub mod brent;
 pub mod chebyshev;
 pub mod elliptic;
 pub mod golden;
