@@ -34,7 +34,7 @@ pub use concave::{
     branch_point, branch_tolerance, concave, full_contact_constants, paper_fit_route, BranchPoint,
     ConcaveBranch, ConcaveJkr, Critical, EpsForce, FullContactBranch, D0H_RANGE,
 };
-use concave::{minimum_in, stationary_point, VALUE_SCATTER};
+use concave::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
 pub use torus::{plane_strain_pulloff, torus_jkr, TorusCritical, TorusJkr};
 
 const TOL: f64 = 1e-11;

@@ -379,7 +379,7 @@ pub(super) const VALUE_SCATTER: f64 = 3e-12;
 
 /// Location tolerance in `eps` of a critical state (the minimum searches, [`minimum_in`], and the
 /// rim's bisection stop at 1e-9).
-pub(super) const LOCATION_TOLERANCE: f64 = 1e-9;
+const LOCATION_TOLERANCE: f64 = 1e-9;
 
 /// Range of `d0/h` the concave JKR analysis accepts: six decades either side of the paper's
 /// `d0/h` ~ 1 (its figures span 0.1 to 10).
@@ -557,8 +557,8 @@ fn check_concave(kind: PunchKind) -> Result<()> {
     Ok(())
 }
 
-/// Refuse a `d0/h` outside [`D0H_RANGE`].
-fn check_scale(s: f64) -> Result<()> {
+/// Refuse a `d0/h` outside [`D0H_RANGE`] (the concave punches' and the torus's analyses).
+pub(super) fn check_scale(s: f64) -> Result<()> {
     if !(s.is_finite() && s > 0.0) {
         return Err(Error::invalid(
             "d0h",

@@ -26,7 +26,7 @@ use std::f64::consts::PI;
 
 use serde::Serialize;
 
-use super::{minimum_in, stationary_point, VALUE_SCATTER};
+use super::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
@@ -95,23 +95,7 @@ pub fn plane_strain_pulloff(s: f64) -> f64 {
 
 /// The JKR pull-off of the torus under fixed load and fixed grips for `d0/h = s`.
 pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
-    if !(s.is_finite() && s > 0.0) {
-        return Err(Error::invalid(
-            "d0h",
-            format!("must be a positive number (got {})", crate::error::show(s)),
-        ));
-    }
-    if !(super::D0H_RANGE.0..=super::D0H_RANGE.1).contains(&s) {
-        return Err(Error::invalid(
-            "d0h",
-            format!(
-                "d0/h = {} is outside [{:e}, {:e}]",
-                crate::error::show(s),
-                super::D0H_RANGE.0,
-                super::D0H_RANGE.1
-            ),
-        ));
-    }
+    check_scale(s)?;
     let intensity = -s / PI.sqrt();
     let state = |w: f64, tol: f64, hint: Option<f64>| {
         solver.torus_with_edge_intensity(w, intensity, tol, hint)
