@@ -451,10 +451,12 @@ mod tests {
         }
         // Between the rows the bound stays below the ring BEM's hole and within 20 % of it
         // (depths not in the table); before the table it is the first row's, beyond it none.
+        // (At 1e-9: the ring BEM's values scatter by about 1e-10 of themselves at the holes of
+        // 1e-4 a near d/h = 15, so 1e-10 is met or refused by rounding.)
         let bem = crate::bem::ring_contact::RingBemSolver::new();
         for depth in [2.0, 3.0, 4.0, 6.0, 8.0, 10.5, 12.0, 13.0, 14.0, 15.0] {
             let hole = bem
-                .concave_at_depth(PunchKind::Cone, depth, 1e-10)
+                .concave_at_depth(PunchKind::Cone, depth, 1e-9)
                 .unwrap()
                 .eps;
             let bound = cone_hole_lower_bound(depth);

@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingField, RingSystem};
 use crate::error::{Error, Result};
-use crate::numerics::roots::{find_root, RootError};
+use crate::numerics::roots::{find_root_with_slope, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
@@ -648,8 +648,16 @@ impl RingBemSolver {
             Controlled::Force => s.gamma2,
         };
         let mut guess = initial_ratio(kind, target, controlled);
-        let mut rung = starting_rung(guess);
+        // The first search runs on a cheap rung whatever the guess (a fit's start can be far off,
+        // and a search on many nodes from there pays for every step); its root then says which
+        // rung the contact ratio needs.
+        let mut rung = starting_rung(guess).min(FIRST_SEARCH_RUNG);
         let mut outer_guess = None;
+        // From the second rung on, the search starts at the previous rung's root with its
+        // slope (the torus: its Jacobian), so it takes Newton's step at once.
+        let mut slope_hint = None;
+        let mut previous_slopes = None;
+        let mut torus_jacobian = None;
         let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
@@ -662,14 +670,15 @@ impl RingBemSolver {
                         outer_guess.unwrap_or_else(|| torus::outer_edge_guess(guess)),
                     );
                     let depth = matches!(controlled, Controlled::Depth);
-                    self.torus_at_target(n, target, depth, start, 0.01 * tolerance)
+                    self.torus_at_target(n, target, depth, start, torus_jacobian, 0.01 * tolerance)
                 })
                 .flatten();
-            // The last two samples of the search are kept: the state at the root and the
-            // secant slopes of both quantities.
+            // The last three samples of the search are kept: the state at the root and the
+            // secant slopes of both quantities (from the farthest of the others).
             let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
             let root = match direct {
                 Some(found) => {
+                    torus_jacobian = Some(found.jacobian);
                     history.push((found.eps, found.sample));
                     let (eps, bands) = (found.eps, found.bands);
                     Ok(crate::numerics::roots::Root {
@@ -678,14 +687,14 @@ impl RingBemSolver {
                         slope: f64::NAN,
                     })
                 }
-                None => find_root(
+                None => find_root_with_slope(
                     |eps| {
                         let hint = outer_edge_hint(&history, eps).or(outer_guess);
                         let sample = self
                             .concave_sample(kind, eps, n, hint)
                             .map_err(|e| e.to_string())?;
                         let value = pick(&sample) - target;
-                        if history.len() == 2 {
+                        if history.len() == 3 {
                             history.remove(0);
                         }
                         history.push((eps, sample));
@@ -694,6 +703,7 @@ impl RingBemSolver {
                     MIN_CONTACT_RATIO,
                     MAX_CONTACT_RATIO,
                     guess,
+                    slope_hint,
                     0.01 * tolerance,
                     60,
                 ),
@@ -703,7 +713,8 @@ impl RingBemSolver {
             let eps = root.x;
             let neighbour = history
                 .iter()
-                .find(|(at, _)| *at != eps)
+                .filter(|(at, _)| *at != eps)
+                .max_by(|(a, _), (b, _)| (a - eps).abs().total_cmp(&(b - eps).abs()))
                 .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
             let fine = match history.pop() {
                 Some((at, sample)) if at == eps => sample,
@@ -713,22 +724,45 @@ impl RingBemSolver {
                 }
             };
             let fine_outer = Some(fine.system.region().outer());
-            let coarse = self.concave_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
-            solves += 1;
-            // Slopes dγ1/deps and dγ2/deps from the last two iterates (or a small step).
-            let (at, g1, g2, c) = match neighbour {
-                Some(pair) => pair,
-                None => {
-                    let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
-                    solves += 1;
-                    let s = self.concave_sample(kind, eps + step, n, fine_outer)?;
-                    (eps + step, s.gamma1, s.gamma2, s.system.region().outer())
+            // The torus's edge searches near the root start with Newton's step (the mismatch's
+            // slope in the outer edge from the direct solve's Jacobian).
+            let sample_near = |eps: f64, n: usize| match torus_jacobian {
+                Some(jacobian) if kind == PunchKind::Torus => {
+                    self.torus_sample_near(eps, n, fine_outer, Some(jacobian[0][1]))
                 }
+                _ => self.concave_sample(kind, eps, n, fine_outer),
             };
-            let slope1 = (fine.gamma1 - g1) / (eps - at);
-            let slope2 = (fine.gamma2 - g2) / (eps - at);
+            let coarse = sample_near(eps, NODE_LADDER[rung - 1])?;
+            solves += 1;
+            // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
+            // they lie far enough apart for rounding not to show (a secant converges to iterates
+            // 1e-13 apart, whose slope was measured 8 times too small), else the previous
+            // rung's where that rung was close (its estimate below SLOPE_TRUSTED_ESTIMATE), else
+            // from a small step. (The torus's direct solve ends with Broyden's Jacobian, a good
+            // start for Newton's steps but not a derivative: its slope was measured with the
+            // wrong sign.)
             let outer_fine = fine.system.region().outer();
-            let outer_slope = (outer_fine - c) / (eps - at);
+            let [slope1, slope2, outer_slope] =
+                match neighbour.filter(|(at, ..)| (eps - at).abs() >= SLOPE_MIN_SEPARATION) {
+                    Some((at, g1, g2, c)) => [
+                        (fine.gamma1 - g1) / (eps - at),
+                        (fine.gamma2 - g2) / (eps - at),
+                        (outer_fine - c) / (eps - at),
+                    ],
+                    None => match previous_slopes {
+                        Some(slopes) => slopes,
+                        None => {
+                            let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
+                            solves += 1;
+                            let s = sample_near(eps + step, n)?;
+                            [
+                                (s.gamma1 - fine.gamma1) / step,
+                                (s.gamma2 - fine.gamma2) / step,
+                                (s.system.region().outer() - outer_fine) / step,
+                            ]
+                        }
+                    },
+                };
             let (slope, other_slope, other_fine, other_coarse) = match controlled {
                 Controlled::Depth => (slope1, slope2, fine.gamma2, coarse.gamma2),
                 Controlled::Force => (slope2, slope1, fine.gamma1, coarse.gamma1),
@@ -758,7 +792,10 @@ impl RingBemSolver {
                     "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
                 )));
             }
-            rung += 1;
+            rung = (rung + 1).max(starting_rung(eps));
+            slope_hint = Some(slope);
+            previous_slopes =
+                (estimate <= SLOPE_TRUSTED_ESTIMATE).then_some([slope1, slope2, outer_slope]);
             guess = eps;
             outer_guess = fine_outer;
         }
@@ -1021,6 +1058,19 @@ fn starting_rung(eps: f64) -> usize {
     };
     NODE_LADDER.iter().position(|&m| m == n).unwrap_or(1)
 }
+
+/// The least distance in `eps` between two states whose difference gives a slope for the error
+/// estimate (the values' rounding, about 1e-14, then moves it by 1e-5 of itself or less where
+/// the slope is 1 or more; the estimate needs a few per cent).
+const SLOPE_MIN_SEPARATION: f64 = 1e-9;
+
+/// The largest error estimate of a rung whose slopes the next rung may reuse for its own
+/// estimate (the slopes are then good to about this, and the estimate needs a few per cent).
+const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
+
+/// The rung of the inverse problem's first search (N = 16): a state that needs more nodes
+/// climbs from its root.
+const FIRST_SEARCH_RUNG: usize = 1;
 
 /// Starting contact ratio for the inverse problem. The paper's fits are used only to start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.

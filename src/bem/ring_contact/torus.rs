@@ -28,7 +28,7 @@ use std::f64::consts::PI;
 
 use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::Result;
-use crate::numerics::roots::{find_root, RootError};
+use crate::numerics::roots::{find_root, find_root_with_slope, RootError};
 use crate::punch::PunchKind;
 
 use super::{
@@ -66,9 +66,25 @@ impl RingBemSolver {
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
+        self.torus_sample_near(eps, n, outer_hint, None)
+    }
+
+    /// [`Self::torus_sample`] given the mismatch's slope `∂R/∂c` near the edge (a nearby
+    /// state's): the edge search starts with Newton's step.
+    pub(super) fn torus_sample_near(
+        &self,
+        eps: f64,
+        n: usize,
+        outer_hint: Option<f64>,
+        mismatch_slope: Option<f64>,
+    ) -> Result<ConcaveSample> {
+        // The search's last band is its root's (`Root::x` is the last point evaluated).
+        let last = std::cell::RefCell::new(None);
         let residual = |outer: f64| -> std::result::Result<f64, String> {
             let band = self.torus_band(eps, outer, n).map_err(|e| e.to_string())?;
-            Ok(band.mismatch(0.0))
+            let mismatch = band.mismatch(0.0);
+            *last.borrow_mut() = Some((outer, band));
+            Ok(mismatch)
         };
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
@@ -76,9 +92,21 @@ impl RingBemSolver {
             .unwrap_or_else(|| outer_edge_guess(eps))
             .clamp(lo, hi);
         let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
-        let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
-            .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
-        Ok(self.torus_band(eps, root.x, n)?.sample(0.0))
+        let root = find_root_with_slope(
+            residual,
+            lo,
+            hi,
+            guess,
+            mismatch_slope,
+            OUTER_EDGE_TOLERANCE,
+            80,
+        )
+        .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
+        let band = match last.into_inner() {
+            Some((outer, band)) if outer == root.x => band,
+            _ => self.torus_band(eps, root.x, n)?,
+        };
+        Ok(band.sample(0.0))
     }
 
     /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
@@ -94,11 +122,14 @@ impl RingBemSolver {
         centre_hint: Option<f64>,
         intensity: f64,
     ) -> Result<ConcaveSample> {
+        let last = std::cell::RefCell::new(None);
         let residual = |centre: f64| -> std::result::Result<f64, String> {
             let band = self
                 .torus_band(centre - half_width, centre + half_width, n)
                 .map_err(|e| e.to_string())?;
-            Ok(band.mismatch(intensity))
+            let mismatch = band.mismatch(intensity);
+            *last.borrow_mut() = Some((centre, band));
+            Ok(mismatch)
         };
         let lo = half_width + MIN_CONTACT_RATIO;
         let hi = 3.0 + 3.0 * half_width;
@@ -112,9 +143,11 @@ impl RingBemSolver {
         );
         let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
             .map_err(|e| search_error(e, &what, "centre", lo, hi))?;
-        Ok(self
-            .torus_band(root.x - half_width, root.x + half_width, n)?
-            .sample(intensity))
+        let band = match last.into_inner() {
+            Some((centre, band)) if centre == root.x => band,
+            _ => self.torus_band(root.x - half_width, root.x + half_width, n)?,
+        };
+        Ok(band.sample(intensity))
     }
 
     /// The torus's band of half-width `half_width` (units of `a`) with the stress intensity
@@ -180,8 +213,9 @@ impl RingBemSolver {
     /// γ(b, c)/target - 1 = 0   (γ = γ1 or γ2 at the depth of a free inner edge)
     /// ```
     ///
-    /// with a Jacobian by differences at the start and Broyden's update after each step (each
-    /// step one band: assembly and two solves), from the start `(b0, c0)`. Stops after a step
+    /// with a Jacobian of `[R, γ1, γ2]` by differences at the start (or `jacobian`, a nearby
+    /// problem's: the previous node count's) and Broyden's update after each step (each step
+    /// one band: assembly and two solves), from the start `(b0, c0)`. Stops after a step
     /// in `b` below `eps_tolerance` and in `c` below [`OUTER_EDGE_TOLERANCE`] (tenfold); a
     /// step that would leave `MIN_CONTACT_RATIO <= b < c <= hi` is shortened. `None` where it
     /// does not converge: the caller then runs the nested search (an edge search inside a
@@ -192,17 +226,19 @@ impl RingBemSolver {
         target: f64,
         depth_controlled: bool,
         start: (f64, f64),
+        jacobian: Option<TorusJacobian>,
         eps_tolerance: f64,
     ) -> Option<TorusTarget> {
         let pick = if depth_controlled { 1 } else { 2 };
         let mut bands = 0;
-        let mut residual = |b: f64, c: f64| -> Option<([f64; 2], TorusBand)> {
+        // The band's values `[R, γ1, γ2]` at `(b, c)`.
+        let mut values = |b: f64, c: f64| -> Option<([f64; 3], TorusBand)> {
             bands += 1;
             let band = self.torus_band(b, c, n).ok()?;
             let v = band.values();
-            let r = [v[0], v[pick] / target - 1.0];
-            r.iter().all(|x| x.is_finite()).then_some((r, band))
+            v.iter().all(|x| x.is_finite()).then_some((v, band))
         };
+        let residual = |v: &[f64; 3]| [v[0], v[pick] / target - 1.0];
         let admissible = |b: f64, c: f64| {
             (MIN_CONTACT_RATIO..=super::MAX_CONTACT_RATIO).contains(&b)
                 && c > b * (1.0 + 2.0 * MIN_BAND_RATIO)
@@ -212,28 +248,35 @@ impl RingBemSolver {
         if !(b.is_finite() && c.is_finite() && admissible(b, c)) {
             return None;
         }
-        let (mut f, _) = residual(b, c)?;
-        // The Jacobian by forward differences (steps far above rounding, far below the edges'
-        // scales).
-        let (hb, hc) = (1e-7 * b.max(1e-3), 1e-7 * c);
-        let (fb, _) = residual(b + hb, c)?;
-        let (fc, _) = residual(b, c + hc)?;
-        let mut jacobian = [
-            [(fb[0] - f[0]) / hb, (fc[0] - f[0]) / hc],
-            [(fb[1] - f[1]) / hb, (fc[1] - f[1]) / hc],
-        ];
+        let (mut v, _) = values(b, c)?;
+        let mut jacobian = match jacobian.filter(|j| j.iter().flatten().all(|x| x.is_finite())) {
+            Some(given) => given,
+            None => {
+                // By forward differences (steps far above rounding, far below the edges'
+                // scales).
+                let (hb, hc) = (1e-7 * b.max(1e-3), 1e-7 * c);
+                let (vb, _) = values(b + hb, c)?;
+                let (vc, _) = values(b, c + hc)?;
+                std::array::from_fn(|i| [(vb[i] - v[i]) / hb, (vc[i] - v[i]) / hc])
+            }
+        };
         // Steps that did not shrink the residual (a start outside Newton's basin): after a few
         // the nested search takes over.
         let size = |r: &[f64; 2]| r[0].hypot(r[1]);
         let mut stalled = 0;
         for _ in 0..DIRECT_MAX_ITERATIONS {
-            let det = jacobian[0][0] * jacobian[1][1] - jacobian[0][1] * jacobian[1][0];
+            let f = residual(&v);
+            let newton = [
+                jacobian[0],
+                [jacobian[pick][0] / target, jacobian[pick][1] / target],
+            ];
+            let det = newton[0][0] * newton[1][1] - newton[0][1] * newton[1][0];
             if !(det.is_finite() && det != 0.0) {
                 return None;
             }
             let mut step = [
-                -(jacobian[1][1] * f[0] - jacobian[0][1] * f[1]) / det,
-                -(-jacobian[1][0] * f[0] + jacobian[0][0] * f[1]) / det,
+                -(newton[1][1] * f[0] - newton[0][1] * f[1]) / det,
+                -(-newton[1][0] * f[0] + newton[0][0] * f[1]) / det,
             ];
             if step[0].abs() <= eps_tolerance && step[1].abs() <= 10.0 * OUTER_EDGE_TOLERANCE {
                 // The last (small) step taken: the state's residual is then far below the
@@ -242,11 +285,12 @@ impl RingBemSolver {
                 if !admissible(b, c) {
                     return None;
                 }
-                let (_, band) = residual(b, c)?;
+                let (_, band) = values(b, c)?;
                 return Some(TorusTarget {
                     eps: b,
                     sample: band.sample(0.0),
                     bands,
+                    jacobian,
                 });
             }
             // Shorten a step that leaves the admissible edges (or moves b by more than half).
@@ -258,16 +302,20 @@ impl RingBemSolver {
                     return None;
                 }
             }
-            let (next, _) = residual(b + step[0], c + step[1])?;
-            // Broyden's update: J += ((Δf - J s) sᵀ) / (sᵀ s).
+            let (next, _) = values(b + step[0], c + step[1])?;
+            // Broyden's update, J += ((Δv - J s) sᵀ) / (sᵀ s), where the step is long enough
+            // for the values' rounding (about 1e-14) not to swamp it: the Jacobian also gives
+            // the next node count its start and the caller its slopes.
             let norm = step[0] * step[0] + step[1] * step[1];
-            for (i, row) in jacobian.iter_mut().enumerate() {
-                let predicted = row[0] * step[0] + row[1] * step[1];
-                let miss = (next[i] - f[i]) - predicted;
-                row[0] += miss * step[0] / norm;
-                row[1] += miss * step[1] / norm;
+            if norm.sqrt() > BROYDEN_MIN_STEP * c {
+                for (i, row) in jacobian.iter_mut().enumerate() {
+                    let predicted = row[0] * step[0] + row[1] * step[1];
+                    let miss = (next[i] - v[i]) - predicted;
+                    row[0] += miss * step[0] / norm;
+                    row[1] += miss * step[1] / norm;
+                }
             }
-            stalled = if size(&next) < 0.9 * size(&f) {
+            stalled = if size(&residual(&next)) < 0.9 * size(&f) {
                 0
             } else {
                 stalled + 1
@@ -275,7 +323,7 @@ impl RingBemSolver {
             if stalled >= DIRECT_MAX_STALLED {
                 return None;
             }
-            (b, c, f) = (b + step[0], c + step[1], next);
+            (b, c, v) = (b + step[0], c + step[1], next);
         }
         None
     }
@@ -289,7 +337,16 @@ pub(super) struct TorusTarget {
     pub sample: ConcaveSample,
     /// Bands solved.
     pub bands: usize,
+    /// The Jacobian of `[R, γ1, γ2]` in `(b, c)` at the end (Broyden's estimate).
+    pub jacobian: TorusJacobian,
 }
+
+/// The derivatives of a torus band's `[R, γ1, γ2]` ([`TorusBand::values`]) in its edges
+/// `(b, c)`, one row per value.
+pub(super) type TorusJacobian = [[f64; 2]; 3];
+
+/// The least step (relative to the outer edge) that updates [`TorusJacobian`] by Broyden's rule.
+const BROYDEN_MIN_STEP: f64 = 1e-9;
 
 /// A band of the torus at one node count: its system and the fields of `w = 1` and `w = -ĝ`.
 struct TorusBand {
@@ -445,6 +502,7 @@ mod tests {
                     target,
                     depth_controlled,
                     (start, outer_edge_guess(start)),
+                    None,
                     1e-12,
                 )
                 .expect("Newton converges from the usual start");
@@ -475,7 +533,7 @@ mod tests {
             assert!((pick(&direct.sample) / target - 1.0).abs() < 1e-11);
         }
         // A narrow band started far off: no state, or the right one.
-        let wrong = solver.torus_at_target(n, 1e-4, false, (0.9968, 1.303), 1e-12);
+        let wrong = solver.torus_at_target(n, 1e-4, false, (0.9968, 1.303), None, 1e-12);
         if let Some(found) = wrong {
             assert!((found.eps - 0.99683348).abs() < 1e-6, "{}", found.eps);
         }
