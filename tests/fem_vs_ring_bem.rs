@@ -5,7 +5,7 @@
 mod common;
 use common::gmsh_available;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
 use ringcontact::mesh::triangulation::Degree;
 use ringcontact::punch::PunchKind;
@@ -39,6 +39,14 @@ fn fem_of_degree(
 }
 
 /// `(relative error of the force-like output, absolute error of eps)` against the ring BEM.
+/// The ring BEM's state at 1e-10, or at 1e-9 where 1e-10 is beyond its rounding: near closure
+/// the contact ratio moves 30 times a relative change of the depth (the sphere at `d/h =
+/// 2.9999`: `dγ2/deps = 0.033`), so values that scatter by 1e-12 leave it 2e-10 uncertain. Either
+/// is 100 times finer than the FEM's finest tolerance on a concave punch here (1e-7).
+fn reference(solve: impl Fn(f64) -> ringcontact::Result<RingState>) -> RingState {
+    solve(1e-10).or_else(|_| solve(1e-9)).unwrap()
+}
+
 fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f64) {
     let bem = RingBemSolver::new();
     match load {
@@ -47,7 +55,7 @@ fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f
             ((state.gamma.unwrap() - g).abs() / g, 0.0)
         }
         FemLoad::ConcaveDepth(d) => {
-            let r = bem.concave_at_depth(kind, d, 1e-10).unwrap();
+            let r = reference(|tol| bem.concave_at_depth(kind, d, tol));
             let g2 = r.gamma2.unwrap();
             (
                 (state.gamma2.unwrap() - g2).abs() / g2,
@@ -55,7 +63,7 @@ fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f
             )
         }
         FemLoad::ConcaveForce(f) => {
-            let r = bem.concave_at_force(kind, f, 1e-10).unwrap();
+            let r = reference(|tol| bem.concave_at_force(kind, f, tol));
             let g1 = r.gamma1.unwrap();
             (
                 (state.gamma1.unwrap() - g1).abs() / g1,

@@ -1,5 +1,5 @@
 //! The FEM on the torus, a contact with two free edges, against the ring BEM (converged to
-//! 1e-12, an independent discretisation of the same problem): at 12 states under depth and force
+//! 1e-10, an independent discretisation of the same problem): at 12 states under depth and force
 //! control (`d/h` from 1e-3 to 10, `F/(2 E* h a)` from 1e-4 to 2) the FEM's answer at
 //! `--tol 1e-6` is within its own estimate of the ring BEM's, the force-like outputs relative
 //! and both edges `b/a`, `c/a` absolute, and the estimate is within the tolerance.
@@ -31,8 +31,11 @@ fn check(loads: &[FemLoad], tolerance: f64) {
         let fem = solver::solve(PunchKind::Torus, 0.0, load, &options(tolerance))
             .unwrap_or_else(|e| panic!("{load:?}: {e}"));
         let reference = match load {
-            FemLoad::ConcaveDepth(d) => bem.concave_at_depth(PunchKind::Torus, d, 1e-12),
-            FemLoad::ConcaveForce(f) => bem.concave_at_force(PunchKind::Torus, f, 1e-12),
+            // 1e-10, 1e4 times finer than the FEM's tolerance: at 1e-12 the shallowest state
+            // (F = 1e-4) is at the rounding of its depth (the relative estimate of the depth
+            // scattered between 1e-12 and 4e-11 from N = 16 to 80).
+            FemLoad::ConcaveDepth(d) => bem.concave_at_depth(PunchKind::Torus, d, 1e-10),
+            FemLoad::ConcaveForce(f) => bem.concave_at_force(PunchKind::Torus, f, 1e-10),
             FemLoad::Flat => unreachable!("the torus is not flat"),
         }
         .unwrap();
