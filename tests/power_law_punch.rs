@@ -136,6 +136,16 @@ fn closure_is_where_the_full_contact_pressure_first_vanishes() {
         .unwrap_err()
         .to_string();
     assert!(message.contains("disk and an annulus"), "{message}");
+    // n = 3 under F/(2 E* h a) = 2, short of full contact (from 2.03 by the MDR's closed form,
+    // reference::power_law): no single annulus holds that force clear of the floor, and the
+    // failed search says why.
+    let closure_force = power_law::full_contact_gamma2(3.0, power_law::closure_depth(3.0).unwrap());
+    assert!(closure_force.unwrap() > 2.0);
+    let message = solver
+        .concave_at_force(power(3.0), 2.0, 1e-9)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("disk and an annulus"), "{message}");
 }
 
 /// A profile flatter than the sphere at the axis touches the floor of its hole while the ring
