@@ -109,7 +109,8 @@ pub struct OperatorStatus {
     #[serde(flatten)]
     pub record: OperatorRecord,
     /// `current` (the mesh file is there with the stored SHA-256), `stale` (it changed) or
-    /// `mesh absent` (a generated mesh not made on this machine: `verify mesh` remakes it).
+    /// `mesh absent` (neither at its stored path nor made from its `reproduce` parameters:
+    /// gmsh is needed for a generated mesh).
     pub status: String,
 }
 
@@ -131,13 +132,14 @@ pub fn load_records() -> Result<Vec<OperatorStatus>> {
     )?
     .into_iter()
     .map(|(file, record)| {
-        let mesh = root.join(&record.comparison.mesh);
-        let status = if !mesh.exists() {
-            "mesh absent".to_string()
-        } else if crate::mesh::provider::sha256_file(&mesh)? == record.comparison.mesh_sha256 {
-            "current".to_string()
-        } else {
-            "stale".to_string()
+        let status = match locate_mesh(&root, &record, &file) {
+            None => "mesh absent".to_string(),
+            Some(mesh)
+                if crate::mesh::provider::sha256_file(&mesh)? == record.comparison.mesh_sha256 =>
+            {
+                "current".to_string()
+            }
+            Some(_) => "stale".to_string(),
         };
         Ok(OperatorStatus {
             file,
@@ -146,6 +148,30 @@ pub fn load_records() -> Result<Vec<OperatorStatus>> {
         })
     })
     .collect()
+}
+
+/// A record's mesh: at its stored path, else made (or found in the cache) by gmsh from the
+/// `--mesh-parameters` of its `reproduce` command. A generated mesh's cache name follows the
+/// geometry file's bytes, so a stored cache path goes stale when that file changes while the
+/// mesh it named (its SHA-256, which the caller checks) is made again unchanged. `None` when
+/// neither is there (no parameters, or gmsh is not installed or fails).
+fn locate_mesh(root: &Path, record: &OperatorRecord, file: &str) -> Option<std::path::PathBuf> {
+    let stored = root.join(&record.comparison.mesh);
+    if stored.exists() {
+        return Some(stored);
+    }
+    let parameters = mesh_parameters_of(&record.reproduce)?;
+    let why = format!("FEniCSx operator comparison {file}");
+    crate::mesh::provider::generate(&parameters, &why)
+        .ok()
+        .map(|made| made.path)
+}
+
+/// The `NAME=VALUE,...` after `--mesh-parameters` in a `reproduce` command, parsed.
+fn mesh_parameters_of(reproduce: &str) -> Option<Vec<(String, f64)>> {
+    let mut words = reproduce.split_whitespace();
+    words.find(|word| *word == "--mesh-parameters")?;
+    crate::mesh::provider::parse_parameters(words.next()?).ok()
 }
 
 /// Stored comparisons that are current and above the goal (1 when there are none: nothing was
@@ -300,4 +326,24 @@ pub fn compare_operator(mesh: &Path, degree: Degree, dir: &Path) -> Result<Opera
         load_difference: load_difference / load_largest,
         position_difference,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::mesh_parameters_of;
+
+    #[test]
+    fn a_records_mesh_parameters_are_read_from_its_reproduce_command() {
+        let reproduce = "python3 scripts/fenicsx/operators.py --mesh-parameters \
+                         a=1,b=0.3,R=1e7,hmin=1e-8 --degree 2";
+        let parameters = mesh_parameters_of(reproduce).unwrap();
+        let names: Vec<&str> = parameters.iter().map(|(n, _)| n.as_str()).collect();
+        assert_eq!(names, ["a", "b", "R", "hmin"]);
+        assert_eq!(parameters[1].1, 0.3);
+        assert_eq!(parameters[3].1, 1e-8);
+        // A committed mesh's record names a path, no parameters.
+        let committed = "python3 scripts/fenicsx/operators.py --mesh meshes/disk-L0.msh --degree 1";
+        assert!(mesh_parameters_of(committed).is_none());
+        assert!(mesh_parameters_of("operators.py --mesh-parameters").is_none());
+    }
 }

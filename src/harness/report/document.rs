@@ -718,10 +718,23 @@ pub fn headline(
             .sum::<usize>()
         + crate::harness::studies::speed_accuracy::unbounded_estimates(&extras.speed_accuracy);
     let mut not_run = Vec::new();
-    let need_gmsh = fenicsx.len() - fenicsx_compared + operators.len() - operators_compared
-        + comparison.fem_not_run;
+    // An operator comparison whose generated mesh could not be found or made is not run: for
+    // want of gmsh, or (with gmsh) because its record names no parameters or gmsh failed.
+    let operators_absent = operators.len() - operators_compared;
+    let gmsh = crate::fem::gmsh_found();
+    let need_gmsh = fenicsx.len() - fenicsx_compared
+        + comparison.fem_not_run
+        + if gmsh { 0 } else { operators_absent };
     if need_gmsh > 0 {
         not_run.push((need_gmsh, "need gmsh (bash scripts/install_gmsh.sh)".into()));
+    }
+    if gmsh && operators_absent > 0 {
+        not_run.push((
+            operators_absent,
+            "operator comparisons whose mesh is neither at its stored path nor made from its \
+             record's `reproduce` parameters"
+                .into(),
+        ));
     }
     Headline {
         checks: groups.iter().map(|(_, n)| n).sum(),
