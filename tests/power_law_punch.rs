@@ -109,6 +109,38 @@ fn full_contact_follows_the_closed_form_within_the_estimate() {
     }
 }
 
+/// Under a prescribed force past closure the depth follows from the same closed form,
+/// `γ1 = γ2 + 1 - κ_n/(n + 1)`. The ring BEM finds it from its own forces at two depths in full
+/// contact; for odd and fractional `n` it once took them at `d = 0` and `h`, tensile states whose
+/// algebraic convergence stopped `n = 3` under `γ2 = 2.25` at an estimate of 1.1e-7 (N = 80).
+#[test]
+fn full_contact_under_a_force_follows_the_closed_form_within_the_estimate() {
+    let solver = RingBemSolver::new();
+    // The tolerances of the depth-controlled test above (the odd and fractional n's algebraic
+    // convergence), and 1e-9 for the state that was refused.
+    let cases = [
+        (3.0, 2.25, 1e-9),
+        (3.0, 5.0, 1e-8),
+        (2.5, 3.0, 1e-8),
+        (1.5, 6.0, 1e-6),
+        (4.0, 2.5, 1e-11),
+    ];
+    for (n, gamma2, tol) in cases {
+        let state = solver
+            .concave_at_force(power(n), gamma2, tol)
+            .unwrap_or_else(|e| panic!("n = {n}, γ2 = {gamma2}: {e}"));
+        let exact = power_law::full_contact_gamma1(n, gamma2)
+            .unwrap_or_else(|| panic!("n = {n}, γ2 = {gamma2} is short of full contact"));
+        let error = relative(state.gamma1.unwrap(), exact);
+        assert_eq!(state.eps, 0.0, "n = {n}, γ2 = {gamma2}: not full contact");
+        assert!(
+            error <= state.error_estimate.max(1e-13) && error <= tol,
+            "n = {n}, γ2 = {gamma2}: depth error {error:.2e}, estimate {:.2e}",
+            state.error_estimate
+        );
+    }
+}
+
 /// The closure depth `d_c` separates the two regimes: just past it the disk solution is
 /// compressive everywhere, just before it (for `n > 2`, where the pressure first fails off the
 /// axis) the state is a disk and an annulus, which the ring BEM refuses by name rather than

@@ -878,8 +878,12 @@ impl RingBemSolver {
         let gamma2 = |d: f64| -> Result<f64> {
             Ok(0.5 * self.full_contact_disk(kind, d, tolerance)?.0 .1.force)
         };
-        let (at_zero, at_one) = (gamma2(0.0)?, gamma2(1.0)?);
-        let depth = (target - at_zero) / (at_one - at_zero);
+        // γ2 is linear in the depth: the line through two states in full contact, at closure
+        // and h deeper. (Through d = 0 and h, tensile states, the power law n = 3 stopped at an
+        // estimate of 1.1e-7 at N = 80, where its compressive states meet 1e-9 at N = 40.)
+        let closed = closure(kind).map_or(0.0, |(depth, _)| depth);
+        let (at_closure, deeper) = (gamma2(closed)?, gamma2(closed + 1.0)?);
+        let depth = closed + (target - at_closure) / (deeper - at_closure);
         let mut state = self.full_contact(kind, depth, tolerance)?;
         state.solves += 4;
         Ok(state)
