@@ -651,14 +651,7 @@ impl RingBemSolver {
         // The first search runs on a cheap rung whatever the guess (a fit's start can be far off,
         // and a search on many nodes from there pays for every step); its root then says which
         // rung the contact ratio needs.
-        let needed = starting_rung(guess);
-        let mut rung = needed.min(FIRST_SEARCH_RUNG);
-        // Where the guess already needs a finer rung, the first search only scouts: its root,
-        // to SCOUT_TOLERANCE, starts the finer rung's search, and no estimate is made on it.
-        // Not for the torus, whose direct solve carries its Jacobian from rung to rung: after a
-        // loose first solve, d/h = 100 climbed to N = 64 (62 factorisations, 0.15 s) where it
-        // had stopped at N = 40 (81, 0.09 s).
-        let mut scouting = needed > rung && kind != PunchKind::Torus;
+        let mut rung = starting_rung(guess).min(FIRST_SEARCH_RUNG);
         let mut outer_guess = None;
         // From the second rung on, the search starts at the previous rung's root with its
         // slope (the torus: its Jacobian), so it takes Newton's step at once.
@@ -668,11 +661,6 @@ impl RingBemSolver {
         let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
-            let x_tol = if scouting {
-                SCOUT_TOLERANCE.max(0.01 * tolerance)
-            } else {
-                0.01 * tolerance
-            };
             // The torus: both edges at once where Newton's method converges (a fraction of
             // the nested search's bands), the nested search otherwise.
             let direct = (kind == PunchKind::Torus)
@@ -716,21 +704,13 @@ impl RingBemSolver {
                     MAX_CONTACT_RATIO,
                     guess,
                     slope_hint,
-                    x_tol,
+                    0.01 * tolerance,
                     60,
                 ),
             }
             .map_err(|e| inverse_error(e, kind, target, controlled))?;
             solves += root.evaluations;
             let eps = root.x;
-            if scouting {
-                scouting = false;
-                slope_hint = root.slope.is_finite().then_some(root.slope);
-                outer_guess = history.last().map(|(_, s)| s.system.region().outer());
-                guess = eps;
-                rung = (rung + 1).max(starting_rung(eps));
-                continue;
-            }
             let neighbour = history
                 .iter()
                 .filter(|(at, _)| *at != eps)
@@ -1106,10 +1086,6 @@ const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
 /// The rung of the inverse problem's first search (N = 16): a state that needs more nodes
 /// climbs from its root.
 const FIRST_SEARCH_RUNG: usize = 1;
-
-/// How closely (in `eps`) a first search that only scouts for a finer rung locates its root:
-/// the finer rung's Newton step from there lands within about its square.
-const SCOUT_TOLERANCE: f64 = 1e-6;
 
 /// Starting contact ratio for the inverse problem. The paper's fits are used only to start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.
