@@ -38,6 +38,40 @@ fn median_ms_of(repeats: usize, mut f: impl FnMut() -> RingState) -> (f64, f64, 
     (times[repeats / 2], times[0], times[repeats - 1], last)
 }
 
+/// Time one state under depth (`depth`) or force control, print its row (with its `eps` when
+/// `show_eps`) and return its median in ms.
+fn time_inverse_state(
+    solver: &RingBemSolver,
+    kind: PunchKind,
+    depth: bool,
+    target: f64,
+    repeats: usize,
+    show_eps: bool,
+) -> f64 {
+    let (med, lo, hi, s) = median_ms_of(repeats, || {
+        if depth {
+            solver.concave_at_depth(kind, target, TOLERANCE)
+        } else {
+            solver.concave_at_force(kind, target, TOLERANCE)
+        }
+        .expect("state")
+    });
+    let control = if depth { "d/h" } else { "F/(2E*ha)" };
+    let eps = if show_eps {
+        format!(" (eps = {:.1e})", s.eps)
+    } else {
+        String::new()
+    };
+    println!(
+        "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
+        format!("{kind} {control} = {target}{eps}"),
+        s.unknowns,
+        s.solves,
+        s.error_estimate
+    );
+    med
+}
+
 fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
@@ -107,23 +141,8 @@ fn main() {
     ];
     for (kind, depth, targets) in states {
         for &target in &targets {
-            let (med, lo, hi, s) = median_ms(|| {
-                if depth {
-                    solver.concave_at_depth(kind, target, TOLERANCE)
-                } else {
-                    solver.concave_at_force(kind, target, TOLERANCE)
-                }
-                .expect("state")
-            });
+            let med = time_inverse_state(&solver, kind, depth, target, REPEATS, false);
             other_worst = other_worst.max(med);
-            let control = if depth { "d/h" } else { "F/(2E*ha)" };
-            println!(
-                "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
-                format!("{kind} {control} = {target}"),
-                s.unknowns,
-                s.solves,
-                s.error_estimate
-            );
         }
     }
     println!("\ndeep and nearly closed states, median of {DEEP_REPEATS} runs");
@@ -136,23 +155,8 @@ fn main() {
     ];
     for (kind, depth, targets) in deep {
         for &target in &targets {
-            let (med, lo, hi, s) = median_ms_of(DEEP_REPEATS, || {
-                if depth {
-                    solver.concave_at_depth(kind, target, TOLERANCE)
-                } else {
-                    solver.concave_at_force(kind, target, TOLERANCE)
-                }
-                .expect("state")
-            });
+            let med = time_inverse_state(&solver, kind, depth, target, DEEP_REPEATS, true);
             deep_worst = deep_worst.max(med);
-            let control = if depth { "d/h" } else { "F/(2E*ha)" };
-            println!(
-                "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
-                format!("{kind} {control} = {target} (eps = {:.1e})", s.eps),
-                s.unknowns,
-                s.solves,
-                s.error_estimate
-            );
         }
     }
     println!("\nworst median: flat annulus {flat_worst:.3} ms (target < 1 ms), depth-controlled concave {concave_worst:.3} ms (target < 5 ms), power law and torus {other_worst:.3} ms (target <= 10 ms), deep and nearly closed states {deep_worst:.3} ms (target <= 10 ms)");

@@ -981,12 +981,9 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
                 String::new()
             },
             match (closure(kind), f_lo < 0.0) {
-                (Some((depth, _)), true) if flatter_than_the_sphere(kind) => format!(
-                    "; a profile flatter than the sphere at the axis (n > 2) touches the floor \
-                     of its hole before the ring closes: up to full contact at d = {} h the \
-                     contact is a disk and an annulus, which the ring BEM does not model",
-                    crate::error::show(depth)
-                ),
+                (Some((depth, _)), true) if flatter_than_the_sphere(kind) => {
+                    floor_touch_note("up to", depth, "is")
+                }
                 (None, true) => format!(
                     "; the {}'s contact closes only as d -> infinity",
                     kind.name()
@@ -1003,12 +1000,9 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
             match closure(kind) {
                 // Measured: the power law n = 3 under F = 4 E* h a (full contact from d = 2.44 h) ran
                 // 60 solves between annuli that all touch the floor.
-                Some((depth, _)) if flatter_than_the_sphere(kind) => format!(
-                    "; a profile flatter than the sphere at the axis (n > 2) touches the floor \
-                     of its hole before the ring closes: short of full contact at d = {} h the \
-                     contact can be a disk and an annulus, which the ring BEM does not model",
-                    crate::error::show(depth)
-                ),
+                Some((depth, _)) if flatter_than_the_sphere(kind) => {
+                    floor_touch_note("short of", depth, "can be")
+                }
                 _ => String::new(),
             }
         )),
@@ -1034,6 +1028,17 @@ fn closure(kind: PunchKind) -> Option<(f64, f64)> {
         }
         _ => None,
     }
+}
+
+/// Why a profile flatter than the sphere at the axis has no annulus state `where_` (`up to`,
+/// `short of`) full contact at `d = depth h`: its contact `is` or `can be` a disk and an annulus.
+fn floor_touch_note(where_: &str, depth: f64, is: &str) -> String {
+    format!(
+        "; a profile flatter than the sphere at the axis (n > 2) touches the floor of its hole \
+         before the ring closes: {where_} full contact at d = {} h the contact {is} a disk and \
+         an annulus, which the ring BEM does not model",
+        crate::error::show(depth)
+    )
 }
 
 /// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`):
