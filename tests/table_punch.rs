@@ -264,30 +264,54 @@ fn a_scene_file_reads_its_profile_beside_itself() {
 }
 
 /// JKR of a table (`verify jkr --punch table`): the sampled sphere's fixed-load pull-off tends to
-/// the sphere's as the table is refined (at least the interpolant's second order per halving of
-/// the spacing), and a fresh solve of each critical state meets the Griffith condition at its
-/// inner edge (the band of the table solved directly, not through the branch formulas).
+/// the sphere's as the table is refined, and a fresh solve of each critical state meets the
+/// Griffith condition at its inner edge (the band of the table solved directly, not through the
+/// branch formulas). At `d0/h = 1` the error falls at least as the interpolant's second order per
+/// halving of the spacing; under weak adhesion (`d0/h` = 0.1 to 0.42) the pull-off ring is
+/// narrow and sits at the rim, where it feels the profile's curvature, which a `C¹` interpolant
+/// converges at first order only (measured: 2.1x per halving at `d0/h = 0.1`). There the
+/// table's force against the contact ratio has extra local extrema (the interpolant's curvature
+/// steps at its points): the pull-off is the lowest force after unloading starts, not the first
+/// local minimum, which is a jump to a narrower ring at the same force (a compressive "pull-off"
+/// of `+22 F0` at `d0/h = 0.1` before that was understood).
 #[test]
 fn the_jkr_pulloff_of_a_sampled_sphere_tends_to_the_spheres() {
     let dir = scratch("jkr");
     let solver = RingBemSolver::new();
-    let sphere = ringcontact::adhesion::concave(&solver, PunchKind::Sphere, 1.0).unwrap();
-    let reference = sphere.fixed_load.unwrap().force;
-    let mut errors = Vec::new();
+    let scales = [0.1, 0.178, 0.422, 1.0];
+    let sphere = ringcontact::adhesion::ConcaveBranch::new(&solver, PunchKind::Sphere).unwrap();
+    let references: Vec<f64> = scales
+        .iter()
+        .map(|&s| sphere.jkr(s).unwrap().fixed_load.unwrap().force)
+        .collect();
+    let mut errors = vec![Vec::new(); scales.len()];
     for points in [11, 21, 41] {
         let path = sphere_table(&dir, points);
         let kind = PunchName::Table.with_parameters(None, Some(&path)).unwrap();
-        let jkr = ringcontact::adhesion::concave(&solver, kind, 1.0).unwrap();
-        let ratio = jkr.direct_inner_energy_ratio.unwrap();
-        assert!(
-            (ratio - 1.0).abs() < 1e-8,
-            "{points} points: G/Δw = {ratio}"
-        );
-        let error = (jkr.fixed_load.unwrap().force - reference).abs();
-        eprintln!("{points} points: pull-off off by {error:.2e}");
-        errors.push(error);
+        let branch = ringcontact::adhesion::ConcaveBranch::new(&solver, kind).unwrap();
+        for (k, &s) in scales.iter().enumerate() {
+            let jkr = branch.jkr(s).unwrap();
+            let ratio = jkr.direct_inner_energy_ratio.unwrap();
+            assert!(
+                (ratio - 1.0).abs() < 1e-8,
+                "{points} points, d0/h = {s}: G/Δw = {ratio}"
+            );
+            let critical = jkr.fixed_load.unwrap();
+            let error = (critical.force - references[k]).abs();
+            eprintln!("{points} points, d0/h = {s}: pull-off off by {error:.2e}");
+            assert!(
+                error < 1e-3 * references[k].abs(),
+                "{points} points, d0/h = {s}: F/F0 = {} against the sphere's {}",
+                critical.force,
+                references[k]
+            );
+            errors[k].push(error);
+        }
     }
-    for pair in errors.windows(2) {
-        assert!(pair[0] / pair[1] > 4.0, "{errors:?}");
+    for (k, &s) in scales.iter().enumerate() {
+        let order = if s >= 1.0 { 4.0 } else { 1.5 };
+        for pair in errors[k].windows(2) {
+            assert!(pair[0] / pair[1] > order, "d0/h = {s}: {:?}", errors[k]);
+        }
     }
 }

@@ -246,8 +246,13 @@ fn scan_ratios() -> Vec<f64> {
 /// `eps`, or why there is none.
 type AnnularOutcome = std::result::Result<(Critical, (f64, f64), f64), String>;
 
-/// Pull-off on the annular branch for one quantity (`F/F0` or `d/h`): the stable part runs from
-/// the maximum to the following minimum; unloading along it, the rim may fail first.
+/// Pull-off on the annular branch for one quantity `q` (`F/F0` or `d/h`). Unloading starts at
+/// the first interior maximum of `q` against `eps` and follows the branch while `q` falls. At a
+/// local minimum the state is unstable: where a later part of the branch reaches lower values,
+/// the contact jumps (a narrower ring at the same `q`) and unloading goes on there, so the
+/// pull-off is the lowest `q` after the maximum (the only minimum for the cone, the sphere and
+/// the power laws; a tabulated profile's curvature steps at its points can add others). The
+/// path visits the ratios where `q` is at its running minimum; the rim may fail first on them.
 fn annular_pulloff(
     branch: &ConcaveBranch,
     s: f64,
@@ -256,7 +261,6 @@ fn annular_pulloff(
 ) -> Result<AnnularOutcome> {
     let points = &branch.scan;
     let values: Vec<f64> = points.iter().map(|p| value(p, s)).collect();
-    // Interior maximum, then the first interior minimum after it.
     let Some(max_k) =
         (1..values.len() - 1).find(|&k| values[k] >= values[k - 1] && values[k] >= values[k + 1])
     else {
@@ -264,25 +268,38 @@ fn annular_pulloff(
             "no stable annular branch in 0.004 <= eps <= 0.9999".into()
         ));
     };
-    let Some(min_k) = (max_k + 1..values.len() - 1)
-        .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
-    else {
+    // The lowest value after the maximum (the first of equal ones).
+    let min_k =
+        (max_k + 1..values.len()).fold(max_k, |m, k| if values[k] < values[m] { k } else { m });
+    if min_k + 1 >= values.len() || min_k == max_k {
         return Ok(Err(format!(
             "the stable branch runs beyond eps = {:.4} (the ring BEM's limit): pull-off from a ring narrower than 1e-4 a, with |F|/F0 below {:.2e}",
             points[points.len() - 1].eps,
             value(&points[points.len() - 1], s).abs()
         )));
-    };
+    }
+    // The unloading path: the ratios at the running minimum from the maximum on.
+    let mut visited = vec![false; values.len()];
+    let mut lowest = f64::INFINITY;
+    for k in max_k..=min_k {
+        if values[k] <= lowest {
+            lowest = values[k];
+            visited[k] = true;
+        }
+    }
     let eval = |e: f64| -> Result<f64> { Ok(value(&branch.at(e)?, s)) };
-    let bracket = (points[min_k - 1].eps, points[min_k + 1].eps);
-    let (eps_min, _) = minimum_in(eval, bracket.0, bracket.1)?;
-    let (eps_min, min_located_to) = stationary_point(eval, eps_min, bracket.0, bracket.1)?;
+    let minimum_near = |k: usize| -> Result<(f64, f64)> {
+        let bracket = (points[k - 1].eps, points[k + 1].eps);
+        let (eps_min, _) = minimum_in(eval, bracket.0, bracket.1)?;
+        stationary_point(eval, eps_min, bracket.0, bracket.1)
+    };
+    let (eps_min, min_located_to) = minimum_near(min_k)?;
     let (eps_max, _) = minimum_in(
         |e| Ok(-eval(e)?),
         points[max_k - 1].eps,
         points[max_k + 1].eps,
     )?;
-    // Rim along the stable branch (unloading: eps grows from eps_max to eps_min).
+    // Rim along the path (unloading: eps grows from eps_max to eps_min).
     let rim_margin = |e: f64| -> Result<f64> { Ok(branch.at(e)?.rim_intensity(s) + 1.0) };
     let mut critical_eps = eps_min;
     let mut located_to = min_located_to;
@@ -292,18 +309,32 @@ fn annular_pulloff(
             "the rim is already detached at the start of the stable branch (eps = {eps_max:.4}): no annular state with the rim attached"
         )));
     }
-    let rim_fails = (max_k..=min_k).find(|&k| points[k].rim_intensity(s) + 1.0 < 0.0);
+    let rim_fails = (max_k..=min_k).find(|&k| visited[k] && points[k].rim_intensity(s) + 1.0 < 0.0);
     if let Some(k) = rim_fails.filter(|_| check_rim) {
-        let lo = if k > max_k {
-            points[k - 1].eps.max(eps_max)
-        } else {
-            eps_max
-        };
-        let e = bisect(rim_margin, lo, points[k].eps.min(eps_min))?;
-        if e < eps_min {
+        if k > max_k && !visited[k - 1] {
+            // The rim fails on landing from a jump: the pull-off is the minimum the jump
+            // starts from, the last ratio visited before it.
+            let start = (max_k..k)
+                .rev()
+                .find(|&j| visited[j])
+                .unwrap_or(max_k)
+                .max(1);
+            let (e, at) = minimum_near(start)?;
             critical_eps = e;
-            located_to = LOCATION_TOLERANCE;
-            edge = "rim";
+            located_to = at;
+            edge = "inner (the rim fails on the jump)";
+        } else {
+            let lo = if k > max_k {
+                points[k - 1].eps.max(eps_max)
+            } else {
+                eps_max
+            };
+            let e = bisect(rim_margin, lo, points[k].eps.min(eps_min))?;
+            if e < eps_min {
+                critical_eps = e;
+                located_to = LOCATION_TOLERANCE;
+                edge = "rim";
+            }
         }
     }
     let p = branch.at(critical_eps)?;
