@@ -301,10 +301,15 @@ impl PunchKind {
         }
     }
 
-    /// The punch of a [`label`](Self::label) (`cone`, `power-n2.5`), if it names one.
+    /// The punch of a [`label`](Self::label) (`cone`, `power-n2.5`), if it names one. A table
+    /// punch's label (`table-` and the first 12 hex digits of its file's SHA-256) names it only
+    /// once this process has loaded that table ([`TableProfile::loaded`]).
     pub fn from_label(label: &str) -> Option<PunchKind> {
         if let Some(n) = label.strip_prefix("power-n") {
             return Exponent::new(n.parse().ok()?).ok().map(PunchKind::Power);
+        }
+        if let Some(prefix) = label.strip_prefix("table-") {
+            return TableProfile::loaded(prefix).map(PunchKind::from_table);
         }
         let name = <PunchName as clap::ValueEnum>::from_str(label, false).ok()?;
         name.with_exponent(None).ok()
@@ -326,6 +331,11 @@ impl PunchKind {
             PunchKind::Power(n) => Some(n.value()),
             _ => None,
         }
+    }
+
+    /// The table punch of a loaded profile.
+    pub fn from_table(profile: &'static TableProfile) -> PunchKind {
+        PunchKind::Table(TableRef(profile))
     }
 
     /// The table punch's profile (`None` for the other shapes).

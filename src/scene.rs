@@ -195,10 +195,13 @@ impl SceneSpec {
         self
     }
 
-    /// Set the punch shape (with the power law's exponent).
+    /// Set the punch shape (with the power law's exponent and the table's profile file).
     pub fn shape(mut self, kind: PunchKind) -> Self {
         self.punch.shape = Some(kind.shape_name());
         self.punch.exponent = kind.exponent();
+        if let Some(table) = kind.table() {
+            self = self.profile(std::path::Path::new(table.source()));
+        }
         self
     }
 

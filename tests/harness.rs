@@ -129,8 +129,36 @@ fn the_default_run_writes_a_report_directory() {
     ] {
         assert!(dir.join(file).exists(), "missing {file}");
     }
+    // Every chart the report shows is written, the table punch's among them (its label is its
+    // profile's hash: `verify/profiles/sphere-21.csv`).
+    let markdown = std::fs::read_to_string(dir.join("report.md")).unwrap();
+    for chart in markdown.split("![](").skip(1) {
+        let name = &chart[..chart.find(')').unwrap()];
+        assert!(
+            dir.join(name).exists(),
+            "the report shows {name}, not written"
+        );
+    }
+    for prefix in ["gammas-table-", "pulloff-table-"] {
+        assert!(
+            markdown.contains(&format!("![]({prefix}")),
+            "no {prefix}* chart in the report"
+        );
+    }
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    // The table's checks against the sphere it samples are counted, and pass.
+    let table_checks: Vec<&serde_json::Value> = json["comparison"]["identities"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|c| c["name"].as_str().unwrap().starts_with("table ("))
+        .collect();
+    assert_eq!(table_checks.len(), 3, "{table_checks:?}");
+    assert!(
+        table_checks.iter().all(|c| c["passed"] == true),
+        "{table_checks:?}"
+    );
     let points = json["extras"]["speed_accuracy"][0]["points"]
         .as_array()
         .unwrap();

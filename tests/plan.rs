@@ -217,6 +217,8 @@ fn malformed_ids_and_plans_are_refused_with_the_reason() {
         ),
         ("nonsense", "unknown kind"),
         ("pulloff:plate:d0h=1", "no punch"),
+        // A job names a table by its hash: only the report's own table can be one.
+        ("adhesion:table-000000000000", "must be the report's"),
         (
             "comparison:tol=0.000001",
             "write it as `comparison:tol=1e-6`",

@@ -83,6 +83,22 @@ impl TableProfile {
         &self.source
     }
 
+    /// The table loaded in this process whose SHA-256 (hex) begins with `prefix`, if exactly one
+    /// does and the prefix has at least 12 digits (a [`PunchKind`](crate::punch::PunchKind)
+    /// label's).
+    pub fn loaded(prefix: &str) -> Option<&'static TableProfile> {
+        if prefix.len() < 12 {
+            return None;
+        }
+        let map = registry().lock().ok()?;
+        let mut matches = map
+            .iter()
+            .filter(|(sha, _)| sha.starts_with(prefix))
+            .map(|(_, t)| *t);
+        let first = matches.next()?;
+        matches.next().is_none().then_some(first)
+    }
+
     /// SHA-256 of the file, hex (the table's identity and provenance).
     pub fn sha256(&self) -> &str {
         &self.sha256

@@ -26,6 +26,7 @@ use crate::harness::studies::comparison::ComparisonReport;
 use crate::harness::studies::convergence;
 use crate::harness::studies::figures::{
     concave_ratios, flat_ratios, ConcaveCurves, FunctionCurves, Points, PressureProfiles,
+    REPORT_TABLE_SAMPLES,
 };
 use crate::punch::PunchKind;
 use crate::reference::paper_fits;
@@ -313,10 +314,23 @@ fn function_charts(
             .filter(|f| f.punch == kind && f.fem_eps > 0.0)
             .map(|f| (f.fem_eps, f.fem_value))
             .collect();
-        let mut lines = vec![
-            series("gamma1 ring BEM", c.gamma1.clone()),
-            series("gamma2 ring BEM", c.gamma2.clone()),
-        ];
+        // The report's table samples another punch's profile: that punch's curves under its
+        // own (drawn first, so that the table's stay visible where they coincide).
+        let mut lines = Vec::new();
+        if matches!(kind, PunchKind::Table(_)) {
+            let sampled = REPORT_TABLE_SAMPLES;
+            if let Some(s) = curves.concave.iter().find(|s| s.punch == sampled) {
+                lines.push(series(&format!("gamma1 {sampled}"), s.gamma1.clone()));
+                lines.push(series(&format!("gamma2 {sampled}"), s.gamma2.clone()));
+            }
+            write(
+                dir,
+                &format!("gammas-{}-difference.svg", kind.label()),
+                &table_difference_chart(c),
+            )?;
+        }
+        lines.push(series("gamma1 ring BEM", c.gamma1.clone()));
+        lines.push(series("gamma2 ring BEM", c.gamma2.clone()));
         // The paper fitted the cone and the sphere only.
         if matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
             lines.push(series("gamma1 paper fit", fit(1)));
@@ -325,7 +339,10 @@ fn function_charts(
         lines.push(series("gamma2 FEM P2", fem));
         // Markers: the FEM's one or two states stay visible.
         let chart = crate::harness::report::svg::linear_chart_with_markers(
-            &format!("{kind}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a"),
+            &format!(
+                "{}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a",
+                chart_name(kind)
+            ),
             "eps = b/a",
             "gamma1, gamma2",
             &lines,
@@ -333,6 +350,58 @@ fn function_charts(
         write(dir, &format!("gammas-{}.svg", kind.label()), &chart)?;
     }
     Ok(())
+}
+
+/// A punch as a chart's title names it: a table by its file's name (its path is in the text).
+fn chart_name(kind: PunchKind) -> String {
+    match kind.table() {
+        Some(t) => format!(
+            "table {}",
+            Path::new(t.source())
+                .file_name()
+                .map_or_else(|| t.source().into(), |n| n.to_string_lossy())
+        ),
+        None => kind.to_string(),
+    }
+}
+
+/// The report's table against the punch it samples at the same depth (log-log): `|Δgamma2|`
+/// against `d/h`, under its bound, the largest difference of the two gaps `g/h` (the contact
+/// problem is monotone in the gap, `figures::largest_gap_difference`).
+fn table_difference_chart(c: &ConcaveCurves) -> String {
+    let sampled = REPORT_TABLE_SAMPLES;
+    let difference: Points = c
+        .gamma2
+        .iter()
+        .zip(&c.sampled_at_depth)
+        .map(|(&(_, table), &(depth, reference))| (depth, (table - reference).abs()))
+        .collect();
+    let depths = || difference.iter().map(|p| p.0);
+    let (low, high) = (
+        depths().fold(f64::INFINITY, f64::min),
+        depths().fold(0.0, f64::max),
+    );
+    let mut lines = vec![Series {
+        name: format!("|gamma2 - {sampled}'s|"),
+        points: difference.clone(),
+        bars: Vec::new(),
+    }];
+    if let Some(bound) = c.gap_difference {
+        lines.push(Series {
+            name: "bound: max |Δg|/h".into(),
+            points: vec![(low, bound), (high, bound)],
+            bars: Vec::new(),
+        });
+    }
+    log_log_chart(
+        &format!(
+            "{} against the {sampled} it samples, at the same depth",
+            chart_name(c.punch)
+        ),
+        "d/h",
+        "|gamma2 difference|",
+        &lines,
+    )
 }
 
 /// The torus against its depth `d/h` (log-log): the force `gamma2 = F/(2 E* h a)` by the ring
@@ -495,12 +564,29 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
     ];
     // The paper fitted the cone and the sphere only, the torus has no full contact and only the
     // torus shows fixed grips and its narrow-band asymptote: no empty legend entries.
-    let series: Vec<Series> = series
+    let mut series: Vec<Series> = series
         .into_iter()
         .filter(|s| !s.points.is_empty())
         .collect();
+    // The report's table samples another punch's profile: that punch's fixed-load pull-off,
+    // drawn first (the table's stays visible where they coincide).
+    if matches!(kind, PunchKind::Table(_)) {
+        let sampled = REPORT_TABLE_SAMPLES;
+        series.insert(
+            0,
+            Series {
+                name: format!("{sampled}, fixed load"),
+                points: points
+                    .iter()
+                    .filter(|p| p.punch == sampled.label())
+                    .filter_map(|p| p.fixed_load.map(|v| (p.d0_over_h, v)))
+                    .collect(),
+                bars: Vec::new(),
+            },
+        );
+    }
     log_log_chart(
-        &format!("{kind}: pull-off / F0 against d0/h"),
+        &format!("{}: pull-off / F0 against d0/h", chart_name(kind)),
         "d0/h",
         "-F/F0",
         &series,
@@ -805,6 +891,17 @@ fn markdown(
                small copy committed in `verify/dataset/`). `verify dataset` writes the full \
                grids, which interpolate to 1e-8.\n\n";
     }
-    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n![](gammas-cone.svg)\n![](gammas-sphere.svg)\n![](gammas-power-n1.5.svg)\n![](gammas-power-n3.svg)\n![](gammas-torus.svg)\n![](pressure-sphere.svg)\n![](pulloff-cone.svg)\n![](pulloff-sphere.svg)\n![](pulloff-power-n1.5.svg)\n![](pulloff-power-n3.svg)\n![](pulloff-torus.svg)\n";
+    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n";
+    let punches = crate::harness::studies::figures::report_profile_punches();
+    for kind in &punches {
+        let _ = writeln!(md, "![](gammas-{}.svg)", kind.label());
+        if kind.table().is_some() {
+            let _ = writeln!(md, "![](gammas-{}-difference.svg)", kind.label());
+        }
+    }
+    md += "![](pressure-sphere.svg)\n";
+    for kind in &punches {
+        let _ = writeln!(md, "![](pulloff-{}.svg)", kind.label());
+    }
     md
 }

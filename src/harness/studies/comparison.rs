@@ -10,6 +10,7 @@ use std::time::Instant;
 
 use serde::Serialize;
 
+use super::figures;
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
 use crate::fem::FemLoad;
@@ -195,6 +196,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
     identities.extend(power_law_checks(&solver, tolerance)?);
     identities.extend(torus_free_edge_checks(&solver, tolerance)?);
+    identities.extend(table_punch_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
     let fem_not_run = if crate::fem::gmsh_found() {
         0
@@ -233,12 +235,14 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
         (power(1.5), 0.0, FemLoad::ConcaveDepth(2.0)),
         (power(3.0), 0.0, FemLoad::ConcaveDepth(2.0)),
     ];
+    // The report's table punch on the committed meshes, where the checkout has its file.
+    let table = figures::report_table_punch().map(|kind| (kind, 0.0, FemLoad::ConcaveDepth(1.5)));
     // The torus's meshes are made for the scene (gmsh): without it these are not run (counted).
     let torus = TORUS_FEM_DEPTHS
         .iter()
         .filter(|_| crate::fem::gmsh_found())
         .map(|&d| (PunchKind::Torus, 0.0, FemLoad::ConcaveDepth(d)));
-    for (kind, eps, load) in cases.into_iter().chain(torus) {
+    for (kind, eps, load) in cases.into_iter().chain(table).chain(torus) {
         let scene = super::scene_of_fem_load(kind, eps, load, None)?;
         let fem = methods::solve_with(&scene, Method::Fem, &options)?;
         // A FEM solution always carries its model's part.
@@ -465,6 +469,41 @@ fn torus_free_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<
             relative_residual: residual,
             tolerance: allowed,
             passed: residual <= allowed,
+        });
+    }
+    Ok(checks)
+}
+
+/// Depths `d/h` at which the report's table punch is checked against the punch it samples.
+const TABLE_CHECK_DEPTHS: [f64; 3] = [0.5, 1.5, 2.5];
+
+/// The report's table punch ([`figures::report_table_punch`], the sphere's profile at 21 points)
+/// against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest difference of the
+/// two gaps `g/h` (the contact problem is monotone in the gap,
+/// [`figures::largest_gap_difference`]). None where the checkout has no table file.
+fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+    let Some(table) = figures::report_table_punch() else {
+        return Ok(Vec::new());
+    };
+    let sampled = figures::REPORT_TABLE_SAMPLES;
+    let delta = figures::largest_gap_difference(table, sampled);
+    let mut checks = Vec::new();
+    for depth in TABLE_CHECK_DEPTHS {
+        let state = solver.concave_at_depth(table, depth, tolerance)?;
+        let reference = solver.concave_at_depth(sampled, depth, tolerance)?;
+        let difference =
+            (state.gamma2.unwrap_or(f64::NAN) - reference.gamma2.unwrap_or(f64::NAN)).abs();
+        checks.push(IdentityCheck {
+            name: format!(
+                "table ({sampled} sampled, {}) at d = {depth}h: |gamma2 - {sampled}'s| <= largest gap difference (monotone contact)",
+                figures::REPORT_TABLE_FILE
+            ),
+            eps: state.eps,
+            lhs: difference,
+            rhs: delta,
+            relative_residual: difference / delta,
+            tolerance: 1.0,
+            passed: difference <= delta,
         });
     }
     Ok(checks)

@@ -11,7 +11,7 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::error::Result;
 use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::triangulation::Degree;
-use crate::punch::{Exponent, PunchKind};
+use crate::punch::{Exponent, PunchKind, TableProfile};
 
 /// A curve or a set of points `(x, y)`.
 pub(crate) type Points = Vec<(f64, f64)>;
@@ -26,9 +26,9 @@ pub(crate) fn concave_ratios() -> Vec<f64> {
     (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect()
 }
 
-/// The concave punches whose functions the report charts: the paper's cone and sphere and two
+/// The concave punches whose functions the report charts: the paper's cone and sphere, two
 /// power laws, `n = 1.5` (closes by a shrinking hole) and `n = 3` (closes from a disk and an
-/// annulus).
+/// annulus), and the table punch of [`REPORT_TABLE_FILE`] (where the checkout has it).
 pub(crate) fn report_concave_punches() -> Vec<PunchKind> {
     let power = |n: f64| Exponent::new(n).map(PunchKind::Power).ok();
     [
@@ -36,10 +36,31 @@ pub(crate) fn report_concave_punches() -> Vec<PunchKind> {
         Some(PunchKind::Sphere),
         power(1.5),
         power(3.0),
+        report_table_punch(),
     ]
     .into_iter()
     .flatten()
     .collect()
+}
+
+/// The report's table punch: the sphere's profile `g/h = 1 - (r/a)²` sampled at 21 points and
+/// interpolated (PCHIP), charted beside the sphere it samples ([`REPORT_TABLE_SAMPLES`]).
+pub(crate) const REPORT_TABLE_FILE: &str = "verify/profiles/sphere-21.csv";
+/// The punch whose profile [`REPORT_TABLE_FILE`] samples.
+pub(crate) const REPORT_TABLE_SAMPLES: PunchKind = PunchKind::Sphere;
+
+/// The table punch of [`REPORT_TABLE_FILE`], relative to the current directory when it is the
+/// project's root, else under the project's root; `None` where no checkout holds the file (the
+/// report then has no table chart). Loading it also lets a job id name it by its label
+/// (`table-<sha256 prefix>`, [`PunchKind::from_label`]).
+pub(crate) fn report_table_punch() -> Option<PunchKind> {
+    let relative = std::path::Path::new(REPORT_TABLE_FILE);
+    let path = if relative.is_file() {
+        relative.to_path_buf()
+    } else {
+        crate::mesh::files::project_root().join(relative)
+    };
+    TableProfile::load(&path).ok().map(PunchKind::from_table)
 }
 
 fn is_power(punch: PunchKind) -> bool {
@@ -56,6 +77,25 @@ pub(crate) struct ConcaveCurves {
     /// The outer edge `c/a` at the same `b/a` (the torus only; the others' is the rim).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outer: Points,
+    /// The report's table only: `(d/h, gamma2)` of the punch it samples
+    /// ([`REPORT_TABLE_SAMPLES`]) at the table's depths `gamma1`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub sampled_at_depth: Points,
+    /// The report's table only: the largest difference of its gap `g/h` from the sampled
+    /// punch's ([`largest_gap_difference`]), which bounds the difference of `gamma2` at one depth.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gap_difference: Option<f64>,
+}
+
+/// The largest difference of two punches' gaps `g/h` over `0 <= r/a <= 1`, sampled at 20 001
+/// radii. The contact problem is monotone in the gap: a profile within `δ h` of another's is
+/// pressed between that punch's states at depths `d ∓ δ h`, and the force's slope in the depth
+/// is at most the full disk's `2 E* a`, so their `gamma2` at one depth differ by at most `δ`.
+pub(crate) fn largest_gap_difference(one: PunchKind, other: PunchKind) -> f64 {
+    (0..=20_000)
+        .map(|k| k as f64 / 20_000.0)
+        .map(|rho| (one.gap_shape(rho) - other.gap_shape(rho)).abs())
+        .fold(0.0, f64::max)
 }
 
 /// The dimensionless functions against `eps` that the methods compute for the report's charts.
@@ -107,8 +147,9 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
             let s = match ring.concave_at_ratio(punch, e, 1e-10) {
                 Ok(s) => s,
                 // A power law flatter than the sphere is one annulus only for the wider holes
-                // (docs/conventions.md fact 8): its curve stops where the ring BEM refuses.
-                Err(_) if is_power(punch) => continue,
+                // (docs/conventions.md fact 8), and so is a table whose interpolant is flatter
+                // at the axis: the curve stops where the ring BEM refuses.
+                Err(_) if is_power(punch) || punch.table().is_some() => continue,
                 Err(e) => return Err(e),
             };
             gamma1.push((e, s.gamma1.unwrap_or(f64::NAN)));
@@ -117,11 +158,21 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
                 outer.push((e, s.outer_edge));
             }
         }
+        let (mut sampled_at_depth, mut gap_difference) = (Vec::new(), None);
+        if punch.table().is_some() {
+            for &(_, depth) in &gamma1 {
+                let s = ring.concave_at_depth(REPORT_TABLE_SAMPLES, depth, 1e-10)?;
+                sampled_at_depth.push((depth, s.gamma2.unwrap_or(f64::NAN)));
+            }
+            gap_difference = Some(largest_gap_difference(punch, REPORT_TABLE_SAMPLES));
+        }
         concave.push(ConcaveCurves {
             punch,
             gamma1,
             gamma2,
             outer,
+            sampled_at_depth,
+            gap_difference,
         });
     }
     let torus_grid_bem = TORUS_GRID_DEPTHS
