@@ -136,7 +136,7 @@ impl RingSystem {
                             panel.locate(&node, inner, outer, r);
                         let weight = edge_weight(region, from_inner, from_rim, s);
                         let c = node.weight * weight * ring_kernel(r, s, distance);
-                        nodes.basis_at(parameter_of(region, s), &mut basis);
+                        let c = c * nodes.scaled_basis_at(parameter_of(region, s), &mut basis);
                         for (acc, &l) in row.iter_mut().zip(&basis) {
                             *acc += c * l;
                         }

@@ -60,6 +60,33 @@ impl ChebyshevNodes {
         out.iter_mut().for_each(|v| *v *= inv);
     }
 
+    /// The unnormalised barycentric terms `w_j / (t - t_j)` into `out`, returning the factor
+    /// `1 / Σ_j w_j / (t - t_j)` that makes them the Lagrange basis `L_j(t)` of
+    /// [`Self::basis_at`]: a caller that scales the terms anyway saves the normalising pass, and
+    /// the loop has no branch and no running sum, so it vectorises. At a node (`t = t_j`), the
+    /// basis itself and the factor 1.
+    pub(crate) fn scaled_basis_at(&self, t: f64, out: &mut [f64]) -> f64 {
+        for ((o, &tj), &wj) in out.iter_mut().zip(&self.points).zip(&self.weights) {
+            *o = wj / (t - tj);
+        }
+        // Four partial sums: independent additions instead of one chain.
+        let mut partial = [0.0; 4];
+        let mut chunks = out.chunks_exact(4);
+        for c in &mut chunks {
+            for (p, &v) in partial.iter_mut().zip(c) {
+                *p += v;
+            }
+        }
+        let total = chunks.remainder().iter().sum::<f64>()
+            + ((partial[0] + partial[1]) + (partial[2] + partial[3]));
+        if total.is_finite() {
+            1.0 / total
+        } else {
+            self.basis_at(t, out);
+            1.0
+        }
+    }
+
     /// Interpolated value at `t` of the function with values `values` at the nodes:
     /// `Σ_j L_j(t) f_j` with the Lagrange basis of [`Self::basis_at`] (normalised before it
     /// multiplies the values, so values near the largest `f64` do not overflow, as the unnormalised
@@ -129,6 +156,23 @@ mod tests {
         nodes.basis_at(0.123, &mut basis);
         let sum: f64 = basis.iter().sum();
         assert!((sum - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn the_scaled_terms_times_their_factor_are_the_basis() {
+        let nodes = ChebyshevNodes::new(37);
+        let (mut basis, mut scaled) = (vec![0.0; 37], vec![0.0; 37]);
+        for t in [-1.0, -0.999, -0.3, 0.0, 0.123, 0.77, 1.0, nodes.points[5]] {
+            nodes.basis_at(t, &mut basis);
+            let factor = nodes.scaled_basis_at(t, &mut scaled);
+            for (l, s) in basis.iter().zip(&scaled) {
+                assert!(
+                    (l - factor * s).abs() < 1e-14,
+                    "t = {t}: {l} {}",
+                    factor * s
+                );
+            }
+        }
     }
 
     #[test]
