@@ -7,8 +7,9 @@
 //! Release build; the collocation rows are assembled on rayon's threads (`RAYON_NUM_THREADS`).
 //! Run: `cargo bench --bench ring_bem`.
 //!
-//! Prints the median and the spread of repeated solves, the unknowns and the factorisations per
-//! state, and the machine it ran on.
+//! Prints the median and the spread of repeated solves, the unknowns, the collocation systems
+//! assembled and factorised per solve (`RingBemSolver::factorisations`, every node count and
+//! every step of every edge search), and the machine it ran on.
 
 use std::hint::black_box;
 use std::time::Instant;
@@ -21,12 +22,28 @@ const REPEATS: usize = 31;
 /// Repeats of the deep states (each takes up to 0.2 s).
 const DEEP_REPEATS: usize = 7;
 
-fn median_ms(f: impl FnMut() -> RingState) -> (f64, f64, f64, RingState) {
-    median_ms_of(REPEATS, f)
+/// Median, fastest and slowest time (ms) of `repeats` solves, the last state, and the systems
+/// factorised by one solve.
+struct Timing {
+    median: f64,
+    fastest: f64,
+    slowest: f64,
+    state: RingState,
+    factorisations: usize,
 }
 
-fn median_ms_of(repeats: usize, mut f: impl FnMut() -> RingState) -> (f64, f64, f64, RingState) {
+fn median_ms(solver: &RingBemSolver, f: impl FnMut() -> RingState) -> Timing {
+    median_ms_of(solver, REPEATS, f)
+}
+
+fn median_ms_of(
+    solver: &RingBemSolver,
+    repeats: usize,
+    mut f: impl FnMut() -> RingState,
+) -> Timing {
+    let before = solver.factorisations();
     let mut last = f();
+    let factorisations = solver.factorisations() - before;
     let mut times: Vec<f64> = (0..repeats)
         .map(|_| {
             let start = Instant::now();
@@ -35,7 +52,21 @@ fn median_ms_of(repeats: usize, mut f: impl FnMut() -> RingState) -> (f64, f64, 
         })
         .collect();
     times.sort_by(f64::total_cmp);
-    (times[repeats / 2], times[0], times[repeats - 1], last)
+    Timing {
+        median: times[repeats / 2],
+        fastest: times[0],
+        slowest: times[repeats - 1],
+        state: last,
+        factorisations,
+    }
+}
+
+/// One row of the tables: the state's name, its times, unknowns, factorisations, estimate.
+fn print_row(name: &str, t: &Timing) {
+    println!(
+        "{name:<34} {:>9.3} {:>9.3} {:>9.3} {:>4} {:>6} {:>9.1e}",
+        t.median, t.fastest, t.slowest, t.state.unknowns, t.factorisations, t.state.error_estimate
+    );
 }
 
 /// Time one state under depth (`depth`) or force control, print its row (with its `eps` when
@@ -48,7 +79,7 @@ fn time_inverse_state(
     repeats: usize,
     show_eps: bool,
 ) -> f64 {
-    let (med, lo, hi, s) = median_ms_of(repeats, || {
+    let t = median_ms_of(solver, repeats, || {
         if depth {
             solver.concave_at_depth(kind, target, TOLERANCE)
         } else {
@@ -58,18 +89,12 @@ fn time_inverse_state(
     });
     let control = if depth { "d/h" } else { "F/(2E*ha)" };
     let eps = if show_eps {
-        format!(" (eps = {:.1e})", s.eps)
+        format!(" (eps = {:.1e})", t.state.eps)
     } else {
         String::new()
     };
-    println!(
-        "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
-        format!("{kind} {control} = {target}{eps}"),
-        s.unknowns,
-        s.solves,
-        s.error_estimate
-    );
-    med
+    print_row(&format!("{kind} {control} = {target}{eps}"), &t);
+    t.median
 }
 
 fn machine() -> String {
@@ -96,19 +121,13 @@ fn main() {
     println!("machine: {}\n", machine());
     println!(
         "{:<34} {:>9} {:>9} {:>9} {:>4} {:>6} {:>9}",
-        "state", "median ms", "min ms", "max ms", "N", "solves", "est.err"
+        "state", "median ms", "min ms", "max ms", "N", "fact.", "est.err"
     );
     let mut flat_worst: f64 = 0.0;
     for &eps in &[0.0, 0.05, 0.3, 0.5, 0.9, 0.99] {
-        let (med, lo, hi, s) = median_ms(|| solver.flat(eps, TOLERANCE).expect("flat state"));
-        flat_worst = flat_worst.max(med);
-        println!(
-            "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
-            format!("flat-annulus eps = {eps}"),
-            s.unknowns,
-            s.solves,
-            s.error_estimate
-        );
+        let t = median_ms(&solver, || solver.flat(eps, TOLERANCE).expect("flat state"));
+        flat_worst = flat_worst.max(t.median);
+        print_row(&format!("flat-annulus eps = {eps}"), &t);
     }
     let mut concave_worst: f64 = 0.0;
     for (kind, depths) in [
@@ -116,19 +135,13 @@ fn main() {
         (PunchKind::Sphere, [2.99, 2.8, 2.0, 1.0, 0.4]),
     ] {
         for &d in &depths {
-            let (med, lo, hi, s) = median_ms(|| {
+            let t = median_ms(&solver, || {
                 solver
                     .concave_at_depth(kind, d, TOLERANCE)
                     .expect("concave state")
             });
-            concave_worst = concave_worst.max(med);
-            println!(
-                "{:<34} {med:>9.3} {lo:>9.3} {hi:>9.3} {:>4} {:>6} {:>9.1e}",
-                format!("{kind} d/h = {d} (eps = {:.3})", s.eps),
-                s.unknowns,
-                s.solves,
-                s.error_estimate
-            );
+            concave_worst = concave_worst.max(t.median);
+            print_row(&format!("{kind} d/h = {d} (eps = {:.3})", t.state.eps), &t);
         }
     }
     let power = |n: f64| PunchKind::Power(ringcontact::punch::Exponent::new(n).expect("n > 0"));

@@ -78,14 +78,8 @@ impl RingBemSolver {
         outer_hint: Option<f64>,
         mismatch_slope: Option<f64>,
     ) -> Result<ConcaveSample> {
-        // The search's last band is its root's (`Root::x` is the last point evaluated).
-        let last = std::cell::RefCell::new(None);
-        let residual = |outer: f64| -> std::result::Result<f64, String> {
-            let band = self.torus_band(eps, outer, n).map_err(|e| e.to_string())?;
-            let mismatch = band.mismatch(0.0);
-            *last.borrow_mut() = Some((outer, band));
-            Ok(mismatch)
-        };
+        let band_at = |outer: f64| self.torus_band(eps, outer, n);
+        let last = LastBand::default();
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
             .filter(|c| c.is_finite())
@@ -93,7 +87,7 @@ impl RingBemSolver {
             .clamp(lo, hi);
         let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
         let root = find_root_with_slope(
-            residual,
+            last.residual(band_at, 0.0),
             lo,
             hi,
             guess,
@@ -102,11 +96,7 @@ impl RingBemSolver {
             80,
         )
         .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
-        let band = match last.into_inner() {
-            Some((outer, band)) if outer == root.x => band,
-            _ => self.torus_band(eps, root.x, n)?,
-        };
-        Ok(band.sample(0.0))
+        Ok(last.at(root.x, band_at)?.sample(0.0))
     }
 
     /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
@@ -122,15 +112,8 @@ impl RingBemSolver {
         centre_hint: Option<f64>,
         intensity: f64,
     ) -> Result<ConcaveSample> {
-        let last = std::cell::RefCell::new(None);
-        let residual = |centre: f64| -> std::result::Result<f64, String> {
-            let band = self
-                .torus_band(centre - half_width, centre + half_width, n)
-                .map_err(|e| e.to_string())?;
-            let mismatch = band.mismatch(intensity);
-            *last.borrow_mut() = Some((centre, band));
-            Ok(mismatch)
-        };
+        let band_at = |centre: f64| self.torus_band(centre - half_width, centre + half_width, n);
+        let last = LastBand::default();
         let lo = half_width + MIN_CONTACT_RATIO;
         let hi = 3.0 + 3.0 * half_width;
         let guess = centre_hint
@@ -141,13 +124,16 @@ impl RingBemSolver {
             "torus band of half-width {} a",
             crate::error::show(half_width)
         );
-        let root = find_root(residual, lo, hi, guess, OUTER_EDGE_TOLERANCE, 80)
-            .map_err(|e| search_error(e, &what, "centre", lo, hi))?;
-        let band = match last.into_inner() {
-            Some((centre, band)) if centre == root.x => band,
-            _ => self.torus_band(root.x - half_width, root.x + half_width, n)?,
-        };
-        Ok(band.sample(intensity))
+        let root = find_root(
+            last.residual(band_at, intensity),
+            lo,
+            hi,
+            guess,
+            OUTER_EDGE_TOLERANCE,
+            80,
+        )
+        .map_err(|e| search_error(e, &what, "centre", lo, hi))?;
+        Ok(last.at(root.x, band_at)?.sample(intensity))
     }
 
     /// The torus's band of half-width `half_width` (units of `a`) with the stress intensity
@@ -418,6 +404,36 @@ impl TorusBand {
 }
 
 /// A failed edge search, said with what was searched and where.
+/// The last band a one-unknown search evaluated, kept so that the root's band is not solved
+/// again (`Root::x` is the last point a search evaluates).
+#[derive(Default)]
+struct LastBand(std::cell::RefCell<Option<(f64, TorusBand)>>);
+
+impl LastBand {
+    /// The search's residual: the mismatch `R` of the band `band_at(x)` from the edge
+    /// intensity `intensity` ([`TorusBand::mismatch`]), the band kept.
+    fn residual<'a>(
+        &'a self,
+        band_at: impl Fn(f64) -> Result<TorusBand> + 'a,
+        intensity: f64,
+    ) -> impl FnMut(f64) -> std::result::Result<f64, String> + 'a {
+        move |x| {
+            let band = band_at(x).map_err(|e| e.to_string())?;
+            let mismatch = band.mismatch(intensity);
+            *self.0.borrow_mut() = Some((x, band));
+            Ok(mismatch)
+        }
+    }
+
+    /// The band at `x`: the kept one if it is there, else solved by `band_at`.
+    fn at(self, x: f64, band_at: impl Fn(f64) -> Result<TorusBand>) -> Result<TorusBand> {
+        match self.0.into_inner() {
+            Some((kept, band)) if kept == x => Ok(band),
+            _ => band_at(x),
+        }
+    }
+}
+
 fn search_error(e: RootError, what: &str, unknown: &str, lo: f64, hi: f64) -> crate::error::Error {
     match e {
         RootError::NotBracketed { f_lo, f_hi, .. } => out_of_range(format!(
