@@ -315,3 +315,52 @@ fn the_jkr_pulloff_of_a_sampled_sphere_tends_to_the_spheres() {
         }
     }
 }
+
+/// `verify convergence --punch table --profile FILE`: the FEM's levels on the table converge
+/// toward the ring BEM's state of the same table (the yardstick, an independent method), and
+/// the finest level's error bar bounds its actual error; a profile on another punch is refused.
+#[test]
+fn a_convergence_study_of_a_table_is_bounded_by_its_bar() {
+    let out = verify(&[
+        "convergence",
+        "--punch",
+        "table",
+        "--profile",
+        "verify/profiles/sphere-21.csv",
+        "--method",
+        "fem",
+        "--levels",
+        "3",
+        "--json",
+        "--out",
+        scratch("convergence").to_str().unwrap(),
+    ]);
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{text}{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(json["profile_file"], "verify/profiles/sphere-21.csv");
+    assert_eq!(json["bar_bounds_error"], true, "{json}");
+    let errors: Vec<f64> = json["levels"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|l| l["error"].as_f64().unwrap().abs())
+        .collect();
+    assert!(errors.windows(2).all(|p| p[1] < p[0]), "{errors:?}");
+    assert!(errors.last().unwrap() < &1e-4, "{errors:?}");
+    let out = verify(&[
+        "convergence",
+        "--punch",
+        "cone",
+        "--profile",
+        "verify/profiles/sphere-21.csv",
+        "--method",
+        "fem",
+    ]);
+    assert!(!out.status.success());
+    assert!(String::from_utf8_lossy(&out.stderr).contains("applies only to shape = table"));
+}

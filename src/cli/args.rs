@@ -453,6 +453,9 @@ pub struct ConvergenceArgs {
     /// (n = 1 is the cone, n = 2 the sphere).
     #[arg(long)]
     pub exponent: Option<f64>,
+    /// Profile table of `--punch table` (CSV of `r/a, g/h` points, as for `verify solve`).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
     /// Method to refine.
     #[arg(long, value_enum)]
     pub method: Method,

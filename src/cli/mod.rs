@@ -119,9 +119,10 @@ pub(crate) fn punch_kind(
 ) -> Result<crate::punch::PunchKind, String> {
     if name == crate::punch::PunchName::Table {
         return Err(
-            "the table punch is solved by `verify solve --punch table --profile FILE` and its JKR \
-             solution by `verify jkr --punch table --profile FILE --d0h S`; its pull-off \
-             simulation and convergence studies are not built"
+            "the table punch is solved by `verify solve --punch table --profile FILE`, its JKR \
+             solution by `verify jkr --punch table --profile FILE --d0h S` and its convergence \
+             studies by `verify convergence --punch table --profile FILE`; its pull-off \
+             simulation and plans of its convergence studies are not built"
                 .into(),
         );
     }
