@@ -278,12 +278,15 @@ fn annular_pulloff(
             value(&points[points.len() - 1], s).abs()
         )));
     }
-    // The unloading path: the ratios at the running minimum from the maximum on.
+    // The unloading path: the ratios at the running minimum from the maximum on. A value above
+    // it by no more than the solves' tolerance (relative) is on the path: the scatter of a flat
+    // stretch is not a jump (a table's real bumps are 1e-3 relative).
+    let slack = branch_tolerance(branch.kind);
     let mut visited = vec![false; values.len()];
     let mut lowest = f64::INFINITY;
     for k in max_k..=min_k {
-        if values[k] <= lowest {
-            lowest = values[k];
+        if values[k] <= lowest + slack * (1.0 + lowest.abs()) {
+            lowest = lowest.min(values[k]);
             visited[k] = true;
         }
     }
