@@ -121,6 +121,47 @@ fn table_json_carries_the_provenance_and_one_row_per_state() {
     assert!(rows.iter().all(|r| r["unknowns"].is_u64()));
 }
 
+/// `verify table --no-grid-estimate` solves each state on the one grid (the same answer as with
+/// the estimate, which only adds the coarser grids), with no `error_estimate` column; another
+/// method refuses the flag by name.
+#[test]
+fn a_grid_table_without_its_estimate_solves_the_one_grid() {
+    let run = |extra: &[&str]| {
+        let mut args = vec![
+            "table", "--punch", "sphere", "--depth", "1.5,2", "--method", "grid-bem", "--grid",
+            "64",
+        ];
+        args.extend_from_slice(extra);
+        csv(&stdout_of(&verify(&args)))
+    };
+    let (header, rows) = run(&["--no-grid-estimate"]);
+    let (full_header, full_rows) = run(&[]);
+    assert!(
+        !header.contains(&"error_estimate".to_string()),
+        "{header:?}"
+    );
+    assert!(
+        full_header.contains(&"error_estimate".to_string()),
+        "{full_header:?}"
+    );
+    for (row, full) in rows.iter().zip(&full_rows) {
+        assert_eq!(
+            field(&header, row, "gamma2"),
+            field(&full_header, full, "gamma2")
+        );
+    }
+    let out = verify(&[
+        "table",
+        "--punch",
+        "sphere",
+        "--depth",
+        "1",
+        "--no-grid-estimate",
+    ]);
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("applies to --method grid-bem only"));
+}
+
 #[test]
 fn bad_lists_and_states_are_named_before_any_solve() {
     for (args, says) in [

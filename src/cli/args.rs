@@ -694,6 +694,10 @@ pub struct TableArgs {
     /// Grid BEM only: cells per side (as `verify solve`).
     #[arg(long, value_parser = clap::value_parser!(u64).range(GRID_RANGE))]
     pub grid: Option<u64>,
+    /// Grid BEM only: solve each state on the requested grid alone, without the two coarser
+    /// grids that make its error estimate (as `verify solve --no-grid-estimate`).
+    #[arg(long)]
+    pub no_grid_estimate: bool,
     /// Print one JSON object (provenance and `rows`) instead of CSV.
     #[arg(long)]
     pub json: bool,

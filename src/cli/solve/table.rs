@@ -114,7 +114,7 @@ fn solve_args(args: &TableArgs, kind: StateKind, value: f64) -> SolveArgs {
         vtu: None,
         grid: args.grid,
         grid_extent: None,
-        no_grid_estimate: false,
+        no_grid_estimate: args.no_grid_estimate,
         json: false,
         batch: None,
     }
