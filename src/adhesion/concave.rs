@@ -317,11 +317,8 @@ fn annular_pulloff(
         if k > max_k && !visited[k - 1] {
             // The rim fails on landing from a jump: the pull-off is the minimum the jump
             // starts from, the last ratio visited before it.
-            let start = (max_k..k)
-                .rev()
-                .find(|&j| visited[j])
-                .unwrap_or(max_k)
-                .max(1);
+            // (The maximum itself is always visited.)
+            let start = (max_k..k).rev().find(|&j| visited[j]).unwrap_or(max_k);
             let (e, at) = minimum_near(start)?;
             critical_eps = e;
             located_to = at;

@@ -14,13 +14,7 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     if args.punch == PunchName::Torus {
         return torus(&args);
     }
-    let punch = if args.punch == PunchName::Table || args.profile.is_some() {
-        args.punch
-            .with_parameters(args.exponent, args.profile.as_deref())
-            .map_err(super::message)?
-    } else {
-        super::punch_kind(args.punch, args.exponent)?
-    };
+    let punch = super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?;
     refuse_other_family_flags(punch, args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");

@@ -137,6 +137,20 @@ pub(crate) fn punch_kind(
     Ok(kind)
 }
 
+/// The punch of `--punch`, `--exponent` and `--profile`: a table (or any punch given a profile,
+/// which then says why it takes none) from its file, the others as [`punch_kind`].
+pub(crate) fn punch_kind_with_profile(
+    name: crate::punch::PunchName,
+    exponent: Option<f64>,
+    profile: Option<&std::path::Path>,
+) -> Result<crate::punch::PunchKind, String> {
+    if name == crate::punch::PunchName::Table || profile.is_some() {
+        name.with_parameters(exponent, profile).map_err(message)
+    } else {
+        punch_kind(name, exponent)
+    }
+}
+
 /// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
 /// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
 /// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,

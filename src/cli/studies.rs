@@ -20,7 +20,6 @@ use crate::harness::studies::comparison;
 use crate::harness::studies::convergence;
 use crate::harness::studies::stability;
 use crate::punch::PunchKind;
-use crate::punch::PunchName;
 use crate::reference;
 
 /// `verify compare`: the ring BEM against the references, the FEM against the ring BEM, the
@@ -190,13 +189,7 @@ pub(super) fn compare_reply(
 /// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
 /// and the chart into `--out`.
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
-    let punch = if args.punch == PunchName::Table || args.profile.is_some() {
-        args.punch
-            .with_parameters(args.exponent, args.profile.as_deref())
-            .map_err(message)?
-    } else {
-        super::punch_kind(args.punch, args.exponent)?
-    };
+    let punch = super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?;
     let case = study_case(punch, args.eps, args.depth)?;
     let levels = args.levels as usize;
     let mut bar = Progress::new("convergence", levels);

@@ -187,23 +187,16 @@ impl Part {
         };
         let punch = |name: Option<&&str>| -> Result<PunchKind> {
             let name = name.ok_or_else(|| bad("needs a punch"))?;
+            let mut why = String::new();
             if name.starts_with("table-") {
                 // A job names a table by its hash: the report's own table is the one it can be.
                 crate::harness::studies::figures::report_table_punch();
+                why = format!(
+                    " (a job's table punch must be the report's, {})",
+                    crate::harness::studies::figures::REPORT_TABLE_FILE
+                );
             }
-            PunchKind::from_label(name).ok_or_else(|| {
-                bad(&format!(
-                    "no punch `{name}`{}",
-                    if name.starts_with("table-") {
-                        format!(
-                            " (a job's table punch must be the report's, {})",
-                            crate::harness::studies::figures::REPORT_TABLE_FILE
-                        )
-                    } else {
-                        String::new()
-                    }
-                ))
-            })
+            PunchKind::from_label(name).ok_or_else(|| bad(&format!("no punch `{name}`{why}")))
         };
         let part = match kind {
             "comparison" => Part::Comparison {

@@ -39,25 +39,11 @@ impl ChebyshevNodes {
         self.points.is_empty()
     }
 
-    /// Values `L_j(t)` of all Lagrange basis polynomials at `t`, written into `out`.
-    ///
-    /// `t` is given together with its distances to the ends, `1 + t` and `1 - t`, so that points
-    /// next to an end do not lose precision (the caller knows them exactly).
+    /// Values `L_j(t)` of all Lagrange basis polynomials at `t`, written into `out`: the terms of
+    /// [`Self::scaled_basis_at`] times its factor.
     pub(crate) fn basis_at(&self, t: f64, out: &mut [f64]) {
-        let mut total = 0.0;
-        for (j, (&tj, &wj)) in self.points.iter().zip(&self.weights).enumerate() {
-            let diff = t - tj;
-            if diff == 0.0 {
-                out.iter_mut().for_each(|v| *v = 0.0);
-                out[j] = 1.0;
-                return;
-            }
-            let term = wj / diff;
-            out[j] = term;
-            total += term;
-        }
-        let inv = 1.0 / total;
-        out.iter_mut().for_each(|v| *v *= inv);
+        let factor = self.scaled_basis_at(t, out);
+        out.iter_mut().for_each(|v| *v *= factor);
     }
 
     /// The unnormalised barycentric terms `w_j / (t - t_j)` into `out`, returning the factor
@@ -80,10 +66,16 @@ impl ChebyshevNodes {
         let total = chunks.remainder().iter().sum::<f64>()
             + ((partial[0] + partial[1]) + (partial[2] + partial[3]));
         if total.is_finite() {
-            1.0 / total
-        } else {
-            self.basis_at(t, out);
-            1.0
+            return 1.0 / total;
+        }
+        // At a node (a term divided by zero): that node's basis function is 1, the others 0.
+        match self.points.iter().position(|&tj| tj == t) {
+            Some(j) => {
+                out.iter_mut().for_each(|v| *v = 0.0);
+                out[j] = 1.0;
+                1.0
+            }
+            None => 1.0 / total,
         }
     }
 
@@ -163,7 +155,13 @@ mod tests {
         let nodes = ChebyshevNodes::new(37);
         let (mut basis, mut scaled) = (vec![0.0; 37], vec![0.0; 37]);
         for t in [-1.0, -0.999, -0.3, 0.0, 0.123, 0.77, 1.0, nodes.points[5]] {
-            nodes.basis_at(t, &mut basis);
+            // The Lagrange basis by its product formula, `Π_{k≠j} (t - t_k)/(t_j - t_k)`.
+            for (j, l) in basis.iter_mut().enumerate() {
+                *l = (0..37)
+                    .filter(|&k| k != j)
+                    .map(|k| (t - nodes.points[k]) / (nodes.points[j] - nodes.points[k]))
+                    .product();
+            }
             let factor = nodes.scaled_basis_at(t, &mut scaled);
             for (l, s) in basis.iter().zip(&scaled) {
                 assert!(

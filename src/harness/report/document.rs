@@ -383,7 +383,7 @@ fn table_difference_chart(c: &ConcaveCurves) -> String {
     );
     let mut lines = vec![Series {
         name: format!("|gamma2 - {sampled}'s|"),
-        points: difference.clone(),
+        points: difference,
         bars: Vec::new(),
     }];
     if let Some(bound) = c.gap_difference {
