@@ -142,6 +142,52 @@ fn depth_force_and_edge_controls_agree_and_both_edges_are_free() {
     }
 }
 
+/// The estimate bounds the error: states at loose tolerances against the same states at
+/// `1e-11` (the method converged, its own estimate there below 1e-11), narrow to wide bands
+/// (`b/a` from 0.98 to 0.01), under depth and force control. The error is that of the inner
+/// and outer edges (absolute, units of `a`) and of `γ1`, `γ2` (relative), the quantities the
+/// estimate covers.
+#[test]
+fn the_estimate_bounds_the_error_of_depth_and_force_controlled_states() {
+    let solver = RingBemSolver::new();
+    let state = |depth: bool, target: f64, tol: f64| {
+        if depth {
+            solver.concave_at_depth(PunchKind::Torus, target, tol)
+        } else {
+            solver.concave_at_force(PunchKind::Torus, target, tol)
+        }
+        .unwrap()
+    };
+    for (depth, target) in [
+        (true, 1e-3),
+        (true, 2.0),
+        (true, 50.0),
+        (false, 1e-2),
+        (false, 200.0),
+    ] {
+        let reference = state(depth, target, 1e-11);
+        assert!(reference.error_estimate <= 1e-11);
+        for tol in [1e-4, 1e-6, 1e-9] {
+            let s = state(depth, target, tol);
+            let error = (s.eps - reference.eps)
+                .abs()
+                .max((s.outer_edge - reference.outer_edge).abs())
+                .max(relative(s.gamma1.unwrap(), reference.gamma1.unwrap()))
+                .max(relative(s.gamma2.unwrap(), reference.gamma2.unwrap()));
+            println!(
+                "depth control {depth}, target {target}, tol {tol:.0e}: error {error:.2e}, \
+                 estimate {:.2e} (N = {})",
+                s.error_estimate, s.unknowns
+            );
+            assert!(s.error_estimate <= tol);
+            assert!(
+                error <= s.error_estimate,
+                "error {error:.2e} above the estimate"
+            );
+        }
+    }
+}
+
 /// The torus's gap is a function of `h (1 - r/a)²` alone, so states at the same `d/h` on tori
 /// of different tube radii are similar: `b/a`, `c/a`, `d/h` and `F/(2 E* h a)` agree, while the
 /// physical depth and force scale with `h = a²/(2ρ)`.

@@ -643,6 +643,12 @@ impl RingBemSolver {
         controlled: Controlled,
     ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
+        if kind == PunchKind::Torus {
+            let depth_controlled = matches!(controlled, Controlled::Depth);
+            if let Some(state) = self.torus_inverse(target, tolerance, depth_controlled) {
+                return state;
+            }
+        }
         let pick = |s: &ConcaveSample| match controlled {
             Controlled::Depth => s.gamma1,
             Controlled::Force => s.gamma2,
@@ -654,60 +660,35 @@ impl RingBemSolver {
         let mut rung = starting_rung(guess).min(FIRST_SEARCH_RUNG);
         let mut outer_guess = None;
         // From the second rung on, the search starts at the previous rung's root with its
-        // slope (the torus: its Jacobian), so it takes Newton's step at once.
+        // slope, so it takes Newton's step at once.
         let mut slope_hint = None;
         let mut previous_slopes = None;
-        let mut torus_jacobian = None;
         let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
-            // The torus: both edges at once where Newton's method converges (a fraction of
-            // the nested search's bands), the nested search otherwise.
-            let direct = (kind == PunchKind::Torus)
-                .then(|| {
-                    let start = (
-                        guess,
-                        outer_guess.unwrap_or_else(|| torus::outer_edge_guess(guess)),
-                    );
-                    let depth = matches!(controlled, Controlled::Depth);
-                    self.torus_at_target(n, target, depth, start, torus_jacobian, 0.01 * tolerance)
-                })
-                .flatten();
             // The last three samples of the search are kept: the state at the root and the
             // secant slopes of both quantities (from the farthest of the others).
             let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
-            let root = match direct {
-                Some(found) => {
-                    torus_jacobian = Some(found.jacobian);
-                    history.push((found.eps, found.sample));
-                    let (eps, bands) = (found.eps, found.bands);
-                    Ok(crate::numerics::roots::Root {
-                        x: eps,
-                        evaluations: bands,
-                        slope: f64::NAN,
-                    })
-                }
-                None => find_root_with_slope(
-                    |eps| {
-                        let hint = outer_edge_hint(&history, eps).or(outer_guess);
-                        let sample = self
-                            .concave_sample(kind, eps, n, hint)
-                            .map_err(|e| e.to_string())?;
-                        let value = pick(&sample) - target;
-                        if history.len() == 3 {
-                            history.remove(0);
-                        }
-                        history.push((eps, sample));
-                        Ok(value)
-                    },
-                    MIN_CONTACT_RATIO,
-                    MAX_CONTACT_RATIO,
-                    guess,
-                    slope_hint,
-                    0.01 * tolerance,
-                    60,
-                ),
-            }
+            let root = find_root_with_slope(
+                |eps| {
+                    let hint = outer_edge_hint(&history, eps).or(outer_guess);
+                    let sample = self
+                        .concave_sample(kind, eps, n, hint)
+                        .map_err(|e| e.to_string())?;
+                    let value = pick(&sample) - target;
+                    if history.len() == 3 {
+                        history.remove(0);
+                    }
+                    history.push((eps, sample));
+                    Ok(value)
+                },
+                MIN_CONTACT_RATIO,
+                MAX_CONTACT_RATIO,
+                guess,
+                slope_hint,
+                0.01 * tolerance,
+                60,
+            )
             .map_err(|e| inverse_error(e, kind, target, controlled))?;
             solves += root.evaluations;
             let eps = root.x;
@@ -724,23 +705,13 @@ impl RingBemSolver {
                 }
             };
             let fine_outer = Some(fine.system.region().outer());
-            // The torus's edge searches near the root start with Newton's step (the mismatch's
-            // slope in the outer edge from the direct solve's Jacobian).
-            let sample_near = |eps: f64, n: usize| match torus_jacobian {
-                Some(jacobian) if kind == PunchKind::Torus => {
-                    self.torus_sample_near(eps, n, fine_outer, Some(jacobian[0][1]))
-                }
-                _ => self.concave_sample(kind, eps, n, fine_outer),
-            };
-            let coarse = sample_near(eps, NODE_LADDER[rung - 1])?;
+            let coarse = self.concave_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
             solves += 1;
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
             // 1e-13 apart, whose slope was measured 8 times too small), else the previous
             // rung's where that rung was close (its estimate below SLOPE_TRUSTED_ESTIMATE), else
-            // from a small step. (The torus's direct solve ends with Broyden's Jacobian, a good
-            // start for Newton's steps but not a derivative: its slope was measured with the
-            // wrong sign.)
+            // from a small step.
             let outer_fine = fine.system.region().outer();
             let [slope1, slope2, outer_slope] =
                 match neighbour.filter(|(at, ..)| (eps - at).abs() >= SLOPE_MIN_SEPARATION) {
@@ -754,7 +725,7 @@ impl RingBemSolver {
                         None => {
                             let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
                             solves += 1;
-                            let s = sample_near(eps + step, n)?;
+                            let s = self.concave_sample(kind, eps + step, n, fine_outer)?;
                             [
                                 (s.gamma1 - fine.gamma1) / step,
                                 (s.gamma2 - fine.gamma2) / step,

@@ -14,10 +14,12 @@
 //! given the inner edge `b`, solved by the safeguarded secant. So the inner edge `b/a` (`eps`)
 //! parametrises the torus's states as it does the concave punches', `γ1(eps) = d/h` and
 //! `γ2(eps) = F/(2 E* h a)` decrease with it. Depth or force control finds both edges at once by
-//! Newton's method on `R(b, c) = 0`, `γ(b, c) = target` ([`RingBemSolver::torus_at_target`]),
-//! with the nested search (the edge search inside the concave punches' search on `b`) where
-//! Newton does not converge. Both unknown radii are found to rounding at each node count; the
-//! self-convergence estimate covers `γ1`, `γ2` and `c`.
+//! Newton's method on `R(b, c) = 0`, `γ(b, c) = target` ([`RingBemSolver::torus_at_target`])
+//! at every rung of the node ladder ([`RingBemSolver::torus_inverse`]), with the nested search
+//! (the edge search inside the concave punches' search on `b`) where Newton does not converge.
+//! Both unknown radii are found to the search's tolerance (1 % of the requested one) or its
+//! rounding at each node count; the self-convergence estimate covers `b`, `c`, `γ1` and `γ2`
+//! and the search's residual.
 //!
 //! **The contact never closes.** Near the axis the gap is `h (1 - 2r/a + ...)`: a conical
 //! dimple, whose full-contact pressure is logarithmically tensile at the apex (as the cone's).
@@ -28,12 +30,12 @@ use std::f64::consts::PI;
 
 use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::Result;
-use crate::numerics::roots::{find_root, find_root_with_slope, RootError};
+use crate::numerics::roots::{find_root, RootError};
 use crate::punch::PunchKind;
 
 use super::{
-    free_edge_state, no_convergence, out_of_range, ConcaveSample, RingBemSolver, RingState,
-    MIN_BAND_RATIO, MIN_CONTACT_RATIO,
+    free_edge_state, no_convergence, out_of_range, starting_rung, ConcaveSample, RingBemSolver,
+    RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO, MIN_CONTACT_RATIO, NODE_LADDER, ROUNDING_FLOOR,
 };
 
 /// Absolute tolerance of the outer edge `c/a` at each node count: far below every tolerance the
@@ -66,18 +68,6 @@ impl RingBemSolver {
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
-        self.torus_sample_near(eps, n, outer_hint, None)
-    }
-
-    /// [`Self::torus_sample`] given the mismatch's slope `∂R/∂c` near the edge (a nearby
-    /// state's): the edge search starts with Newton's step.
-    pub(super) fn torus_sample_near(
-        &self,
-        eps: f64,
-        n: usize,
-        outer_hint: Option<f64>,
-        mismatch_slope: Option<f64>,
-    ) -> Result<ConcaveSample> {
         let band_at = |outer: f64| self.torus_band(eps, outer, n);
         let last = LastBand::default();
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
@@ -86,12 +76,11 @@ impl RingBemSolver {
             .unwrap_or_else(|| outer_edge_guess(eps))
             .clamp(lo, hi);
         let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
-        let root = find_root_with_slope(
+        let root = find_root(
             last.residual(band_at, 0.0),
             lo,
             hi,
             guess,
-            mismatch_slope,
             OUTER_EDGE_TOLERANCE,
             80,
         )
@@ -202,8 +191,10 @@ impl RingBemSolver {
     /// with a Jacobian of `[R, γ1, γ2]` by differences at the start (or `jacobian`, a nearby
     /// problem's: the previous node count's) and Broyden's update after each step (each step
     /// one band: assembly and two solves), from the start `(b0, c0)`. Stops after a step
-    /// in `b` below `eps_tolerance` and in `c` below [`OUTER_EDGE_TOLERANCE`] (tenfold); a
-    /// step that would leave `MIN_CONTACT_RATIO <= b < c <= hi` is shortened. `None` where it
+    /// below `eps_tolerance` in `b` (absolute) and in `c` (relative, at least ten times
+    /// [`OUTER_EDGE_TOLERANCE`]), or where the next step would be and the target is met to
+    /// `eps_tolerance` (relative), returning the target's residual there; a step that would
+    /// leave `MIN_CONTACT_RATIO <= b < c <= hi` is shortened. `None` where it
     /// does not converge: the caller then runs the nested search (an edge search inside a
     /// search on `b`), which is safeguarded but costs several times more bands.
     pub(super) fn torus_at_target(
@@ -234,7 +225,7 @@ impl RingBemSolver {
         if !(b.is_finite() && c.is_finite() && admissible(b, c)) {
             return None;
         }
-        let (mut v, _) = values(b, c)?;
+        let (mut v, mut band) = values(b, c)?;
         let mut jacobian = match jacobian.filter(|j| j.iter().flatten().all(|x| x.is_finite())) {
             Some(given) => given,
             None => {
@@ -264,19 +255,32 @@ impl RingBemSolver {
                 -(newton[1][1] * f[0] - newton[0][1] * f[1]) / det,
                 -(-newton[1][0] * f[0] + newton[0][0] * f[1]) / det,
             ];
-            if step[0].abs() <= eps_tolerance && step[1].abs() <= 10.0 * OUTER_EDGE_TOLERANCE {
-                // The last (small) step taken: the state's residual is then far below the
-                // step's, which the caller's estimate counts.
+            let outer_tolerance = (10.0 * OUTER_EDGE_TOLERANCE).max(eps_tolerance * c);
+            if step[0].abs() <= eps_tolerance && step[1].abs() <= outer_tolerance {
+                // Converged: this state where it meets the target to the tolerance, else the
+                // state after the last (small) step, whose residual is far below the step's
+                // but not below the values' rounding. The residual is returned for the
+                // caller's estimate.
+                if f[1].abs() <= eps_tolerance {
+                    return Some(TorusTarget {
+                        eps: b,
+                        sample: band.sample(0.0),
+                        bands,
+                        jacobian,
+                        residual: f[1].abs(),
+                    });
+                }
                 let (b, c) = (b + step[0], c + step[1]);
                 if !admissible(b, c) {
                     return None;
                 }
-                let (_, band) = values(b, c)?;
+                let (v, band) = values(b, c)?;
                 return Some(TorusTarget {
                     eps: b,
                     sample: band.sample(0.0),
                     bands,
                     jacobian,
+                    residual: residual(&v)[1].abs(),
                 });
             }
             // Shorten a step that leaves the admissible edges (or moves b by more than half).
@@ -288,10 +292,10 @@ impl RingBemSolver {
                     return None;
                 }
             }
-            let (next, _) = values(b + step[0], c + step[1])?;
+            let (next, next_band) = values(b + step[0], c + step[1])?;
             // Broyden's update, J += ((Δv - J s) sᵀ) / (sᵀ s), where the step is long enough
             // for the values' rounding (about 1e-14) not to swamp it: the Jacobian also gives
-            // the next node count its start and the caller its slopes.
+            // the next node count its start.
             let norm = step[0] * step[0] + step[1] * step[1];
             if norm.sqrt() > BROYDEN_MIN_STEP * c {
                 for (i, row) in jacobian.iter_mut().enumerate() {
@@ -309,9 +313,79 @@ impl RingBemSolver {
             if stalled >= DIRECT_MAX_STALLED {
                 return None;
             }
-            (b, c, v) = (b + step[0], c + step[1], next);
+            (b, c, v, band) = (b + step[0], c + step[1], next, next_band);
         }
         None
+    }
+}
+
+impl RingBemSolver {
+    /// The torus at a depth (`depth_controlled`, `target = γ1 = d/h`) or a force
+    /// (`target = γ2 = F/(2 E* h a)`), both edges by Newton's method at every rung of the node
+    /// ladder ([`Self::torus_at_target`]), each rung started from the previous rung's edges and
+    /// Jacobian. The estimate is the change of the state from the rung below (solved the same
+    /// way, from this rung's edges, where the ladder skipped it): of `b` and `c` (absolute,
+    /// units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's residual (the
+    /// search's own error: each rung stops after a step below 1 % of the tolerance, and the
+    /// residual of the state, at rounding then, is counted). `None` where Newton's method does
+    /// not converge at some rung: the caller then runs the nested search.
+    pub(super) fn torus_inverse(
+        &self,
+        target: f64,
+        tolerance: f64,
+        depth_controlled: bool,
+    ) -> Option<Result<RingState>> {
+        let search_tolerance = 0.01 * tolerance;
+        let start_eps = initial_inner_edge(target, depth_controlled);
+        let mut start = (start_eps, outer_edge_guess(start_eps));
+        let mut jacobian = None;
+        let mut rung = FIRST_SEARCH_RUNG;
+        let mut below: Option<(usize, TorusTarget)> = None;
+        let mut solves = 0;
+        loop {
+            let n = NODE_LADDER[rung];
+            let at = |n: usize, start: (f64, f64), jacobian: Option<TorusJacobian>| {
+                self.torus_at_target(
+                    n,
+                    target,
+                    depth_controlled,
+                    start,
+                    jacobian,
+                    search_tolerance,
+                )
+            };
+            let fine = at(n, start, jacobian)?;
+            solves += fine.bands;
+            let edges = (fine.eps, fine.sample.system.region().outer());
+            let coarse = match below.take() {
+                Some((previous, found)) if previous + 1 == rung => found,
+                _ => {
+                    let found = at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian))?;
+                    solves += found.bands;
+                    found
+                }
+            };
+            let estimate = (fine.change_from(&coarse) + 2.0 * fine.residual).max(ROUNDING_FLOOR);
+            if estimate <= tolerance {
+                return Some(self.concave_state(
+                    PunchKind::Torus,
+                    fine.eps,
+                    fine.sample,
+                    n,
+                    estimate,
+                    solves,
+                ));
+            }
+            if rung + 1 >= NODE_LADDER.len() {
+                return Some(Err(no_convergence(format!(
+                    "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
+                ))));
+            }
+            start = edges;
+            jacobian = Some(fine.jacobian);
+            below = Some((rung, fine));
+            rung = (rung + 1).max(starting_rung(edges.0));
+        }
     }
 }
 
@@ -325,6 +399,23 @@ pub(super) struct TorusTarget {
     pub bands: usize,
     /// The Jacobian of `[R, γ1, γ2]` in `(b, c)` at the end (Broyden's estimate).
     pub jacobian: TorusJacobian,
+    /// The target's residual there, `|γ/target - 1|` (the search's error; at rounding once
+    /// converged, about 1e-10 for the widest bands).
+    pub residual: f64,
+}
+
+impl TorusTarget {
+    /// The change from the state `coarse` (another node count's): of the edges `b` and `c`
+    /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), the largest.
+    fn change_from(&self, coarse: &TorusTarget) -> f64 {
+        let outer = |t: &TorusTarget| t.sample.system.region().outer();
+        let relative = |fine: f64, coarse: f64| (fine - coarse).abs() / fine.abs();
+        (self.eps - coarse.eps)
+            .abs()
+            .max((outer(self) - outer(coarse)).abs())
+            .max(relative(self.sample.gamma1, coarse.sample.gamma1))
+            .max(relative(self.sample.gamma2, coarse.sample.gamma2))
+    }
 }
 
 /// The derivatives of a torus band's `[R, γ1, γ2]` ([`TorusBand::values`]) in its edges
