@@ -49,7 +49,8 @@ pub enum PunchName {
     /// Power-law concave punch, gap `h (1 - (r/a)^n)` (give `--exponent n`, any `n > 0`).
     Power,
     /// Torus: a convex ring of radius `a` with parabolic section, gap `(r - a)²/(2ρ)`, both
-    /// contact edges free (give `--tube-radius ρ`).
+    /// contact edges free (`verify solve` and `verify table` take `--tube-radius ρ`; the other
+    /// commands work in units of `h = a²/(2ρ)` and need none).
     Torus,
     /// Concave punch of a measured profile: `(r/a, g/h)` points from a CSV file, rim at the
     /// last point `r = a`, inner edge free (give `--profile FILE`).

@@ -357,15 +357,21 @@ impl RingBemSolver {
             let fine = at(n, start, jacobian)?;
             solves += fine.bands;
             let edges = (fine.eps, fine.sample.system.region().outer());
+            // The rung below: the previous one where the ladder did not skip it, else solved
+            // from this rung's edges. None where this rung is below the one the inner edge
+            // needs (the state is then a start for that rung, not an answer) or where the
+            // search fails there (a rung too coarse for the state).
+            let needed = starting_rung(edges.0);
             let coarse = match below.take() {
-                Some((previous, found)) if previous + 1 == rung => found,
-                _ => {
-                    let found = at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian))?;
+                Some((previous, found)) if previous + 1 == rung => Some(found),
+                _ if rung < needed => None,
+                _ => at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian)).inspect(|found| {
                     solves += found.bands;
-                    found
-                }
+                }),
             };
-            let estimate = (fine.change_from(&coarse) + 2.0 * fine.residual).max(ROUNDING_FLOOR);
+            let estimate = coarse.as_ref().map_or(f64::INFINITY, |coarse| {
+                (fine.change_from(coarse) + 2.0 * fine.residual).max(ROUNDING_FLOOR)
+            });
             if estimate <= tolerance {
                 return Some(self.concave_state(
                     PunchKind::Torus,
@@ -384,7 +390,7 @@ impl RingBemSolver {
             start = edges;
             jacobian = Some(fine.jacobian);
             below = Some((rung, fine));
-            rung = (rung + 1).max(starting_rung(edges.0));
+            rung = (rung + 1).max(needed);
         }
     }
 }
