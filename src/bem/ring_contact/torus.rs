@@ -324,11 +324,12 @@ impl RingBemSolver {
     /// (`target = γ2 = F/(2 E* h a)`), both edges by Newton's method at every rung of the node
     /// ladder ([`Self::torus_at_target`]), each rung started from the previous rung's edges and
     /// Jacobian. The estimate is the change of the state from the rung below (solved the same
-    /// way, from this rung's edges, where the ladder skipped it): of `b` and `c` (absolute,
-    /// units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's residual (the
-    /// search's own error: each rung stops after a step below 1 % of the tolerance, and the
-    /// residual of the state, at rounding then, is counted). `None` where Newton's method does
-    /// not converge at some rung: the caller then runs the nested search.
+    /// way, from this rung's edges, where the ladder skipped it; none on a rung below the one
+    /// the inner edge needs, [`starting_rung`], which only starts that one): of `b` and `c`
+    /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's
+    /// residual (the search's own error: each rung stops after a step below 1 % of the
+    /// tolerance, and the residual of the state, at rounding then, is counted). `None` where
+    /// Newton's method does not converge at some rung: the caller then runs the nested search.
     pub(super) fn torus_inverse(
         &self,
         target: f64,
@@ -383,9 +384,14 @@ impl RingBemSolver {
                 ));
             }
             if rung + 1 >= NODE_LADDER.len() {
-                return Some(Err(no_convergence(format!(
-                    "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
-                ))));
+                return Some(Err(no_convergence(if estimate.is_finite() {
+                    format!(
+                        "error estimate {estimate:.2e} at N = {n} exceeds the tolerance \
+                         {tolerance:.1e}"
+                    )
+                } else {
+                    format!("no error estimate at N = {n}: the search at the rung below failed")
+                })));
             }
             start = edges;
             jacobian = Some(fine.jacobian);
