@@ -34,8 +34,9 @@ use crate::numerics::roots::{find_root, RootError};
 use crate::punch::PunchKind;
 
 use super::{
-    free_edge_state, no_convergence, out_of_range, starting_rung, ConcaveSample, RingBemSolver,
-    RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO, MIN_CONTACT_RATIO, NODE_LADDER, ROUNDING_FLOOR,
+    free_edge_state, no_convergence, out_of_range, relative_change, starting_rung, ConcaveSample,
+    RingBemSolver, RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO, MIN_CONTACT_RATIO, NODE_LADDER,
+    ROUNDING_FLOOR,
 };
 
 /// Absolute tolerance of the outer edge `c/a` at each node count: far below every tolerance the
@@ -261,26 +262,22 @@ impl RingBemSolver {
                 // state after the last (small) step, whose residual is far below the step's
                 // but not below the values' rounding. The residual is returned for the
                 // caller's estimate.
-                if f[1].abs() <= eps_tolerance {
-                    return Some(TorusTarget {
-                        eps: b,
-                        sample: band.sample(0.0),
-                        bands,
-                        jacobian,
-                        residual: f[1].abs(),
-                    });
-                }
-                let (b, c) = (b + step[0], c + step[1]);
-                if !admissible(b, c) {
-                    return None;
-                }
-                let (v, band) = values(b, c)?;
+                let (b, band, residual) = if f[1].abs() <= eps_tolerance {
+                    (b, band, f[1])
+                } else {
+                    let (b, c) = (b + step[0], c + step[1]);
+                    if !admissible(b, c) {
+                        return None;
+                    }
+                    let (v, band) = values(b, c)?;
+                    (b, band, residual(&v)[1])
+                };
                 return Some(TorusTarget {
                     eps: b,
                     sample: band.sample(0.0),
                     bands,
                     jacobian,
-                    residual: residual(&v)[1].abs(),
+                    residual: residual.abs(),
                 });
             }
             // Shorten a step that leaves the admissible edges (or moves b by more than half).
@@ -421,12 +418,11 @@ impl TorusTarget {
     /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), the largest.
     fn change_from(&self, coarse: &TorusTarget) -> f64 {
         let outer = |t: &TorusTarget| t.sample.system.region().outer();
-        let relative = |fine: f64, coarse: f64| (fine - coarse).abs() / fine.abs();
         (self.eps - coarse.eps)
             .abs()
             .max((outer(self) - outer(coarse)).abs())
-            .max(relative(self.sample.gamma1, coarse.sample.gamma1))
-            .max(relative(self.sample.gamma2, coarse.sample.gamma2))
+            .max(relative_change(self.sample.gamma1, coarse.sample.gamma1))
+            .max(relative_change(self.sample.gamma2, coarse.sample.gamma2))
     }
 }
 
