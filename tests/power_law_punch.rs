@@ -204,6 +204,55 @@ fn the_floor_of_the_hole_is_checked() {
     assert!(solver.concave_at_ratio(power(3.0), 0.7, 1e-9).is_ok());
 }
 
+/// A steep-walled profile (`n >> 2`: a nearly flat floor, the wall at the rim) is solved on the
+/// branch of states that grows inward from the rim, under depth and under force control. Inside
+/// the hole the single annulus's `γ1(ε)` rises again (toward rings whose surface crosses the
+/// floor); the search used to start there, from the sphere's fit, and wandered (`n = 20`,
+/// `d = 0.9 h`: no convergence after 60 solves) or stopped at a root whose surface crosses the
+/// floor and refused a state that exists (`n = 6`, `d = 1.8 h`; `n = 50`, `F/(2 E* h a) = 0.5`).
+/// Checked: every state meets its target and the tolerance, and lies on the rim's branch (a
+/// narrower ring is shallower and carries less force); the FEM finds the same states
+/// (`tests/fem_vs_ring_bem.rs`).
+#[test]
+fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
+    let solver = RingBemSolver::new();
+    let on_rim_branch = |n: f64, state: &ringcontact::bem::ring_contact::RingState| {
+        let narrower = 0.9 * state.eps + 0.1;
+        let shallower = solver.concave_at_ratio(power(n), narrower, 1e-9).unwrap();
+        assert!(
+            shallower.gamma1.unwrap() < state.gamma1.unwrap()
+                && shallower.gamma2.unwrap() < state.gamma2.unwrap(),
+            "n = {n}: the ring at {narrower} is not shallower than {state:?}"
+        );
+    };
+    for n in [6.0, 12.0, 20.0, 50.0, 100.0] {
+        for depth in [0.2, 0.5, 0.8, 0.9, 0.95, 1.0] {
+            let state = solver
+                .concave_at_depth(power(n), depth, 1e-9)
+                .unwrap_or_else(|e| panic!("n = {n}, d/h = {depth}: {e}"));
+            assert!(state.error_estimate <= 1e-9, "n = {n}, d/h = {depth}");
+            assert!(relative(state.gamma1.unwrap(), depth) <= 1e-9);
+            on_rim_branch(n, &state);
+        }
+        for force in [0.1, 0.3, 0.5] {
+            let state = solver
+                .concave_at_force(power(n), force, 1e-9)
+                .unwrap_or_else(|e| panic!("n = {n}, F/(2E*ha) = {force}: {e}"));
+            assert!(state.error_estimate <= 1e-9, "n = {n}, F/(2E*ha) = {force}");
+            assert!(relative(state.gamma2.unwrap(), force) <= 1e-9);
+            on_rim_branch(n, &state);
+        }
+    }
+    // n = 6 at d = 1.8 h is an annular state (refused before); at 2.0 h the surface crosses the
+    // floor and the contact is a disk and an annulus.
+    assert!(solver.concave_at_depth(power(6.0), 1.8, 1e-9).is_ok());
+    let message = solver
+        .concave_at_depth(power(6.0), 2.0, 1e-9)
+        .unwrap_err()
+        .to_string();
+    assert!(message.contains("floor of its hole"), "{message}");
+}
+
 /// The reference method answers full contact with the closed form and refuses partial contact
 /// (no closed form there), naming the ring BEM.
 #[test]

@@ -144,6 +144,42 @@ fn the_ring_bem_tends_to_the_sphere_as_the_table_is_refined() {
     }
 }
 
+/// A table sampled from a steep-walled profile, `1 - (r/a)^20` at 81 points, under depth
+/// control: solved (its search starts from the sphere of the table's rim slope; from the
+/// sphere's own fit it wandered inside the hole and stopped after 60 solves), and within the
+/// monotonicity bound of the power law's state: `γ2` at a given depth moves by at most the
+/// largest difference of the gaps.
+#[test]
+fn a_steep_walled_table_is_solved_near_its_power_law() {
+    let dir = scratch("steep");
+    let path = dir.join("power-20.csv");
+    let mut text = String::from("r/a,g/h\n");
+    for k in 0..=80 {
+        let r = f64::from(k) / 80.0;
+        text.push_str(&format!("{r},{}\n", 1.0 - r.powi(20)));
+    }
+    std::fs::write(&path, text).unwrap();
+    let table = PunchName::Table.with_parameters(None, Some(&path)).unwrap();
+    let power = PunchName::Power.with_exponent(Some(20.0)).unwrap();
+    let gap_difference = (0..=20000)
+        .map(|k| f64::from(k) / 20000.0)
+        .map(|rho| (table.gap_shape(rho) - power.gap_shape(rho)).abs())
+        .fold(0.0, f64::max);
+    let solver = RingBemSolver::new();
+    for depth in [0.5, 0.9, 1.2] {
+        let state = solver
+            .concave_at_depth(table, depth, 1e-9)
+            .unwrap_or_else(|e| panic!("d/h = {depth}: {e}"));
+        let reference = solver.concave_at_depth(power, depth, 1e-10).unwrap();
+        let (gamma2, reference) = (state.gamma2.unwrap(), reference.gamma2.unwrap());
+        let bound = gap_difference + 1e-9 * reference;
+        assert!(
+            (gamma2 - reference).abs() <= bound,
+            "d/h = {depth}: γ2 {gamma2} against the power law's {reference} (bound {bound:.1e})"
+        );
+    }
+}
+
 #[test]
 fn auto_picks_the_ring_bem_for_a_table() {
     let out = verify(&[

@@ -1065,6 +1065,15 @@ const FIRST_SEARCH_RUNG: usize = 1;
 
 /// Starting contact ratio for the inverse problem. The paper's fits are used only to start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.
+///
+/// A concave punch whose gap has the slope `s = -a g'(a)/h >= 1.5` at the rim (`n` for the
+/// power law) starts from the sphere of the same rim slope, of depth `s h / 2` (so
+/// `γ(ε) ≈ (s/2) γ_sphere(ε)`, exact for the sphere and as the contact narrows toward the rim,
+/// `d -> 0`); a shallower one from the cone's fit, unscaled. The sphere's fit taken
+/// unscaled started a steep-walled profile (`n = 20`, `d = 0.9 h`: `ε = 0.86` against the root
+/// `0.988`) inside the hole, where `γ1` is not monotone (it rises again toward the hole's floor):
+/// the search wandered there or found a root whose surface crosses the floor and refused a
+/// state that exists.
 fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
     if kind == PunchKind::Torus {
         return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
@@ -1073,12 +1082,17 @@ fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
-    let fit = |eps: f64| match kind {
-        PunchKind::Cone => paper_fits::cone_gamma(i, eps),
-        // The power law starts from the nearer of the two fitted profiles.
-        PunchKind::Power(n) if n.value() < 1.5 => paper_fits::cone_gamma(i, eps),
-        _ => paper_fits::sphere_gamma(i, eps),
+    let rim_slope = match kind {
+        PunchKind::Table(t) => -t.profile().slope(1.0),
+        _ => kind.concave_exponent().unwrap_or(2.0),
     };
+    // The sphere keeps its own fit, unscaled (2 * target / 2 is exact).
+    let (target, fit): (f64, fn(usize, f64) -> f64) = if rim_slope < 1.5 {
+        (target, paper_fits::cone_gamma)
+    } else {
+        (2.0 * target / rim_slope, paper_fits::sphere_gamma)
+    };
+    let fit = |eps: f64| fit(i, eps);
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.
     let (mut lo, mut hi) = (MIN_CONTACT_RATIO, MAX_CONTACT_RATIO);
     for _ in 0..50 {
