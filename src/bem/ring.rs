@@ -81,6 +81,7 @@ impl Default for RingBemSettings {
 }
 
 /// The assembled and factorised collocation system for one contact region.
+#[derive(Clone)]
 pub struct RingSystem {
     region: ContactRegion,
     nodes: ChebyshevNodes,

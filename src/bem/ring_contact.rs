@@ -30,6 +30,8 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
 
+use piecewise_gap::BandEdges;
+
 mod piecewise_gap;
 mod torus;
 
@@ -129,8 +131,9 @@ const MIN_BAND_RATIO: f64 = 1e-4;
 struct ConcaveSample {
     gamma1: f64,
     gamma2: f64,
-    /// Rim intensity, units of `E* h / sqrt(a)`.
-    rim_stress_intensity: f64,
+    /// Rim intensity, units of `E* h / sqrt(a)` (`None` in a table's search sample,
+    /// [`RingBemSolver::search_sample`]).
+    rim_stress_intensity: Option<f64>,
     system: RingSystem,
     /// The collocated pressure field (pressure samples, the hole's floor).
     field: RingField,
@@ -343,7 +346,9 @@ impl RingBemSolver {
                 depth,
                 force: band.force(depth),
                 inner_stress_intensity: band.inner_intensity(depth),
-                outer_stress_intensity: band.outer_intensity(depth),
+                outer_stress_intensity: band.outer_intensity(depth).ok_or_else(|| {
+                    no_convergence("the band's outer edge was not computed".into())
+                })?,
                 error_estimate: f64::NAN,
                 unknowns: n,
             })
@@ -429,10 +434,42 @@ impl RingBemSolver {
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
+        self.concave_sample_with(kind, eps, n, outer_hint, BandEdges::Both)
+    }
+
+    /// [`Self::concave_sample`] for a search on the inner edge, which needs `γ1` and `γ2` only:
+    /// a table's band is built without its rim's derivative (six factorisations instead of
+    /// eleven), so its `rim_stress_intensity` is `None` until [`Self::completed`] adds it. The
+    /// same as [`Self::concave_sample`] for every other punch.
+    fn search_sample(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        n: usize,
+        outer_hint: Option<f64>,
+    ) -> Result<ConcaveSample> {
+        self.concave_sample_with(kind, eps, n, outer_hint, BandEdges::Inner)
+    }
+
+    fn concave_sample_with(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        n: usize,
+        outer_hint: Option<f64>,
+        edges: BandEdges,
+    ) -> Result<ConcaveSample> {
         if kind == PunchKind::Torus {
             return self.torus_sample(eps, n, outer_hint);
         }
-        let system = self.system(ContactRegion::Annulus { eps }, n);
+        // A table's collocated field (which draws the pressure) is solved on its band's system.
+        let (system, table_band) = match kind {
+            PunchKind::Table(table) => {
+                let band = self.gap_band(table.profile(), eps, 1.0, n, edges)?;
+                (band.system().clone(), Some(band))
+            }
+            _ => (self.system(ContactRegion::Annulus { eps }, n), None),
+        };
         let unit_depth = vec![1.0; n];
         let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap_shape(r)).collect();
         let singular = || no_convergence("singular collocation matrix".into());
@@ -454,15 +491,14 @@ impl RingBemSolver {
         let collocated = ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
-            rim_stress_intensity: system.rim_stress_intensity(&field),
+            rim_stress_intensity: Some(system.rim_stress_intensity(&field)),
             field_depth: gamma1,
             table_band: None,
             system,
             field,
         };
-        match kind {
-            PunchKind::Table(table) => {
-                let band = self.gap_band(table.profile(), eps, 1.0, n)?;
+        match table_band {
+            Some(band) => {
                 let gamma1 = band.functionals.free_inner_depth();
                 Ok(ConcaveSample {
                     gamma1,
@@ -472,8 +508,18 @@ impl RingBemSolver {
                     ..collocated
                 })
             }
-            _ => Ok(collocated),
+            None => Ok(collocated),
         }
+    }
+
+    /// A search sample made whole: a table's rim intensity added
+    /// ([`RingBemSolver::complete_outer_edge`], the same to the bit as a full sample's).
+    fn completed(&self, kind: PunchKind, mut sample: ConcaveSample) -> Result<ConcaveSample> {
+        if let (PunchKind::Table(table), Some(band)) = (kind, sample.table_band.as_mut()) {
+            self.complete_outer_edge(table.profile(), band)?;
+            sample.rim_stress_intensity = band.functionals.outer_intensity(sample.gamma1);
+        }
+        Ok(sample)
     }
 
     /// The punch must not touch the floor of the hole: the surface there stays clear of the
@@ -553,7 +599,7 @@ impl RingBemSolver {
         // The collocated field's own error (the table's: its depth against the accurate γ1)
         // widens the tolerance of the sign check by ten times that error.
         let field_error = (fine.field_depth - fine.gamma1).abs() / fine.gamma1.abs();
-        let state = free_edge_state(eps, fine, n, estimate, solves);
+        let state = free_edge_state(eps, fine, n, estimate, solves)?;
         check_compressive(
             &state.pressure,
             eps,
@@ -581,7 +627,7 @@ impl RingBemSolver {
         tolerance: f64,
     ) -> Result<RingState> {
         let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
-        Ok(free_edge_state(eps, fine, n, estimate, solves))
+        free_edge_state(eps, fine, n, estimate, solves)
     }
 
     fn concave_refined(
@@ -612,7 +658,7 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if closure(kind).is_some_and(|(depth, _)| target >= depth) {
+        if is_closed(kind, target, Controlled::Depth) {
             return self.full_contact(kind, target, tolerance);
         }
         self.concave_inverse(kind, target, tolerance, Controlled::Depth)
@@ -626,7 +672,7 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if closure(kind).is_some_and(|(_, force)| target >= force) {
+        if is_closed(kind, target, Controlled::Force) {
             // Full contact: the solver finds the depth from its own force (not from the MDR
             // relation F = 2 E* a (d - h/3) of the sphere, or its power-law form, which the
             // tests check it against).
@@ -673,7 +719,7 @@ impl RingBemSolver {
                 |eps| {
                     let hint = outer_edge_hint(&history, eps).or(outer_guess);
                     let sample = self
-                        .concave_sample(kind, eps, n, hint)
+                        .search_sample(kind, eps, n, hint)
                         .map_err(|e| e.to_string())?;
                     let value = pick(&sample) - target;
                     if history.len() == 3 {
@@ -697,15 +743,17 @@ impl RingBemSolver {
                 .filter(|(at, _)| *at != eps)
                 .max_by(|(a, _), (b, _)| (a - eps).abs().total_cmp(&(b - eps).abs()))
                 .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
+            // The root's sample becomes the state's (a table's search sample gains its rim
+            // intensity).
             let fine = match history.pop() {
-                Some((at, sample)) if at == eps => sample,
+                Some((at, sample)) if at == eps => self.completed(kind, sample)?,
                 _ => {
                     solves += 1;
                     self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?
                 }
             };
             let fine_outer = Some(fine.system.region().outer());
-            let coarse = self.concave_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
+            let coarse = self.search_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
             solves += 1;
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
@@ -725,7 +773,7 @@ impl RingBemSolver {
                         None => {
                             let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
                             solves += 1;
-                            let s = self.concave_sample(kind, eps + step, n, fine_outer)?;
+                            let s = self.search_sample(kind, eps + step, n, fine_outer)?;
                             [
                                 (s.gamma1 - fine.gamma1) / step,
                                 (s.gamma2 - fine.gamma2) / step,
@@ -884,27 +932,30 @@ fn table_full_contact(table: &crate::punch::TableProfile, depth: f64) -> RingSta
 }
 
 /// The state of a concave sample with a free inner edge at `eps` (no check of its sign or of the
-/// hole's floor).
+/// hole's floor). An error for a search sample without its rim intensity.
 fn free_edge_state(
     eps: f64,
     fine: ConcaveSample,
     n: usize,
     estimate: f64,
     solves: usize,
-) -> RingState {
-    RingState {
+) -> Result<RingState> {
+    let rim_stress_intensity = fine.rim_stress_intensity.ok_or_else(|| {
+        no_convergence("a search sample (no rim intensity) was taken for a state".into())
+    })?;
+    Ok(RingState {
         eps,
         outer_edge: fine.system.region().outer(),
         gamma: None,
         gamma1: Some(fine.gamma1),
         gamma2: Some(fine.gamma2),
-        rim_stress_intensity: fine.rim_stress_intensity,
+        rim_stress_intensity,
         inner_stress_intensity: 0.0,
         pressure: pressure_profile(&fine.system, &fine.field),
         error_estimate: estimate,
         unknowns: n,
         solves,
-    }
+    })
 }
 
 /// The first of `radii` where the surface `w(r)` (from `deflection`, `None`: not evaluated
@@ -979,6 +1030,25 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
         )),
         RootError::Evaluation(m) => no_convergence(m),
     }
+}
+
+/// Whether the contact of a closing punch is the full disk at `target` (`d/h` or
+/// `F/(2 E* h a)`, as `controlled` says): at or beyond [`closure`]. A table is first compared
+/// with the MDR's lower bounds of its closure ([`crate::reference::mdr::table_closure_lower_bounds`]): a state
+/// short of them is open without the closure's maximisation.
+fn is_closed(kind: PunchKind, target: f64, controlled: Controlled) -> bool {
+    let pick = |(depth, force): (f64, f64)| match controlled {
+        Controlled::Depth => depth,
+        Controlled::Force => force,
+    };
+    if let PunchKind::Table(table) = kind {
+        match crate::reference::mdr::table_closure_lower_bounds(table.profile()) {
+            Some(bounds) if target < pick(bounds) => return false,
+            None => return false,
+            Some(_) => {}
+        }
+    }
+    closure(kind).is_some_and(|c| target >= pick(c))
 }
 
 /// Where a concave punch's contact closes, `(d/h, F/(2 E* h a))`: exactly `(3, 8/3)` for the

@@ -165,7 +165,7 @@ impl RingBemSolver {
             },
         )?;
         let eps = fine.system.region().inner();
-        let mut state = free_edge_state(eps, fine, n, estimate, solves);
+        let mut state = free_edge_state(eps, fine, n, estimate, solves)?;
         state.inner_stress_intensity = intensity;
         Ok(state)
     }
@@ -493,7 +493,7 @@ impl TorusBand {
         ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
-            rim_stress_intensity: self.system.rim_stress_intensity(&field),
+            rim_stress_intensity: Some(self.system.rim_stress_intensity(&field)),
             field_depth: gamma1,
             table_band: None,
             system: self.system,
