@@ -1034,8 +1034,9 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
 
 /// Whether the contact of a closing punch is the full disk at `target` (`d/h` or
 /// `F/(2 E* h a)`, as `controlled` says): at or beyond [`closure`]. A table is first compared
-/// with the MDR's lower bounds of its closure ([`crate::reference::mdr::table_closure_lower_bounds`]): a state
-/// short of them is open without the closure's maximisation.
+/// with the MDR's lower bounds of its closure
+/// ([`crate::reference::mdr::table_closure_lower_bounds`]): a state short of them is open
+/// without the closure's maximisation.
 fn is_closed(kind: PunchKind, target: f64, controlled: Controlled) -> bool {
     let pick = |(depth, force): (f64, f64)| match controlled {
         Controlled::Depth => depth,

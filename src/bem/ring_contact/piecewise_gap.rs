@@ -620,6 +620,33 @@ mod tests {
         }
     }
 
+    /// A band built for its inner edge and completed with its outer edge carries the same
+    /// functionals, to the bit, as one built with both (the state's rim intensity is the
+    /// completed one).
+    #[test]
+    fn a_band_completed_with_its_outer_edge_equals_one_built_with_both() {
+        let solver = RingBemSolver::new();
+        let gap = Wavy {
+            breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],
+        };
+        for (inner, outer) in [(0.3, 1.0), (0.02, 1.0), (0.7, 0.9)] {
+            let both = solver
+                .gap_band(&gap, inner, outer, 24, BandEdges::Both)
+                .unwrap()
+                .functionals;
+            let mut band = solver
+                .gap_band(&gap, inner, outer, 24, BandEdges::Inner)
+                .unwrap();
+            assert!(band.functionals.gap_outer_intensity.is_none());
+            solver.complete_outer_edge(&gap, &mut band).unwrap();
+            let completed = band.functionals;
+            assert!(completed.gap_outer_intensity.is_some());
+            assert_eq!(completed.gap_outer_intensity, both.gap_outer_intensity);
+            assert_eq!(completed.gap_inner_intensity, both.gap_inner_intensity);
+            assert_eq!(completed.gap_force, both.gap_force);
+        }
+    }
+
     /// The surface in the hole, drawn through the smooth part and the remainder's reciprocal
     /// field, equals the direct collocation's (the wavy gap is analytic: 64 nodes converge).
     #[test]
