@@ -470,6 +470,29 @@ impl RingBemSolver {
             }
             _ => (self.system(ContactRegion::Annulus { eps }, n), None),
         };
+        let collocated = Self::collocated_sample(kind, system)?;
+        match table_band {
+            Some(band) => {
+                let gamma1 = band.functionals.free_inner_depth();
+                Ok(ConcaveSample {
+                    gamma1,
+                    gamma2: 0.5 * band.functionals.force(gamma1),
+                    rim_stress_intensity: band.functionals.outer_intensity(gamma1),
+                    table_band: Some(band),
+                    ..collocated
+                })
+            }
+            None => Ok(collocated),
+        }
+    }
+
+    /// The concave punch's gap collocated on `system` (an annulus with its rim at `a`): the
+    /// depth of a free inner edge, `γ1 = -α²_b / α¹_b` from the fields of `w = 1` and `w = -ĝ`,
+    /// its force and rim intensity. Spectrally accurate for an analytic gap; for a table's
+    /// piecewise cubic only algebraically (its value there draws the pressure and starts the
+    /// search, [`piecewise_gap`] gives the state).
+    fn collocated_sample(kind: PunchKind, system: RingSystem) -> Result<ConcaveSample> {
+        let n = system.unknowns();
         let unit_depth = vec![1.0; n];
         let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap_shape(r)).collect();
         let singular = || no_convergence("singular collocation matrix".into());
@@ -488,7 +511,7 @@ impl RingBemSolver {
             rim_coefficient: combine(depth_field.rim_coefficient, gap_field.rim_coefficient),
             inner_coefficient: 0.0,
         };
-        let collocated = ConcaveSample {
+        Ok(ConcaveSample {
             gamma1,
             gamma2: 0.5 * field.force,
             rim_stress_intensity: Some(system.rim_stress_intensity(&field)),
@@ -496,20 +519,7 @@ impl RingBemSolver {
             table_band: None,
             system,
             field,
-        };
-        match table_band {
-            Some(band) => {
-                let gamma1 = band.functionals.free_inner_depth();
-                Ok(ConcaveSample {
-                    gamma1,
-                    gamma2: 0.5 * band.functionals.force(gamma1),
-                    rim_stress_intensity: band.functionals.outer_intensity(gamma1),
-                    table_band: Some(band),
-                    ..collocated
-                })
-            }
-            None => Ok(collocated),
-        }
+        })
     }
 
     /// A search sample made whole: a table's rim intensity added
@@ -710,6 +720,30 @@ impl RingBemSolver {
         let mut slope_hint = None;
         let mut previous_slopes = None;
         let mut solves = 0;
+        if matches!(kind, PunchKind::Table(_)) {
+            // A table's sample takes six collocation systems, its direct collocation one: the
+            // latter's root (off by its algebraic error, about 1e-5) and slope start the search.
+            let n = NODE_LADDER[0];
+            let collocated = |eps: f64| -> std::result::Result<f64, String> {
+                let system = self.system(ContactRegion::Annulus { eps }, n);
+                let sample = Self::collocated_sample(kind, system).map_err(|e| e.to_string())?;
+                Ok(pick(&sample) - target)
+            };
+            let root = find_root_with_slope(
+                collocated,
+                MIN_CONTACT_RATIO,
+                MAX_CONTACT_RATIO,
+                guess,
+                None,
+                PRESEARCH_TOLERANCE,
+                60,
+            );
+            if let Ok(root) = root {
+                solves += root.evaluations;
+                guess = root.x;
+                slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
+            }
+        }
         loop {
             let n = NODE_LADDER[rung];
             // The last three samples of the search are kept: the state at the root and the
@@ -1129,6 +1163,10 @@ const SLOPE_MIN_SEPARATION: f64 = 1e-9;
 /// The largest error estimate of a rung whose slopes the next rung may reuse for its own
 /// estimate (the slopes are then good to about this, and the estimate needs a few per cent).
 const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
+
+/// Tolerance in `eps` of a table's pre-search on its direct collocation: below the collocation's
+/// own error (about 1e-5), which the accurate search then removes.
+const PRESEARCH_TOLERANCE: f64 = 1e-6;
 
 /// The rung of the inverse problem's first search (N = 16): a state that needs more nodes
 /// climbs from its root.
