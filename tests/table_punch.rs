@@ -229,6 +229,64 @@ fn the_ring_bem_names_a_table_state_it_cannot_model() {
     );
 }
 
+/// States beyond what the ring BEM's single annulus reaches are refused with the reason, not
+/// after a search that wandered for 60 solves: a cosine dimple `(1 + cos(π r/a))/2` sampled at
+/// 41 points (whose interpolant has a tiny slope at the axis, so its hole never closes) at
+/// `d = 8 h`, where the ring would be narrower than the table's band functionals resolve
+/// (`b < 1e-3 a`; at `1e-4 a` they gave `γ1 = -1322` and the search wandered); and the cube
+/// `1 - (r/a)^3` sampled at 41 points under `F/(2 E* h a) = 2`, short of its full contact, whose
+/// contact is a disk and an annulus (named as for the power law `n = 3`, whose full contact
+/// also opens on a ring).
+#[test]
+fn states_beyond_the_single_annulus_are_refused_with_the_reason() {
+    let dir = scratch("beyond");
+    let write = |name: &str, g: &dyn Fn(f64) -> f64| {
+        let path = dir.join(name);
+        let mut text = String::from("r/a,g/h\n");
+        for k in 0..=40 {
+            let r = f64::from(k) / 40.0;
+            text.push_str(&format!("{r},{}\n", g(r)));
+        }
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let cosine = write("cosine.csv", &|r| {
+        0.5 * (1.0 + (std::f64::consts::PI * r).cos())
+    });
+    let cube = write("cube.csv", &|r| 1.0 - r.powi(3));
+    for (path, flag, value, reason) in [
+        (
+            &cosine,
+            "--depth",
+            "8",
+            "needs a contact ratio outside [0.001",
+        ),
+        (&cube, "--force", "4", "floor of its hole"),
+    ] {
+        let out = verify(&[
+            "solve",
+            "--punch",
+            "table",
+            "--profile",
+            path.to_str().unwrap(),
+            flag,
+            value,
+            "--method",
+            "ring-bem",
+        ]);
+        assert!(!out.status.success());
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains(reason), "{flag} {value}: {stderr}");
+    }
+    // Short of them the same tables solve.
+    let solver = RingBemSolver::new();
+    for (path, depth) in [(&cosine, 4.0), (&cube, 1.0)] {
+        let kind = PunchName::Table.with_parameters(None, Some(path)).unwrap();
+        let state = solver.concave_at_depth(kind, depth, 1e-9).unwrap();
+        assert!(state.error_estimate <= 1e-9, "{state:?}");
+    }
+}
+
 #[test]
 fn bad_tables_and_misplaced_flags_are_named() {
     let dir = scratch("bad");

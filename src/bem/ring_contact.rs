@@ -43,6 +43,20 @@ const NODE_LADDER: [usize; 9] = [12, 16, 20, 24, 32, 40, 48, 64, 80];
 
 /// Smallest contact ratio `b/a` of an annulus the method accepts (validated down to here).
 pub(crate) const MIN_CONTACT_RATIO: f64 = 1e-4;
+
+/// Smallest contact ratio a table punch's search visits: its band functionals
+/// ([`piecewise_gap`]) settle to 1e-11 for `b >= 0.004 a` and to about 1e-9 at `1e-3 a`, while at
+/// `1e-4 a` they return nonsense (`γ1 = -1322` for a sampled cosine dimple), between which a
+/// search wandered for 60 solves instead of saying that the state lies beyond.
+const TABLE_MIN_CONTACT_RATIO: f64 = 1e-3;
+
+/// The smallest contact ratio the inverse problem of `kind` searches.
+fn min_contact_ratio(kind: PunchKind) -> f64 {
+    match kind {
+        PunchKind::Table(_) => TABLE_MIN_CONTACT_RATIO,
+        _ => MIN_CONTACT_RATIO,
+    }
+}
 /// Largest contact ratio `b/a` the method accepts (a ring of width `1e-4 a`).
 pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 
@@ -731,7 +745,7 @@ impl RingBemSolver {
             };
             let root = find_root_with_slope(
                 collocated,
-                MIN_CONTACT_RATIO,
+                min_contact_ratio(kind),
                 MAX_CONTACT_RATIO,
                 guess,
                 None,
@@ -762,7 +776,7 @@ impl RingBemSolver {
                     history.push((eps, sample));
                     Ok(value)
                 },
-                MIN_CONTACT_RATIO,
+                min_contact_ratio(kind),
                 MAX_CONTACT_RATIO,
                 guess,
                 slope_hint,
@@ -1023,10 +1037,11 @@ fn outer_edge_hint(history: &[(f64, ConcaveSample)], eps: f64) -> Option<f64> {
 fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Controlled) -> Error {
     match e {
         RootError::NotBracketed { f_lo, f_hi, .. } => out_of_range(format!(
-            "{} {} = {} needs a contact ratio outside [{MIN_CONTACT_RATIO}, {MAX_CONTACT_RATIO}]{}{}",
+            "{} {} = {} needs a contact ratio outside [{}, {MAX_CONTACT_RATIO}]{}{}",
             kind,
             controlled.symbol(),
             crate::error::show(target),
+            min_contact_ratio(kind),
             if target.abs() < 1e12 {
                 format!(
                     " (the value ranges over [{}, {}] there)",
@@ -1051,7 +1066,10 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
                 _ => "; the contact ring would be narrower than 1e-4 a".into(),
             }
         )),
-        RootError::NoConvergence { iterations, last_step } => no_convergence(format!(
+        RootError::NoConvergence {
+            iterations,
+            last_step,
+        } => no_convergence(format!(
             "contact-ratio search stopped after {iterations} solves (last step {last_step:.1e}){}",
             match closure(kind) {
                 // Measured: the power law n = 3 under F = 4 E* h a (full contact from d = 2.44 h) ran
@@ -1110,18 +1128,32 @@ fn closure(kind: PunchKind) -> Option<(f64, f64)> {
 /// `short of`) full contact at `d = depth h`: its contact `is` or `can be` a disk and an annulus.
 fn floor_touch_note(where_: &str, depth: f64, is: &str) -> String {
     format!(
-        "; a profile flatter than the sphere at the axis (n > 2) touches the floor of its hole \
-         before the ring closes: {where_} full contact at d = {} h the contact {is} a disk and \
-         an annulus, which the ring BEM does not model",
+        "; a profile flatter than the sphere at the axis (the power law's n > 2, a table whose \
+         full contact opens on a ring) touches the floor of its hole before the ring closes: \
+         {where_} full contact at d = {} h the contact {is} a disk and an annulus, which the \
+         ring BEM does not model",
         crate::error::show(depth)
     )
 }
 
-/// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`):
-/// its contact closes from a disk and an annulus, not by a shrinking hole.
+/// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`; a
+/// table whose full-contact pressure first vanishes on a ring, [`OPENING_OFF_AXIS`] or more
+/// from the axis, by the MDR): its contact closes from a disk and an annulus, not by a
+/// shrinking hole.
 fn flatter_than_the_sphere(kind: PunchKind) -> bool {
-    kind.concave_exponent().is_some_and(|n| n > 2.0)
+    match kind {
+        PunchKind::Table(table) => {
+            crate::reference::mdr::table_full_contact(table.profile()).opening_radius
+                >= OPENING_OFF_AXIS
+        }
+        _ => kind.concave_exponent().is_some_and(|n| n > 2.0),
+    }
 }
+
+/// Radius (units of `a`) from which a table's full contact is taken to open on a ring rather
+/// than at the axis: the MDR's maximisation places the sphere's opening 5e-11 from the axis,
+/// the power law's at 0.035 for `n = 2.05`, 0.22 for `n = 2.5`, 0.5 for `n = 4`.
+const OPENING_OFF_AXIS: f64 = 1e-3;
 
 /// Which quantity a concave inverse problem prescribes.
 #[derive(Clone, Copy)]
@@ -1203,7 +1235,7 @@ fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
     };
     let fit = |eps: f64| fit(i, eps);
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.
-    let (mut lo, mut hi) = (MIN_CONTACT_RATIO, MAX_CONTACT_RATIO);
+    let (mut lo, mut hi) = (min_contact_ratio(kind), MAX_CONTACT_RATIO);
     for _ in 0..50 {
         let mid = 0.5 * (lo + hi);
         if fit(mid) > target {
