@@ -435,9 +435,23 @@ impl<'a> ConcaveBranch<'a> {
     /// the ratios in parallel. Refuses a punch without a rim or not concave.
     pub fn new(solver: &'a RingBemSolver, kind: PunchKind) -> Result<Self> {
         check_concave(kind)?;
+        // A ratio the ring BEM cannot resolve (the widest rings of a steep-walled profile) stops
+        // the analysis: the error names the ratio and the scan.
         let scan: Vec<BranchPoint> = scan_ratios()
             .into_par_iter()
-            .map(|e| branch_point(solver, kind, e))
+            .map(|e| {
+                branch_point(solver, kind, e).map_err(|err| match err {
+                    Error::NoConvergence { method, reason } => Error::NoConvergence {
+                        method,
+                        reason: format!(
+                            "the JKR branch's scan of contact ratios 0.004 to 0.9999, at \
+                             eps = {}: {reason}",
+                            crate::error::show(e)
+                        ),
+                    },
+                    other => other,
+                })
+            })
             .collect::<Result<_>>()?;
         let solved = scan.iter().map(|p| (p.eps.to_bits(), *p)).collect();
         Ok(Self {
