@@ -43,11 +43,14 @@ const NODE_LADDER: [usize; 9] = [12, 16, 20, 24, 32, 40, 48, 64, 80];
 
 /// Smallest contact ratio `b/a` of an annulus the method accepts (validated down to here).
 pub(crate) const MIN_CONTACT_RATIO: f64 = 1e-4;
+/// Largest contact ratio `b/a` the method accepts (a ring of width `1e-4 a`).
+pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 
 /// Smallest contact ratio a table punch's search visits: its band functionals
 /// ([`piecewise_gap`]) settle to 1e-11 for `b >= 0.004 a` and to about 1e-9 at `1e-3 a`, while at
-/// `1e-4 a` they return nonsense (`γ1 = -1322` for a sampled cosine dimple), between which a
-/// search wandered for 60 solves instead of saying that the state lies beyond.
+/// `1e-4 a` they return nonsense (`γ1 = -1322` for a sampled cosine dimple): a search that
+/// reached down there wandered for 60 solves instead of saying that the state needs a narrower
+/// ring.
 const TABLE_MIN_CONTACT_RATIO: f64 = 1e-3;
 
 /// The smallest contact ratio the inverse problem of `kind` searches.
@@ -57,8 +60,6 @@ fn min_contact_ratio(kind: PunchKind) -> f64 {
         _ => MIN_CONTACT_RATIO,
     }
 }
-/// Largest contact ratio `b/a` the method accepts (a ring of width `1e-4 a`).
-pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 
 /// Below this relative tolerance the method's rounding floor (about 1e-13 relative) would be
 /// mistaken for convergence.
