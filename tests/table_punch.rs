@@ -22,12 +22,19 @@ use ringcontact::punch::{PunchKind, PunchName};
 
 /// A table of the sphere's profile at `points` equally spaced radii, written to a fresh file.
 fn sphere_table(dir: &Path, points: usize) -> PathBuf {
+    profile_table(dir, &format!("sphere-{points}.csv"), points, |r| {
+        1.0 - r * r
+    })
+}
+
+/// A table of the profile `g(r/a)` at `points` equally spaced radii, written to `dir/name`.
+fn profile_table(dir: &Path, name: &str, points: usize, g: impl Fn(f64) -> f64) -> PathBuf {
     let mut text = String::from("r/a,g/h\n");
     for k in 0..points {
         let r = k as f64 / (points - 1) as f64;
-        text.push_str(&format!("{r},{}\n", 1.0 - r * r));
+        text.push_str(&format!("{r},{}\n", g(r)));
     }
-    let path = dir.join(format!("sphere-{points}.csv"));
+    let path = dir.join(name);
     std::fs::write(&path, text).unwrap();
     path
 }
@@ -152,13 +159,7 @@ fn the_ring_bem_tends_to_the_sphere_as_the_table_is_refined() {
 #[test]
 fn a_steep_walled_table_is_solved_near_its_power_law() {
     let dir = scratch("steep");
-    let path = dir.join("power-20.csv");
-    let mut text = String::from("r/a,g/h\n");
-    for k in 0..=80 {
-        let r = f64::from(k) / 80.0;
-        text.push_str(&format!("{r},{}\n", 1.0 - r.powi(20)));
-    }
-    std::fs::write(&path, text).unwrap();
+    let path = profile_table(&dir, "power-20.csv", 81, |r| 1.0 - r.powi(20));
     let table = PunchName::Table.with_parameters(None, Some(&path)).unwrap();
     let power = PunchName::Power.with_exponent(Some(20.0)).unwrap();
     let gap_difference = (0..=20000)
@@ -240,20 +241,10 @@ fn the_ring_bem_names_a_table_state_it_cannot_model() {
 #[test]
 fn states_beyond_the_single_annulus_are_refused_with_the_reason() {
     let dir = scratch("beyond");
-    let write = |name: &str, g: &dyn Fn(f64) -> f64| {
-        let path = dir.join(name);
-        let mut text = String::from("r/a,g/h\n");
-        for k in 0..=40 {
-            let r = f64::from(k) / 40.0;
-            text.push_str(&format!("{r},{}\n", g(r)));
-        }
-        std::fs::write(&path, text).unwrap();
-        path
-    };
-    let cosine = write("cosine.csv", &|r| {
+    let cosine = profile_table(&dir, "cosine.csv", 41, |r| {
         0.5 * (1.0 + (std::f64::consts::PI * r).cos())
     });
-    let cube = write("cube.csv", &|r| 1.0 - r.powi(3));
+    let cube = profile_table(&dir, "cube.csv", 41, |r| 1.0 - r.powi(3));
     for (path, flag, value, reason) in [
         (
             &cosine,

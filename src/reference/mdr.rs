@@ -142,8 +142,20 @@ impl ConcaveProfile for TableProfile {
 
 /// [`full_contact`] of a table profile, computed once per table and process.
 pub fn table_full_contact(table: &TableProfile) -> FullContact {
-    static CACHE: OnceLock<Mutex<HashMap<String, FullContact>>> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    static CACHE: OnceLock<PerTable<FullContact>> = OnceLock::new();
+    once_per_table(&CACHE, table, || full_contact(table))
+}
+
+/// Values computed from a table, by the table's digest.
+type PerTable<T> = Mutex<HashMap<String, T>>;
+
+/// `compute()` for `table`, kept in `cache` so each table's is computed once per process.
+fn once_per_table<T: Copy>(
+    cache: &OnceLock<PerTable<T>>,
+    table: &TableProfile,
+    compute: impl FnOnce() -> T,
+) -> T {
+    let cache = cache.get_or_init(|| Mutex::new(HashMap::new()));
     if let Some(known) = cache
         .lock()
         .ok()
@@ -151,7 +163,7 @@ pub fn table_full_contact(table: &TableProfile) -> FullContact {
     {
         return known;
     }
-    let computed = full_contact(table);
+    let computed = compute();
     if let Ok(mut map) = cache.lock() {
         map.insert(table.sha256().to_string(), computed);
     }
@@ -177,25 +189,10 @@ pub fn closure_lower_bounds(profile: &dyn ConcaveProfile) -> Option<(f64, f64)> 
     Some((at_axis, at_axis - force_offset))
 }
 
-/// Closure lower bounds by table digest.
-type BoundsCache = Mutex<HashMap<String, Option<(f64, f64)>>>;
-
 /// [`closure_lower_bounds`] of a table profile, computed once per table and process.
 pub fn table_closure_lower_bounds(table: &TableProfile) -> Option<(f64, f64)> {
-    static CACHE: OnceLock<BoundsCache> = OnceLock::new();
-    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
-    if let Some(known) = cache
-        .lock()
-        .ok()
-        .and_then(|m| m.get(table.sha256()).copied())
-    {
-        return known;
-    }
-    let computed = closure_lower_bounds(table);
-    if let Ok(mut map) = cache.lock() {
-        map.insert(table.sha256().to_string(), computed);
-    }
-    computed
+    static CACHE: OnceLock<PerTable<Option<(f64, f64)>>> = OnceLock::new();
+    once_per_table(&CACHE, table, || closure_lower_bounds(table))
 }
 
 fn breakpoints(profile: &dyn ConcaveProfile) -> Vec<f64> {

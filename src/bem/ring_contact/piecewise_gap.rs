@@ -351,12 +351,13 @@ impl RingBemSolver {
             smooth: &band.smooth,
         };
         let integrals = band_integrals(&self.rule, &remainder, (inner, outer), &factor);
-        let flat_outer = band.functionals.flat_outer_intensity;
-        band.functionals.gap_outer_intensity = Some(
-            band.system.rim_stress_intensity(&band.smooth_gap)
-                + flat_outer * remainder.value(outer)
-                + integrals.outer_derivative / (2.0 * PI * outer * flat_outer),
-        );
+        band.functionals.gap_outer_intensity = Some(outer_edge_intensity(
+            &band.system,
+            &band.smooth_gap,
+            &remainder,
+            band.functionals.flat_outer_intensity,
+            integrals.outer_derivative,
+        ));
         Ok(())
     }
 
@@ -425,9 +426,13 @@ impl RingBemSolver {
                 + flat_inner * remainder.value(inner)
                 - integrals.inner_derivative / (2.0 * PI * inner * flat_inner),
             gap_outer_intensity: factor.outer_stencil.as_ref().map(|_| {
-                centre.system.rim_stress_intensity(&direct)
-                    + flat_outer * remainder.value(outer)
-                    + integrals.outer_derivative / (2.0 * PI * outer * flat_outer)
+                outer_edge_intensity(
+                    &centre.system,
+                    &direct,
+                    &remainder,
+                    flat_outer,
+                    integrals.outer_derivative,
+                )
             }),
         };
         Ok(GapBand {
@@ -438,6 +443,22 @@ impl RingBemSolver {
             smooth,
         })
     }
+}
+
+/// `K_c[g] = K_c[g_s] + K_c[1] g_r(c) + ∫ ∂_c p¹ (g_r - g_r(c)) dA / (2π c K_c[1])` on the band
+/// of `system` (outer edge `c`): the smooth part's intensity from its collocated field `direct`,
+/// the remainder `g_r`'s through the outer derivative's integral `outer_derivative`.
+fn outer_edge_intensity(
+    system: &RingSystem,
+    direct: &RingField,
+    remainder: &Remainder,
+    flat_outer: f64,
+    outer_derivative: f64,
+) -> f64 {
+    let outer = system.region().outer();
+    system.rim_stress_intensity(direct)
+        + flat_outer * remainder.value(outer)
+        + outer_derivative / (2.0 * PI * outer * flat_outer)
 }
 
 /// The fields behind [`GapFunctionals`], kept to draw the surface inside the band's hole.
