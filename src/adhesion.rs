@@ -32,7 +32,7 @@ mod concave;
 mod torus;
 pub use concave::{
     branch_point, branch_tolerance, concave, full_contact_constants, paper_fit_route, BranchPoint,
-    ConcaveBranch, ConcaveJkr, Critical, EpsForce, FullContactBranch, D0H_RANGE,
+    ConcaveBranch, ConcaveJkr, Critical, EpsForce, FloorContact, FullContactBranch, D0H_RANGE,
 };
 use concave::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
 pub use torus::{plane_strain_pulloff, torus_jkr, TorusCritical, TorusJkr};

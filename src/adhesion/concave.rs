@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::ROOT_PI;
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
-use crate::bem::ring_contact::RingBemSolver;
+use crate::bem::ring_contact::{RingBemSolver, HOLE_OVERLAP_TOLERANCE, HOLE_PROBES};
 use crate::error::{Error, Result};
 use crate::numerics::brent::brent_minimum;
 use crate::numerics::tanh_sinh::TanhSinhRule;
@@ -35,6 +35,13 @@ pub struct BranchPoint {
     pub concave_error: f64,
     #[serde(default)]
     pub flat_error: f64,
+    /// Clearance of the non-adhesive state's surface over the punch's floor in the hole,
+    /// `w(r) - (d - g(r))` (units of `h`) at the radii of [`crate::bem::ring_contact::hole_probes`].
+    #[serde(skip)]
+    pub hole_clearance: [f64; HOLE_PROBES],
+    /// The flat annulus's lag at the same radii, `1 - w(r)` at unit depth.
+    #[serde(skip)]
+    pub hole_lag: [f64; HOLE_PROBES],
 }
 
 impl BranchPoint {
@@ -50,12 +57,53 @@ impl BranchPoint {
     pub fn rim_intensity(&self, s: f64) -> f64 {
         self.kappa_out_na / s - self.kappa_out / self.kappa_in
     }
+    /// The adhesive state's least clearance over the punch's floor in the hole (units of `h`):
+    /// it is the non-adhesive state's plus the flat annulus's pulled by `δ = -s/κ_in`, so
+    /// `min_r [c(r) + (s/κ_in)(1 - u(r))]`, with `c` the non-adhesive clearance and `1 - u` the
+    /// flat annulus's lag. Negative: the punch would rise into the surface, and the state is
+    /// not an annular contact.
+    pub fn floor_clearance(&self, s: f64) -> f64 {
+        self.hole_clearance
+            .iter()
+            .zip(&self.hole_lag)
+            .map(|(c, lag)| c + s / self.kappa_in * lag)
+            .fold(f64::INFINITY, f64::min)
+    }
+    /// [`Self::floor_clearance`] plus the overlap the ring BEM tolerates (`HOLE_OVERLAP_TOLERANCE`
+    /// times the depth, at least 1): negative where the state touches the floor.
+    pub fn floor_margin(&self, s: f64) -> f64 {
+        self.floor_clearance(s) + HOLE_OVERLAP_TOLERANCE * self.depth(s).abs().max(1.0)
+    }
+    /// Whether the adhesive state clears the hole's floor ([`Self::floor_margin`]).
+    pub fn clears_floor(&self, s: f64) -> bool {
+        self.floor_margin(s) >= 0.0
+    }
 }
 
-/// Ring-BEM quantities at `eps` for a concave punch (tolerance [`branch_tolerance`]).
+/// Ring-BEM quantities at `eps` for a concave punch (tolerance [`branch_tolerance`]). A point
+/// whose solves cannot meet it is taken at the first of [`FALLBACK_BRANCH_TOLERANCES`] they
+/// meet, its estimates (carried into the critical states' error bounds) saying so.
 pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
-    branch_point_at(solver, kind, eps, branch_tolerance(kind))
+    let tolerance = branch_tolerance(kind);
+    let mut outcome = branch_point_at(solver, kind, eps, tolerance);
+    for looser in FALLBACK_BRANCH_TOLERANCES {
+        match outcome {
+            Err(Error::NoConvergence { .. }) if looser > tolerance => {
+                outcome = branch_point_at(solver, kind, eps, looser);
+            }
+            _ => break,
+        }
+    }
+    outcome
 }
+
+/// Looser tolerances, tried in turn, for a branch point whose solves cannot meet
+/// [`branch_tolerance`]: the widest rings of a steep-walled profile, where the pressure gathers
+/// at the rim and the inner edge's small `φ(b)` loses digits to rounding (measured at
+/// `b = 0.004 a`: `γ1` and `γ2` of the power law `n = 30` and `n = 50` settle to 4e-10 and 9e-10
+/// between 96 and 128 nodes, where the cone's and the sphere's settle to 1e-13). The last is
+/// the table punch's own tolerance.
+const FALLBACK_BRANCH_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
 /// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a table punch, whose edge
 /// derivatives settle to about 1e-9 at the scan's smallest contact ratios (`docs/methods.md`).
@@ -73,8 +121,10 @@ fn branch_point_at(
     eps: f64,
     tolerance: f64,
 ) -> Result<BranchPoint> {
-    let concave = solver.free_inner_edge_field(kind, eps, tolerance)?;
-    let flat = solver.flat(eps, tolerance)?;
+    let (concave, clearance) = solver.free_inner_edge_clearance(kind, eps, tolerance)?;
+    let (flat, lag) = solver.flat_hole_lag(eps, tolerance)?;
+    let probes =
+        |v: Vec<f64>| -> [f64; HOLE_PROBES] { v.try_into().unwrap_or([f64::NAN; HOLE_PROBES]) };
     Ok(BranchPoint {
         eps,
         gamma1: concave.gamma1.unwrap_or(f64::NAN),
@@ -85,6 +135,8 @@ fn branch_point_at(
         kappa_in: flat.inner_stress_intensity * ROOT_PI,
         concave_error: concave.error_estimate,
         flat_error: flat.error_estimate,
+        hole_clearance: probes(clearance),
+        hole_lag: probes(lag),
     })
 }
 
@@ -155,6 +207,23 @@ pub struct ConcaveJkr {
     pub direct_inner_energy_ratio: Option<f64>,
     /// Direct check: rim intensity from the fresh solve minus the formula's (units `d0`).
     pub direct_rim_difference: Option<f64>,
+    /// Where the annular branch grown from the rim ends because the surface in the hole meets
+    /// the punch's floor (a profile flatter than the sphere at the axis, the power law with
+    /// `n > 2`): pressed further the contact is a disk or a ring and the annulus, which this
+    /// analysis does not model. `None` where the hole closes first.
+    #[serde(default)]
+    pub floor_contact: Option<FloorContact>,
+}
+
+/// The adhesive state at which the annular branch's surface meets the hole's floor.
+#[derive(Clone, Debug, Serialize, serde::Deserialize)]
+pub struct FloorContact {
+    /// Contact ratio `b/a`, located to 1e-9.
+    pub eps: f64,
+    /// `d/h`.
+    pub depth: f64,
+    /// `F/F0`.
+    pub force: f64,
 }
 
 /// A minimum of `f` in `[lo, hi]` and its value, located to [`LOCATION_TOLERANCE`] in the
@@ -261,9 +330,18 @@ fn annular_pulloff(
 ) -> Result<AnnularOutcome> {
     let points = &branch.scan;
     let values: Vec<f64> = points.iter().map(|p| value(p, s)).collect();
-    let Some(max_k) =
-        (1..values.len() - 1).find(|&k| values[k] >= values[k - 1] && values[k] >= values[k + 1])
-    else {
+    // Loading grows the ring from the rim until the hole closes or its surface meets the
+    // punch's floor (the branch's first ratio, `cut`): a maximum at the cut is the state
+    // unloading starts from.
+    let (cut, touch) = branch.floor_touch(s)?;
+    if cut + 1 >= values.len() {
+        return Ok(Err(
+            "no annular state clears the hole's floor in 0.004 <= eps <= 0.9999".into(),
+        ));
+    }
+    let Some(max_k) = (cut.max(1)..values.len() - 1).find(|&k| {
+        (touch.is_some() && k == cut || values[k] >= values[k - 1]) && values[k] >= values[k + 1]
+    }) else {
         return Ok(Err(
             "no stable annular branch in 0.004 <= eps <= 0.9999".into()
         ));
@@ -297,11 +375,17 @@ fn annular_pulloff(
         stationary_point(eval, eps_min, bracket.0, bracket.1)
     };
     let (eps_min, min_located_to) = minimum_near(min_k)?;
-    let (eps_max, _) = minimum_in(
-        |e| Ok(-eval(e)?),
-        points[max_k - 1].eps,
-        points[max_k + 1].eps,
-    )?;
+    let eps_max = match touch {
+        Some(eps) if max_k == cut => eps,
+        _ => {
+            minimum_in(
+                |e| Ok(-eval(e)?),
+                points[max_k - 1].eps,
+                points[max_k + 1].eps,
+            )?
+            .0
+        }
+    };
     // Rim along the path (unloading: eps grows from eps_max to eps_min).
     let rim_margin = |e: f64| -> Result<f64> { Ok(branch.at(e)?.rim_intensity(s) + 1.0) };
     let mut critical_eps = eps_min;
@@ -462,6 +546,26 @@ impl<'a> ConcaveBranch<'a> {
         })
     }
 
+    /// Where the adhesive branch for `d0/h = s` grown from the rim meets the hole's floor: the
+    /// index of the widest scan ratio on it (the first of the run of states that clear the
+    /// floor up to the narrowest ring; 0 where all do) and the ratio of the touch, located by
+    /// bisection between that ratio and the one before (`None` where all clear the floor).
+    fn floor_touch(&self, s: f64) -> Result<(usize, Option<f64>)> {
+        let Some(last_touching) = self.scan.iter().rposition(|p| !p.clears_floor(s)) else {
+            return Ok((0, None));
+        };
+        let cut = last_touching + 1;
+        if cut >= self.scan.len() {
+            return Ok((cut, None));
+        }
+        let eps = bisect(
+            |e| Ok(self.at(e)?.floor_margin(s)),
+            self.scan[last_touching].eps,
+            self.scan[cut].eps,
+        )?;
+        Ok((cut, Some(eps)))
+    }
+
     /// The branch's point at `eps` ([`branch_point`]), solved at most once.
     pub fn at(&self, eps: f64) -> Result<BranchPoint> {
         let known = self
@@ -495,13 +599,26 @@ impl<'a> ConcaveBranch<'a> {
         let paper_grips = annular_pulloff(self, s, |p, s| p.depth(s), false)?
             .ok()
             .map(|(c, _, at)| (c, at));
+        let floor_contact = match self.floor_touch(s)? {
+            (_, Some(eps)) => {
+                let p = self.at(eps)?;
+                Some(FloorContact {
+                    eps,
+                    depth: p.depth(s),
+                    force: p.force(s),
+                })
+            }
+            _ => None,
+        };
+        // The hole closes at the branch's deepest state, unless its floor is met first.
         let closing = self
             .scan
             .iter()
             .map(|p| p.depth(s))
             .fold(f64::NEG_INFINITY, f64::max);
+        let closing = (closing.is_finite() && floor_contact.is_none()).then_some(closing);
         let paper_fits = paper_fit_route(kind, s);
-        let full = full_contact(kind, s, closing.is_finite().then_some(closing))?;
+        let full = full_contact(kind, s, closing)?;
         // Direct route at the fixed-load critical state: solve the adhesive contact itself.
         let (ratio, rim_diff) = match &load {
             Some((c, _, _)) => {
@@ -531,6 +648,7 @@ impl<'a> ConcaveBranch<'a> {
             paper_fits_fixed_grips: paper_fits.1,
             inner_edge_only_fixed_grips: paper_grips,
             full_contact: full,
+            floor_contact,
             direct_inner_energy_ratio: ratio,
             direct_rim_difference: rim_diff,
         })

@@ -38,8 +38,11 @@ mod torus;
 /// Name of this method on the command line and in JSON.
 pub const METHOD: &str = "ring-bem";
 
-/// Node counts tried in turn by the adaptive refinement.
-const NODE_LADDER: [usize; 9] = [12, 16, 20, 24, 32, 40, 48, 64, 80];
+/// Node counts tried in turn by the adaptive refinement. The rungs above 80 serve the widest
+/// rings of steep-walled profiles (the power law `n = 50` at `b = 0.004 a` changes by 3e-5
+/// from 64 to 80 nodes and by 2e-11 from 96 to 128); every other state meets its tolerance
+/// below them.
+const NODE_LADDER: [usize; 11] = [12, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128];
 
 /// Smallest contact ratio `b/a` of an annulus the method accepts (validated down to here).
 pub(crate) const MIN_CONTACT_RATIO: f64 = 1e-4;
@@ -74,14 +77,23 @@ const ROUNDING_FLOOR: f64 = 1e-13;
 const TENSION_TOLERANCE: f64 = 1e-9;
 
 /// Radii `r = b k / HOLE_PROBES`, `k = 0..HOLE_PROBES`, at which the hole's floor is checked.
-const HOLE_PROBES: usize = 8;
+pub const HOLE_PROBES: usize = 8;
 
 /// Overlap of the surface and the hole's floor, relative to the depth, above which the punch
 /// touches the floor (far above the method's rounding and its 1e-9 default tolerance).
-const HOLE_OVERLAP_TOLERANCE: f64 = 1e-7;
+pub const HOLE_OVERLAP_TOLERANCE: f64 = 1e-7;
 
 /// Tanh-sinh step used for every row integral (about 1e-15 relative per row).
 const QUADRATURE_STEP: f64 = 1.0 / 16.0;
+
+/// Tanh-sinh step of the rows of systems with more than [`COARSE_QUADRATURE_NODES`] nodes,
+/// whose basis polynomials of degree 95 and more the coarser step integrates only to about 1e-9
+/// (measured on the power law `n = 50` at `b = 0.004 a` and 96 nodes: `γ2` moved by 1.1e-9 from
+/// step 1/16 to 1/64, by 2e-10 from 1/24 to 1/64).
+const FINE_QUADRATURE_STEP: f64 = 1.0 / 32.0;
+
+/// The largest node count whose rows are integrated with [`QUADRATURE_STEP`].
+const COARSE_QUADRATURE_NODES: usize = 80;
 
 /// A dimensionless pressure sample `(r/a, p a/(E* L))` with `L = d` (flat) or `L = h` (concave).
 type ScaledPressure = (f64, f64);
@@ -166,6 +178,8 @@ struct ConcaveSample {
 /// collocation systems it assembles and factorises.
 pub struct RingBemSolver {
     rule: TanhSinhRule,
+    /// The rule of [`FINE_QUADRATURE_STEP`], for the ladder's top rungs.
+    fine_rule: TanhSinhRule,
     factorisations: AtomicUsize,
 }
 
@@ -198,6 +212,7 @@ impl RingBemSolver {
     pub fn new() -> Self {
         Self {
             rule: TanhSinhRule::new(QUADRATURE_STEP),
+            fine_rule: TanhSinhRule::new(FINE_QUADRATURE_STEP),
             factorisations: AtomicUsize::new(0),
         }
     }
@@ -210,13 +225,18 @@ impl RingBemSolver {
 
     fn system(&self, region: ContactRegion, nodes: usize) -> RingSystem {
         self.factorisations.fetch_add(1, Ordering::Relaxed);
+        let (quadrature_step, rule) = if nodes > COARSE_QUADRATURE_NODES {
+            (FINE_QUADRATURE_STEP, &self.fine_rule)
+        } else {
+            (QUADRATURE_STEP, &self.rule)
+        };
         RingSystem::assemble(
             region,
             RingBemSettings {
                 nodes,
-                quadrature_step: QUADRATURE_STEP,
+                quadrature_step,
             },
-            &self.rule,
+            rule,
         )
     }
 
@@ -405,6 +425,22 @@ impl RingBemSolver {
 
     /// Flat punch (`eps = 0`) or flat annulus (`0 < eps <= 0.9999`) at unit depth: `γ(eps)`.
     pub fn flat(&self, eps: f64, tolerance: f64) -> Result<RingState> {
+        Ok(self.flat_with_hole_lag(eps, tolerance, false)?.0)
+    }
+
+    /// The flat annulus `[eps, 1]` pressed to unit depth ([`Self::flat`]) and how far its
+    /// surface in the hole lags behind the punch, `1 - w(r)` at the radii of [`hole_probes`]
+    /// (positive: the surface there sinks less than the punch).
+    pub fn flat_hole_lag(&self, eps: f64, tolerance: f64) -> Result<(RingState, Vec<f64>)> {
+        self.flat_with_hole_lag(eps, tolerance, true)
+    }
+
+    fn flat_with_hole_lag(
+        &self,
+        eps: f64,
+        tolerance: f64,
+        with_lag: bool,
+    ) -> Result<(RingState, Vec<f64>)> {
         Self::check_tolerance(tolerance)?;
         let region = if eps == 0.0 {
             ContactRegion::Disk
@@ -424,7 +460,17 @@ impl RingBemSolver {
             |(_, field)| vec![0.5 * field.force],
         )?;
         let (system, field) = sample;
-        Ok(RingState {
+        let lag = if with_lag && eps > 0.0 {
+            hole_probes(eps)
+                .map(|r| {
+                    let w = system.deflection_in_hole(&field, r, &self.rule);
+                    1.0 - w.unwrap_or(f64::NAN)
+                })
+                .collect()
+        } else {
+            Vec::new()
+        };
+        let state = RingState {
             eps,
             outer_edge: 1.0,
             gamma: Some(0.5 * field.force),
@@ -436,7 +482,8 @@ impl RingBemSolver {
             error_estimate: estimate,
             unknowns: n,
             solves,
-        })
+        };
+        Ok((state, lag))
     }
 
     /// Concave punch at a fixed node count and contact ratio.
@@ -556,25 +603,8 @@ impl RingBemSolver {
         if !kind.has_rim() {
             self.check_clear_beyond(kind, sample)?;
         }
-        let radii = (0..HOLE_PROBES).map(|k| eps * k as f64 / HOLE_PROBES as f64);
-        let (depth, inside): (f64, Box<dyn Fn(f64) -> Option<f64> + '_>) =
-            match (kind, &sample.table_band) {
-                (PunchKind::Table(table), Some(band)) => (
-                    sample.gamma1,
-                    Box::new(move |r| {
-                        band.deflection_in_hole(table.profile(), sample.gamma1, r, &self.rule)
-                    }),
-                ),
-                _ => (
-                    sample.field_depth,
-                    Box::new(|r| {
-                        sample
-                            .system
-                            .deflection_in_hole(&sample.field, r, &self.rule)
-                    }),
-                ),
-            };
-        if let Some((r, overlap)) = first_overlap(kind, depth, radii, inside) {
+        let (depth, inside) = self.hole_surface(kind, sample);
+        if let Some((r, overlap)) = first_overlap(kind, depth, hole_probes(eps), inside) {
             return Err(out_of_range(format!(
                 "the {kind} touches the floor of its hole at r/a = {} before the ring \
                  [{}, 1] closes (the surface would rise {overlap:.2e} h into the punch): the \
@@ -585,6 +615,32 @@ impl RingBemSolver {
             )));
         }
         Ok(())
+    }
+
+    /// The depth `d/h` of a concave sample's field and its surface `w(r)` in the hole (units
+    /// of `h`): the table's from its band fields, every other punch's from its collocated field.
+    #[allow(clippy::type_complexity)]
+    fn hole_surface<'s>(
+        &'s self,
+        kind: PunchKind,
+        sample: &'s ConcaveSample,
+    ) -> (f64, Box<dyn Fn(f64) -> Option<f64> + 's>) {
+        match (kind, &sample.table_band) {
+            (PunchKind::Table(table), Some(band)) => (
+                sample.gamma1,
+                Box::new(move |r| {
+                    band.deflection_in_hole(table.profile(), sample.gamma1, r, &self.rule)
+                }),
+            ),
+            _ => (
+                sample.field_depth,
+                Box::new(|r| {
+                    sample
+                        .system
+                        .deflection_in_hole(&sample.field, r, &self.rule)
+                }),
+            ),
+        }
     }
 
     /// Beyond a free outer edge `c` the surface stays clear of the punch as well,
@@ -653,6 +709,25 @@ impl RingBemSolver {
     ) -> Result<RingState> {
         let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
         free_edge_state(eps, fine, n, estimate, solves)
+    }
+
+    /// [`Self::free_inner_edge_field`] and the clearance of its surface over the punch's floor
+    /// in the hole, `w(r) - (d - g(r))` (units of `h`) at the radii of [`hole_probes`]:
+    /// negative where the punch would rise into the surface (a state that is not one).
+    pub fn free_inner_edge_clearance(
+        &self,
+        kind: PunchKind,
+        eps: f64,
+        tolerance: f64,
+    ) -> Result<(RingState, Vec<f64>)> {
+        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
+        let clearance = {
+            let (depth, inside) = self.hole_surface(kind, &fine);
+            hole_probes(eps)
+                .map(|r| inside(r).map_or(f64::NAN, |w| w - (depth - kind.gap_shape(r))))
+                .collect()
+        };
+        Ok((free_edge_state(eps, fine, n, estimate, solves)?, clearance))
     }
 
     fn concave_refined(
@@ -1005,6 +1080,12 @@ fn free_edge_state(
         unknowns: n,
         solves,
     })
+}
+
+/// Radii `r = b k / HOLE_PROBES`, `k = 0..HOLE_PROBES`, where the floor of the hole `[0, b)`
+/// of a ring `[b, 1]` is checked.
+pub fn hole_probes(eps: f64) -> impl Iterator<Item = f64> {
+    (0..HOLE_PROBES).map(move |k| eps * k as f64 / HOLE_PROBES as f64)
 }
 
 /// The first of `radii` where the surface `w(r)` (from `deflection`, `None`: not evaluated

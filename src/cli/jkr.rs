@@ -234,11 +234,19 @@ fn concave_text(r: &ConcaveJkr) -> String {
         &none,
     );
     let mut text = t.to_terminal();
-    text += &format!(
-        "  full contact is reached when pressed past d/h = {}\n",
-        f.closing_depth
-            .map_or("- (no closing depth)".to_string(), |d| format!("{d:.4}"))
-    );
+    text += &match &r.floor_contact {
+        Some(touch) => format!(
+            "  the annular branch ends at eps = {:.6} (d/h = {:.4}, F/F0 = {:.4}), where the \
+             surface in the hole meets the punch's floor: pressed further the contact is a disk \
+             or a ring and the annulus, not modelled here\n",
+            touch.eps, touch.depth, touch.force
+        ),
+        None => format!(
+            "  full contact is reached when pressed past d/h = {}\n",
+            f.closing_depth
+                .map_or("- (no closing depth)".to_string(), |d| format!("{d:.4}"))
+        ),
+    };
     text += &format!(
         "  direct check at the fixed-load critical state: G_inner/dw = {}, rim intensity \
          difference {}\n",

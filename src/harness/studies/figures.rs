@@ -273,7 +273,9 @@ pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over
     let x = d0_over_h;
     let all: Vec<(f64, f64)> = ratios
         .filter_map(|ratio| {
-            let p = crate::adhesion::branch_point(ring, punch, ratio).ok()?;
+            let p = crate::adhesion::branch_point(ring, punch, ratio)
+                .ok()
+                .filter(|p| p.clears_floor(x))?;
             let point = (p.depth(x) / x, p.force(x));
             (point.0.is_finite() && point.1.is_finite()).then_some(point)
         })

@@ -217,6 +217,10 @@ fn branches(
         let mut points = Vec::new();
         for e in branch_ratios() {
             let p = adhesion::branch_point(solver, kind, e)?;
+            if !p.clears_floor(s) {
+                // The punch would rise into the surface in the hole: not an annular state.
+                continue;
+            }
             let (d, f) = (p.depth(s), p.force(s) * s);
             let rim_attached = p.rim_intensity(s) >= -1.0;
             table.push(vec![
@@ -243,6 +247,7 @@ fn branches(
             .filter_map(|e| {
                 adhesion::branch_point(solver, kind, e)
                     .ok()
+                    .filter(|p| p.clears_floor(0.0))
                     .map(|p| (p.gamma1, p.gamma2))
             })
             .collect(),
