@@ -152,3 +152,33 @@ fn non_convergence_and_bad_grids_are_errors() {
         Err(Error::OutOfRange { .. })
     ));
 }
+
+/// The power law `n = 3` touches the floor of its hole before its ring closes (the ring BEM's
+/// check of the surface in the hole says where). Past that the grid's contact is a disk and the
+/// annulus, and a contact ratio read off its area (as it once was: `b/a = 0.405` at `d = 2.4 h`,
+/// with the axis in contact) means nothing: the grid BEM declines exactly where the ring BEM
+/// does, on either side of the touch.
+#[test]
+fn the_grid_declines_a_contact_that_is_not_one_ring_where_the_ring_bem_does() {
+    let ring = RingBemSolver::new();
+    let cube = PunchKind::Power(ringcontact::punch::Exponent::new(3.0).unwrap());
+    for depth in [2.3, 2.4] {
+        let by_ring = ring.concave_at_depth(cube, depth, 1e-9);
+        let by_grid = grid_contact::solve(cube, 0.0, 128, GridLoad::Depth(depth), 1e-10);
+        match (&by_ring, &by_grid) {
+            // Read off the contact area, the grid's ratio is good to about a cell (1.6e-2 a).
+            (Ok(r), Ok(g)) => assert!(
+                (g.eps - r.eps).abs() < 1.6e-2,
+                "d = {depth}: eps {} against {}",
+                g.eps,
+                r.eps
+            ),
+            (Err(r), Err(Error::OutOfRange { reason, .. })) => {
+                assert!(r.to_string().contains("floor of its hole"), "{r}");
+                assert!(reason.contains("not one ring"), "{reason}");
+            }
+            _ => panic!("d = {depth}: ring {by_ring:?}, grid {by_grid:?}"),
+        }
+    }
+    assert!(ring.concave_at_depth(cube, 2.4, 1e-9).is_err());
+}
