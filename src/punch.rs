@@ -384,6 +384,18 @@ impl PunchKind {
         }
     }
 
+    /// Whether a ring with a free inner edge can meet the floor of its hole before the hole
+    /// closes, so that its states must be probed there: the power law flatter than the sphere
+    /// at the axis (`n > 2`) and any table. The cone, the sphere and every `n <= 2` clear the
+    /// floor at every contact ratio (their holes close at full contact; measured in
+    /// `tests/adhesion.rs`), and so do their adhesive states, which add the flat annulus's lag.
+    pub fn may_meet_hole_floor(self) -> bool {
+        match self {
+            PunchKind::Table(_) => true,
+            _ => self.concave_exponent().is_some_and(|n| n > 2.0),
+        }
+    }
+
     /// Dimensionless gap `g(r)/h` of a concave punch or the torus at `rho = r/a` (0 for flat
     /// punches).
     pub fn gap_shape(self, rho: f64) -> f64 {

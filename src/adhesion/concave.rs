@@ -36,10 +36,12 @@ pub struct BranchPoint {
     #[serde(default)]
     pub flat_error: f64,
     /// Clearance of the non-adhesive state's surface over the punch's floor in the hole,
-    /// `w(r) - (d - g(r))` (units of `h`) at the radii of [`crate::bem::ring_contact::hole_probes`].
+    /// `w(r) - (d - g(r))` (units of `h`) at the radii of [`crate::bem::ring_contact::hole_probes`]
+    /// (infinite where the profile cannot meet the floor, [`PunchKind::may_meet_hole_floor`]).
     #[serde(skip)]
     pub hole_clearance: [f64; HOLE_PROBES],
-    /// The flat annulus's lag at the same radii, `1 - w(r)` at unit depth.
+    /// The flat annulus's lag at the same radii, `1 - w(r)` at unit depth (zero where not
+    /// probed).
     #[serde(skip)]
     pub hole_lag: [f64; HOLE_PROBES],
 }
@@ -97,6 +99,11 @@ pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result
     outcome
 }
 
+/// The hole clearance of a branch point of a profile that cannot meet its hole's floor
+/// ([`PunchKind::may_meet_hole_floor`]): not probed (the probes' 16 integrals took a quarter to a
+/// third of a cone's or sphere's JKR analysis), every state clears it.
+const UNPROBED_CLEARANCE: [f64; HOLE_PROBES] = [f64::INFINITY; HOLE_PROBES];
+
 /// Looser tolerances, tried in turn, for a branch point whose solves cannot meet
 /// [`branch_tolerance`]: the widest rings of a steep-walled profile, where the pressure gathers
 /// at the rim and the inner edge's small `φ(b)` loses digits to rounding (measured at
@@ -121,10 +128,20 @@ fn branch_point_at(
     eps: f64,
     tolerance: f64,
 ) -> Result<BranchPoint> {
-    let (concave, clearance) = solver.free_inner_edge_clearance(kind, eps, tolerance)?;
-    let (flat, lag) = solver.flat_hole_lag(eps, tolerance)?;
     let probes =
         |v: Vec<f64>| -> [f64; HOLE_PROBES] { v.try_into().unwrap_or([f64::NAN; HOLE_PROBES]) };
+    let (concave, flat, hole_clearance, hole_lag) = if kind.may_meet_hole_floor() {
+        let (concave, clearance) = solver.free_inner_edge_clearance(kind, eps, tolerance)?;
+        let (flat, lag) = solver.flat_hole_lag(eps, tolerance)?;
+        (concave, flat, probes(clearance), probes(lag))
+    } else {
+        (
+            solver.free_inner_edge_field(kind, eps, tolerance)?,
+            solver.flat(eps, tolerance)?,
+            UNPROBED_CLEARANCE,
+            [0.0; HOLE_PROBES],
+        )
+    };
     Ok(BranchPoint {
         eps,
         gamma1: concave.gamma1.unwrap_or(f64::NAN),
@@ -135,8 +152,8 @@ fn branch_point_at(
         kappa_in: flat.inner_stress_intensity * ROOT_PI,
         concave_error: concave.error_estimate,
         flat_error: flat.error_estimate,
-        hole_clearance: probes(clearance),
-        hole_lag: probes(lag),
+        hole_clearance,
+        hole_lag,
     })
 }
 

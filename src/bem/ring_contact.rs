@@ -724,7 +724,7 @@ impl RingBemSolver {
         let clearance = {
             let (depth, inside) = self.hole_surface(kind, &fine);
             hole_probes(eps)
-                .map(|r| inside(r).map_or(f64::NAN, |w| w - (depth - kind.gap_shape(r))))
+                .map(|r| inside(r).map_or(f64::NAN, |w| -floor_overlap(kind, depth, r, w)))
                 .collect()
         };
         Ok((free_edge_state(eps, fine, n, estimate, solves)?, clearance))
@@ -1088,6 +1088,12 @@ pub fn hole_probes(eps: f64) -> impl Iterator<Item = f64> {
     (0..HOLE_PROBES).map(move |k| eps * k as f64 / HOLE_PROBES as f64)
 }
 
+/// How far the punch at depth `d/h = depth` rises into the surface `w` (units of `h`) at the
+/// radius `r` outside the contact: `(d - g(r)) - w` (negative: the surface clears the punch).
+fn floor_overlap(kind: PunchKind, depth: f64, r: f64, w: f64) -> f64 {
+    (depth - kind.gap_shape(r)) - w
+}
+
 /// The first of `radii` where the surface `w(r)` (from `deflection`, `None`: not evaluated
 /// there) rises into the punch at depth `d/h = depth`, `(d - g(r)) - w(r)` above
 /// [`HOLE_OVERLAP_TOLERANCE`] (relative to the depth, at least 1): the radius and the overlap.
@@ -1098,7 +1104,7 @@ fn first_overlap(
     deflection: impl Fn(f64) -> Option<f64>,
 ) -> Option<(f64, f64)> {
     radii
-        .filter_map(|r| deflection(r).map(|w| (r, (depth - kind.gap_shape(r)) - w)))
+        .filter_map(|r| deflection(r).map(|w| (r, floor_overlap(kind, depth, r, w))))
         .find(|&(_, overlap)| overlap > HOLE_OVERLAP_TOLERANCE * depth.abs().max(1.0))
 }
 
