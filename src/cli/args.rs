@@ -385,6 +385,9 @@ pub struct PulloffArgs {
     /// (n = 1 is the cone, n = 2 the sphere).
     #[arg(long)]
     pub exponent: Option<f64>,
+    /// Profile table of `--punch table` (CSV of `r/a, g/h` points, as for `verify solve`).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
     /// b/a of the flat annulus.
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,

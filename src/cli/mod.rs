@@ -112,7 +112,8 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 
 /// The punch named on the command line, with the power law's `--exponent`, for the commands
 /// built on punches with a rim (`pulloff`, `convergence`, `plan`, and `jkr` but for its own
-/// torus route): the torus is solved by `verify solve` and `verify jkr`.
+/// torus route): the torus is solved by `verify solve` and `verify jkr`, the table by the
+/// commands that take `--profile` ([`punch_kind_with_profile`]).
 pub(crate) fn punch_kind(
     name: crate::punch::PunchName,
     exponent: Option<f64>,
@@ -120,9 +121,10 @@ pub(crate) fn punch_kind(
     if name == crate::punch::PunchName::Table {
         return Err(
             "the table punch is solved by `verify solve --punch table --profile FILE`, its JKR \
-             solution by `verify jkr --punch table --profile FILE --d0h S` and its convergence \
-             studies by `verify convergence --punch table --profile FILE`; its pull-off \
-             simulation and plans of its convergence studies are not built"
+             solution by `verify jkr --punch table --profile FILE --d0h S`, its pull-off \
+             simulation by `verify pulloff --punch table --profile FILE --d0h S` and its \
+             convergence studies by `verify convergence --punch table --profile FILE`; plans of \
+             its convergence studies are not built"
                 .into(),
         );
     }
@@ -130,8 +132,9 @@ pub(crate) fn punch_kind(
     if !kind.has_rim() {
         return Err(format!(
             "the {kind} (two free edges) is solved by `verify solve --punch torus` (ring BEM, \
-             FEM, grid BEM) and `verify jkr --punch torus`; its pull-off simulation and \
-             convergence studies are not built yet"
+             FEM, grid BEM), `verify jkr --punch torus` and `verify pulloff --punch torus \
+             --d0h S`; its convergence studies are not built (the FEM's convergence on the \
+             torus is measured in `tests/torus_fem.rs`, docs/methods.md)"
         ));
     }
     Ok(kind)

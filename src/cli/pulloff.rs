@@ -38,7 +38,7 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
     // The torus (two free edges) has its own route: touched, then pulled.
     let punch = match args.punch.with_exponent(args.exponent) {
         Ok(PunchKind::Torus) => PunchKind::Torus,
-        _ => super::punch_kind(args.punch, args.exponent)?,
+        _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
     };
     let eps = match punch {
         PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,

@@ -497,7 +497,7 @@ fn punch_table() -> Table {
             "--punch table --profile FILE",
             "h ĝ(r/a), ĝ by PCHIP through the file's (r/a, g/h)",
             "rim at a, free inner edge",
-            "none; FEM and grid BEM only (C¹ profile)",
+            "none; full contact by the MDR's quadratures in the ring BEM",
         ),
     ];
     for (flags, gap, edges, closed) in rows {
