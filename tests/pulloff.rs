@@ -163,6 +163,18 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
             "[0.1, 100]",
         ),
         (
+            vec![
+                "pulloff",
+                "--punch",
+                "power",
+                "--exponent",
+                "3",
+                "--d0h",
+                "1e-3",
+            ],
+            "`verify jkr --punch power --exponent 3 --d0h 0.001`",
+        ),
+        (
             vec!["pulloff", "--punch", "table", "--d0h", "0.5"],
             "--profile FILE",
         ),

@@ -99,11 +99,12 @@ def references():
     return _json_command(["references", "--json"], _call("references"))
 
 
-def jkr(punch, *, exponent=None, eps=None, d0h=None, sweep=False, out=None):
+def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, out=None):
     """The JKR adhesive solution (``verify jkr --json``).
 
     ``punch="flat-annulus"`` with ``eps`` (b/a): the critical states at either edge. A concave
-    punch (``cone``, ``sphere``, ``power`` with ``exponent``) or the ``torus`` with ``d0h``
+    punch (``cone``, ``sphere``, ``power`` with ``exponent``, ``table`` with ``profile``, a CSV
+    of ``r/a, g/h``) or the ``torus`` with ``d0h``
     (the work of adhesion as ``d0/h``, ``d0 = sqrt(2 pi a dw / E*)``; the torus's ``h = a²/(2
     rho)``): pull-off under fixed load and under fixed grips, and from full contact. With
     ``sweep=True`` (concave punches), ``d0/h`` from 0.1 to 100, CSV and SVG written into ``out``.
@@ -111,11 +112,22 @@ def jkr(punch, *, exponent=None, eps=None, d0h=None, sweep=False, out=None):
     Returns a dict.
     """
     words = ["jkr", "--punch", str(punch), "--json"]
-    words += _flag("exponent", exponent) + _flag("eps", eps) + _flag("d0h", d0h)
+    words += _flag("exponent", exponent)
+    words += _flag("profile", None if profile is None else os.fspath(profile))
+    words += _flag("eps", eps) + _flag("d0h", d0h)
     if sweep:
         words.append("--sweep")
     words += _flag("out", None if out is None else os.fspath(out))
-    call = _call("jkr", punch=punch, exponent=exponent, eps=eps, d0h=d0h, sweep=sweep, out=out)
+    call = _call(
+        "jkr",
+        punch=punch,
+        exponent=exponent,
+        profile=profile,
+        eps=eps,
+        d0h=d0h,
+        sweep=sweep,
+        out=out,
+    )
     return _json_command(words, call)
 
 

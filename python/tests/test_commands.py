@@ -5,7 +5,7 @@ import json
 import pytest
 
 import ringcontact as rc
-from conftest import run_verify
+from conftest import REPOSITORY, run_verify
 
 
 def test_references_are_the_command_lines():
@@ -28,6 +28,20 @@ def test_jkr_of_a_concave_punch_is_the_command_lines():
     theirs = json.loads(run_verify("jkr", "--punch", "cone", "--d0h", "0.5", "--json"))
     assert mine == theirs
     assert mine["fixed_load"]["force"] < 0
+
+
+def test_jkr_of_a_table_punch_tends_to_the_sphere_it_samples():
+    # The committed table of the sphere's profile at 21 points: its pull-offs lie within the
+    # second-order interpolation error of the sphere's (measured 1.8e-4 under fixed load,
+    # 1.6e-5 from full contact); the result names the table it read.
+    table = REPOSITORY / "verify" / "profiles" / "sphere-21.csv"
+    mine = rc.jkr("table", profile=table, d0h=0.5)
+    sphere = rc.jkr("sphere", d0h=0.5)
+    for route in (lambda r: r["fixed_load"]["force"], lambda r: r["full_contact"]["pulloff"]["force"]):
+        assert route(mine) == pytest.approx(route(sphere), rel=5e-4)
+    assert mine["punch"] == "table" and mine["profile_file"].endswith("sphere-21.csv")
+    with pytest.raises(rc.RingContactError, match="--profile FILE"):
+        rc.jkr("table", d0h=0.5)
 
 
 def test_jkr_errors_are_the_tools_messages():

@@ -56,11 +56,11 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
                  from 3h deep to 4 d0 + 2h out: about 250 h/d0 steps per range below d0/h = 1 \
                  and 200 d0/h above: 833 at d0/h = 0.3 and 2 250 at 10, whose stored runs took \
                  52 and 25 s, but 2.5e6 at 1e-4. \
-                 `verify jkr --punch {} --d0h {}` gives the JKR limit for d0/h in [1e-6, 1e6]",
+                 `verify jkr {} --d0h {}` gives the JKR limit for d0/h in [1e-6, 1e6]",
                 crate::error::show(s),
                 PULLOFF_D0H_RANGE.0,
                 PULLOFF_D0H_RANGE.1,
-                punch.shape_name(),
+                punch.flags(),
                 crate::error::show(s)
             ));
         }
