@@ -231,15 +231,23 @@ const TORUS_FIRST_HALF_SIZE: f64 = 3.0;
 pub fn solve_torus(n: usize, load: GridLoad, tolerance: f64) -> Result<GridState> {
     check_grid(n)?;
     let start = Instant::now();
-    let coarse_n = (n / 4).max(32);
-    let coarse = torus_on_square(coarse_n, TORUS_FIRST_HALF_SIZE, load, tolerance)?;
-    let coarse_cell = 2.0 * TORUS_FIRST_HALF_SIZE / coarse_n as f64;
-    let half_size = coarse.outer + (0.25 * (coarse.outer - coarse.inner)).max(4.0 * coarse_cell);
+    let half_size = torus_square(n / 4, load, tolerance)?;
     let fine = solve_torus_on_square(n, half_size, load, tolerance)?;
     Ok(GridState {
         wall_s: start.elapsed().as_secs_f64(),
         ..fine
     })
+}
+
+/// The half-size `L/a` of the torus's square for a load: a solve on `max(coarse, 32)²` cells
+/// of the square `[-1.6 a, 1.6 a]²` locates the band `[b, c]`; the square reaches a quarter of
+/// its width (at least four of those cells) beyond `c`. A study refining the grid on a fixed
+/// square takes it from the same `coarse` at every level.
+pub fn torus_square(coarse: usize, load: GridLoad, tolerance: f64) -> Result<f64> {
+    let coarse_n = coarse.max(32);
+    let located = torus_on_square(coarse_n, TORUS_FIRST_HALF_SIZE, load, tolerance)?;
+    let coarse_cell = 2.0 * TORUS_FIRST_HALF_SIZE / coarse_n as f64;
+    Ok(located.outer + (0.25 * (located.outer - located.inner)).max(4.0 * coarse_cell))
 }
 
 /// The torus on one given square `[-L, L]²` (`half_size = L/a > 1`), `n x n` cells: what

@@ -111,9 +111,9 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 }
 
 /// The punch named on the command line, with the power law's `--exponent`, for the commands
-/// built on punches with a rim (`pulloff`, `convergence`, `plan`, and `jkr` but for its own
-/// torus route): the torus is solved by `verify solve` and `verify jkr`, the table by the
-/// commands that take `--profile` ([`punch_kind_with_profile`]).
+/// built on punches with a rim (`plan`, and `pulloff`, `convergence` and `jkr` but for their
+/// own torus routes); the table is read by the commands that take `--profile`
+/// ([`punch_kind_with_profile`]).
 pub(crate) fn punch_kind(
     name: crate::punch::PunchName,
     exponent: Option<f64>,
@@ -132,9 +132,9 @@ pub(crate) fn punch_kind(
     if !kind.has_rim() {
         return Err(format!(
             "the {kind} (two free edges) is solved by `verify solve --punch torus` (ring BEM, \
-             FEM, grid BEM), `verify jkr --punch torus` and `verify pulloff --punch torus \
-             --d0h S`; its convergence studies are not built (the FEM's convergence on the \
-             torus is measured in `tests/torus_fem.rs`, docs/methods.md)"
+             FEM, grid BEM), `verify jkr --punch torus`, `verify pulloff --punch torus \
+             --d0h S` and `verify convergence --punch torus --method fem|grid-bem --depth D`; \
+             plans of its convergence studies are not built"
         ));
     }
     Ok(kind)

@@ -189,7 +189,11 @@ pub(super) fn compare_reply(
 /// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
 /// and the chart into `--out`.
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
-    let punch = super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?;
+    // The torus (two free edges): the FEM's free-edges family or the grid BEM, at `--depth` d/h.
+    let punch = match args.punch.with_exponent(args.exponent) {
+        Ok(PunchKind::Torus) => PunchKind::Torus,
+        _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
+    };
     let case = study_case(punch, args.eps, args.depth)?;
     let levels = args.levels as usize;
     let mut bar = Progress::new("convergence", levels);

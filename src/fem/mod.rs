@@ -16,6 +16,7 @@ pub mod surface_response;
 // uses these names and nothing deeper (tests/layering.rs).
 pub use contact::nodal_pressure;
 pub use solver::{
-    contact_start, default_degree, gmsh_found, mesh_directory, mesh_sequence, solve, solve_on_mesh,
-    unresolved_component, FemLoad, FemOptions, FemState, FemTimings, DEFAULT_TOLERANCE, METHOD,
+    contact_start, default_degree, gmsh_found, mesh_directory, mesh_sequence, solve,
+    solve_free_edges_on_level, solve_on_mesh, unresolved_component, FemLoad, FemOptions, FemState,
+    FemTimings, DEFAULT_TOLERANCE, METHOD,
 };

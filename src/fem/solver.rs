@@ -1244,6 +1244,26 @@ pub fn solve_on_mesh(
     ))
 }
 
+/// One model of the ladder of a punch with two free edges (the torus) on its own, for a
+/// mesh-convergence study: level `level` of the free-edges mesh family, refined around `edges`
+/// (`(radius, uncertainty)` in units of `a`; `None`: where the rigid profile meets the
+/// surface). The state has no error estimate; its outer edge is in `outer_edge`.
+pub fn solve_free_edges_on_level(
+    kind: PunchKind,
+    load: FemLoad,
+    level: i32,
+    edges: Option<[(f64, f64); 2]>,
+    options: &FemOptions,
+) -> Result<FemState> {
+    check_tolerance(options.tolerance)?;
+    if kind.has_rim() {
+        return Err(fem_error(format!(
+            "the {kind} has a rim: its levels are the adapted family's (`solve_on_mesh`)"
+        )));
+    }
+    free_edges::solve_on_level(kind, load, level, edges, options)
+}
+
 /// Solve a punch problem with the FEM.
 ///
 /// The mesh ladder as a driver of named phases: each rung decides its mesh

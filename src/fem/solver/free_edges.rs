@@ -137,6 +137,64 @@ pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Res
     )))
 }
 
+/// One model of the ladder on its own, for a mesh-convergence study: level `level` of the
+/// free-edges family on the contact line `[0, frame a]` ([`initial_frame`] of the load), its
+/// sizes made for `options.tolerance`, refined around `edges` (`(radius, uncertainty)` in units
+/// of `a`; `None`: the rigid profile's intersection, [`rigid_edges`]). No estimate (the study
+/// makes its own); the inner edge in `eps`, the outer in `outer_edge`.
+pub(super) fn solve_on_level(
+    kind: PunchKind,
+    load: FemLoad,
+    level: i32,
+    edges: Option<[(f64, f64); 2]>,
+    options: &FemOptions,
+) -> Result<FemState> {
+    let start = Instant::now();
+    if matches!(load, FemLoad::Flat) {
+        return Err(fem_error(format!("the {kind} is not a flat punch")));
+    }
+    provider::find_project_root()?;
+    let frame = initial_frame(load);
+    let tolerance = options.tolerance;
+    let edges = edges.unwrap_or_else(|| rigid_edges(load));
+    let request = MeshRequest::FreeEdges {
+        level,
+        edges: edges.map(|(r, uncertainty)| (r / frame, uncertainty / frame)),
+        target: SizeTarget {
+            tolerance: tolerance / frame,
+            degree: options.degree as usize,
+        },
+        ring_scale: provider::ring_width_scale(edges[1].0 - edges[0].0),
+    };
+    let why = format!("the FEM convergence study of the {kind}");
+    let provided = provider::provide(&request, &why)?;
+    let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
+    model.spec.frame = frame;
+    let (s, gamma1, gamma2) = solve_model(
+        &mut model,
+        kind,
+        0.0,
+        load,
+        None,
+        Some(depth_guess(load)),
+        tolerance,
+    )?;
+    if s.outer_node_spacing == 0.0 {
+        return Err(fem_error(format!(
+            "the {kind}'s contact reached the end of the contact line {} a long on {}",
+            crate::error::show(frame),
+            model.path
+        )));
+    }
+    check_open(kind, &s, &model.path)?;
+    let iterations = s.iterations;
+    let outer = s.outer_radius;
+    let state = (s.inner_radius, None, Some(gamma1), Some(gamma2));
+    let mut state = finish(&model, s, state, None, iterations, options.degree, start);
+    state.outer_edge = Some(outer);
+    Ok(state)
+}
+
 /// Climb the adapted levels on a contact line `[0, frame a]` until a rung's estimate meets the
 /// tolerance.
 fn climb(

@@ -132,6 +132,13 @@ fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
     (ladder, Degree::Quadratic)
 }
 
+/// The FEM study's mesh levels for a punch with two free edges (the torus): the free-edges
+/// family from its coarsest level to [`STUDY_MAX_ADAPTED_LEVEL`], quadratic elements (gmsh
+/// needed: the contact line is scaled to the load).
+fn free_edges_study_levels() -> Vec<i32> {
+    (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_ADAPTED_LEVEL as i32).collect()
+}
+
 /// Refuse a study whose finest level cannot be run, before running the coarser ones.
 pub(crate) fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<()> {
     if method == Method::GridBem && (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
@@ -148,7 +155,11 @@ pub(crate) fn check_levels(case: &StudyCase, method: Method, levels: usize) -> R
     if method == Method::Fem {
         // Levels past adapted level 5 (P2, about 1.7 M unknowns) or 3 (P3, 0.6 M) take more
         // than minutes and tens of GB; the study stops there.
-        let available = fem_study_ladder(case).0.len();
+        let available = if case.punch.has_rim() {
+            fem_study_ladder(case).0.len()
+        } else {
+            free_edges_study_levels().len()
+        };
         if levels > available {
             return Err(Error::OutOfRange {
                 method: "fem".into(),
@@ -175,7 +186,7 @@ pub fn run(
     check_levels(&case, method, levels)?;
     let yardstick = yardstick(&case)?;
     let mut out: Vec<Level> = Vec::new();
-    let mut previous_edge: Option<f64> = None;
+    let mut located = LocatedEdges::default();
     let mut stopped = None;
     let quiet_terminal = std::io::IsTerminal::is_terminal(&std::io::stderr());
     for k in 0..levels {
@@ -187,7 +198,7 @@ pub fn run(
                 k + 1
             );
         }
-        let computed = match compute_level(&case, method, k, previous_edge, yardstick) {
+        let computed = match compute_level(&case, method, k, located, yardstick) {
             Ok(computed) => computed,
             Err(e) if k > 0 => {
                 stopped = Some(format!("level {} of {levels} failed: {e}", k + 1));
@@ -195,14 +206,14 @@ pub fn run(
             }
             Err(e) => return Err(e),
         };
-        previous_edge = computed.free_edge;
+        located = LocatedEdges::of(&computed);
         out.push(computed.level);
         set_observed_orders(&mut out);
         progress(&out[out.len() - 1]);
     }
     Ok(Study {
         stopped,
-        ..assemble(&case, method, yardstick, out, previous_edge)
+        ..assemble(&case, method, yardstick, out, located.inner)
     })
 }
 
@@ -225,6 +236,9 @@ pub(crate) fn yardstick(case: &StudyCase) -> Result<f64> {
 pub struct ComputedLevel {
     pub level: Level,
     pub free_edge: Option<f64>,
+    /// The torus's outer free edge `c/a` (the FEM's next level refines around both).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub outer_free_edge: Option<f64>,
 }
 
 /// Level `k` (from 0) of a study on its own, as a job of a plan: the FEM on a concave punch
@@ -239,18 +253,18 @@ pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result
         });
     }
     let yardstick = yardstick(&case)?;
-    let mut previous_edge = None;
+    let mut located = LocatedEdges::default();
     if method == Method::Fem && case.punch.is_concave() {
         for coarser in 0..k {
-            previous_edge =
-                compute_level(&case, method, coarser, previous_edge, yardstick)?.free_edge;
+            located = LocatedEdges::of(&compute_level(&case, method, coarser, located, yardstick)?);
         }
     }
-    compute_level(&case, method, k, previous_edge, yardstick)
+    compute_level(&case, method, k, located, yardstick)
 }
 
 /// Level `k` of a study when level `k - 1` located the free edge `previous_edge` (the FEM on a
-/// concave punch refines around it; other methods ignore it).
+/// concave punch refines around it; other methods ignore it). Plans, which call it, hold one
+/// edge: they refuse the torus, whose levels refine around two ([`level`] runs those).
 pub(crate) fn level_after(
     case: StudyCase,
     method: Method,
@@ -259,7 +273,11 @@ pub(crate) fn level_after(
     previous_edge: Option<f64>,
 ) -> Result<ComputedLevel> {
     check_levels(&case, method, levels)?;
-    compute_level(&case, method, k, previous_edge, yardstick(&case)?)
+    let located = LocatedEdges {
+        inner: previous_edge,
+        outer: None,
+    };
+    compute_level(&case, method, k, located, yardstick(&case)?)
 }
 
 /// One level's solve: its label, size `h`, unknowns and value, and (FEM, concave punches) the
@@ -270,20 +288,40 @@ struct Sized {
     unknowns: usize,
     value: f64,
     free_edge: Option<f64>,
+    outer_edge: Option<f64>,
 }
 
-/// Level `k` of a study, the FEM refining around `previous_edge` (concave punches).
+/// The free edges a FEM level located (`b/a`, and the torus's `c/a`), around which the next
+/// level is refined; none before the first level and for the other methods.
+#[derive(Clone, Copy, Debug, Default)]
+struct LocatedEdges {
+    inner: Option<f64>,
+    outer: Option<f64>,
+}
+
+impl LocatedEdges {
+    fn of(level: &ComputedLevel) -> Self {
+        Self {
+            inner: level.free_edge,
+            outer: level.outer_free_edge,
+        }
+    }
+}
+
+/// Level `k` of a study, the FEM refining around the edges the level below `located`
+/// (concave punches and the torus).
 fn compute_level(
     case: &StudyCase,
     method: Method,
     k: usize,
-    previous_edge: Option<f64>,
+    located: LocatedEdges,
     yardstick: f64,
 ) -> Result<ComputedLevel> {
     let start = Instant::now();
     let solved = match method {
         Method::GridBem => grid_bem_level(case, k)?,
-        Method::Fem => fem_level(case, k, previous_edge)?,
+        Method::Fem if !case.punch.has_rim() => free_edges_fem_level(case, k, located)?,
+        Method::Fem => fem_level(case, k, located.inner)?,
         Method::RingBem => ring_bem_level(case, k)?,
         Method::Reference | Method::Auto => {
             return Err(Error::Unsupported {
@@ -299,6 +337,7 @@ fn compute_level(
         unknowns,
         value,
         free_edge,
+        outer_edge,
     } = solved;
     let level = Level {
         label,
@@ -309,22 +348,37 @@ fn compute_level(
         wall_s: start.elapsed().as_secs_f64(),
         observed_order: None,
     };
-    Ok(ComputedLevel { level, free_edge })
+    Ok(ComputedLevel {
+        level,
+        free_edge,
+        outer_free_edge: outer_edge,
+    })
 }
 
-/// The grid BEM on `(64 · 2^k)²` cells.
+/// The grid BEM on `(64 · 2^k)²` cells, on the square `[-a, a]²` (the torus: one square for
+/// every level, [`grid_contact::torus_square`] from a 32² solve).
 fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
     let concave = case.punch.is_concave();
     let n = 64usize << k;
     let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
-    let s = grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?;
+    let (s, half_size) = if case.punch.has_rim() {
+        (
+            grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?,
+            1.0,
+        )
+    } else {
+        let half_size = grid_contact::torus_square(32, load, 1e-10)?;
+        let s = grid_contact::solve_torus_on_square(n, half_size, load, 1e-10)?;
+        (s, half_size)
+    };
     let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
     Ok(Sized {
         label: format!("{n}x{n}"),
-        size: 2.0 / n as f64,
+        size: 2.0 * half_size / n as f64,
         unknowns: n * n,
         value,
         free_edge: None,
+        outer_edge: None,
     })
 }
 
@@ -363,6 +417,46 @@ fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<S
         unknowns: s.dofs,
         value,
         free_edge: concave.then_some(s.eps),
+        outer_edge: None,
+    })
+}
+
+/// The FEM on level `k` of the free-edges family (the torus, quadratic elements): the first
+/// level refined where the rigid profile meets the surface, each further one around both edges
+/// the level below located.
+fn free_edges_fem_level(case: &StudyCase, k: usize, located: LocatedEdges) -> Result<Sized> {
+    let levels = free_edges_study_levels();
+    let Some(&level) = levels.get(k) else {
+        return Err(Error::OutOfRange {
+            method: "fem".into(),
+            reason: format!(
+                "the FEM has {} mesh levels for the {}",
+                levels.len(),
+                case.punch
+            ),
+        });
+    };
+    let edges = match (located.inner, located.outer) {
+        (Some(inner), Some(outer)) => Some([(inner, 0.0), (outer, 0.0)]),
+        _ => None,
+    };
+    let options = FemOptions {
+        linear_solver: Default::default(),
+        degree: Degree::Quadratic,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    };
+    let load = FemLoad::ConcaveDepth(case.depth);
+    let s = fem_solver::solve_free_edges_on_level(case.punch, load, level, edges, &options)?;
+    Ok(Sized {
+        label: format!("free-edges-L{level} P2"),
+        size: 1.0 / (s.dofs as f64).sqrt(),
+        unknowns: s.dofs,
+        value: s.gamma2.unwrap_or(f64::NAN),
+        free_edge: Some(s.eps),
+        outer_edge: s.outer_edge,
     })
 }
 
@@ -402,6 +496,7 @@ fn ring_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
         unknowns: n,
         value: 0.5 * field.force,
         free_edge: None,
+        outer_edge: None,
     })
 }
 
@@ -499,6 +594,7 @@ pub fn assemble(
 fn expected_order(case: &StudyCase, method: Method) -> Option<f64> {
     match method {
         Method::GridBem => Some(1.0),
+        Method::Fem if !case.punch.has_rim() => Some(2.0 * Degree::Quadratic as u8 as f64),
         Method::Fem => Some(2.0 * fem_study_ladder(case).1 as u8 as f64),
         _ => None,
     }
