@@ -216,13 +216,16 @@ Examples:
     /// Mesh-convergence study of one method: error against the ring BEM, observed order,
     /// Richardson extrapolate and GCI; writes CSV and an SVG chart.
     #[command(after_help = "\
-Levels: grid-bem 64, 128, 256, ... cells per side; fem the committed mesh levels L0-L2, then the
-adapted levels made by gmsh (graded toward the edges, refined at the located free edge)
-(P2); ring-bem 6, 8, 10, ... collocation nodes (flat punches).
+Levels: grid-bem 64, 128, 256, ... cells per side; fem with gmsh the adapted levels it makes
+(graded toward the edges, each refined at the free edge the level below located; P3), without
+gmsh the committed levels L0-L2 (P2); the torus's fem the free-edges levels
+(refined at both edges; P2, gmsh needed); ring-bem 6, 8, 10, ... collocation nodes (flat
+punches).
 
 Examples:
   verify convergence --punch flat --method grid-bem --levels 5          64 .. 1024
   verify convergence --punch sphere --depth 1.5 --method fem --levels 4
+  verify convergence --punch torus --depth 1 --method fem --levels 4
   verify convergence --punch flat-annulus --eps 0.5 --method ring-bem --levels 6 --json")]
     Convergence(ConvergenceArgs),
     /// JKR adhesion from the converged non-adhesive solutions: detachment of the flat annulus,
@@ -468,7 +471,7 @@ pub struct ConvergenceArgs {
     /// b/a of the flat annulus.
     #[arg(long, default_value_t = 0.5)]
     pub eps: f64,
-    /// d/h of a concave punch.
+    /// d/h of a concave punch (the torus: h = a²/(2 rho), its gap at the axis).
     #[arg(long, default_value_t = 1.5)]
     pub depth: f64,
     /// Directory for the CSV and SVG files [default: reports/convergence in the project's
