@@ -382,6 +382,19 @@ fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
     })
 }
 
+/// The FEM options of a study's levels: elements of `degree`, `ν = 0`, Boussinesq's far
+/// field, the solve's own tolerance 1e-3 (each level is one model, its estimate unused).
+fn study_options(degree: Degree) -> FemOptions {
+    FemOptions {
+        linear_solver: Default::default(),
+        degree,
+        tolerance: 1e-3,
+        mesh: None,
+        poisson_ratio: 0.0,
+        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+    }
+}
+
 /// The FEM on level `k` of its study ladder, refined around `previous_edge` (concave punches).
 fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<Sized> {
     let concave = case.punch.is_concave();
@@ -401,14 +414,7 @@ fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<S
     } else {
         FemLoad::Flat
     };
-    let options = FemOptions {
-        linear_solver: Default::default(),
-        degree,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
-    };
+    let options = study_options(degree);
     let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
     let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
     Ok(Sized {
@@ -440,14 +446,7 @@ fn free_edges_fem_level(case: &StudyCase, k: usize, located: LocatedEdges) -> Re
         (Some(inner), Some(outer)) => Some([(inner, 0.0), (outer, 0.0)]),
         _ => None,
     };
-    let options = FemOptions {
-        linear_solver: Default::default(),
-        degree: Degree::Quadratic,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
-    };
+    let options = study_options(Degree::Quadratic);
     let load = FemLoad::ConcaveDepth(case.depth);
     let s = fem_solver::solve_free_edges_on_level(case.punch, load, level, edges, &options)?;
     Ok(Sized {
