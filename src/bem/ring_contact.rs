@@ -821,11 +821,10 @@ impl RingBemSolver {
             };
             let root = find_root_with_slope(
                 collocated,
-                min_contact_ratio(kind),
-                MAX_CONTACT_RATIO,
+                (min_contact_ratio(kind), MAX_CONTACT_RATIO),
                 guess,
                 None,
-                PRESEARCH_TOLERANCE,
+                (PRESEARCH_TOLERANCE, None),
                 60,
             );
             if let Ok(root) = root {
@@ -852,11 +851,13 @@ impl RingBemSolver {
                     history.push((eps, sample));
                     Ok(value)
                 },
-                min_contact_ratio(kind),
-                MAX_CONTACT_RATIO,
+                (min_contact_ratio(kind), MAX_CONTACT_RATIO),
                 guess,
                 slope_hint,
-                0.01 * tolerance,
+                // In `eps`, and in the controlled quantity relative to its target (where `γ`
+                // is steep, as in deep states, an `eps` good to 1e-11 can leave a residual
+                // far above the tolerance).
+                (0.01 * tolerance, Some(0.01 * tolerance * target.abs())),
                 60,
             )
             .map_err(|e| inverse_error(e, kind, target, controlled))?;
@@ -869,9 +870,9 @@ impl RingBemSolver {
                 .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
             // The root's sample becomes the state's (a table's search sample gains its rim
             // intensity).
-            let fine = match history.pop() {
-                Some((at, sample)) if at == eps => self.completed(kind, sample)?,
-                _ => {
+            let fine = match history.iter().position(|(at, _)| *at == eps) {
+                Some(i) => self.completed(kind, history.remove(i).1)?,
+                None => {
                     solves += 1;
                     self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?
                 }
