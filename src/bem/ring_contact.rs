@@ -121,8 +121,6 @@ pub struct RingState {
     pub error_estimate: f64,
     /// Unknowns of the finer discretisation.
     pub unknowns: usize,
-    /// Number of collocation systems factorised.
-    pub solves: usize,
 }
 
 /// A prescribed contact band `[b, c]` pressed to depth `d` by a punch of gap `g(r)`: the force
@@ -282,7 +280,7 @@ impl RingBemSolver {
         tolerance: f64,
         sample: impl FnMut(usize) -> Result<T>,
         values: impl Fn(&T) -> Vec<f64>,
-    ) -> Result<(T, usize, f64, usize)> {
+    ) -> Result<(T, usize, f64)> {
         self.refine_by(tolerance, sample, |fine, coarse| {
             values(fine)
                 .iter()
@@ -299,16 +297,14 @@ impl RingBemSolver {
         tolerance: f64,
         mut sample: impl FnMut(usize) -> Result<T>,
         change: impl Fn(&T, &T) -> f64,
-    ) -> Result<(T, usize, f64, usize)> {
+    ) -> Result<(T, usize, f64)> {
         let mut coarse = sample(NODE_LADDER[0])?;
-        let mut solves = 1;
         let mut last_estimate = f64::INFINITY;
         for &n in &NODE_LADDER[1..] {
             let fine = sample(n)?;
-            solves += 1;
             let estimate = change(&fine, &coarse).max(ROUNDING_FLOOR);
             if estimate <= tolerance {
-                return Ok((fine, n, estimate, solves));
+                return Ok((fine, n, estimate));
             }
             last_estimate = estimate;
             coarse = fine;
@@ -411,7 +407,7 @@ impl RingBemSolver {
                 .max((fine.inner_stress_intensity - coarse.inner_stress_intensity).abs() / scale)
                 .max((fine.outer_stress_intensity - coarse.outer_stress_intensity).abs() / scale)
         };
-        let (mut state, _, estimate, _) =
+        let (mut state, _, estimate) =
             self.refine_by(tolerance, sample, change)
                 .map_err(|e| match e {
                     Error::NoConvergence { reason, .. } => {
@@ -448,7 +444,7 @@ impl RingBemSolver {
             Self::check_ratio(eps)?;
             ContactRegion::Annulus { eps }
         };
-        let (sample, n, estimate, solves) = self.refine(
+        let (sample, n, estimate) = self.refine(
             tolerance,
             |n| {
                 let system = self.system(region, n);
@@ -481,7 +477,6 @@ impl RingBemSolver {
             pressure: pressure_profile(&system, &field),
             error_estimate: estimate,
             unknowns: n,
-            solves,
         };
         Ok((state, lag))
     }
@@ -674,13 +669,12 @@ impl RingBemSolver {
         fine: ConcaveSample,
         n: usize,
         estimate: f64,
-        solves: usize,
     ) -> Result<RingState> {
         self.check_hole_clear(kind, eps, &fine)?;
         // The collocated field's own error (the table's: its depth against the accurate γ1)
         // widens the tolerance of the sign check by ten times that error.
         let field_error = (fine.field_depth - fine.gamma1).abs() / fine.gamma1.abs();
-        let state = free_edge_state(eps, fine, n, estimate, solves)?;
+        let state = free_edge_state(eps, fine, n, estimate)?;
         check_compressive(
             &state.pressure,
             eps,
@@ -693,8 +687,8 @@ impl RingBemSolver {
     /// non-adhesive state, refused where that state is not one (tension at the inner edge, or
     /// the punch touching the hole's floor).
     pub fn concave_at_ratio(&self, kind: PunchKind, eps: f64, tolerance: f64) -> Result<RingState> {
-        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
-        self.concave_state(kind, eps, fine, n, estimate, solves)
+        let (fine, n, estimate) = self.concave_refined(kind, eps, tolerance)?;
+        self.concave_state(kind, eps, fine, n, estimate)
     }
 
     /// The field with a free inner edge at a prescribed `eps` (zero inverse-square-root
@@ -707,8 +701,8 @@ impl RingBemSolver {
         eps: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
-        free_edge_state(eps, fine, n, estimate, solves)
+        let (fine, n, estimate) = self.concave_refined(kind, eps, tolerance)?;
+        free_edge_state(eps, fine, n, estimate)
     }
 
     /// [`Self::free_inner_edge_field`] and the clearance of its surface over the punch's floor
@@ -720,14 +714,14 @@ impl RingBemSolver {
         eps: f64,
         tolerance: f64,
     ) -> Result<(RingState, Vec<f64>)> {
-        let (fine, n, estimate, solves) = self.concave_refined(kind, eps, tolerance)?;
+        let (fine, n, estimate) = self.concave_refined(kind, eps, tolerance)?;
         let clearance = {
             let (depth, inside) = self.hole_surface(kind, &fine);
             hole_probes(eps)
                 .map(|r| inside(r).map_or(f64::NAN, |w| -floor_overlap(kind, depth, r, w)))
                 .collect()
         };
-        Ok((free_edge_state(eps, fine, n, estimate, solves)?, clearance))
+        Ok((free_edge_state(eps, fine, n, estimate)?, clearance))
     }
 
     fn concave_refined(
@@ -735,7 +729,7 @@ impl RingBemSolver {
         kind: PunchKind,
         eps: f64,
         tolerance: f64,
-    ) -> Result<(ConcaveSample, usize, f64, usize)> {
+    ) -> Result<(ConcaveSample, usize, f64)> {
         Self::check_tolerance(tolerance)?;
         Self::check_ratio(eps)?;
         // Each node count's edge search starts from the previous one's edge.
@@ -809,7 +803,6 @@ impl RingBemSolver {
         // slope, so it takes Newton's step at once.
         let mut slope_hint = None;
         let mut previous_slopes = None;
-        let mut solves = 0;
         if matches!(kind, PunchKind::Table(_)) {
             // A table's sample takes six collocation systems, its direct collocation one: the
             // latter's root (off by its algebraic error, about 1e-5) and slope start the search.
@@ -828,7 +821,6 @@ impl RingBemSolver {
                 60,
             );
             if let Ok(root) = root {
-                solves += root.evaluations;
                 guess = root.x;
                 slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
             }
@@ -861,7 +853,6 @@ impl RingBemSolver {
                 60,
             )
             .map_err(|e| inverse_error(e, kind, target, controlled))?;
-            solves += root.evaluations;
             let eps = root.x;
             let neighbour = history
                 .iter()
@@ -872,14 +863,10 @@ impl RingBemSolver {
             // intensity).
             let fine = match history.iter().position(|(at, _)| *at == eps) {
                 Some(i) => self.completed(kind, history.remove(i).1)?,
-                None => {
-                    solves += 1;
-                    self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?
-                }
+                None => self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?,
             };
             let fine_outer = Some(fine.system.region().outer());
             let coarse = self.search_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
-            solves += 1;
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
             // 1e-13 apart, whose slope was measured 8 times too small), else the previous
@@ -897,7 +884,6 @@ impl RingBemSolver {
                         Some(slopes) => slopes,
                         None => {
                             let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
-                            solves += 1;
                             let s = self.search_sample(kind, eps + step, n, fine_outer)?;
                             [
                                 (s.gamma1 - fine.gamma1) / step,
@@ -929,7 +915,7 @@ impl RingBemSolver {
                 .max(outer_error)
                 .max(ROUNDING_FLOOR);
             if estimate <= tolerance {
-                return self.concave_state(kind, eps, fine, n, estimate, solves);
+                return self.concave_state(kind, eps, fine, n, estimate);
             }
             if rung + 1 >= NODE_LADDER.len() {
                 return Err(no_convergence(format!(
@@ -952,7 +938,7 @@ impl RingBemSolver {
         kind: PunchKind,
         depth_over_hole: f64,
         tolerance: f64,
-    ) -> Result<((RingSystem, RingField), usize, f64, usize)> {
+    ) -> Result<((RingSystem, RingField), usize, f64)> {
         self.refine(
             tolerance,
             |n| {
@@ -988,7 +974,7 @@ impl RingBemSolver {
         if let PunchKind::Table(table) = kind {
             return Ok(table_full_contact(table.profile(), depth_over_hole));
         }
-        let ((system, field), n, estimate, solves) =
+        let ((system, field), n, estimate) =
             self.full_contact_disk(kind, depth_over_hole, tolerance)?;
         let pressure = pressure_profile(&system, &field);
         check_compressive(&pressure, 0.0, TENSION_TOLERANCE)?;
@@ -1003,7 +989,6 @@ impl RingBemSolver {
             pressure,
             error_estimate: estimate,
             unknowns: n,
-            solves,
         })
     }
 
@@ -1028,9 +1013,7 @@ impl RingBemSolver {
         let closed = closure(kind).map_or(0.0, |(depth, _)| depth);
         let (at_closure, deeper) = (gamma2(closed)?, gamma2(closed + 1.0)?);
         let depth = closed + (target - at_closure) / (deeper - at_closure);
-        let mut state = self.full_contact(kind, depth, tolerance)?;
-        state.solves += 4;
-        Ok(state)
+        self.full_contact(kind, depth, tolerance)
     }
 }
 
@@ -1052,19 +1035,12 @@ fn table_full_contact(table: &crate::punch::TableProfile, depth: f64) -> RingSta
         pressure: Vec::new(),
         error_estimate: ROUNDING_FLOOR,
         unknowns: 0,
-        solves: 0,
     }
 }
 
 /// The state of a concave sample with a free inner edge at `eps` (no check of its sign or of the
 /// hole's floor). An error for a search sample without its rim intensity.
-fn free_edge_state(
-    eps: f64,
-    fine: ConcaveSample,
-    n: usize,
-    estimate: f64,
-    solves: usize,
-) -> Result<RingState> {
+fn free_edge_state(eps: f64, fine: ConcaveSample, n: usize, estimate: f64) -> Result<RingState> {
     let rim_stress_intensity = fine.rim_stress_intensity.ok_or_else(|| {
         no_convergence("a search sample (no rim intensity) was taken for a state".into())
     })?;
@@ -1079,7 +1055,6 @@ fn free_edge_state(
         pressure: pressure_profile(&fine.system, &fine.field),
         error_estimate: estimate,
         unknowns: n,
-        solves,
     })
 }
 

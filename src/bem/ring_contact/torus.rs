@@ -150,7 +150,7 @@ impl RingBemSolver {
             )));
         }
         let last_centre = std::cell::Cell::new(centre_hint);
-        let (fine, n, estimate, solves) = self.refine(
+        let (fine, n, estimate) = self.refine(
             tolerance,
             |n| {
                 let sample =
@@ -165,7 +165,7 @@ impl RingBemSolver {
             },
         )?;
         let eps = fine.system.region().inner();
-        let mut state = free_edge_state(eps, fine, n, estimate, solves)?;
+        let mut state = free_edge_state(eps, fine, n, estimate)?;
         state.inner_stress_intensity = intensity;
         Ok(state)
     }
@@ -208,10 +208,8 @@ impl RingBemSolver {
         eps_tolerance: f64,
     ) -> Option<TorusTarget> {
         let pick = if depth_controlled { 1 } else { 2 };
-        let mut bands = 0;
         // The band's values `[R, γ1, γ2]` at `(b, c)`.
-        let mut values = |b: f64, c: f64| -> Option<([f64; 3], TorusBand)> {
-            bands += 1;
+        let values = |b: f64, c: f64| -> Option<([f64; 3], TorusBand)> {
             let band = self.torus_band(b, c, n).ok()?;
             let v = band.values();
             v.iter().all(|x| x.is_finite()).then_some((v, band))
@@ -275,7 +273,6 @@ impl RingBemSolver {
                 return Some(TorusTarget {
                     eps: b,
                     sample: band.sample(0.0),
-                    bands,
                     jacobian,
                     residual: residual.abs(),
                 });
@@ -339,7 +336,6 @@ impl RingBemSolver {
         let mut jacobian = None;
         let mut rung = FIRST_SEARCH_RUNG;
         let mut below: Option<(usize, TorusTarget)> = None;
-        let mut solves = 0;
         loop {
             let n = NODE_LADDER[rung];
             let at = |n: usize, start: (f64, f64), jacobian: Option<TorusJacobian>| {
@@ -353,7 +349,6 @@ impl RingBemSolver {
                 )
             };
             let fine = at(n, start, jacobian)?;
-            solves += fine.bands;
             let edges = (fine.eps, fine.sample.system.region().outer());
             // The rung below: the previous one where the ladder did not skip it, else solved
             // from this rung's edges. None where this rung is below the one the inner edge
@@ -363,9 +358,7 @@ impl RingBemSolver {
             let coarse = match below.take() {
                 Some((previous, found)) if previous + 1 == rung => Some(found),
                 _ if rung < needed => None,
-                _ => at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian)).inspect(|found| {
-                    solves += found.bands;
-                }),
+                _ => at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian)),
             };
             let estimate = coarse.as_ref().map_or(f64::INFINITY, |coarse| {
                 (fine.change_from(coarse) + 2.0 * fine.residual).max(ROUNDING_FLOOR)
@@ -377,7 +370,6 @@ impl RingBemSolver {
                     fine.sample,
                     n,
                     estimate,
-                    solves,
                 ));
             }
             if rung + 1 >= NODE_LADDER.len() {
@@ -404,8 +396,6 @@ pub(super) struct TorusTarget {
     pub eps: f64,
     /// The state there (both edges free, the target met).
     pub sample: ConcaveSample,
-    /// Bands solved.
-    pub bands: usize,
     /// The Jacobian of `[R, γ1, γ2]` in `(b, c)` at the end (Broyden's estimate).
     pub jacobian: TorusJacobian,
     /// The target's residual there, `|γ/target - 1|` (the search's error; at rounding once
@@ -638,8 +628,7 @@ mod tests {
             let outer = solver.torus_sample(nested.x, n, None).unwrap();
             let (b, c) = (direct.eps, direct.sample.system.region().outer());
             println!(
-                "target {target}: direct b {b:.15} c {c:.15} ({} bands), nested b {:.15} c {:.15}",
-                direct.bands,
+                "target {target}: direct b {b:.15} c {c:.15}, nested b {:.15} c {:.15}",
                 nested.x,
                 outer.system.region().outer()
             );
