@@ -28,8 +28,9 @@ pub struct Root {
     /// last two evaluations may reuse the root's.
     pub x: f64,
     pub evaluations: usize,
-    /// Secant slope `f'` from the last two iterates (NaN if the last step was a bisection
-    /// without a usable pair).
+    /// Secant slope `f'` from the last two iterates (at the rounding floor, from the two
+    /// before them, the last step's being rounding; NaN if the last step was a bisection without
+    /// a usable pair).
     pub slope: f64,
 }
 
