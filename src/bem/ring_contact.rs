@@ -30,7 +30,7 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
 
-use piecewise_gap::BandEdges;
+use piecewise_gap::{BandEdges, InnerStencil, InnerStencils};
 
 mod piecewise_gap;
 mod torus;
@@ -491,21 +491,31 @@ impl RingBemSolver {
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
-        self.concave_sample_with(kind, eps, n, outer_hint, BandEdges::Both)
+        self.concave_sample_with(
+            kind,
+            eps,
+            n,
+            outer_hint,
+            BandEdges::Both,
+            &mut InnerStencil::default(),
+        )
     }
 
     /// [`Self::concave_sample`] for a search on the inner edge, which needs `γ1` and `γ2` only:
     /// a table's band is built without its rim's derivative (six factorisations instead of
     /// eleven), so its `rim_stress_intensity` is `None` until [`Self::completed`] adds it. The
-    /// same as [`Self::concave_sample`] for every other punch.
+    /// same as [`Self::concave_sample`] for every other punch. A search passes the same
+    /// `stencil` to all its samples at one node count: a table's samples close to the first
+    /// reuse its neighbouring bands ([`InnerStencil`]).
     fn search_sample(
         &self,
         kind: PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
+        stencil: &mut InnerStencil,
     ) -> Result<ConcaveSample> {
-        self.concave_sample_with(kind, eps, n, outer_hint, BandEdges::Inner)
+        self.concave_sample_with(kind, eps, n, outer_hint, BandEdges::Inner, stencil)
     }
 
     fn concave_sample_with(
@@ -515,6 +525,7 @@ impl RingBemSolver {
         n: usize,
         outer_hint: Option<f64>,
         edges: BandEdges,
+        stencil: &mut InnerStencil,
     ) -> Result<ConcaveSample> {
         if kind == PunchKind::Torus {
             return self.torus_sample(eps, n, outer_hint);
@@ -522,7 +533,7 @@ impl RingBemSolver {
         // A table's collocated field (which draws the pressure) is solved on its band's system.
         let (system, table_band) = match kind {
             PunchKind::Table(table) => {
-                let band = self.gap_band(table.profile(), eps, 1.0, n, edges)?;
+                let band = self.gap_band_reusing(table.profile(), eps, 1.0, n, edges, stencil)?;
                 (band.system().clone(), Some(band))
             }
             _ => (self.system(ContactRegion::Annulus { eps }, n), None),
@@ -825,6 +836,9 @@ impl RingBemSolver {
                 slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
             }
         }
+        // A table's samples at each node count share their neighbouring bands where they lie
+        // close together: the search's last samples, and the next rung's coarse sample.
+        let mut stencils = InnerStencils::default();
         loop {
             let n = NODE_LADDER[rung];
             // The last three samples of the search are kept: the state at the root and the
@@ -834,7 +848,7 @@ impl RingBemSolver {
                 |eps| {
                     let hint = outer_edge_hint(&history, eps).or(outer_guess);
                     let sample = self
-                        .search_sample(kind, eps, n, hint)
+                        .search_sample(kind, eps, n, hint, stencils.at(n))
                         .map_err(|e| e.to_string())?;
                     let value = pick(&sample) - target;
                     if history.len() == 3 {
@@ -860,39 +874,43 @@ impl RingBemSolver {
                 .max_by(|(a, _), (b, _)| (a - eps).abs().total_cmp(&(b - eps).abs()))
                 .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
             // The root's sample becomes the state's (a table's search sample gains its rim
-            // intensity).
+            // intensity once the state is accepted: the estimate does not read it).
             let fine = match history.iter().position(|(at, _)| *at == eps) {
-                Some(i) => self.completed(kind, history.remove(i).1)?,
+                Some(i) => history.remove(i).1,
                 None => self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?,
             };
             let fine_outer = Some(fine.system.region().outer());
-            let coarse = self.search_sample(kind, eps, NODE_LADDER[rung - 1], fine_outer)?;
+            let coarse_n = NODE_LADDER[rung - 1];
+            let coarse =
+                self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?;
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
             // 1e-13 apart, whose slope was measured 8 times too small), else the previous
             // rung's where that rung was close (its estimate below SLOPE_TRUSTED_ESTIMATE), else
             // from a small step.
             let outer_fine = fine.system.region().outer();
-            let [slope1, slope2, outer_slope] =
-                match neighbour.filter(|(at, ..)| (eps - at).abs() >= SLOPE_MIN_SEPARATION) {
-                    Some((at, g1, g2, c)) => [
-                        (fine.gamma1 - g1) / (eps - at),
-                        (fine.gamma2 - g2) / (eps - at),
-                        (outer_fine - c) / (eps - at),
-                    ],
-                    None => match previous_slopes {
-                        Some(slopes) => slopes,
-                        None => {
-                            let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
-                            let s = self.search_sample(kind, eps + step, n, fine_outer)?;
-                            [
-                                (s.gamma1 - fine.gamma1) / step,
-                                (s.gamma2 - fine.gamma2) / step,
-                                (s.system.region().outer() - outer_fine) / step,
-                            ]
-                        }
-                    },
-                };
+            let [slope1, slope2, outer_slope] = match neighbour
+                .filter(|(at, ..)| (eps - at).abs() >= SLOPE_MIN_SEPARATION)
+            {
+                Some((at, g1, g2, c)) => [
+                    (fine.gamma1 - g1) / (eps - at),
+                    (fine.gamma2 - g2) / (eps - at),
+                    (outer_fine - c) / (eps - at),
+                ],
+                None => match previous_slopes {
+                    Some(slopes) => slopes,
+                    None => {
+                        let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
+                        let s =
+                            self.search_sample(kind, eps + step, n, fine_outer, stencils.at(n))?;
+                        [
+                            (s.gamma1 - fine.gamma1) / step,
+                            (s.gamma2 - fine.gamma2) / step,
+                            (s.system.region().outer() - outer_fine) / step,
+                        ]
+                    }
+                },
+            };
             let (slope, other_slope, other_fine, other_coarse) = match controlled {
                 Controlled::Depth => (slope1, slope2, fine.gamma2, coarse.gamma2),
                 Controlled::Force => (slope2, slope1, fine.gamma1, coarse.gamma1),
@@ -915,6 +933,7 @@ impl RingBemSolver {
                 .max(outer_error)
                 .max(ROUNDING_FLOOR);
             if estimate <= tolerance {
+                let fine = self.completed(kind, fine)?;
                 return self.concave_state(kind, eps, fine, n, estimate);
             }
             if rung + 1 >= NODE_LADDER.len() {
