@@ -138,16 +138,17 @@ struct FlatBand {
 
 /// The flat field's smooth factor `φ` on `[b, c]` as a Chebyshev series in the band's parameter
 /// `t = 2 ln(s/b) / L - 1`, `L = ln(c/b)`, with the fields of the neighbouring bands of each
-/// edge's stencil (the centre's own field is each stencil's first node), from which the
-/// derivatives at fixed `s` are taken (the outer edge's only where it was asked for).
+/// edge's stencil (the centre's own field is each stencil's first node, its neighbours' follow),
+/// from which the derivatives at fixed `s` are taken (the outer edge's only where it was asked
+/// for).
 struct SmoothFactor {
     centre: Series,
-    inner_stencil: Vec<Series>,
+    inner_neighbours: Vec<Series>,
     /// The inner derivative's weights, `∂_b φ ≈ Σ w_k φ_k / inner_step` ([`STENCIL`]'s where
-    /// the stencil is the band's own, [`InnerStencil::weights`] where a search reuses one).
+    /// the stencil is the band's own, [`KeptStencil::weights`] where a search reuses one).
     inner_weights: [f64; 6],
     inner_step: f64,
-    outer_stencil: Option<Vec<Series>>,
+    outer_neighbours: Option<Vec<Series>>,
     outer_step: f64,
 }
 
@@ -216,8 +217,8 @@ impl SmoothFactor {
         };
         (
             centre,
-            derivative(&self.inner_stencil, &self.inner_weights, self.inner_step),
-            self.outer_stencil.as_deref().map_or(0.0, |neighbours| {
+            derivative(&self.inner_neighbours, &self.inner_weights, self.inner_step),
+            self.outer_neighbours.as_deref().map_or(0.0, |neighbours| {
                 derivative(neighbours, &STENCIL.map(|(_, w)| w), self.outer_step)
             }),
         )
@@ -326,7 +327,7 @@ impl RingBemSolver {
 
     /// The flat fields of [`STENCIL`]'s neighbouring bands `[b, c + k δ]` (`k = 1..5`, `δ` =
     /// [`EDGE_STEP`] of the width) for the outer edge's derivative.
-    fn outer_stencil(&self, centre: &FlatBand, n: usize) -> Result<Vec<Series>> {
+    fn outer_neighbours(&self, centre: &FlatBand, n: usize) -> Result<Vec<Series>> {
         let region = centre.system.region();
         let (inner, outer) = (region.inner(), region.outer());
         let step = EDGE_STEP * (outer - inner);
@@ -363,10 +364,10 @@ impl RingBemSolver {
         let nodes = ChebyshevNodes::new(n);
         let factor = SmoothFactor {
             centre: Series::new(&nodes, &centre),
-            inner_stencil: Vec::new(),
+            inner_neighbours: Vec::new(),
             inner_weights: [0.0; 6],
             inner_step: 1.0,
-            outer_stencil: Some(self.outer_stencil(&centre, n)?),
+            outer_neighbours: Some(self.outer_neighbours(&centre, n)?),
             outer_step: -EDGE_STEP * (outer - inner),
         };
         let remainder = Remainder {
@@ -414,35 +415,37 @@ impl RingBemSolver {
         let outer_step = EDGE_STEP * width;
         let centre = self.flat_band(inner, outer, n)?;
         let nodes = ChebyshevNodes::new(n);
-        if !stencil.holds(inner, outer, n) {
-            let step = EDGE_STEP * inner.min(width);
-            let neighbours = STENCIL[1..]
-                .iter()
-                .map(|&(k, _)| {
-                    Ok(Series::new(
-                        &nodes,
-                        &self.flat_band(inner - k * step, outer, n)?,
-                    ))
-                })
-                .collect::<Result<Vec<_>>>()?;
-            *stencil = InnerStencil {
-                kept: Some(KeptStencil {
+        let kept = match stencil.kept.take() {
+            Some(kept) if kept.holds(inner, outer, n) => kept,
+            _ => {
+                let step = EDGE_STEP * inner.min(width);
+                let neighbours = STENCIL[1..]
+                    .iter()
+                    .map(|&(k, _)| {
+                        Ok(Series::new(
+                            &nodes,
+                            &self.flat_band(inner - k * step, outer, n)?,
+                        ))
+                    })
+                    .collect::<Result<Vec<_>>>()?;
+                KeptStencil {
                     anchor: inner,
                     outer,
                     n,
                     step,
                     neighbours,
-                }),
-            };
-        }
-        let (inner_weights, inner_step, neighbours) = stencil.weights(inner);
+                }
+            }
+        };
+        let kept = stencil.kept.insert(kept);
+        let inner_weights = kept.weights(inner);
         let factor = SmoothFactor {
             centre: Series::new(&nodes, &centre),
-            inner_stencil: neighbours.to_vec(),
+            inner_neighbours: kept.neighbours.clone(),
             inner_weights,
-            inner_step,
-            outer_stencil: match edges {
-                BandEdges::Both => Some(self.outer_stencil(&centre, n)?),
+            inner_step: kept.step,
+            outer_neighbours: match edges {
+                BandEdges::Both => Some(self.outer_neighbours(&centre, n)?),
                 BandEdges::Inner => None,
             },
             outer_step: -outer_step,
@@ -473,7 +476,7 @@ impl RingBemSolver {
             gap_inner_intensity: centre.system.inner_stress_intensity(&direct)
                 + flat_inner * remainder.value(inner)
                 - integrals.inner_derivative / (2.0 * PI * inner * flat_inner),
-            gap_outer_intensity: factor.outer_stencil.as_ref().map(|_| {
+            gap_outer_intensity: factor.outer_neighbours.as_ref().map(|_| {
                 outer_edge_intensity(
                     &centre.system,
                     &direct,
@@ -529,31 +532,25 @@ struct KeptStencil {
     neighbours: Vec<Series>,
 }
 
-impl InnerStencil {
+impl KeptStencil {
     /// Whether the kept neighbours serve the band `[inner, outer]` at `n` nodes.
     fn holds(&self, inner: f64, outer: f64, n: usize) -> bool {
-        self.kept.as_ref().is_some_and(|kept| {
-            kept.n == n && kept.outer == outer && (inner - kept.anchor).abs() <= 0.25 * kept.step
-        })
+        self.n == n && self.outer == outer && (inner - self.anchor).abs() <= 0.25 * self.step
     }
 
-    /// The derivative's weights at `b = inner` in units of the kept step, the step and the
-    /// neighbours: [`STENCIL`]'s at the anchor, else the Lagrange basis's derivatives at `b`
-    /// over the nodes `x_0 = b`, `x_k = b₀ - k δ`: with `u_k = (b - x_k) / δ`,
-    /// `w_0 = Σ_{k≥1} 1/u_k` and `w_j = -Π_{k≠0,j} u_k / (u_j Π_{k≠0,j} (u_k - u_j))`.
-    fn weights(&self, inner: f64) -> ([f64; 6], f64, &[Series]) {
-        let kept = self
-            .kept
-            .as_ref()
-            .expect("an inner stencil is kept before it is read");
-        if inner == kept.anchor {
-            return (STENCIL.map(|(_, w)| w), kept.step, &kept.neighbours);
+    /// The derivative's weights at `b = inner` in units of the kept step: [`STENCIL`]'s at the
+    /// anchor, else the Lagrange basis's derivatives at `b` over the nodes `x_0 = b`,
+    /// `x_k = b₀ - k δ`: with `u_k = (b - x_k) / δ`, `w_0 = Σ_{k≥1} 1/u_k` and
+    /// `w_j = -Π_{k≠0,j} u_k / (u_j Π_{k≠0,j} (u_k - u_j))`.
+    fn weights(&self, inner: f64) -> [f64; 6] {
+        if inner == self.anchor {
+            return STENCIL.map(|(_, w)| w);
         }
         let u: [f64; 6] = std::array::from_fn(|k| {
             if k == 0 {
                 0.0
             } else {
-                (inner - (kept.anchor - STENCIL[k].0 * kept.step)) / kept.step
+                (inner - (self.anchor - STENCIL[k].0 * self.step)) / self.step
             }
         });
         let mut w = [0.0; 6];
@@ -566,7 +563,7 @@ impl InnerStencil {
             }
             w[j] = numerator / denominator;
         }
-        (w, kept.step, &kept.neighbours)
+        w
     }
 }
 
@@ -698,7 +695,7 @@ fn band_integrals(
             total.force += area * phi * weight * gap.value(s);
             let by_inner = (phi_by_inner + 0.5 * phi / from_inner) * weight;
             total.inner_derivative += area * by_inner * gap.increment(inner, from_inner);
-            if factor.outer_stencil.is_some() {
+            if factor.outer_neighbours.is_some() {
                 let by_outer = (phi_by_outer - 0.5 * phi / from_outer) * weight;
                 total.outer_derivative += area * by_outer * gap.increment(outer, -from_outer);
             }
@@ -794,20 +791,18 @@ mod tests {
     #[test]
     fn a_reused_stencil_differentiates_quintics_exactly() {
         let (anchor, step) = (0.4, 0.003);
-        let stencil = InnerStencil {
-            kept: Some(KeptStencil {
-                anchor,
-                outer: 1.0,
-                n: 16,
-                step,
-                neighbours: Vec::new(),
-            }),
+        let stencil = KeptStencil {
+            anchor,
+            outer: 1.0,
+            n: 16,
+            step,
+            neighbours: Vec::new(),
         };
         let quintic = |x: f64| 0.3 - 2.0 * x + x.powi(2) - 4.0 * x.powi(3) + 3.0 * x.powi(5);
         let slope = |x: f64| -2.0 + 2.0 * x - 12.0 * x.powi(2) + 15.0 * x.powi(4);
         for offset in [-0.25, -0.1, 0.0, 0.13, 0.25] {
             let b = anchor + offset * step;
-            let (weights, h, _) = stencil.weights(b);
+            let weights = stencil.weights(b);
             let nodes: Vec<f64> = std::iter::once(b)
                 .chain(STENCIL[1..].iter().map(|&(k, _)| anchor - k * step))
                 .collect();
@@ -816,14 +811,14 @@ mod tests {
                 .zip(&nodes)
                 .map(|(w, &x)| w * quintic(x))
                 .sum::<f64>()
-                / h;
+                / step;
             assert!(
                 (derivative - slope(b)).abs() < 1e-9,
                 "offset {offset}: {derivative} against {}",
                 slope(b)
             );
         }
-        assert_eq!(stencil.weights(anchor).0, STENCIL.map(|(_, w)| w));
+        assert_eq!(stencil.weights(anchor), STENCIL.map(|(_, w)| w));
     }
 
     /// A band next to a search's first one reuses its neighbours (one factorisation, not six)
