@@ -51,3 +51,25 @@ pub fn scratch(name: &str) -> std::path::PathBuf {
     std::fs::create_dir_all(&dir).expect("scratch directory");
     dir
 }
+
+/// A convergence study's JSON (`verify convergence --json`): its levels' errors against the
+/// yardstick fall level by level, the finest is below `finest`, and the finest level's error bar
+/// bounds its actual error (`bar_bounds_error`). `label` names the study in failures.
+#[allow(dead_code)]
+pub fn assert_study_converges(json: &serde_json::Value, label: &str, finest: f64) {
+    assert_eq!(json["bar_bounds_error"], true, "{label}: {json}");
+    let errors: Vec<f64> = json["levels"]
+        .as_array()
+        .unwrap_or_else(|| panic!("{label}: no levels in {json}"))
+        .iter()
+        .map(|l| l["error"].as_f64().unwrap().abs())
+        .collect();
+    assert!(
+        errors.windows(2).all(|p| p[1] < p[0]),
+        "{label}: {errors:?}"
+    );
+    assert!(
+        errors.last().is_some_and(|e| *e < finest),
+        "{label}: {errors:?}"
+    );
+}
