@@ -839,6 +839,9 @@ impl RingBemSolver {
         // A table's samples at each node count share their neighbouring bands where they lie
         // close together: the search's last samples, and the next rung's coarse sample.
         let mut stencils = InnerStencils::default();
+        // The previous rung's root and its sample: the coarse sample of the next rung where
+        // that one's root is the same ratio (its search stopped at its start).
+        let mut previous_root: Option<(usize, f64, ConcaveSample)> = None;
         loop {
             let n = NODE_LADDER[rung];
             // The last three samples of the search are kept: the state at the root and the
@@ -881,8 +884,10 @@ impl RingBemSolver {
             };
             let fine_outer = Some(fine.system.region().outer());
             let coarse_n = NODE_LADDER[rung - 1];
-            let coarse =
-                self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?;
+            let coarse = match previous_root.take() {
+                Some((m, at, sample)) if m == coarse_n && at == eps => sample,
+                _ => self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?,
+            };
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
             // 1e-13 apart, whose slope was measured 8 times too small), else the previous
@@ -947,6 +952,7 @@ impl RingBemSolver {
                 (estimate <= SLOPE_TRUSTED_ESTIMATE).then_some([slope1, slope2, outer_slope]);
             guess = eps;
             outer_guess = fine_outer;
+            previous_root = Some((n, eps, fine));
         }
     }
 
