@@ -533,7 +533,7 @@ impl RingBemSolver {
         // A table's collocated field (which draws the pressure) is solved on its band's system.
         let (system, table_band) = match kind {
             PunchKind::Table(table) => {
-                let band = self.gap_band_reusing(table.profile(), eps, 1.0, n, edges, stencil)?;
+                let band = self.gap_band(table.profile(), eps, 1.0, n, edges, stencil)?;
                 (band.system().clone(), Some(band))
             }
             _ => (self.system(ContactRegion::Annulus { eps }, n), None),

@@ -141,9 +141,9 @@ struct FlatBand {
 /// edge's stencil (the centre's own field is each stencil's first node, its neighbours' follow),
 /// from which the derivatives at fixed `s` are taken (the outer edge's only where it was asked
 /// for).
-struct SmoothFactor {
+struct SmoothFactor<'a> {
     centre: Series,
-    inner_neighbours: Vec<Series>,
+    inner_neighbours: &'a [Series],
     /// The inner derivative's weights, `∂_b φ ≈ Σ w_k φ_k / inner_step` ([`STENCIL`]'s where
     /// the stencil is the band's own, [`KeptStencil::weights`] where a search reuses one).
     inner_weights: [f64; 6],
@@ -153,7 +153,6 @@ struct SmoothFactor {
 }
 
 /// One band's `φ` as a Chebyshev series in its own parameter.
-#[derive(Clone)]
 struct Series {
     band: (f64, f64),
     coefficients: Vec<f64>,
@@ -201,7 +200,7 @@ impl Series {
     }
 }
 
-impl SmoothFactor {
+impl SmoothFactor<'_> {
     /// `(φ, ∂_b φ|_s, ∂_c φ|_s)` at `s` (`∂_c φ` zero without the outer stencil).
     fn at(&self, s: f64) -> (f64, f64, f64) {
         let centre = self.centre.at(s);
@@ -217,7 +216,7 @@ impl SmoothFactor {
         };
         (
             centre,
-            derivative(&self.inner_neighbours, &self.inner_weights, self.inner_step),
+            derivative(self.inner_neighbours, &self.inner_weights, self.inner_step),
             self.outer_neighbours.as_deref().map_or(0.0, |neighbours| {
                 derivative(neighbours, &STENCIL.map(|(_, w)| w), self.outer_step)
             }),
@@ -321,7 +320,14 @@ impl RingBemSolver {
         n: usize,
     ) -> Result<GapFunctionals> {
         Ok(self
-            .gap_band(gap, inner, outer, n, BandEdges::Both)?
+            .gap_band(
+                gap,
+                inner,
+                outer,
+                n,
+                BandEdges::Both,
+                &mut InnerStencil::default(),
+            )?
             .functionals)
     }
 
@@ -364,7 +370,7 @@ impl RingBemSolver {
         let nodes = ChebyshevNodes::new(n);
         let factor = SmoothFactor {
             centre: Series::new(&nodes, &centre),
-            inner_neighbours: Vec::new(),
+            inner_neighbours: &[],
             inner_weights: [0.0; 6],
             inner_step: 1.0,
             outer_neighbours: Some(self.outer_neighbours(&centre, n)?),
@@ -385,24 +391,12 @@ impl RingBemSolver {
         Ok(())
     }
 
-    /// [`GapBand`] of `gap` on the band `[inner, outer]` at `n` nodes (the band and
+    /// [`GapBand`] of `gap` on the band `[inner, outer]` at `n` nodes: the band and
     /// [`STENCIL`]'s neighbours for the derivative of each edge in `edges`, one factorisation
-    /// each).
+    /// each, the inner edge's taken from `stencil` where it holds a search's bands that contain
+    /// this one ([`InnerStencil`]: one factorisation instead of six), else built for this band and
+    /// kept there (a fresh `InnerStencil::default()` for a band alone).
     pub(crate) fn gap_band(
-        &self,
-        gap: &dyn PiecewiseGap,
-        inner: f64,
-        outer: f64,
-        n: usize,
-        edges: BandEdges,
-    ) -> Result<GapBand> {
-        self.gap_band_reusing(gap, inner, outer, n, edges, &mut InnerStencil::default())
-    }
-
-    /// [`Self::gap_band`] with the inner edge's neighbouring bands taken from `stencil` where it
-    /// holds a search's bands that contain this one ([`InnerStencil`]: one factorisation instead
-    /// of six), else built for this band and kept there.
-    pub(crate) fn gap_band_reusing(
         &self,
         gap: &dyn PiecewiseGap,
         inner: f64,
@@ -441,7 +435,7 @@ impl RingBemSolver {
         let inner_weights = kept.weights(inner);
         let factor = SmoothFactor {
             centre: Series::new(&nodes, &centre),
-            inner_neighbours: kept.neighbours.clone(),
+            inner_neighbours: &kept.neighbours,
             inner_weights,
             inner_step: kept.step,
             outer_neighbours: match edges {
@@ -769,11 +763,25 @@ mod tests {
         };
         for (inner, outer) in [(0.3, 1.0), (0.02, 1.0), (0.7, 0.9)] {
             let both = solver
-                .gap_band(&gap, inner, outer, 24, BandEdges::Both)
+                .gap_band(
+                    &gap,
+                    inner,
+                    outer,
+                    24,
+                    BandEdges::Both,
+                    &mut InnerStencil::default(),
+                )
                 .unwrap()
                 .functionals;
             let mut band = solver
-                .gap_band(&gap, inner, outer, 24, BandEdges::Inner)
+                .gap_band(
+                    &gap,
+                    inner,
+                    outer,
+                    24,
+                    BandEdges::Inner,
+                    &mut InnerStencil::default(),
+                )
                 .unwrap();
             assert!(band.functionals.gap_outer_intensity.is_none());
             solver.complete_outer_edge(&gap, &mut band).unwrap();
@@ -837,7 +845,7 @@ mod tests {
         for (first, bound) in [(0.3, 1e-11), (0.02, 1e-8), (0.7, 1e-11)] {
             let mut stencil = InnerStencil::default();
             solver
-                .gap_band_reusing(&gap, first, 1.0, 48, BandEdges::Inner, &mut stencil)
+                .gap_band(&gap, first, 1.0, 48, BandEdges::Inner, &mut stencil)
                 .unwrap();
             let step = EDGE_STEP * first.min(1.0 - first);
             for offset in [-0.24, 0.1, 0.24] {
@@ -848,12 +856,19 @@ mod tests {
                     .inner_stress_intensity;
                 let before = solver.factorisations();
                 let reused = solver
-                    .gap_band_reusing(&gap, inner, 1.0, 48, BandEdges::Inner, &mut stencil)
+                    .gap_band(&gap, inner, 1.0, 48, BandEdges::Inner, &mut stencil)
                     .unwrap()
                     .functionals;
                 assert_eq!(solver.factorisations() - before, 1, "b = {inner}");
                 let alone = solver
-                    .gap_band(&gap, inner, 1.0, 48, BandEdges::Inner)
+                    .gap_band(
+                        &gap,
+                        inner,
+                        1.0,
+                        48,
+                        BandEdges::Inner,
+                        &mut InnerStencil::default(),
+                    )
                     .unwrap()
                     .functionals;
                 for (way, f) in [("reused", reused), ("alone", alone)] {
@@ -866,7 +881,7 @@ mod tests {
             let before = solver.factorisations();
             let farther = first + 0.3 * step;
             solver
-                .gap_band_reusing(&gap, farther, 1.0, 48, BandEdges::Inner, &mut stencil)
+                .gap_band(&gap, farther, 1.0, 48, BandEdges::Inner, &mut stencil)
                 .unwrap();
             assert_eq!(solver.factorisations() - before, 6);
         }
@@ -898,7 +913,14 @@ mod tests {
                 .collect();
             let direct = system.solve(&target).unwrap();
             let band = solver
-                .gap_band(&gap, inner, 1.0, 40, BandEdges::Inner)
+                .gap_band(
+                    &gap,
+                    inner,
+                    1.0,
+                    40,
+                    BandEdges::Inner,
+                    &mut InnerStencil::default(),
+                )
                 .unwrap();
             for k in 0..8 {
                 let r = inner * k as f64 / 8.0;
