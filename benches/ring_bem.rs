@@ -185,6 +185,8 @@ fn main() {
         (PunchKind::Sphere, true, [2.999, 2.9999, 2.99995]),
         (PunchKind::Torus, true, [20.0, 50.0, 100.0]),
         (PunchKind::Torus, false, [10.0, 50.0, 200.0]),
+        (table, true, [2.9, 2.95, 2.98]),
+        (power(1.5), true, [4.0, 4.3, 4.5]),
     ];
     for (kind, depth, targets) in deep {
         for &target in &targets {

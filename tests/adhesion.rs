@@ -284,6 +284,9 @@ fn a_power_law_with_a_wall_as_steep_as_n_50_has_a_jkr_analysis() {
 /// the non-adhesive ring with a free inner edge clears the floor at every ratio from 1e-4 to
 /// 0.999, and the flat annulus's surface in its hole sinks less than the punch (`w <= 1`), so
 /// the adhesive states, the first plus the second pulled by `s/kappa_in > 0`, clear it too.
+/// The fields are converged to 1e-9: at `b/a = 1e-4` the free-edge depth's rounding floor is
+/// 1e-10 (its values at 32-128 nodes scatter by 5e-10 relative, whichever quadrature assembles
+/// the rows), so 1e-10 there is refused or met by chance.
 #[test]
 fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() {
     let solver = RingBemSolver::new();
@@ -293,13 +296,14 @@ fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() 
         assert!(!kind.may_meet_hole_floor());
         for eps in ratios {
             let depth = solver
-                .free_inner_edge_field(kind, eps, 1e-10)
+                .free_inner_edge_field(kind, eps, 1e-9)
                 .unwrap()
                 .gamma1
                 .unwrap();
+            // Clear means not below the rounding of `w` and `d - g`, both of order `d`.
             let least = least_hole_clearance(kind, eps, depth);
             assert!(
-                least >= 0.0,
+                least >= -1e-14 * depth.max(1.0),
                 "{kind} at eps = {eps}: clearance {least:.3e} h"
             );
         }

@@ -486,7 +486,8 @@ fn a_closed_cone_within_its_estimate_is_answered() {
             state["gamma2"].as_f64().unwrap(),
         );
         let estimate = state["error_estimate"].as_f64().unwrap();
-        let reference = bem.concave_at_depth(PunchKind::Cone, depth, 1e-10).unwrap();
+        // 1e-9: at these holes the free edge's rounding floor is 1e-10 to 2e-10.
+        let reference = bem.concave_at_depth(PunchKind::Cone, depth, 1e-9).unwrap();
         // F = 2 E* h a γ2: the force's relative error is γ2's.
         let force_error = (gamma2 / reference.gamma2.unwrap() - 1.0).abs();
         let eps_error = (eps - reference.eps).abs();

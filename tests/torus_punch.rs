@@ -143,8 +143,9 @@ fn depth_force_and_edge_controls_agree_and_both_edges_are_free() {
 }
 
 /// The estimate bounds the error: states at loose tolerances against the same states at a
-/// tight one (`1e-11`, the method converged, its own estimate there below it; `1e-9` for the
-/// deepest state, `b = 3e-4 a`, where the error bound is the sum of both estimates), narrow to
+/// tight one (`1e-11`, the method converged, its own estimate there below it; `1e-10` and `1e-8`
+/// for the deep states, `b = 1e-2 a` and `3e-4 a`, above their free edges' rounding floors, where
+/// the error bound is the sum of both estimates), narrow to
 /// wide bands (`b/a` from 0.98 to 3e-4), under depth and force control. The error is that of
 /// the inner and outer edges (absolute, units of `a`) and of `γ1`, `γ2` (relative), the
 /// quantities the estimate covers.
@@ -162,10 +163,13 @@ fn the_estimate_bounds_the_error_of_depth_and_force_controlled_states() {
     let states = [
         (true, 1e-3, 1e-11),
         (true, 2.0, 1e-11),
-        (true, 50.0, 1e-11),
-        (true, 130.0, 1e-9),
+        // b/a = 1e-2, c/a = 5.8: the free edges' rounding floor is 3e-11.
+        (true, 50.0, 1e-10),
+        // b/a = 3e-4, c/a = 8.9: the floor is 1.5e-9.
+        (true, 130.0, 1e-8),
         (false, 1e-2, 1e-11),
-        (false, 200.0, 1e-11),
+        // b/a = 1e-2, c/a = 5.7: the floor is 2.7e-11.
+        (false, 200.0, 1e-10),
     ];
     for (depth, target, reference_tol) in states {
         let reference = state(depth, target, reference_tol);

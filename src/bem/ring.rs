@@ -13,11 +13,13 @@
 //! `W = 1 / sqrt(a² - s²)` for a full disk (`b = 0`). The smooth factor `φ` is the polynomial
 //! interpolant through its values at `N` Chebyshev points of the first kind, in `s` on `[b, a]`
 //! for the annulus and in `s²` on `[0, a²]` for the disk (the disk's pressure is even in `s`).
-//! The equation `w(r_i) = w_target(r_i)` is imposed at the same points. The integral in each row
-//! is split at `r_i` and evaluated by tanh-sinh quadrature, which integrates the logarithmic
-//! singularity at `s = r_i` and the edge singularities of `W` to near machine precision, so the
-//! error of the method is the interpolation error of `φ`: geometric in `N` wherever `φ` is
-//! analytic.
+//! The equation `w(r_i) = w_target(r_i)` is imposed at the same points. On an annulus or band the
+//! rows are integrated in the interpolation variable by product integration on one set of
+//! Chebyshev points ([`band_matrix`]: the logarithm of `K` in closed form against the Chebyshev
+//! polynomials, the rest by Gauss-Chebyshev); on the disk each row is split at `r_i` and
+//! integrated by tanh-sinh quadrature. Both integrate the logarithmic singularity at `s = r_i`
+//! and the edge singularities of `W` to near machine precision, so the error of the method is
+//! the interpolation error of `φ`: geometric in `N` wherever `φ` is analytic.
 //!
 //! Lengths are scaled by the rim radius `a` and pressures by `E*`; everything in this module is
 //! dimensionless (`a = 1`, `E* = 1`).
@@ -30,6 +32,8 @@ use rayon::prelude::*;
 use crate::numerics::chebyshev::ChebyshevNodes;
 use crate::numerics::elliptic::complete_k_from_complementary;
 use crate::numerics::tanh_sinh::{PanelNode, TanhSinhRule};
+
+mod band_matrix;
 
 /// Shape of the contact region, in units of the rim radius `a = 1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -67,7 +71,9 @@ impl ContactRegion {
 pub struct RingBemSettings {
     /// Number of Chebyshev collocation points `N` (unknowns).
     pub nodes: usize,
-    /// Tanh-sinh step; `1/8` integrates each row to about 1e-14.
+    /// Step of the tanh-sinh rule handed to [`RingSystem::assemble`] (it integrates the disk's
+    /// rows; a band's are integrated by product integration); `1/8` integrates a row to about
+    /// 1e-14.
     pub quadrature_step: f64,
 }
 
@@ -118,47 +124,27 @@ fn ring_kernel(r: f64, s: f64, distance: f64) -> f64 {
 }
 
 impl RingSystem {
-    /// Assemble and factorise the collocation system for `region` with the given settings.
+    /// Assemble and factorise the collocation system for `region` with the given settings: a
+    /// band's or annulus's rows by [`band_matrix`], the disk's (and a band too long for it) by
+    /// the tanh-sinh `rule`.
     pub fn assemble(region: ContactRegion, settings: RingBemSettings, rule: &TanhSinhRule) -> Self {
         let n = settings.nodes;
         let nodes = ChebyshevNodes::new(n);
         let (inner, outer) = (region.inner(), region.outer());
         let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
-        // The rows are independent (one collocation radius each): computed in parallel, each
-        // summed in the same order as on one thread, so the matrix is the same to the bit.
-        let rows: Vec<Vec<f64>> = radii
-            .par_iter()
-            .map(|&r| {
-                let mut basis = vec![0.0; n];
-                let mut row = vec![0.0; n];
-                for panel in row_panels(inner, outer, r) {
-                    for node in rule.panel(panel.lo, panel.hi) {
-                        let (s, from_inner, from_rim, distance) =
-                            panel.locate(&node, inner, outer, r);
-                        let weight = edge_weight(region, from_inner, from_rim, s);
-                        let c = node.weight * weight * ring_kernel(r, s, distance);
-                        let c = c * nodes.scaled_basis_at(parameter_of(region, s), &mut basis);
-                        for (acc, &l) in row.iter_mut().zip(&basis) {
-                            *acc += c * l;
-                        }
-                    }
-                }
-                row
-            })
-            .collect();
-        let matrix = DMatrix::<f64>::from_fn(n, n, |i, j| 4.0 / PI * rows[i][j]);
-        let mut basis = vec![0.0; n];
-        // Force weights: F = 2π ∫ φ W s ds over the whole region.
-        let mut force_weights = vec![0.0; n];
-        for node in rule.panel(inner, outer) {
-            let s = node.position;
-            let weight = edge_weight(region, node.from_lo, node.from_hi, s);
-            let c = 2.0 * PI * node.weight * weight * s;
-            nodes.basis_at(parameter_of(region, s), &mut basis);
-            for (acc, &l) in force_weights.iter_mut().zip(&basis) {
-                *acc += c * l;
+        let band = match region {
+            ContactRegion::Disk => None,
+            ContactRegion::Annulus { .. } | ContactRegion::Band { .. } => {
+                band_matrix::band_matrix(inner, outer, &nodes)
             }
-        }
+        };
+        let (matrix, force_weights) = match band {
+            Some(band) => (band.matrix, band.force_weights),
+            None => (
+                tanh_sinh_matrix(region, &nodes, rule),
+                tanh_sinh_force_weights(region, &nodes, rule),
+            ),
+        };
         let mut rim_basis = vec![0.0; n];
         nodes.basis_at(1.0, &mut rim_basis);
         let mut inner_basis = vec![0.0; n];
@@ -326,6 +312,61 @@ impl RingSystem {
             }
         }
     }
+}
+
+/// The collocation matrix `A_ij = (4/π) ∫ W(s) G(r_i, s) L_j(t(s)) ds` with each row split at its
+/// collocation radius `r_i` into tanh-sinh panels (the disk's rows, and any band too long for
+/// [`band_matrix`]). The rows are independent: computed in parallel, each summed in the same
+/// order as on one thread, so the matrix is the same to the bit.
+fn tanh_sinh_matrix(
+    region: ContactRegion,
+    nodes: &ChebyshevNodes,
+    rule: &TanhSinhRule,
+) -> DMatrix<f64> {
+    let n = nodes.len();
+    let (inner, outer) = (region.inner(), region.outer());
+    let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
+    let rows: Vec<Vec<f64>> = radii
+        .par_iter()
+        .map(|&r| {
+            let mut basis = vec![0.0; n];
+            let mut row = vec![0.0; n];
+            for panel in row_panels(inner, outer, r) {
+                for node in rule.panel(panel.lo, panel.hi) {
+                    let (s, from_inner, from_rim, distance) = panel.locate(&node, inner, outer, r);
+                    let weight = edge_weight(region, from_inner, from_rim, s);
+                    let c = node.weight * weight * ring_kernel(r, s, distance);
+                    let c = c * nodes.scaled_basis_at(parameter_of(region, s), &mut basis);
+                    for (acc, &l) in row.iter_mut().zip(&basis) {
+                        *acc += c * l;
+                    }
+                }
+            }
+            row
+        })
+        .collect();
+    DMatrix::<f64>::from_fn(n, n, |i, j| 4.0 / PI * rows[i][j])
+}
+
+/// Force weights `F = 2π ∫ φ W s ds = Σ_j w_j φ_j` by one tanh-sinh panel over the region.
+fn tanh_sinh_force_weights(
+    region: ContactRegion,
+    nodes: &ChebyshevNodes,
+    rule: &TanhSinhRule,
+) -> Vec<f64> {
+    let (inner, outer) = (region.inner(), region.outer());
+    let mut basis = vec![0.0; nodes.len()];
+    let mut force_weights = vec![0.0; nodes.len()];
+    for node in rule.panel(inner, outer) {
+        let s = node.position;
+        let weight = edge_weight(region, node.from_lo, node.from_hi, s);
+        let c = 2.0 * PI * node.weight * weight * s;
+        nodes.basis_at(parameter_of(region, s), &mut basis);
+        for (acc, &l) in force_weights.iter_mut().zip(&basis) {
+            *acc += c * l;
+        }
+    }
+    force_weights
 }
 
 /// Interpolation parameter `t ∈ [-1, 1]` of a radius: linear in `s` (annulus) or in `s²` (disk).

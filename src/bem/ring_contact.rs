@@ -73,6 +73,29 @@ pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 /// 1e-14 to 1e-13 once converged.
 const ROUNDING_FLOOR: f64 = 1e-13;
 
+/// On a band `[b, c]` a free edge's position and the depth that places it there have a rounding
+/// floor `c/b` times this: the free inner edge's depth of the cone at N = 32..128 nodes scatters
+/// by 5e-10 relative at `b/c = 1e-4`, 5e-11 at 1e-3, 6e-12 at 1e-2, 4e-13 at 0.1 (whichever
+/// quadrature assembles the rows: `φ(b) = 0` extrapolates the field to the edge). Node counts
+/// that agree better than this are not taken as proof of a smaller error.
+const FREE_EDGE_ROUNDING_PER_RATIO: f64 = 5e-14;
+
+/// The rounding floor of a state with a free edge solved on `region`: [`ROUNDING_FLOOR`], or
+/// [`FREE_EDGE_ROUNDING_PER_RATIO`] `c/b` where that is larger.
+pub(crate) fn free_edge_floor(region: ContactRegion) -> f64 {
+    ROUNDING_FLOOR.max(FREE_EDGE_ROUNDING_PER_RATIO * region.outer() / region.inner())
+}
+
+/// The error of a state whose rungs agree within its free edge's rounding floor at its contact
+/// ratio, a floor above the tolerance: the ladder cannot certify the tolerance.
+fn below_floor(floor: f64, tolerance: f64) -> Error {
+    out_of_range(format!(
+        "tolerance {tolerance:.1e} is below the rounding floor {floor:.1e} of a free edge at this \
+         contact ratio (5e-14 c/b on the band [b, c]: node counts scatter by that much); use a \
+         tolerance >= {floor:.1e}"
+    ))
+}
+
 /// Tension (relative to the largest pressure sample) above which a sample counts as tensile.
 const TENSION_TOLERANCE: f64 = 1e-9;
 
@@ -280,8 +303,9 @@ impl RingBemSolver {
         tolerance: f64,
         sample: impl FnMut(usize) -> Result<T>,
         values: impl Fn(&T) -> Vec<f64>,
+        floor: impl Fn(&T) -> f64,
     ) -> Result<(T, usize, f64)> {
-        self.refine_by(tolerance, sample, |fine, coarse| {
+        self.refine_by(tolerance, sample, floor, |fine, coarse| {
             values(fine)
                 .iter()
                 .zip(values(coarse))
@@ -291,18 +315,24 @@ impl RingBemSolver {
     }
 
     /// [`Self::refine`] with the change between two rungs measured by `change(fine, coarse)`
-    /// (never below the rounding floor).
+    /// (never below the finer sample's rounding `floor`: [`ROUNDING_FLOOR`], or
+    /// [`free_edge_floor`] for a free edge).
     fn refine_by<T>(
         &self,
         tolerance: f64,
         mut sample: impl FnMut(usize) -> Result<T>,
+        floor: impl Fn(&T) -> f64,
         change: impl Fn(&T, &T) -> f64,
     ) -> Result<(T, usize, f64)> {
         let mut coarse = sample(NODE_LADDER[0])?;
         let mut last_estimate = f64::INFINITY;
         for &n in &NODE_LADDER[1..] {
             let fine = sample(n)?;
-            let estimate = change(&fine, &coarse).max(ROUNDING_FLOOR);
+            let (change, floor) = (change(&fine, &coarse), floor(&fine));
+            if floor > tolerance && change <= floor {
+                return Err(below_floor(floor, tolerance));
+            }
+            let estimate = change.max(floor);
             if estimate <= tolerance {
                 return Ok((fine, n, estimate));
             }
@@ -407,14 +437,14 @@ impl RingBemSolver {
                 .max((fine.inner_stress_intensity - coarse.inner_stress_intensity).abs() / scale)
                 .max((fine.outer_stress_intensity - coarse.outer_stress_intensity).abs() / scale)
         };
-        let (mut state, _, estimate) =
-            self.refine_by(tolerance, sample, change)
-                .map_err(|e| match e {
-                    Error::NoConvergence { reason, .. } => {
-                        no_convergence(format!("band [{inner}, {outer}]: {reason}"))
-                    }
-                    other => other,
-                })?;
+        let (mut state, _, estimate) = self
+            .refine_by(tolerance, sample, |_| ROUNDING_FLOOR, change)
+            .map_err(|e| match e {
+                Error::NoConvergence { reason, .. } => {
+                    no_convergence(format!("band [{inner}, {outer}]: {reason}"))
+                }
+                other => other,
+            })?;
         state.error_estimate = estimate;
         Ok(state)
     }
@@ -454,6 +484,7 @@ impl RingBemSolver {
                 Ok((system, field))
             },
             |(_, field)| vec![0.5 * field.force],
+            |_| ROUNDING_FLOOR,
         )?;
         let (system, field) = sample;
         let lag = if with_lag && eps > 0.0 {
@@ -753,6 +784,7 @@ impl RingBemSolver {
                 Ok(sample)
             },
             |s| vec![s.gamma1, s.gamma2, s.system.region().outer()],
+            |s| free_edge_floor(s.system.region()),
         )
     }
 
@@ -933,10 +965,14 @@ impl RingBemSolver {
             // The outer edge (the torus's; the rim, exactly 1, for the others).
             let outer_error =
                 (outer_fine - coarse.system.region().outer()).abs() + outer_slope.abs() * eps_error;
-            let estimate = eps_error
+            let floor = free_edge_floor(fine.system.region());
+            let change = eps_error
                 .max(other_error / other_fine.abs())
-                .max(outer_error)
-                .max(ROUNDING_FLOOR);
+                .max(outer_error);
+            if floor > tolerance && change <= floor {
+                return Err(below_floor(floor, tolerance));
+            }
+            let estimate = change.max(floor);
             if estimate <= tolerance {
                 let fine = self.completed(kind, fine)?;
                 return self.concave_state(kind, eps, fine, n, estimate);
@@ -979,6 +1015,7 @@ impl RingBemSolver {
                 Ok((system, field))
             },
             |(_, field)| vec![0.5 * field.force],
+            |_| ROUNDING_FLOOR,
         )
     }
 

@@ -6,6 +6,7 @@ pub mod brent;
 pub mod chebyshev;
 pub mod elliptic;
 pub mod golden;
+pub mod log_product;
 pub mod prefetch;
 pub mod richardson;
 pub mod roots;

@@ -34,9 +34,9 @@ use crate::numerics::roots::{find_root, RootError};
 use crate::punch::PunchKind;
 
 use super::{
-    free_edge_state, no_convergence, out_of_range, relative_change, starting_rung, ConcaveSample,
-    RingBemSolver, RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO, MIN_CONTACT_RATIO, NODE_LADDER,
-    ROUNDING_FLOOR,
+    below_floor, free_edge_floor, free_edge_state, no_convergence, out_of_range, relative_change,
+    starting_rung, ConcaveSample, RingBemSolver, RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO,
+    MIN_CONTACT_RATIO, NODE_LADDER,
 };
 
 /// Absolute tolerance of the outer edge `c/a` at each node count: far below every tolerance the
@@ -163,6 +163,7 @@ impl RingBemSolver {
                 let region = s.system.region();
                 vec![s.gamma1, s.gamma2, region.inner(), region.outer()]
             },
+            |s| free_edge_floor(s.system.region()),
         )?;
         let eps = fine.system.region().inner();
         let mut state = free_edge_state(eps, fine, n, estimate)?;
@@ -371,9 +372,14 @@ impl RingBemSolver {
                 _ if rung < needed => None,
                 _ => at(NODE_LADDER[rung - 1], edges, Some(fine.jacobian)),
             };
-            let estimate = coarse.as_ref().map_or(f64::INFINITY, |coarse| {
-                (fine.change_from(coarse) + 2.0 * fine.residual).max(ROUNDING_FLOOR)
+            let change = coarse.as_ref().map_or(f64::INFINITY, |coarse| {
+                fine.change_from(coarse) + 2.0 * fine.residual
             });
+            let floor = free_edge_floor(fine.sample.system.region());
+            if floor > tolerance && change <= floor {
+                return Some(Err(below_floor(floor, tolerance)));
+            }
+            let estimate = change.max(floor);
             if estimate <= tolerance {
                 return Some(self.concave_state(
                     PunchKind::Torus,
