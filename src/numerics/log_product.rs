@@ -7,7 +7,7 @@
 //!                                                = -π T_k(x) / k   (k >= 1)
 //! ```
 //!
-//! (Mason and Handscomb, *Chebyshev Polynomials*, 2003, §9.5.1). Interpolating a smooth `g` at the
+//! (from `ln|cos θ - cos φ| = -ln 2 - 2 Σ_k cos kθ cos kφ / k`). Interpolating a smooth `g` at the
 //! `M` Chebyshev points of the first kind `t_m = cos θ_m`, `θ_m = (2m + 1)π / (2M)`, and
 //! integrating the interpolant exactly gives the rule
 //!

@@ -10,8 +10,9 @@
 //! ```
 //!
 //! since the ring kernel depends on `s / r_i = e^{ΔL/2}` alone. `K(m)` splits into the logarithm
-//! of its singularity and analytic parts (Byrd and Friedman 1971, 900.05, 112.01):
-//! `K(m) = P(m₁) - ln(m₁) Q(m₁)`, `m₁ = 1 - m = k'²`, `Q(m₁) = K(m₁) / π`, and
+//! of its singularity and analytic parts (DLMF 19.12.1, whose series of `k'^{2m} ln(1/k')` sums
+//! to `(2/π) K(m₁) ln(1/k')`): `K(m) = P(m₁) - ln(m₁) Q(m₁)`, `m₁ = 1 - m = k'²`,
+//! `Q(m₁) = K(m₁) / π`, `P` analytic, and
 //! `ln m₁ = 2 ln|Δ| + 2 ln|tanh(ΔL/4) / Δ|`, so
 //!
 //! ```text
