@@ -110,6 +110,23 @@ fn full_contact_follows_the_closed_form_within_the_estimate() {
     }
 }
 
+/// A tolerance the algebraic convergence cannot reach is refused with the reason (the branch
+/// point at the axis), not only the estimate it reached.
+#[test]
+fn full_contact_of_a_fractional_exponent_names_why_a_tight_tolerance_fails() {
+    let solver = RingBemSolver::new();
+    let message = solver
+        .concave_at_depth(power(1.5), 6.0, 1e-9)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        message.contains("branch point at the axis") && message.contains("--method fem"),
+        "{message}"
+    );
+    // An even exponent is a polynomial in r²: no such reason is given where it converges.
+    assert!(solver.concave_at_depth(power(4.0), 3.0, 1e-11).is_ok());
+}
+
 /// Under a prescribed force past closure the depth follows from the same closed form,
 /// `γ1 = γ2 + 1 - κ_n/(n + 1)`. The ring BEM finds it from its own forces at two depths in full
 /// contact; for odd and fractional `n` it once took them at `d = 0` and `h`, tensile states whose

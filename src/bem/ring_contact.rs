@@ -86,14 +86,18 @@ pub(crate) fn free_edge_floor(region: ContactRegion) -> f64 {
     ROUNDING_FLOOR.max(FREE_EDGE_ROUNDING_PER_RATIO * region.outer() / region.inner())
 }
 
-/// The error of a state whose rungs agree within its free edge's rounding floor at its contact
-/// ratio, a floor above the tolerance: the ladder cannot certify the tolerance.
-fn below_floor(floor: f64, tolerance: f64) -> Error {
-    out_of_range(format!(
-        "tolerance {tolerance:.1e} is below the rounding floor {floor:.1e} of a free edge at this \
-         contact ratio (5e-14 c/b on the band [b, c]: node counts scatter by that much); use a \
-         tolerance >= {floor:.1e}"
-    ))
+/// A rung's error estimate from the `change` between its samples: never below the samples'
+/// rounding `floor`, and an error where the floor is above the tolerance and the rungs agree
+/// within it (the ladder cannot certify the tolerance; climbing further only scatters).
+pub(crate) fn floored_estimate(change: f64, floor: f64, tolerance: f64) -> Result<f64> {
+    if floor > tolerance && change <= floor {
+        return Err(out_of_range(format!(
+            "tolerance {tolerance:.1e} is below the rounding floor {floor:.1e} of a free edge at \
+             this contact ratio (5e-14 c/b on the band [b, c]: node counts scatter by that \
+             much); use a tolerance >= {floor:.1e}"
+        )));
+    }
+    Ok(change.max(floor))
 }
 
 /// Tension (relative to the largest pressure sample) above which a sample counts as tensile.
@@ -328,11 +332,7 @@ impl RingBemSolver {
         let mut last_estimate = f64::INFINITY;
         for &n in &NODE_LADDER[1..] {
             let fine = sample(n)?;
-            let (change, floor) = (change(&fine, &coarse), floor(&fine));
-            if floor > tolerance && change <= floor {
-                return Err(below_floor(floor, tolerance));
-            }
-            let estimate = change.max(floor);
+            let estimate = floored_estimate(change(&fine, &coarse), floor(&fine), tolerance)?;
             if estimate <= tolerance {
                 return Ok((fine, n, estimate));
             }
@@ -663,12 +663,10 @@ impl RingBemSolver {
         sample: &'s ConcaveSample,
     ) -> (f64, Box<dyn Fn(f64) -> Option<f64> + 's>) {
         match (kind, &sample.table_band) {
-            (PunchKind::Table(table), Some(band)) => (
-                sample.gamma1,
-                Box::new(move |r| {
-                    band.deflection_in_hole(table.profile(), sample.gamma1, r, &self.rule)
-                }),
-            ),
+            (PunchKind::Table(table), Some(band)) => {
+                let surface = band.hole_surface(table.profile(), sample.gamma1, &self.rule);
+                (sample.gamma1, Box::new(move |r| surface.at(r, &self.rule)))
+            }
             _ => (
                 sample.field_depth,
                 Box::new(|r| {
@@ -846,9 +844,14 @@ impl RingBemSolver {
         // slope, so it takes Newton's step at once.
         let mut slope_hint = None;
         let mut previous_slopes = None;
+        // Whether the first search measures its slope at its start before its first step.
+        let mut probe_slope = false;
+        // Whether the first rung is the coarse sample of the second instead of being estimated.
+        let mut climb_first = matches!(kind, PunchKind::Table(_));
         if matches!(kind, PunchKind::Table(_)) {
             // A table's sample takes six collocation systems, its direct collocation one: the
-            // latter's root (off by its algebraic error, about 1e-5) and slope start the search.
+            // latter's root (off by its algebraic error: 1e-4 in eps at d = 2 h, 3 % at 2.98 h,
+            // where γ1 is flat) starts the search, on the rung that root needs.
             let n = NODE_LADDER[0];
             let collocated = |eps: f64| -> std::result::Result<f64, String> {
                 let system = self.system(ContactRegion::Annulus { eps }, n);
@@ -866,6 +869,9 @@ impl RingBemSolver {
             if let Ok(root) = root {
                 guess = root.x;
                 slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
+                // The root says which rung the state needs: the search starts there.
+                rung = starting_rung(guess);
+                probe_slope = true;
             }
         }
         // A table's samples at each node count share their neighbouring bands where they lie
@@ -879,19 +885,41 @@ impl RingBemSolver {
             // The last three samples of the search are kept: the state at the root and the
             // secant slopes of both quantities (from the farthest of the others).
             let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
+            let mut evaluate = |eps: f64| -> std::result::Result<f64, String> {
+                if let Some((_, sample)) = history.iter().find(|(at, _)| *at == eps) {
+                    return Ok(pick(sample) - target);
+                }
+                let hint = outer_edge_hint(&history, eps).or(outer_guess);
+                let sample = self
+                    .search_sample(kind, eps, n, hint, stencils.at(n))
+                    .map_err(|e| e.to_string())?;
+                let value = pick(&sample) - target;
+                if history.len() == 3 {
+                    history.remove(0);
+                }
+                history.push((eps, sample));
+                Ok(value)
+            };
+            if std::mem::take(&mut probe_slope) {
+                // A table's pre-search slope can be far off where `γ` is flat (deep states:
+                // twice the accurate one at d = 2.98 h), and a step from it lands outside the
+                // first sample's inner stencil, whose neighbours the next sample then rebuilds
+                // (five factorisations). The slope from a second sample inside that stencil
+                // (one factorisation) makes the first step Newton's on the accurate `γ`.
+                let probe = 0.5 * piecewise_gap::inner_stencil_reach(guess, 1.0);
+                let probe = if guess - probe >= min_contact_ratio(kind) {
+                    -probe
+                } else {
+                    probe
+                };
+                if let (Ok(at_guess), Ok(at_probe)) = (evaluate(guess), evaluate(guess + probe)) {
+                    slope_hint = Some((at_probe - at_guess) / probe)
+                        .filter(|s| s.is_finite() && *s != 0.0)
+                        .or(slope_hint);
+                }
+            }
             let root = find_root_with_slope(
-                |eps| {
-                    let hint = outer_edge_hint(&history, eps).or(outer_guess);
-                    let sample = self
-                        .search_sample(kind, eps, n, hint, stencils.at(n))
-                        .map_err(|e| e.to_string())?;
-                    let value = pick(&sample) - target;
-                    if history.len() == 3 {
-                        history.remove(0);
-                    }
-                    history.push((eps, sample));
-                    Ok(value)
-                },
+                &mut evaluate,
                 (min_contact_ratio(kind), MAX_CONTACT_RATIO),
                 guess,
                 slope_hint,
@@ -915,11 +943,6 @@ impl RingBemSolver {
                 None => self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?,
             };
             let fine_outer = Some(fine.system.region().outer());
-            let coarse_n = NODE_LADDER[rung - 1];
-            let coarse = match previous_root.take() {
-                Some((m, at, sample)) if m == coarse_n && at == eps => sample,
-                _ => self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?,
-            };
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
             // 1e-13 apart, whose slope was measured 8 times too small), else the previous
@@ -948,9 +971,34 @@ impl RingBemSolver {
                     }
                 },
             };
-            let (slope, other_slope, other_fine, other_coarse) = match controlled {
-                Controlled::Depth => (slope1, slope2, fine.gamma2, coarse.gamma2),
-                Controlled::Force => (slope2, slope1, fine.gamma1, coarse.gamma1),
+            let slope = match controlled {
+                Controlled::Depth => slope1,
+                Controlled::Force => slope2,
+            };
+            if std::mem::take(&mut climb_first) && rung + 1 < NODE_LADDER.len() {
+                // A table's first rung is not estimated against the rung below (a search sample
+                // there builds its own inner stencil: six factorisations) but taken as the
+                // coarse sample of the rung above, whose search starts at this root with its
+                // slope and, where the two node counts agree to the tolerance, stops there:
+                // the same six factorisations buy the finer state and its estimate (measured:
+                // the first rung's estimate missed 1e-9 below b/a = 0.2 on a table sampled from
+                // the sphere, as the sphere's does).
+                rung += 1;
+                slope_hint = Some(slope);
+                previous_slopes = Some([slope1, slope2, outer_slope]);
+                guess = eps;
+                outer_guess = fine_outer;
+                previous_root = Some((n, eps, fine));
+                continue;
+            }
+            let coarse_n = NODE_LADDER[rung - 1];
+            let coarse = match previous_root.take() {
+                Some((m, at, sample)) if m == coarse_n && at == eps => sample,
+                _ => self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?,
+            };
+            let (other_slope, other_fine, other_coarse) = match controlled {
+                Controlled::Depth => (slope2, fine.gamma2, coarse.gamma2),
+                Controlled::Force => (slope1, fine.gamma1, coarse.gamma1),
             };
             // Discretisation error at fixed eps, carried to eps through the controlled
             // quantity's slope and from there to the other quantity; plus the root search's own
@@ -965,14 +1013,11 @@ impl RingBemSolver {
             // The outer edge (the torus's; the rim, exactly 1, for the others).
             let outer_error =
                 (outer_fine - coarse.system.region().outer()).abs() + outer_slope.abs() * eps_error;
-            let floor = free_edge_floor(fine.system.region());
             let change = eps_error
                 .max(other_error / other_fine.abs())
                 .max(outer_error);
-            if floor > tolerance && change <= floor {
-                return Err(below_floor(floor, tolerance));
-            }
-            let estimate = change.max(floor);
+            let floor = free_edge_floor(fine.system.region());
+            let estimate = floored_estimate(change, floor, tolerance)?;
             if estimate <= tolerance {
                 let fine = self.completed(kind, fine)?;
                 return self.concave_state(kind, eps, fine, n, estimate);
@@ -1017,6 +1062,19 @@ impl RingBemSolver {
             |(_, field)| vec![0.5 * field.force],
             |_| ROUNDING_FLOOR,
         )
+        .map_err(|e| match (e, kind.concave_exponent()) {
+            (Error::NoConvergence { method, reason }, Some(n)) if !is_even_integer(n) => {
+                Error::NoConvergence {
+                    method,
+                    reason: format!(
+                        "{reason}: the gap's (r/a)^{n} has a branch point at the axis, where the \
+                         full-contact disk's basis in r² converges only algebraically (ask a \
+                         tolerance above that estimate, or --method fem)"
+                    ),
+                }
+            }
+            (e, _) => e,
+        })
     }
 
     /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
@@ -1098,6 +1156,11 @@ fn table_full_contact(table: &crate::punch::TableProfile, depth: f64) -> RingSta
         error_estimate: ROUNDING_FLOOR,
         unknowns: 0,
     }
+}
+
+/// Whether the exponent `n` is an even integer (`(r/a)^n` is then a polynomial in `r²`).
+fn is_even_integer(n: f64) -> bool {
+    n.rem_euclid(2.0) == 0.0
 }
 
 /// The state of a concave sample with a free inner edge at `eps` (no check of its sign or of the

@@ -58,7 +58,9 @@ where
 /// start instead of four). A poor slope costs nothing but that step: the secant and the bracket
 /// take over.
 ///
-/// Given a residual tolerance (`residual_tol` not `None`), the search also stops where its next
+/// Given a residual tolerance (`residual_tol` not `None`), the search stops at its start where
+/// `|f(guess)|` is at most `residual_tol` and Newton's step `|f(guess)/slope|` at most `x_tol`
+/// (one evaluation; the root's slope is then the given one), and it stops where its next
 /// step is known without taking it ([`stop_after`]): the function is linear over the last step
 /// (its secant slope agrees with the one before to [`LINEAR_SLOPES`]), the secant's next step
 /// `|f(x)/f'|` is below `x_tol` and `|f(x)|` below `residual_tol`; or the evaluations have
@@ -92,9 +94,20 @@ where
             slope: f64::NAN,
         });
     }
+    // A start already within both tolerances by the given slope (a root of a nearby problem:
+    // the next node count's, where the two agree to the tolerance) is the root.
+    let hint = slope.filter(|s| s.is_finite() && *s != 0.0);
+    if let (Some(s), Some(residual_tol)) = (hint, residual_tol) {
+        if f0.abs() <= residual_tol && (f0 / s).abs() <= x_tol {
+            return Ok(Root {
+                x: x0,
+                evaluations,
+                slope: s,
+            });
+        }
+    }
     // Second point: Newton's step with the given slope, else a small step toward the interior.
-    let newton = slope
-        .filter(|s| s.is_finite() && *s != 0.0)
+    let newton = hint
         .map(|s| x0 - f0 / s)
         .filter(|x| (lo..=hi).contains(x) && *x != x0);
     let x1 = newton.unwrap_or_else(|| {
@@ -331,6 +344,28 @@ mod tests {
             assert_eq!(r.x, last);
             assert!((r.x - DOTTIE).abs() < 1e-12);
         }
+    }
+
+    /// A start within both tolerances by the given slope is the root, after one evaluation;
+    /// a start outside either is not.
+    #[test]
+    fn a_start_within_the_tolerances_is_the_root() {
+        let f = |x: f64| Ok(x.cos() - x);
+        let slope = -(DOTTIE.sin() + 1.0);
+        let tolerances = (1e-11, Some(1e-11));
+        let close = DOTTIE + 2e-12;
+        let r = find_root_with_slope(f, (0.0, 1.0), close, Some(slope), tolerances, 50).unwrap();
+        assert_eq!((r.x, r.evaluations, r.slope), (close, 1, slope));
+        // 2e-12 off (f' = -1.67): the residual 3.3e-12 is within 1e-11, Newton's step too;
+        // 1e-11 off: the residual 1.7e-11 is not, and the search steps on.
+        let far = DOTTIE + 1e-11;
+        let r = find_root_with_slope(f, (0.0, 1.0), far, Some(slope), tolerances, 50).unwrap();
+        assert!(r.evaluations >= 2 && (r.x - DOTTIE).abs() <= 1e-11, "{r:?}");
+        // Without a residual tolerance or a slope every stop is a step below x_tol.
+        let r = find_root_with_slope(f, (0.0, 1.0), close, Some(slope), (1e-11, None), 50).unwrap();
+        assert!(r.evaluations >= 2, "{r:?}");
+        let r = find_root_with_slope(f, (0.0, 1.0), close, None, tolerances, 50).unwrap();
+        assert!(r.evaluations >= 2, "{r:?}");
     }
 
     /// With a residual tolerance the search stops where the secant's next step is known to be

@@ -32,7 +32,7 @@ use std::collections::HashMap;
 use std::f64::consts::PI;
 use std::sync::{Arc, Mutex, OnceLock};
 
-use nalgebra::DMatrix;
+use nalgebra::{DMatrix, DVector};
 use rayon::prelude::*;
 
 use crate::numerics::chebyshev::ChebyshevNodes;
@@ -120,14 +120,18 @@ fn omega(one_plus_t: f64, one_minus_t: f64, half: f64) -> f64 {
     half * (0.5 * one_plus_t * half).exp() * (lower * upper).sqrt()
 }
 
-/// The ring kernel between `r_i` and `s` at `Δ = t - t_i` on a band of `L = 2 half`.
+/// The ring kernel between `r_i` and `s` at `Δ = t - t_i` on a band of `L = 2 half`, and
+/// what it is at `-Δ` (the same `K(m)` and `Q(m₁)`, the share `1 - σ`).
 struct Kernel {
     /// `K(m)`, `k' = |tanh(ΔL/4)|`.
     k: f64,
-    /// `sech(ΔL/4)`, the complementary modulus of `m₁`.
-    secant: f64,
+    /// `Q(m₁) = K(m₁) / π`, the coefficient of `-ln m₁` in `K(m)` (`sech(ΔL/4)` the
+    /// complementary modulus of `m₁`).
+    log_coefficient: f64,
     /// `σ = s / (r_i + s)`.
     share: f64,
+    /// `1 - σ = r_i / (r_i + s)`, the share at `-Δ`.
+    other_share: f64,
 }
 
 impl Kernel {
@@ -136,16 +140,13 @@ impl Kernel {
         let twice = delta * half;
         let (grown, excess) = (twice.exp(), twice.exp_m1());
         let denominator = grown + 1.0;
+        let secant = 2.0 * grown.sqrt() / denominator;
         Self {
             k: complete_k_from_complementary((excess / denominator).abs()),
-            secant: 2.0 * grown.sqrt() / denominator,
+            log_coefficient: complete_k_from_complementary(secant) / PI,
             share: grown / denominator,
+            other_share: 1.0 / denominator,
         }
-    }
-
-    /// `Q(m₁) = K(m₁) / π`, the coefficient of `-ln m₁` in `K(m)`.
-    fn log_coefficient(&self) -> f64 {
-        complete_k_from_complementary(self.secant) / PI
     }
 }
 
@@ -168,26 +169,46 @@ pub(super) fn band_matrix(inner: f64, outer: f64, nodes: &ChebyshevNodes) -> Opt
         .map(|&t| omega(1.0 + t, 1.0 - t, half))
         .collect();
     let gauss = PI / count as f64;
-    let rows: Vec<Vec<f64>> = nodes
-        .points
-        .par_iter()
-        .zip(&rule.log_weights)
-        .map(|(&ti, log_weights)| {
-            rule.points
-                .iter()
-                .zip(&omega)
-                .zip(log_weights)
-                .map(|((&t, &omega), &v)| {
-                    let delta = t - ti;
-                    let kernel = Kernel::at(delta, half);
-                    let factor = omega * kernel.share;
-                    let q = kernel.log_coefficient();
-                    gauss * factor * (kernel.k + 2.0 * delta.abs().ln() * q) - v * 2.0 * factor * q
-                })
-                .collect()
+    // Row i's entry at point m, from the kernel at Δ = t_m - t_i and the share σ there.
+    let entry = |m: usize, i: usize, delta: f64, kernel: &Kernel, share: f64| {
+        let factor = omega[m] * share;
+        let q = kernel.log_coefficient;
+        gauss * factor * (kernel.k + 2.0 * delta.abs().ln() * q)
+            - rule.log_weights[i][m] * 2.0 * factor * q
+    };
+    // The nodes and the points are symmetric about 0 (t_{N-1-i} = -t_i, t_{M-1-m} = -t_m), so
+    // the mirror row N-1-i at the mirror point M-1-m has Δ' = -Δ: the same K(m) and Q(m₁), the
+    // share 1 - σ. Each kernel serves both rows (half the elliptic integrals); the middle row of
+    // an odd N is its own mirror and is computed alone.
+    let pairs = n / 2;
+    let rows: Vec<(Vec<f64>, Vec<f64>)> = (0..n.div_ceil(2))
+        .into_par_iter()
+        .map(|i| {
+            let ti = nodes.points[i];
+            let mirrored = i < pairs;
+            let mut row = vec![0.0; count];
+            let mut mirror = vec![0.0; if mirrored { count } else { 0 }];
+            for (m, &t) in rule.points.iter().enumerate() {
+                let delta = t - ti;
+                let kernel = Kernel::at(delta, half);
+                row[m] = entry(m, i, delta, &kernel, kernel.share);
+                if mirrored {
+                    let (i_mirror, m_mirror) = (n - 1 - i, count - 1 - m);
+                    mirror[m_mirror] =
+                        entry(m_mirror, i_mirror, -delta, &kernel, kernel.other_share);
+                }
+            }
+            (row, mirror)
         })
         .collect();
-    let coefficients = DMatrix::from_fn(n, count, |i, m| 4.0 / PI * rows[i][m]);
+    let row = |i: usize| -> &[f64] {
+        if i < rows.len() {
+            &rows[i].0
+        } else {
+            &rows[n - 1 - i].1
+        }
+    };
+    let coefficients = DMatrix::from_fn(n, count, |i, m| 4.0 / PI * row(i)[m]);
     // F = 2π ∫ φ W s ds = 2π ∫ φ ω s dt / sqrt(1 - t²): Gauss-Chebyshev on the same points.
     let force: Vec<f64> = rule
         .points
@@ -195,18 +216,10 @@ pub(super) fn band_matrix(inner: f64, outer: f64, nodes: &ChebyshevNodes) -> Opt
         .zip(&omega)
         .map(|(&t, &omega)| 2.0 * PI * gauss * omega * inner * ((1.0 + t) * half).exp())
         .collect();
-    let force_weights = (0..n)
-        .map(|j| {
-            force
-                .iter()
-                .enumerate()
-                .map(|(m, w)| w * rule.lagrange[(m, j)])
-                .sum()
-        })
-        .collect();
+    let force_weights = rule.lagrange.tr_mul(&DVector::from_vec(force));
     Some(BandAssembly {
         matrix: coefficients * &rule.lagrange,
-        force_weights,
+        force_weights: force_weights.as_slice().to_vec(),
     })
 }
 

@@ -24,7 +24,7 @@
 //! over neighbouring bands that contain the band ([`STENCIL`]). Only the remainder `g - g_s`
 //! goes through them: the gap's smooth part `g_s` ([`SmoothPart`]) is collocated directly, so
 //! the differences' rounding is relative to the small remainder. The surface inside the hole
-//! follows by reciprocity ([`GapBand::deflection_in_hole`]).
+//! follows by reciprocity ([`GapBand::hole_surface`]).
 
 use std::f64::consts::PI;
 
@@ -507,10 +507,20 @@ fn outer_edge_intensity(
         + outer_derivative / (2.0 * PI * outer * flat_outer)
 }
 
+/// How far, in units of the kept stencil's step `δ`, a band's inner edge may lie from the
+/// stencil's anchor and still take its neighbours ([`InnerStencil`]).
+const STENCIL_REACH: f64 = 0.25;
+
+/// The distance `|b - b₀|` within which bands `[b, c]` share the inner stencil of the band
+/// `[b₀, c]` = `[inner, outer]` ([`InnerStencil`]): samples that close cost one factorisation.
+pub(crate) fn inner_stencil_reach(inner: f64, outer: f64) -> f64 {
+    STENCIL_REACH * EDGE_STEP * inner.min(outer - inner)
+}
+
 /// The inner edge's neighbouring bands `[b₀ - k δ, c]` (`k = 1..5`, `δ` = [`EDGE_STEP`] of
 /// `min(b₀, c - b₀)`) of the first band `[b₀, c]` a search sampled at one node count. The search's
-/// later samples land close to it; a band `[b, c]` with `|b - b₀| <= δ/4` takes the same
-/// neighbours (they contain it) and the derivative weights of its own nodes
+/// later samples land close to it; a band `[b, c]` with `|b - b₀| <= δ/4` ([`STENCIL_REACH`])
+/// takes the same neighbours (they contain it) and the derivative weights of its own nodes
 /// `{b, b₀ - δ, ..., b₀ - 5δ}`, so each of its samples costs one factorisation, not six.
 /// Truncation stays within 1.7 times the uniform stencil's (the product of the nodes' distances
 /// from `b`, `Π (b - x_k)`, at most `1.25·2.25·3.25·4.25·5.25 δ⁵` against `5! δ⁵`).
@@ -530,7 +540,9 @@ struct KeptStencil {
 impl KeptStencil {
     /// Whether the kept neighbours serve the band `[inner, outer]` at `n` nodes.
     fn holds(&self, inner: f64, outer: f64, n: usize) -> bool {
-        self.n == n && self.outer == outer && (inner - self.anchor).abs() <= 0.25 * self.step
+        self.n == n
+            && self.outer == outer
+            && (inner - self.anchor).abs() <= STENCIL_REACH * self.step
     }
 
     /// The derivative's weights at `b = inner` in units of the kept step: [`STENCIL`]'s at the
@@ -590,22 +602,81 @@ impl GapBand {
         &self.system
     }
 
-    /// Surface deflection `w(r)` at a radius `0 <= r < b` inside the hole when the band is held
-    /// at `w = d - g`: `d w¹ - w[g_s] - w[g - g_s]`, the first two from their collocated
-    /// fields ([`RingSystem::deflection_in_hole`]), the remainder's by reciprocity,
-    /// `w[g_r](r) = ∫ g_r q dA` with `q` the band's field whose deflection on the band is the
-    /// ring kernel `H(r, s) = (2/π²) K(m) / (r + s)` of the point `r` (analytic on the band, so
-    /// collocated to the method's accuracy) and `g_r` integrated piece by piece. `None` outside
-    /// the hole.
-    pub fn deflection_in_hole(
+    /// The surface inside the band's hole when the band is held at `w = d - g` (`d` = `depth`):
+    /// `w(r) = d w¹ - w[g_s] - w[g - g_s]` ([`HoleSurface::at`]), the first two from one
+    /// collocated field (`d φ¹ - φ[g_s]`, [`RingSystem::deflection_in_hole`]), the remainder's by
+    /// reciprocity, `w[g_r](r) = ∫ g_r q dA`, with `q` the band's field whose deflection on the
+    /// band is the ring kernel `H(r, s) = (2/π²) K(m) / (r + s)` of the point `r` (analytic on the
+    /// band, so collocated to the method's accuracy). `q`'s smooth factor is the interpolant
+    /// `Σ_j q_j L_j(t)` of its values at the nodes, so the integral is `Σ_j q_j μ_j` with the
+    /// moments `μ_j = ∫ L_j(t(s)) W(s) g_r(s) dA`, integrated piece by piece once per surface
+    /// (every radius of the hole shares them).
+    pub fn hole_surface(
         &self,
         gap: &dyn PiecewiseGap,
         depth: f64,
-        r: f64,
         rule: &TanhSinhRule,
-    ) -> Option<f64> {
-        let flat = self.system.deflection_in_hole(&self.flat, r, rule)?;
-        let smooth = self.system.deflection_in_hole(&self.smooth_gap, r, rule)?;
+    ) -> HoleSurface<'_> {
+        let region = self.system.region();
+        let (inner, outer) = (region.inner(), region.outer());
+        let remainder = Remainder {
+            gap,
+            smooth: &self.smooth,
+        };
+        let n = self.system.unknowns();
+        let nodes = ChebyshevNodes::new(n);
+        let log_span = (outer / inner).ln();
+        let mut moments = vec![0.0; n];
+        let mut basis = vec![0.0; n];
+        let ends = panel_ends(gap, inner, outer);
+        for panel in ends.windows(2) {
+            let (lo, hi) = (panel[0], panel[1]);
+            for node in panel_nodes(rule, (lo, hi), (inner, outer)) {
+                let s = node.position;
+                let weight =
+                    1.0 / (((lo - inner) + node.from_lo) * ((outer - hi) + node.from_hi)).sqrt();
+                let c = 2.0 * PI * s * node.weight * weight * remainder.value(s);
+                nodes.basis_at(2.0 * (s / inner).ln() / log_span - 1.0, &mut basis);
+                for (moment, &l) in moments.iter_mut().zip(&basis) {
+                    *moment += c * l;
+                }
+            }
+        }
+        let field = RingField {
+            phi: self
+                .flat
+                .phi
+                .iter()
+                .zip(&self.smooth_gap.phi)
+                .map(|(flat, smooth)| depth * flat - smooth)
+                .collect(),
+            force: depth * self.flat.force - self.smooth_gap.force,
+            rim_coefficient: depth * self.flat.rim_coefficient - self.smooth_gap.rim_coefficient,
+            inner_coefficient: depth * self.flat.inner_coefficient
+                - self.smooth_gap.inner_coefficient,
+        };
+        HoleSurface {
+            system: &self.system,
+            field,
+            moments,
+        }
+    }
+}
+
+/// The surface inside a [`GapBand`]'s hole at one depth ([`GapBand::hole_surface`]).
+pub(crate) struct HoleSurface<'a> {
+    system: &'a RingSystem,
+    /// `d φ¹ - φ[g_s]`: the collocated part of the band's field.
+    field: RingField,
+    /// `μ_j = ∫ L_j W g_r dA`: the remainder's moments against the nodes' basis.
+    moments: Vec<f64>,
+}
+
+impl HoleSurface<'_> {
+    /// Surface deflection `w(r)` at a radius `0 <= r < b` (`None` outside the hole):
+    /// `w[d - g_s](r) - Σ_j q_j μ_j`, with `q` the field of `H(r, ·)` on the band.
+    pub fn at(&self, r: f64, rule: &TanhSinhRule) -> Option<f64> {
+        let collocated = self.system.deflection_in_hole(&self.field, r, rule)?;
         let kernel: Vec<f64> = self
             .system
             .radii()
@@ -615,28 +686,13 @@ impl GapBand {
             })
             .collect();
         let reciprocal = self.system.solve(&kernel)?;
-        let region = self.system.region();
-        let (inner, outer) = (region.inner(), region.outer());
-        let remainder = Remainder {
-            gap,
-            smooth: &self.smooth,
-        };
-        let series = Series::of_band(
-            (inner, outer),
-            ChebyshevNodes::new(reciprocal.phi.len()).coefficients(&reciprocal.phi),
-        );
-        let ends = panel_ends(gap, inner, outer);
-        let mut integral = 0.0;
-        for panel in ends.windows(2) {
-            let (lo, hi) = (panel[0], panel[1]);
-            for node in panel_nodes(rule, (lo, hi), (inner, outer)) {
-                let s = node.position;
-                let weight =
-                    1.0 / (((lo - inner) + node.from_lo) * ((outer - hi) + node.from_hi)).sqrt();
-                integral += 2.0 * PI * s * node.weight * series.at(s) * weight * remainder.value(s);
-            }
-        }
-        Some(depth * flat - smooth - integral)
+        let integral: f64 = reciprocal
+            .phi
+            .iter()
+            .zip(&self.moments)
+            .map(|(q, mu)| q * mu)
+            .sum();
+        Some(collocated - integral)
     }
 }
 
@@ -952,10 +1008,11 @@ mod tests {
                     &mut InnerStencil::default(),
                 )
                 .unwrap();
+            let surface = band.hole_surface(&gap, depth, &rule);
             for k in 0..8 {
                 let r = inner * k as f64 / 8.0;
                 let expected = system.deflection_in_hole(&direct, r, &rule).unwrap();
-                let got = band.deflection_in_hole(&gap, depth, r, &rule).unwrap();
+                let got = surface.at(r, &rule).unwrap();
                 assert!(
                     (got - expected).abs() < 1e-10 * depth,
                     "b = {inner}, r = {r}: {got} against {expected}"

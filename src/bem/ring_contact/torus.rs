@@ -34,9 +34,9 @@ use crate::numerics::roots::{find_root, RootError};
 use crate::punch::PunchKind;
 
 use super::{
-    below_floor, free_edge_floor, free_edge_state, no_convergence, out_of_range, relative_change,
-    starting_rung, ConcaveSample, RingBemSolver, RingState, FIRST_SEARCH_RUNG, MIN_BAND_RATIO,
-    MIN_CONTACT_RATIO, NODE_LADDER,
+    floored_estimate, free_edge_floor, free_edge_state, no_convergence, out_of_range,
+    relative_change, starting_rung, ConcaveSample, RingBemSolver, RingState, FIRST_SEARCH_RUNG,
+    MIN_BAND_RATIO, MIN_CONTACT_RATIO, NODE_LADDER,
 };
 
 /// Absolute tolerance of the outer edge `c/a` at each node count: far below every tolerance the
@@ -376,10 +376,10 @@ impl RingBemSolver {
                 fine.change_from(coarse) + 2.0 * fine.residual
             });
             let floor = free_edge_floor(fine.sample.system.region());
-            if floor > tolerance && change <= floor {
-                return Some(Err(below_floor(floor, tolerance)));
-            }
-            let estimate = change.max(floor);
+            let estimate = match floored_estimate(change, floor, tolerance) {
+                Ok(estimate) => estimate,
+                Err(e) => return Some(Err(e)),
+            };
             if estimate <= tolerance {
                 return Some(self.concave_state(
                     PunchKind::Torus,
