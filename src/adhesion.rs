@@ -24,7 +24,10 @@
 
 use serde::Serialize;
 
-use crate::bem::ring_contact::{RingBemSolver, MAX_CONTACT_RATIO, MIN_CONTACT_RATIO};
+use crate::bem::ring::ContactRegion;
+use crate::bem::ring_contact::{
+    free_edge_floor, RingBemSolver, MAX_CONTACT_RATIO, MIN_CONTACT_RATIO,
+};
 use crate::error::{Error, Result};
 use crate::reference::asymptotic::collins_series;
 
@@ -128,7 +131,8 @@ pub struct FlatAnnulusJkr {
 /// Error bounds of the flat annulus' critical states, propagated from the ring BEM: `δγ` its
 /// estimate; `δγ'` the change of the differenced `γ'` when its step is doubled plus the
 /// stencil's amplification of `δγ` (`1.5 δγ / h`); `δκ_out = (δγ + eps δγ') / (2 κ_out)`;
-/// `δκ_in` the change of the field's inner intensity between tolerances 1e-11 and 1e-8; then
+/// `δκ_in` the change of the field's inner intensity between tolerances 1e-11 and 1e-8 (at
+/// least the estimate and the inner edge's rounding floor `5e-14 a/b` relative); then
 /// `δd_c = δκ/κ²`, `δF_c = δγ/κ + γ δκ/κ²`.
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct FlatAnnulusBounds {
@@ -153,13 +157,17 @@ fn flat_annulus_bounds(
     let doubled = derivative(gamma, eps, 2.0 * step, MIN_CONTACT_RATIO, MAX_CONTACT_RATIO)?;
     let d_gamma_prime = (doubled - e.gamma_prime).abs() + 1.5 * d_gamma / step;
     let d_kappa_out = (d_gamma + eps * d_gamma_prime) / (2.0 * kappa_out);
-    // The change between two tolerances, floored at the solve's own relative estimate: where
-    // both ladders stop at the same discretisation the change is exactly 0, which bounds
-    // nothing.
+    // The change between two tolerances, floored at the solve's own relative estimate and at
+    // the inner edge's rounding floor (5e-14 a/b, as for a free edge: the intensity at the
+    // inner edge scatters by that much between node counts whatever the edge; at b/a = 0.0099
+    // it moved by 3e-13 of itself when the rows' sums were reordered, above the estimate's
+    // 1e-13): where both ladders stop at the same discretisation the change is exactly 0,
+    // which bounds nothing.
     let looser = solver.flat(eps, 1e-8)?;
+    let floor = free_edge_floor(ContactRegion::Annulus { eps });
     let d_kappa_in = (looser.inner_stress_intensity * ROOT_PI - kappa_in)
         .abs()
-        .max(state.error_estimate.max(f64::EPSILON) * kappa_in.abs());
+        .max(state.error_estimate.max(floor) * kappa_in.abs());
     let of = |kappa: f64, d_kappa: f64| {
         (
             d_kappa / (kappa * kappa),

@@ -80,8 +80,9 @@ const ROUNDING_FLOOR: f64 = 1e-13;
 /// that agree better than this are not taken as proof of a smaller error.
 const FREE_EDGE_ROUNDING_PER_RATIO: f64 = 5e-14;
 
-/// The rounding floor of a state with a free edge solved on `region`: [`ROUNDING_FLOOR`], or
-/// [`FREE_EDGE_ROUNDING_PER_RATIO`] `c/b` where that is larger.
+/// The rounding floor of a state with a free edge solved on `region` (and of the intensity at
+/// any band's inner edge, free or not): [`ROUNDING_FLOOR`], or [`FREE_EDGE_ROUNDING_PER_RATIO`]
+/// `c/b` where that is larger.
 pub(crate) fn free_edge_floor(region: ContactRegion) -> f64 {
     ROUNDING_FLOOR.max(FREE_EDGE_ROUNDING_PER_RATIO * region.outer() / region.inner())
 }
