@@ -11,8 +11,9 @@
 //! behaviour in a weight, `p(s) = E* φ(s) W(s)`, with
 //! `W = 1 / sqrt((a - s)(s - b))` for an annulus (inverse square roots at both edges) and
 //! `W = 1 / sqrt(a² - s²)` for a full disk (`b = 0`). The smooth factor `φ` is the polynomial
-//! interpolant through its values at `N` Chebyshev points of the first kind, in `s` on `[b, a]`
-//! for the annulus and in `s²` on `[0, a²]` for the disk (the disk's pressure is even in `s`).
+//! interpolant through its values at `N` Chebyshev points of the first kind, in `ln s` on
+//! `[b, a]` for the annulus (and any band) and in `s²` on `[0, a²]` for the disk (the disk's
+//! pressure is even in `s`).
 //! The equation `w(r_i) = w_target(r_i)` is imposed at the same points. On an annulus or band the
 //! rows are integrated in the interpolation variable by product integration on one set of
 //! Chebyshev points ([`band_matrix`]: the logarithm of `K` in closed form against the Chebyshev
@@ -115,6 +116,25 @@ pub struct RingField {
     pub inner_coefficient: f64,
 }
 
+impl RingField {
+    /// The field of the deflection `x w + y w'` on the same system, `x` times this field (of
+    /// `w`) plus `y` times `other` (of `w'`): every part is linear in the deflection.
+    pub fn combined(&self, x: f64, other: &RingField, y: f64) -> RingField {
+        let combine = |a: f64, b: f64| x * a + y * b;
+        RingField {
+            phi: self
+                .phi
+                .iter()
+                .zip(&other.phi)
+                .map(|(a, b)| combine(*a, *b))
+                .collect(),
+            force: combine(self.force, other.force),
+            rim_coefficient: combine(self.rim_coefficient, other.rim_coefficient),
+            inner_coefficient: combine(self.inner_coefficient, other.inner_coefficient),
+        }
+    }
+}
+
 /// Exact ring kernel `G(r, s) = s K(m) / (r + s)`, given `|r - s|` computed without
 /// cancellation.
 #[inline]
@@ -141,7 +161,7 @@ impl RingSystem {
         let (matrix, force_weights) = match band {
             Some(band) => (band.matrix, band.force_weights),
             None => (
-                tanh_sinh_matrix(region, &nodes, rule),
+                tanh_sinh_matrix(region, &nodes, &radii, rule),
                 tanh_sinh_force_weights(region, &nodes, rule),
             ),
         };
@@ -314,18 +334,18 @@ impl RingSystem {
     }
 }
 
-/// The collocation matrix `A_ij = (4/π) ∫ W(s) G(r_i, s) L_j(t(s)) ds` with each row split at its
-/// collocation radius `r_i` into tanh-sinh panels (the disk's rows, and any band too long for
+/// The collocation matrix `A_ij = (4/π) ∫ W(s) G(r_i, s) L_j(t(s)) ds` at the collocation `radii`
+/// `r_i` of the `nodes`, with each row split at `r_i` into tanh-sinh panels (the disk's rows, and any band too long for
 /// [`band_matrix`]). The rows are independent: computed in parallel, each summed in the same
 /// order as on one thread, so the matrix is the same to the bit.
 fn tanh_sinh_matrix(
     region: ContactRegion,
     nodes: &ChebyshevNodes,
+    radii: &[f64],
     rule: &TanhSinhRule,
 ) -> DMatrix<f64> {
     let n = nodes.len();
     let (inner, outer) = (region.inner(), region.outer());
-    let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
     let rows: Vec<Vec<f64>> = radii
         .par_iter()
         .map(|&r| {
@@ -369,7 +389,8 @@ fn tanh_sinh_force_weights(
     force_weights
 }
 
-/// Interpolation parameter `t ∈ [-1, 1]` of a radius: linear in `s` (annulus) or in `s²` (disk).
+/// Interpolation parameter `t ∈ [-1, 1]` of a radius: linear in `ln s` (annulus, band) or in
+/// `s²` (disk).
 fn parameter_of(region: ContactRegion, s: f64) -> f64 {
     match region {
         ContactRegion::Disk => 2.0 * s * s - 1.0,

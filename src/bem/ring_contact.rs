@@ -599,17 +599,9 @@ impl RingBemSolver {
         let depth_field = system.solve(&unit_depth).ok_or_else(singular)?;
         let gap_field = system.solve(&minus_gap).ok_or_else(singular)?;
         let gamma1 = -gap_field.inner_coefficient / depth_field.inner_coefficient;
-        let combine = |a: f64, b: f64| gamma1 * a + b;
         let field = RingField {
-            phi: depth_field
-                .phi
-                .iter()
-                .zip(&gap_field.phi)
-                .map(|(a, b)| combine(*a, *b))
-                .collect(),
-            force: combine(depth_field.force, gap_field.force),
-            rim_coefficient: combine(depth_field.rim_coefficient, gap_field.rim_coefficient),
             inner_coefficient: 0.0,
+            ..depth_field.combined(gamma1, &gap_field, 1.0)
         };
         Ok(ConcaveSample {
             gamma1,

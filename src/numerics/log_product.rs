@@ -22,18 +22,8 @@
 
 use std::f64::consts::{LN_2, PI};
 
-/// The `M` Chebyshev points of the first kind, `t_m = cos((2m + 1)π / (2M))`, in decreasing order
-/// (the order of [`crate::numerics::chebyshev::ChebyshevNodes`]).
-pub(crate) fn chebyshev_points(count: usize) -> Vec<f64> {
-    (0..count).map(|m| point_angle(m, count).cos()).collect()
-}
-
-/// `θ_m = (2m + 1)π / (2M)`.
-fn point_angle(m: usize, count: usize) -> f64 {
-    (2 * m + 1) as f64 * PI / (2 * count) as f64
-}
-
-/// The weights `v_m(x_i)` of the logarithmic rule on `count` points for every singular point
+/// The weights `v_m(x_i)` of the logarithmic rule on the `count` points `t_m` (in the order of
+/// [`crate::numerics::chebyshev::ChebyshevNodes`]) for every singular point
 /// `x_i = cos((2i + 1)π / (2N))`, the `N` Chebyshev points of the first kind (row `i` of length
 /// `count` each). Every cosine is `cos(jπ / (2 N M))` for an integer `j`: read from one table.
 pub(crate) fn log_weights_at_chebyshev_points(nodes: usize, count: usize) -> Vec<Vec<f64>> {
@@ -75,7 +65,7 @@ fn log_weights(angle: f64, count: usize) -> Vec<f64> {
         .collect();
     (0..count)
         .map(|m| {
-            let theta = point_angle(m, count);
+            let theta = (2 * m + 1) as f64 * PI / (2 * count) as f64;
             let sum: f64 = series
                 .iter()
                 .enumerate()
@@ -89,6 +79,12 @@ fn log_weights(angle: f64, count: usize) -> Vec<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::numerics::chebyshev::ChebyshevNodes;
+
+    /// The `m` Chebyshev points of the first kind.
+    fn chebyshev_points(m: usize) -> Vec<f64> {
+        ChebyshevNodes::new(m).points
+    }
 
     /// `∫ ln|t - x| / sqrt(1 - t²) dt = -π ln 2` for every `x` in `[-1, 1]`, and
     /// `∫ ln|t - x| t / sqrt(1 - t²) dt = -π x` (the `k = 0, 1` formulas): closed forms.

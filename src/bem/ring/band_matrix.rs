@@ -37,7 +37,7 @@ use rayon::prelude::*;
 
 use crate::numerics::chebyshev::ChebyshevNodes;
 use crate::numerics::elliptic::complete_k_from_complementary;
-use crate::numerics::log_product::{chebyshev_points, log_weights_at_chebyshev_points};
+use crate::numerics::log_product::log_weights_at_chebyshev_points;
 
 /// A cap on `M` (reached only for `ln(c/b)` in the hundreds, far beyond any band the solvers
 /// build): past it the caller keeps the tanh-sinh panels.
@@ -69,7 +69,7 @@ fn rule(nodes: &ChebyshevNodes, count: usize) -> Arc<Rule> {
         return rule;
     }
     let n = nodes.len();
-    let points = chebyshev_points(count);
+    let points = ChebyshevNodes::new(count).points;
     let log_weights = log_weights_at_chebyshev_points(n, count);
     let mut lagrange = DMatrix::zeros(count, n);
     let mut basis = vec![0.0; n];
@@ -235,7 +235,7 @@ pub(super) struct BandAssembly {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::bem::ring::{tanh_sinh_force_weights, tanh_sinh_matrix, ContactRegion};
+    use crate::bem::ring::{radius_of, tanh_sinh_force_weights, tanh_sinh_matrix, ContactRegion};
     use crate::numerics::tanh_sinh::TanhSinhRule;
 
     /// Largest difference of two matrices, relative to the largest entry of each column (the
@@ -267,7 +267,8 @@ mod tests {
                 let nodes = ChebyshevNodes::new(n);
                 let fast = band_matrix(inner, outer, &nodes).expect("a rule for this band");
                 let region = ContactRegion::Band { inner, outer };
-                let reference = tanh_sinh_matrix(region, &nodes, &rule);
+                let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();
+                let reference = tanh_sinh_matrix(region, &nodes, &radii, &rule);
                 let difference = column_difference(&fast.matrix, &reference);
                 assert!(
                     difference < 1e-12,

@@ -628,36 +628,16 @@ impl GapBand {
         let log_span = (outer / inner).ln();
         let mut moments = vec![0.0; n];
         let mut basis = vec![0.0; n];
-        let ends = panel_ends(gap, inner, outer);
-        for panel in ends.windows(2) {
-            let (lo, hi) = (panel[0], panel[1]);
-            for node in panel_nodes(rule, (lo, hi), (inner, outer)) {
-                let s = node.position;
-                let weight =
-                    1.0 / (((lo - inner) + node.from_lo) * ((outer - hi) + node.from_hi)).sqrt();
-                let c = 2.0 * PI * s * node.weight * weight * remainder.value(s);
-                nodes.basis_at(2.0 * (s / inner).ln() / log_span - 1.0, &mut basis);
-                for (moment, &l) in moments.iter_mut().zip(&basis) {
-                    *moment += c * l;
-                }
+        for node in band_nodes(rule, gap, (inner, outer)) {
+            let c = node.area * node.weight * remainder.value(node.s);
+            nodes.basis_at(2.0 * (node.s / inner).ln() / log_span - 1.0, &mut basis);
+            for (moment, &l) in moments.iter_mut().zip(&basis) {
+                *moment += c * l;
             }
         }
-        let field = RingField {
-            phi: self
-                .flat
-                .phi
-                .iter()
-                .zip(&self.smooth_gap.phi)
-                .map(|(flat, smooth)| depth * flat - smooth)
-                .collect(),
-            force: depth * self.flat.force - self.smooth_gap.force,
-            rim_coefficient: depth * self.flat.rim_coefficient - self.smooth_gap.rim_coefficient,
-            inner_coefficient: depth * self.flat.inner_coefficient
-                - self.smooth_gap.inner_coefficient,
-        };
         HoleSurface {
             system: &self.system,
-            field,
+            field: self.flat.combined(depth, &self.smooth_gap, -1.0),
             moments,
         }
     }
@@ -757,31 +737,64 @@ fn band_integrals(
     factor: &SmoothFactor,
 ) -> BandIntegrals {
     let (inner, outer) = band;
-    let ends = panel_ends(gap, inner, outer);
     let mut total = BandIntegrals {
         force: 0.0,
         inner_derivative: 0.0,
         outer_derivative: 0.0,
     };
-    for panel in ends.windows(2) {
-        let (lo, hi) = (panel[0], panel[1]);
-        for node in panel_nodes(rule, (lo, hi), (inner, outer)) {
-            let s = node.position;
-            let from_inner = (lo - inner) + node.from_lo;
-            let from_outer = (outer - hi) + node.from_hi;
-            let weight = 1.0 / (from_inner * from_outer).sqrt();
-            let area = 2.0 * PI * s * node.weight;
-            let (phi, phi_by_inner, phi_by_outer) = factor.at(s);
-            total.force += area * phi * weight * gap.value(s);
-            let by_inner = (phi_by_inner + 0.5 * phi / from_inner) * weight;
-            total.inner_derivative += area * by_inner * gap.increment(inner, from_inner);
-            if factor.outer_neighbours.is_some() {
-                let by_outer = (phi_by_outer - 0.5 * phi / from_outer) * weight;
-                total.outer_derivative += area * by_outer * gap.increment(outer, -from_outer);
-            }
+    for node in band_nodes(rule, gap, band) {
+        let (s, area, weight) = (node.s, node.area, node.weight);
+        let (phi, phi_by_inner, phi_by_outer) = factor.at(s);
+        total.force += area * phi * weight * gap.value(s);
+        let by_inner = (phi_by_inner + 0.5 * phi / node.from_inner) * weight;
+        total.inner_derivative += area * by_inner * gap.increment(inner, node.from_inner);
+        if factor.outer_neighbours.is_some() {
+            let by_outer = (phi_by_outer - 0.5 * phi / node.from_outer) * weight;
+            total.outer_derivative += area * by_outer * gap.increment(outer, -node.from_outer);
         }
     }
     total
+}
+
+/// A node of the band's piecewise rule ([`band_nodes`]).
+struct BandNode {
+    /// The radius `s`.
+    s: f64,
+    /// `2π s` times the rule's weight: the area element.
+    area: f64,
+    /// The edge weight `W(s) = 1 / sqrt((s - b)(c - s))`.
+    weight: f64,
+    /// `s - b` and `c - s`, each summed from its panel's end and the node's own distance to it,
+    /// so the edge weight keeps its precision next to an edge.
+    from_inner: f64,
+    from_outer: f64,
+}
+
+/// The nodes of the band `[b, c]` = `band` panel by panel between the gap's break points
+/// ([`panel_ends`], [`panel_nodes`]).
+fn band_nodes<'a>(
+    rule: &'a TanhSinhRule,
+    gap: &dyn PiecewiseGap,
+    band: (f64, f64),
+) -> impl Iterator<Item = BandNode> + 'a {
+    let (inner, outer) = band;
+    let ends = panel_ends(gap, inner, outer);
+    (0..ends.len() - 1).flat_map(move |k| {
+        let (lo, hi) = (ends[k], ends[k + 1]);
+        panel_nodes(rule, (lo, hi), band)
+            .into_iter()
+            .map(move |node| {
+                let from_inner = (lo - inner) + node.from_lo;
+                let from_outer = (outer - hi) + node.from_hi;
+                BandNode {
+                    s: node.position,
+                    area: 2.0 * PI * node.position * node.weight,
+                    weight: 1.0 / (from_inner * from_outer).sqrt(),
+                    from_inner,
+                    from_outer,
+                }
+            })
+    })
 }
 
 #[cfg(test)]

@@ -486,18 +486,9 @@ impl TorusBand {
     fn sample(self, intensity: f64) -> ConcaveSample {
         let gamma1 = self.depth(intensity);
         let target = self.coefficient(intensity);
-        let combine = |a: f64, b: f64| gamma1 * a + b;
         let field = RingField {
-            phi: self
-                .one
-                .phi
-                .iter()
-                .zip(&self.gap.phi)
-                .map(|(a, b)| combine(*a, *b))
-                .collect(),
-            force: combine(self.one.force, self.gap.force),
-            rim_coefficient: combine(self.one.rim_coefficient, self.gap.rim_coefficient),
             inner_coefficient: target,
+            ..self.one.combined(gamma1, &self.gap, 1.0)
         };
         ConcaveSample {
             gamma1,
