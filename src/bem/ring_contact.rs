@@ -25,7 +25,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::bem::ring::{ContactRegion, RingBemSettings, RingField, RingSystem};
 use crate::error::{Error, Result};
-use crate::numerics::roots::{find_root_with_slope, RootError};
+use crate::numerics::roots::{find_root_descending, find_root_with_slope, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::{paper_fits, power_law};
@@ -206,6 +206,8 @@ pub struct RingBemSolver {
     rule: TanhSinhRule,
     /// The rule of [`FINE_QUADRATURE_STEP`], for the ladder's top rungs.
     fine_rule: TanhSinhRule,
+    /// The rule of [`piecewise_gap::BAND_INTEGRAL_STEP`], for a table band's integrals.
+    band_rule: TanhSinhRule,
     factorisations: AtomicUsize,
 }
 
@@ -239,6 +241,7 @@ impl RingBemSolver {
         Self {
             rule: TanhSinhRule::new(QUADRATURE_STEP),
             fine_rule: TanhSinhRule::new(FINE_QUADRATURE_STEP),
+            band_rule: TanhSinhRule::new(piecewise_gap::BAND_INTEGRAL_STEP),
             factorisations: AtomicUsize::new(0),
         }
     }
@@ -841,31 +844,51 @@ impl RingBemSolver {
         let mut probe_slope = false;
         // Whether the first rung is the coarse sample of the second instead of being estimated.
         let mut climb_first = matches!(kind, PunchKind::Table(_));
-        if matches!(kind, PunchKind::Table(_)) {
-            // A table's sample takes six collocation systems, its direct collocation one: the
-            // latter's root (off by its algebraic error: 1e-4 in eps at d = 2 h, 3 % at 2.98 h,
-            // where γ1 is flat) starts the search, on the rung that root needs.
-            let n = NODE_LADDER[0];
-            let collocated = |eps: f64| -> std::result::Result<f64, String> {
-                let system = self.system(ContactRegion::Annulus { eps }, n);
-                let sample = Self::collocated_sample(kind, system).map_err(|e| e.to_string())?;
-                Ok(pick(&sample) - target)
+        if let PunchKind::Table(table) = kind {
+            // A table's sample takes six collocation systems (one within its stencil's reach,
+            // [`InnerStencil`]); a rough one, its inner derivative of second order, three. The
+            // rough root at 16 nodes (`γ` within 4e-6 of the accurate one; the direct
+            // collocation's was off by 2e-2 where `γ` is flat near closure) starts the search,
+            // with its slope, on the rung that root needs. The rough search walks downhill
+            // past `γ`'s humps ([`find_root_descending`]).
+            let n = NODE_LADDER[FIRST_SEARCH_RUNG];
+            let mut stencil = InnerStencil::default();
+            let mut rough = |eps: f64| -> std::result::Result<f64, String> {
+                let band = self
+                    .gap_band(
+                        table.profile(),
+                        eps,
+                        1.0,
+                        n,
+                        BandEdges::InnerRough,
+                        &mut stencil,
+                    )
+                    .map_err(|e| e.to_string())?;
+                let gamma1 = band.functionals.free_inner_depth();
+                Ok(match controlled {
+                    Controlled::Depth => gamma1,
+                    Controlled::Force => 0.5 * band.functionals.force(gamma1),
+                } - target)
             };
-            let root = find_root_with_slope(
-                collocated,
+            let root = find_root_descending(
+                &mut rough,
                 (min_contact_ratio(kind), MAX_CONTACT_RATIO),
                 guess,
                 None,
                 (PRESEARCH_TOLERANCE, None),
                 PRESEARCH_EVALUATIONS,
             );
-            if let Ok(root) = root {
-                guess = root.x;
-                slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
+            match root {
+                Ok(root) => {
+                    guess = root.x;
+                    slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
+                    // Without a slope the search measures one.
+                    probe_slope = slope_hint.is_none();
+                }
+                Err(_) => probe_slope = true,
             }
             // The start says which rung the state needs: the search starts there.
-            rung = starting_rung(guess);
-            probe_slope = true;
+            rung = table_starting_rung(guess);
         }
         // A table's samples at each node count share their neighbouring bands where they lie
         // close together: the search's last samples, and the next rung's coarse sample.
@@ -1020,7 +1043,11 @@ impl RingBemSolver {
                     "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
                 )));
             }
-            rung = (rung + 1).max(starting_rung(eps));
+            let needed = match kind {
+                PunchKind::Table(_) => table_starting_rung(eps),
+                _ => starting_rung(eps),
+            };
+            rung = (rung + 1).max(needed);
             slope_hint = Some(slope);
             previous_slopes =
                 (estimate <= SLOPE_TRUSTED_ESTIMATE).then_some([slope1, slope2, outer_slope]);
@@ -1369,6 +1396,25 @@ fn starting_rung(eps: f64) -> usize {
     NODE_LADDER.iter().position(|&m| m == n).unwrap_or(1)
 }
 
+/// First rung of the node ladder worth trying for a table's band at contact ratio `eps`: its
+/// flat band's field and the gap's smooth part, not the gap itself, set the node count.
+/// Measured on five tables (the sphere at 21 points, the cone at 11, `1 - r^4` at 41, a bumpy
+/// sphere at 31, `1 - r^1.2` at 21): `γ1` and `γ2` within 1e-10 of 64 nodes' at N = 12-20 for
+/// `eps >= 0.1`, 20 for `eps >= 0.03`, 20-24 at 0.02, 20-32 at 0.01 and 24-32 at 0.005 (1e-7
+/// one or two rungs lower); [`starting_rung`] above `eps = 0.02` asks up to two rungs more.
+fn table_starting_rung(eps: f64) -> usize {
+    let n = if eps >= 0.1 {
+        16
+    } else if eps >= 0.02 {
+        20
+    } else if eps >= 0.005 {
+        24
+    } else {
+        32
+    };
+    NODE_LADDER.iter().position(|&m| m == n).unwrap_or(1)
+}
+
 /// The least distance in `eps` between two states whose difference gives a slope for the error
 /// estimate (the values' rounding, about 1e-14, then moves it by 1e-5 of itself or less where
 /// the slope is 1 or more; the estimate needs a few per cent).
@@ -1378,16 +1424,13 @@ const SLOPE_MIN_SEPARATION: f64 = 1e-9;
 /// estimate (the slopes are then good to about this, and the estimate needs a few per cent).
 const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
 
-/// Tolerance in `eps` of a table's pre-search on its direct collocation: below the collocation's
-/// own error (about 1e-5), which the accurate search then removes.
+/// Tolerance in `eps` of a table's pre-search on its rough samples: below their own error
+/// (about 1e-6), which the accurate search then removes.
 const PRESEARCH_TOLERANCE: f64 = 1e-6;
 
-/// Most evaluations of a table's pre-search: 4 to 11 where it finds a root, 18 for the sampled
-/// sphere at `d/h = 2.97`, where `γ1` is flat and not monotone; where the direct collocation's
-/// `γ` never reaches the target (the same table at `d/h = 2.995`, whose collocated `γ1` peaks
-/// 1e-4 below it) the search starts from the fit's guess after these. Measured: a cap of 12
-/// cost the state at 2.97 294 systems instead of 51; 24 instead of 60 took the state at 2.995
-/// from 110 systems and 13.9 ms to 74 and 9.7 ms (medians of five paired rounds).
+/// Most evaluations of a table's pre-search: 5 to 8 where `γ` is monotone, 13 for the sampled
+/// sphere at `d/h = 2.97`, where it is flat with humps; past these the search starts from the
+/// fit's guess.
 const PRESEARCH_EVALUATIONS: usize = 24;
 
 /// The rung of the inverse problem's first search (N = 16): a state that needs more nodes
