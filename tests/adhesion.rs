@@ -4,7 +4,7 @@
 use std::f64::consts::PI;
 
 use ringcontact::adhesion::{self, full_contact_constants};
-use ringcontact::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use ringcontact::bem::ring::{ContactRegion, RingSystem};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::numerics::tanh_sinh::TanhSinhRule;
 use ringcontact::punch::PunchKind;
@@ -101,14 +101,7 @@ fn concave_critical_state_satisfies_griffith_in_a_direct_solve() {
 fn full_contact_constants_match_the_disk_bem_for_the_sphere() {
     // MDR: sphere F = 2E*a(d - h/3) and rim intensity d + h; the disk BEM must agree.
     let rule = TanhSinhRule::new(1.0 / 16.0);
-    let system = RingSystem::assemble(
-        ContactRegion::Disk,
-        RingBemSettings {
-            nodes: 32,
-            quadrature_step: 1.0 / 16.0,
-        },
-        &rule,
-    );
+    let system = RingSystem::assemble(ContactRegion::Disk, 32, &rule);
     let profile: Vec<f64> = system
         .radii()
         .iter()
@@ -211,14 +204,9 @@ fn least_hole_clearance(kind: PunchKind, eps: f64, depth: f64) -> f64 {
 
 /// The clearances `w(r) - (d - g(r))` behind [`least_hole_clearance`], at its 64 radii.
 fn hole_clearances(kind: PunchKind, eps: f64, depth: f64) -> Vec<f64> {
-    let step = 1.0 / 32.0;
-    let rule = TanhSinhRule::new(step);
+    let rule = TanhSinhRule::new(1.0 / 32.0);
     let region = ContactRegion::Annulus { eps };
-    let settings = RingBemSettings {
-        nodes: 96,
-        quadrature_step: step,
-    };
-    let system = RingSystem::assemble(region, settings, &rule);
+    let system = RingSystem::assemble(region, 96, &rule);
     let target: Vec<f64> = system
         .radii()
         .iter()

@@ -5,7 +5,7 @@ use std::f64::consts::PI;
 
 use approx::assert_relative_eq;
 
-use ringcontact::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use ringcontact::bem::ring::{ContactRegion, RingSystem};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::numerics::tanh_sinh::TanhSinhRule;
 use ringcontact::punch::PunchKind;
@@ -201,14 +201,7 @@ fn collocation_converges_geometrically_to_a_rounding_floor() {
     for kind in [PunchKind::Cone, PunchKind::Sphere] {
         let eps = 0.3;
         let value = |n: usize| {
-            let system = RingSystem::assemble(
-                ContactRegion::Annulus { eps },
-                RingBemSettings {
-                    nodes: n,
-                    quadrature_step: 1.0 / 16.0,
-                },
-                &rule,
-            );
+            let system = RingSystem::assemble(ContactRegion::Annulus { eps }, n, &rule);
             let depth = system.solve(&vec![1.0; n]).unwrap();
             let gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap_shape(r)).collect();
             let gap = system.solve(&gap).unwrap();

@@ -11,7 +11,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use super::ROOT_PI;
-use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::{RingBemSolver, HOLE_OVERLAP_TOLERANCE, HOLE_PROBES};
 use crate::error::{Error, Result};
 use crate::numerics::brent::brent_minimum;
@@ -778,14 +778,7 @@ fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> 
     }
     let rule = TanhSinhRule::new(1.0 / 16.0);
     let n = 40;
-    let system = RingSystem::assemble(
-        ContactRegion::Annulus { eps: c.eps },
-        RingBemSettings {
-            nodes: n,
-            quadrature_step: 1.0 / 16.0,
-        },
-        &rule,
-    );
+    let system = RingSystem::assemble(ContactRegion::Annulus { eps: c.eps }, n, &rule);
     let target: Vec<f64> = system
         .radii()
         .iter()

@@ -67,26 +67,6 @@ impl ContactRegion {
     }
 }
 
-/// Discretisation settings.
-#[derive(Clone, Copy, Debug)]
-pub struct RingBemSettings {
-    /// Number of Chebyshev collocation points `N` (unknowns).
-    pub nodes: usize,
-    /// Step of the tanh-sinh rule handed to [`RingSystem::assemble`] (it integrates the disk's
-    /// rows; a band's are integrated by product integration); `1/8` integrates a row to about
-    /// 1e-14.
-    pub quadrature_step: f64,
-}
-
-impl Default for RingBemSettings {
-    fn default() -> Self {
-        Self {
-            nodes: 32,
-            quadrature_step: 1.0 / 8.0,
-        }
-    }
-}
-
 /// The assembled and factorised collocation system for one contact region.
 #[derive(Clone)]
 pub struct RingSystem {
@@ -144,11 +124,11 @@ fn ring_kernel(r: f64, s: f64, distance: f64) -> f64 {
 }
 
 impl RingSystem {
-    /// Assemble and factorise the collocation system for `region` with the given settings: a
-    /// band's or annulus's rows by [`band_matrix`], the disk's (and a band too long for it) by
-    /// the tanh-sinh `rule`.
-    pub fn assemble(region: ContactRegion, settings: RingBemSettings, rule: &TanhSinhRule) -> Self {
-        let n = settings.nodes;
+    /// Assemble and factorise the collocation system for `region` at `n` Chebyshev collocation
+    /// points (the unknowns): a band's or annulus's rows by [`band_matrix`] (product
+    /// integration), the disk's (and a band too long for it) by the tanh-sinh `rule` (a step of
+    /// `1/8` integrates a row to about 1e-14).
+    pub fn assemble(region: ContactRegion, n: usize, rule: &TanhSinhRule) -> Self {
         let nodes = ChebyshevNodes::new(n);
         let (inner, outer) = (region.inner(), region.outer());
         let radii: Vec<f64> = nodes.points.iter().map(|&t| radius_of(region, t)).collect();

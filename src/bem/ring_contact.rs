@@ -23,7 +23,7 @@
 use std::f64::consts::PI;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use crate::bem::ring::{ContactRegion, RingBemSettings, RingField, RingSystem};
+use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::{Error, Result};
 use crate::numerics::roots::{find_root_descending, find_root_with_slope, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
@@ -254,19 +254,12 @@ impl RingBemSolver {
 
     fn system(&self, region: ContactRegion, nodes: usize) -> RingSystem {
         self.factorisations.fetch_add(1, Ordering::Relaxed);
-        let (quadrature_step, rule) = if nodes > COARSE_QUADRATURE_NODES {
-            (FINE_QUADRATURE_STEP, &self.fine_rule)
+        let rule = if nodes > COARSE_QUADRATURE_NODES {
+            &self.fine_rule
         } else {
-            (QUADRATURE_STEP, &self.rule)
+            &self.rule
         };
-        RingSystem::assemble(
-            region,
-            RingBemSettings {
-                nodes,
-                quadrature_step,
-            },
-            rule,
-        )
+        RingSystem::assemble(region, nodes, rule)
     }
 
     fn check_tolerance(tolerance: f64) -> Result<()> {

@@ -1116,14 +1116,7 @@ mod tests {
         };
         for inner in [0.3, 0.05] {
             let depth = 1.7;
-            let system = RingSystem::assemble(
-                ContactRegion::Band { inner, outer: 1.0 },
-                crate::bem::ring::RingBemSettings {
-                    nodes: 64,
-                    quadrature_step: 1.0 / 16.0,
-                },
-                &rule,
-            );
+            let system = RingSystem::assemble(ContactRegion::Band { inner, outer: 1.0 }, 64, &rule);
             let target: Vec<f64> = system
                 .radii()
                 .iter()

@@ -17,7 +17,7 @@ use serde::Serialize;
 
 use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
-use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::{self as fem_solver, FemLoad, FemOptions};
@@ -475,14 +475,7 @@ fn ring_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
             reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
         });
     }
-    let system = RingSystem::assemble(
-        region,
-        RingBemSettings {
-            nodes: n,
-            quadrature_step: 1.0 / 16.0,
-        },
-        &rule,
-    );
+    let system = RingSystem::assemble(region, n, &rule);
     let field = system
         .solve(&vec![1.0; n])
         .ok_or_else(|| Error::NoConvergence {

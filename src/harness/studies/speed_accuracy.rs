@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::bem::grid::GridLoad;
 use crate::bem::grid_contact;
-use crate::bem::ring::{ContactRegion, RingBemSettings, RingSystem};
+use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::fem::{self as fem_solver, FemLoad, FemOptions};
@@ -270,11 +270,7 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
             for n in [3usize, 4, 5, 6, 8] {
                 let (g, t) = timed(|| {
                     let region = ContactRegion::Annulus { eps: 0.5 };
-                    let settings = RingBemSettings {
-                        nodes: n,
-                        quadrature_step: 1.0 / 16.0,
-                    };
-                    RingSystem::assemble(region, settings, &rule)
+                    RingSystem::assemble(region, n, &rule)
                         .solve(&vec![1.0; n])
                         .map(|f| 0.5 * f.force)
                         .ok_or_else(|| Error::NoConvergence {
