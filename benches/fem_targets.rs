@@ -14,10 +14,12 @@
 
 use std::time::Instant;
 
+mod common;
+
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions};
-use ringcontact::punch::{Exponent, PunchKind, PunchName};
+use ringcontact::punch::{Exponent, PunchKind};
 
 /// A state: `(punch, b/a, load, label)`.
 type State = (PunchKind, f64, FemLoad, String);
@@ -69,15 +71,7 @@ fn at_force(kind: PunchKind, force: f64) -> State {
 /// The new punches' states: the power law, the table sampled from the sphere, the torus.
 fn new_punches() -> Vec<State> {
     let power = |n: f64| PunchKind::Power(Exponent::new(n).expect("n > 0"));
-    let table = PunchName::Table
-        .with_parameters(
-            None,
-            Some(std::path::Path::new(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/verify/profiles/sphere-21.csv"
-            ))),
-        )
-        .expect("the committed profile");
+    let table = common::sampled_sphere();
     let mut out = at_depths(power(1.5), &[1.0, 3.0]);
     out.extend(at_depths(power(4.0), &[1.0]));
     out.extend(at_depths(table, &[1.0, 2.5]));

@@ -14,8 +14,10 @@
 use std::hint::black_box;
 use std::time::Instant;
 
+mod common;
+
 use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
-use ringcontact::punch::{PunchKind, PunchName};
+use ringcontact::punch::PunchKind;
 
 const TOLERANCE: f64 = 1e-9;
 const REPEATS: usize = 31;
@@ -153,15 +155,7 @@ fn main() {
     let mut other_worst: f64 = 0.0;
     // The table punch: the sphere sampled at 21 points (the report's profile). Its full-contact
     // constants are computed once per table and process (the first solve, not timed).
-    let table = PunchName::Table
-        .with_parameters(
-            None,
-            Some(std::path::Path::new(concat!(
-                env!("CARGO_MANIFEST_DIR"),
-                "/verify/profiles/sphere-21.csv"
-            ))),
-        )
-        .expect("the committed profile");
+    let table = common::sampled_sphere();
     let states = [
         (power(1.5), true, [0.3, 1.0, 2.0, 4.0]),
         (power(4.0), true, [0.3, 1.0, 1.5, 2.0]),
