@@ -53,17 +53,17 @@ fn main() {
         let before = solver.factorisations;
         let start = Instant::now();
         let (solution, _) = model
-            .concave(&mut solver, PunchKind::Sphere, 0.5, None)
+            .concave(&mut solver, PunchKind::SPHERE, 0.5, None)
             .expect("contact solve");
         let contact = start.elapsed().as_secs_f64();
         let start = Instant::now();
         let guess = solution.inner_radius + 0.02;
         let mut warm_solver = ConstrainedCholesky::new(&k).expect("symbolic");
-        let mut system = model.banded_system(&mut warm_solver, PunchKind::Sphere, guess + 0.04);
+        let mut system = model.banded_system(&mut warm_solver, PunchKind::SPHERE, guess + 0.04);
         let (banded, _, _) = model
             .concave_with(
                 &mut system,
-                PunchKind::Sphere,
+                PunchKind::SPHERE,
                 0.5,
                 Some(model.active_set_for_radius(guess)),
             )

@@ -30,10 +30,10 @@ fn at_depths(kind: PunchKind, depths: &[f64]) -> Vec<State> {
         .iter()
         .map(|&d| {
             (
-                kind,
+                kind.clone(),
                 0.0,
                 FemLoad::ConcaveDepth(d),
-                format!("{} d/h={d}", name(kind)),
+                format!("{} d/h={d}", name(&kind)),
             )
         })
         .collect()
@@ -45,62 +45,58 @@ fn annuli(ratios: &[f64]) -> Vec<State> {
         .iter()
         .map(|&e| {
             let label = format!("flat annulus b/a={e}");
-            (PunchKind::FlatAnnulus, e, FemLoad::Flat, label)
+            (PunchKind::FLAT_ANNULUS, e, FemLoad::Flat, label)
         })
         .collect()
 }
 
 /// A state's punch as its row names it (a table by its profile, not its path).
-fn name(kind: PunchKind) -> String {
-    match kind {
-        PunchKind::Table(_) => "table (sphere-21)".to_string(),
-        _ => kind.to_string(),
+fn name(kind: &PunchKind) -> String {
+    match kind.table() {
+        Some(_) => "table (sphere-21)".to_string(),
+        None => kind.to_string(),
     }
 }
 
 /// A force-controlled state of `kind`.
 fn at_force(kind: PunchKind, force: f64) -> State {
-    (
-        kind,
-        0.0,
-        FemLoad::ConcaveForce(force),
-        format!("{} F/(2E*ha)={force}", name(kind)),
-    )
+    let label = format!("{} F/(2E*ha)={force}", name(&kind));
+    (kind, 0.0, FemLoad::ConcaveForce(force), label)
 }
 
 /// The new punches' states: the power law, the table sampled from the sphere, the torus.
 fn new_punches() -> Vec<State> {
-    let power = |n: f64| PunchKind::Power(Exponent::new(n).expect("n > 0"));
+    let power = |n: f64| PunchKind::power(Exponent::new(n).expect("n > 0"));
     let table = common::sampled_sphere();
     let mut out = at_depths(power(1.5), &[1.0, 3.0]);
     out.extend(at_depths(power(4.0), &[1.0]));
-    out.extend(at_depths(table, &[1.0, 2.5]));
+    out.extend(at_depths(table.clone(), &[1.0, 2.5]));
     out.push(at_force(table, 1.0));
-    out.extend(at_depths(PunchKind::Torus, &[0.1, 1.0]));
-    out.push(at_force(PunchKind::Torus, 0.3));
+    out.extend(at_depths(PunchKind::TORUS, &[0.1, 1.0]));
+    out.push(at_force(PunchKind::TORUS, 0.3));
     out
 }
 
 /// The 12 target states and the new punches' 9, and with `FEM_TARGETS_EXTRA=1` 17 more:
 /// other depths, ratios, the disk, and force control.
 fn states() -> Vec<State> {
-    let mut out = at_depths(PunchKind::Cone, &[0.5, 2.0, 4.0]);
-    out.extend(at_depths(PunchKind::Sphere, &[0.5, 1.5, 2.8]));
+    let mut out = at_depths(PunchKind::CONE, &[0.5, 2.0, 4.0]);
+    out.extend(at_depths(PunchKind::SPHERE, &[0.5, 1.5, 2.8]));
     out.extend(annuli(&[0.1, 0.3, 0.5, 0.7, 0.9, 0.97]));
     out.extend(new_punches());
     if std::env::var_os("FEM_TARGETS_EXTRA").is_some() {
-        out.push((PunchKind::Flat, 0.0, FemLoad::Flat, "flat disk".to_string()));
-        out.extend(at_depths(PunchKind::Cone, &[0.1, 1.0, 3.0, 8.0]));
-        out.extend(at_depths(PunchKind::Sphere, &[0.2, 1.0, 2.5, 2.95]));
+        out.push((PunchKind::FLAT, 0.0, FemLoad::Flat, "flat disk".to_string()));
+        out.extend(at_depths(PunchKind::CONE, &[0.1, 1.0, 3.0, 8.0]));
+        out.extend(at_depths(PunchKind::SPHERE, &[0.2, 1.0, 2.5, 2.95]));
         out.extend(annuli(&[0.02, 0.2, 0.6, 0.8, 0.95, 0.99]));
         out.push((
-            PunchKind::Cone,
+            PunchKind::CONE,
             0.0,
             FemLoad::ConcaveForce(1.0),
             "cone F/(2E*ha)=1".to_string(),
         ));
         out.push((
-            PunchKind::Sphere,
+            PunchKind::SPHERE,
             0.0,
             FemLoad::ConcaveForce(0.8),
             "sphere F/(2E*ha)=0.8".to_string(),
@@ -115,11 +111,11 @@ fn reference(kind: PunchKind, eps: f64, load: FemLoad) -> (f64, f64, f64) {
     match load {
         FemLoad::Flat => (bem.flat(eps, 1e-11).unwrap().gamma.unwrap(), eps, 1.0),
         FemLoad::ConcaveDepth(d) => {
-            let r = bem.concave_at_depth(kind, d, 1e-11).unwrap();
+            let r = bem.concave_at_depth(&kind, d, 1e-11).unwrap();
             (r.gamma2.unwrap(), r.eps, r.outer_edge)
         }
         FemLoad::ConcaveForce(f) => {
-            let r = bem.concave_at_force(kind, f, 1e-11).unwrap();
+            let r = bem.concave_at_force(&kind, f, 1e-11).unwrap();
             (r.gamma1.unwrap(), r.eps, r.outer_edge)
         }
     }
@@ -155,7 +151,7 @@ fn main() {
         );
         let (mut worst_cached, mut worst_gmsh, mut all_bounded) = (0.0f64, 0.0f64, true);
         for (kind, eps, load, label) in states() {
-            let (force_ref, eps_ref, outer_ref) = reference(kind, eps, load);
+            let (force_ref, eps_ref, outer_ref) = reference(kind.clone(), eps, load);
             let options = FemOptions {
                 linear_solver: Default::default(),
                 degree,
@@ -164,7 +160,7 @@ fn main() {
                 poisson_ratio: 0.0,
                 far_field: FarField::Boussinesq,
             };
-            let fresh = solver::solve(kind, eps, load, &options);
+            let fresh = solver::solve(kind.clone(), eps, load, &options);
             // Below 1e-7 a state takes tens of seconds: one run, its cached time not measured.
             let once = tolerance < 1e-7;
             let cached = if once {

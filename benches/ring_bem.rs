@@ -83,9 +83,9 @@ fn time_inverse_state(
 ) -> f64 {
     let t = median_ms_of(solver, repeats, || {
         if depth {
-            solver.concave_at_depth(kind, target, TOLERANCE)
+            solver.concave_at_depth(&kind, target, TOLERANCE)
         } else {
-            solver.concave_at_force(kind, target, TOLERANCE)
+            solver.concave_at_force(&kind, target, TOLERANCE)
         }
         .expect("state")
     });
@@ -96,9 +96,9 @@ fn time_inverse_state(
         String::new()
     };
     // A table's name carries its file's path: the row names its profile only.
-    let name = match kind {
-        PunchKind::Table(_) => "table (sphere-21)".to_string(),
-        _ => kind.to_string(),
+    let name = match kind.table() {
+        Some(_) => "table (sphere-21)".to_string(),
+        None => kind.to_string(),
     };
     print_row(&format!("{name} {control} = {target}{eps}"), &t);
     t.median
@@ -138,20 +138,20 @@ fn main() {
     }
     let mut concave_worst: f64 = 0.0;
     for (kind, depths) in [
-        (PunchKind::Cone, [5.5, 3.0, 1.5, 0.4, 0.2]),
-        (PunchKind::Sphere, [2.99, 2.8, 2.0, 1.0, 0.4]),
+        (PunchKind::CONE, [5.5, 3.0, 1.5, 0.4, 0.2]),
+        (PunchKind::SPHERE, [2.99, 2.8, 2.0, 1.0, 0.4]),
     ] {
         for &d in &depths {
             let t = median_ms(&solver, || {
                 solver
-                    .concave_at_depth(kind, d, TOLERANCE)
+                    .concave_at_depth(&kind, d, TOLERANCE)
                     .expect("concave state")
             });
             concave_worst = concave_worst.max(t.median);
             print_row(&format!("{kind} d/h = {d} (eps = {:.3})", t.state.eps), &t);
         }
     }
-    let power = |n: f64| PunchKind::Power(ringcontact::punch::Exponent::new(n).expect("n > 0"));
+    let power = |n: f64| PunchKind::power(ringcontact::punch::Exponent::new(n).expect("n > 0"));
     let mut other_worst: f64 = 0.0;
     // The table punch: the sphere sampled at 21 points (the report's profile). Its full-contact
     // constants are computed once per table and process (the first solve, not timed).
@@ -161,25 +161,25 @@ fn main() {
         (power(4.0), true, [0.3, 1.0, 1.5, 2.0]),
         (power(20.0), true, [0.1, 0.5, 0.9, 1.2]),
         (power(20.0), false, [0.05, 0.2, 0.4, 0.6]),
-        (table, true, [0.1, 0.5, 1.0, 2.0]),
-        (table, false, [0.05, 0.5, 1.0, 2.0]),
-        (PunchKind::Torus, true, [1e-3, 0.1, 2.0, 10.0]),
-        (PunchKind::Torus, false, [1e-4, 0.01, 0.5, 2.0]),
+        (table.clone(), true, [0.1, 0.5, 1.0, 2.0]),
+        (table.clone(), false, [0.05, 0.5, 1.0, 2.0]),
+        (PunchKind::TORUS, true, [1e-3, 0.1, 2.0, 10.0]),
+        (PunchKind::TORUS, false, [1e-4, 0.01, 0.5, 2.0]),
     ];
     for (kind, depth, targets) in states {
         for &target in &targets {
-            let med = time_inverse_state(&solver, kind, depth, target, REPEATS, false);
+            let med = time_inverse_state(&solver, kind.clone(), depth, target, REPEATS, false);
             other_worst = other_worst.max(med);
         }
     }
     println!("\ndeep and nearly closed states, median of {DEEP_REPEATS} runs");
     let mut deep_worst: f64 = 0.0;
     let deep = [
-        (PunchKind::Cone, true, [8.0, 12.0, 15.0]),
-        (PunchKind::Sphere, true, [2.999, 2.9999, 2.99995]),
-        (PunchKind::Torus, true, [20.0, 50.0, 100.0]),
-        (PunchKind::Torus, false, [10.0, 50.0, 200.0]),
-        (table, true, [2.9, 2.95, 2.98]),
+        (PunchKind::CONE, true, [8.0, 12.0, 15.0]),
+        (PunchKind::SPHERE, true, [2.999, 2.9999, 2.99995]),
+        (PunchKind::TORUS, true, [20.0, 50.0, 100.0]),
+        (PunchKind::TORUS, false, [10.0, 50.0, 200.0]),
+        (table.clone(), true, [2.9, 2.95, 2.98]),
         // Where the table's γ1 is flat and not monotone (its cubic at the axis): the
         // pre-search wanders (2.97) or finds no root (2.995), and the narrowest ring (2.9995).
         (table, true, [2.97, 2.995, 2.9995]),
@@ -187,7 +187,7 @@ fn main() {
     ];
     for (kind, depth, targets) in deep {
         for &target in &targets {
-            let med = time_inverse_state(&solver, kind, depth, target, DEEP_REPEATS, true);
+            let med = time_inverse_state(&solver, kind.clone(), depth, target, DEEP_REPEATS, true);
             deep_worst = deep_worst.max(med);
         }
     }

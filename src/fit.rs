@@ -235,19 +235,19 @@ pub fn run(solver: &RingBemSolver) -> Result<Vec<FitReport>> {
                 Ok(match name {
                     "flat" => solver.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN),
                     "cone_gamma1" => solver
-                        .concave_at_ratio(PunchKind::Cone, e, 1e-10)?
+                        .concave_at_ratio(&PunchKind::CONE, e, 1e-10)?
                         .gamma1
                         .unwrap_or(f64::NAN),
                     "cone_gamma2" => solver
-                        .concave_at_ratio(PunchKind::Cone, e, 1e-10)?
+                        .concave_at_ratio(&PunchKind::CONE, e, 1e-10)?
                         .gamma2
                         .unwrap_or(f64::NAN),
                     "sphere_gamma1" => solver
-                        .concave_at_ratio(PunchKind::Sphere, e, 1e-10)?
+                        .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
                         .gamma1
                         .unwrap_or(f64::NAN),
                     _ => solver
-                        .concave_at_ratio(PunchKind::Sphere, e, 1e-10)?
+                        .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
                         .gamma2
                         .unwrap_or(f64::NAN),
                 })

@@ -18,7 +18,7 @@ use crate::error::{Error, Result};
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::triangulation::Degree;
 use crate::numerics::roots::find_root;
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 use crate::reference::{self, power_law, Quantity, ReferenceValue};
 use crate::scene::{Load, Scene};
 use crate::solution::{FemProvenance, PressureSample, Solution};
@@ -112,7 +112,7 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
         });
     }
     if options.grid_extent.is_some()
-        && (method != Method::GridBem || scene.punch.kind != PunchKind::Torus)
+        && (method != Method::GridBem || !scene.punch.kind.is_free_band())
     {
         return Err(Error::Unsupported {
             method: method.name().into(),
@@ -151,7 +151,7 @@ pub fn solve_auto(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
     let tolerance = scene.tolerance.unwrap_or(1e-6);
     let scene = Scene {
         tolerance: Some(tolerance),
-        ..*scene
+        ..scene.clone()
     };
     let mut tried = Vec::new();
     for method in AUTO_ORDER {
@@ -197,12 +197,12 @@ pub fn solve_grid_bem(
     extent: Option<f64>,
     estimated: bool,
 ) -> Result<Solution> {
-    let kind = scene.punch.kind;
+    let kind = scene.punch.kind.clone();
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
     let h = scene.punch.hole_depth;
-    let load = match (kind, scene.load) {
-        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => GridLoad::Depth(1.0),
+    let load = match (kind.is_concave(), scene.load) {
+        (false, _) => GridLoad::Depth(1.0),
         (_, Load::Depth(d)) => GridLoad::Depth(d / h),
         (_, Load::Force(f)) => GridLoad::Force(f / (2.0 * es * h * a)),
         (_, Load::ContactRatio(_)) => {
@@ -217,19 +217,19 @@ pub fn solve_grid_bem(
     let start = Instant::now();
     let state = match extent {
         Some(half_size) => grid_contact::solve_torus_on_square(n, half_size, load, tolerance)?,
-        None => grid_contact::solve(kind, eps, n, load, tolerance)?,
+        None => grid_contact::solve(kind.clone(), eps, n, load, tolerance)?,
     };
-    let free_edges: &[fn(&grid_contact::GridState) -> f64] = match kind {
-        PunchKind::Torus => &[grid_estimate::inner_edge, grid_estimate::outer_edge],
-        k if k.is_concave() => &[grid_estimate::inner_edge],
-        _ => &[],
+    let free_edges: &[fn(&grid_contact::GridState) -> f64] = match kind.contact() {
+        Contact::FreeBand => &[grid_estimate::inner_edge, grid_estimate::outer_edge],
+        Contact::RimAndFreeInner => &[grid_estimate::inner_edge],
+        Contact::Disk | Contact::FixedAnnulus => &[],
     };
     let estimate = estimated.then(|| {
         grid_estimate::estimate(&state, free_edges, |m| {
-            if kind == PunchKind::Torus {
+            if kind.is_free_band() {
                 grid_contact::solve_torus_on_square(m, state.square_half_size, load, tolerance)
             } else {
-                grid_contact::solve(kind, eps, m, load, tolerance)
+                grid_contact::solve(kind.clone(), eps, m, load, tolerance)
             }
         })
     });
@@ -270,12 +270,12 @@ pub fn solve_grid_bem(
 
 /// Solve with the finite-element method.
 pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
-    let kind = scene.punch.kind;
+    let kind = scene.punch.kind.clone();
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
     let h = scene.punch.hole_depth;
-    let load = match (kind, scene.load) {
-        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => FemLoad::Flat,
+    let load = match (kind.is_concave(), scene.load) {
+        (false, _) => FemLoad::Flat,
         (_, Load::Depth(d)) => FemLoad::ConcaveDepth(d / h),
         (_, Load::Force(f)) => FemLoad::ConcaveForce(f / (2.0 * es * h * a)),
         (_, Load::ContactRatio(_)) => {
@@ -302,7 +302,7 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
         poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
         far_field: options.far_field.unwrap_or(FarField::Boussinesq),
     };
-    let state = fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)?;
+    let state = fem_solver::solve(kind.clone(), scene.punch.inner_ratio(), load, &fem_options)?;
     let outer_radius = state.outer_edge.map_or(a, |c| c * a);
     if let Some(path) = &options.vtu {
         crate::discretisation::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;
@@ -369,18 +369,16 @@ pub fn solve_fem(scene: &Scene, options: &MethodOptions) -> Result<Solution> {
 pub fn solve_ring_bem(scene: &Scene, solver: &RingBemSolver) -> Result<Solution> {
     let start = Instant::now();
     let factorised = solver.factorisations();
-    let kind = scene.punch.kind;
+    let kind = scene.punch.kind.clone();
     let tol = scene.tolerance.unwrap_or(crate::scene::DEFAULT_TOLERANCE);
     let h = scene.punch.hole_depth;
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
-    let state = match (kind, scene.load) {
-        (PunchKind::Flat | PunchKind::FlatAnnulus, _) => {
-            solver.flat(scene.punch.inner_ratio(), tol)?
-        }
-        (_, Load::ContactRatio(eps)) => solver.concave_at_ratio(kind, eps, tol)?,
-        (_, Load::Depth(d)) => solver.concave_at_depth(kind, d / h, tol)?,
-        (_, Load::Force(f)) => solver.concave_at_force(kind, f / (2.0 * es * h * a), tol)?,
+    let state = match (kind.is_concave(), scene.load) {
+        (false, _) => solver.flat(scene.punch.inner_ratio(), tol)?,
+        (_, Load::ContactRatio(eps)) => solver.concave_at_ratio(&kind, eps, tol)?,
+        (_, Load::Depth(d)) => solver.concave_at_depth(&kind, d / h, tol)?,
+        (_, Load::Force(f)) => solver.concave_at_force(&kind, f / (2.0 * es * h * a), tol)?,
     };
     let wall_s = start.elapsed().as_secs_f64();
     let iterations = solver.factorisations() - factorised;
@@ -407,7 +405,7 @@ fn base(
     let (depth, force) = depth_force(scene, gamma, gamma1, gamma2)?;
     let a = scene.punch.rim_radius;
     Ok(Solution {
-        punch: scene.punch.kind,
+        punch: scene.punch.kind.clone(),
         method: method.to_string(),
         eps,
         depth,
@@ -541,31 +539,14 @@ fn best_reference(
 /// Solve with the analytic references (exact results, series, asymptotes, the paper's fits).
 pub fn solve_reference(scene: &Scene) -> Result<Solution> {
     let start = Instant::now();
-    let kind = scene.punch.kind;
+    let kind = &scene.punch.kind;
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
     let h = scene.punch.hole_depth;
     // Every field below is set from the reference that applies.
     let mut solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
-    match kind {
-        PunchKind::Table(_) => {
-            return Err(Error::OutOfRange {
-                method: "reference".into(),
-                reason: "the table punch has no closed form (its full contact is a quadrature \
-                         of the interpolated profile); it is the ring BEM's (--method ring-bem)"
-                    .into(),
-            })
-        }
-        PunchKind::Torus => {
-            return Err(Error::OutOfRange {
-                method: "reference".into(),
-                reason: "the torus has no closed form (its narrow limit, the plane-strain Hertz \
-                         cylinder, is an asymptote without an error bound); it is the ring BEM's \
-                         (--method ring-bem)"
-                    .into(),
-            })
-        }
-        PunchKind::Flat | PunchKind::FlatAnnulus => {
+    match reference_family(kind)? {
+        ReferenceFamily::Flat => {
             let eps = scene.punch.inner_ratio();
             let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;
             let (d, f) = flat_depth_force(scene, value.value)?;
@@ -578,17 +559,18 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
             solution.method = format!("reference:{name}");
             solution.provenance = source.to_string();
         }
-        PunchKind::Cone | PunchKind::Sphere => {
-            let (q1, q2) = if kind == PunchKind::Cone {
+        family @ (ReferenceFamily::Cone | ReferenceFamily::Sphere) => {
+            let sphere = matches!(family, ReferenceFamily::Sphere);
+            let (q1, q2) = if !sphere {
                 (Quantity::ConeGamma1, Quantity::ConeGamma2)
             } else {
                 (Quantity::SphereGamma1, Quantity::SphereGamma2)
             };
             let full_contact = match scene.load {
-                Load::Depth(d) if kind == PunchKind::Sphere => {
+                Load::Depth(d) if sphere => {
                     reference::sphere_full_contact_gamma2(d / h).map(|g2| (d / h, g2))
                 }
-                Load::Force(f) if kind == PunchKind::Sphere => {
+                Load::Force(f) if sphere => {
                     let g2 = f / (2.0 * es * h * a);
                     (g2 >= 8.0 / 3.0).then_some((g2 + 1.0 / 3.0, g2))
                 }
@@ -627,8 +609,7 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
             solution.method = format!("reference:{name}");
             solution.provenance = source.to_string();
         }
-        PunchKind::Power(n) => {
-            let n = n.value();
+        ReferenceFamily::Power(n) => {
             let full_contact = match scene.load {
                 Load::Depth(d) => power_law::full_contact_gamma2(n, d / h).map(|g2| (d / h, g2)),
                 Load::Force(f) => {
@@ -665,6 +646,52 @@ pub fn solve_reference(scene: &Scene) -> Result<Solution> {
     }
     solution.wall_s = start.elapsed().as_secs_f64();
     Ok(solution)
+}
+
+/// The closed-form references that hold for a punch, asked of its profile.
+enum ReferenceFamily {
+    /// The flat circular and annular punch's `γ(b/a)`.
+    Flat,
+    /// The cone's `γ1`, `γ2` (series and asymptotes).
+    Cone,
+    /// The sphere's `γ1`, `γ2` and its full contact.
+    Sphere,
+    /// The power law's full contact (the MDR).
+    Power(f64),
+}
+
+/// Which [`ReferenceFamily`] holds for `kind`; an error saying why where none does.
+fn reference_family(kind: &PunchKind) -> Result<ReferenceFamily> {
+    let none = |reason: String| Error::OutOfRange {
+        method: "reference".into(),
+        reason,
+    };
+    if !kind.is_concave() {
+        return Ok(ReferenceFamily::Flat);
+    }
+    if kind.tabulated().is_some() {
+        return Err(none(format!(
+            "the {} punch has no closed form (its full contact is a quadrature of the \
+             interpolated profile); it is the ring BEM's (--method ring-bem)",
+            kind.name()
+        )));
+    }
+    if kind.is_free_band() {
+        return Err(none(format!(
+            "the {} has no closed form (its narrow limit, the plane-strain Hertz cylinder, is an \
+             asymptote without an error bound); it is the ring BEM's (--method ring-bem)",
+            kind.name()
+        )));
+    }
+    match (kind.exponent_parameter(), kind.power_law_exponent()) {
+        (Some(n), _) => Ok(ReferenceFamily::Power(n)),
+        (None, Some(1.0)) => Ok(ReferenceFamily::Cone),
+        (None, Some(2.0)) => Ok(ReferenceFamily::Sphere),
+        (None, Some(n)) => Ok(ReferenceFamily::Power(n)),
+        (None, None) => Err(none(format!(
+            "the {kind} has no closed form here; it is the ring BEM's (--method ring-bem)"
+        ))),
+    }
 }
 
 /// `eps` where the most trusted reference for `quantity` equals `target` (references decrease

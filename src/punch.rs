@@ -21,20 +21,40 @@
 //! `h (1 - r/a)²` it is one dimensionless shape for every tube radius (the tube radius only sets
 //! the depth scale `h`), so it shares the concave punches' `γ1 = d/h` and `γ2 = F/(2 E* h a)`.
 //! The table punch is a concave punch whose profile is read from a file ([`table`]).
+//!
+//! Each shape is one [`Profile`] implementation in its own file; a [`PunchKind`] is a shared
+//! handle to one, and this file is the registry that builds the built-in shapes from their
+//! names and parameters. A user's own profile is a type implementing [`Profile`], handed to
+//! the solvers as [`PunchKind::new`].
 
+mod cone;
+mod flat;
+mod flat_annulus;
+mod power;
+mod profile;
+mod sphere;
 pub mod table;
+mod torus;
 
 use std::hash::{Hash, Hasher};
 use std::path::Path;
+use std::sync::Arc;
 
+pub use cone::Cone;
+pub use flat::Flat;
+pub use flat_annulus::FlatAnnulus;
+pub use power::{Exponent, Power};
+pub use profile::{Contact, Profile};
+pub use sphere::Sphere;
 pub use table::TableProfile;
+pub use torus::Torus;
 
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 
-/// The names of the punch shapes, as written on the command line (`--punch`), in scene files
-/// (`punch.shape`) and in JSON (`"punch"`).
+/// The names of the built-in punch shapes, as written on the command line (`--punch`), in scene
+/// files (`punch.shape`) and in JSON (`"punch"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "kebab-case")]
 pub enum PunchName {
@@ -71,6 +91,11 @@ impl PunchName {
         }
     }
 
+    /// The built-in shape of this name (`flat-annulus`), if one has it.
+    pub fn parse(name: &str) -> Option<PunchName> {
+        <PunchName as clap::ValueEnum>::from_str(name, false).ok()
+    }
+
     /// The punch of this name; `exponent` is the power law's `n` and is refused for every other
     /// shape; the table punch needs [`with_parameters`](Self::with_parameters).
     pub fn with_exponent(self, exponent: Option<f64>) -> Result<PunchKind> {
@@ -86,7 +111,7 @@ impl PunchName {
     ) -> Result<PunchKind> {
         match (self, profile) {
             (PunchName::Table, Some(path)) if exponent.is_none() => {
-                return Ok(PunchKind::Table(TableRef(TableProfile::load(path)?)));
+                return Ok(PunchKind::new(TableProfile::load(path)?));
             }
             (PunchName::Table, None) => {
                 return Err(Error::InvalidScene {
@@ -106,7 +131,7 @@ impl PunchName {
             (_, None) => {}
         }
         match (self, exponent) {
-            (PunchName::Power, Some(n)) => Ok(PunchKind::Power(Exponent::new(n)?)),
+            (PunchName::Power, Some(n)) => Ok(PunchKind::power(Exponent::new(n)?)),
             (PunchName::Power, None) => Err(Error::InvalidScene {
                 field: "exponent".into(),
                 rule: "the power-law punch needs its exponent n > 0 (--exponent N, or \
@@ -121,12 +146,14 @@ impl PunchName {
                     self.as_str()
                 ),
             }),
-            (PunchName::Flat, None) => Ok(PunchKind::Flat),
-            (PunchName::FlatAnnulus, None) => Ok(PunchKind::FlatAnnulus),
-            (PunchName::Cone, None) => Ok(PunchKind::Cone),
-            (PunchName::Sphere, None) => Ok(PunchKind::Sphere),
-            (PunchName::Torus, None) => Ok(PunchKind::Torus),
-            (PunchName::Table, None) => unreachable!("the table punch returned above"),
+            (PunchName::Flat, None) => Ok(PunchKind::FLAT),
+            (PunchName::FlatAnnulus, None) => Ok(PunchKind::FLAT_ANNULUS),
+            (PunchName::Cone, None) => Ok(PunchKind::CONE),
+            (PunchName::Sphere, None) => Ok(PunchKind::SPHERE),
+            (PunchName::Torus, None) => Ok(PunchKind::TORUS),
+            (PunchName::Table, None) => {
+                unreachable!("the table returned above")
+            }
         }
     }
 }
@@ -137,114 +164,187 @@ impl std::fmt::Display for PunchName {
     }
 }
 
-/// Exponent `n` of the power-law concave punch, gap `h (1 - (r/a)^n)`: finite and positive.
-/// Compared and hashed by its bits, so that punches can be keys.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Exponent(f64);
+/// A punch shape with its dimensionless parameters: a shared handle to its [`Profile`], which
+/// it dereferences to. Compared and hashed by the profile's [`label`](Profile::label). Written
+/// in JSON as the keys `punch` (its name), for the power law `exponent`, for the table
+/// `profile_file` and `profile_sha256`; structs holding one flatten it.
+#[derive(Clone)]
+pub struct PunchKind(Shared);
 
-impl Exponent {
-    /// Largest exponent accepted: beyond it `(r/a)^n` is a wall at the rim whose contact ring is
-    /// narrower than any method here resolves (`1 - (1 - 1e-4)^n` stays below 1 % of `h`).
-    pub const MAX: f64 = 100.0;
-
-    /// A checked exponent: finite, `0 < n <= MAX`.
-    pub fn new(n: f64) -> Result<Self> {
-        if !(n.is_finite() && n > 0.0 && n <= Self::MAX) {
-            return Err(Error::InvalidScene {
-                field: "exponent".into(),
-                rule: format!(
-                    "must be finite with 0 < n <= {} (got {})",
-                    Self::MAX,
-                    crate::error::show(n)
-                ),
-            });
-        }
-        Ok(Self(n))
-    }
-
-    /// The value `n`.
-    pub fn value(self) -> f64 {
-        self.0
-    }
+#[derive(Clone)]
+enum Shared {
+    Builtin(&'static dyn Profile),
+    Owned(Arc<dyn Profile>),
 }
 
-impl Eq for Exponent {}
-
-impl Hash for Exponent {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        self.0.to_bits().hash(state);
-    }
-}
-
-/// A table punch's profile as a punch holds it: read once per process, compared and hashed by
-/// the SHA-256 of its file.
-#[derive(Clone, Copy, Debug)]
-pub struct TableRef(&'static TableProfile);
-
-impl TableRef {
-    /// The profile.
-    pub fn profile(self) -> &'static TableProfile {
-        self.0
-    }
-}
-
-impl PartialEq for TableRef {
-    fn eq(&self, other: &Self) -> bool {
-        self.0 == other.0
-    }
-}
-
-impl Eq for TableRef {}
-
-impl Hash for TableRef {
-    fn hash<H: Hasher>(&self, state: &mut H) {
-        self.0.sha256().hash(state);
-    }
-}
-
-/// A punch shape with its dimensionless parameters. Written in JSON as the keys `punch` (its
-/// [`PunchName`]), for the power law `exponent`, for the table `profile_file` and
-/// `profile_sha256` (`profile` is taken: peer records describe their grid with it); structs
-/// holding one flatten it.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(into = "PunchRecord", try_from = "PunchRecord")]
-pub enum PunchKind {
-    /// Flat circular punch (Boussinesq): contact is the full disk.
-    Flat,
-    /// Flat annular punch: contact is the fixed annulus `b <= r <= a`.
-    FlatAnnulus,
+impl PunchKind {
+    /// Flat circular punch (Boussinesq).
+    pub const FLAT: PunchKind = PunchKind(Shared::Builtin(&Flat));
+    /// Flat annular punch (its inner radius is the [`Punch`]'s).
+    pub const FLAT_ANNULUS: PunchKind = PunchKind(Shared::Builtin(&FlatAnnulus));
     /// Conical concave punch, gap `h (1 - r/a)`.
-    Cone,
-    /// Spherical (parabolic) concave punch, gap `h (1 - r²/a²)`.
-    Sphere,
-    /// Power-law concave punch, gap `h (1 - (r/a)^n)`.
-    Power(Exponent),
-    /// Torus of ring radius `a`, parabolic section: gap `h (1 - r/a)²` with `h = a²/(2ρ)`,
-    /// defined on both sides of `a`; both contact edges free.
-    Torus,
-    /// Concave punch of a tabulated profile `h ĝ(r/a)`, rim at `r = a`, inner edge free.
-    Table(TableRef),
+    pub const CONE: PunchKind = PunchKind(Shared::Builtin(&Cone));
+    /// Spherical concave punch, gap `h (1 - r²/a²)`.
+    pub const SPHERE: PunchKind = PunchKind(Shared::Builtin(&Sphere));
+    /// Torus, gap `h (1 - r/a)²`.
+    pub const TORUS: PunchKind = PunchKind(Shared::Builtin(&Torus));
+
+    /// The punch of any profile, a built-in one or a user's own.
+    pub fn new(profile: impl Profile + 'static) -> PunchKind {
+        PunchKind(Shared::Owned(Arc::new(profile)))
+    }
+
+    /// The power-law concave punch of exponent `n`.
+    pub fn power(n: Exponent) -> PunchKind {
+        PunchKind::new(Power(n))
+    }
+
+    /// The profile this punch is.
+    pub fn profile(&self) -> &(dyn Profile + 'static) {
+        match &self.0 {
+            Shared::Builtin(p) => *p,
+            Shared::Owned(p) => p.as_ref(),
+        }
+    }
+
+    /// The built-in shape's name ([`PunchName`]), if the punch is built in.
+    pub fn shape_name(&self) -> Option<PunchName> {
+        self.profile().builtin()
+    }
+
+    /// The power law's exponent `n` as a parameter (`None` for the other shapes, even the cone
+    /// and sphere).
+    pub fn exponent(&self) -> Option<f64> {
+        self.exponent_parameter()
+    }
+
+    /// The table punch's profile (`None` for the other shapes).
+    pub fn table(&self) -> Option<&TableProfile> {
+        self.tabulated()
+    }
+
+    /// Dimensionless gap `g(r)/h` at `rho = r/a` ([`Profile::gap`]).
+    pub fn gap_shape(&self, rho: f64) -> f64 {
+        self.gap(rho)
+    }
+
+    /// Whether the inner contact radius is found by the solver, with the depth scale `h` and
+    /// the functions `γ1 = d/h`, `γ2 = F/(2 E* h a)`: the concave punches and the torus.
+    pub fn is_concave(&self) -> bool {
+        matches!(self.contact(), Contact::RimAndFreeInner | Contact::FreeBand)
+    }
+
+    /// Whether the contact's outer edge is a sharp rim at `r = a` (every punch but a free band).
+    pub fn has_rim(&self) -> bool {
+        self.contact() != Contact::FreeBand
+    }
+
+    /// Whether the contact is a fixed annulus whose inner radius is a parameter.
+    pub fn has_fixed_hole(&self) -> bool {
+        self.contact() == Contact::FixedAnnulus
+    }
+
+    /// Whether both contact edges are free (a band around the ring radius).
+    pub fn is_free_band(&self) -> bool {
+        self.contact() == Contact::FreeBand
+    }
+
+    /// The built-in punch of a [`label`](Profile::label) (`cone`, `power-n2.5`), if it names
+    /// one; a table's label names its file's content, which only that file gives back.
+    pub fn from_label(label: &str) -> Option<PunchKind> {
+        if let Some(n) = label.strip_prefix("power-n") {
+            return Exponent::new(n.parse().ok()?).ok().map(PunchKind::power);
+        }
+        PunchName::parse(label)?.with_exponent(None).ok()
+    }
+
+    /// The exponent `n` of the power law `h (1 - (r/a)^n)` the gap is: 1 for the cone, 2 for
+    /// the sphere, `n` for the power law; `None` otherwise.
+    pub fn concave_exponent(&self) -> Option<f64> {
+        self.power_law_exponent()
+    }
+
+    /// Whether the concave profile is flat at the axis ([`Profile::smooth_at_axis`]).
+    pub fn profile_smooth_at_axis(&self) -> bool {
+        self.smooth_at_axis()
+    }
 }
 
-/// How a [`PunchKind`] is written in JSON.
-#[derive(Serialize, Deserialize)]
-struct PunchRecord {
-    punch: PunchName,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    exponent: Option<f64>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    profile_file: Option<String>,
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    profile_sha256: Option<String>,
+impl std::ops::Deref for PunchKind {
+    type Target = dyn Profile;
+    fn deref(&self) -> &Self::Target {
+        self.profile()
+    }
 }
 
-impl From<PunchKind> for PunchRecord {
-    fn from(kind: PunchKind) -> Self {
+impl std::fmt::Debug for PunchKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.label())
+    }
+}
+
+impl std::fmt::Display for PunchKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.describe())
+    }
+}
+
+impl PartialEq for PunchKind {
+    fn eq(&self, other: &Self) -> bool {
+        self.name() == other.name() && self.label() == other.label()
+    }
+}
+
+impl Eq for PunchKind {}
+
+impl Hash for PunchKind {
+    fn hash<H: Hasher>(&self, state: &mut H) {
+        self.label().hash(state);
+    }
+}
+
+impl Serialize for PunchKind {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        self.record().serialize(serializer)
+    }
+}
+
+impl<'de> Deserialize<'de> for PunchKind {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        let record = PunchRecord::deserialize(deserializer)?;
+        PunchKind::try_from(record).map_err(serde::de::Error::custom)
+    }
+}
+
+/// How a [`PunchKind`] is written in JSON: its name and parameters.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+pub struct PunchRecord {
+    /// The shape's name.
+    pub punch: String,
+    /// The power law's `n`.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exponent: Option<f64>,
+    /// The table's file, as named.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile_file: Option<String>,
+    /// The SHA-256 of the table's file, hex.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub profile_sha256: Option<String>,
+}
+
+impl PunchRecord {
+    /// The record of a shape without parameters.
+    pub fn named(name: &str) -> Self {
         PunchRecord {
-            punch: kind.shape_name(),
-            exponent: kind.exponent(),
-            profile_file: kind.table().map(|t| t.source().to_string()),
-            profile_sha256: kind.table().map(|t| t.sha256().to_string()),
+            punch: name.to_string(),
+            exponent: None,
+            profile_file: None,
+            profile_sha256: None,
         }
     }
 }
@@ -252,7 +352,17 @@ impl From<PunchKind> for PunchRecord {
 impl TryFrom<PunchRecord> for PunchKind {
     type Error = Error;
     fn try_from(record: PunchRecord) -> Result<Self> {
-        let kind = record.punch.with_parameters(
+        let name = PunchName::parse(&record.punch).ok_or_else(|| {
+            Error::invalid(
+                "punch",
+                format!(
+                    "`{}` is not a built-in punch (flat, flat-annulus, cone, sphere, power, \
+                     torus, table); a profile of your own is given from Rust",
+                    record.punch
+                ),
+            )
+        })?;
+        let kind = name.with_parameters(
             record.exponent,
             record.profile_file.as_deref().map(Path::new),
         )?;
@@ -273,155 +383,8 @@ impl TryFrom<PunchRecord> for PunchKind {
     }
 }
 
-impl PunchKind {
-    /// The shape's name ([`PunchName`]).
-    pub fn shape_name(self) -> PunchName {
-        match self {
-            PunchKind::Flat => PunchName::Flat,
-            PunchKind::FlatAnnulus => PunchName::FlatAnnulus,
-            PunchKind::Cone => PunchName::Cone,
-            PunchKind::Sphere => PunchName::Sphere,
-            PunchKind::Power(_) => PunchName::Power,
-            PunchKind::Torus => PunchName::Torus,
-            PunchKind::Table(_) => PunchName::Table,
-        }
-    }
-
-    /// Name used on the command line and in JSON.
-    pub fn name(self) -> &'static str {
-        self.shape_name().as_str()
-    }
-
-    /// A name unique to the shape and its parameters, for file names and labels: the name, and
-    /// for the power law `power-n<n>` (`power-n2.5`).
-    pub fn label(self) -> String {
-        match self {
-            PunchKind::Power(n) => format!("power-n{}", n.value()),
-            PunchKind::Table(t) => format!("table-{}", &t.profile().sha256()[..12]),
-            _ => self.name().to_string(),
-        }
-    }
-
-    /// The punch of a [`label`](Self::label) (`cone`, `power-n2.5`), if it names one. A table
-    /// punch's label (`table-` and the first 12 hex digits of its file's SHA-256) names it only
-    /// once this process has loaded that table ([`TableProfile::loaded`]).
-    pub fn from_label(label: &str) -> Option<PunchKind> {
-        if let Some(n) = label.strip_prefix("power-n") {
-            return Exponent::new(n.parse().ok()?).ok().map(PunchKind::Power);
-        }
-        if let Some(prefix) = label.strip_prefix("table-") {
-            return TableProfile::loaded(prefix).map(PunchKind::from_table);
-        }
-        let name = <PunchName as clap::ValueEnum>::from_str(label, false).ok()?;
-        name.with_exponent(None).ok()
-    }
-
-    /// The command-line flags that name this punch: `--punch cone`, `--punch power --exponent
-    /// 2.5`.
-    pub fn flags(self) -> String {
-        match self {
-            PunchKind::Power(n) => format!("--punch power --exponent {}", n.value()),
-            PunchKind::Table(t) => format!("--punch table --profile {}", t.profile().source()),
-            _ => format!("--punch {}", self.name()),
-        }
-    }
-
-    /// The power law's exponent `n` (`None` for the other shapes, even the cone and sphere).
-    pub fn exponent(self) -> Option<f64> {
-        match self {
-            PunchKind::Power(n) => Some(n.value()),
-            _ => None,
-        }
-    }
-
-    /// The table punch of a loaded profile.
-    pub fn from_table(profile: &'static TableProfile) -> PunchKind {
-        PunchKind::Table(TableRef(profile))
-    }
-
-    /// The table punch's profile (`None` for the other shapes).
-    pub fn table(self) -> Option<&'static TableProfile> {
-        match self {
-            PunchKind::Table(t) => Some(t.profile()),
-            _ => None,
-        }
-    }
-
-    /// The exponent `n` of the concave profile `h (1 - (r/a)^n)`: 1 for the cone, 2 for the
-    /// sphere, `n` for the power law; `None` for the flat punches.
-    pub fn concave_exponent(self) -> Option<f64> {
-        match self {
-            PunchKind::Cone => Some(1.0),
-            PunchKind::Sphere => Some(2.0),
-            PunchKind::Power(n) => Some(n.value()),
-            PunchKind::Flat | PunchKind::FlatAnnulus | PunchKind::Torus | PunchKind::Table(_) => {
-                None
-            }
-        }
-    }
-
-    /// Whether the inner contact radius is found by the solver, with the depth scale `h` and
-    /// the functions `γ1 = d/h`, `γ2 = F/(2 E* h a)`: the concave punches and the torus.
-    pub fn is_concave(self) -> bool {
-        self.concave_exponent().is_some() || matches!(self, PunchKind::Torus | PunchKind::Table(_))
-    }
-
-    /// Whether the contact's outer edge is a sharp rim at `r = a` (every punch but the torus,
-    /// whose outer edge is free).
-    pub fn has_rim(self) -> bool {
-        self != PunchKind::Torus
-    }
-
-    /// Whether the concave profile is flat at the axis (`g'(0) = 0`: the sphere, the power law
-    /// with `n > 1`), so that the full-contact pressure is bounded there and the contact can
-    /// close at a finite depth ([`crate::reference::power_law`]). The cone's apex
-    /// (`g = h (1 - r/a)`, a kink) and every `n <= 1` make the pressure there singular and
-    /// tensile: a hole stays open at every depth.
-    pub fn profile_smooth_at_axis(self) -> bool {
-        match self {
-            PunchKind::Table(t) => t.profile().slope(0.0) == 0.0,
-            _ => self.concave_exponent().is_some_and(|n| n > 1.0),
-        }
-    }
-
-    /// Whether a ring with a free inner edge can meet the floor of its hole before the hole
-    /// closes, so that its states must be probed there: the power law flatter than the sphere
-    /// at the axis (`n > 2`) and any table. The cone, the sphere and every `n <= 2` clear the
-    /// floor at every contact ratio (their holes close at full contact; measured in
-    /// `tests/adhesion.rs`), and so do their adhesive states, which add the flat annulus's lag.
-    pub fn may_meet_hole_floor(self) -> bool {
-        match self {
-            PunchKind::Table(_) => true,
-            _ => self.concave_exponent().is_some_and(|n| n > 2.0),
-        }
-    }
-
-    /// Dimensionless gap `g(r)/h` of a concave punch or the torus at `rho = r/a` (0 for flat
-    /// punches).
-    pub fn gap_shape(self, rho: f64) -> f64 {
-        match self {
-            PunchKind::Flat | PunchKind::FlatAnnulus => 0.0,
-            PunchKind::Torus => (1.0 - rho) * (1.0 - rho),
-            PunchKind::Cone => 1.0 - rho,
-            PunchKind::Sphere => 1.0 - rho * rho,
-            PunchKind::Power(n) => 1.0 - rho.powf(n.value()),
-            PunchKind::Table(t) => t.profile().value(rho),
-        }
-    }
-}
-
-impl std::fmt::Display for PunchKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            PunchKind::Power(n) => write!(f, "power (n = {})", n.value()),
-            PunchKind::Table(t) => write!(f, "table ({})", t.profile().source()),
-            _ => f.write_str(self.name()),
-        }
-    }
-}
-
 /// Punch geometry in physical units (any consistent length unit).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Punch {
     pub kind: PunchKind,
     /// Outer contact radius `a` = the sharp rim.
@@ -446,7 +409,8 @@ impl Punch {
 
     /// The torus's tube radius `ρ = a²/(2h)` (`None` for the other shapes).
     pub fn tube_radius(&self) -> Option<f64> {
-        (self.kind == PunchKind::Torus)
+        self.kind
+            .is_free_band()
             .then(|| self.rim_radius * self.rim_radius / (2.0 * self.hole_depth))
     }
 }

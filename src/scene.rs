@@ -60,7 +60,7 @@ pub enum Load {
 }
 
 /// A validated scene.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
 pub struct Scene {
     pub punch: Punch,
     pub material: Material,
@@ -121,6 +121,11 @@ pub struct SceneSpec {
     /// The directory a relative `punch.profile` of a scene file is read from.
     #[serde(skip)]
     profile_base: Option<std::path::PathBuf>,
+    /// A profile that is neither built in nor a table file: a user's own [`Profile`] type.
+    ///
+    /// [`Profile`]: crate::punch::Profile
+    #[serde(skip)]
+    own_profile: Option<PunchKind>,
 }
 
 impl SceneSpec {
@@ -195,9 +200,18 @@ impl SceneSpec {
         self
     }
 
-    /// Set the punch shape (with the power law's exponent and the table's profile file).
+    /// Set the punch shape (with the power law's exponent and the table's profile file); a
+    /// user's own profile (`PunchKind::new(MyProfile)`) is taken as it is.
     pub fn shape(mut self, kind: PunchKind) -> Self {
-        self.punch.shape = Some(kind.shape_name());
+        if kind.shape_name().is_none() {
+            self.punch.shape = None;
+            self.punch.exponent = None;
+            self.punch.profile = None;
+            self.own_profile = Some(kind);
+            return self;
+        }
+        self.own_profile = None;
+        self.punch.shape = kind.shape_name();
         self.punch.exponent = kind.exponent();
         if let Some(table) = kind.table() {
             self = self.profile(std::path::Path::new(table.source()));
@@ -209,6 +223,7 @@ impl SceneSpec {
     /// scene file's values stay where the command line is silent).
     pub fn shape_named(mut self, name: Option<PunchName>, exponent: Option<f64>) -> Self {
         if let Some(name) = name {
+            self.own_profile = None;
             if name != self.punch.shape.unwrap_or(name) {
                 // The other shape's parameters do not carry over.
                 self.punch.exponent = None;
@@ -328,10 +343,11 @@ fn positive(field: &str, value: f64) -> Result<f64> {
 }
 
 impl SceneSpec {
-    /// Apply defaults (`a = 1`, `E* = 1`, `h = 1`, depth 1 for flat punches; the tolerance is
-    /// left to the method when not given)
-    /// and check every rule. The error names the field and the rule it breaks.
-    pub fn validate(self) -> Result<Scene> {
+    /// The punch named (shape, exponent, profile file) or given as a user's own profile.
+    fn punch_kind(&self) -> Result<PunchKind> {
+        if let Some(kind) = &self.own_profile {
+            return Ok(kind.clone());
+        }
         let name = self.punch.shape.ok_or_else(|| {
             Error::invalid(
                 "punch.shape",
@@ -346,26 +362,33 @@ impl SceneSpec {
                 Some(base) => base.join(p),
                 None => p.clone(),
             });
-        let kind = name
-            .with_parameters(self.punch.exponent, profile.as_deref())
+        name.with_parameters(self.punch.exponent, profile.as_deref())
             .map_err(|e| match e {
                 Error::InvalidScene { field, rule } => {
                     Error::invalid(&format!("punch.{field}"), rule)
                 }
                 other => other,
-            })?;
+            })
+    }
+
+    /// Apply defaults (`a = 1`, `E* = 1`, `h = 1`, depth 1 for flat punches; the tolerance is
+    /// left to the method when not given)
+    /// and check every rule. The error names the field and the rule it breaks.
+    pub fn validate(self) -> Result<Scene> {
+        let kind = self.punch_kind()?;
         let rim_radius = positive("punch.rim_radius", self.punch.rim_radius.unwrap_or(1.0))?;
 
-        let inner_radius = match (kind, self.punch.inner_radius, self.inner_ratio) {
-            (PunchKind::FlatAnnulus, Some(_), Some(_)) => {
+        let fixed_hole = kind.has_fixed_hole();
+        let inner_radius = match (fixed_hole, self.punch.inner_radius, self.inner_ratio) {
+            (true, Some(_), Some(_)) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
                     "is given twice (as inner_radius and as --eps); give one",
                 ))
             }
-            (PunchKind::FlatAnnulus, Some(b), None) => finite("punch.inner_radius", b)?,
-            (PunchKind::FlatAnnulus, None, Some(eps)) => finite("eps", eps)? * rim_radius,
-            (PunchKind::FlatAnnulus, None, None) => {
+            (true, Some(b), None) => finite("punch.inner_radius", b)?,
+            (true, None, Some(eps)) => finite("eps", eps)? * rim_radius,
+            (true, None, None) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
                     "is required for shape = flat-annulus (or pass --eps b/a)",
@@ -383,7 +406,7 @@ impl SceneSpec {
             }
             _ => 0.0,
         };
-        if kind == PunchKind::FlatAnnulus && !(0.0..rim_radius).contains(&inner_radius) {
+        if fixed_hole && !(0.0..rim_radius).contains(&inner_radius) {
             return Err(Error::invalid(
                 "punch.inner_radius",
                 format!(
@@ -395,26 +418,27 @@ impl SceneSpec {
             ));
         }
 
-        let hole_depth = match (kind, self.punch.hole_depth, self.punch.tube_radius) {
-            (_, _, Some(_)) if kind != PunchKind::Torus => {
+        let free_band = kind.is_free_band();
+        let hole_depth = match (free_band, self.punch.hole_depth, self.punch.tube_radius) {
+            (false, _, Some(_)) => {
                 return Err(Error::invalid(
                     "punch.tube_radius",
                     format!("applies only to shape = torus, not {kind}"),
                 ))
             }
-            (PunchKind::Torus, Some(_), _) => {
+            (true, Some(_), _) => {
                 return Err(Error::invalid(
                     "punch.hole_depth",
                     "does not apply to the torus: its depth scale h = a²/(2 rho) follows from \
                      punch.tube_radius",
                 ))
             }
-            (PunchKind::Torus, None, Some(rho)) => {
+            (true, None, Some(rho)) => {
                 let rho = positive("punch.tube_radius", rho)?;
                 let h = rim_radius * rim_radius / (2.0 * rho);
                 finite("punch.tube_radius", h).and_then(|h| positive("punch.tube_radius", h))?
             }
-            (PunchKind::Torus, None, None) => {
+            (true, None, None) => {
                 return Err(Error::invalid(
                     "punch.tube_radius",
                     "is required for shape = torus (--tube-radius RHO): the gap is \
@@ -435,7 +459,7 @@ impl SceneSpec {
         };
 
         let material = self.material.validate()?;
-        let load = self.load.validate(kind)?;
+        let load = self.load.validate(kind.clone())?;
         let tolerance = match self.accuracy.tolerance {
             Some(t) => {
                 let t = positive("accuracy.tolerance", t)?;
@@ -585,7 +609,7 @@ mod tests {
     #[test]
     fn defaults_give_dimensionless_scene() {
         let s = SceneSpec::default()
-            .shape(PunchKind::Cone)
+            .shape(PunchKind::CONE)
             .depth(2.0)
             .validate()
             .unwrap();

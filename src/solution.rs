@@ -3,7 +3,7 @@
 
 use serde::Serialize;
 
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 
 /// One sample of the contact pressure.
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
@@ -177,6 +177,30 @@ pub fn cone_hole_lower_bound(depth: f64) -> f64 {
 }
 
 impl Solution {
+    /// A concave punch's full contact only at or beyond its closure ([`crate::punch::Profile::closure`],
+    /// less the method's own error in the depth); a hole that never closes may be resolved as
+    /// closed only with an error estimate to say how wide it is.
+    fn check_closure(
+        &self,
+        fail: impl Fn(String) -> crate::error::Result<()>,
+    ) -> crate::error::Result<()> {
+        let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
+        let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
+        match self.punch.closure().map(|(depth, _)| depth) {
+            Some(closure) if depth_over_hole >= closure * (1.0 - slack) => Ok(()),
+            None if self.error_estimate.is_some() => Ok(()),
+            closure => fail(format!(
+                "full contact at d/h = {}: the {} reaches it only at d/h >= {}",
+                crate::error::show(depth_over_hole),
+                self.punch,
+                closure.map_or(
+                    "infinity (its hole never closes)".into(),
+                    crate::error::show
+                )
+            )),
+        }
+    }
+
     /// Refuse a state that cannot exist before anyone sees it: every number finite, `0 <= eps < 1`,
     /// depth and force positive (the punch presses), the dimensionless functions positive and
     /// consistent with the scene's `eps`, full contact (`eps = 0`) only for the flat punch and the
@@ -256,8 +280,23 @@ impl Solution {
             }
         }
         if self.eps == 0.0 {
-            match self.punch {
-                PunchKind::Cone => {
+            match self.punch.contact() {
+                Contact::Disk => {}
+                Contact::FixedAnnulus => {
+                    return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
+                }
+                Contact::FreeBand => {
+                    return fail(format!(
+                        "full contact: the {}'s contact never reaches the axis (its gap is a \
+                         conical dimple there, tensile at the apex in full contact)",
+                        self.punch.name()
+                    ))
+                }
+                // The cone by its gap (the power shape with n = 1 is checked by its closure).
+                Contact::RimAndFreeInner
+                    if self.punch.power_law_exponent() == Some(1.0)
+                        && self.punch.exponent_parameter().is_none() =>
+                {
                     // The cone never closes, but its hole shrinks fast with depth: a
                     // discretisation may resolve it as closed when its estimate of `eps` is at
                     // least the hole there (`eps = 0` within the estimate then holds the true
@@ -282,65 +321,7 @@ impl Solution {
                         });
                     }
                 }
-                // The sphere is the power law with n = 2 (closure at d = 3h).
-                PunchKind::Sphere | PunchKind::Power(_) => {
-                    let n = self.punch.concave_exponent().unwrap_or(f64::NAN);
-                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
-                    // Allow the method's own error in the depth.
-                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
-                    match crate::reference::power_law::closure_depth(n) {
-                        Some(closure) if depth_over_hole >= closure * (1.0 - slack) => {}
-                        Some(closure) => {
-                            return fail(format!(
-                                "full contact at d/h = {}: the {} reaches it only at d/h >= {}",
-                                crate::error::show(depth_over_hole),
-                                self.punch,
-                                crate::error::show(closure)
-                            ))
-                        }
-                        // Like the cone's, the hole of n <= 1 never closes; a discretisation
-                        // may resolve it as closed only with an estimate to say how wide it is.
-                        None if self.error_estimate.is_some() => {}
-                        None => {
-                            return fail(format!(
-                                "full contact without an error estimate: the {} with n <= 1 \
-                                 never closes",
-                                self.punch
-                            ))
-                        }
-                    }
-                }
-                PunchKind::Table(t) => {
-                    let depth_over_hole = self.gamma1.unwrap_or(f64::NAN);
-                    let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
-                    let closure =
-                        crate::reference::mdr::table_full_contact(t.profile()).closure_depth;
-                    match closure {
-                        Some(closure) if depth_over_hole >= closure * (1.0 - slack) => {}
-                        None if self.error_estimate.is_some() => {}
-                        _ => {
-                            return fail(format!(
-                                "full contact at d/h = {}: the {} reaches it only at d/h >= {}",
-                                crate::error::show(depth_over_hole),
-                                self.punch,
-                                closure.map_or("infinity (a slope at the axis)".into(), |c| {
-                                    crate::error::show(c)
-                                })
-                            ))
-                        }
-                    }
-                }
-                PunchKind::FlatAnnulus => {
-                    return fail("the flat annulus has a hole: b/a = 0 is the flat punch".into())
-                }
-                PunchKind::Torus => {
-                    return fail(
-                        "full contact: the torus's contact never reaches the axis (its gap is a \
-                         conical dimple there, tensile at the apex in full contact)"
-                            .into(),
-                    )
-                }
-                PunchKind::Flat => {}
+                Contact::RimAndFreeInner => self.check_closure(fail)?,
             }
         }
         if let Some(p) = self
@@ -372,7 +353,7 @@ mod tests {
     /// before it had a part of its own), absent for other methods, and read back as it was.
     #[test]
     fn fem_provenance_keys_are_the_solutions_own() {
-        let other = state(PunchKind::Sphere, 0.2, 1.5, 2.0);
+        let other = state(PunchKind::SPHERE, 0.2, 1.5, 2.0);
         let json = serde_json::to_value(&other).unwrap();
         assert!(json.get("dofs").is_none() && json.get("fem").is_none());
         let back: Solution = serde_json::from_value(json).unwrap();
@@ -456,7 +437,7 @@ mod tests {
         let bem = crate::bem::ring_contact::RingBemSolver::new();
         for depth in [2.0, 3.0, 4.0, 6.0, 8.0, 10.5, 12.0, 13.0, 14.0, 15.0] {
             let hole = bem
-                .concave_at_depth(PunchKind::Cone, depth, 1e-9)
+                .concave_at_depth(&PunchKind::CONE, depth, 1e-9)
                 .unwrap()
                 .eps;
             let bound = cone_hole_lower_bound(depth);
@@ -480,7 +461,7 @@ mod tests {
 
     #[test]
     fn an_underflowed_force_is_refused_with_short_numbers_and_the_cause() {
-        let mut tiny = state(PunchKind::Cone, 0.45, 2e-301, 0.0);
+        let mut tiny = state(PunchKind::CONE, 0.45, 2e-301, 0.0);
         tiny.gamma2 = Some(1.8);
         let message = tiny.check_plausible().unwrap_err().to_string();
         assert!(message.contains("force underflows"), "{message}");
@@ -490,53 +471,53 @@ mod tests {
 
     #[test]
     fn impossible_states_are_refused() {
-        assert!(state(PunchKind::Cone, 0.45, 2.0, 3.6)
+        assert!(state(PunchKind::CONE, 0.45, 2.0, 3.6)
             .check_plausible()
             .is_ok());
         // A coarse mesh that lost its whole contact: eps = 1 with a positive force.
-        assert!(state(PunchKind::Cone, 1.0, 2.0, 3.6)
+        assert!(state(PunchKind::CONE, 1.0, 2.0, 3.6)
             .check_plausible()
             .is_err());
         // Overflow.
-        assert!(state(PunchKind::Sphere, 0.3, 1.0, f64::INFINITY)
+        assert!(state(PunchKind::SPHERE, 0.3, 1.0, f64::INFINITY)
             .check_plausible()
             .is_err());
         // Force and depth of opposite signs.
-        assert!(state(PunchKind::Cone, 0.45, 2.0, -3.6)
+        assert!(state(PunchKind::CONE, 0.45, 2.0, -3.6)
             .check_plausible()
             .is_err());
         // Full contact where it cannot exist: the cone with an estimate smaller than its hole
         // there (or without an estimate), and the sphere below d = 3h.
-        assert!(state(PunchKind::Cone, 0.0, 5.0, 10.0)
+        assert!(state(PunchKind::CONE, 0.0, 5.0, 10.0)
             .check_plausible()
             .is_err());
-        assert!(state(PunchKind::Cone, 0.0, 50.0, 100.0)
+        assert!(state(PunchKind::CONE, 0.0, 50.0, 100.0)
             .check_plausible()
             .is_ok());
-        let mut without_estimate = state(PunchKind::Cone, 0.0, 50.0, 100.0);
+        let mut without_estimate = state(PunchKind::CONE, 0.0, 50.0, 100.0);
         without_estimate.error_estimate = None;
         assert!(without_estimate.check_plausible().is_err());
         // At 13h the hole is 4.8e-4 a (ring BEM): closed within 8.2e-4 holds it (the FEM's P2
         // answer at --tol 1e-3), closed within 1e-4 does not; nor, at 5h (a hole of 7.8e-2 a),
         // closed within 5e-2.
-        let mut closed_at_13 = state(PunchKind::Cone, 0.0, 13.0, 25.6);
+        let mut closed_at_13 = state(PunchKind::CONE, 0.0, 13.0, 25.6);
         closed_at_13.error_estimate = Some(8.2e-4);
         assert!(closed_at_13.check_plausible().is_ok());
         closed_at_13.error_estimate = Some(1e-4);
         assert!(closed_at_13.check_plausible().is_err());
-        let mut closed_at_5 = state(PunchKind::Cone, 0.0, 5.0, 10.0);
+        let mut closed_at_5 = state(PunchKind::CONE, 0.0, 5.0, 10.0);
         closed_at_5.error_estimate = Some(5e-2);
         assert!(closed_at_5.check_plausible().is_err());
         // Deeper than the ring BEM's table: at 20h the hole is about 5.6e-6 a (asymptote).
-        let mut closed_at_20 = state(PunchKind::Cone, 0.0, 20.0, 40.0);
+        let mut closed_at_20 = state(PunchKind::CONE, 0.0, 20.0, 40.0);
         closed_at_20.error_estimate = Some(1e-5);
         assert!(closed_at_20.check_plausible().is_ok());
         closed_at_20.error_estimate = Some(1e-6);
         assert!(closed_at_20.check_plausible().is_err());
-        assert!(state(PunchKind::Sphere, 0.0, 2.5, 5.0)
+        assert!(state(PunchKind::SPHERE, 0.0, 2.5, 5.0)
             .check_plausible()
             .is_err());
-        assert!(state(PunchKind::Sphere, 0.0, 3.5, 6.3)
+        assert!(state(PunchKind::SPHERE, 0.0, 3.5, 6.3)
             .check_plausible()
             .is_ok());
     }

@@ -83,8 +83,8 @@ fn the_outer_edge_governs_and_edge_intensities_are_consistent() {
 fn concave_critical_state_satisfies_griffith_in_a_direct_solve() {
     // Formula route (superposition, κ_in of the flat annulus) against a fresh BEM solve of the
     // adhesive contact at the critical state: G_inner = Δw and the same rim intensity.
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        let r = adhesion::concave(&RingBemSolver::new(), kind, 1.0).unwrap();
+    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
+        let r = adhesion::concave(&RingBemSolver::new(), kind.clone(), 1.0).unwrap();
         let ratio = r.direct_inner_energy_ratio.unwrap();
         assert!((ratio - 1.0).abs() < 1e-8, "{kind}: G/dw = {ratio}");
         assert!(r.direct_rim_difference.unwrap().abs() < 1e-8);
@@ -105,10 +105,10 @@ fn full_contact_constants_match_the_disk_bem_for_the_sphere() {
     let profile: Vec<f64> = system
         .radii()
         .iter()
-        .map(|&r| -PunchKind::Sphere.gap_shape(r))
+        .map(|&r| -PunchKind::SPHERE.gap_shape(r))
         .collect();
     let field = system.solve(&profile).unwrap();
-    let (c_f, kappa_h) = full_contact_constants(PunchKind::Sphere);
+    let (c_f, kappa_h) = full_contact_constants(&PunchKind::SPHERE).unwrap();
     assert!((-0.5 * field.force - c_f).abs() < 1e-12);
     assert!((system.rim_stress_intensity(&field) * PI.sqrt() - kappa_h).abs() < 1e-10);
 }
@@ -118,7 +118,7 @@ fn strong_adhesion_leaves_no_stable_annular_state() {
     // Finding: for d0/h = 10 F(eps) has no stationary point on 0.004..0.9999: the annular
     // contact is unstable under fixed load, and pull-off needs the full-contact branch, whose rim
     // holds up to F/F0 = -1 - (c_F + κ_h)/(d0/h).
-    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::Sphere, 10.0).unwrap();
+    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::SPHERE, 10.0).unwrap();
     assert!(r.fixed_load.is_none() && r.fixed_load_note.is_some());
     let expected = -1.0 - (1.0 / 3.0 + 1.0) / 10.0;
     assert!((r.full_contact.pulloff.force - expected).abs() < 1e-12);
@@ -180,7 +180,7 @@ fn no_flat_annulus_bound_is_zero() {
 /// A concave punch's critical states carry bounds; full contact's closed forms are exact.
 #[test]
 fn the_concave_critical_states_carry_error_bounds() {
-    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::Sphere, 1.0).unwrap();
+    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::SPHERE, 1.0).unwrap();
     for c in [&r.fixed_load, &r.fixed_grips].into_iter().flatten() {
         let bound = c.error_bound.expect("a bound");
         assert!(bound > 0.0 && bound < 1e-6, "{c:?}");
@@ -231,14 +231,16 @@ fn hole_clearances(kind: PunchKind, eps: f64, depth: f64) -> Vec<f64> {
 #[test]
 fn a_steep_power_laws_adhesive_branch_ends_where_its_hole_meets_the_floor() {
     let solver = RingBemSolver::new();
-    let kind = PunchKind::Power(ringcontact::punch::Exponent::new(20.0).unwrap());
+    let kind = PunchKind::power(ringcontact::punch::Exponent::new(20.0).unwrap());
     let s = 0.5;
-    let r = adhesion::concave(&solver, kind, s).unwrap();
+    let r = adhesion::concave(&solver, kind.clone(), s).unwrap();
     let touch = r.floor_contact.clone().expect("the branch meets the floor");
     assert!(r.full_contact.closing_depth.is_none());
     for (eps, clear) in [(touch.eps + 2e-3, true), (touch.eps - 2e-3, false)] {
-        let depth = adhesion::branch_point(&solver, kind, eps).unwrap().depth(s);
-        let least = least_hole_clearance(kind, eps, depth);
+        let depth = adhesion::branch_point(&solver, kind.clone(), eps)
+            .unwrap()
+            .depth(s);
+        let least = least_hole_clearance(kind.clone(), eps, depth);
         assert_eq!(least >= 0.0, clear, "eps = {eps}: clearance {least:.3e} h");
     }
     let (start, _) = r.stable_branch_fixed_load.expect("a fixed-load branch");
@@ -248,7 +250,7 @@ fn a_steep_power_laws_adhesive_branch_ends_where_its_hole_meets_the_floor() {
     assert!(load.eps > touch.eps);
     assert!((r.direct_inner_energy_ratio.unwrap() - 1.0).abs() < 1e-8);
     // The sphere's hole closes before its floor is met: no touch, a closing depth.
-    let sphere = adhesion::concave(&solver, PunchKind::Sphere, s).unwrap();
+    let sphere = adhesion::concave(&solver, PunchKind::SPHERE, s).unwrap();
     assert!(sphere.floor_contact.is_none() && sphere.full_contact.closing_depth.is_some());
 }
 
@@ -258,7 +260,7 @@ fn a_steep_power_laws_adhesive_branch_ends_where_its_hole_meets_the_floor() {
 #[test]
 fn a_power_law_with_a_wall_as_steep_as_n_50_has_a_jkr_analysis() {
     let solver = RingBemSolver::new();
-    let kind = PunchKind::Power(ringcontact::punch::Exponent::new(50.0).unwrap());
+    let kind = PunchKind::power(ringcontact::punch::Exponent::new(50.0).unwrap());
     let r = adhesion::concave(&solver, kind, 5.0).unwrap();
     let load = r.fixed_load.as_ref().expect("a fixed-load pull-off");
     assert!(load.force < 0.0 && load.error_bound.is_some_and(|b| b < 1e-8));
@@ -279,17 +281,17 @@ fn a_power_law_with_a_wall_as_steep_as_n_50_has_a_jkr_analysis() {
 fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() {
     let solver = RingBemSolver::new();
     let ratios = [1e-4, 1e-3, 0.01, 0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 0.999];
-    let power = |n| PunchKind::Power(ringcontact::punch::Exponent::new(n).unwrap());
-    for kind in [power(0.25), PunchKind::Cone, power(1.5), PunchKind::Sphere] {
+    let power = |n| PunchKind::power(ringcontact::punch::Exponent::new(n).unwrap());
+    for kind in [power(0.25), PunchKind::CONE, power(1.5), PunchKind::SPHERE] {
         assert!(!kind.may_meet_hole_floor());
         for eps in ratios {
             let depth = solver
-                .free_inner_edge_field(kind, eps, 1e-9)
+                .free_inner_edge_field(&kind, eps, 1e-9)
                 .unwrap()
                 .gamma1
                 .unwrap();
             // Clear means not below the rounding of `w` and `d - g`, both of order `d`.
-            let least = least_hole_clearance(kind, eps, depth);
+            let least = least_hole_clearance(kind.clone(), eps, depth);
             assert!(
                 least >= -1e-14 * depth.max(1.0),
                 "{kind} at eps = {eps}: clearance {least:.3e} h"
@@ -297,7 +299,7 @@ fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() 
         }
     }
     for eps in ratios {
-        let rise = hole_clearances(PunchKind::FlatAnnulus, eps, 1.0)
+        let rise = hole_clearances(PunchKind::FLAT_ANNULUS, eps, 1.0)
             .into_iter()
             .fold(f64::NEG_INFINITY, f64::max);
         assert!(

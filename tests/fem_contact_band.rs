@@ -33,20 +33,20 @@ fn the_banded_solve_equals_the_refactorising_loop_with_one_factorisation() {
     let mesh = committed(1);
     let k = stiffness(&mesh);
     let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
-    for (kind, depth) in [(PunchKind::Cone, 2.0), (PunchKind::Sphere, 1.5)] {
+    for (kind, depth) in [(PunchKind::CONE, 2.0), (PunchKind::SPHERE, 1.5)] {
         let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
         let (reference, _) = contact
-            .concave(&mut reference_solver, kind, depth, None)
+            .concave(&mut reference_solver, kind.clone(), depth, None)
             .unwrap();
         // Warm starts on both sides of the edge, within a band of 0.03 a.
         for offset in [-0.02, -0.005, 0.004, 0.015] {
             let guess = reference.inner_radius + offset;
             let mut solver = ConstrainedCholesky::new(&k).unwrap();
-            let mut system = contact.banded_system(&mut solver, kind, guess + 0.03);
+            let mut system = contact.banded_system(&mut solver, kind.clone(), guess + 0.03);
             let (banded, _, was_banded) = contact
                 .concave_with(
                     &mut system,
-                    kind,
+                    kind.clone(),
                     depth,
                     Some(contact.active_set_for_radius(guess)),
                 )
@@ -72,20 +72,20 @@ fn a_band_that_misses_the_edge_is_moved_or_replaced_never_wrong() {
     let mesh = committed(0);
     let k = stiffness(&mesh);
     let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
-    let (kind, depth) = (PunchKind::Cone, 2.0);
+    let (kind, depth) = (PunchKind::CONE, 2.0);
     let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
     let (reference, _) = contact
-        .concave(&mut reference_solver, kind, depth, None)
+        .concave(&mut reference_solver, kind.clone(), depth, None)
         .unwrap();
     // A core that starts below the true edge (the warm start is far too low, the band narrow):
     // core nodes must be released, and the answer must still be the reference.
     for guess in [0.1, 0.3, 0.44] {
         let mut solver = ConstrainedCholesky::new(&k).unwrap();
-        let mut system = contact.banded_system(&mut solver, kind, guess + 1e-3);
+        let mut system = contact.banded_system(&mut solver, kind.clone(), guess + 1e-3);
         let (solution, _, _) = contact
             .concave_with(
                 &mut system,
-                kind,
+                kind.clone(),
                 depth,
                 Some(contact.active_set_for_radius(guess)),
             )
@@ -106,11 +106,11 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
     use ringcontact::fem::solver::{FemLoad, FemOptions};
     let path = solver::mesh_directory().join("disk-L1.msh");
     let cases = [
-        (PunchKind::Cone, 0.5, Degree::Quadratic),
-        (PunchKind::Cone, 2.0, Degree::Cubic),
-        (PunchKind::Cone, 4.0, Degree::Quadratic),
-        (PunchKind::Sphere, 0.5, Degree::Quadratic),
-        (PunchKind::Sphere, 2.8, Degree::Cubic),
+        (PunchKind::CONE, 0.5, Degree::Quadratic),
+        (PunchKind::CONE, 2.0, Degree::Cubic),
+        (PunchKind::CONE, 4.0, Degree::Quadratic),
+        (PunchKind::SPHERE, 0.5, Degree::Quadratic),
+        (PunchKind::SPHERE, 2.8, Degree::Cubic),
     ];
     for (kind, depth, degree) in cases {
         let mesh = read_msh(&path).unwrap().with_degree(degree);
@@ -123,7 +123,7 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
         let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
         let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
         let (reference, _) = contact
-            .concave(&mut reference_solver, kind, depth, None)
+            .concave(&mut reference_solver, kind.clone(), depth, None)
             .unwrap();
         let options = FemOptions {
             linear_solver: Default::default(),
@@ -133,7 +133,8 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
             poisson_ratio: 0.0,
             far_field: FarField::Fixed,
         };
-        let state = solver::solve(kind, 0.0, FemLoad::ConcaveDepth(depth), &options).unwrap();
+        let state =
+            solver::solve(kind.clone(), 0.0, FemLoad::ConcaveDepth(depth), &options).unwrap();
         let force = 2.0 * state.gamma2.unwrap();
         let relative = (force / reference.force - 1.0).abs();
         println!(

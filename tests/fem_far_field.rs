@@ -27,13 +27,13 @@ fn a_small_domain_with_the_boussinesq_far_field_is_nearly_unbiased() {
     // the discretisation error of this coarse mesh and an O((a/R)²) remainder.
     let fixed = solve_on(
         "small-domain-R5.msh",
-        PunchKind::Flat,
+        PunchKind::FLAT,
         FemLoad::Flat,
         FarField::Fixed,
     );
     let far = solve_on(
         "small-domain-R5.msh",
-        PunchKind::Flat,
+        PunchKind::FLAT,
         FemLoad::Flat,
         FarField::Boussinesq,
     );
@@ -49,8 +49,8 @@ fn the_far_field_removes_the_one_over_r_bias_on_the_default_domain() {
     // far-field result is closer to the exact value on every level of the committed family.
     for level in 0..3 {
         let mesh = format!("disk-L{level}.msh");
-        let fixed = solve_on(&mesh, PunchKind::Flat, FemLoad::Flat, FarField::Fixed);
-        let far = solve_on(&mesh, PunchKind::Flat, FemLoad::Flat, FarField::Boussinesq);
+        let fixed = solve_on(&mesh, PunchKind::FLAT, FemLoad::Flat, FarField::Fixed);
+        let far = solve_on(&mesh, PunchKind::FLAT, FemLoad::Flat, FarField::Boussinesq);
         let shift = fixed.gamma.unwrap() - far.gamma.unwrap();
         println!(
             "L{level}: fixed {:.3e}, Boussinesq {:.3e}, shift {shift:.3e}",
@@ -63,14 +63,14 @@ fn the_far_field_removes_the_one_over_r_bias_on_the_default_domain() {
     }
     // The cone at d = 2h on the finest committed level, against the ring BEM.
     let bem = RingBemSolver::new()
-        .concave_at_depth(PunchKind::Cone, 2.0, 1e-11)
+        .concave_at_depth(&PunchKind::CONE, 2.0, 1e-11)
         .unwrap()
         .gamma2
         .unwrap();
     let error = |far_field| {
         let s = solve_on(
             "disk-L2.msh",
-            PunchKind::Cone,
+            PunchKind::CONE,
             FemLoad::ConcaveDepth(2.0),
             far_field,
         );
@@ -99,7 +99,7 @@ fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
             poisson_ratio: 0.3,
             far_field,
         };
-        let state = solver::solve(PunchKind::Flat, 0.0, FemLoad::Flat, &options).unwrap();
+        let state = solver::solve(PunchKind::FLAT, 0.0, FemLoad::Flat, &options).unwrap();
         let mesh = &state.field.mesh;
         let u = &state.field.displacement;
         assert_eq!(u.len(), 2 * mesh.nodes.len());

@@ -99,13 +99,13 @@ fn grid_bem_agrees_with_the_ring_bem_to_its_discretisation_error() {
     let ring = RingBemSolver::new();
     let n = 128;
     let flat =
-        grid_contact::solve(PunchKind::FlatAnnulus, 0.5, n, GridLoad::Depth(1.0), 1e-10).unwrap();
+        grid_contact::solve(PunchKind::FLAT_ANNULUS, 0.5, n, GridLoad::Depth(1.0), 1e-10).unwrap();
     let g = ring.flat(0.5, 1e-10).unwrap().gamma.unwrap();
     let e = (flat.gamma.unwrap() - g) / g;
     assert!(e < 0.0 && e > -3e-3, "flat annulus {e}");
-    for (kind, d) in [(PunchKind::Cone, 2.0), (PunchKind::Sphere, 1.5)] {
-        let grid = grid_contact::solve(kind, 0.0, n, GridLoad::Depth(d), 1e-10).unwrap();
-        let r = ring.concave_at_depth(kind, d, 1e-10).unwrap();
+    for (kind, d) in [(PunchKind::CONE, 2.0), (PunchKind::SPHERE, 1.5)] {
+        let grid = grid_contact::solve(kind.clone(), 0.0, n, GridLoad::Depth(d), 1e-10).unwrap();
+        let r = ring.concave_at_depth(&kind, d, 1e-10).unwrap();
         let e = (grid.gamma2.unwrap() - r.gamma2.unwrap()) / r.gamma2.unwrap();
         assert!(e < 0.0 && e > -3e-3, "{kind}: {e}");
         assert!(
@@ -120,9 +120,9 @@ fn grid_bem_agrees_with_the_ring_bem_to_its_discretisation_error() {
 #[test]
 fn force_control_reproduces_depth_control() {
     let by_depth =
-        grid_contact::solve(PunchKind::Sphere, 0.0, 64, GridLoad::Depth(1.5), 1e-11).unwrap();
+        grid_contact::solve(PunchKind::SPHERE, 0.0, 64, GridLoad::Depth(1.5), 1e-11).unwrap();
     let by_force = grid_contact::solve(
-        PunchKind::Sphere,
+        PunchKind::SPHERE,
         0.0,
         64,
         GridLoad::Force(by_depth.gamma2.unwrap()),
@@ -135,7 +135,7 @@ fn force_control_reproduces_depth_control() {
 #[test]
 fn non_convergence_and_bad_grids_are_errors() {
     let op = GridOperator::new(64, 2.0 / 64.0);
-    let punch = grid_contact::discretise(PunchKind::Cone, 0.0, 64);
+    let punch = grid_contact::discretise(PunchKind::CONE, 0.0, 64);
     let e = solve_contact(
         &op,
         &punch.allowed,
@@ -148,7 +148,7 @@ fn non_convergence_and_bad_grids_are_errors() {
     assert!(matches!(e, Error::NoConvergence { .. }), "{e}");
     assert!(e.to_string().contains("cap of 3 iterations"));
     assert!(matches!(
-        grid_contact::solve(PunchKind::Flat, 0.0, 4, GridLoad::Depth(1.0), 1e-10),
+        grid_contact::solve(PunchKind::FLAT, 0.0, 4, GridLoad::Depth(1.0), 1e-10),
         Err(Error::OutOfRange { .. })
     ));
 }
@@ -161,10 +161,10 @@ fn non_convergence_and_bad_grids_are_errors() {
 #[test]
 fn the_grid_declines_a_contact_that_is_not_one_ring_where_the_ring_bem_does() {
     let ring = RingBemSolver::new();
-    let cube = PunchKind::Power(ringcontact::punch::Exponent::new(3.0).unwrap());
+    let cube = PunchKind::power(ringcontact::punch::Exponent::new(3.0).unwrap());
     for depth in [2.3, 2.4] {
-        let by_ring = ring.concave_at_depth(cube, depth, 1e-9);
-        let by_grid = grid_contact::solve(cube, 0.0, 128, GridLoad::Depth(depth), 1e-10);
+        let by_ring = ring.concave_at_depth(&cube, depth, 1e-9);
+        let by_grid = grid_contact::solve(cube.clone(), 0.0, 128, GridLoad::Depth(depth), 1e-10);
         match (&by_ring, &by_grid) {
             // Read off the contact area, the grid's ratio is good to about a cell (1.6e-2 a).
             (Ok(r), Ok(g)) => assert!(
@@ -180,5 +180,5 @@ fn the_grid_declines_a_contact_that_is_not_one_ring_where_the_ring_bem_does() {
             _ => panic!("d = {depth}: ring {by_ring:?}, grid {by_grid:?}"),
         }
     }
-    assert!(ring.concave_at_depth(cube, 2.4, 1e-9).is_err());
+    assert!(ring.concave_at_depth(&cube, 2.4, 1e-9).is_err());
 }

@@ -44,7 +44,7 @@ fn auto(spec: SceneSpec) -> ringcontact::solution::Solution {
 fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     let s = auto(
         SceneSpec::default()
-            .shape(PunchKind::Cone)
+            .shape(PunchKind::CONE)
             .depth(2.0)
             .tolerance(1e-6),
     );
@@ -54,7 +54,7 @@ fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     // elements would have to be below 1e-10 a; the narrow-ring asymptote (bound 4e-10) answers.
     let s = auto(
         SceneSpec::default()
-            .shape(PunchKind::FlatAnnulus)
+            .shape(PunchKind::FLAT_ANNULUS)
             .inner_ratio(0.99999)
             .tolerance(1e-6),
     );
@@ -68,7 +68,7 @@ fn auto_picks_the_cheapest_method_that_meets_the_tolerance() {
     }
     let s = auto(
         SceneSpec::default()
-            .shape(PunchKind::Cone)
+            .shape(PunchKind::CONE)
             .depth(60.0)
             .tolerance(1e-3),
     );
@@ -82,7 +82,7 @@ fn fem_fields_are_written_as_vtk() {
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("flat.vtu");
     let scene = SceneSpec::default()
-        .shape(PunchKind::Flat)
+        .shape(PunchKind::FLAT)
         .validate()
         .unwrap();
     let options = MethodOptions {

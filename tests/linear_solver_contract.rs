@@ -23,11 +23,11 @@ fn ring_bem(kind: PunchKind, eps: f64, load: FemLoad) -> (f64, f64) {
     match load {
         FemLoad::Flat => (bem.flat(eps, 1e-10).unwrap().gamma.unwrap(), eps),
         FemLoad::ConcaveDepth(d) => {
-            let r = bem.concave_at_depth(kind, d, 1e-10).unwrap();
+            let r = bem.concave_at_depth(&kind, d, 1e-10).unwrap();
             (r.gamma2.unwrap(), r.eps)
         }
         FemLoad::ConcaveForce(f) => {
-            let r = bem.concave_at_force(kind, f, 1e-10).unwrap();
+            let r = bem.concave_at_force(&kind, f, 1e-10).unwrap();
             (r.gamma1.unwrap(), r.eps)
         }
     }
@@ -47,23 +47,23 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
     // them, not 1e-3); their models (1e4-1e5 unknowns) are split over two cores by the native
     // backend.
     let states = [
-        (PunchKind::Flat, 0.0, FemLoad::Flat, Degree::Linear, 1e-2),
+        (PunchKind::FLAT, 0.0, FemLoad::Flat, Degree::Linear, 1e-2),
         (
-            PunchKind::FlatAnnulus,
+            PunchKind::FLAT_ANNULUS,
             0.5,
             FemLoad::Flat,
             Degree::Quadratic,
             1e-3,
         ),
         (
-            PunchKind::Cone,
+            PunchKind::CONE,
             0.0,
             FemLoad::ConcaveDepth(2.0),
             Degree::Quadratic,
             1e-3,
         ),
         (
-            PunchKind::Sphere,
+            PunchKind::SPHERE,
             0.0,
             FemLoad::ConcaveForce(1.5),
             Degree::Cubic,
@@ -71,7 +71,7 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
         ),
     ];
     for (kind, eps, load, degree, tolerance) in states {
-        let (reference, reference_eps) = ring_bem(kind, eps, load);
+        let (reference, reference_eps) = ring_bem(kind.clone(), eps, load);
         let mut answers = Vec::new();
         for far_field in [FarField::Boussinesq, FarField::Fixed] {
             for backend in BACKENDS {
@@ -84,7 +84,7 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
                     far_field,
                 };
                 let label = format!("{kind} {load:?} {degree:?} {far_field:?} {backend:?}");
-                let state = solver::solve(kind, eps, load, &options)
+                let state = solver::solve(kind.clone(), eps, load, &options)
                     .unwrap_or_else(|e| panic!("{label}: {e}"));
                 assert_eq!(state.linear_solver, backend, "{label}");
                 let value = force_like(&state, load);

@@ -67,7 +67,7 @@ fn line_of(text: &str, starts_with: &str) -> usize {
 
 #[test]
 fn the_original_is_accepted() {
-    let gamma = solve_text(&original(), PunchKind::Flat, "original").unwrap();
+    let gamma = solve_text(&original(), PunchKind::FLAT, "original").unwrap();
     assert!((gamma - 1.0).abs() < 0.01, "{gamma}");
 }
 
@@ -78,7 +78,7 @@ fn swapped_far_and_axis_tags_are_an_error() {
     let arc = line_of(&text, "4 4.44");
     let axis = line_of(&text, "5 0 -5 0 0 0 0 1 4");
     let swapped = with_token(&with_token(&text, arc, 8, "4"), axis, 8, "3");
-    let message = solve_text(&swapped, PunchKind::Flat, "swapped").unwrap_err();
+    let message = solve_text(&swapped, PunchKind::FLAT, "swapped").unwrap_err();
     println!("{message}");
     assert!(message.contains("swapped"), "{message}");
 }
@@ -104,7 +104,7 @@ fn a_domain_that_does_not_reach_the_axis_is_an_error() {
             }
         })
         .collect();
-    let message = solve_text(&shifted.join("\n"), PunchKind::Flat, "shifted").unwrap_err();
+    let message = solve_text(&shifted.join("\n"), PunchKind::FLAT, "shifted").unwrap_err();
     println!("{message}");
     assert!(
         message.contains("axis") || message.contains("contact line"),
@@ -142,7 +142,7 @@ fn overlapping_triangles_are_an_error() {
         block + 2,
         format!("{} {} {} {}", max_tag + 1, first[1], first[2], first[3]),
     );
-    let message = solve_text(&out.join("\n"), PunchKind::Flat, "overlap").unwrap_err();
+    let message = solve_text(&out.join("\n"), PunchKind::FLAT, "overlap").unwrap_err();
     println!("{message}");
     assert!(message.contains("overlap"), "{message}");
 }
@@ -151,6 +151,6 @@ fn overlapping_triangles_are_an_error() {
 fn a_concave_punch_on_an_annulus_mesh_is_an_error() {
     let annulus = solver::mesh_directory().join("annulus-0.5-L0.msh");
     let text = std::fs::read_to_string(annulus).unwrap();
-    let message = solve_text(&text, PunchKind::Cone, "annulus").unwrap_err();
+    let message = solve_text(&text, PunchKind::CONE, "annulus").unwrap_err();
     assert!(message.contains("contact line spans"), "{message}");
 }

@@ -271,7 +271,7 @@ fn a_failed_job_leaves_an_error_record_and_merge_names_failed_and_missing_jobs()
     let dir = scratch("fail");
     // The ring BEM has no concave convergence study: this job fails when it runs.
     let failing = Part::ConvergenceLevel {
-        punch: PunchKind::Sphere,
+        punch: PunchKind::SPHERE,
         method: Method::RingBem,
         eps: 0.0,
         depth: 1.5,

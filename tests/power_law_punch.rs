@@ -15,7 +15,7 @@ use ringcontact::reference::power_law;
 use ringcontact::scene::SceneSpec;
 
 fn power(n: f64) -> PunchKind {
-    PunchKind::Power(Exponent::new(n).unwrap())
+    PunchKind::power(Exponent::new(n).unwrap())
 }
 
 fn relative(a: f64, b: f64) -> f64 {
@@ -32,8 +32,8 @@ fn exponents_1_and_2_are_the_cone_and_the_sphere_to_1e_12() {
     // 1e-10: the cone's hole at d/h = 10 (b/a = 3e-3) has a free-edge rounding floor of 2e-11.
     let tol = 1e-10;
     let cases = [
-        (PunchKind::Cone, 1.0, vec![0.3, 1.0, 2.0, 5.0, 10.0]),
-        (PunchKind::Sphere, 2.0, vec![0.3, 1.0, 1.5, 2.9, 3.5, 6.0]),
+        (PunchKind::CONE, 1.0, vec![0.3, 1.0, 2.0, 5.0, 10.0]),
+        (PunchKind::SPHERE, 2.0, vec![0.3, 1.0, 1.5, 2.9, 3.5, 6.0]),
     ];
     for (named, n, depths) in cases {
         let general = power(n);
@@ -41,21 +41,21 @@ fn exponents_1_and_2_are_the_cone_and_the_sphere_to_1e_12() {
         for &d in &depths {
             states.push((
                 format!("d/h = {d}"),
-                solver.concave_at_depth(named, d, tol).unwrap(),
-                solver.concave_at_depth(general, d, tol).unwrap(),
+                solver.concave_at_depth(&named, d, tol).unwrap(),
+                solver.concave_at_depth(&general, d, tol).unwrap(),
             ));
             let f = 0.8 * d;
             states.push((
                 format!("F/(2E*ha) = {f}"),
-                solver.concave_at_force(named, f, tol).unwrap(),
-                solver.concave_at_force(general, f, tol).unwrap(),
+                solver.concave_at_force(&named, f, tol).unwrap(),
+                solver.concave_at_force(&general, f, tol).unwrap(),
             ));
         }
         for eps in [0.01, 0.2, 0.5, 0.9, 0.999] {
             states.push((
                 format!("eps = {eps}"),
-                solver.concave_at_ratio(named, eps, tol).unwrap(),
-                solver.concave_at_ratio(general, eps, tol).unwrap(),
+                solver.concave_at_ratio(&named, eps, tol).unwrap(),
+                solver.concave_at_ratio(&general, eps, tol).unwrap(),
             ));
         }
         for (state, a, b) in states {
@@ -98,7 +98,7 @@ fn full_contact_follows_the_closed_form_within_the_estimate() {
         (1.5, 6.0, 1e-6),
     ];
     for (n, d, tol) in cases {
-        let state = solver.concave_at_depth(power(n), d, tol).unwrap();
+        let state = solver.concave_at_depth(&power(n), d, tol).unwrap();
         let exact = power_law::full_contact_gamma2(n, d).unwrap();
         let error = relative(state.gamma2.unwrap(), exact);
         assert_eq!(state.eps, 0.0, "n = {n}, d/h = {d}: not full contact");
@@ -116,7 +116,7 @@ fn full_contact_follows_the_closed_form_within_the_estimate() {
 fn full_contact_of_a_fractional_exponent_names_why_a_tight_tolerance_fails() {
     let solver = RingBemSolver::new();
     let message = solver
-        .concave_at_depth(power(1.5), 6.0, 1e-9)
+        .concave_at_depth(&power(1.5), 6.0, 1e-9)
         .unwrap_err()
         .to_string();
     assert!(
@@ -124,7 +124,7 @@ fn full_contact_of_a_fractional_exponent_names_why_a_tight_tolerance_fails() {
         "{message}"
     );
     // An even exponent is a polynomial in r²: no such reason is given where it converges.
-    assert!(solver.concave_at_depth(power(4.0), 3.0, 1e-11).is_ok());
+    assert!(solver.concave_at_depth(&power(4.0), 3.0, 1e-11).is_ok());
 }
 
 /// Under a prescribed force past closure the depth follows from the same closed form,
@@ -145,7 +145,7 @@ fn full_contact_under_a_force_follows_the_closed_form_within_the_estimate() {
     ];
     for (n, gamma2, tol) in cases {
         let state = solver
-            .concave_at_force(power(n), gamma2, tol)
+            .concave_at_force(&power(n), gamma2, tol)
             .unwrap_or_else(|e| panic!("n = {n}, γ2 = {gamma2}: {e}"));
         let exact = power_law::full_contact_gamma1(n, gamma2)
             .unwrap_or_else(|| panic!("n = {n}, γ2 = {gamma2} is short of full contact"));
@@ -170,7 +170,7 @@ fn closure_is_where_the_full_contact_pressure_first_vanishes() {
         let closure = power_law::closure_depth(n).unwrap();
         let tol = if n == 4.0 || n == 8.0 { 1e-9 } else { 1e-6 };
         let state = solver
-            .concave_at_depth(power(n), closure * (1.0 + 1e-3), tol)
+            .concave_at_depth(&power(n), closure * (1.0 + 1e-3), tol)
             .unwrap_or_else(|e| panic!("n = {n} just past d_c = {closure}: {e}"));
         assert_eq!(state.eps, 0.0);
         let smallest = state.pressure.iter().map(|p| p.1).fold(f64::MAX, f64::min);
@@ -182,7 +182,7 @@ fn closure_is_where_the_full_contact_pressure_first_vanishes() {
     // n = 4 closes at 7h/3 (hand calculation in reference::power_law); at 2.3 h the ring is
     // touched inside.
     let message = solver
-        .concave_at_depth(power(4.0), 2.3, 1e-9)
+        .concave_at_depth(&power(4.0), 2.3, 1e-9)
         .unwrap_err()
         .to_string();
     assert!(message.contains("disk and an annulus"), "{message}");
@@ -192,7 +192,7 @@ fn closure_is_where_the_full_contact_pressure_first_vanishes() {
     let closure_force = power_law::full_contact_gamma2(3.0, power_law::closure_depth(3.0).unwrap());
     assert!(closure_force.unwrap() > 2.0);
     let message = solver
-        .concave_at_force(power(3.0), 2.0, 1e-9)
+        .concave_at_force(&power(3.0), 2.0, 1e-9)
         .unwrap_err()
         .to_string();
     assert!(message.contains("disk and an annulus"), "{message}");
@@ -206,7 +206,7 @@ fn the_floor_of_the_hole_is_checked() {
     let solver = RingBemSolver::new();
     for eps in [0.3, 0.45] {
         let message = solver
-            .concave_at_ratio(power(3.0), eps, 1e-9)
+            .concave_at_ratio(&power(3.0), eps, 1e-9)
             .unwrap_err()
             .to_string();
         assert!(
@@ -214,12 +214,12 @@ fn the_floor_of_the_hole_is_checked() {
             "{message}"
         );
         assert!(solver
-            .concave_at_ratio(PunchKind::Sphere, eps, 1e-9)
+            .concave_at_ratio(&PunchKind::SPHERE, eps, 1e-9)
             .is_ok());
-        assert!(solver.concave_at_ratio(PunchKind::Cone, eps, 1e-9).is_ok());
+        assert!(solver.concave_at_ratio(&PunchKind::CONE, eps, 1e-9).is_ok());
     }
     // n = 3 at eps = 0.7 is an honest annular state: its hole is clear.
-    assert!(solver.concave_at_ratio(power(3.0), 0.7, 1e-9).is_ok());
+    assert!(solver.concave_at_ratio(&power(3.0), 0.7, 1e-9).is_ok());
 }
 
 /// A steep-walled profile (`n >> 2`: a nearly flat floor, the wall at the rim) is solved on the
@@ -236,7 +236,7 @@ fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
     let solver = RingBemSolver::new();
     let on_rim_branch = |n: f64, state: &ringcontact::bem::ring_contact::RingState| {
         let narrower = 0.9 * state.eps + 0.1;
-        let shallower = solver.concave_at_ratio(power(n), narrower, 1e-9).unwrap();
+        let shallower = solver.concave_at_ratio(&power(n), narrower, 1e-9).unwrap();
         assert!(
             shallower.gamma1.unwrap() < state.gamma1.unwrap()
                 && shallower.gamma2.unwrap() < state.gamma2.unwrap(),
@@ -246,7 +246,7 @@ fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
     for n in [6.0, 12.0, 20.0, 50.0, 100.0] {
         for depth in [0.2, 0.5, 0.8, 0.9, 0.95, 1.0] {
             let state = solver
-                .concave_at_depth(power(n), depth, 1e-9)
+                .concave_at_depth(&power(n), depth, 1e-9)
                 .unwrap_or_else(|e| panic!("n = {n}, d/h = {depth}: {e}"));
             assert!(state.error_estimate <= 1e-9, "n = {n}, d/h = {depth}");
             assert!(relative(state.gamma1.unwrap(), depth) <= 1e-9);
@@ -254,7 +254,7 @@ fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
         }
         for force in [0.1, 0.3, 0.5] {
             let state = solver
-                .concave_at_force(power(n), force, 1e-9)
+                .concave_at_force(&power(n), force, 1e-9)
                 .unwrap_or_else(|e| panic!("n = {n}, F/(2E*ha) = {force}: {e}"));
             assert!(state.error_estimate <= 1e-9, "n = {n}, F/(2E*ha) = {force}");
             assert!(relative(state.gamma2.unwrap(), force) <= 1e-9);
@@ -263,9 +263,9 @@ fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
     }
     // n = 6 at d = 1.8 h is an annular state (refused before); at 2.0 h the surface crosses the
     // floor and the contact is a disk and an annulus.
-    assert!(solver.concave_at_depth(power(6.0), 1.8, 1e-9).is_ok());
+    assert!(solver.concave_at_depth(&power(6.0), 1.8, 1e-9).is_ok());
     let message = solver
-        .concave_at_depth(power(6.0), 2.0, 1e-9)
+        .concave_at_depth(&power(6.0), 2.0, 1e-9)
         .unwrap_err()
         .to_string();
     assert!(message.contains("floor of its hole"), "{message}");
@@ -382,12 +382,12 @@ fn command_line_scene_files_and_json() {
 #[test]
 fn punch_records_round_trip() {
     for kind in [
-        PunchKind::Flat,
-        PunchKind::Cone,
-        PunchKind::Sphere,
+        PunchKind::FLAT,
+        PunchKind::CONE,
+        PunchKind::SPHERE,
         power(2.5),
     ] {
-        let json = serde_json::to_value(kind).unwrap();
+        let json = serde_json::to_value(kind.clone()).unwrap();
         let back: PunchKind = serde_json::from_value(json).unwrap();
         assert_eq!(back, kind);
         assert_eq!(PunchKind::from_label(&kind.label()), Some(kind));

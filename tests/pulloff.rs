@@ -56,7 +56,7 @@ fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
     let cone = CohesiveSurface::new(&response, recess.clone(), negligible).unwrap();
     let state = cone.equilibrium(2.0, &recess).unwrap();
     let ring = RingBemSolver::new()
-        .concave_at_depth(PunchKind::Cone, 2.0, 1e-10)
+        .concave_at_depth(&PunchKind::CONE, 2.0, 1e-10)
         .unwrap();
     let expected = 2.0 * ring.gamma2.unwrap();
     assert!(
@@ -74,7 +74,7 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
         return;
     }
     let case = study::Case {
-        punch: PunchKind::Flat,
+        punch: PunchKind::FLAT,
         eps: 0.0,
         d0_over_h: 0.0,
     };
@@ -111,7 +111,7 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
     }
     let eps = 0.5;
     let case = study::Case {
-        punch: PunchKind::FlatAnnulus,
+        punch: PunchKind::FLAT_ANNULUS,
         eps,
         d0_over_h: 0.0,
     };
@@ -208,7 +208,7 @@ fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() 
     // d0/h = 10: the paper's route on its fitted formulas gives about 1.31 F0 (the disputed
     // "+50 %" regime); the JKR route from full contact 1 + π h/(4 d0) = 1.0785 F0.
     let case = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 10.0,
     };
@@ -311,14 +311,14 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
         serde_json::from_value(record["result"]["sequence"][0].clone()).unwrap();
     entry.hole_reopened_at = Some((-0.34, -0.19));
     let annulus = study::Case {
-        punch: PunchKind::FlatAnnulus,
+        punch: PunchKind::FLAT_ANNULUS,
         eps: 0.9,
         d0_over_h: 0.0,
     };
     assert!(!study::left_the_branch(&annulus, &entry));
     // The same entry for a concave punch is on another branch.
     let cone = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 1.0,
     };
@@ -374,7 +374,7 @@ fn tamaas_pulloff_agrees_with_the_simulation_at_the_same_range() {
 /// The cone at `d0/h = 0.3` (its hole open at `3h`) and level 2 of the adapted family.
 fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::mesh::provider::ProvidedMesh) {
     let case = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 0.3,
     };
@@ -439,7 +439,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
         return;
     }
     let case = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 1.0,
     };
@@ -450,7 +450,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
     // The inner edge crossed many nodes, each a hop that did not end the branch.
     assert!(e.node_hops > 0, "{e:?}");
     let ring = RingBemSolver::new();
-    let jkr = ringcontact::adhesion::concave(&ring, PunchKind::Cone, 1.0).unwrap();
+    let jkr = ringcontact::adhesion::concave(&ring, PunchKind::CONE, 1.0).unwrap();
     let fixed_load = -jkr.fixed_load.as_ref().unwrap().force;
     assert!((fixed_load - 0.5394).abs() < 1e-3, "JKR route {fixed_load}");
     assert_eq!(s.jkr_reference(), Some(fixed_load));
@@ -485,7 +485,7 @@ fn annular_branch_is_declined_where_the_hole_closes_on_touch() {
         return;
     }
     let case = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 3.0,
     };
@@ -534,7 +534,7 @@ fn a_table_of_the_spheres_profile_lets_go_like_the_sphere() {
         of_table < full_contact && of_table > 0.96 * full_contact,
         "table: pull-off {of_table} F0, the sphere's full contact {full_contact} F0"
     );
-    let of_sphere = pulloff(PunchKind::Sphere);
+    let of_sphere = pulloff(PunchKind::SPHERE);
     assert!(
         (of_table - of_sphere).abs() < 1e-3 * of_sphere,
         "table {of_table} F0, sphere {of_sphere} F0"

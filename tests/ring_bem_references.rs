@@ -90,18 +90,18 @@ fn spherical_punch_full_contact_limits() {
     assert_relative_eq!(onset.gamma2.unwrap(), 8.0 / 3.0, max_relative = 1e-12);
     // Beyond: F = 2 E* a (d - h/3).
     for &d in &[3.2, 4.0, 10.0] {
-        let state = solver.concave_at_depth(PunchKind::Sphere, d, TOL).unwrap();
+        let state = solver.concave_at_depth(&PunchKind::SPHERE, d, TOL).unwrap();
         assert_eq!(state.eps, 0.0);
         assert_relative_eq!(state.gamma2.unwrap(), d - 1.0 / 3.0, max_relative = 1e-11);
     }
     // Force control in full contact returns the same relation.
     let state = solver
-        .concave_at_force(PunchKind::Sphere, 3.5, TOL)
+        .concave_at_force(&PunchKind::SPHERE, 3.5, TOL)
         .unwrap();
     assert!((state.gamma1.unwrap() - (3.5 + 1.0 / 3.0)).abs() < 1e-11);
     // The annulus solutions approach (3, 8/3) as eps -> 0.
     let small = solver
-        .concave_at_ratio(PunchKind::Sphere, 1e-3, TOL)
+        .concave_at_ratio(&PunchKind::SPHERE, 1e-3, TOL)
         .unwrap();
     assert!((small.gamma1.unwrap() - 3.0).abs() < 1e-5);
     assert!((small.gamma2.unwrap() - 8.0 / 3.0).abs() < 1e-5);
@@ -113,14 +113,14 @@ fn small_hole_limits_follow_the_full_contact_solutions() {
     // γ1 - γ2 -> 1 - π/4 (cone) and 1/3 (sphere).
     let solver = RingBemSolver::new();
     for &eps in &[0.01, 0.02] {
-        let cone = solver.concave_at_ratio(PunchKind::Cone, eps, TOL).unwrap();
+        let cone = solver.concave_at_ratio(&PunchKind::CONE, eps, TOL).unwrap();
         let diff = cone.gamma1.unwrap() - cone.gamma2.unwrap();
         assert!(
             (diff - (1.0 - PI / 4.0)).abs() < eps.powi(3),
             "cone eps = {eps}: {diff}"
         );
         let sphere = solver
-            .concave_at_ratio(PunchKind::Sphere, eps, TOL)
+            .concave_at_ratio(&PunchKind::SPHERE, eps, TOL)
             .unwrap();
         let diff = sphere.gamma1.unwrap() - sphere.gamma2.unwrap();
         assert!(
@@ -136,7 +136,7 @@ fn cone_depth_grows_like_half_pi_log_one_over_eps() {
     let solver = RingBemSolver::new();
     let g1 = |eps| {
         solver
-            .concave_at_ratio(PunchKind::Cone, eps, TOL)
+            .concave_at_ratio(&PunchKind::CONE, eps, TOL)
             .unwrap()
             .gamma1
             .unwrap()
@@ -149,10 +149,10 @@ fn cone_depth_grows_like_half_pi_log_one_over_eps() {
 fn incremental_stiffness_identity_holds() {
     // docs/conventions.md fact 6: γ2'(eps) = γ(eps) γ1'(eps), γ from an independent flat-annulus solve.
     let solver = RingBemSolver::new();
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
         for &eps in &[0.05, 0.2, 0.5, 0.8, 0.95] {
             let step = 1e-3 * f64::min(eps, 1.0 - eps);
-            let at = |e| solver.concave_at_ratio(kind, e, TOL).unwrap();
+            let at = |e| solver.concave_at_ratio(&kind, e, TOL).unwrap();
             let (p2, p1, m1, m2) = (
                 at(eps + 2.0 * step),
                 at(eps + step),
@@ -198,7 +198,7 @@ fn edge_stress_intensities_follow_from_the_force_derivative() {
 #[test]
 fn collocation_converges_geometrically_to_a_rounding_floor() {
     let rule = TanhSinhRule::new(1.0 / 16.0);
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
         let eps = 0.3;
         let value = |n: usize| {
             let system = RingSystem::assemble(ContactRegion::Annulus { eps }, n, &rule);
@@ -226,11 +226,11 @@ fn collocation_converges_geometrically_to_a_rounding_floor() {
 #[test]
 fn depth_and_force_control_invert_the_contact_ratio() {
     let solver = RingBemSolver::new();
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
+    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
         for &eps in &[0.05, 0.3, 0.6, 0.95] {
-            let direct = solver.concave_at_ratio(kind, eps, 1e-11).unwrap();
+            let direct = solver.concave_at_ratio(&kind, eps, 1e-11).unwrap();
             let by_depth = solver
-                .concave_at_depth(kind, direct.gamma1.unwrap(), 1e-9)
+                .concave_at_depth(&kind, direct.gamma1.unwrap(), 1e-9)
                 .unwrap();
             assert!(
                 (by_depth.eps - eps).abs() < 1e-8,
@@ -243,7 +243,7 @@ fn depth_and_force_control_invert_the_contact_ratio() {
             );
             assert!(by_depth.error_estimate <= 1e-9);
             let by_force = solver
-                .concave_at_force(kind, direct.gamma2.unwrap(), 1e-9)
+                .concave_at_force(&kind, direct.gamma2.unwrap(), 1e-9)
                 .unwrap();
             assert!((by_force.eps - eps).abs() < 1e-8);
             assert!(
@@ -257,7 +257,7 @@ fn depth_and_force_control_invert_the_contact_ratio() {
 #[test]
 fn concave_pressure_is_compressive_and_vanishes_at_the_free_inner_edge() {
     let state = RingBemSolver::new()
-        .concave_at_ratio(PunchKind::Sphere, 0.4, TOL)
+        .concave_at_ratio(&PunchKind::SPHERE, 0.4, TOL)
         .unwrap();
     assert!(state.pressure.iter().all(|&(_, p)| p > 0.0));
     // p ~ sqrt(r - b) at the free edge: the sample nearest b is small compared with the mean.
@@ -274,7 +274,7 @@ fn states_outside_the_validated_range_are_errors_not_numbers() {
     let solver = RingBemSolver::new();
     // The cone closes only as d -> infinity: eps would be far below 1e-4.
     let err = solver
-        .concave_at_depth(PunchKind::Cone, 40.0, TOL)
+        .concave_at_depth(&PunchKind::CONE, 40.0, TOL)
         .unwrap_err();
     assert!(matches!(err, Error::OutOfRange { .. }), "{err}");
     assert!(err.to_string().contains("infinity"));
@@ -297,9 +297,9 @@ fn the_estimate_of_a_loose_inverse_solve_covers_its_root_search() {
     // d = 1.5 h and 1e-2 was 7.2e-10 off with an estimate of 1e-13). Reference: the same states
     // converged to 1e-11 (the ring BEM matches the closed forms to 1e-13, tests above).
     let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
-    use ringcontact::punch::PunchKind::{Cone, Sphere};
+    let (cone, sphere) = (PunchKind::CONE, PunchKind::SPHERE);
     for tolerance in [1e-2, 1e-4, 1e-6] {
-        for (kind, depth) in [(Sphere, 1.5), (Cone, 2.0), (Sphere, 0.5), (Cone, 0.5)] {
+        for (kind, depth) in [(&sphere, 1.5), (&cone, 2.0), (&sphere, 0.5), (&cone, 0.5)] {
             let loose = solver.concave_at_depth(kind, depth, tolerance).unwrap();
             let tight = solver.concave_at_depth(kind, depth, 1e-11).unwrap();
             let error = (loose.gamma2.unwrap() / tight.gamma2.unwrap() - 1.0).abs();
@@ -310,7 +310,7 @@ fn the_estimate_of_a_loose_inverse_solve_covers_its_root_search() {
                 loose.error_estimate
             );
         }
-        for (kind, force) in [(Cone, 1.0), (Sphere, 0.8)] {
+        for (kind, force) in [(&cone, 1.0), (&sphere, 0.8)] {
             let loose = solver.concave_at_force(kind, force, tolerance).unwrap();
             let tight = solver.concave_at_force(kind, force, 1e-11).unwrap();
             let error = (loose.gamma1.unwrap() / tight.gamma1.unwrap() - 1.0).abs();

@@ -67,7 +67,7 @@ fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
     }
     let dir = scratch("convergence");
     let sphere = RingBemSolver::new()
-        .concave_at_depth(PunchKind::Sphere, 1.0, 1e-12)
+        .concave_at_depth(&PunchKind::SPHERE, 1.0, 1e-12)
         .unwrap();
     let reference = sphere.gamma2.unwrap();
     let mut errors = Vec::new();
@@ -102,7 +102,7 @@ fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
         // The ring BEM on the same table: within the FEM's estimate (two independent methods
         // on the same piecewise-cubic gap).
         let ring = RingBemSolver::new()
-            .concave_at_depth(kind, 1.0, 1e-10)
+            .concave_at_depth(&kind, 1.0, 1e-10)
             .unwrap();
         let ring_gamma2 = ring.gamma2.unwrap();
         assert!(
@@ -130,7 +130,7 @@ fn the_ring_bem_tends_to_the_sphere_as_the_table_is_refined() {
     let dir = scratch("ring-convergence");
     let solver = RingBemSolver::new();
     let reference = solver
-        .concave_at_depth(PunchKind::Sphere, 1.0, 1e-12)
+        .concave_at_depth(&PunchKind::SPHERE, 1.0, 1e-12)
         .unwrap()
         .gamma2
         .unwrap();
@@ -138,7 +138,7 @@ fn the_ring_bem_tends_to_the_sphere_as_the_table_is_refined() {
     for points in [6, 11, 21, 41, 81] {
         let path = sphere_table(&dir, points);
         let kind = PunchName::Table.with_parameters(None, Some(&path)).unwrap();
-        let state = solver.concave_at_depth(kind, 1.0, 1e-10).unwrap();
+        let state = solver.concave_at_depth(&kind, 1.0, 1e-10).unwrap();
         assert!(state.error_estimate <= 1e-10, "{points} points: {state:?}");
         let error = (state.gamma2.unwrap() - reference).abs();
         let bound = profile_error(kind) + 1e-10 * reference;
@@ -169,9 +169,9 @@ fn a_steep_walled_table_is_solved_near_its_power_law() {
     let solver = RingBemSolver::new();
     for depth in [0.5, 0.9, 1.2] {
         let state = solver
-            .concave_at_depth(table, depth, 1e-9)
+            .concave_at_depth(&table, depth, 1e-9)
             .unwrap_or_else(|e| panic!("d/h = {depth}: {e}"));
-        let reference = solver.concave_at_depth(power, depth, 1e-10).unwrap();
+        let reference = solver.concave_at_depth(&power, depth, 1e-10).unwrap();
         let (gamma2, reference) = (state.gamma2.unwrap(), reference.gamma2.unwrap());
         let bound = gap_difference + 1e-9 * reference;
         assert!(
@@ -273,7 +273,7 @@ fn states_beyond_the_single_annulus_are_refused_with_the_reason() {
     let solver = RingBemSolver::new();
     for (path, depth) in [(&cosine, 4.0), (&cube, 1.0)] {
         let kind = PunchName::Table.with_parameters(None, Some(path)).unwrap();
-        let state = solver.concave_at_depth(kind, depth, 1e-9).unwrap();
+        let state = solver.concave_at_depth(&kind, depth, 1e-9).unwrap();
         assert!(state.error_estimate <= 1e-9, "{state:?}");
     }
 }
@@ -364,7 +364,7 @@ fn the_jkr_pulloff_of_a_sampled_sphere_tends_to_the_spheres() {
     let dir = scratch("jkr");
     let solver = RingBemSolver::new();
     let scales = [0.1, 0.178, 0.422, 1.0];
-    let sphere = ringcontact::adhesion::ConcaveBranch::new(&solver, PunchKind::Sphere).unwrap();
+    let sphere = ringcontact::adhesion::ConcaveBranch::new(&solver, PunchKind::SPHERE).unwrap();
     let references: Vec<f64> = scales
         .iter()
         .map(|&s| sphere.jkr(s).unwrap().fixed_load.unwrap().force)

@@ -28,14 +28,14 @@ fn options(tolerance: f64) -> FemOptions {
 fn check(loads: &[FemLoad], tolerance: f64) {
     let bem = RingBemSolver::new();
     for &load in loads {
-        let fem = solver::solve(PunchKind::Torus, 0.0, load, &options(tolerance))
+        let fem = solver::solve(PunchKind::TORUS, 0.0, load, &options(tolerance))
             .unwrap_or_else(|e| panic!("{load:?}: {e}"));
         let reference = match load {
             // 1e-10, 1e4 times finer than the FEM's tolerance: at 1e-12 the shallowest state
             // (F = 1e-4) is at the rounding of its depth (the relative estimate of the depth
             // scattered between 1e-12 and 4e-11 from N = 16 to 80).
-            FemLoad::ConcaveDepth(d) => bem.concave_at_depth(PunchKind::Torus, d, 1e-10),
-            FemLoad::ConcaveForce(f) => bem.concave_at_force(PunchKind::Torus, f, 1e-10),
+            FemLoad::ConcaveDepth(d) => bem.concave_at_depth(&PunchKind::TORUS, d, 1e-10),
+            FemLoad::ConcaveForce(f) => bem.concave_at_force(&PunchKind::TORUS, f, 1e-10),
             FemLoad::Flat => unreachable!("the torus is not flat"),
         }
         .unwrap();
@@ -103,7 +103,7 @@ fn the_default_tolerance_is_met() {
 fn a_mesh_of_ones_own_is_refused_for_the_torus() {
     let mut options = options(1e-3);
     options.mesh = Some("meshes/disk-L0.msh".into());
-    let error = solver::solve(PunchKind::Torus, 0.0, FemLoad::ConcaveDepth(1.0), &options)
+    let error = solver::solve(PunchKind::TORUS, 0.0, FemLoad::ConcaveDepth(1.0), &options)
         .expect_err("a torus on a given mesh");
     assert!(error.to_string().contains("--mesh"), "{error}");
 }

@@ -80,12 +80,12 @@ fn the_incremental_stiffness_is_that_of_the_flat_band() {
     let tol = 1e-11;
     for depth in [0.01, 0.5, 3.0, 12.0] {
         let state = solver
-            .concave_at_depth(PunchKind::Torus, depth, tol)
+            .concave_at_depth(&PunchKind::TORUS, depth, tol)
             .unwrap();
         let step = 1e-4 * depth;
         let force = |d: f64| {
             2.0 * solver
-                .concave_at_depth(PunchKind::Torus, d, tol)
+                .concave_at_depth(&PunchKind::TORUS, d, tol)
                 .unwrap()
                 .gamma2
                 .unwrap()
@@ -111,10 +111,12 @@ fn depth_force_and_edge_controls_agree_and_both_edges_are_free() {
     let solver = RingBemSolver::new();
     let tol = 1e-10;
     for eps in [0.98, 0.7, 0.3, 0.05] {
-        let at_ratio = solver.concave_at_ratio(PunchKind::Torus, eps, tol).unwrap();
+        let at_ratio = solver
+            .concave_at_ratio(&PunchKind::TORUS, eps, tol)
+            .unwrap();
         let (d, f) = (at_ratio.gamma1.unwrap(), at_ratio.gamma2.unwrap());
-        let at_depth = solver.concave_at_depth(PunchKind::Torus, d, tol).unwrap();
-        let at_force = solver.concave_at_force(PunchKind::Torus, f, tol).unwrap();
+        let at_depth = solver.concave_at_depth(&PunchKind::TORUS, d, tol).unwrap();
+        let at_force = solver.concave_at_force(&PunchKind::TORUS, f, tol).unwrap();
         for (control, s) in [("depth", &at_depth), ("force", &at_force)] {
             assert!(
                 (s.eps - eps).abs() < 1e-8 && (s.outer_edge - at_ratio.outer_edge).abs() < 1e-8,
@@ -154,9 +156,9 @@ fn the_estimate_bounds_the_error_of_depth_and_force_controlled_states() {
     let solver = RingBemSolver::new();
     let state = |depth: bool, target: f64, tol: f64| {
         if depth {
-            solver.concave_at_depth(PunchKind::Torus, target, tol)
+            solver.concave_at_depth(&PunchKind::TORUS, target, tol)
         } else {
-            solver.concave_at_force(PunchKind::Torus, target, tol)
+            solver.concave_at_force(&PunchKind::TORUS, target, tol)
         }
         .unwrap()
     };

@@ -86,12 +86,12 @@ impl BranchPoint {
 /// whose solves cannot meet it is taken at the first of [`FALLBACK_BRANCH_TOLERANCES`] they
 /// meet, its estimates (carried into the critical states' error bounds) saying so.
 pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
-    let tolerance = branch_tolerance(kind);
-    let mut outcome = branch_point_at(solver, kind, eps, tolerance);
+    let tolerance = branch_tolerance(&kind);
+    let mut outcome = branch_point_at(solver, kind.clone(), eps, tolerance);
     for looser in FALLBACK_BRANCH_TOLERANCES {
         match outcome {
             Err(Error::NoConvergence { .. }) if looser > tolerance => {
-                outcome = branch_point_at(solver, kind, eps, looser);
+                outcome = branch_point_at(solver, kind.clone(), eps, looser);
             }
             _ => break,
         }
@@ -114,10 +114,11 @@ const FALLBACK_BRANCH_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
 /// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a table punch, whose edge
 /// derivatives settle to about 1e-9 at the scan's smallest contact ratios (`docs/methods.md`).
-pub fn branch_tolerance(kind: PunchKind) -> f64 {
-    match kind {
-        PunchKind::Table(_) => 1e-8,
-        _ => 1e-10,
+pub fn branch_tolerance(kind: &PunchKind) -> f64 {
+    if kind.tabulated().is_some() {
+        1e-8
+    } else {
+        1e-10
     }
 }
 
@@ -131,12 +132,12 @@ fn branch_point_at(
     let probes =
         |v: Vec<f64>| -> [f64; HOLE_PROBES] { v.try_into().unwrap_or([f64::NAN; HOLE_PROBES]) };
     let (concave, flat, hole_clearance, hole_lag) = if kind.may_meet_hole_floor() {
-        let (concave, clearance) = solver.free_inner_edge_clearance(kind, eps, tolerance)?;
+        let (concave, clearance) = solver.free_inner_edge_clearance(&kind, eps, tolerance)?;
         let (flat, lag) = solver.flat_hole_lag(eps, tolerance)?;
         (concave, flat, probes(clearance), probes(lag))
     } else {
         (
-            solver.free_inner_edge_field(kind, eps, tolerance)?,
+            solver.free_inner_edge_field(&kind, eps, tolerance)?,
             solver.flat(eps, tolerance)?,
             UNPROBED_CLEARANCE,
             [0.0; HOLE_PROBES],
@@ -376,7 +377,7 @@ fn annular_pulloff(
     // The unloading path: the ratios at the running minimum from the maximum on. A value above
     // it by no more than the solves' tolerance (relative) is on the path: the scatter of a flat
     // stretch is not a jump (a table's real bumps are 1e-3 relative).
-    let slack = branch_tolerance(branch.kind);
+    let slack = branch_tolerance(&branch.kind);
     let mut visited = vec![false; values.len()];
     let mut lowest = f64::INFINITY;
     for k in max_k..=min_k {
@@ -461,27 +462,35 @@ fn annular_pulloff(
 /// kink on the axis, where the disk basis converges slowly.) The power law `h (1 - (r/a)^n)`:
 /// `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of [`crate::reference::power_law::kappa`]
 /// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
-pub fn full_contact_constants(kind: PunchKind) -> (f64, f64) {
-    match kind {
-        PunchKind::Cone => (
+/// A profile that is neither a power law nor a table has none here (an error naming it).
+pub fn full_contact_constants(kind: &PunchKind) -> Result<(f64, f64)> {
+    if let Some(table) = kind.tabulated() {
+        let fc = crate::reference::mdr::table_full_contact(table);
+        return Ok((fc.force_offset, fc.kappa_h));
+    }
+    match kind.power_law_exponent() {
+        Some(1.0) => Ok((
             1.0 - std::f64::consts::FRAC_PI_4,
             std::f64::consts::FRAC_PI_2 - 1.0,
-        ),
-        PunchKind::Power(n) => {
-            let kappa = crate::reference::power_law::kappa(n.value());
-            (1.0 - kappa / (n.value() + 1.0), kappa - 1.0)
+        )),
+        Some(2.0) => Ok((1.0 / 3.0, 1.0)),
+        Some(n) => {
+            let kappa = crate::reference::power_law::kappa(n);
+            Ok((1.0 - kappa / (n + 1.0), kappa - 1.0))
         }
-        PunchKind::Table(t) => {
-            let fc = crate::reference::mdr::table_full_contact(t.profile());
-            (fc.force_offset, fc.kappa_h)
-        }
-        _ => (1.0 / 3.0, 1.0),
+        None => Err(Error::invalid(
+            "punch",
+            format!(
+                "the {kind} has no full-contact constants here (only the power laws and the \
+                 tables have them)"
+            ),
+        )),
     }
 }
 
 /// Full-contact branch of a concave punch (MDR constants).
 fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<FullContactBranch> {
-    let (force_offset, kappa_h) = full_contact_constants(kind);
+    let (force_offset, kappa_h) = full_contact_constants(&kind)?;
     // Rim: κ = d/d0 + (h/d0) κ_h reaches -1 at d = -d0 - h κ_h.
     let depth = -s - kappa_h;
     Ok(FullContactBranch {
@@ -535,13 +544,13 @@ impl<'a> ConcaveBranch<'a> {
     /// Solve the branch of `kind` at the scan's contact ratios (`0.004 ..= 0.9999`, 201 ratios),
     /// the ratios in parallel. Refuses a punch without a rim or not concave.
     pub fn new(solver: &'a RingBemSolver, kind: PunchKind) -> Result<Self> {
-        check_concave(kind)?;
+        check_concave(kind.clone())?;
         // A ratio the ring BEM cannot resolve (the widest rings of a steep-walled profile) stops
         // the analysis: the error names the ratio and the scan.
         let scan: Vec<BranchPoint> = scan_ratios()
             .into_par_iter()
             .map(|e| {
-                branch_point(solver, kind, e).map_err(|err| match err {
+                branch_point(solver, kind.clone(), e).map_err(|err| match err {
                     Error::NoConvergence { method, reason } => Error::NoConvergence {
                         method,
                         reason: format!(
@@ -593,7 +602,7 @@ impl<'a> ConcaveBranch<'a> {
         if let Some(p) = known {
             return Ok(p);
         }
-        let p = branch_point(self.solver, self.kind, eps)?;
+        let p = branch_point(self.solver, self.kind.clone(), eps)?;
         if let Ok(mut m) = self.solved.lock() {
             m.insert(eps.to_bits(), p);
         }
@@ -603,7 +612,7 @@ impl<'a> ConcaveBranch<'a> {
     /// JKR analysis of the punch for `d0/h = s` on this branch.
     pub fn jkr(&self, s: f64) -> Result<ConcaveJkr> {
         check_scale(s)?;
-        let (solver, kind) = (self.solver, self.kind);
+        let (solver, kind) = (self.solver, self.kind.clone());
         let split = |r: AnnularOutcome| match r {
             Ok(v) => (Some(v), None),
             Err(note) => (None, Some(note)),
@@ -634,12 +643,12 @@ impl<'a> ConcaveBranch<'a> {
             .map(|p| p.depth(s))
             .fold(f64::NEG_INFINITY, f64::max);
         let closing = (closing.is_finite() && floor_contact.is_none()).then_some(closing);
-        let paper_fits = paper_fit_route(kind, s);
-        let full = full_contact(kind, s, closing)?;
+        let paper_fits = paper_fit_route(kind.clone(), s);
+        let full = full_contact(kind.clone(), s, closing)?;
         // Direct route at the fixed-load critical state: solve the adhesive contact itself.
         let (ratio, rim_diff) = match &load {
             Some((c, _, _)) => {
-                let (kin, krim) = direct_intensities(solver, kind, c)?;
+                let (kin, krim) = direct_intensities(solver, kind.clone(), c)?;
                 let (kin, krim) = (kin * ROOT_PI / s, krim * ROOT_PI / s);
                 let formula = self.at(c.eps)?.rim_intensity(s);
                 (Some(kin * kin), Some(krim - formula))
@@ -685,7 +694,7 @@ impl<'a> ConcaveBranch<'a> {
     /// force or the fixed-grips depth, not for the other one).
     pub fn bound_critical(&self, s: f64, c: &Critical, located_to: f64) -> Result<Critical> {
         let p = self.at(c.eps)?;
-        let looser = branch_point_at(self.solver, self.kind, c.eps, 1e-7)?;
+        let looser = branch_point_at(self.solver, self.kind.clone(), c.eps, 1e-7)?;
         let d_kappa_in = (looser.kappa_in - p.kappa_in)
             .abs()
             .max(p.flat_error * p.kappa_in);
@@ -763,7 +772,7 @@ pub(super) fn check_scale(s: f64) -> Result<()> {
 /// JKR analysis of a concave punch for `d0/h = s` (its branch solved for this `s` alone; for
 /// many `d0/h`, solve the [`ConcaveBranch`] once and call [`ConcaveBranch::jkr`]).
 pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
-    check_concave(kind)?;
+    check_concave(kind.clone())?;
     check_scale(s)?;
     ConcaveBranch::new(solver, kind)?.jkr(s)
 }
@@ -772,8 +781,8 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
 /// state, solved directly: the annulus `[eps, 1]` pressed to the state's depth, collocated at 40
 /// nodes (the table punch: its band through the flat band's fields, refined to 1e-9).
 fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
-    if let PunchKind::Table(_) = kind {
-        let band = solver.punch_band(kind, c.eps, 1.0, c.depth, 1e-9)?;
+    if kind.tabulated().is_some() {
+        let band = solver.punch_band(&kind, c.eps, 1.0, c.depth, 1e-9)?;
         return Ok((band.inner_stress_intensity, band.outer_stress_intensity));
     }
     let rule = TanhSinhRule::new(1.0 / 16.0);
@@ -806,13 +815,12 @@ pub type EpsForce = (f64, f64);
 pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<EpsForce>) {
     use crate::reference::paper_fits::{cone_gamma, sphere_gamma};
     // The paper fitted the cone and the sphere only.
-    if !matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
-        return (None, None);
-    }
-    let g = |i: usize, e: f64| match kind {
-        PunchKind::Cone => cone_gamma(i, e),
-        _ => sphere_gamma(i, e),
+    let fit: fn(usize, f64) -> f64 = match kind.power_law_exponent() {
+        Some(1.0) => cone_gamma,
+        Some(2.0) => sphere_gamma,
+        _ => return (None, None),
     };
+    let g = |i: usize, e: f64| fit(i, e);
     let d1 = |i: usize, e: f64| {
         let h = 1e-6 * e.min(1.0 - e);
         (g(i, e + h) - g(i, e - h)) / (2.0 * h)

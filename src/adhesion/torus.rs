@@ -218,7 +218,7 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
     let fixed_load = locate(|p| p.2, "force")?;
     let fixed_grips = locate(|p| p.1, "depth")?;
     Ok(TorusJkr {
-        punch: PunchKind::Torus,
+        punch: PunchKind::TORUS,
         d0_over_h: s,
         fixed_load_note: fixed_load.as_ref().err().cloned(),
         fixed_grips_note: fixed_grips.as_ref().err().cloned(),

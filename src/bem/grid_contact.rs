@@ -67,7 +67,7 @@ pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
             let r = cell_centre(n, i).hypot(cell_centre(n, j));
             if r <= 1.0 {
                 disk_cells += 1;
-                let inside = kind != PunchKind::FlatAnnulus || r >= eps;
+                let inside = kind != PunchKind::FLAT_ANNULUS || r >= eps;
                 allowed[i * n + j] = inside;
                 profile[i * n + j] = kind.gap_shape(r);
             }
@@ -143,14 +143,14 @@ pub fn solve(
     load: GridLoad,
     tolerance: f64,
 ) -> Result<GridState> {
-    if kind == PunchKind::Torus {
+    if kind == PunchKind::TORUS {
         return solve_torus(n, load, tolerance);
     }
     check_grid(n)?;
     // A ring narrower than two cells is not resolved: the staircase would carry most of the error
     // and the number would look plausible. Refuse it instead.
     let cell = 2.0 / n as f64;
-    if kind == PunchKind::FlatAnnulus && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
+    if kind == PunchKind::FLAT_ANNULUS && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
@@ -164,7 +164,7 @@ pub fn solve(
     }
     let start = Instant::now();
     let op = GridOperator::new(n, cell);
-    let punch = discretise(kind, eps, n);
+    let punch = discretise(kind.clone(), eps, n);
     let load = match load {
         GridLoad::Force(f) => GridLoad::Force(2.0 * f),
         other => other,
@@ -319,7 +319,7 @@ fn torus_on_square(
             let r = radius(i, j);
             if r <= half_size {
                 allowed[i * n + j] = true;
-                profile[i * n + j] = PunchKind::Torus.gap_shape(r);
+                profile[i * n + j] = PunchKind::TORUS.gap_shape(r);
             }
         }
     }

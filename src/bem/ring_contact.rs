@@ -28,7 +28,7 @@ use crate::error::{Error, Result};
 use crate::numerics::roots::{find_root_descending, find_root_with_slope, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
-use crate::reference::{paper_fits, power_law};
+use crate::reference::paper_fits;
 
 use piecewise_gap::{BandEdges, InnerStencil, InnerStencils};
 
@@ -57,10 +57,11 @@ pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 const TABLE_MIN_CONTACT_RATIO: f64 = 1e-3;
 
 /// The smallest contact ratio the inverse problem of `kind` searches.
-fn min_contact_ratio(kind: PunchKind) -> f64 {
-    match kind {
-        PunchKind::Table(_) => TABLE_MIN_CONTACT_RATIO,
-        _ => MIN_CONTACT_RATIO,
+fn min_contact_ratio(kind: &PunchKind) -> f64 {
+    if kind.tabulated().is_some() {
+        TABLE_MIN_CONTACT_RATIO
+    } else {
+        MIN_CONTACT_RATIO
     }
 }
 
@@ -385,19 +386,19 @@ impl RingBemSolver {
     /// loses.
     pub fn punch_band(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         inner: f64,
         outer: f64,
         depth: f64,
         tolerance: f64,
     ) -> Result<BandState> {
-        let PunchKind::Table(table) = kind else {
-            return self.prescribed_band(|r| kind.gap_shape(r), inner, outer, depth, tolerance);
+        let Some(table) = kind.tabulated() else {
+            return self.prescribed_band(|r| kind.gap(r), inner, outer, depth, tolerance);
         };
         Self::check_tolerance(tolerance)?;
         Self::check_band(inner, outer, depth)?;
         self.band_refined(inner, outer, tolerance, |n: usize| -> Result<BandState> {
-            let band = self.gap_functionals(table.profile(), inner, outer, n)?;
+            let band = self.gap_functionals(table, inner, outer, n)?;
             Ok(BandState {
                 inner,
                 outer,
@@ -514,7 +515,7 @@ impl RingBemSolver {
     /// punches whose outer edge is the rim.
     fn concave_sample(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
@@ -537,7 +538,7 @@ impl RingBemSolver {
     /// reuse its neighbouring bands ([`InnerStencil`]).
     fn search_sample(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
@@ -548,23 +549,23 @@ impl RingBemSolver {
 
     fn concave_sample_with(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
         edges: BandEdges,
         stencil: &mut InnerStencil,
     ) -> Result<ConcaveSample> {
-        if kind == PunchKind::Torus {
-            return self.torus_sample(eps, n, outer_hint);
+        if kind.is_free_band() {
+            return self.torus_sample(kind, eps, n, outer_hint);
         }
         // A table's collocated field (which draws the pressure) is solved on its band's system.
-        let (system, table_band) = match kind {
-            PunchKind::Table(table) => {
-                let band = self.gap_band(table.profile(), eps, 1.0, n, edges, stencil)?;
+        let (system, table_band) = match kind.tabulated() {
+            Some(table) => {
+                let band = self.gap_band(table, eps, 1.0, n, edges, stencil)?;
                 (band.system().clone(), Some(band))
             }
-            _ => (self.system(ContactRegion::Annulus { eps }, n), None),
+            None => (self.system(ContactRegion::Annulus { eps }, n), None),
         };
         let collocated = Self::collocated_sample(kind, system)?;
         match table_band {
@@ -587,10 +588,10 @@ impl RingBemSolver {
     /// its force and rim intensity. Spectrally accurate for an analytic gap; for a table's
     /// piecewise cubic only algebraically (its value there draws the pressure and starts the
     /// search, [`piecewise_gap`] gives the state).
-    fn collocated_sample(kind: PunchKind, system: RingSystem) -> Result<ConcaveSample> {
+    fn collocated_sample(kind: &PunchKind, system: RingSystem) -> Result<ConcaveSample> {
         let n = system.unknowns();
         let unit_depth = vec![1.0; n];
-        let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap_shape(r)).collect();
+        let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap(r)).collect();
         let singular = || no_convergence("singular collocation matrix".into());
         let depth_field = system.solve(&unit_depth).ok_or_else(singular)?;
         let gap_field = system.solve(&minus_gap).ok_or_else(singular)?;
@@ -612,9 +613,9 @@ impl RingBemSolver {
 
     /// A search sample made whole: a table's rim intensity added
     /// ([`RingBemSolver::complete_outer_edge`], the same to the bit as a full sample's).
-    fn completed(&self, kind: PunchKind, mut sample: ConcaveSample) -> Result<ConcaveSample> {
-        if let (PunchKind::Table(table), Some(band)) = (kind, sample.table_band.as_mut()) {
-            self.complete_outer_edge(table.profile(), band)?;
+    fn completed(&self, kind: &PunchKind, mut sample: ConcaveSample) -> Result<ConcaveSample> {
+        if let (Some(table), Some(band)) = (kind.tabulated(), sample.table_band.as_mut()) {
+            self.complete_outer_edge(table, band)?;
             sample.rim_stress_intensity = band.functionals.outer_intensity(sample.gamma1);
         }
         Ok(sample)
@@ -625,7 +626,7 @@ impl RingBemSolver {
     /// [`HOLE_PROBES`] radii. A profile flatter than the sphere at the axis (the power law with
     /// `n > 2`) touches the floor before the ring closes: its contact is then a disk and an
     /// annulus, which one annulus does not model.
-    fn check_hole_clear(&self, kind: PunchKind, eps: f64, sample: &ConcaveSample) -> Result<()> {
+    fn check_hole_clear(&self, kind: &PunchKind, eps: f64, sample: &ConcaveSample) -> Result<()> {
         if !kind.has_rim() {
             self.check_clear_beyond(kind, sample)?;
         }
@@ -648,12 +649,12 @@ impl RingBemSolver {
     #[allow(clippy::type_complexity)]
     fn hole_surface<'s>(
         &'s self,
-        kind: PunchKind,
+        kind: &PunchKind,
         sample: &'s ConcaveSample,
     ) -> (f64, Box<dyn Fn(f64) -> Option<f64> + 's>) {
-        match (kind, &sample.table_band) {
-            (PunchKind::Table(table), Some(band)) => {
-                let surface = band.hole_surface(table.profile(), sample.gamma1, &self.rule);
+        match (kind.tabulated(), &sample.table_band) {
+            (Some(table), Some(band)) => {
+                let surface = band.hole_surface(table, sample.gamma1, &self.rule);
                 (sample.gamma1, Box::new(move |r| surface.at(r, &self.rule)))
             }
             _ => (
@@ -669,7 +670,7 @@ impl RingBemSolver {
 
     /// Beyond a free outer edge `c` the surface stays clear of the punch as well,
     /// `w(r) >= d - g(r)`, checked at [`HOLE_PROBES`] radii `c + (c - b) k / HOLE_PROBES`.
-    fn check_clear_beyond(&self, kind: PunchKind, sample: &ConcaveSample) -> Result<()> {
+    fn check_clear_beyond(&self, kind: &PunchKind, sample: &ConcaveSample) -> Result<()> {
         let region = sample.system.region();
         let (inner, outer) = (region.inner(), region.outer());
         let radii =
@@ -693,7 +694,7 @@ impl RingBemSolver {
 
     fn concave_state(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         fine: ConcaveSample,
         n: usize,
@@ -715,7 +716,12 @@ impl RingBemSolver {
     /// Concave punch with the contact ratio prescribed: `γ1(eps)` and `γ2(eps)` of the
     /// non-adhesive state, refused where that state is not one (tension at the inner edge, or
     /// the punch touching the hole's floor).
-    pub fn concave_at_ratio(&self, kind: PunchKind, eps: f64, tolerance: f64) -> Result<RingState> {
+    pub fn concave_at_ratio(
+        &self,
+        kind: &PunchKind,
+        eps: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
         let (fine, n, estimate) = self.concave_refined(kind, eps, tolerance)?;
         self.concave_state(kind, eps, fine, n, estimate)
     }
@@ -726,7 +732,7 @@ impl RingBemSolver {
     /// hole's floor.
     pub fn free_inner_edge_field(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         tolerance: f64,
     ) -> Result<RingState> {
@@ -739,7 +745,7 @@ impl RingBemSolver {
     /// negative where the punch would rise into the surface (a state that is not one).
     pub fn free_inner_edge_clearance(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         tolerance: f64,
     ) -> Result<(RingState, Vec<f64>)> {
@@ -755,7 +761,7 @@ impl RingBemSolver {
 
     fn concave_refined(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         eps: f64,
         tolerance: f64,
     ) -> Result<(ConcaveSample, usize, f64)> {
@@ -778,7 +784,7 @@ impl RingBemSolver {
     /// Concave punch under depth control, `target = d/h`: finds `eps` with `γ1(eps) = d/h`.
     pub fn concave_at_depth(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
@@ -792,7 +798,7 @@ impl RingBemSolver {
     /// `γ2(eps) = target`.
     pub fn concave_at_force(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
@@ -807,15 +813,15 @@ impl RingBemSolver {
 
     fn concave_inverse(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         target: f64,
         tolerance: f64,
         controlled: Controlled,
     ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
-        if kind == PunchKind::Torus {
+        if kind.is_free_band() {
             let depth_controlled = matches!(controlled, Controlled::Depth);
-            if let Some(state) = self.torus_inverse(target, tolerance, depth_controlled) {
+            if let Some(state) = self.torus_inverse(kind, target, tolerance, depth_controlled) {
                 return state;
             }
         }
@@ -836,8 +842,8 @@ impl RingBemSolver {
         // Whether the first search measures its slope at its start before its first step.
         let mut probe_slope = false;
         // Whether the first rung is the coarse sample of the second instead of being estimated.
-        let mut climb_first = matches!(kind, PunchKind::Table(_));
-        if let PunchKind::Table(table) = kind {
+        let mut climb_first = kind.tabulated().is_some();
+        if let Some(table) = kind.tabulated() {
             // A table's sample takes six collocation systems (one within its stencil's reach,
             // [`InnerStencil`]); a rough one, its inner derivative of second order, three. The
             // rough root at 16 nodes (`γ` within 4e-6 of the accurate one; the direct
@@ -848,14 +854,7 @@ impl RingBemSolver {
             let mut stencil = InnerStencil::default();
             let mut rough = |eps: f64| -> std::result::Result<f64, String> {
                 let band = self
-                    .gap_band(
-                        table.profile(),
-                        eps,
-                        1.0,
-                        n,
-                        BandEdges::InnerRough,
-                        &mut stencil,
-                    )
+                    .gap_band(table, eps, 1.0, n, BandEdges::InnerRough, &mut stencil)
                     .map_err(|e| e.to_string())?;
                 let gamma1 = band.functionals.free_inner_depth();
                 Ok(match controlled {
@@ -1036,9 +1035,9 @@ impl RingBemSolver {
                     "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
                 )));
             }
-            let needed = match kind {
-                PunchKind::Table(_) => table_starting_rung(eps),
-                _ => starting_rung(eps),
+            let needed = match kind.tabulated() {
+                Some(_) => table_starting_rung(eps),
+                None => starting_rung(eps),
             };
             rung = (rung + 1).max(needed);
             slope_hint = Some(slope);
@@ -1054,7 +1053,7 @@ impl RingBemSolver {
     /// factorisations)`.
     fn full_contact_disk(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         depth_over_hole: f64,
         tolerance: f64,
     ) -> Result<((RingSystem, RingField), usize, f64)> {
@@ -1065,7 +1064,7 @@ impl RingBemSolver {
                 let target: Vec<f64> = system
                     .radii()
                     .iter()
-                    .map(|&r| depth_over_hole - kind.gap_shape(r))
+                    .map(|&r| depth_over_hole - kind.gap(r))
                     .collect();
                 let field = system
                     .solve(&target)
@@ -1092,20 +1091,20 @@ impl RingBemSolver {
 
     /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
     pub fn sphere_full_contact(&self, depth_over_hole: f64, tolerance: f64) -> Result<RingState> {
-        self.full_contact(PunchKind::Sphere, depth_over_hole, tolerance)
+        self.full_contact(&PunchKind::SPHERE, depth_over_hole, tolerance)
     }
 
     /// A concave punch whose contact closes (the sphere at `d >= 3h`, the power law with
     /// `n > 1` at `d >= h (1 + κ_n/(n - 1))`) in full contact: the disk with `w = d - g(r)`.
     pub fn full_contact(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         depth_over_hole: f64,
         tolerance: f64,
     ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
-        if let PunchKind::Table(table) = kind {
-            return Ok(table_full_contact(table.profile(), depth_over_hole));
+        if let Some(table) = kind.tabulated() {
+            return Ok(table_full_contact(table, depth_over_hole));
         }
         let ((system, field), n, estimate) =
             self.full_contact_disk(kind, depth_over_hole, tolerance)?;
@@ -1129,12 +1128,12 @@ impl RingBemSolver {
     /// is linear in the depth, `F(d) = F(0) + d F'`, so two disk solves give the depth exactly.
     fn full_contact_at_force(
         &self,
-        kind: PunchKind,
+        kind: &PunchKind,
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if let PunchKind::Table(table) = kind {
-            let offset = crate::reference::mdr::table_full_contact(table.profile()).force_offset;
+        if let Some(table) = kind.tabulated() {
+            let offset = crate::reference::mdr::table_full_contact(table).force_offset;
             return self.full_contact(kind, target + offset, tolerance);
         }
         let gamma2 = |d: f64| -> Result<f64> {
@@ -1204,15 +1203,15 @@ pub fn hole_probes(eps: f64) -> impl Iterator<Item = f64> {
 
 /// How far the punch at depth `d/h = depth` rises into the surface `w` (units of `h`) at the
 /// radius `r` outside the contact: `(d - g(r)) - w` (negative: the surface clears the punch).
-fn floor_overlap(kind: PunchKind, depth: f64, r: f64, w: f64) -> f64 {
-    (depth - kind.gap_shape(r)) - w
+fn floor_overlap(kind: &PunchKind, depth: f64, r: f64, w: f64) -> f64 {
+    (depth - kind.gap(r)) - w
 }
 
 /// The first of `radii` where the surface `w(r)` (from `deflection`, `None`: not evaluated
 /// there) rises into the punch at depth `d/h = depth`, `(d - g(r)) - w(r)` above
 /// [`HOLE_OVERLAP_TOLERANCE`] (relative to the depth, at least 1): the radius and the overlap.
 fn first_overlap(
-    kind: PunchKind,
+    kind: &PunchKind,
     depth: f64,
     radii: impl Iterator<Item = f64>,
     deflection: impl Fn(f64) -> Option<f64>,
@@ -1236,7 +1235,7 @@ fn outer_edge_hint(history: &[(f64, ConcaveSample)], eps: f64) -> Option<f64> {
 }
 
 /// Turn a failed contact-ratio search into an error that says why.
-fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Controlled) -> Error {
+fn inverse_error(e: RootError, kind: &PunchKind, target: f64, controlled: Controlled) -> Error {
     match e {
         RootError::NotBracketed { f_lo, f_hi, .. } => out_of_range(format!(
             "{} {} = {} needs a contact ratio outside [{}, {MAX_CONTACT_RATIO}]{}{}",
@@ -1291,13 +1290,13 @@ fn inverse_error(e: RootError, kind: PunchKind, target: f64, controlled: Control
 /// with the MDR's lower bounds of its closure
 /// ([`crate::reference::mdr::table_closure_lower_bounds`]): a state short of them is open
 /// without the closure's maximisation.
-fn is_closed(kind: PunchKind, target: f64, controlled: Controlled) -> bool {
+fn is_closed(kind: &PunchKind, target: f64, controlled: Controlled) -> bool {
     let pick = |(depth, force): (f64, f64)| match controlled {
         Controlled::Depth => depth,
         Controlled::Force => force,
     };
-    if let PunchKind::Table(table) = kind {
-        match crate::reference::mdr::table_closure_lower_bounds(table.profile()) {
+    if let Some(table) = kind.tabulated() {
+        match crate::reference::mdr::table_closure_lower_bounds(table) {
             Some(bounds) if target < pick(bounds) => return false,
             None => return false,
             Some(_) => {}
@@ -1311,19 +1310,8 @@ fn is_closed(kind: PunchKind, target: f64, controlled: Controlled) -> bool {
 /// ([`crate::reference::power_law`]) and its quadrature for a table smooth at the axis
 /// ([`crate::reference::mdr`]); `None` for the cone, every `n <= 1` and a table with a slope at
 /// the axis, whose hole never closes.
-fn closure(kind: PunchKind) -> Option<(f64, f64)> {
-    match kind {
-        PunchKind::Sphere => Some((3.0, 8.0 / 3.0)),
-        PunchKind::Table(table) => {
-            let full = crate::reference::mdr::table_full_contact(table.profile());
-            Some((full.closure_depth?, full.closure_force()?))
-        }
-        PunchKind::Power(n) => {
-            let depth = power_law::closure_depth(n.value())?;
-            Some((depth, power_law::full_contact_gamma2(n.value(), depth)?))
-        }
-        _ => None,
-    }
+fn closure(kind: &PunchKind) -> Option<(f64, f64)> {
+    kind.profile().closure()
 }
 
 /// Why a profile flatter than the sphere at the axis has no annulus state `where_` (`up to`,
@@ -1339,23 +1327,12 @@ fn floor_touch_note(where_: &str, depth: f64, is: &str) -> String {
 }
 
 /// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`; a
-/// table whose full-contact pressure first vanishes on a ring, [`OPENING_OFF_AXIS`] or more
+/// table whose full-contact pressure first vanishes on a ring, `OPENING_OFF_AXIS` or more
 /// from the axis, by the MDR): its contact closes from a disk and an annulus, not by a
 /// shrinking hole.
-fn flatter_than_the_sphere(kind: PunchKind) -> bool {
-    match kind {
-        PunchKind::Table(table) => {
-            crate::reference::mdr::table_full_contact(table.profile()).opening_radius
-                >= OPENING_OFF_AXIS
-        }
-        _ => kind.concave_exponent().is_some_and(|n| n > 2.0),
-    }
+fn flatter_than_the_sphere(kind: &PunchKind) -> bool {
+    kind.profile().flatter_than_the_sphere()
 }
-
-/// Radius (units of `a`) from which a table's full contact is taken to open on a ring rather
-/// than at the axis: the MDR's maximisation places the sphere's opening 5e-11 from the axis,
-/// the power law's at 0.035 for `n = 2.05`, 0.22 for `n = 2.5`, 0.5 for `n = 4`.
-const OPENING_OFF_AXIS: f64 = 1e-3;
 
 /// Which quantity a concave inverse problem prescribes.
 #[derive(Clone, Copy)]
@@ -1441,18 +1418,15 @@ const FIRST_SEARCH_RUNG: usize = 1;
 /// `0.988`) inside the hole, where `γ1` is not monotone (it rises again toward the hole's floor):
 /// the search wandered there or found a root whose surface crosses the floor and refused a
 /// state that exists.
-fn initial_ratio(kind: PunchKind, target: f64, controlled: Controlled) -> f64 {
-    if kind == PunchKind::Torus {
+fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
+    if kind.is_free_band() {
         return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
     }
     let i = match controlled {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
-    let rim_slope = match kind {
-        PunchKind::Table(t) => -t.profile().slope(1.0),
-        _ => kind.concave_exponent().unwrap_or(2.0),
-    };
+    let rim_slope = kind.rim_slope();
     // The sphere keeps its own fit, unscaled (2 * target / 2 is exact).
     let (target, fit): (f64, fn(usize, f64) -> f64) = if rim_slope < 1.5 {
         (target, paper_fits::cone_gamma)

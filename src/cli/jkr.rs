@@ -7,7 +7,7 @@ use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use crate::punch::{PunchKind, PunchName};
+use crate::punch::{Contact, PunchName};
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
@@ -15,15 +15,15 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
         return torus(&args);
     }
     let punch = super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?;
-    refuse_other_family_flags(punch, args.eps, args.d0h)?;
+    refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
-    let text = match punch {
-        PunchKind::FlatAnnulus if args.sweep => sweep_output(
+    let text = match punch.contact() {
+        Contact::FixedAnnulus if args.sweep => sweep_output(
             &sweeps::flat_annulus_sweep(&solver, &out).map_err(message)?,
             args.json,
         )?,
-        PunchKind::FlatAnnulus => {
+        Contact::FixedAnnulus => {
             let eps = args
                 .eps
                 .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
@@ -35,17 +35,18 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
                 flat_annulus_text(&r)
             }
         }
-        concave if concave.is_concave() && args.sweep => {
+        Contact::RimAndFreeInner | Contact::FreeBand if args.sweep => {
             let mut bar = Progress::new("sweep", 25);
-            let sweep =
-                sweeps::pulloff_sweep(&solver, concave, &out, |s| bar.tick(s)).map_err(message)?;
+            let sweep = sweeps::pulloff_sweep(&solver, punch.clone(), &out, |s| bar.tick(s))
+                .map_err(message)?;
             sweep_output(&sweep, args.json)?
         }
-        concave if concave.is_concave() => {
+        Contact::RimAndFreeInner | Contact::FreeBand => {
+            let concave = punch.clone();
             let s = args
                 .d0h
                 .ok_or("the concave punches need --d0h D0_OVER_H (or --sweep)")?;
-            let r = adhesion::concave(&solver, concave, s).map_err(message)?;
+            let r = adhesion::concave(&solver, concave.clone(), s).map_err(message)?;
             refuse_non_finite(&format!("jkr {concave} --d0h {s:e}"), &r)?;
             if args.json {
                 to_json(&r)?
@@ -53,7 +54,7 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
                 concave_text(&r)
             }
         }
-        _ => {
+        Contact::Disk => {
             return Err(
                 "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)".into(),
             )

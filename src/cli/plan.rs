@@ -39,7 +39,7 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
         let punch = super::punch_kind(name, args.exponent)?;
         // A flat punch's study does not depend on --depth: the plan names one value.
         let depth = if punch.is_concave() { args.depth } else { 1.5 };
-        let case = study_case(punch, args.eps, depth)?;
+        let case = study_case(punch.clone(), args.eps, depth)?;
         let levels = args.levels as usize;
         // Refuse a study that cannot run before anything is submitted.
         convergence::check_levels(&case, method, levels).map_err(message)?;

@@ -23,7 +23,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     if let Some(first) = ranges.first() {
         heartbeat.set(format!("the first range, rho/d0 = {first}"));
     }
-    if case.punch == PunchKind::Torus {
+    if case.punch.is_free_band() {
         torus_band(&args, case, &ranges, &heartbeat)
     } else if args.branch == study::Branch::Annular {
         annular_branch(&args, case, &ranges, &heartbeat)
@@ -37,12 +37,12 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
 fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>), String> {
     // The torus (two free edges) has its own route: touched, then pulled.
     let punch = match args.punch.with_exponent(args.exponent) {
-        Ok(PunchKind::Torus) => PunchKind::Torus,
+        Ok(free_band) if free_band.is_free_band() => free_band,
         _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
     };
-    let eps = match punch {
-        PunchKind::FlatAnnulus => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
-        _ => 0.0,
+    let eps = match punch.has_fixed_hole() {
+        true => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
+        false => 0.0,
     };
     let d0_over_h = match (punch.is_concave(), args.d0h) {
         (true, None) => return Err("the concave punches need --d0h D0_OVER_H".into()),
@@ -66,13 +66,13 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         }
         (_, s) => s.unwrap_or(0.0),
     };
-    if punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
+    if punch == PunchKind::FLAT_ANNULUS && !(eps > 0.0 && eps < 1.0) {
         return Err(format!(
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
         ));
     }
-    refuse_other_family_flags(punch, args.eps, args.d0h)?;
-    let torus = punch == PunchKind::Torus;
+    refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
+    let torus = punch == PunchKind::TORUS;
     if torus && args.mesh.is_some() {
         return Err(
             "the torus's simulation makes its own mesh per range (its contact line uniform at a \
@@ -229,9 +229,9 @@ fn closed_branch(
                 gmsh_version: None,
                 corner_refinement: None,
             };
-            study::run(case, ranges, &mesh, None, on_entry)
+            study::run(case.clone(), ranges, &mesh, None, on_entry)
         }
-        None => study::run_on_study_meshes(case, ranges, on_entry),
+        None => study::run_on_study_meshes(case.clone(), ranges, on_entry),
     }
     .map_err(message)?;
     refuse_non_finite("pulloff", &result.sequence)?;
@@ -316,7 +316,7 @@ pub fn render(s: &PulloffStudy) -> String {
         _ => "  no extrapolate: it needs three ranges\n".to_string(),
     };
     match (s.punch.is_concave(), s.jkr_fixed_load_over_f0) {
-        (true, Some(j)) if s.punch == PunchKind::Torus => {
+        (true, Some(j)) if s.punch == PunchKind::TORUS => {
             text += &format!(
                 "  JKR route (verify jkr --punch torus: both edges at G = dw), fixed load: F/F0 = \
                  {j:.4}\n"

@@ -191,7 +191,7 @@ pub(super) fn compare_reply(
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
     // The torus (two free edges): the FEM's free-edges family or the grid BEM, at `--depth` d/h.
     let punch = match args.punch.with_exponent(args.exponent) {
-        Ok(PunchKind::Torus) => PunchKind::Torus,
+        Ok(free_band) if free_band.is_free_band() => free_band,
         _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
     };
     let case = study_case(punch, args.eps, args.depth)?;
@@ -249,7 +249,7 @@ pub(super) fn study_case(
     eps: f64,
     depth: f64,
 ) -> Result<convergence::StudyCase, String> {
-    let eps = if punch == PunchKind::FlatAnnulus {
+    let eps = if punch == PunchKind::FLAT_ANNULUS {
         eps
     } else {
         0.0

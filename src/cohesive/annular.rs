@@ -172,7 +172,7 @@ impl TouchedSequence {
         let (extrapolated, error_bar) = extrapolate(&self.sequence, self.mesh_difference);
         Ok(PulloffStudy {
             stopped: None,
-            punch: case.punch,
+            punch: case.punch.clone(),
             eps: None,
             d0_over_h: Some(case.d0_over_h),
             branch: Some(Branch::Annular),

@@ -21,7 +21,7 @@ use crate::fem::solver::{surface_response_on_mesh, FemOptions};
 use crate::fem::surface_response::SurfaceResponse;
 use crate::mesh::provider::{self, MeshRequest, ProvidedMesh};
 use crate::mesh::triangulation::Degree;
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 
 /// Default ranges `ρ/d0`: Tabor parameter `λ` 9, 18, 36 and 90 (a factor 10).
 pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
@@ -106,7 +106,7 @@ pub(crate) const ANNULAR_ELEMENTS_PER_ZONE: f64 = 3.0;
 pub(crate) const ANNULAR_HOP_FORCE: f64 = 0.01;
 
 /// What to simulate.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Case {
     pub punch: PunchKind,
     /// `b/a` of the flat annulus.
@@ -656,7 +656,7 @@ fn simulate_ranges(
     shared: Option<&crate::fem::surface_response::SurfaceResponse>,
     progress: &mut impl FnMut(&SequenceEntry),
 ) -> Result<RangeSequence> {
-    let case = *case;
+    let case = case.clone();
     let mut sequence = Vec::new();
     let mut excluded = Vec::new();
     let mut curves = Vec::new();
@@ -721,7 +721,7 @@ fn simulate_ranges(
 /// The case with `eps` zero unless the punch is a flat annulus, checked: `d0/h` of a concave
 /// punch, `0 < b/a < 1` of a flat annulus, the ranges.
 fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
-    let eps = if case.punch == PunchKind::FlatAnnulus {
+    let eps = if case.punch == PunchKind::FLAT_ANNULUS {
         case.eps
     } else {
         0.0
@@ -729,7 +729,7 @@ fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
     if case.punch.is_concave() {
         check_d0_over_h(&case)?;
     }
-    if case.punch == PunchKind::FlatAnnulus && !(eps > 0.0 && eps < 1.0) {
+    if case.punch == PunchKind::FLAT_ANNULUS && !(eps > 0.0 && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
             format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
@@ -771,7 +771,7 @@ fn run_sequence(
 ) -> Result<PulloffStudy> {
     let start = Instant::now();
     let case = checked_case(case, ranges)?;
-    let (punch, eps) = (case.punch, case.eps);
+    let (punch, eps) = (case.punch.clone(), case.eps);
     let options = study_options();
     let shared = match fixed {
         Some((mesh, _)) => {
@@ -829,8 +829,8 @@ fn run_sequence(
     };
     Ok(PulloffStudy {
         stopped,
-        punch,
-        eps: (punch == PunchKind::FlatAnnulus).then_some(eps),
+        punch: punch.clone(),
+        eps: (punch == PunchKind::FLAT_ANNULUS).then_some(eps),
         d0_over_h: punch.is_concave().then_some(case.d0_over_h),
         branch: punch.is_concave().then_some(Branch::Closed),
         law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (d0 = a for the \
@@ -921,9 +921,9 @@ pub(super) fn file_simulation(
 /// from full contact and the paper's route on its fitted formulas (concave punches).
 pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Option<f64>)> {
     let ring = RingBemSolver::new();
-    Ok(match case.punch {
-        PunchKind::Flat => (Some(1.0), None, None),
-        PunchKind::FlatAnnulus => {
+    Ok(match case.punch.contact() {
+        Contact::Disk => (Some(1.0), None, None),
+        Contact::FixedAnnulus => {
             let r = crate::adhesion::flat_annulus(&ring, case.eps)?;
             // The edge that lets go first (smaller |d_c|) sets the pull-off.
             let edge = if r.governing_edge == "outer" {
@@ -933,12 +933,8 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
             };
             (Some(-edge), None, None)
         }
-        PunchKind::Cone
-        | PunchKind::Sphere
-        | PunchKind::Power(_)
-        | PunchKind::Torus
-        | PunchKind::Table(_) => {
-            let r = crate::adhesion::concave(&ring, case.punch, case.d0_over_h)?;
+        Contact::RimAndFreeInner | Contact::FreeBand => {
+            let r = crate::adhesion::concave(&ring, case.punch.clone(), case.d0_over_h)?;
             (
                 r.fixed_load.map(|c| -c.force),
                 Some(-r.full_contact.pulloff.force),
@@ -981,7 +977,7 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
 /// is declined.
 pub(crate) fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
     if !provider::gmsh_available() {
-        return simulate_once(case, range, &study_mesh(case.eps, STUDY_LEVEL)?);
+        return simulate_once(case.clone(), range, &study_mesh(case.eps, STUDY_LEVEL)?);
     }
     let start = Instant::now();
     let (entry, curve, _, model) =
@@ -1010,7 +1006,7 @@ pub(crate) fn simulate_cases(
     cases
         .par_iter()
         .map(|case| {
-            if case.punch == PunchKind::FlatAnnulus {
+            if case.punch == PunchKind::FLAT_ANNULUS {
                 return Err(Error::Unsupported {
                     method: "cohesive-fem".into(),
                     reason: "simulate_cases covers contact lines from the axis (flat, cone, \
@@ -1059,7 +1055,7 @@ impl LiveSimulation {
     ) -> Result<Self> {
         open_hole_declined(case, &entry)?;
         Ok(LiveSimulation {
-            punch: case.punch,
+            punch: case.punch.clone(),
             d0_over_h: case.punch.is_concave().then_some(case.d0_over_h),
             mesh,
             contact_nodes,

@@ -119,7 +119,7 @@ pub fn run_torus(
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
     let start = Instant::now();
-    if case.punch != PunchKind::Torus {
+    if case.punch != PunchKind::TORUS {
         return Err(Error::invalid(
             "punch",
             format!("the torus's study takes the torus, not the {}", case.punch),

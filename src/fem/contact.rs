@@ -287,7 +287,7 @@ impl<'m> ContactModel<'m> {
         depth: f64,
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>)> {
-        let mut system = self.banded_system(solver, kind, f64::INFINITY);
+        let mut system = self.banded_system(solver, kind.clone(), f64::INFINITY);
         self.active_set_loop(&mut system, kind, depth, initial_active, false)
     }
 
@@ -318,7 +318,7 @@ impl<'m> ContactModel<'m> {
         handover: bool,
     ) -> Result<(ContactSolution, Vec<bool>)> {
         let dofs = self.supports.len();
-        let bound = self.bound(kind, depth);
+        let bound = self.bound(kind.clone(), depth);
         let mut active = self.initial_active(initial_active, &bound);
         let zero = vec![0.0; dofs];
         let mut handed_over = !handover;
@@ -357,7 +357,7 @@ impl<'m> ContactModel<'m> {
                     let above = (first + band_nodes).min(next.len() - 1);
                     let core_radius = self.mesh.nodes[self.contact_nodes[above]][0];
                     system.set_core(self.core_for(core_radius), core_radius);
-                    match self.concave_banded(system, kind, depth, next.clone())? {
+                    match self.concave_banded(system, kind.clone(), depth, next.clone())? {
                         BandOutcome::Solved(mut solution, active) => {
                             solution.iterations += iteration;
                             return Ok((solution, active));
@@ -537,7 +537,7 @@ impl<'m> ContactModel<'m> {
     fn bound(&self, kind: PunchKind, depth: f64) -> Vec<f64> {
         self.contact_nodes
             .iter()
-            .map(|&n| -depth + self.gap_at(kind, self.mesh.nodes[n][0]))
+            .map(|&n| -depth + self.gap_at(kind.clone(), self.mesh.nodes[n][0]))
             .collect()
     }
 
@@ -655,7 +655,7 @@ impl<'m> ContactModel<'m> {
         let shape = self
             .contact_nodes
             .iter()
-            .map(|&n| self.gap_at(kind, self.mesh.nodes[n][0]))
+            .map(|&n| self.gap_at(kind.clone(), self.mesh.nodes[n][0]))
             .collect();
         BandedSystem::new(
             solver,
@@ -769,7 +769,7 @@ impl<'m> ContactModel<'m> {
                     .iter()
                     .position(|&a| a)
                     .map(|i| self.mesh.nodes[self.contact_nodes[i]][0]);
-                match self.concave_banded(system, kind, depth, start)? {
+                match self.concave_banded(system, kind.clone(), depth, start)? {
                     BandOutcome::Solved(solution, active) => return Ok((solution, active, true)),
                     BandOutcome::TooWide => break,
                     BandOutcome::CoreReleased(radius, reached) => {
@@ -818,7 +818,8 @@ impl<'m> ContactModel<'m> {
         let mut warm = initial_active;
         let mut iterations = 0;
         for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
-            let (solution, active, banded) = self.concave_with(system, kind, depth, warm.take())?;
+            let (solution, active, banded) =
+                self.concave_with(system, kind.clone(), depth, warm.take())?;
             iterations += solution.iterations;
             // Force per unit depth at this active set: prescribed u_z = -1 on active nodes.
             let unit = self.unit_depth_response(system, &active, banded)?;
@@ -837,7 +838,7 @@ impl<'m> ContactModel<'m> {
             let step = (target_force - solution.force) / stiffness;
             let settled = step.abs() <= 1e-3 * relative_tolerance * depth.abs().max(1e-12);
             if settled {
-                self.check_single_ring(kind, &active)?;
+                self.check_single_ring(kind.clone(), &active)?;
                 let mut solution = solution;
                 solution.iterations = iterations;
                 self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
@@ -861,8 +862,8 @@ impl<'m> ContactModel<'m> {
         initial_active: Option<Vec<bool>>,
     ) -> Result<ContactSolution> {
         let (mut solution, active, banded) =
-            self.concave_with(system, kind, depth, initial_active)?;
-        self.check_single_ring(kind, &active)?;
+            self.concave_with(system, kind.clone(), depth, initial_active)?;
+        self.check_single_ring(kind.clone(), &active)?;
         let unit = self.unit_depth_response(system, &active, banded)?;
         self.fill_conditioning(system.solver, kind, depth, &active, &mut solution, &unit);
         Ok(solution)

@@ -226,10 +226,11 @@ pub fn mesh_directory() -> PathBuf {
 }
 
 /// Where the contact line of the punch's mesh starts: `b/a` for the flat annulus, else 0.
-pub fn contact_start(kind: PunchKind, eps: f64) -> f64 {
-    match kind {
-        PunchKind::FlatAnnulus => eps,
-        _ => 0.0,
+pub fn contact_start(kind: &PunchKind, eps: f64) -> f64 {
+    if kind.has_fixed_hole() {
+        eps
+    } else {
+        0.0
     }
 }
 
@@ -238,7 +239,7 @@ pub fn contact_start(kind: PunchKind, eps: f64) -> f64 {
 /// continued by the adapted family made by gmsh; otherwise the adapted family alone, from the
 /// level whose predicted error (about `3.5e-4 · 0.13^k` for P2) is within 100 x the tolerance.
 pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
-    let start_line = contact_start(kind, eps);
+    let start_line = contact_start(&kind, eps);
     let mut sequence = Vec::new();
     let mut first_adapted: i32 = 0;
     if tolerance >= COMMITTED_TOLERANCE_FLOOR {
@@ -553,7 +554,8 @@ fn solve_model(
     let (warm, depth_guess) = match warm {
         None if kind.is_concave() && kind.has_rim() && model.mesh.degree != Degree::Linear => {
             let start = Instant::now();
-            let located = linear_edge_locator(model, kind, eps, load, depth_guess, tolerance);
+            let located =
+                linear_edge_locator(model, kind.clone(), eps, load, depth_guess, tolerance);
             model.timings.edge_presolve = start.elapsed().as_secs_f64();
             match located {
                 Some((warm, depth)) => (Some(warm), depth_guess.or(Some(depth))),
@@ -588,7 +590,7 @@ fn solve_model(
         model.timings.factorisation = solver.factorisation_seconds;
         return result;
     }
-    if kind == PunchKind::FlatAnnulus || kind == PunchKind::Flat {
+    if !kind.is_concave() {
         let start_line = contact.contact_line_start();
         if (start_line - eps).abs() > 1e-9 {
             return Err(Error::InvalidMesh {
@@ -609,7 +611,7 @@ fn solve_model(
         }
         FemLoad::ConcaveDepth(depth) => {
             let initial = warm.map(|w| contact.active_set_for_radius(w.inner_radius));
-            let mut system = contact.banded_system(&mut solver, kind, core_radius(warm));
+            let mut system = contact.banded_system(&mut solver, kind.clone(), core_radius(warm));
             let s = contact.concave_with_sensitivity(&mut system, kind, depth, initial)?;
             model.timings.band_responses = system.responses_computed();
             let g2 = 0.5 * s.force;
@@ -617,7 +619,7 @@ fn solve_model(
         }
         FemLoad::ConcaveForce(target) => {
             let initial = warm.map(|w| contact.active_set_for_radius(w.inner_radius));
-            let mut system = contact.banded_system(&mut solver, kind, core_radius(warm));
+            let mut system = contact.banded_system(&mut solver, kind.clone(), core_radius(warm));
             // F = 2 E* h a γ2 with h = a = E* = 1.
             let (s, depth) = contact.concave_at_force(
                 &mut system,
@@ -651,7 +653,7 @@ fn solve_free_edges_model(
     frame: f64,
     tolerance: f64,
 ) -> Result<(ContactSolution, f64, f64)> {
-    let mut system = contact.banded_system(solver, kind, f64::INFINITY);
+    let mut system = contact.banded_system(solver, kind.clone(), f64::INFINITY);
     let (s, depth) = match load {
         FemLoad::ConcaveDepth(depth) => {
             let s = contact.concave_with_sensitivity(&mut system, kind, depth / frame, initial)?;
@@ -1040,7 +1042,7 @@ fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReques
     if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found() {
         return Vec::new();
     }
-    let Some(family) = provider::committed_family(contact_start(kind, eps)) else {
+    let Some(family) = provider::committed_family(contact_start(&kind, eps)) else {
         return Vec::new();
     };
     (0..=provider::COMMITTED_MAX_LEVEL)
@@ -1056,7 +1058,7 @@ fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReques
 /// adapted mesh to refine around. Its force, whose error is dominated by the unrefined edge, does
 /// not enter a Richardson estimate.
 fn edge_locator(kind: PunchKind, eps: f64) -> Vec<MeshRequest> {
-    provider::committed_family(contact_start(kind, eps))
+    provider::committed_family(contact_start(&kind, eps))
         .map(|family| MeshRequest::Committed { family, level: 0 })
         .into_iter()
         .collect()
@@ -1223,10 +1225,18 @@ pub fn solve_on_mesh(
     let mut model = prepare_checked(
         provided,
         options,
-        contact_start(kind, eps),
+        contact_start(&kind, eps),
         options.tolerance,
     )?;
-    let (s, x, y) = solve_model(&mut model, kind, eps, load, None, None, options.tolerance)?;
+    let (s, x, y) = solve_model(
+        &mut model,
+        kind.clone(),
+        eps,
+        load,
+        None,
+        None,
+        options.tolerance,
+    )?;
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
         trace_level(&model, &s);
     }
@@ -1323,7 +1333,7 @@ fn check_tolerance(tolerance: f64) -> Result<()> {
 }
 
 /// The scene a ladder solves.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 struct Problem {
     kind: PunchKind,
     eps: f64,
@@ -1421,8 +1431,8 @@ impl<'o> Ladder<'o> {
     /// The committed levels for this contact line (or the edge locator), then the adapted family
     /// from the first level that can meet the tolerance.
     fn new(problem: Problem, options: &'o FemOptions, start: Instant) -> Self {
-        let Problem { kind, eps, .. } = problem;
-        let ladder = committed_ladder(kind, eps, options.tolerance);
+        let Problem { kind, eps, .. } = problem.clone();
+        let ladder = committed_ladder(kind.clone(), eps, options.tolerance);
         let next_level = if ladder.is_empty() {
             first_adapted_level(options.degree, options.tolerance)
         } else {
@@ -1430,7 +1440,7 @@ impl<'o> Ladder<'o> {
         };
         let locating = ladder.is_empty() && kind.is_concave();
         let committed = if locating {
-            edge_locator(kind, eps)
+            edge_locator(kind.clone(), eps)
         } else {
             ladder
         };
@@ -1443,7 +1453,7 @@ impl<'o> Ladder<'o> {
                 "the FEM for the {kind} at tolerance {:e}",
                 options.tolerance
             ),
-            start_line: contact_start(kind, eps),
+            start_line: contact_start(&kind, eps),
             target: SizeTarget {
                 tolerance: options.tolerance,
                 degree: options.degree as usize,
@@ -1542,7 +1552,7 @@ impl<'o> Ladder<'o> {
     /// Solve the model's contact problem, warm-started from the previous rung, and read off what
     /// the next rung needs: the outputs, the edge's node spacing and error, full contact.
     fn solve_contact(&mut self, model: &mut PreparedModel, rung: &Rung) -> Result<SolvedRung> {
-        let Problem { kind, eps, load } = self.problem;
+        let Problem { kind, eps, load } = self.problem.clone();
         self.progress.set(format!(
             "solving {} unknowns on {}",
             model.stiffness.nrows(),
@@ -1557,7 +1567,7 @@ impl<'o> Ladder<'o> {
         let depth_guess = self.previous.as_ref().map(|p| p.values.primary);
         let (s, x, y) = solve_model(
             model,
-            kind,
+            kind.clone(),
             eps,
             load,
             guess,
@@ -1625,7 +1635,7 @@ impl<'o> Ladder<'o> {
         solved: &mut SolvedRung,
         previous: &LevelResult,
     ) -> Estimate {
-        let Problem { kind, load, .. } = self.problem;
+        let Problem { kind, load, .. } = self.problem.clone();
         let degree = self.options.degree;
         let s = &solved.solution;
         let current = &mut solved.level;
@@ -1720,7 +1730,7 @@ impl<'o> Ladder<'o> {
             ..
         } = *estimate;
         if total <= tolerance && self.closure_unresolved.is_none() {
-            rim_resolves_the_ring(model, self.problem.kind, &solved.solution)?;
+            rim_resolves_the_ring(model, self.problem.kind.clone(), &solved.solution)?;
             return Ok(Decision::Accept(Box::new(finish(
                 model,
                 solved.solution,

@@ -30,7 +30,7 @@ use crate::harness::studies::speed_accuracy::{self, BasePoints, CostPoint, Probl
 use crate::harness::studies::stability::{self, Probe};
 use crate::harness::studies::{claims, figures};
 use crate::methods::Method;
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 
 /// Grid size up to which the stored peer results are compared (as `verify compare`).
 pub(crate) const PEER_MAX_GRID: usize = 256;
@@ -144,7 +144,7 @@ impl Part {
                 eps,
                 d0_over_h,
             } => match punch {
-                PunchKind::FlatAnnulus => format!("pulloff:{}:eps={eps}", punch.name()),
+                p if p.has_fixed_hole() => format!("pulloff:{}:eps={eps}", punch.name()),
                 p if p.is_concave() => format!("pulloff:{}:d0h={d0_over_h}", punch.label()),
                 p => format!("pulloff:{}", p.name()),
             },
@@ -190,7 +190,10 @@ impl Part {
             let mut why = String::new();
             if name.starts_with("table-") {
                 // A job names a table by its hash: the report's own table is the one it can be.
-                crate::harness::studies::figures::report_table_punch();
+                let report_table = crate::harness::studies::figures::report_table_punch();
+                if let Some(table) = report_table.filter(|t| t.label() == *name) {
+                    return Ok(table);
+                }
                 why = format!(
                     " (a job's table punch must be the report's, {})",
                     crate::harness::studies::figures::REPORT_TABLE_FILE
@@ -241,8 +244,8 @@ impl Part {
             "pulloff" => {
                 let punch = punch(positional.first())?;
                 Part::PulloffSimulation {
-                    punch,
-                    eps: if punch == PunchKind::FlatAnnulus {
+                    punch: punch.clone(),
+                    eps: if punch == PunchKind::FLAT_ANNULUS {
                         number("eps")?
                     } else {
                         0.0
@@ -309,8 +312,8 @@ impl Part {
             // Measured alone on 2 cores: the concave punches 0.9-1.2 s (one branch for every
             // d0/h), the report's table 2.7 s, the torus 3.7 s; the live simulation 9.5 s (one
             // core), the Tamaas cases 15 s.
-            Part::Adhesion(PunchKind::Torus) => 3.7,
-            Part::Adhesion(PunchKind::Table(_)) => 2.7,
+            Part::Adhesion(p) if p.is_free_band() => 3.7,
+            Part::Adhesion(p) if p.tabulated().is_some() => 2.7,
             Part::Adhesion(_) => 1.2,
             Part::PulloffLive => 9.5,
             Part::AdhesionPeers => 15.0,
@@ -319,10 +322,10 @@ impl Part {
             // 155 s, cone and sphere 1 45-48 s).
             Part::PulloffSimulation {
                 punch, d0_over_h, ..
-            } => match punch {
-                PunchKind::Flat => 15.0,
-                PunchKind::FlatAnnulus => 50.0,
-                PunchKind::Cone if *d0_over_h <= 0.5 => 225.0,
+            } => match punch.contact() {
+                Contact::Disk => 15.0,
+                Contact::FixedAnnulus => 50.0,
+                _ if punch.power_law_exponent() == Some(1.0) && *d0_over_h <= 0.5 => 225.0,
                 _ if *d0_over_h <= 0.5 => 155.0,
                 _ if *d0_over_h <= 1.0 => 47.0,
                 _ => 13.0,
@@ -360,7 +363,7 @@ impl Part {
     /// already computed here, so that one process does not solve a coarser level twice).
     pub(crate) fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
         let ring = RingBemSolver::new();
-        Ok(match *self {
+        Ok(match self.clone() {
             Part::Comparison { tolerance } => PartResult::Comparison(comparison::run(tolerance)?),
             Part::Fenicsx => PartResult::Fenicsx(fenicsx::run()?),
             Part::Peers => PartResult::Peers(peers::run(PEER_MAX_GRID)?),
@@ -448,7 +451,7 @@ pub(crate) type EdgeMemo = HashMap<(String, usize), Option<f64>>;
 /// declined the case.
 fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffRecord {
     let mut command = format!("verify pulloff {}", punch.flags());
-    if punch == PunchKind::FlatAnnulus {
+    if punch == PunchKind::FLAT_ANNULUS {
         command += &format!(" --eps {eps}");
     }
     if punch.is_concave() {
@@ -456,13 +459,13 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
     }
     command += " --json";
     let case = study::Case {
-        punch,
+        punch: punch.clone(),
         eps,
         d0_over_h,
     };
     let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
-    let file = match punch {
-        PunchKind::FlatAnnulus => format!("flat-annulus-{eps}.json"),
+    let file = match &punch {
+        p if p.has_fixed_hole() => format!("{}-{eps}.json", p.name()),
         p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.label()),
         p => format!("{}.json", p.name()),
     };
@@ -509,7 +512,7 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
 
 /// The convergence study the report shows: the sphere at `d = 1.5 h`.
 const REPORT_STUDY: StudyCase = StudyCase {
-    punch: PunchKind::Sphere,
+    punch: PunchKind::SPHERE,
     eps: 0.0,
     depth: 1.5,
 };
@@ -520,7 +523,7 @@ const REPORT_STUDY_LEVELS: usize = 3;
 pub(crate) fn convergence_parts(case: StudyCase, method: Method, levels: usize) -> Vec<Part> {
     (0..levels)
         .map(|level| Part::ConvergenceLevel {
-            punch: case.punch,
+            punch: case.punch.clone(),
             method,
             eps: case.eps,
             depth: case.depth,
@@ -534,23 +537,23 @@ pub(crate) fn convergence_parts(case: StudyCase, method: Method, levels: usize) 
 fn pulloff_parts() -> Vec<Part> {
     let mut parts = vec![
         Part::PulloffSimulation {
-            punch: PunchKind::Flat,
+            punch: PunchKind::FLAT,
             eps: 0.0,
             d0_over_h: 0.0,
         },
         Part::PulloffSimulation {
-            punch: PunchKind::FlatAnnulus,
+            punch: PunchKind::FLAT_ANNULUS,
             eps: 0.5,
             d0_over_h: 0.0,
         },
         Part::PulloffSimulation {
-            punch: PunchKind::FlatAnnulus,
+            punch: PunchKind::FLAT_ANNULUS,
             eps: 0.9,
             d0_over_h: 0.0,
         },
     ];
     for x in [0.3, 1.0, 3.0, 10.0] {
-        for punch in [PunchKind::Cone, PunchKind::Sphere] {
+        for punch in [PunchKind::CONE, PunchKind::SPHERE] {
             parts.push(Part::PulloffSimulation {
                 punch,
                 eps: 0.0,
@@ -636,7 +639,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
                 PartResult::ConvergenceLevel(l),
             ) => {
                 let case = StudyCase {
-                    punch: *punch,
+                    punch: punch.clone(),
                     eps: *eps,
                     depth: *depth,
                 };
@@ -863,7 +866,11 @@ pub(crate) fn write_report(
                     .map(|record| {
                         let study = record.result.as_ref()?;
                         let d0_over_h = study.d0_over_h?;
-                        Some(figures::annular_jkr_branch(&ring, study.punch, d0_over_h))
+                        Some(figures::annular_jkr_branch(
+                            &ring,
+                            study.punch.clone(),
+                            d0_over_h,
+                        ))
                     })
                     .collect();
             Ok((functions, pressure, annular_jkr))

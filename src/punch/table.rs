@@ -14,12 +14,11 @@
 //! File format: one point per line, two numbers `r/a, g/h` separated by a comma (or blanks); an
 //! optional first line of column names; blank lines and lines starting with `#` are skipped.
 
-use std::collections::HashMap;
 use std::path::Path;
-use std::sync::{Mutex, OnceLock};
 
 use sha2::{Digest, Sha256};
 
+use super::{Contact, Profile, PunchName, PunchRecord};
 use crate::error::{show, Error, Result};
 
 /// Fewest points a table may have: a cubic needs four to be more than a straight line.
@@ -52,51 +51,26 @@ impl PartialEq for TableProfile {
 }
 
 impl TableProfile {
-    /// Read, validate and interpolate the table in `path`. Tables are kept for the life of the
-    /// process (one per distinct file content), so that a punch holding one stays `Copy`.
-    pub fn load(path: &Path) -> Result<&'static TableProfile> {
+    /// Read, validate and interpolate the table in `path`.
+    pub fn load(path: &Path) -> Result<TableProfile> {
         let bytes = std::fs::read(path).map_err(|e| Error::file("read", path, e))?;
         let sha256 = hex_sha256(&bytes);
-        if let Some(known) = registry().lock().ok().and_then(|m| m.get(&sha256).copied()) {
-            return Ok(known);
-        }
         let text = String::from_utf8(bytes)
             .map_err(|_| Error::file("read", path, "the profile table is not UTF-8 text"))?;
         let (radii, gaps) =
             parse_points(&text).map_err(|message| Error::file("parse", path, message))?;
-        let profile = TableProfile {
+        Ok(TableProfile {
             source: path.display().to_string(),
-            sha256: sha256.clone(),
+            sha256,
             slopes: pchip_slopes(&radii, &gaps),
             radii,
             gaps,
-        };
-        let leaked: &'static TableProfile = Box::leak(Box::new(profile));
-        if let Ok(mut map) = registry().lock() {
-            map.insert(sha256, leaked);
-        }
-        Ok(leaked)
+        })
     }
 
     /// The file as named when it was read.
     pub fn source(&self) -> &str {
         &self.source
-    }
-
-    /// The table loaded in this process whose SHA-256 (hex) begins with `prefix`, if exactly one
-    /// does and the prefix has at least 12 digits (a [`PunchKind`](crate::punch::PunchKind)
-    /// label's).
-    pub fn loaded(prefix: &str) -> Option<&'static TableProfile> {
-        if prefix.len() < 12 {
-            return None;
-        }
-        let map = registry().lock().ok()?;
-        let mut matches = map
-            .iter()
-            .filter(|(sha, _)| sha.starts_with(prefix))
-            .map(|(_, t)| *t);
-        let first = matches.next()?;
-        matches.next().is_none().then_some(first)
     }
 
     /// SHA-256 of the file, hex (the table's identity and provenance).
@@ -206,17 +180,65 @@ impl TableProfile {
     }
 }
 
-fn registry() -> &'static Mutex<HashMap<String, &'static TableProfile>> {
-    static REGISTRY: OnceLock<Mutex<HashMap<String, &'static TableProfile>>> = OnceLock::new();
-    REGISTRY.get_or_init(|| Mutex::new(HashMap::new()))
-}
-
 fn hex_sha256(bytes: &[u8]) -> String {
     Sha256::digest(bytes)
         .iter()
         .map(|b| format!("{b:02x}"))
         .collect()
 }
+
+impl Profile for TableProfile {
+    fn name(&self) -> &str {
+        "table"
+    }
+    fn builtin(&self) -> Option<PunchName> {
+        Some(PunchName::Table)
+    }
+    fn contact(&self) -> Contact {
+        Contact::RimAndFreeInner
+    }
+    fn gap(&self, rho: f64) -> f64 {
+        self.value(rho)
+    }
+    fn slope(&self, rho: f64) -> f64 {
+        TableProfile::slope(self, rho)
+    }
+    fn label(&self) -> String {
+        format!("table-{}", &self.sha256[..12])
+    }
+    fn flags(&self) -> String {
+        format!("--punch table --profile {}", self.source)
+    }
+    fn describe(&self) -> String {
+        format!("table ({})", self.source)
+    }
+    fn record(&self) -> PunchRecord {
+        PunchRecord {
+            profile_file: Some(self.source.clone()),
+            profile_sha256: Some(self.sha256.clone()),
+            ..PunchRecord::named(self.name())
+        }
+    }
+    fn tabulated(&self) -> Option<&TableProfile> {
+        Some(self)
+    }
+    /// The MDR's quadrature of the interpolant ([`crate::reference::mdr`]): a table smooth at
+    /// the axis closes; one with a slope there does not.
+    fn closure(&self) -> Option<(f64, f64)> {
+        let full = crate::reference::mdr::table_full_contact(self);
+        Some((full.closure_depth?, full.closure_force()?))
+    }
+    /// Whether its full-contact pressure first vanishes on a ring [`OPENING_OFF_AXIS`] or more
+    /// from the axis (the MDR).
+    fn flatter_than_the_sphere(&self) -> bool {
+        crate::reference::mdr::table_full_contact(self).opening_radius >= OPENING_OFF_AXIS
+    }
+}
+
+/// Radius (units of `a`) from which a table's full contact is taken to open on a ring rather
+/// than at the axis: the MDR's maximisation places the sphere's own opening within 1e-10 of it,
+/// the power law's `n = 2.05` at 0.035.
+const OPENING_OFF_AXIS: f64 = 1e-3;
 
 /// The points of a table file, checked: at least [`MIN_POINTS`], finite, `r/a` strictly
 /// increasing from 0 to 1, `g/h` non-increasing from 1 to 0. Errors name the line.

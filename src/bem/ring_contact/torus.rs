@@ -46,13 +46,9 @@ const OUTER_EDGE_TOLERANCE: f64 = 1e-13;
 impl RingBemSolver {
     /// The torus's band `[b, c]` at a fixed node count: its collocation system and the fields
     /// of `w = 1` and `w = -ĝ`.
-    fn torus_band(&self, inner: f64, outer: f64, n: usize) -> Result<TorusBand> {
+    fn torus_band(&self, kind: &PunchKind, inner: f64, outer: f64, n: usize) -> Result<TorusBand> {
         let system = self.system(ContactRegion::Band { inner, outer }, n);
-        let minus_gap: Vec<f64> = system
-            .radii()
-            .iter()
-            .map(|&r| -PunchKind::Torus.gap_shape(r))
-            .collect();
+        let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap(r)).collect();
         let singular = || no_convergence("singular collocation matrix".into());
         let one = system.solve(&vec![1.0; n]).ok_or_else(singular)?;
         let gap = system.solve(&minus_gap).ok_or_else(singular)?;
@@ -65,11 +61,12 @@ impl RingBemSolver {
     /// search (a nearby state's edge); without one it starts from [`outer_edge_guess`].
     pub(super) fn torus_sample(
         &self,
+        kind: &PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
-        let band_at = |outer: f64| self.torus_band(eps, outer, n);
+        let band_at = |outer: f64| self.torus_band(kind, eps, outer, n);
         let last = LastBand::default();
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
@@ -102,7 +99,14 @@ impl RingBemSolver {
         centre_hint: Option<f64>,
         intensity: f64,
     ) -> Result<ConcaveSample> {
-        let band_at = |centre: f64| self.torus_band(centre - half_width, centre + half_width, n);
+        let band_at = |centre: f64| {
+            self.torus_band(
+                &PunchKind::TORUS,
+                centre - half_width,
+                centre + half_width,
+                n,
+            )
+        };
         let last = LastBand::default();
         let lo = half_width + MIN_CONTACT_RATIO;
         let hi = 3.0 + 3.0 * half_width;
@@ -199,8 +203,10 @@ impl RingBemSolver {
     /// leave `MIN_CONTACT_RATIO <= b < c <= hi` is shortened. `None` where it
     /// does not converge: the caller then runs the nested search (an edge search inside a
     /// search on `b`), which is safeguarded but costs several times more bands.
+    #[allow(clippy::too_many_arguments)]
     pub(super) fn torus_at_target(
         &self,
+        kind: &PunchKind,
         n: usize,
         target: f64,
         depth_controlled: bool,
@@ -211,7 +217,7 @@ impl RingBemSolver {
         let pick = if depth_controlled { 1 } else { 2 };
         // The band's values `[R, γ1, γ2]` at `(b, c)`.
         let values = |b: f64, c: f64| -> Option<([f64; 3], TorusBand)> {
-            let band = self.torus_band(b, c, n).ok()?;
+            let band = self.torus_band(kind, b, c, n).ok()?;
             let v = band.values();
             v.iter().all(|x| x.is_finite()).then_some((v, band))
         };
@@ -338,6 +344,7 @@ impl RingBemSolver {
     /// Newton's method does not converge at some rung: the caller then runs the nested search.
     pub(super) fn torus_inverse(
         &self,
+        kind: &PunchKind,
         target: f64,
         tolerance: f64,
         depth_controlled: bool,
@@ -352,6 +359,7 @@ impl RingBemSolver {
             let n = NODE_LADDER[rung];
             let at = |n: usize, start: (f64, f64), jacobian: Option<TorusJacobian>| {
                 self.torus_at_target(
+                    kind,
                     n,
                     target,
                     depth_controlled,
@@ -381,13 +389,7 @@ impl RingBemSolver {
                 Err(e) => return Some(Err(e)),
             };
             if estimate <= tolerance {
-                return Some(self.concave_state(
-                    PunchKind::Torus,
-                    fine.eps,
-                    fine.sample,
-                    n,
-                    estimate,
-                ));
+                return Some(self.concave_state(kind, fine.eps, fine.sample, n, estimate));
             }
             if rung + 1 >= NODE_LADDER.len() {
                 return Some(Err(no_convergence(if estimate.is_finite() {
@@ -613,6 +615,7 @@ mod tests {
             let start = initial_inner_edge(target, depth_controlled);
             let direct = solver
                 .torus_at_target(
+                    &PunchKind::TORUS,
                     n,
                     target,
                     depth_controlled,
@@ -624,7 +627,7 @@ mod tests {
             let nested = find_root(
                 |eps| {
                     let s = solver
-                        .torus_sample(eps, n, None)
+                        .torus_sample(&PunchKind::TORUS, eps, n, None)
                         .map_err(|e| e.to_string())?;
                     Ok(pick(&s) - target)
                 },
@@ -635,7 +638,9 @@ mod tests {
                 80,
             )
             .unwrap();
-            let outer = solver.torus_sample(nested.x, n, None).unwrap();
+            let outer = solver
+                .torus_sample(&PunchKind::TORUS, nested.x, n, None)
+                .unwrap();
             let (b, c) = (direct.eps, direct.sample.system.region().outer());
             println!(
                 "target {target}: direct b {b:.15} c {c:.15}, nested b {:.15} c {:.15}",
@@ -647,7 +652,15 @@ mod tests {
             assert!((pick(&direct.sample) / target - 1.0).abs() < 1e-11);
         }
         // A narrow band started far off: no state, or the right one.
-        let wrong = solver.torus_at_target(n, 1e-4, false, (0.9968, 1.303), None, 1e-12);
+        let wrong = solver.torus_at_target(
+            &PunchKind::TORUS,
+            n,
+            1e-4,
+            false,
+            (0.9968, 1.303),
+            None,
+            1e-12,
+        );
         if let Some(found) = wrong {
             assert!((found.eps - 0.99683348).abs() < 1e-6, "{}", found.eps);
         }

@@ -10,7 +10,7 @@ use crate::cli::args::SolveArgs;
 use crate::harness::report::table::{readable, Column, Table};
 use crate::mesh::triangulation::Degree;
 use crate::methods::{self, MethodOptions};
-use crate::punch::{PunchKind, PunchName};
+use crate::punch::{Contact, PunchName};
 use crate::scene::{Scene, SceneSpec};
 use crate::solution::Solution;
 
@@ -120,10 +120,10 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
 pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
     let p = &scene.punch;
     let es = scene.material.effective_modulus;
-    let geometry = match p.kind {
-        PunchKind::Flat => format!("a = {}", p.rim_radius),
-        PunchKind::FlatAnnulus => format!("a = {}, b = {}", p.rim_radius, p.inner_radius),
-        PunchKind::Torus => format!(
+    let geometry = match p.kind.contact() {
+        Contact::Disk => format!("a = {}", p.rim_radius),
+        Contact::FixedAnnulus => format!("a = {}, b = {}", p.rim_radius, p.inner_radius),
+        Contact::FreeBand => format!(
             "a = {}, rho = {}, h = a²/(2 rho) = {}",
             p.rim_radius,
             readable(p.tube_radius().unwrap_or(f64::NAN), 12),

@@ -125,7 +125,7 @@ pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Res
     let progress = Heartbeat::start("fem");
     let mut frame = initial_frame(load);
     for _ in 0..=MAX_LINE_WIDENINGS {
-        match climb(kind, load, options, frame, start, &progress)? {
+        match climb(kind.clone(), load, options, frame, start, &progress)? {
             Climb::Solved(state) => return Ok(*state),
             Climb::LineTooShort => frame *= 2.0,
         }
@@ -172,7 +172,7 @@ pub(super) fn solve_on_level(
     model.spec.frame = frame;
     let (s, gamma1, gamma2) = solve_model(
         &mut model,
-        kind,
+        kind.clone(),
         0.0,
         load,
         None,
@@ -248,8 +248,15 @@ fn climb(
             band: p.edge_errors[0],
             outer_radius: p.edges[1],
         });
-        let (s, gamma1, gamma2) =
-            solve_model(&mut model, kind, 0.0, load, warm, depth_guess, tolerance)?;
+        let (s, gamma1, gamma2) = solve_model(
+            &mut model,
+            kind.clone(),
+            0.0,
+            load,
+            warm,
+            depth_guess,
+            tolerance,
+        )?;
         iterations += s.iterations;
         if std::env::var_os("RINGCONTACT_TRACE").is_some() {
             super::trace_level(&model, &s);
@@ -261,7 +268,7 @@ fn climb(
         if s.outer_node_spacing == 0.0 {
             return Ok(Climb::LineTooShort);
         }
-        check_open(kind, &s, &last_mesh)?;
+        check_open(kind.clone(), &s, &last_mesh)?;
         let spacings = [s.inner_node_spacing, s.outer_node_spacing];
         let located = [s.inner_radius, s.outer_radius];
         let mut rung = Rung {

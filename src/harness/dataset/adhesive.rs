@@ -161,7 +161,7 @@ pub fn concave(
         &format!("{kind} JKR"),
         fields.iter().map(Field::column).collect(),
     );
-    let branch = adhesion::ConcaveBranch::new(solver, kind)?;
+    let branch = adhesion::ConcaveBranch::new(solver, kind.clone())?;
     for (k, &s) in scales.iter().enumerate() {
         progress(&format!(
             "{kind} JKR: {} of {} (d0/h = {s:.3})",

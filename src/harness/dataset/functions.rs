@@ -13,7 +13,7 @@
 use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::Result;
 use crate::harness::report::table::{Cell, Table};
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 
 use super::{Field, Resource};
 
@@ -30,7 +30,7 @@ pub const TORUS_EPS_RANGE: (f64, f64) = (1e-2, 0.9999);
 
 /// The ends of `kind`'s grid.
 fn eps_range(kind: PunchKind) -> (f64, f64) {
-    if kind == PunchKind::Torus {
+    if kind == PunchKind::TORUS {
         TORUS_EPS_RANGE
     } else {
         EPS_RANGE
@@ -105,9 +105,9 @@ fn solve_all(
         if k % 50 == 0 {
             progress(&format!("{kind}: state {} of {}", k + 1, eps.len()));
         }
-        states.push(match kind {
-            PunchKind::FlatAnnulus => solver.flat(e, TOLERANCE)?,
-            _ => solver.concave_at_ratio(kind, e, TOLERANCE)?,
+        states.push(match kind.has_fixed_hole() {
+            true => solver.flat(e, TOLERANCE)?,
+            false => solver.concave_at_ratio(&kind, e, TOLERANCE)?,
         });
     }
     Ok(Solved {
@@ -118,23 +118,25 @@ fn solve_all(
 
 /// The interpolated columns of `kind`'s table.
 fn function_names(kind: PunchKind) -> Vec<&'static str> {
-    match kind {
-        PunchKind::FlatAnnulus => vec!["gamma"],
-        PunchKind::Torus => vec!["gamma1", "gamma2", "outer_radius"],
-        _ => vec!["gamma1", "gamma2"],
+    match kind.contact() {
+        Contact::FixedAnnulus | Contact::Disk => vec!["gamma"],
+        Contact::FreeBand => vec!["gamma1", "gamma2", "outer_radius"],
+        Contact::RimAndFreeInner => vec!["gamma1", "gamma2"],
     }
 }
 
 /// The function values of a state (`γ`; `γ1` and `γ2`; the torus's also `c/a`).
 fn functions(kind: PunchKind, s: &RingState) -> Vec<f64> {
-    match kind {
-        PunchKind::FlatAnnulus => vec![s.gamma.unwrap_or(f64::NAN)],
-        PunchKind::Torus => vec![
+    match kind.contact() {
+        Contact::FixedAnnulus | Contact::Disk => vec![s.gamma.unwrap_or(f64::NAN)],
+        Contact::FreeBand => vec![
             s.gamma1.unwrap_or(f64::NAN),
             s.gamma2.unwrap_or(f64::NAN),
             s.outer_edge,
         ],
-        _ => vec![s.gamma1.unwrap_or(f64::NAN), s.gamma2.unwrap_or(f64::NAN)],
+        Contact::RimAndFreeInner => {
+            vec![s.gamma1.unwrap_or(f64::NAN), s.gamma2.unwrap_or(f64::NAN)]
+        }
     }
 }
 
@@ -147,12 +149,12 @@ fn interpolation_error(
     progress: &dyn Fn(&str),
 ) -> Result<Vec<f64>> {
     let grid = &solved.eps;
-    let columns: Vec<Vec<f64>> = (0..functions(kind, &solved.states[0]).len())
+    let columns: Vec<Vec<f64>> = (0..functions(kind.clone(), &solved.states[0]).len())
         .map(|c| {
             solved
                 .states
                 .iter()
-                .map(|s| functions(kind, s)[c])
+                .map(|s| functions(kind.clone(), s)[c])
                 .collect()
         })
         .collect();
@@ -162,10 +164,10 @@ fn interpolation_error(
         .take(grid.len().saturating_sub(3))
         .map(|w| logistic(0.5 * (logit(w[0]) + logit(w[1]))))
         .collect();
-    let fresh = solve_all(solver, kind, &midpoints, progress)?;
+    let fresh = solve_all(solver, kind.clone(), &midpoints, progress)?;
     let mut worst = vec![0.0f64; columns.len()];
     for (e, state) in midpoints.iter().zip(&fresh.states) {
-        for (c, exact) in functions(kind, state).into_iter().enumerate() {
+        for (c, exact) in functions(kind.clone(), state).into_iter().enumerate() {
             let error = (interpolate(grid, &columns[c], *e) - exact).abs() / exact.abs();
             worst[c] = worst[c].max(error);
         }
@@ -180,11 +182,11 @@ pub fn resource(
     intervals: usize,
     progress: &dyn Fn(&str),
 ) -> Result<Resource> {
-    let range = eps_range(kind);
-    let solved = solve_all(solver, kind, &grid_over(range, intervals), progress)?;
-    let worst = interpolation_error(solver, kind, &solved, progress)?;
-    let flat = kind == PunchKind::FlatAnnulus;
-    let torus = kind == PunchKind::Torus;
+    let range = eps_range(kind.clone());
+    let solved = solve_all(solver, kind.clone(), &grid_over(range, intervals), progress)?;
+    let worst = interpolation_error(solver, kind.clone(), &solved, progress)?;
+    let flat = kind == PunchKind::FLAT_ANNULUS;
+    let torus = kind == PunchKind::TORUS;
     let mut fields = vec![Field::number(
         "eps",
         "1",
@@ -246,7 +248,7 @@ pub fn resource(
     );
     for (e, s) in solved.eps.iter().zip(&solved.states) {
         let mut row: Vec<Cell> = vec![(*e).into()];
-        row.extend(functions(kind, s).into_iter().map(Cell::from));
+        row.extend(functions(kind.clone(), s).into_iter().map(Cell::from));
         row.push(s.error_estimate.into());
         if !torus {
             row.push(s.rim_stress_intensity.into());
@@ -256,7 +258,7 @@ pub fn resource(
         }
         table.push(row);
     }
-    let names = function_names(kind);
+    let names = function_names(kind.clone());
     let measured: Vec<String> = names
         .iter()
         .zip(&worst)

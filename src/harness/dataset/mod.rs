@@ -136,11 +136,11 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
     let mut resources = Vec::new();
     let power = PunchName::Power.with_exponent(Some(1.5))?;
     for kind in [
-        PunchKind::FlatAnnulus,
-        PunchKind::Cone,
-        PunchKind::Sphere,
-        power,
-        PunchKind::Torus,
+        PunchKind::FLAT_ANNULUS,
+        PunchKind::CONE,
+        PunchKind::SPHERE,
+        power.clone(),
+        PunchKind::TORUS,
     ] {
         resources.push(functions::resource(
             &solver,
@@ -154,7 +154,7 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
         &size.annulus_ratios(),
         progress,
     )?);
-    for kind in [PunchKind::Cone, PunchKind::Sphere, power] {
+    for kind in [PunchKind::CONE, PunchKind::SPHERE, power] {
         resources.push(adhesive::concave(
             &solver,
             kind,

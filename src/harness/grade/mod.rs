@@ -245,10 +245,16 @@ fn reference_solution(scene: &Scene, tolerance: f64) -> Result<Solution, String>
     match methods::solve(scene, Method::RingBem) {
         Ok(s) if s.error_estimate.is_some() => Ok(s),
         first => {
-            let fallback = Scene {
+            let fallback = (Scene {
                 tolerance: Some((tolerance / RESOLUTION).max(1e-9)),
-                ..*scene
-            };
+                ..scene.clone()
+            })
+            .clone()
+            .clone()
+            .clone()
+            .clone()
+            .clone()
+            .clone();
             methods::solve(&fallback, Method::Auto).map_err(|e| {
                 let ring = match first {
                     Err(r) => format!("ring BEM: {r}; "),
@@ -379,13 +385,14 @@ pub fn peer_rows(records: &[(String, PeerResult)]) -> Vec<ResultRow> {
         .iter()
         .map(|(file, r)| ResultRow {
             place: file.clone(),
-            punch: r.punch.shape_name(),
+            punch: r
+                .punch
+                .shape_name()
+                .unwrap_or(crate::punch::PunchName::Table),
             exponent: r.punch.exponent(),
-            tube_radius: (r.punch == crate::punch::PunchKind::Torus).then_some(0.5),
+            tube_radius: r.punch.is_free_band().then_some(0.5),
             profile: r.punch.table().map(|t| t.source().into()),
-            hole_ratio: (r.punch == crate::punch::PunchKind::FlatAnnulus)
-                .then_some(r.eps)
-                .flatten(),
+            hole_ratio: r.punch.has_fixed_hole().then_some(r.eps).flatten(),
             state: Some((Quantity::Depth, r.depth)),
             values: vec![(Quantity::Force, r.force)],
             effective_modulus: None,

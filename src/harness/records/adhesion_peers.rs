@@ -76,7 +76,7 @@ pub fn load() -> Result<Vec<(String, TamaasPulloff)>> {
 
 fn case_of(stored: &TamaasPulloff) -> Case {
     Case {
-        punch: stored.punch,
+        punch: stored.punch.clone(),
         eps: 0.0,
         d0_over_h: stored.d0_over_h.unwrap_or(0.0),
     }
@@ -98,7 +98,7 @@ pub fn run() -> Result<Vec<AdhesionPeerComparison>> {
             .iter()
             .filter(|s| s.1.range_over_d0 == range)
             .collect();
-        if let Some((file, s)) = here.iter().find(|s| s.1.punch == PunchKind::FlatAnnulus) {
+        if let Some((file, s)) = here.iter().find(|s| s.1.punch == PunchKind::FLAT_ANNULUS) {
             return Err(Error::Unsupported {
                 method: "tamaas peer".into(),
                 reason: format!("{file}: {} has no stored peer comparison", s.punch),
@@ -134,7 +134,7 @@ fn compare(
         .max_by(|a, b| a.side.total_cmp(&b.side).then(a.cells.cmp(&b.cells)));
     AdhesionPeerComparison {
         file: file.to_string(),
-        punch: stored.punch,
+        punch: stored.punch.clone(),
         d0_over_h: stored.d0_over_h,
         range_over_d0: stored.range_over_d0,
         tabor: ours.entry.tabor,

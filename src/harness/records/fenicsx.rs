@@ -17,7 +17,7 @@ use crate::error::{Error, Result};
 use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use crate::mesh::triangulation::Degree;
-use crate::punch::PunchKind;
+use crate::punch::{Contact, PunchKind};
 
 /// Relative force agreement required of two codes solving the identical discrete problem.
 pub const FORCE_AGREEMENT: f64 = 1e-8;
@@ -139,10 +139,10 @@ pub fn compare(
         method: "fenicsx".into(),
         reason: format!("{file}: degree {}", stored.degree),
     })?;
-    let (eps, load) = match stored.punch {
-        PunchKind::Flat => (0.0, FemLoad::Flat),
-        PunchKind::FlatAnnulus => (stored.eps.unwrap_or(0.0), FemLoad::Flat),
-        _ => (0.0, FemLoad::ConcaveDepth(stored.depth)),
+    let (eps, load) = match stored.punch.contact() {
+        Contact::Disk => (0.0, FemLoad::Flat),
+        Contact::FixedAnnulus => (stored.eps.unwrap_or(0.0), FemLoad::Flat),
+        Contact::RimAndFreeInner | Contact::FreeBand => (0.0, FemLoad::ConcaveDepth(stored.depth)),
     };
     let options = FemOptions {
         linear_solver: Default::default(),
@@ -153,7 +153,7 @@ pub fn compare(
         far_field: crate::discretisation::far_field::FarField::Fixed,
     };
     let start = Instant::now();
-    let ours = fem_solver::solve(stored.punch, eps, load, &options)?;
+    let ours = fem_solver::solve(stored.punch.clone(), eps, load, &options)?;
     let our_wall = start.elapsed().as_secs_f64();
     // Flat punches: F = 2 γ d; concave (h = 1): F = 2 γ2.
     let our_force = match load {
@@ -193,7 +193,7 @@ pub fn compare(
     let ring_force = match load {
         FemLoad::Flat => ring.flat(eps, 1e-10)?.gamma.map(|g| 2.0 * g * stored.depth),
         _ => ring
-            .concave_at_depth(stored.punch, stored.depth, 1e-10)?
+            .concave_at_depth(&stored.punch, stored.depth, 1e-10)?
             .gamma2
             .map(|g| 2.0 * g),
     };

@@ -78,7 +78,7 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
         }
         let eps = stored.eps.unwrap_or(0.0);
         let key = (
-            stored.punch,
+            stored.punch.clone(),
             eps.to_bits(),
             stored.grid,
             stored.grid_extent.unwrap_or(1.0).to_bits(),
@@ -94,19 +94,19 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                 };
                 let load = GridLoad::Depth(depth);
                 // The torus's square is stored with it; every other punch's grid is [-a, a]².
-                let solved = match (stored.punch, stored.grid_extent) {
-                    (PunchKind::Torus, Some(half_size)) => {
+                let solved = match (stored.punch.is_free_band(), stored.grid_extent) {
+                    (true, Some(half_size)) => {
                         grid_contact::solve_torus_on_square(stored.grid, half_size, load, 1e-11)
                     }
-                    (PunchKind::Torus, None) | (_, Some(_)) => {
-                        Err(crate::error::Error::Unsupported {
-                            method: crate::bem::grid::METHOD.into(),
-                            reason: "grid_extent (the square's half-size) is stored for the \
+                    (true, None) | (false, Some(_)) => Err(crate::error::Error::Unsupported {
+                        method: crate::bem::grid::METHOD.into(),
+                        reason: "grid_extent (the square's half-size) is stored for the \
                                      torus, and only for it"
-                                .into(),
-                        })
+                            .into(),
+                    }),
+                    (false, None) => {
+                        grid_contact::solve(stored.punch.clone(), eps, stored.grid, load, 1e-11)
                     }
-                    (punch, None) => grid_contact::solve(punch, eps, stored.grid, load, 1e-11),
                 };
                 let s = solved.map_err(|e| {
                     crate::error::Error::file(

@@ -286,7 +286,7 @@ fn function_charts(
     );
     write(dir, "gamma-flat-annulus.svg", &chart)?;
     for c in &curves.concave {
-        let kind = c.punch;
+        let kind = c.punch.clone();
         if !kind.has_rim() {
             write(
                 dir,
@@ -299,7 +299,7 @@ fn function_charts(
             concave_ratios()
                 .into_iter()
                 .map(|e| {
-                    let value = if kind == PunchKind::Cone {
+                    let value = if kind == PunchKind::CONE {
                         paper_fits::cone_gamma(i, e)
                     } else {
                         paper_fits::sphere_gamma(i, e)
@@ -317,7 +317,7 @@ fn function_charts(
         // The report's table samples another punch's profile: that punch's curves under its
         // own (drawn first, so that the table's stay visible where they coincide).
         let mut lines = Vec::new();
-        if matches!(kind, PunchKind::Table(_)) {
+        if kind.tabulated().is_some() {
             let sampled = REPORT_TABLE_SAMPLES;
             if let Some(s) = curves.concave.iter().find(|s| s.punch == sampled) {
                 lines.push(series(&format!("gamma1 {sampled}"), s.gamma1.clone()));
@@ -332,7 +332,9 @@ fn function_charts(
         lines.push(series("gamma1 ring BEM", c.gamma1.clone()));
         lines.push(series("gamma2 ring BEM", c.gamma2.clone()));
         // The paper fitted the cone and the sphere only.
-        if matches!(kind, PunchKind::Cone | PunchKind::Sphere) {
+        if kind.exponent_parameter().is_none()
+            && matches!(kind.power_law_exponent(), Some(1.0 | 2.0))
+        {
             lines.push(series("gamma1 paper fit", fit(1)));
             lines.push(series("gamma2 paper fit", fit(2)));
         }
@@ -341,7 +343,7 @@ fn function_charts(
         let chart = crate::harness::report::svg::linear_chart_with_markers(
             &format!(
                 "{}: gamma1 = d/h and gamma2 = F/(2 E* h a) against b/a",
-                chart_name(kind)
+                chart_name(kind.clone())
             ),
             "eps = b/a",
             "gamma1, gamma2",
@@ -396,7 +398,7 @@ fn table_difference_chart(c: &ConcaveCurves) -> String {
     log_log_chart(
         &format!(
             "{} against the {sampled} it samples, at the same depth",
-            chart_name(c.punch)
+            chart_name(c.punch.clone())
         ),
         "d/h",
         "|gamma2 difference|",
@@ -570,7 +572,7 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
         .collect();
     // The report's table samples another punch's profile: that punch's fixed-load pull-off,
     // drawn first (the table's stays visible where they coincide).
-    if matches!(kind, PunchKind::Table(_)) {
+    if kind.tabulated().is_some() {
         let sampled = REPORT_TABLE_SAMPLES;
         series.insert(
             0,

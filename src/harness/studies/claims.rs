@@ -37,7 +37,7 @@ fn torus_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
     let torus: Vec<&PulloffStudy> = simulations
         .iter()
         .filter_map(|r| r.result.as_ref())
-        .filter(|s| s.punch == PunchKind::Torus)
+        .filter(|s| s.punch == PunchKind::TORUS)
         .collect();
     let numbers: Vec<String> = torus
         .iter()
@@ -74,7 +74,7 @@ fn torus_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
 fn torus_narrow_verdict(pulloff: &[PulloffPoint]) -> Option<Verdict> {
     let mut differences: Vec<(f64, f64)> = pulloff
         .iter()
-        .filter(|p| p.punch == PunchKind::Torus.label())
+        .filter(|p| p.punch == PunchKind::TORUS.label())
         .filter_map(|p| {
             Some((
                 p.d0_over_h,
@@ -149,8 +149,8 @@ fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 /// Pull-off almost the same under fixed grips and fixed load, at `d0/h = 1`.
 fn regime_verdict(ring: &RingBemSolver) -> Result<Verdict> {
     let mut spreads = Vec::new();
-    for kind in [PunchKind::Cone, PunchKind::Sphere] {
-        let r = adhesion::concave(ring, kind, 1.0)?;
+    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
+        let r = adhesion::concave(ring, kind.clone(), 1.0)?;
         if let (Some(l), Some(g)) = (r.fixed_load, r.fixed_grips) {
             spreads.push(format!(
                 "{kind} {:.0} %",
@@ -294,7 +294,7 @@ fn refutes_paper_route(studies: &[&PulloffStudy]) -> bool {
 pub(crate) fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
     use crate::cohesive::study;
     let case = study::Case {
-        punch: PunchKind::Cone,
+        punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 10.0,
     };
@@ -319,10 +319,10 @@ pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
 /// load on the annular branch, the paper's route on its fits, from full contact.
 pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
-    if kind == PunchKind::Torus {
+    if kind == PunchKind::TORUS {
         return torus_pulloff_points(ring);
     }
-    let branch = adhesion::ConcaveBranch::new(ring, kind)?;
+    let branch = adhesion::ConcaveBranch::new(ring, kind.clone())?;
     pulloff_scales()
         .map(|s| {
             let r = branch.jkr(s)?;
@@ -352,7 +352,7 @@ fn torus_pulloff_points(ring: &RingBemSolver) -> Result<Vec<PulloffPoint>> {
         .map(|s| {
             let r = adhesion::torus_jkr(ring, s)?;
             Ok(PulloffPoint {
-                punch: PunchKind::Torus.label(),
+                punch: PunchKind::TORUS.label(),
                 d0_over_h: s,
                 fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
                 paper_fits: None,

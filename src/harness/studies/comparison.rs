@@ -163,16 +163,16 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
         ));
     }
     for (kind, q1, q2) in [
-        (PunchKind::Cone, Quantity::ConeGamma1, Quantity::ConeGamma2),
+        (PunchKind::CONE, Quantity::ConeGamma1, Quantity::ConeGamma2),
         (
-            PunchKind::Sphere,
+            PunchKind::SPHERE,
             Quantity::SphereGamma1,
             Quantity::SphereGamma2,
         ),
     ] {
         for &eps in &CONCAVE_RATIOS {
             let start = Instant::now();
-            let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+            let state = solver.concave_at_ratio(&kind, eps, tolerance)?;
             let wall = start.elapsed().as_secs_f64();
             rows.push(row(q1, &state, state.gamma1.unwrap_or(f64::NAN), wall));
             rows.push(row(q2, &state, state.gamma2.unwrap_or(f64::NAN), wall));
@@ -225,13 +225,13 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     };
     let mut checks = Vec::new();
     let cases = [
-        (PunchKind::Flat, 0.0, FemLoad::Flat),
-        (PunchKind::FlatAnnulus, 0.5, FemLoad::Flat),
-        (PunchKind::FlatAnnulus, 0.9, FemLoad::Flat),
-        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(0.5)),
-        (PunchKind::Cone, 0.0, FemLoad::ConcaveDepth(2.0)),
-        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5)),
-        (PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(3.5)),
+        (PunchKind::FLAT, 0.0, FemLoad::Flat),
+        (PunchKind::FLAT_ANNULUS, 0.5, FemLoad::Flat),
+        (PunchKind::FLAT_ANNULUS, 0.9, FemLoad::Flat),
+        (PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(0.5)),
+        (PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(2.0)),
+        (PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5)),
+        (PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(3.5)),
         (power(1.5), 0.0, FemLoad::ConcaveDepth(2.0)),
         (power(3.0), 0.0, FemLoad::ConcaveDepth(2.0)),
     ];
@@ -241,9 +241,9 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     let torus = TORUS_FEM_DEPTHS
         .iter()
         .filter(|_| crate::fem::gmsh_found())
-        .map(|&d| (PunchKind::Torus, 0.0, FemLoad::ConcaveDepth(d)));
+        .map(|&d| (PunchKind::TORUS, 0.0, FemLoad::ConcaveDepth(d)));
     for (kind, eps, load) in cases.into_iter().chain(table).chain(torus) {
-        let scene = super::scene_of_fem_load(kind, eps, load, None)?;
+        let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;
         let fem = methods::solve_with(&scene, Method::Fem, &options)?;
         // A FEM solution always carries its model's part.
         let (dofs, mesh) = fem
@@ -253,7 +253,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
         let mut outer_difference = None;
         let (bem_value, bem_eps, bem_estimate, prescribed, fem_value) = match load {
             FemLoad::ConcaveDepth(d) => {
-                let s = solver.concave_at_depth(kind, d, tolerance)?;
+                let s = solver.concave_at_depth(&kind, d, tolerance)?;
                 outer_difference = (!kind.has_rim()).then_some(fem.outer_radius - s.outer_edge);
                 (
                     s.gamma2.unwrap_or(f64::NAN),
@@ -314,16 +314,16 @@ fn incremental_stiffness_checks(
     // The power law with n = 3 is one annulus only down to b ≈ 0.55 a (docs/conventions.md
     // fact 8).
     let cases: [(PunchKind, &[f64]); 5] = [
-        (PunchKind::Cone, &[0.1, 0.5, 0.9]),
-        (PunchKind::Sphere, &[0.1, 0.5, 0.9]),
+        (PunchKind::CONE, &[0.1, 0.5, 0.9]),
+        (PunchKind::SPHERE, &[0.1, 0.5, 0.9]),
         (power(1.5), &[0.1, 0.5, 0.9]),
         (power(3.0), &[0.6, 0.9]),
-        (PunchKind::Torus, &[0.1, 0.5, 0.9]),
+        (PunchKind::TORUS, &[0.1, 0.5, 0.9]),
     ];
     for (kind, ratios) in cases {
         for &eps in ratios {
             let step = 1e-3 * eps.min(1.0 - eps);
-            let at = |e: f64| solver.concave_at_ratio(kind, e, tolerance);
+            let at = |e: f64| solver.concave_at_ratio(&kind, e, tolerance);
             let (p2, p1, m1, m2) = (
                 at(eps + 2.0 * step)?,
                 at(eps + step)?,
@@ -373,14 +373,14 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
     let power_limit = 1.0 - power_law::kappa(1.5) / 2.5;
     for (kind, limit, label) in [
         (
-            PunchKind::Cone,
+            PunchKind::CONE,
             1.0 - std::f64::consts::FRAC_PI_4,
             "1 - pi/4",
         ),
-        (PunchKind::Sphere, 1.0 / 3.0, "1/3"),
+        (PunchKind::SPHERE, 1.0 / 3.0, "1/3"),
         (power(1.5), power_limit, "1 - kappa_n/(n + 1)"),
     ] {
-        let state = solver.concave_at_ratio(kind, eps, tolerance)?;
+        let state = solver.concave_at_ratio(&kind, eps, tolerance)?;
         let difference = state.gamma1.unwrap_or(f64::NAN) - state.gamma2.unwrap_or(f64::NAN);
         let residual = (difference - limit).abs() / limit;
         let allowed = eps.powi(3);
@@ -404,13 +404,13 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
 fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let eps = 0.3;
-    for (named, n) in [(PunchKind::Cone, 1.0), (PunchKind::Sphere, 2.0)] {
+    for (named, n) in [(PunchKind::CONE, 1.0), (PunchKind::SPHERE, 2.0)] {
         let lhs = solver
-            .concave_at_ratio(power(n), eps, tolerance)?
+            .concave_at_ratio(&power(n), eps, tolerance)?
             .gamma2
             .unwrap_or(f64::NAN);
         let rhs = solver
-            .concave_at_ratio(named, eps, tolerance)?
+            .concave_at_ratio(&named, eps, tolerance)?
             .gamma2
             .unwrap_or(f64::NAN);
         let residual = (lhs - rhs).abs() / rhs.abs();
@@ -426,7 +426,7 @@ fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Identi
     }
     let (n, depth) = (4.0, 3.0);
     let lhs = solver
-        .concave_at_depth(power(n), depth, tolerance)?
+        .concave_at_depth(&power(n), depth, tolerance)?
         .gamma2
         .unwrap_or(f64::NAN);
     let rhs = power_law::full_contact_gamma2(n, depth).unwrap_or(f64::NAN);
@@ -450,7 +450,7 @@ fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Identi
 fn torus_free_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     for eps in [0.3, 0.8] {
-        let state = solver.concave_at_ratio(PunchKind::Torus, eps, tolerance)?;
+        let state = solver.concave_at_ratio(&PunchKind::TORUS, eps, tolerance)?;
         let (c, depth) = (state.outer_edge, state.gamma1.unwrap_or(f64::NAN));
         let band = solver.prescribed_band(|r| (1.0 - r) * (1.0 - r), eps, c, depth, tolerance)?;
         let scale = band.force / (std::f64::consts::PI * (eps + c) * (c - eps).sqrt());
@@ -486,11 +486,11 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
         return Ok(Vec::new());
     };
     let sampled = figures::REPORT_TABLE_SAMPLES;
-    let delta = figures::largest_gap_difference(table, sampled);
+    let delta = figures::largest_gap_difference(table.clone(), sampled.clone());
     let mut checks = Vec::new();
     for depth in TABLE_CHECK_DEPTHS {
-        let state = solver.concave_at_depth(table, depth, tolerance)?;
-        let reference = solver.concave_at_depth(sampled, depth, tolerance)?;
+        let state = solver.concave_at_depth(&table, depth, tolerance)?;
+        let reference = solver.concave_at_depth(&sampled, depth, tolerance)?;
         let difference =
             (state.gamma2.unwrap_or(f64::NAN) - reference.gamma2.unwrap_or(f64::NAN)).abs();
         checks.push(IdentityCheck {
@@ -511,7 +511,7 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
 
 /// The power-law punch of exponent `n` (a valid exponent: the harness names only fixed ones).
 fn power(n: f64) -> PunchKind {
-    PunchKind::Power(Exponent::new(n).expect("a positive finite exponent"))
+    PunchKind::power(Exponent::new(n).expect("a positive finite exponent"))
 }
 
 /// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow

@@ -87,7 +87,7 @@ fn richardson(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<(f64, f64
 }
 
 /// What to study.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct StudyCase {
     pub punch: PunchKind,
     /// `b/a` of the flat annulus.
@@ -108,7 +108,7 @@ const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
 /// levels); without, the committed levels with quadratic elements.
 fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
     if fem_solver::gmsh_found() {
-        let start = fem_solver::contact_start(case.punch, case.eps);
+        let start = fem_solver::contact_start(&case.punch, case.eps);
         let ladder = (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
             .map(|level| provider::MeshRequest::Adapted {
                 contact_start: start,
@@ -120,7 +120,7 @@ fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
             .collect();
         return (ladder, Degree::Cubic);
     }
-    let ladder = fem_solver::mesh_sequence(case.punch, case.eps, 1e-3)
+    let ladder = fem_solver::mesh_sequence(case.punch.clone(), case.eps, 1e-3)
         .into_iter()
         .filter(|r| match r {
             provider::MeshRequest::Adapted { level, .. } => {
@@ -222,7 +222,7 @@ pub fn run(
 pub(crate) fn yardstick(case: &StudyCase) -> Result<f64> {
     let ring = RingBemSolver::new();
     Ok(if case.punch.is_concave() {
-        ring.concave_at_depth(case.punch, case.depth, 1e-11)?
+        ring.concave_at_depth(&case.punch, case.depth, 1e-11)?
             .gamma2
             .unwrap_or(f64::NAN)
     } else {
@@ -363,7 +363,7 @@ fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
     let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
     let (s, half_size) = if case.punch.has_rim() {
         (
-            grid_contact::solve(case.punch, case.eps, n, load, 1e-10)?,
+            grid_contact::solve(case.punch.clone(), case.eps, n, load, 1e-10)?,
             1.0,
         )
     } else {
@@ -415,7 +415,7 @@ fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<S
         FemLoad::Flat
     };
     let options = study_options(degree);
-    let s = fem_solver::solve_on_mesh(case.punch, case.eps, load, &provided, &options)?;
+    let s = fem_solver::solve_on_mesh(case.punch.clone(), case.eps, load, &provided, &options)?;
     let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
     Ok(Sized {
         label: format!("{label} P{}", degree as u8),
@@ -448,7 +448,8 @@ fn free_edges_fem_level(case: &StudyCase, k: usize, located: LocatedEdges) -> Re
     };
     let options = study_options(Degree::Quadratic);
     let load = FemLoad::ConcaveDepth(case.depth);
-    let s = fem_solver::solve_free_edges_on_level(case.punch, load, level, edges, &options)?;
+    let s =
+        fem_solver::solve_free_edges_on_level(case.punch.clone(), load, level, edges, &options)?;
     Ok(Sized {
         label: format!("free-edges-L{level} P2"),
         size: 1.0 / (s.dofs as f64).sqrt(),
@@ -559,7 +560,7 @@ pub fn assemble(
         _ => None,
     };
     Study {
-        punch: case.punch,
+        punch: case.punch.clone(),
         method: method.name().to_string(),
         quantity: if concave {
             format!("gamma2 at d/h = {}", case.depth)

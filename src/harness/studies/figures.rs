@@ -30,10 +30,10 @@ pub(crate) fn concave_ratios() -> Vec<f64> {
 /// power laws, `n = 1.5` (closes by a shrinking hole) and `n = 3` (closes from a disk and an
 /// annulus), and the table punch of [`REPORT_TABLE_FILE`] (where the checkout has it).
 pub(crate) fn report_concave_punches() -> Vec<PunchKind> {
-    let power = |n: f64| Exponent::new(n).map(PunchKind::Power).ok();
+    let power = |n: f64| Exponent::new(n).map(PunchKind::power).ok();
     [
-        Some(PunchKind::Cone),
-        Some(PunchKind::Sphere),
+        Some(PunchKind::CONE),
+        Some(PunchKind::SPHERE),
         power(1.5),
         power(3.0),
         report_table_punch(),
@@ -47,12 +47,11 @@ pub(crate) fn report_concave_punches() -> Vec<PunchKind> {
 /// interpolated (PCHIP), charted beside the sphere it samples ([`REPORT_TABLE_SAMPLES`]).
 pub(crate) const REPORT_TABLE_FILE: &str = "verify/profiles/sphere-21.csv";
 /// The punch whose profile [`REPORT_TABLE_FILE`] samples.
-pub(crate) const REPORT_TABLE_SAMPLES: PunchKind = PunchKind::Sphere;
+pub(crate) const REPORT_TABLE_SAMPLES: PunchKind = PunchKind::SPHERE;
 
 /// The table punch of [`REPORT_TABLE_FILE`], relative to the current directory when it is the
 /// project's root, else under the project's root; `None` where no checkout holds the file (the
-/// report then has no table chart). Loading it also lets a job id name it by its label
-/// (`table-<sha256 prefix>`, [`PunchKind::from_label`]).
+/// report then has no table chart). A job id names it by its label (`table-<sha256 prefix>`).
 pub(crate) fn report_table_punch() -> Option<PunchKind> {
     let relative = std::path::Path::new(REPORT_TABLE_FILE);
     let path = if relative.is_file() {
@@ -60,11 +59,11 @@ pub(crate) fn report_table_punch() -> Option<PunchKind> {
     } else {
         crate::mesh::files::project_root().join(relative)
     };
-    TableProfile::load(&path).ok().map(PunchKind::from_table)
+    TableProfile::load(&path).ok().map(PunchKind::new)
 }
 
-fn is_power(punch: PunchKind) -> bool {
-    matches!(punch, PunchKind::Power(_))
+fn is_power(punch: &PunchKind) -> bool {
+    punch.exponent_parameter().is_some()
 }
 
 /// `gamma1 = d/h` and `gamma2 = F/(2 E* h a)` of one concave punch against `b/a` by the ring BEM.
@@ -119,7 +118,7 @@ pub(crate) const TORUS_GRID_DEPTHS: [f64; 3] = [0.1, 0.5, 2.0];
 /// The punches whose functions the report charts: [`report_concave_punches`] and the torus.
 pub(crate) fn report_profile_punches() -> Vec<PunchKind> {
     let mut punches = report_concave_punches();
-    punches.push(PunchKind::Torus);
+    punches.push(PunchKind::TORUS);
     punches
 }
 
@@ -132,9 +131,9 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
     let mut flat_grid_bem = Vec::new();
     for e in [0.0, 0.5, 0.9] {
         let kind = if e == 0.0 {
-            PunchKind::Flat
+            PunchKind::FLAT
         } else {
-            PunchKind::FlatAnnulus
+            PunchKind::FLAT_ANNULUS
         };
         if let Ok(s) = grid_contact::solve(kind, e, 128, GridLoad::Depth(1.0), 1e-10) {
             flat_grid_bem.push((e, s.gamma.unwrap_or(f64::NAN)));
@@ -144,12 +143,12 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
     for punch in report_profile_punches() {
         let (mut gamma1, mut gamma2, mut outer) = (Vec::new(), Vec::new(), Vec::new());
         for e in concave_ratios() {
-            let s = match ring.concave_at_ratio(punch, e, 1e-10) {
+            let s = match ring.concave_at_ratio(&punch, e, 1e-10) {
                 Ok(s) => s,
                 // A power law flatter than the sphere is one annulus only for the wider holes
                 // (docs/conventions.md fact 8), and so is a table whose interpolant is flatter
                 // at the axis: the curve stops where the ring BEM refuses.
-                Err(_) if is_power(punch) || punch.table().is_some() => continue,
+                Err(_) if is_power(&punch) || punch.table().is_some() => continue,
                 Err(e) => return Err(e),
             };
             gamma1.push((e, s.gamma1.unwrap_or(f64::NAN)));
@@ -161,10 +160,10 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         let (mut sampled_at_depth, mut gap_difference) = (Vec::new(), None);
         if punch.table().is_some() {
             for &(_, depth) in &gamma1 {
-                let s = ring.concave_at_depth(REPORT_TABLE_SAMPLES, depth, 1e-10)?;
+                let s = ring.concave_at_depth(&REPORT_TABLE_SAMPLES, depth, 1e-10)?;
                 sampled_at_depth.push((depth, s.gamma2.unwrap_or(f64::NAN)));
             }
-            gap_difference = Some(largest_gap_difference(punch, REPORT_TABLE_SAMPLES));
+            gap_difference = Some(largest_gap_difference(punch.clone(), REPORT_TABLE_SAMPLES));
         }
         concave.push(ConcaveCurves {
             punch,
@@ -178,7 +177,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
     let torus_grid_bem = TORUS_GRID_DEPTHS
         .into_iter()
         .filter_map(|d| {
-            grid_contact::solve(PunchKind::Torus, 0.0, 128, GridLoad::Depth(d), 1e-10)
+            grid_contact::solve(PunchKind::TORUS, 0.0, 128, GridLoad::Depth(d), 1e-10)
                 .ok()
                 .and_then(|s| Some((d, s.gamma2?)))
         })
@@ -204,7 +203,7 @@ pub(crate) struct PressureProfiles {
 
 /// Compute the sphere's pressure profiles at `d = 1.5 h`.
 pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
-    let state = ring.concave_at_depth(PunchKind::Sphere, 1.5, 1e-10)?;
+    let state = ring.concave_at_depth(&PunchKind::SPHERE, 1.5, 1e-10)?;
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
     let grid_bem = ring_averaged_grid_pressure(256, 64)?;
     let options = FemOptions {
@@ -216,7 +215,7 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
         far_field: crate::discretisation::far_field::FarField::Boussinesq,
     };
     let fem_state =
-        fem_solver::solve(PunchKind::Sphere, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
+        fem_solver::solve(PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
     // Nodal estimates in the contact, clipped near the rim singularity.
     let fem = crate::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
         .into_iter()
@@ -233,7 +232,7 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
 /// rings of equal width inside `r < a`.
 fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
     let op = GridOperator::new(n, 2.0 / n as f64);
-    let punch = discretise(PunchKind::Sphere, 0.0, n);
+    let punch = discretise(PunchKind::SPHERE, 0.0, n);
     let c = solve_contact(
         &op,
         &punch.allowed,
@@ -273,7 +272,7 @@ pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over
     let x = d0_over_h;
     let all: Vec<(f64, f64)> = ratios
         .filter_map(|ratio| {
-            let p = crate::adhesion::branch_point(ring, punch, ratio)
+            let p = crate::adhesion::branch_point(ring, punch.clone(), ratio)
                 .ok()
                 .filter(|p| p.clears_floor(x))?;
             let point = (p.depth(x) / x, p.force(x));

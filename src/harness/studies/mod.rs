@@ -24,15 +24,15 @@ pub(crate) fn scene_of_fem_load(
     load: FemLoad,
     tolerance: Option<f64>,
 ) -> Result<Scene> {
-    let spec = SceneSpec::default().shape(kind);
+    let spec = SceneSpec::default().shape(kind.clone());
     // The torus of the dimensionless problem: `h = a²/(2ρ) = a`.
-    let spec = if kind == PunchKind::Torus {
+    let spec = if kind == PunchKind::TORUS {
         spec.tube_radius(0.5)
     } else {
         spec
     };
     let spec = match load {
-        FemLoad::Flat if kind == PunchKind::FlatAnnulus => spec.inner_ratio(eps),
+        FemLoad::Flat if kind == PunchKind::FLAT_ANNULUS => spec.inner_ratio(eps),
         FemLoad::Flat => spec,
         FemLoad::ConcaveDepth(depth) => spec.depth(depth),
         FemLoad::ConcaveForce(force) => spec.force(2.0 * force),

@@ -217,13 +217,13 @@ impl Problem {
     fn cost_problem(self) -> CostProblem {
         match self {
             Problem::FlatHalf => CostProblem {
-                kind: PunchKind::FlatAnnulus,
+                kind: PunchKind::FLAT_ANNULUS,
                 eps: 0.5,
                 family: Some("annulus-0.5"),
                 load: FemLoad::Flat,
             },
             Problem::Sphere => CostProblem {
-                kind: PunchKind::Sphere,
+                kind: PunchKind::SPHERE,
                 eps: 0.0,
                 family: Some("disk"),
                 load: FemLoad::ConcaveDepth(1.5),
@@ -231,13 +231,13 @@ impl Problem {
             // The cone and the flat annulus 0.3: the FEM's full solve against FEniCSx on the
             // meshes the FEM makes (and the committed ones), with the ring BEM and the grid BEM.
             Problem::Cone => CostProblem {
-                kind: PunchKind::Cone,
+                kind: PunchKind::CONE,
                 eps: 0.0,
                 family: None,
                 load: FemLoad::ConcaveDepth(2.0),
             },
             Problem::FlatThick => CostProblem {
-                kind: PunchKind::FlatAnnulus,
+                kind: PunchKind::FLAT_ANNULUS,
                 eps: 0.3,
                 family: None,
                 load: FemLoad::Flat,
@@ -285,7 +285,7 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
         Problem::Sphere => {
             let mut points = Vec::new();
             for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
-                let (s, t) = timed(|| ring.concave_at_depth(PunchKind::Sphere, 1.5, tol))?;
+                let (s, t) = timed(|| ring.concave_at_depth(&PunchKind::SPHERE, 1.5, tol))?;
                 points.push(estimated_point(
                     "ring-bem",
                     format!("tol {tol:.0e}"),
@@ -330,7 +330,8 @@ pub(crate) fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> 
     let cost = problem.cost_problem();
     let degree = fem_solver::default_degree(tolerance);
     let solve = || {
-        let scene = super::scene_of_fem_load(cost.kind, cost.eps, cost.load, Some(tolerance))?;
+        let scene =
+            super::scene_of_fem_load(cost.kind.clone(), cost.eps, cost.load, Some(tolerance))?;
         methods::solve_with(&scene, Method::Fem, &MethodOptions::default())
     };
     match timed(solve) {
@@ -464,7 +465,7 @@ impl CostProblem {
     /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
     fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
         let value = match self.load {
-            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(self.kind, d, tolerance)?.gamma2,
+            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(&self.kind, d, tolerance)?.gamma2,
             _ => ring.flat(self.eps, tolerance)?.gamma,
         };
         Ok(value.unwrap_or(f64::NAN))
@@ -489,8 +490,9 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
                 poisson_ratio: 0.0,
                 far_field: crate::discretisation::far_field::FarField::Boussinesq,
             };
-            let (s, t) =
-                timed(|| fem_solver::solve(problem.kind, problem.eps, problem.load, &options))?;
+            let (s, t) = timed(|| {
+                fem_solver::solve(problem.kind.clone(), problem.eps, problem.load, &options)
+            })?;
             points.push(point(
                 name,
                 format!("L{level}"),
@@ -505,7 +507,8 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
         _ => GridLoad::Depth(1.0),
     };
     for n in [64usize, 128, 256] {
-        let (s, t) = timed(|| grid_contact::solve(problem.kind, problem.eps, n, grid_load, 1e-10))?;
+        let (s, t) =
+            timed(|| grid_contact::solve(problem.kind.clone(), problem.eps, n, grid_load, 1e-10))?;
         points.push(point(
             "grid-bem",
             format!("{n}²"),

@@ -53,10 +53,10 @@ fn flat_reference(ring: &RingBemSolver, eps: f64) -> Reference {
 }
 
 fn concave_reference(ring: &RingBemSolver, kind: PunchKind, depth: f64) -> Reference {
-    if kind == PunchKind::Sphere && depth >= 3.0 {
+    if kind == PunchKind::SPHERE && depth >= 3.0 {
         return Some((depth - 1.0 / 3.0, 0.0));
     }
-    ring.concave_at_depth(kind, depth, 1e-11)
+    ring.concave_at_depth(&kind, depth, 1e-11)
         .ok()
         .and_then(|s| s.gamma2.map(|g| (g, 1e-11 * g)))
 }
@@ -161,9 +161,9 @@ fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
 /// The flat punch (`eps = 0`) or the flat annulus of `b/a = eps` on the unit scene.
 fn flat_scene(eps: f64) -> Result<Scene> {
     let kind = if eps == 0.0 {
-        PunchKind::Flat
+        PunchKind::FLAT
     } else {
-        PunchKind::FlatAnnulus
+        PunchKind::FLAT_ANNULUS
     };
     super::scene_of_fem_load(kind, eps, FemLoad::Flat, None)
 }
@@ -213,7 +213,7 @@ fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
             Method::RingBem,
             &none,
             format!("cone d/h = {depth}"),
-            concave_scene(PunchKind::Cone, depth, None),
+            concave_scene(PunchKind::CONE, depth, None),
             reference,
         );
         push(p);
@@ -228,7 +228,7 @@ fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
             Method::RingBem,
             &none,
             format!("sphere d/h = {depth}"),
-            concave_scene(PunchKind::Sphere, depth, None),
+            concave_scene(PunchKind::SPHERE, depth, None),
             reference,
         );
         push(p);
@@ -238,7 +238,7 @@ fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         &none,
         "flat annulus b/a = 0.5, tolerance 1e-15".into(),
         SceneSpec::default()
-            .shape(PunchKind::FlatAnnulus)
+            .shape(PunchKind::FLAT_ANNULUS)
             .inner_ratio(0.5)
             .tolerance(1e-15)
             .validate(),
@@ -265,15 +265,15 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         push(p);
     }
     for (kind, depth) in [
-        (PunchKind::Cone, 0.2),
-        (PunchKind::Cone, 8.0),
-        (PunchKind::Sphere, 2.95),
+        (PunchKind::CONE, 0.2),
+        (PunchKind::CONE, 8.0),
+        (PunchKind::SPHERE, 2.95),
     ] {
         let p = probe(
             Method::Fem,
             &none,
             format!("{kind} d/h = {depth}"),
-            concave_scene(kind, depth, None),
+            concave_scene(kind.clone(), depth, None),
             concave_reference(ring, kind, depth),
         );
         push(p);
@@ -322,9 +322,9 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         push(p);
     }
     for (kind, depth, n) in [
-        (PunchKind::Cone, 0.05, 64),
-        (PunchKind::Cone, 0.05, 512),
-        (PunchKind::Sphere, 2.999, 64),
+        (PunchKind::CONE, 0.05, 64),
+        (PunchKind::CONE, 0.05, 512),
+        (PunchKind::SPHERE, 2.999, 64),
     ] {
         let options = MethodOptions {
             grid: Some(n),
@@ -334,7 +334,7 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
             Method::GridBem,
             &options,
             format!("{kind} d/h = {depth}, {n}²"),
-            concave_scene(kind, depth, None),
+            concave_scene(kind.clone(), depth, None),
             concave_reference(ring, kind, depth),
         );
         push(p);
@@ -345,7 +345,7 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 fn iteration_cap_probe() -> Probe {
     use crate::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
     let op = GridOperator::new(64, 2.0 / 64.0);
-    let punch = crate::bem::grid_contact::discretise(PunchKind::Sphere, 0.0, 64);
+    let punch = crate::bem::grid_contact::discretise(PunchKind::SPHERE, 0.0, 64);
     let outcome = solve_contact(
         &op,
         &punch.allowed,
@@ -375,11 +375,14 @@ fn iteration_cap_probe() -> Probe {
 fn declined_probes(push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
     for (kind, depth) in [
-        (PunchKind::Flat, 1e308),
-        (PunchKind::Cone, 1e308),
-        (PunchKind::Sphere, 1e308),
+        (PunchKind::FLAT, 1e308),
+        (PunchKind::CONE, 1e308),
+        (PunchKind::SPHERE, 1e308),
     ] {
-        let scene = SceneSpec::default().shape(kind).depth(depth).validate();
+        let scene = SceneSpec::default()
+            .shape(kind.clone())
+            .depth(depth)
+            .validate();
         let p = must_decline(Method::RingBem, &none, &format!("{kind} d = 1e308"), scene);
         push(p);
     }
@@ -403,7 +406,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
         Method::Fem,
         &mesh_options(annulus.clone()),
         "cone on an annulus mesh (contact line from r = b)",
-        concave_scene(PunchKind::Cone, 2.0, None),
+        concave_scene(PunchKind::CONE, 2.0, None),
     );
     push(p);
     let p = must_decline(

@@ -131,7 +131,7 @@ pub(crate) fn pulloff_sweep(
     mut progress: impl FnMut(&str),
 ) -> Result<Sweep<ConcaveJkr>> {
     let mut rows = Vec::new();
-    let branch = adhesion::ConcaveBranch::new(solver, kind)?;
+    let branch = adhesion::ConcaveBranch::new(solver, kind.clone())?;
     for s in pulloff_scales(24) {
         rows.push(branch.jkr(s)?);
         progress(&format!("d0/h = {s:.3}"));
@@ -216,7 +216,7 @@ fn branches(
     for s in [0.1, 0.3, 1.0, 3.0] {
         let mut points = Vec::new();
         for e in branch_ratios() {
-            let p = adhesion::branch_point(solver, kind, e)?;
+            let p = adhesion::branch_point(solver, kind.clone(), e)?;
             if !p.clears_floor(s) {
                 // The punch would rise into the surface in the hole: not an annular state.
                 continue;
@@ -245,7 +245,7 @@ fn branches(
         name: "non-adhesive".into(),
         points: branch_ratios()
             .filter_map(|e| {
-                adhesion::branch_point(solver, kind, e)
+                adhesion::branch_point(solver, kind.clone(), e)
                     .ok()
                     .filter(|p| p.clears_floor(0.0))
                     .map(|p| (p.gamma1, p.gamma2))
