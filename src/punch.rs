@@ -30,7 +30,9 @@
 mod cone;
 mod flat;
 mod flat_annulus;
+pub mod mdr;
 mod power;
+pub mod power_law;
 mod profile;
 mod sphere;
 pub mod table;

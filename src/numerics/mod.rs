@@ -5,6 +5,7 @@
 pub mod brent;
 pub mod chebyshev;
 pub mod elliptic;
+pub mod gauss_legendre;
 pub mod golden;
 pub mod log_product;
 pub mod prefetch;

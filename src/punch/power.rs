@@ -2,9 +2,9 @@
 
 use std::hash::{Hash, Hasher};
 
+use super::power_law;
 use super::{Contact, Profile, PunchName, PunchRecord};
 use crate::error::{Error, Result};
-use crate::reference::power_law;
 
 /// Exponent `n` of the power-law concave punch: finite and positive. Compared and hashed by its
 /// bits, so that punches can be keys.

@@ -222,16 +222,16 @@ impl Profile for TableProfile {
     fn tabulated(&self) -> Option<&TableProfile> {
         Some(self)
     }
-    /// The MDR's quadrature of the interpolant ([`crate::reference::mdr`]): a table smooth at
+    /// The MDR's quadrature of the interpolant ([`super::mdr`]): a table smooth at
     /// the axis closes; one with a slope there does not.
     fn closure(&self) -> Option<(f64, f64)> {
-        let full = crate::reference::mdr::table_full_contact(self);
+        let full = super::mdr::table_full_contact(self);
         Some((full.closure_depth?, full.closure_force()?))
     }
     /// Whether its full-contact pressure first vanishes on a ring [`OPENING_OFF_AXIS`] or more
     /// from the axis (the MDR).
     fn flatter_than_the_sphere(&self) -> bool {
-        crate::reference::mdr::table_full_contact(self).opening_radius >= OPENING_OFF_AXIS
+        super::mdr::table_full_contact(self).opening_radius >= OPENING_OFF_AXIS
     }
 }
 

@@ -6,9 +6,9 @@
 //! (measured by the harness), not an input.
 
 pub mod asymptotic;
-pub mod mdr;
+pub use crate::punch::mdr;
 pub mod paper_fits;
-pub mod power_law;
+pub use crate::punch::power_law;
 
 use serde::Serialize;
 

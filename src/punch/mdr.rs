@@ -31,7 +31,7 @@
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
 
-use crate::discretisation::quadrature::gauss_legendre;
+use crate::numerics::gauss_legendre::gauss_legendre;
 use crate::numerics::golden::golden_section_max;
 use crate::punch::TableProfile;
 
