@@ -12,6 +12,21 @@
 //!
 //! A [`scene::Scene`] goes in, a [`solution::Solution`] comes out; every solver is a
 //! [`methods::Method`] behind that one interface.
+//!
+//! ```
+//! use ringcontact::methods::{self, Method};
+//! use ringcontact::punch::PunchKind;
+//! use ringcontact::scene::SceneSpec;
+//!
+//! // The flat circular punch (a = E* = 1) pressed to d = 0.1: Boussinesq's F = 2 E* a d.
+//! let scene = SceneSpec::default().shape(PunchKind::FLAT).depth(0.1).validate()?;
+//! let solution = methods::solve(&scene, Method::RingBem)?;
+//! assert!((solution.force - 0.2).abs() < 1e-9);
+//! # Ok::<(), ringcontact::Error>(())
+//! ```
+//!
+//! A punch of your own implements [`punch::Profile`]; `examples/` holds three short programs to
+//! start from (`every_method`, `convergence_ladder`, `own_profile`).
 
 pub mod adhesion;
 pub mod bem;
