@@ -138,7 +138,7 @@ pub fn solve_with(scene: &Scene, method: Method, options: &MethodOptions) -> Res
     Ok(solution)
 }
 
-/// The order `auto` tries methods in: the axisymmetric ones by cost (measured: ring BEM ~1 ms,
+/// The order `auto` tries methods in: the axisymmetric ones by cost (ring BEM ~1 ms,
 /// FEM 0.1-5 s; the grid BEM, first order, is never the cheapest to certify a tolerance),
 /// then, as the last resort where both decline, the analytic references with an error bound
 /// (the flat annulus beyond the ring BEM's `b/a = 0.9999`, whose rim the FEM cannot refine

@@ -120,8 +120,8 @@ pub struct FemProvenance {
 }
 
 /// The conical punch's hole `b/a` at depth `d/h` (`γ1(b/a) = d/h`), ascending in depth: the ring
-/// BEM (`verify solve --punch cone --eps B --method ring-bem`, 2026-11-25; its error estimates
-/// 1e-13 to 1e-9). They follow `d/h ≈ (π/2) ln(a/b) + 1` (docs/conventions.md fact 5).
+/// BEM (`verify solve --punch cone --eps B --method ring-bem`, its error estimates 1e-13 to
+/// 1e-9). They follow `d/h ≈ (π/2) ln(a/b) + 1` (docs/conventions.md fact 5).
 const CONE_HOLE_BY_DEPTH: [(f64, f64); 16] = [
     (1.789611, 0.5),
     (2.761971, 0.3),

@@ -106,9 +106,8 @@ const UNPROBED_CLEARANCE: [f64; HOLE_PROBES] = [f64::INFINITY; HOLE_PROBES];
 
 /// Looser tolerances, tried in turn, for a branch point whose solves cannot meet
 /// [`branch_tolerance`]: the widest rings of a steep-walled profile, where the pressure gathers
-/// at the rim and the inner edge's small `φ(b)` loses digits to rounding (measured at
-/// `b = 0.004 a`: `γ1` and `γ2` of the power law `n = 30` and `n = 50` settle to 4e-10 and 9e-10
-/// between 96 and 128 nodes, where the cone's and the sphere's settle to 1e-13). The last is
+/// at the rim and the inner edge's small `φ(b)` loses digits to rounding (the power laws
+/// `n = 30, 50` at `b = 0.004 a` settle to 4e-10 and 9e-10, the cone to 1e-13). The last is
 /// the table punch's own tolerance.
 const FALLBACK_BRANCH_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
@@ -512,10 +511,8 @@ fn full_contact(kind: PunchKind, s: f64, closing_depth: Option<f64>) -> Result<F
 
 /// Scatter of the branch's force `F/F0` and depth `d/h` from one contact ratio to the next,
 /// absolute and relative to the two terms each is the difference of (`γ2/s` and `γ/κ_in`, `γ1`
-/// and `s/κ_in`): the solves' rounding, which no estimate of theirs holds. Measured on the sphere
-/// and the cone at `d0/h = 0.1` and 1 (41 ratios a few `1e-9` apart at each critical state):
-/// 5e-14 to 2e-13 at `d0/h = 1`, up to 1.4e-12 at `d0/h = 0.1` (rings of width `5e-4 a`);
-/// twice that.
+/// and `s/κ_in`): the solves' rounding, which no estimate of theirs holds; twice the largest
+/// found (docs/decisions.md, "Where the constants come from").
 pub(super) const VALUE_SCATTER: f64 = 3e-12;
 
 /// Location tolerance in `eps` of a critical state (the minimum searches, [`minimum_in`], and the

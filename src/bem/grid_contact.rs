@@ -17,7 +17,7 @@ use crate::punch::PunchKind;
 const MIN_CELLS_ACROSS: f64 = 2.0;
 
 /// Largest grid accepted: memory about 100 N² bytes (0.4 GB at 2048), time growing like
-/// `N² log N` per iteration times an iteration count that grows with `N` (measured 4-17 s at 512 on
+/// `N² log N` per iteration times an iteration count that grows with `N` (seconds at 512 on
 /// 2 cores; 2048 takes some minutes and reports progress). 4096 would take hours.
 pub(crate) const MAX_GRID: usize = 2048;
 
@@ -81,10 +81,8 @@ pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
 }
 
 /// Cells between the innermost cell in contact and the ring's inner edge read off the contact
-/// area (`eps`) beyond which the contact holds cells inside the ring's hole. Measured on single
-/// rings (cone, sphere, power laws `n = 1.5`, `3` short of its floor and `20`, depth and force
-/// control, 64-256 cells per side): the innermost contact cell lies within 0.2 cells of `eps`;
-/// past the floor touch of `n = 3` and `n = 4`, 11 to 62 cells inside it.
+/// area (`eps`) beyond which the contact holds cells inside the ring's hole: on a single ring the
+/// innermost contact cell lies within 0.2 cells of `eps`, past a floor touch many cells inside it.
 const HOLE_CONTACT_CELLS: f64 = 3.0;
 
 /// A concave punch's contact on the grid must be one ring `[b, a]`, the contact the harness

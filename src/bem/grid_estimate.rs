@@ -2,8 +2,8 @@
 //!
 //! The method is first order in the cell size `h` (piecewise-constant pressure, staircase edges),
 //! but its error coefficient wanders from grid to grid: the cells whose centres fall inside a
-//! circle follow no smooth law in `h` (the flat punch's relative error times `N` measured 0.09 to
-//! 0.24 between 32² and 1024², with 128² and 256² almost equal). A Richardson estimate from two
+//! circle follow no smooth law in `h` (the flat punch's relative error times `N` wanders from
+//! 0.09 to 0.24 between 32² and 1024², with 128² and 256² almost equal). A Richardson estimate from two
 //! levels can therefore see no change where the error is large, so the estimate takes the
 //! steepest of the three level pairs: the same problem is solved on `N/2` and `N/4` cells over
 //! the same square (about a fifth more work), and for each output `f`
@@ -13,9 +13,9 @@
 //! and, where the three converge monotonically but slower than first order, the GCI with its
 //! observed order ([`three_level_bar`]); relative for the `γ`s, absolute (units of `a`) for the
 //! free edges, which the staircase cannot place to better than about a cell (the bar is never
-//! below one cell `h1` there). Measured over 192 states of every punch on 64², 128² and 256²
-//! (the narrowest bands, the deepest loads, holes a few cells wide near full contact): the
-//! actual error stayed below 0.78 of the bar; the hardest is the sphere's small hole near full
+//! below one cell `h1` there). Over 192 states of every punch on 64², 128² and 256² (the
+//! narrowest bands, the deepest loads, holes a few cells wide near full contact) the actual
+//! error stays below 0.78 of the bar; the hardest is the sphere's small hole near full
 //! contact, whose edge follows the depth's error amplified by the closing hole
 //! (`tests/grid_estimate.rs` keeps a sample with it).
 

@@ -411,7 +411,7 @@ impl Panel {
     #[inline]
     fn locate(&self, node: &PanelNode, inner: f64, outer: f64, r: f64) -> (f64, f64, f64, f64) {
         let s = node.position;
-        // Distances measured from the nearest panel end that coincides with a singular point.
+        // Distances from the nearest panel end that coincides with a singular point.
         let from_inner = if self.lo == inner {
             node.from_lo
         } else {

@@ -70,8 +70,8 @@ fn min_contact_ratio(kind: &PunchKind) -> f64 {
 pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 
 /// Rounding floor of the method's dimensionless results (relative): node counts that agree better
-/// than this are not taken as proof of a smaller error. Measured: results at N = 16..64 scatter by
-/// 1e-14 to 1e-13 once converged.
+/// than this are not taken as proof of a smaller error (converged results at N = 16..64 scatter
+/// by 1e-14 to 1e-13).
 const ROUNDING_FLOOR: f64 = 1e-13;
 
 /// On a band `[b, c]` a free edge's position and the depth that places it there have a rounding
@@ -116,9 +116,7 @@ pub const HOLE_OVERLAP_TOLERANCE: f64 = 1e-7;
 const QUADRATURE_STEP: f64 = 1.0 / 16.0;
 
 /// Tanh-sinh step of the rows of systems with more than [`COARSE_QUADRATURE_NODES`] nodes,
-/// whose basis polynomials of degree 95 and more the coarser step integrates only to about 1e-9
-/// (measured on the power law `n = 50` at `b = 0.004 a` and 96 nodes: `γ2` moved by 1.1e-9 from
-/// step 1/16 to 1/64, by 2e-10 from 1/24 to 1/64).
+/// whose basis polynomials of degree 95 and more the coarser step integrates only to about 1e-9.
 const FINE_QUADRATURE_STEP: f64 = 1.0 / 32.0;
 
 /// The largest node count whose rows are integrated with [`QUADRATURE_STEP`].
@@ -316,7 +314,7 @@ impl RingBemSolver {
         })
     }
 
-    /// [`Self::refine`] with the change between two rungs measured by `change(fine, coarse)`
+    /// [`Self::refine`] with the change between two rungs given by `change(fine, coarse)`
     /// (never below the finer sample's rounding `floor`: [`ROUNDING_FLOOR`], or
     /// [`free_edge_floor`] for a free edge).
     fn refine_by<T>(
@@ -953,7 +951,7 @@ impl RingBemSolver {
             let fine_outer = Some(fine.system.region().outer());
             // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
             // they lie far enough apart for rounding not to show (a secant converges to iterates
-            // 1e-13 apart, whose slope was measured 8 times too small), else the previous
+            // 1e-13 apart, whose slope can be 8 times too small), else the previous
             // rung's where that rung was close (its estimate below SLOPE_TRUSTED_ESTIMATE), else
             // from a small step.
             let outer_fine = fine.system.region().outer();
@@ -988,9 +986,8 @@ impl RingBemSolver {
                 // there builds its own inner stencil: six factorisations) but taken as the
                 // coarse sample of the rung above, whose search starts at this root with its
                 // slope and, where the two node counts agree to the tolerance, stops there:
-                // the same six factorisations buy the finer state and its estimate (measured:
-                // the first rung's estimate missed 1e-9 below b/a = 0.2 on a table sampled from
-                // the sphere, as the sphere's does).
+                // the same six factorisations buy the finer state and its estimate (the first
+                // rung's own estimate misses 1e-9 below b/a = 0.2).
                 rung += 1;
                 slope_hint = Some(slope);
                 previous_slopes = Some([slope1, slope2, outer_slope]);
@@ -1273,8 +1270,8 @@ fn inverse_error(e: RootError, kind: &PunchKind, target: f64, controlled: Contro
         } => no_convergence(format!(
             "contact-ratio search stopped after {iterations} solves (last step {last_step:.1e}){}",
             match closure(kind) {
-                // Measured: the power law n = 3 under F = 4 E* h a (full contact from d = 2.44 h) ran
-                // 60 solves between annuli that all touch the floor.
+                // A profile flatter than the sphere can spend the whole search between annuli
+                // that all touch the floor (the power law n = 3 under F = 4 E* h a).
                 Some((depth, _)) if flatter_than_the_sphere(kind) => {
                     floor_touch_note("short of", depth, "can be")
                 }
@@ -1350,8 +1347,8 @@ impl Controlled {
     }
 }
 
-/// First rung of the node ladder worth trying at contact ratio `eps` (measured: N = 16 meets 1e-9
-/// for eps >= 0.1, N = 20 down to 0.03, N = 32 down to 1e-3). Too low a rung costs one more
+/// First rung of the node ladder worth trying at contact ratio `eps` (N = 16 meets 1e-9 for
+/// eps >= 0.1, N = 20 down to 0.03, N = 32 down to 1e-3). Too low a rung costs one more
 /// root search from an excellent start, never a wrong answer.
 fn starting_rung(eps: f64) -> usize {
     let n = if eps >= 0.1 {
@@ -1367,11 +1364,8 @@ fn starting_rung(eps: f64) -> usize {
 }
 
 /// First rung of the node ladder worth trying for a table's band at contact ratio `eps`: its
-/// flat band's field and the gap's smooth part, not the gap itself, set the node count.
-/// Measured on five tables (the sphere at 21 points, the cone at 11, `1 - r^4` at 41, a bumpy
-/// sphere at 31, `1 - r^1.2` at 21): `γ1` and `γ2` within 1e-10 of 64 nodes' at N = 12-20 for
-/// `eps >= 0.1`, 20 for `eps >= 0.03`, 20-24 at 0.02, 20-32 at 0.01 and 24-32 at 0.005 (1e-7
-/// one or two rungs lower); [`starting_rung`] above `eps = 0.02` asks up to two rungs more.
+/// flat band's field and the gap's smooth part, not the gap itself, set the node count
+/// (docs/decisions.md, "Where the constants come from").
 fn table_starting_rung(eps: f64) -> usize {
     let n = if eps >= 0.1 {
         16

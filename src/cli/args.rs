@@ -44,7 +44,7 @@ pub struct Cli {
     #[arg(long, global = true, value_name = "DIR")]
     pub data_dir: Option<PathBuf>,
     /// The FEM's sparse Cholesky factorisation: `native` (this crate's, split over two cores
-    /// where the model admits a separator; measured 1.3-2.2x faster on the FEM's targets) or `faer`
+    /// where the model admits a separator; 1.3-2.2x faster on the FEM's targets) or `faer`
     /// (faer's public sparse Cholesky, one thread). The same answers (forces within 1e-10)
     /// [default: native; RINGCONTACT_LINEAR_SOLVER also sets it].
     #[arg(long, global = true, value_name = "NAME", value_parser = ["native", "faer"])]

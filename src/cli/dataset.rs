@@ -45,7 +45,7 @@ pub fn dataset(args: DatasetArgs) -> Result<Reply, String> {
         ],
     );
     for r in &resources {
-        let measured: Vec<String> = r
+        let interpolation_errors: Vec<String> = r
             .interpolation_error
             .iter()
             .map(|(n, e)| format!("{n} {e:.1e}"))
@@ -53,7 +53,7 @@ pub fn dataset(args: DatasetArgs) -> Result<Reply, String> {
         table.push(vec![
             r.name.clone().into(),
             (r.table.rows.len() as f64).into(),
-            measured.join(", ").into(),
+            interpolation_errors.join(", ").into(),
             r.title.clone().into(),
         ]);
     }

@@ -57,7 +57,7 @@ const RIM_BAND_ELEMENTS_PER_ZONE: f64 = 6.0;
 const RIM_BAND_LEVEL: i32 = 1;
 
 /// Largest force step, in `F0`, accepted as the crack front hopping a node inside the rim band
-/// (measured hops there at six elements per zone: 1e-6 to 1e-4 F0).
+/// (hops there at six elements per zone: 1e-6 to 1e-4 F0).
 const RIM_BAND_HOP_FORCE: f64 = 1e-3;
 
 /// Preload of the flat punches, in units of `d0`.
@@ -102,7 +102,7 @@ pub(crate) const ANNULAR_PRELOAD: f64 = 0.0;
 pub(crate) const ANNULAR_ELEMENTS_PER_ZONE: f64 = 3.0;
 
 /// Largest force step, in `F0`, accepted as the inner edge hopping a node on the annular
-/// branch (measured hops at three elements per zone: 4e-4 F0; the branch's end: 0.25-0.5 F0).
+/// branch (hops at three elements per zone: 4e-4 F0; the branch's end: 0.25-0.5 F0).
 pub(crate) const ANNULAR_HOP_FORCE: f64 = 0.01;
 
 /// What to simulate.
@@ -321,8 +321,8 @@ pub struct PulloffStudy {
     #[serde(default)]
     pub curves: Vec<StoredCurve>,
     /// Extrapolate to zero range from the two smallest ranges, linear in the range (the depth
-    /// at which the surfaces part is offset by `O(ρ)`; the sequences measured are consistent
-    /// with order 1).
+    /// at which the surfaces part is offset by `O(ρ)`; the stored sequences are consistent with
+    /// order 1).
     pub extrapolated_over_f0: Option<f64>,
     /// The extrapolation's correction, plus its change from the previous pair of ranges, plus
     /// the mesh difference: how far the limit, the order-1 assumption and the mesh are from
@@ -993,7 +993,7 @@ pub(crate) fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulati
 /// One simulation of each of `cases` (contact line from `b/a = 0`: flat and concave punches) at
 /// range `range` (units of `d0`) on `mesh`, the mesh condensed once for all; each as
 /// [`simulate_once`] (a concave case whose hole opens is declined). The cases run in parallel;
-/// each one's wall time is its own (measured 3-5 % longer than alone, the cores being shared).
+/// each one's wall time is its own (3-5 % longer than alone, the cores being shared).
 pub(crate) fn simulate_cases(
     cases: &[Case],
     range: f64,

@@ -54,8 +54,8 @@ const MAX_SEPARATOR_DOFS: usize = 1_200;
 /// Most vertices for which the candidate splits are estimated; beyond, the level split is
 /// taken as it is. The estimate's two or three vertex-level eliminations grow faster than the
 /// pattern they run beside (one core, warm: 22 ms against a pattern of 19-23 ms at 9e4 P2 unknowns, 11 779
-/// vertices; 288 ms against 245 ms at 6.4e5), and on every model measured beyond this size
-/// (1.5e5-1.4e6 unknowns) the level split's parts carried the same work within 10 %.
+/// vertices; 288 ms against 245 ms at 6.4e5), and beyond this size (1.5e5-1.4e6 unknowns) the
+/// level split's parts carry the same work within 10 %.
 const ESTIMATED_SPLIT_MAX_VERTICES: usize = 16_000;
 
 /// Fractions of the vertices each part of a level split must hold at least, tried in turn: a

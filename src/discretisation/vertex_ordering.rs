@@ -3,11 +3,8 @@
 //! The approximate-minimum-degree ordering (`faer`'s AMD) is computed on the graph of the mesh's
 //! vertices only (a ninth of a cubic mesh's nodes); every vertex then takes along, just before
 //! it, the not yet placed inner nodes of its edges, and the cubic bubble nodes (coupled to their
-//! own cell only, so eliminated without fill) go first. Measured against AMD on the whole node
-//! graph (on the adapted meshes of the FEniCSx comparison): the ordering 0.14 against 1.70 s at
-//! 1.4e6 cubic unknowns and 0.13 against 0.78 s at 6.4e5 quadratic ones, with 11-25 % fewer
-//! factorisation operations (5.16e10 against 5.81e10 multiply-adds at 1.4e6 P3, 1.51e10 against
-//! 1.91e10 at 6.4e5 P2, 2.74e8 against 3.61e8 at 61 k P3).
+//! own cell only, so eliminated without fill) go first. Against AMD on the whole node graph it
+//! orders 6-12 times faster with 11-25 % fewer factorisation operations (docs/decisions.md).
 
 use crate::mesh::triangulation::{Degree, Mesh};
 use crate::sparse::minimum_degree_order;

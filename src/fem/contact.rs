@@ -25,7 +25,7 @@ const BAND_RETRIES: usize = 2;
 
 /// An active-set iteration that changes at most this many nodes is creeping: the hybrid loop
 /// hands over to the banded solve. Cold starts change about half as many nodes per iteration as
-/// the one before (measured: 266, 48, 20, 10, 4, 2 on a 7e4-unknown cone model).
+/// the one before (266, 48, 20, 10, 4, 2 on a 7e4-unknown cone model).
 const CREEP_CHANGES: usize = 12;
 
 /// Fewest nodes above the inner edge left in the band when the hybrid loop hands over (at least
@@ -118,7 +118,7 @@ pub struct Conditioning {
 }
 
 impl Default for Conditioning {
-    /// Not measured: no edge movement, no margins.
+    /// Unknown: no edge movement, no margins.
     fn default() -> Self {
         Conditioning {
             edge_depth_sensitivity: 0.0,
@@ -295,8 +295,7 @@ impl<'m> ContactModel<'m> {
     /// when an iteration changes at most [`CREEP_CHANGES`] nodes, the nodes from
     /// [`CREEP_BAND_NODES`] (or more) above the inner edge up are held as the core (one more factorisation)
     /// and the remaining steps cost unit responses instead of factorisations. Near a free edge the
-    /// primal-dual iteration otherwise releases one node per factorisation (measured: 4-7 such
-    /// steps per model).
+    /// primal-dual iteration otherwise releases one node per factorisation (4-7 such steps).
     fn concave_hybrid(
         &self,
         system: &mut BandedSystem,
@@ -336,8 +335,7 @@ impl<'m> ContactModel<'m> {
             }
             let changes = next.iter().zip(&active).filter(|(a, b)| a != b).count();
             // No secant step where the hybrid loop is about to hand the creep over to the band
-            // (its steps then cost responses; a jump there delayed the hand-over and cost a
-            // factorisation more on 5 of 60 states measured).
+            // (its steps then cost responses; a jump there delays the hand-over).
             let step = self.ring_edge(&active).zip(self.ring_edge(&next));
             let secant_allowed = handed_over || changes > CREEP_CHANGES;
             if let (Some(step), Some(previous), true) = (step, last_step, secant_allowed) {
@@ -429,8 +427,7 @@ impl<'m> ContactModel<'m> {
 
     /// Secant step of the free edge. Near a free edge the contact pressure of a ring that is too
     /// wide (or narrow) by `δ` has a `1/√(r - x)` term of the wrong sign, and the primal-dual step
-    /// moves the edge about half of `δ` (measured: ratios 0.45-0.55 over 10 steps on a model
-    /// graded to 2e-6 a at its edge, one factorisation each). Two successive plain steps
+    /// moves the edge about half of `δ` (ratios 0.45-0.55 per step, one factorisation each). Two successive plain steps
     /// `x0 -> x1 -> x2` (the second starting where the first ended) that shrink by a ratio
     /// `ρ = (x2 - x1)/(x1 - x0)` in [`EDGE_SECANT_RATIO`] are extrapolated to the edge their
     /// geometric series converges to, `x2 + (x2 - x1) ρ/(1 - ρ)` (the secant root of the step as
@@ -566,7 +563,7 @@ impl<'m> ContactModel<'m> {
             .collect();
         // Nodes at the singular rim stay in contact: P2/P3 vertices next to the rim carry
         // negative consistent reactions on very small elements, and releasing them one per
-        // iteration cost 11 factorisations on one model (measured). The protected zone is
+        // iteration costs a factorisation each. The protected zone is
         // 1 % of the ring's width; what negative reaction remains there is reported in the
         // complementarity residual.
         if let Some(first) = next.iter().position(|&a| a).filter(|_| self.rim) {
@@ -1066,9 +1063,8 @@ fn extrapolated_edge(radii: &[f64], active: &[bool], gaps: &[f64], cubic: bool) 
     let (i1, r_active) = (first - 1, r(first));
     let between = Extrapolated::Between(r(i1), r_active);
     // Cubic elements: the last free node lies in the element cut by the edge, where the
-    // cubic cannot follow the `(b - r)^{3/2}` gap; its `q/(b - r)` was measured 30 % off
-    // (the nodes before it: 0.1-1 %; P2's last node: 1.4 %), so the fit starts one node
-    // further out (location error 1.4e-6 -> 8.5e-8 on the adapted level-2 cone model).
+    // cubic cannot follow the `(b - r)^{3/2}` gap (its `q/(b - r)` is 30 % off, the nodes
+    // before it 0.1-1 %), so the fit starts one node further out.
     let skip = usize::from(cubic && i1 >= 3);
     let end = i1 - skip;
     if end == 0 {

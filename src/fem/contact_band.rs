@@ -23,8 +23,7 @@ use crate::error::{Error, Result};
 use crate::sparse::constrained::ConstrainedCholesky;
 
 /// Most band nodes held by condensation: beyond it a factorisation is cheaper (one unit response
-/// costs about 1/20 of a numeric factorisation in blocks of 16, measured on P2/P3 models of
-/// 7e4-5e5 unknowns).
+/// costs about 1/20 of a numeric factorisation in blocks of 16 on P2/P3 models).
 pub(crate) const MAX_BAND_NODES: usize = 64;
 
 /// The core-held factorisation and the band's unit responses.

@@ -17,6 +17,6 @@ pub mod surface_response;
 pub use contact::nodal_pressure;
 pub use solver::{
     contact_start, default_degree, gmsh_found, mesh_directory, mesh_sequence, solve,
-    solve_free_edges_on_level, solve_on_mesh, unresolved_component, FemLoad, FemOptions, FemState,
-    FemTimings, DEFAULT_TOLERANCE, METHOD,
+    solve_free_edges_on_level, solve_on_mesh, FemLoad, FemOptions, FemState, FemTimings,
+    DEFAULT_TOLERANCE, METHOD, UNRESOLVED_COMPONENT,
 };

@@ -9,7 +9,7 @@
 //! **Error estimate and model choice.** Levels are climbed until the change of the result from
 //! the previous level meets the tolerance: the smallest model that meets it. The estimate of the
 //! finer result is that change (conservative under convergence) plus the far-field truncation
-//! bias ([`FarField::truncation_bias`]) and the [`unresolved_component`]. A concave punch's
+//! bias ([`FarField::truncation_bias`]) and the [`UNRESOLVED_COMPONENT`]. A concave punch's
 //! located edge is bounded by its level change, by a share of the node spacing there and, where
 //! the edge is ill-conditioned (a nearly closed hole), by [`EDGE_FIELD_FRACTION`] of its
 //! conditioning times the force estimate (under a prescribed force and where the force converged
@@ -45,39 +45,18 @@ mod free_edges;
 pub const METHOD: &str = "fem";
 /// Default relative tolerance of the FEM.
 pub const DEFAULT_TOLERANCE: f64 = 1e-3;
-/// Smallest tolerance the FEM accepts: at 1e-8 every one of 29 states measured (the 12 targets
-/// and 17 others, `FEM_TARGETS_EXTRA=1 FEM_TARGETS_TOLS=1e-8 cargo bench --bench fem_targets`)
-/// met it, its estimate bounding its errors (force errors 3.7e-10 to 1.2e-9, `eps` errors up to
-/// 3.6e-9); below it the estimates are unmeasured.
+/// Smallest tolerance the FEM accepts; below it the estimates have not been checked
+/// (docs/decisions.md, "Where the constants come from").
 pub(crate) const MIN_TOLERANCE: f64 = 1e-8;
 
-/// An error component that level-to-level changes do not capture, added to every estimate:
-/// `2e-9` (the argument, the contact ratio `b/a`, is kept for the callers: no dependence on it
-/// was measured).
-///
-/// Measured with cubic elements against the ring BEM (converged to 1e-13) once the grading error
-/// is below it: the force error stops falling at 2e-11 to 1.1e-9 on the flat annulus `b/a` =
-/// 0.1-0.99 (levels 3 and 4, 0.5-1.4 M unknowns) and stays at 3.7e-10 to 1.2e-9 on the 29 states
-/// of the 1e-8 benchmark; the bound exceeds every one by a factor 1.7 or more. It was 5e-9 +
-/// 2e-9 a/(a - b) (5.5e-8 at `b/a = 0.99`) until gmsh's slivers at rim sizes below `1e-8 a` were
-/// found to be its cause ([`provider::GMSH_MIN_ELEMENT_SIZE`]); the corner refinement
-/// ([`crate::mesh::corner_refinement`]) removed them, and with them the growth on narrow rings
-/// (`b/a = 0.97`, level 3: 1.4e-8 before, 6.1e-10 after). What is left is not the quadrature (a
-/// 10 x 10 collapsed Gauss rule changed the old component by 2e-14) nor the domain (`R` from 1e7
-/// to 1e8: 1e-11).
-pub fn unresolved_component(contact_ratio: f64) -> f64 {
-    let _ = contact_ratio;
-    2e-9
-}
+/// An error component that level-to-level changes do not capture, added to every relative
+/// estimate: `2e-9`, whatever the contact ratio (docs/decisions.md, "Where the constants come from").
+pub const UNRESOLVED_COMPONENT: f64 = 2e-9;
 
 /// Coefficient `c` of the singular edges' force error `c h / w` ([`PreparedModel`]'s edge
-/// component: `h` the element size at the edges, `w` the ring's width), for cubic elements three
-/// times the largest measured against the ring BEM with the edge size fixed and the grading
-/// refined: 0.015 (flat annulus `b/a = 0.97`, level 3) and 0.018 (`b/a = 0.995`, levels -2 to 0
-/// at `--tol 1e-3`, where the force error stalled at 1.8e-5 while the grading's fell by 20 a
-/// level). Zero for linear and quadratic elements: unmeasured, and their ladders (the committed
-/// families without gmsh, `--degree`) were verified without it; a coefficient of 0.3 taken from
-/// the committed disk's rim study pushed the annulus 0.9's estimate past 1e-3.
+/// component: `h` the element size at the edges, `w` the ring's width): three times the largest
+/// found for cubic elements, zero for the linear and quadratic ladders, verified without it
+/// (docs/decisions.md, "Where the constants come from").
 fn edge_error_coefficient(degree: Degree) -> f64 {
     match degree {
         Degree::Linear | Degree::Quadratic => 0.0,
@@ -682,19 +661,15 @@ fn solve_free_edges_model(
 }
 
 /// Half-width of the band around the edge the linear locator found, in contact-node spacings
-/// of the linear model there: its edge lay within 0.3-2.6 spacings of the quadratic and cubic
-/// models' on the same meshes (measured on the committed disks L1/L2 and an adapted cone mesh,
-/// cone `d/h` = 0.5, 2, 4 and sphere 0.5, 1.5, 2.8). On a mesh refined around the true edge
-/// beyond the linear model's reach it can miss by more (5 spacings on the cone's `--tol 1e-6`
-/// P3 mesh): the banded solve then moves its core up, at one factorisation per move, and the
-/// answer is the same.
+/// of the linear model there; a miss only costs the banded solve a factorisation per move
+/// (docs/decisions.md, "Where the constants come from").
 const LINEAR_LOCATOR_BAND_SPACINGS: f64 = 4.0;
 
 /// Locate a concave punch's free edge on the linear model of the same mesh (its vertices only,
 /// about a quarter of the quadratic model's unknowns and an eighth of its factorisation time),
 /// for a cold start of a quadratic or cubic model: the FEM's own coarser solve, so the model
-/// then needs about one factorisation instead of one per active-set change (measured 3-13 of
-/// them). Returns the warm start and the linear model's depth, or `None` when the linear model
+/// then needs about one factorisation instead of one per active-set change (3-13 of them cold).
+/// Returns the warm start and the linear model's depth, or `None` when the linear model
 /// cannot be solved (the model is then solved cold, as before).
 fn linear_edge_locator(
     model: &PreparedModel,
@@ -902,9 +877,7 @@ fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
 }
 
 /// Below this tolerance, cubic elements are the default (`--degree` not given): on the adapted
-/// family their force error falls like `g⁶` against `g⁴` for quadratic ones, so they reach 1e-6
-/// on a level whose quadratic model is 1e-4 off (measured: flat annulus 0.3 at `g = 0.19`, 2.2e-7
-/// with P3 and 4.4e-5 with P2 on the same mesh).
+/// family their force error falls like `g⁶` against `g⁴` for quadratic ones.
 const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
 
 /// Element degree when none is asked for: cubic on meshes made for the scene (gmsh found, or a
@@ -925,34 +898,14 @@ pub fn gmsh_found() -> bool {
 
 /// Share of the edge's conditioning times the model's force error that bounds the located
 /// edge's error from the displacement field (`EDGE_FIELD_FRACTION · κ · ε`, `κ = |db/dd| d`
-/// from [`ContactModel::edge_depth_sensitivity`], `ε` the force estimate with its floor). A
-/// field error that acted as a depth error would move the edge by `κ ε`; the measured share
-/// is smaller, because in depth control the contact ring's displacements are exact and a
-/// uniform stiffening does not move the edge. Measured on the sphere near closure (`d/h` =
-/// 2.8-2.9999, where `κ` = 2-105 and the edge error was up to 6.6 times its old estimate), with
-/// the ring BEM's edge and force as reference: the edge error was 0.10-0.25 of `κ` times the
-/// actual force error, which the force estimate exceeds by 2-10; 0.5 keeps a factor of 2 on
-/// the largest share.
+/// from [`ContactModel::edge_depth_sensitivity`], `ε` the force estimate with its floor): in depth
+/// control the contact ring's displacements are exact, so a field error moves the edge by less
+/// than the `κ ε` of a depth error (docs/decisions.md, "Where the constants come from").
 const EDGE_FIELD_FRACTION: f64 = 0.5;
 
 /// The whole shift `κ ε` of a field error that acted as a depth error, with a margin for `κ`'s
-/// own error (below), taken instead of [`EDGE_FIELD_FRACTION`] where the reasons for a smaller
-/// share fail (measured with the ring BEM's edge, depth and force as reference):
-/// - under a prescribed force the model's force error is a depth error: the sphere under 5.3,
-///   5.33 and 5.333 (P3, `--tol 1e-3`) had edges off by 5.1e-4, 1.0e-3 and 1.3e-3 under
-///   estimates of 2.5e-4, 9.2e-4 and 6.5e-4 (at 5.3: depth error 4.8e-5, `κ` = 7.1, so the field
-///   shift alone is 3.4e-4);
-/// - outside the asymptotic range ([`below_known_order`]) the force estimate exceeds the actual
-///   error by little (1.15 times on the sphere at 2.9998 h, P3, `--tol 1e-3`), not by the 2-10
-///   times [`EDGE_FIELD_FRACTION`] was measured with, and the edge erred by 0.82 of `κ` times
-///   the actual force error (5.4e-4, `κ` = 52).
-///
-/// The shift is taken 1.5 times: the model's own `κ` errs by up to a third near closure (the
-/// sphere under 5.3: 1.96, 3.02 and 1.97 on three consecutive models against the ring BEM's 2.37;
-/// under 5.3328: 48.3 against 56.3), and the force estimate under a prescribed force is close to
-/// the actual depth error, so the whole shift alone left no margin: the sphere under 5.3328 (P3,
-/// `--tol 1e-3`) was bound by a factor of 1.02 (`eps` off by 9.3e-4 under
-/// 9.5e-4; with 1.5 it climbs to 135 356 unknowns and answers within 2.6e-5 under 2.4e-4).
+/// own error, taken instead of [`EDGE_FIELD_FRACTION`] under a prescribed force and outside the
+/// asymptotic range ([`below_known_order`]) (docs/decisions.md, "Where the constants come from").
 const EDGE_FIELD_FRACTION_WHOLE: f64 = 1.5;
 
 /// Safety factor on the Richardson estimate between two grading levels (Roache's `F_s = 3` for
@@ -968,10 +921,9 @@ const MAX_LADDER_UNKNOWNS: usize = 750_000;
 const MAX_EDGE_REPEATS: usize = 2;
 
 /// Force error of the finer of two consecutive adapted levels per unit change between them:
-/// the force converges like `g^{2p}` asymptotically (a functional, twice the energy norm's order
-/// `p`), but on the coarse levels the measured ratio per level is lower (P3: 12 from `g = 0.89`
-/// to 0.53, 12.5 to 0.32, 18 to 0.19, against `0.6^-6 = 21`), so the order taken is `2p - 1`: the
-/// finer error is `|ΔF| / (0.6^{1-2p} - 1)`, times [`RICHARDSON_SAFETY`].
+/// the force converges like `g^{2p}` asymptotically, but the coarse levels converge more slowly,
+/// so the order taken is `2p - 1`: the finer error is `|ΔF| / (0.6^{1-2p} - 1)`, times
+/// [`RICHARDSON_SAFETY`] (docs/decisions.md, "Where the constants come from").
 fn richardson_factor(degree: Degree) -> f64 {
     RICHARDSON_SAFETY / (known_order_ratio(degree) - 1.0)
 }
@@ -985,10 +937,7 @@ const MIN_OBSERVED_RATIO: f64 = 1.5;
 /// before having changed it by `previous_change`: Richardson with the known order
 /// ([`richardson_factor`], a ratio of `0.6^{1-2p}` per level), or with the observed ratio
 /// `previous_change / change` where that is smaller (docs/methods.md: a result outside the
-/// asymptotic range converges more slowly than its order says). Measured on the sphere at
-/// 2.9998 h with P3 at `--tol 1e-3`: consecutive levels changed the force by
-/// 1.6e-3 and 1.9e-4, a ratio of 8.5 against the assumed 12.9, and the known order's estimate
-/// (9.2e-6) was below the actual error (1.26e-5, ring BEM); the observed ratio's is 1.45e-5.
+/// asymptotic range converges more slowly than its order says).
 fn grading_step_estimate(degree: Degree, change: f64, previous_change: Option<f64>) -> f64 {
     let assumed = known_order_ratio(degree);
     let ratio = observed_ratio(change, previous_change).map_or(assumed, |r| r.min(assumed));
@@ -1016,7 +965,7 @@ fn below_known_order(degree: Degree, change: f64, previous_change: Option<f64>) 
 }
 
 /// Predicted relative force error of adapted level `k` at degree `p`: `C_p 0.6^{2pk}` with
-/// `C_1 = 1e-2`, `C_2 = 3.3e-4`, `C_3 = 3.3e-6` (measured on the flat annulus 0.3 and the cone at
+/// `C_1 = 1e-2`, `C_2 = 3.3e-4`, `C_3 = 3.3e-6` (fitted on the flat annulus 0.3 and the cone at
 /// `d = 2h`, level 0).
 fn predicted_force_error(degree: Degree, level: i32) -> f64 {
     let base = match degree {
@@ -1522,10 +1471,8 @@ impl<'o> Ladder<'o> {
         });
         let provided = provider::provide(&rung.request, &self.why)?;
         // The edge locator only places the next mesh's refinement, and its domain need not meet
-        // the tolerance. At the loose tolerances it is quadratic (3.4 k unknowns on disk-L0, a
-        // third of the cubic model's time, most of a 1e-3 solve); below 1e-4 it keeps the
-        // solve's degree, whose closer edge gives the next mesh a narrower window (measured:
-        // the 1e-6 states took up to 40 % longer after a quadratic locator).
+        // the tolerance: quadratic at the loose tolerances, the solve's degree below 1e-4, whose
+        // closer edge gives the next mesh a narrower window.
         let options = self.options;
         let locator_options = FemOptions {
             degree: if options.tolerance >= CUBIC_BELOW_TOLERANCE {
@@ -1662,21 +1609,11 @@ impl<'o> Ladder<'o> {
         let eps_out = current.values.eps;
         // The edges' component falls with finer models, but the rim sizes the targets ask for
         // keep it below 0.05 of the tolerance: it never stops the ladder below alone.
-        let floor =
-            model.truncation_bias() + unresolved_component(eps_out) + model.edge_component(eps_out);
+        let floor = model.truncation_bias() + UNRESOLVED_COMPONENT + model.edge_component(eps_out);
         current.eps_error = current.eps_estimate(previous);
-        // The edge's conditioning `κ = |db/dd| d`: the located edge moves κ times the relative
-        // depth, and a model whose forces err by `ε` has a displacement field that errs by a
-        // fraction of that, as a depth error would: an edge component that refining at the edge
-        // does not reduce ([`EDGE_FIELD_FRACTION`]; near a closing hole κ reaches 10-100).
-        // Under a prescribed force, and outside the asymptotic range, the whole shift is taken
-        // ([`EDGE_FIELD_FRACTION_WHOLE`]) and added to the edge's own error (its level change or
-        // node spacing): the two have different sources, and their larger alone fell short there
-        // (the sphere under 5.3, P3 at 1e-3: 5.1e-4 under 4.9e-4). Elsewhere the share of 0.5
-        // holds a margin of 4 or more over the measured shift (0.25 of κ times the actual force
-        // error at most, which the force estimate exceeds 2-10 times), and the larger of the two
-        // is taken: added, it took the sphere at 2.8 h at 1e-8 past the largest model (1.2e-8 at
-        // 1.4 M unknowns, against 7.6e-9 at 0.53 M).
+        // The edge moves κ = |db/dd| d times a depth error; a field error acts as a share of
+        // one, or as the whole of one under a prescribed force and outside the asymptotic range,
+        // where it adds to the edge's own error (docs/decisions.md, "Where the constants come from").
         let conditioning = s.conditioning.edge_depth_sensitivity.abs() * solved.x.abs();
         let whole_shift = self.grading.pre_asymptotic || matches!(load, FemLoad::ConcaveForce(_));
         let field_share = if whole_shift {

@@ -277,8 +277,8 @@ impl Part {
     }
 
     /// Expected wall time in seconds on the 2-core development machine with gmsh and a warm
-    /// mesh cache (measured 2026-11-23 from the records of `verify run` on the nightly plan;
-    /// the README's cost table). Only the balance of the shards depends on it.
+    /// mesh cache (from the records of `verify run` on the nightly plan; the README's cost
+    /// table). Only the balance of the shards depends on it.
     pub fn expected_s(&self) -> f64 {
         match self {
             Part::Comparison { .. } => 1.0,
@@ -309,7 +309,7 @@ impl Part {
                 Method::Fem => 0.08 * 2.3f64.powi(*level as i32),
                 _ => 0.01,
             },
-            // Measured alone on 2 cores: the concave punches 0.9-1.2 s (one branch for every
+            // Alone on 2 cores: the concave punches 0.9-1.2 s (one branch for every
             // d0/h), the report's table 2.7 s, the torus 3.7 s; the live simulation 9.5 s (one
             // core), the Tamaas cases 15 s.
             Part::Adhesion(p) if p.is_free_band() => 3.7,
@@ -318,7 +318,7 @@ impl Part {
             Part::PulloffLive => 9.5,
             Part::AdhesionPeers => 15.0,
             // Small d0/h: pressed deeper until the hole closes, and ranges where it reopens
-            // replaced by smaller ones (measured alone on 2 cores: cone 0.3 224 s, sphere 0.3
+            // replaced by smaller ones (alone on 2 cores: cone 0.3 224 s, sphere 0.3
             // 155 s, cone and sphere 1 45-48 s).
             Part::PulloffSimulation {
                 punch, d0_over_h, ..
@@ -675,16 +675,9 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
                 computed.len()
             )));
         }
-        let finest_edge = computed.last().and_then(|c| c.free_edge);
         let yardstick = convergence::yardstick(&case)?;
         let levels = computed.into_iter().map(|c| c.level).collect();
-        assembled_studies.push(convergence::assemble(
-            &case,
-            method,
-            yardstick,
-            levels,
-            finest_edge,
-        ));
+        assembled_studies.push(convergence::assemble(&case, method, yardstick, levels));
     }
     if report_parts == 0 {
         return Ok(Assembled::Convergence(assembled_studies));

@@ -328,11 +328,8 @@ impl PendingHash {
 
 /// [`read_msh`], and the SHA-256 of the bytes it parsed: the provenance of exactly what was
 /// solved. The hash starts on the thread that scans the text once its scans are done and is not
-/// waited for here ([`PendingHash`]): on this project's 2-core machine a 1 MB mesh (9e4
-/// quadratic unknowns) took 5.5 ms to hash, longer than mshio's parse beside it, while the
-/// parse's own steps after it (pairing tags, cells, orientation) and the caller's checks need
-/// one core. A caller about to use both cores waits for it first: left running beside the
-/// assembly, it delayed the second core's start (measured on the 12 880-unknown annulus).
+/// waited for here ([`PendingHash`]), since hashing a large mesh takes longer than mshio's parse
+/// beside it; a caller about to use both cores waits for it first.
 pub(crate) fn read_msh_hashed(path: &Path) -> Result<(Mesh, PendingHash)> {
     let (name, bytes) = file_bytes(path)?;
     let bytes = Arc::new(bytes);

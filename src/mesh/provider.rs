@@ -34,21 +34,14 @@ use sha2::{Digest, Sha256};
 /// Domain radius of the adapted family, in units of `a`.
 const ADAPTED_DOMAIN_RADIUS: f64 = 1e7;
 
-/// Smallest element size (in units of `a`) asked of gmsh. Its 2-D mesher keeps the elements'
-/// shape only down to about `1e-8` of the coordinates' magnitude (here `a`): at a rim size of
-/// `1e-8 a` the worst element at the rim had quality 0.50, at `1e-9 a` 0.013 and at `1e-10 a`
-/// 0.007 (`4 √3 A / Σ l²`; 0.50-0.60 is gmsh's usual), whatever the 2-D algorithm, random factor,
-/// geometric tolerance or domain radius; moving the rim to the origin restored 0.60 at
-/// `1e-10 a`. Smaller rim sizes come from [`CornerRefinement`].
+/// Smallest element size (in units of `a`) asked of gmsh: its 2-D mesher keeps the elements'
+/// shape only down to about `1e-8` of the coordinates' magnitude; smaller rim sizes come from
+/// [`CornerRefinement`] (docs/decisions.md, "Meshes").
 pub(crate) const GMSH_MIN_ELEMENT_SIZE: f64 = 1e-8;
 
 /// Smallest element size (units of `a`) asked of gmsh around the axis point (a full contact's
-/// refinement) and, by the solver, around a hole hidden inside the first node. There gmsh's time
-/// grows like the inverse of the size (the adapted family at level 3, measured around the axis
-/// point: 0.5 s at `2.25e-6 a`, 1.7 s at `1e-6`, 3.3 s at `5e-7`, 7.2 s at `3e-7`, more than 40 s
-/// at `1e-7` and `2.25e-8`; around `1.86e-7 a` more than 40 s at `4.6e-8`). A located hole keeps
-/// [`GMSH_MIN_ELEMENT_SIZE`]: around `5.6e-6 a` gmsh made `2.25e-8` in seconds, around `2.3e-7 a`
-/// `5.7e-8` within a 36 s solve, and around `2.1e-7 a` not `2.25e-8` in 300 s.
+/// refinement) and, by the solver, around a hole hidden inside the first node: there gmsh's time
+/// grows like the inverse of the size (docs/decisions.md, "Where the constants come from").
 pub(crate) const AXIS_MIN_ELEMENT_SIZE: f64 = 3e-7;
 
 /// Smallest element size at a singular edge (after corner refinement): elements of `1e-10 a`
@@ -57,7 +50,7 @@ const MIN_RIM_SIZE: f64 = 1e-10;
 
 /// Size of the elements at the singular edges on level `k`: `1e-4 · 100^-k` for `k >= 0` (1e-4
 /// on the coarse levels `k < 0`), floored at 1e-10.
-/// The innermost element's force error is about `0.16 hmin` (P2, measured), and each decade of
+/// The innermost element's force error is about `0.16 hmin` (P2), and each decade of
 /// `hmin` costs only `ln(10)/g` more element layers, so the rim is refined well past the graded
 /// zone's error. (The free surface is cut at `r = 2a`: gmsh 4.15 stalls meshing one curve from
 /// `a` to `R = 1e7 a` with elements of 1e-7 at one end.)
@@ -80,10 +73,8 @@ fn ring_width(contact_start: f64, free_edge: Option<f64>, edge_uncertainty: f64)
 
 /// Factor on the rim size for a contact ring `width` wide ([`ring_width`]):
 /// `min(1, width /` [`NARROW_RING_WIDTH`]`)`. The two edges' singular fields scale with the
-/// ring's width, and so does the innermost element's force error. Unscaled (measured against
-/// the ring BEM at `--tol 1e-3`): the flat annulus `b/a = 0.9999` had a force error of 9e-3 under
-/// an estimate of 3e-5, the cone at `d = 0.003 h` 2.4e-3 under 6.2e-4 and the sphere at
-/// `d = 0.003 h` 4.5e-3 under 1.2e-4, every level of the ladder wrong alike.
+/// ring's width, and so does the innermost element's force error; unscaled, narrow rings erred
+/// far beyond their estimates (docs/decisions.md, "Where the constants come from").
 pub(crate) fn ring_width_scale(width: f64) -> f64 {
     (width / NARROW_RING_WIDTH).clamp(0.0, 1.0)
 }
@@ -104,9 +95,7 @@ fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f
 /// a tenth of the tolerance times [`ring_width_scale`], is one the FEM makes (at least
 /// [`MIN_RIM_SIZE`]); otherwise an error naming the loosest tolerance that would do. Below it
 /// the last levels would share the floor's rim size and their changes would not see the error
-/// the edges leave (measured on the flat annulus `b/a = 0.999` at `--tol 1e-8` with the rim at
-/// the floor and the edges' share left out of the estimate: a force error of 1.4e-8 under an
-/// estimate of 3.6e-9).
+/// the edges leave (docs/decisions.md, "Where the constants come from").
 fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
     let ring_scale = ring_width_scale(width);
     let needed = 0.1 * target.tolerance * ring_scale;

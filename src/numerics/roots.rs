@@ -478,7 +478,7 @@ mod tests {
             let spared =
                 find_root_with_slope(f, (0.0, 1.0), guess, Some(slope), (1e-11, Some(1e-11)), 50)
                     .unwrap();
-            // From 0.7 the last step lands within the tolerance (measured: 5 against 6); from
+            // From 0.7 the last step lands within the tolerance (5 evaluations against 6); from
             // 0.2 it lands at a residual of 2e-11, above it, and both take 7.
             let spares = if guess == 0.2 { 0 } else { 1 };
             assert!(

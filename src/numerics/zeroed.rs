@@ -4,9 +4,7 @@
 //! already, so nothing writes them. Code that then adds into such an array (`a[i] += x`) reads
 //! each page first: the kernel maps its shared zero page, and the write that follows faults a
 //! second time and flushes that page from the other cores' TLBs with an inter-processor
-//! interrupt, slow on a virtual machine. Measured on the 2-core machine, a cold solve of the
-//! 92 528-unknown flat model: those interrupts were 11 % of its CPU time, and its process took
-//! 0.275 s before the assembly's values were written first and 0.235 s after (medians of 12).
+//! interrupt, slow on a virtual machine (11 % of a cold 9e4-unknown solve's CPU time).
 //! Memory the allocator reuses, on the other hand, it must clear itself, and a second pass to
 //! write it would be work done twice. [`zeros_written`] does exactly one pass, on all cores.
 

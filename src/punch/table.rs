@@ -9,7 +9,7 @@
 //! keeps such data monotone (no overshoot between points) and is `C¹`. On a uniform table it
 //! reproduces a smooth profile to third order in the point spacing where the slope is away from
 //! zero (the harmonic mean of the two neighbouring secants is a second-order slope there) and to
-//! second order next to a zero slope, such as a smooth tip's axis (measured in the tests).
+//! second order next to a zero slope, such as a smooth tip's axis (shown in the tests).
 //!
 //! File format: one point per line, two numbers `r/a, g/h` separated by a comma (or blanks); an
 //! optional first line of column names; blank lines and lines starting with `#` are skipped.
@@ -456,7 +456,7 @@ mod tests {
         }
     }
 
-    /// The interpolation's order on the sphere's profile `1 - ρ²`, measured densely: the largest
+    /// The interpolation's order on the sphere's profile `1 - ρ²`, sampled densely: the largest
     /// error falls as the square of the spacing (it sits next to the axis, where the slope
     /// vanishes and the harmonic mean's slope is first-order, `h²/(2 r_k)`); away from the axis
     /// (`ρ >= 1/4`) it falls as the cube.
@@ -476,10 +476,10 @@ mod tests {
                 .collect();
             // The asymptotic range: from 21 points on (11 to 21 gives 2.8 away from the axis).
             for pair in errors.windows(2).skip(1) {
-                let measured = (pair[0] / pair[1]).log2();
+                let observed = (pair[0] / pair[1]).log2();
                 assert!(
-                    measured > order - 0.1,
-                    "from {from}: errors {errors:?}, order {measured:.2}"
+                    observed > order - 0.1,
+                    "from {from}: errors {errors:?}, order {observed:.2}"
                 );
             }
         }

@@ -3,7 +3,7 @@
 //! Every reference declares the range of `eps = b/a` (or of `d/h`) where it may be used and an
 //! error bound there, so that the harness never compares a solver with a reference outside its
 //! range. The paper's fits carry no bound: how good they are is a result of this project
-//! (measured by the harness), not an input.
+//! (the harness grades them), not an input.
 
 pub mod asymptotic;
 pub use crate::punch::mdr;

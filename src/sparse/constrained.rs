@@ -199,8 +199,8 @@ impl<'a> ConstrainedCholesky<'a> {
         }
         if let Some((mask, llt)) = &self.last {
             // One step of iterative refinement with the same factor: the graded meshes span
-            // element sizes from 1e-10 a to 1e6 a, and without it rounding left a floor of about
-            // 4e-9 in the force of 10^6-unknown models (measured against the ring BEM).
+            // element sizes from 1e-10 a to 1e6 a, and without it rounding leaves a floor of about
+            // 4e-9 in the force of 10^6-unknown models.
             let b = rhs.clone();
             llt.solve(&mut rhs);
             if !(refine && self.refine) {

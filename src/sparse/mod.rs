@@ -15,8 +15,8 @@
 //! iterative refinement, unit responses). Two backends implement the seam, chosen at run time
 //! ([`Backend`], `verify --linear-solver`): `faer`'s public sparse Cholesky ([`faer_llt`]) and
 //! this crate's own factorisation on `faer`'s supernodal layout ([`native`], split over two cores
-//! where the model admits a separator). The native one is the default because it was measured
-//! 1.3-2.2x faster on the user's paths (`benches/records/linear-solver.md`,
+//! where the model admits a separator). The native one is the default, 1.3-2.2x faster on the
+//! user's paths (`benches/records/linear-solver.md`,
 //! `docs/decisions.md`); `tests/linear_solver_contract.rs` runs the FE suite on both. Only
 //! [`native`] reads `faer`'s internal layouts or holds `unsafe` code.
 
@@ -67,7 +67,7 @@ impl Backend {
         }
     }
 
-    /// The backend a model gets unless its options name another: measured 1.3-2.2x faster than
+    /// The backend a model gets unless its options name another: 1.3-2.2x faster than
     /// [`Backend::Faer`] on the FEM's targets (docs/decisions.md, `benches/records/linear-solver.md`).
     pub const BUILT_IN: Backend = Backend::Native;
 
@@ -440,10 +440,8 @@ pub struct NodeOrdering {
     pub split: Option<NodeSplit>,
 }
 
-/// Fewest unknowns for which a model's factorisation is split over two cores.
-/// Measured in the FEniCSx comparison (medians of five runs): at 8 008 unknowns 12.8 ms split
-/// against 17.0 ms whole, at 3 700 (P1, and the linear edge locators of P2 models) 8-15 ms
-/// against 9-21 ms.
+/// Fewest unknowns for which a model's factorisation is split over two cores: below it the
+/// split gains nothing (docs/decisions.md, "Where the constants come from").
 pub const SPLIT_MIN_DOFS: usize = 3_000;
 
 /// [`SPLIT_MIN_DOFS`], or the environment's `RINGCONTACT_SPLIT_MIN_DOFS` (to compare the split

@@ -39,9 +39,8 @@ use crate::punch::TableProfile;
 use super::{no_convergence, RingBemSolver};
 
 /// Step of the edge derivatives' differences, relative to the band's smaller natural length
-/// (`b` or `c - b` for the inner edge, `c - b` for the outer). Measured on tables sampled from the
-/// sphere: `γ1` settles to 1e-11 for `b/a >= 0.004` (1e-9 at 0.001); a step of 1e-3 leaves
-/// rounding of 1e-8 there, one of 3e-2 a truncation of 1e-9.
+/// (`b` or `c - b` for the inner edge, `c - b` for the outer): between the rounding of smaller
+/// steps and the truncation of larger ones (docs/decisions.md, "Where the constants come from").
 const EDGE_STEP: f64 = 1e-2;
 
 /// One-sided difference of fifth order, `f'(x) ≈ Σ_k w_k f(x - k δ) / δ` (Fornberg's weights):
@@ -58,10 +57,8 @@ const STENCIL: [(f64, f64); 6] = [
 ];
 
 /// One-sided difference of second order, `f'(x) ≈ (3 f(x) - 4 f(x - δ) + f(x - 2 δ)) / (2 δ)`:
-/// two factorisations instead of [`STENCIL`]'s five. Measured on the table sampled from the
-/// sphere at 16 nodes: `γ1` within 4e-6 of the fifth-order stencil's at `b/a = 0.005`, within
-/// 7e-7 for `b/a >= 0.0125` and 1e-8 for `b/a >= 0.15`, where the direct collocation of the gap
-/// at 12 nodes is off by up to 2e-2 (its flat, non-monotone part near closure).
+/// two factorisations instead of [`STENCIL`]'s five, for the rough pre-search (docs/decisions.md,
+/// "Where the constants come from").
 const ROUGH_STENCIL: [(f64, f64); 3] = [(0.0, 1.5), (1.0, -2.0), (2.0, 0.5)];
 
 /// A gap `g(r)` (units of the punch's depth scale, `r` in units of `a`) that is smooth between
@@ -741,12 +738,8 @@ fn panel_ends(gap: &dyn PiecewiseGap, inner: f64, outer: f64) -> Vec<f64> {
 const INTERIOR_POINTS: usize = 14;
 
 /// Tanh-sinh step of a band's integrals ([`band_integrals`]; about 1e-14 for the edge panels'
-/// inverse square roots, where the collocation rows take 1/16). Measured with 14 interior
-/// points against 1/16 and 20 points, on five tables (the sphere at 21 points, the cone at 11,
-/// `1 - r^4` at 41, a bumpy sphere at 31, `1 - r^1.2` at 21) at `b/a = 0.005` to `0.93` and
-/// 20 and 32 nodes: `γ1`, `γ2` and the rim's intensity moved by at most 1.1e-12 at
-/// `b/a = 0.005` and 3.3e-13 at 0.02, within the free edge's rounding floor `5e-14 c/b`, for
-/// 38 % fewer nodes.
+/// inverse square roots, where the collocation rows take 1/16): the results move within the free
+/// edge's rounding floor for fewer nodes (docs/decisions.md, "Where the constants come from").
 pub(crate) const BAND_INTEGRAL_STEP: f64 = 1.0 / 8.0;
 
 /// The nodes of the panel `[lo, hi]` of the band `[inner, outer]`: the tanh-sinh `rule` where
@@ -898,8 +891,8 @@ mod tests {
                 (f.inner_intensity(depth) - direct.inner_stress_intensity).abs() / scale,
                 (f.outer_intensity(depth).unwrap() - direct.outer_stress_intensity).abs() / scale,
             ];
-            // Measured: 3e-14 on [0.3, 1], 1.4e-10 on [0.02, 1] (the wave leaves a remainder of
-            // 5 % of the gap, far more than a table's, for the edge derivatives to carry).
+            // 3e-14 on [0.3, 1], 1.4e-10 on [0.02, 1] (the wave leaves a remainder of 5 % of
+            // the gap, far more than a table's, for the edge derivatives to carry).
             assert!(
                 errors.iter().all(|e| *e < 1e-9),
                 "band [{inner}, {outer}]: {errors:?}"
@@ -1057,7 +1050,7 @@ mod tests {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],
         };
         let depth = 0.7;
-        // Measured at 48 nodes, both ways: at most 3.2e-13 on [0.3, 1] and [0.7, 1]; 4.4e-9 near
+        // At 48 nodes, both ways: at most 3.2e-13 on [0.3, 1] and [0.7, 1]; 4.4e-9 near
         // [0.02, 1], where the wave leaves a remainder of 5 % of the gap for the differences'
         // rounding (a table's is far smaller).
         for (first, bound) in [(0.3, 1e-11), (0.02, 1e-8), (0.7, 1e-11)] {

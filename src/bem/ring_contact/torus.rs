@@ -89,9 +89,8 @@ impl RingBemSolver {
     /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
     /// edges: the centre `m` (band `[m - w, m + w]`) by the safeguarded secant on
     /// [`TorusBand::mismatch`]. The JKR equilibria are parametrised by the width, not by the
-    /// inner edge: a narrow adhesive band shifts toward the axis as it shrinks (measured: at
-    /// `d0/h = 0.1` a band from `0.9867 a` to about `0.998 a` is an equilibrium, wholly inside
-    /// `r < a`), so the inner edge is not monotone along the curve, while the width is.
+    /// inner edge: a narrow adhesive band shifts toward the axis as it shrinks (at `d0/h = 0.1`
+    /// wholly inside `r < a`), so the inner edge is not monotone along the curve, while the width is.
     fn torus_width_sample(
         &self,
         half_width: f64,
@@ -266,9 +265,7 @@ impl RingBemSolver {
                 // Converged: this state where it meets the target to the tolerance, else the
                 // state after the last (small) step, whose residual is far below the step's
                 // but not below the values' rounding; of the two the one with the smaller
-                // residuals where the step's only moved them in the rounding (measured: the
-                // torus at d/h = 100, N = 40, 1.5e-10 before the step and 2.2e-10 after). The
-                // residual is returned for the caller's estimate.
+                // residuals where the step's only moved them in the rounding. The residual is returned for the caller's estimate.
                 let (b, band, residual) = if f[1].abs() <= eps_tolerance {
                     (b, band, f[1])
                 } else {
@@ -333,9 +330,8 @@ impl RingBemSolver {
     /// ladder ([`Self::torus_at_target`]), each rung started from the previous rung's edges and
     /// Jacobian; a state whose inner edge needs a rung ([`starting_rung`]) more than one above
     /// the first climbs to the rung just below that one first, which starts the needed rung
-    /// close to its root and is its rung below (measured at `d/h = 100`, N = 40 needs: the N = 16
-    /// root is 4e-4 off N = 40's, N = 32's 2e-11; six evaluations at N = 40 and two at N = 32
-    /// became six at N = 32 and two at N = 40). The estimate is the change of the state from
+    /// close to its root and is its rung below (six evaluations on the cheaper rung, two on the
+    /// needed one, instead of the reverse). The estimate is the change of the state from
     /// the rung below (solved the same way, from this rung's edges, where the ladder skipped it;
     /// none on a rung below the one the inner edge needs, which only starts that one): of `b` and `c`
     /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's
@@ -553,15 +549,14 @@ fn search_error(e: RootError, what: &str, unknown: &str, lo: f64, hi: f64) -> cr
 }
 
 /// Largest outer edge searched for the inner edge `eps`, `3 + 3 ln(a/b)` (units of `a`): about
-/// twice the measured `c = 1.0001, 1.62, 3.60, 5.78 a` at `b = 0.9999, 0.6, 0.1, 0.01 a`.
+/// twice the ring BEM's `c = 1.0001, 1.62, 3.60, 5.78 a` at `b = 0.9999, 0.6, 0.1, 0.01 a`.
 fn outer_edge_bound(eps: f64) -> f64 {
     3.0 + 3.0 * (1.0 / eps).ln()
 }
 
 /// Starting outer edge for the inner edge `eps` (the search finds the exact edge): `a²/b` for
-/// a band not far from the ring radius (measured `c = 1.0103, 1.118, 1.62 a` at
-/// `b = 0.99, 0.9, 0.6 a`, where `a²/b` gives 1.0101, 1.111, 1.667), and for a wide band the
-/// logarithmic growth measured (`c = 2.44, 3.60, 4.77, 5.78 a` at `b = 0.3, 0.1, 0.03, 0.01 a`),
+/// a band not far from the ring radius and, for a wide band, the logarithmic growth the ring
+/// BEM's edges follow (`c = 2.44, 3.60, 4.77, 5.78 a` at `b = 0.3, 0.1, 0.03, 0.01 a`),
 /// whichever is smaller.
 pub(super) fn outer_edge_guess(eps: f64) -> f64 {
     (1.0 / eps).min(1.3 + (1.0 / eps).ln())
@@ -571,7 +566,7 @@ pub(super) fn outer_edge_guess(eps: f64) -> f64 {
 /// target, from the larger of two approximants of the ring BEM's curves. Narrow: the ring as a
 /// plane-strain cylinder of half-width `w = 1 - eps` (`ρ = a/2` when `h = 1`), `γ2 ≈ π² w²/2`
 /// (Hertz, `P = π E* w²/(4ρ)` per unit length over the length `2πa`) and `γ1 ≈ w² (ln(16/w) - 1)`
-/// (the ring's logarithmic approach). Wide: powers of `L = ln(a/b)` through the measured curves
+/// (the ring's logarithmic approach). Wide: powers of `L = ln(a/b)` through the ring BEM's curves
 /// (`γ1 = 15.6, 49.7, 163` and `γ2 = 41.9, 205, 1109` at `b = 0.1, 0.01, 1e-4 a`),
 /// `γ1 ≈ 3.8 L^1.7`, `γ2 ≈ 5.8 L^2.35`. A start only: the search converges on the ring BEM's
 /// own `γ1` or `γ2`, and a poor start costs evaluations (and a higher first node count), not

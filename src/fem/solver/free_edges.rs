@@ -19,9 +19,9 @@
 //! - each edge: its change between the rungs over the spacing's ratio less one (first order in
 //!   the node spacing there), never below [`INNER_RADIUS_BOUND`] of the spacing, and never below
 //!   the force estimate (the field's error moves an edge as a depth error would, by `κ` times
-//!   it, `κ = |db/dd| d`: measured 0.005-0.19 for the inner edge at `d/h` = 1e-3 ... 10);
+//!   it, `κ = |db/dd| d`, 0.005-0.19 for the inner edge at `d/h` = 1e-3 ... 10);
 //! - the components finer models do not reduce: the domain's truncation and
-//!   [`unresolved_component`].
+//!   [`UNRESOLVED_COMPONENT`].
 //!
 //! The answer is the first rung whose largest estimate meets the tolerance.
 
@@ -29,8 +29,8 @@ use std::time::Instant;
 
 use super::{
     fem_error, finish, first_adapted_level, grading_step_estimate, prepare_checked, solve_model,
-    unresolved_component, FemLoad, FemOptions, FemState, INNER_RADIUS_BOUND, MAX_LADDER_UNKNOWNS,
-    METHOD,
+    FemLoad, FemOptions, FemState, INNER_RADIUS_BOUND, MAX_LADDER_UNKNOWNS, METHOD,
+    UNRESOLVED_COMPONENT,
 };
 use crate::error::{Error, Result};
 use crate::fem::contact::ContactSolution;
@@ -297,7 +297,7 @@ fn climb(
                     edge_error(located[k] - below.edges[k], below.spacings[k], spacings[k])
                         .max(force);
             }
-            let floor = model.truncation_bias() + unresolved_component(located[0]);
+            let floor = model.truncation_bias() + UNRESOLVED_COMPONENT;
             let total = force.max(rung.edge_errors[0]).max(rung.edge_errors[1]) + floor;
             if total <= tolerance {
                 let state = (located[0], None, Some(gamma1), Some(gamma2));

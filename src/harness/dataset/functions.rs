@@ -1,13 +1,13 @@
 //! The non-adhesive functions of the dataset: `γ(ε)` of the flat annulus, `γ1(ε)`, `γ2(ε)` of
 //! the concave punches, and of the torus with its outer edge `c/a` (both edges free; in units of
 //! `h = a²/(2ρ)` the torus is one family for every tube radius `ρ`), on a grid uniform in `s =
-//! ln(ε/(1 - ε))`, each with the ring BEM's error estimate, and the measured error of
-//! interpolating them.
+//! ln(ε/(1 - ε))`, each with the ring BEM's error estimate, and the error of interpolating
+//! them, found against fresh solves.
 //!
 //! Interpolation: the Lagrange cubic in `s` of `ln(value)` through the four nearest grid points,
 //! exponentiated (every tabulated function is positive, and near `ε = 1` they fall like powers
 //! of `1 - ε`, exponentials in `s`, whose logarithm a cubic follows closely: at 48 intervals 10
-//! to 100 times closer than the cubic of the values). Its error is measured at the midpoint of
+//! to 100 times closer than the cubic of the values). Its error is found at the midpoint of
 //! every interior interval against a fresh solve there.
 
 use crate::bem::ring_contact::{RingBemSolver, RingState};
@@ -259,7 +259,7 @@ pub fn resource(
         table.push(row);
     }
     let names = function_names(kind.clone());
-    let measured: Vec<String> = names
+    let interpolation_errors: Vec<String> = names
         .iter()
         .zip(&worst)
         .map(|(n, w)| format!("{n} {w:.1e}"))
@@ -282,7 +282,7 @@ pub fn resource(
             solved.eps.len(),
             range.0,
             range.1,
-            measured.join(", ")
+            interpolation_errors.join(", ")
         ),
         fields,
         table,

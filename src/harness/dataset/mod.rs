@@ -1,5 +1,5 @@
 //! `verify dataset`: converged reference values to download. The non-adhesive functions of the
-//! built-in punches with their error bounds and the measured error of interpolating them
+//! built-in punches with their error bounds and the error of interpolating them
 //! ([`functions`]), the JKR critical states and pull-off forces, and the fitted formulas with
 //! their largest errors ([`adhesive`]); each table as CSV (one header row) and JSON, described by
 //! a `datapackage.json` (Frictionless Data tabular data package: names, types, units,
@@ -76,7 +76,7 @@ pub struct Resource {
     pub description: String,
     pub fields: Vec<Field>,
     pub table: Table,
-    /// The measured largest relative error of interpolating each function column.
+    /// The largest relative error of interpolating each function column, against fresh solves.
     pub interpolation_error: Vec<(String, f64)>,
 }
 

@@ -72,7 +72,7 @@ pub struct Study {
     #[serde(default)]
     pub stopped: Option<String>,
     /// FEM: the unresolved error component of its finest model
-    /// ([`fem_solver::unresolved_component`]), which refinement does not reduce and a GCI from
+    /// ([`fem_solver::UNRESOLVED_COMPONENT`]), which refinement does not reduce and a GCI from
     /// level differences cannot see.
     pub error_floor: Option<f64>,
 }
@@ -213,7 +213,7 @@ pub fn run(
     }
     Ok(Study {
         stopped,
-        ..assemble(&case, method, yardstick, out, located.inner)
+        ..assemble(&case, method, yardstick, out)
     })
 }
 
@@ -507,15 +507,8 @@ fn set_observed_orders(out: &mut [Level]) {
 }
 
 /// The study from its levels (coarsest first): observed orders, Richardson extrapolate, GCI of
-/// the finest level (never below the FEM's unresolved component at `finest_edge`, the free edge
-/// its finest level located, or `b/a` of a flat annulus).
-pub fn assemble(
-    case: &StudyCase,
-    method: Method,
-    yardstick: f64,
-    levels: Vec<Level>,
-    finest_edge: Option<f64>,
-) -> Study {
+/// the finest level (never below the FEM's unresolved component).
+pub fn assemble(case: &StudyCase, method: Method, yardstick: f64, levels: Vec<Level>) -> Study {
     let concave = case.punch.is_concave();
     let mut out: Vec<Level> = Vec::new();
     for level in levels {
@@ -545,13 +538,7 @@ pub fn assemble(
     } else {
         (None, None)
     };
-    let error_floor = (method == Method::Fem).then(|| {
-        fem_solver::unresolved_component(if concave {
-            finest_edge.unwrap_or(0.0)
-        } else {
-            case.eps
-        })
-    });
+    let error_floor = (method == Method::Fem).then_some(fem_solver::UNRESOLVED_COMPONENT);
     let gci = bar
         .as_ref()
         .map(|b| b.value.max(error_floor.unwrap_or(0.0)));

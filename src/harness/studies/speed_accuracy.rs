@@ -205,7 +205,7 @@ impl Problem {
         }
     }
 
-    /// The ring BEM's value the points are measured against: `γ` of the flat annulus 0.5 at
+    /// The ring BEM's value the points are compared with: `γ` of the flat annulus 0.5 at
     /// tolerance 1e-12, the others' `γ` or `γ2` at 1e-11.
     pub(crate) fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
         match self {
@@ -246,7 +246,7 @@ impl Problem {
     }
 }
 
-/// The base points of one problem and the yardstick they are measured against.
+/// The base points of one problem and the yardstick they are compared with.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub struct BasePoints {
     pub problem: Problem,

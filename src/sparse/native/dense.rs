@@ -8,13 +8,10 @@
 //! padding holds, but not equally fast. Memory the allocator hands out again still holds what
 //! was freed there, and an index array read as `f64` is a subnormal number (a nonzero `usize`
 //! below 2⁵² has a zero exponent field), whose arithmetic takes the processor's slow microcode
-//! path. Measured on this project's 2-core machine (warm 12 880-unknown solves in one process,
-//! 2026-11-27): `faer`'s `Mat::llt` of the same 158 × 158 Schur complement took 0.09 ms in some
-//! solves and 0.25-0.67 ms in others, depending only on where its matrix was allocated; with
-//! subnormals flushed to zero (the MXCSR's DAZ and FTZ bits, a temporary experiment), 0.09 ms in
-//! every solve, and so with the padding zeroed (this module), without touching the
-//! floating-point environment. In `verify fenicsx` that row's solve took 15.1-15.5 ms against
-//! 15.7-16.0 ms before (four alternated runs each).
+//! path: the same dense factorisation then takes two to seven times as long, depending only on
+//! where its matrix was allocated (docs/decisions.md, "Where the constants come from"). Zeroing
+//! the padding makes every solve take the fast path without touching the floating-point
+//! environment.
 //!
 //! [`zero_padded`] allocates a matrix whose padding rows are written with zeros,
 //! [`zeroed_scratch`] a kernel's scratch memory written with zeros, and [`DenseCholesky`]

@@ -134,8 +134,8 @@ impl SplitAnalysis {
     /// (before the analysis, when the input is wrong). The two parts' analyses are sequential and
     /// about equal; started first, one on each core, they leave `beside` (the assembly's values,
     /// itself parallel) to fill in whichever core is free first: started after `beside`'s work,
-    /// the second part ran alone at the end (measured at 9e4 quadratic unknowns: 39 against about
-    /// 28 ms for the three). Whether an entry couples the parts is found while each part's
+    /// the second part runs alone at the end (39 against about 28 ms for the three at 9e4
+    /// quadratic unknowns). Whether an entry couples the parts is found while each part's
     /// layout is made ([`PermutedLower::of_part`]), not in a pass of its own before them (that
     /// pass was 2.5 ms of one core at 9e4 quadratic unknowns).
     pub(crate) fn new_beside<R: Send>(

@@ -54,7 +54,7 @@ pub(crate) struct NonPositivePivot {
 const NONE: usize = usize::MAX;
 
 /// Panels at most this many columns wide are factorised in plain loops, wider ones by `faer`'s
-/// blocked kernels (measured on the 92 528-unknown model: 8 and 32 were no faster).
+/// blocked kernels (8 and 32 are no faster).
 const SMALL_WIDTH: usize = 16;
 
 /// Factorise `A = L Lᵀ` (module documentation) and return `L`'s values (`symbolic.len_val()` of

@@ -5,10 +5,8 @@
 //! The stiffness matrix has two dofs per node (`2i`, `2i + 1`), coupled to the same neighbours:
 //! the minimum-degree ordering of the node graph (a quarter of the entries) expanded to the dofs,
 //! `P = [2 π(0), 2 π(0) + 1, 2 π(1), ...]`, gives the factor the same fill as AMD on the dofs
-//! (`nnz(L)` 4 138 256 both at 61 k P3 unknowns; 24.63 M against 24.65 M at 268 k P2) at less
-//! cost: the symbolic analysis took 0.077 s against 0.130 s, and 0.50 s against 0.61 s (the node
-//! graph itself is built by merging each node's sorted columns, without a sort: the ordering
-//! at 61 k P3 unknowns fell from 0.047 to 0.025 s on 2026-11-24). A
+//! at less cost (the node graph itself is built by merging each node's sorted columns, without
+//! a sort). A
 //! trailing odd dof (the far-field amplitude) is a node of its own. Any permutation gives the
 //! same factorisation up to rounding, so this only changes time.
 //!
