@@ -4,27 +4,26 @@
 //!
 //! Run: `cargo run --release --example every_method`
 
-use ringcontact::methods::{self, Method};
+use ringcontact::methods::{Fem, GridBem, Reference, RingBem, Solver};
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::SceneSpec;
 use ringcontact::solution::Solution;
 
-/// The flat annulus `b/a = 0.5` pressed to `d = 1`, solved by each method in turn.
+/// The flat annulus `b/a = 0.5` pressed to `d = 1`, solved by each method in turn (each with
+/// its default options; `GridBem { cells: 512, ..Default::default() }` would set the grid).
 pub fn solve_every_method() -> ringcontact::Result<Vec<Solution>> {
     let scene = SceneSpec::default()
         .shape(PunchKind::FLAT_ANNULUS)
         .inner_ratio(0.5)
         .depth(1.0)
         .validate()?;
-    [
-        Method::Reference,
-        Method::RingBem,
-        Method::Fem,
-        Method::GridBem,
-    ]
-    .into_iter()
-    .map(|method| methods::solve(&scene, method))
-    .collect()
+    let solvers: [Box<dyn Solver>; 4] = [
+        Box::new(Reference),
+        Box::new(RingBem::new()),
+        Box::new(Fem::default()),
+        Box::new(GridBem::default()),
+    ];
+    solvers.iter().map(|solver| solver.solve(&scene)).collect()
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
