@@ -25,13 +25,14 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::{Error, Result};
-use crate::numerics::roots::{find_root_descending, find_root_with_slope, RootError};
+use crate::numerics::roots::RootError;
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 use crate::reference::paper_fits;
 
-use piecewise_gap::{BandEdges, InnerStencil, InnerStencils};
+use piecewise_gap::{BandEdges, InnerStencil};
 
+mod inverse;
 mod piecewise_gap;
 mod torus;
 
@@ -809,6 +810,7 @@ impl RingBemSolver {
         self.concave_inverse(kind, target, tolerance, Controlled::Force)
     }
 
+    /// The contact ratio whose `γ1` or `γ2` meets `target` ([`inverse::InverseSearch`]).
     fn concave_inverse(
         &self,
         kind: &PunchKind,
@@ -823,227 +825,7 @@ impl RingBemSolver {
                 return state;
             }
         }
-        let pick = |s: &ConcaveSample| match controlled {
-            Controlled::Depth => s.gamma1,
-            Controlled::Force => s.gamma2,
-        };
-        let mut guess = initial_ratio(kind, target, controlled);
-        // The first search runs on a cheap rung whatever the guess (a fit's start can be far off,
-        // and a search on many nodes from there pays for every step); its root then says which
-        // rung the contact ratio needs.
-        let mut rung = starting_rung(guess).min(FIRST_SEARCH_RUNG);
-        let mut outer_guess = None;
-        // From the second rung on, the search starts at the previous rung's root with its
-        // slope, so it takes Newton's step at once.
-        let mut slope_hint = None;
-        let mut previous_slopes = None;
-        // Whether the first search measures its slope at its start before its first step.
-        let mut probe_slope = false;
-        // Whether the first rung is the coarse sample of the second instead of being estimated.
-        let mut climb_first = kind.tabulated().is_some();
-        if let Some(table) = kind.tabulated() {
-            // A table's sample takes six collocation systems (one within its stencil's reach,
-            // [`InnerStencil`]); a rough one, its inner derivative of second order, three. The
-            // rough root at 16 nodes (`γ` within 4e-6 of the accurate one; the direct
-            // collocation's was off by 2e-2 where `γ` is flat near closure) starts the search,
-            // with its slope, on the rung that root needs. The rough search walks downhill
-            // past `γ`'s humps ([`find_root_descending`]).
-            let n = NODE_LADDER[FIRST_SEARCH_RUNG];
-            let mut stencil = InnerStencil::default();
-            let mut rough = |eps: f64| -> std::result::Result<f64, String> {
-                let band = self
-                    .gap_band(table, eps, 1.0, n, BandEdges::InnerRough, &mut stencil)
-                    .map_err(|e| e.to_string())?;
-                let gamma1 = band.functionals.free_inner_depth();
-                Ok(match controlled {
-                    Controlled::Depth => gamma1,
-                    Controlled::Force => 0.5 * band.functionals.force(gamma1),
-                } - target)
-            };
-            let root = find_root_descending(
-                &mut rough,
-                (min_contact_ratio(kind), MAX_CONTACT_RATIO),
-                guess,
-                None,
-                (PRESEARCH_TOLERANCE, None),
-                PRESEARCH_EVALUATIONS,
-            );
-            match root {
-                Ok(root) => {
-                    guess = root.x;
-                    slope_hint = Some(root.slope).filter(|s| s.is_finite() && *s != 0.0);
-                    // Without a slope the search measures one.
-                    probe_slope = slope_hint.is_none();
-                }
-                Err(_) => probe_slope = true,
-            }
-            // The start says which rung the state needs: the search starts there.
-            rung = table_starting_rung(guess);
-        }
-        // A table's samples at each node count share their neighbouring bands where they lie
-        // close together: the search's last samples, and the next rung's coarse sample.
-        let mut stencils = InnerStencils::default();
-        // The previous rung's root and its sample: the coarse sample of the next rung where
-        // that one's root is the same ratio (its search stopped at its start).
-        let mut previous_root: Option<(usize, f64, ConcaveSample)> = None;
-        loop {
-            let n = NODE_LADDER[rung];
-            // The last three samples of the search are kept: the state at the root and the
-            // secant slopes of both quantities (from the farthest of the others).
-            let mut history: Vec<(f64, ConcaveSample)> = Vec::with_capacity(3);
-            let mut evaluate = |eps: f64| -> std::result::Result<f64, String> {
-                if let Some((_, sample)) = history.iter().find(|(at, _)| *at == eps) {
-                    return Ok(pick(sample) - target);
-                }
-                let hint = outer_edge_hint(&history, eps).or(outer_guess);
-                let sample = self
-                    .search_sample(kind, eps, n, hint, stencils.at(n))
-                    .map_err(|e| e.to_string())?;
-                let value = pick(&sample) - target;
-                if history.len() == 3 {
-                    history.remove(0);
-                }
-                history.push((eps, sample));
-                Ok(value)
-            };
-            if std::mem::take(&mut probe_slope) {
-                // A table's pre-search slope can be far off where `γ` is flat (deep states:
-                // twice the accurate one at d = 2.98 h), and a step from it lands outside the
-                // first sample's inner stencil, whose neighbours the next sample then rebuilds
-                // (five factorisations). The slope from a second sample inside that stencil
-                // (one factorisation) makes the first step Newton's on the accurate `γ`.
-                let probe = 0.5 * piecewise_gap::inner_stencil_reach(guess, 1.0);
-                let probe = if guess - probe >= min_contact_ratio(kind) {
-                    -probe
-                } else {
-                    probe
-                };
-                if let (Ok(at_guess), Ok(at_probe)) = (evaluate(guess), evaluate(guess + probe)) {
-                    slope_hint = Some((at_probe - at_guess) / probe)
-                        .filter(|s| s.is_finite() && *s != 0.0)
-                        .or(slope_hint);
-                }
-            }
-            let root = find_root_with_slope(
-                &mut evaluate,
-                (min_contact_ratio(kind), MAX_CONTACT_RATIO),
-                guess,
-                slope_hint,
-                // In `eps`, and in the controlled quantity relative to its target (where `γ`
-                // is steep, as in deep states, an `eps` good to 1e-11 can leave a residual
-                // far above the tolerance).
-                (0.01 * tolerance, Some(0.01 * tolerance * target.abs())),
-                60,
-            )
-            .map_err(|e| inverse_error(e, kind, target, controlled))?;
-            let eps = root.x;
-            let neighbour = history
-                .iter()
-                .filter(|(at, _)| *at != eps)
-                .max_by(|(a, _), (b, _)| (a - eps).abs().total_cmp(&(b - eps).abs()))
-                .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
-            // The root's sample becomes the state's (a table's search sample gains its rim
-            // intensity once the state is accepted: the estimate does not read it).
-            let fine = match history.iter().position(|(at, _)| *at == eps) {
-                Some(i) => history.remove(i).1,
-                None => self.concave_sample(kind, eps, n, outer_edge_hint(&history, eps))?,
-            };
-            let fine_outer = Some(fine.system.region().outer());
-            // Slopes dγ1/deps, dγ2/deps and dc/deps: from the root and an earlier iterate where
-            // they lie far enough apart for rounding not to show (a secant converges to iterates
-            // 1e-13 apart, whose slope can be 8 times too small), else the previous
-            // rung's where that rung was close (its estimate below SLOPE_TRUSTED_ESTIMATE), else
-            // from a small step.
-            let outer_fine = fine.system.region().outer();
-            let [slope1, slope2, outer_slope] = match neighbour
-                .filter(|(at, ..)| (eps - at).abs() >= SLOPE_MIN_SEPARATION)
-            {
-                Some((at, g1, g2, c)) => [
-                    (fine.gamma1 - g1) / (eps - at),
-                    (fine.gamma2 - g2) / (eps - at),
-                    (outer_fine - c) / (eps - at),
-                ],
-                None => match previous_slopes {
-                    Some(slopes) => slopes,
-                    None => {
-                        let step = 1e-6_f64.min(0.5 * (MAX_CONTACT_RATIO - eps)).max(1e-9);
-                        let s =
-                            self.search_sample(kind, eps + step, n, fine_outer, stencils.at(n))?;
-                        [
-                            (s.gamma1 - fine.gamma1) / step,
-                            (s.gamma2 - fine.gamma2) / step,
-                            (s.system.region().outer() - outer_fine) / step,
-                        ]
-                    }
-                },
-            };
-            let slope = match controlled {
-                Controlled::Depth => slope1,
-                Controlled::Force => slope2,
-            };
-            if std::mem::take(&mut climb_first) && rung + 1 < NODE_LADDER.len() {
-                // A table's first rung is not estimated against the rung below (a search sample
-                // there builds its own inner stencil: six factorisations) but taken as the
-                // coarse sample of the rung above, whose search starts at this root with its
-                // slope and, where the two node counts agree to the tolerance, stops there:
-                // the same six factorisations buy the finer state and its estimate (the first
-                // rung's own estimate misses 1e-9 below b/a = 0.2).
-                rung += 1;
-                slope_hint = Some(slope);
-                previous_slopes = Some([slope1, slope2, outer_slope]);
-                guess = eps;
-                outer_guess = fine_outer;
-                previous_root = Some((n, eps, fine));
-                continue;
-            }
-            let coarse_n = NODE_LADDER[rung - 1];
-            let coarse = match previous_root.take() {
-                Some((m, at, sample)) if m == coarse_n && at == eps => sample,
-                _ => self.search_sample(kind, eps, coarse_n, fine_outer, stencils.at(coarse_n))?,
-            };
-            let (other_slope, other_fine, other_coarse) = match controlled {
-                Controlled::Depth => (slope2, fine.gamma2, coarse.gamma2),
-                Controlled::Force => (slope1, fine.gamma1, coarse.gamma1),
-            };
-            // Discretisation error at fixed eps, carried to eps through the controlled
-            // quantity's slope and from there to the other quantity; plus the root search's own
-            // error, its residual over the slope (the search stops at 1 % of the tolerance in
-            // eps, and at a loose tolerance that is far above the discretisation error: the
-            // sphere at d = 1.5 h and 1e-2 was 7e-10 off while the discretisation term said
-            // 1e-13). The residual term is doubled: the slope is a secant's.
-            let eps_error = ((pick(&fine) - pick(&coarse)).abs()
-                + 2.0 * (pick(&fine) - target).abs())
-                / slope.abs();
-            let other_error = (other_fine - other_coarse).abs() + other_slope.abs() * eps_error;
-            // The outer edge (the torus's; the rim, exactly 1, for the others).
-            let outer_error =
-                (outer_fine - coarse.system.region().outer()).abs() + outer_slope.abs() * eps_error;
-            let change = eps_error
-                .max(other_error / other_fine.abs())
-                .max(outer_error);
-            let floor = free_edge_floor(fine.system.region());
-            let estimate = floored_estimate(change, floor, tolerance)?;
-            if estimate <= tolerance {
-                let fine = self.completed(kind, fine)?;
-                return self.concave_state(kind, eps, fine, n, estimate);
-            }
-            if rung + 1 >= NODE_LADDER.len() {
-                return Err(no_convergence(format!(
-                    "error estimate {estimate:.2e} at N = {n} exceeds the tolerance {tolerance:.1e}"
-                )));
-            }
-            let needed = match kind.tabulated() {
-                Some(_) => table_starting_rung(eps),
-                None => starting_rung(eps),
-            };
-            rung = (rung + 1).max(needed);
-            slope_hint = Some(slope);
-            previous_slopes =
-                (estimate <= SLOPE_TRUSTED_ESTIMATE).then_some([slope1, slope2, outer_slope]);
-            guess = eps;
-            outer_guess = fine_outer;
-            previous_root = Some((n, eps, fine));
-        }
+        inverse::InverseSearch::start(self, kind, target, tolerance, controlled).run()
     }
 
     /// The disk with `w = d - g(r)` refined to `tolerance`: `((system, field), N, estimate,
