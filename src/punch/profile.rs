@@ -107,6 +107,15 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
         true
     }
 
+    /// A lower bound of the hole `b/a` at depth `d/h` of a profile whose hole never closes: a
+    /// method may then report full contact only with an error estimate at least this wide.
+    /// `None` (the default) where no such bound is known: full contact is then checked against
+    /// [`Profile::closure`].
+    fn hole_lower_bound(&self, depth_over_hole: f64) -> Option<f64> {
+        let _ = depth_over_hole;
+        None
+    }
+
     /// Whether the contact closes from a disk and an annulus rather than by a shrinking hole
     /// (a profile flatter than the sphere at the axis); the ring BEM's single annulus stops
     /// short of it.
