@@ -52,112 +52,132 @@ fn best_reference(
 /// Solve with the analytic references (exact results, series, asymptotes, the paper's fits).
 fn solve_reference(scene: &Scene) -> Result<Solution> {
     let start = Instant::now();
-    let kind = &scene.punch.kind;
-    let a = scene.punch.rim_radius;
-    let es = scene.material.effective_modulus;
-    let h = scene.punch.hole_depth;
     // Every field below is set from the reference that applies.
-    let mut solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
-    match reference_family(kind)? {
-        ReferenceFamily::Flat => {
-            let eps = scene.punch.inner_ratio();
-            let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;
-            let (d, f) = flat_depth_force(scene, value.value)?;
-            solution.eps = eps;
-            solution.inner_radius = eps * a;
-            solution.gamma = Some(value.value);
-            solution.depth = d;
-            solution.force = f;
-            solution.error_estimate = value.error_bound.map(|b| b / value.value);
-            solution.method = format!("reference:{name}");
-            solution.provenance = source.to_string();
-        }
-        family @ (ReferenceFamily::Cone | ReferenceFamily::Sphere) => {
-            let sphere = matches!(family, ReferenceFamily::Sphere);
-            let (q1, q2) = if !sphere {
-                (Quantity::ConeGamma1, Quantity::ConeGamma2)
-            } else {
-                (Quantity::SphereGamma1, Quantity::SphereGamma2)
-            };
-            let full_contact = match scene.load {
-                Load::Depth(d) if sphere => {
-                    reference::sphere_full_contact_gamma2(d / h).map(|g2| (d / h, g2))
-                }
-                Load::Force(f) if sphere => {
-                    let g2 = f / (2.0 * es * h * a);
-                    (g2 >= 8.0 / 3.0).then_some((g2 + 1.0 / 3.0, g2))
-                }
-                _ => None,
-            };
-            let (eps, g1, g2, name, source, bound) = if let Some((g1, g2)) = full_contact {
-                (
-                    0.0,
-                    g1,
-                    g2,
-                    "sphere-full-contact",
-                    "MDR: F = 2 E* a (d - h/3) for d >= 3h",
-                    Some(0.0),
-                )
-            } else {
-                let eps = match scene.load {
-                    Load::ContactRatio(eps) => eps,
-                    Load::Depth(d) => invert_reference(q1, d / h)?,
-                    Load::Force(f) => invert_reference(q2, f / (2.0 * es * h * a))?,
-                };
-                let (v1, name, source) = best_reference(q1, eps)?;
-                let (v2, _, _) = best_reference(q2, eps)?;
-                let bound = match (v1.error_bound, v2.error_bound) {
-                    (Some(b1), Some(b2)) => Some((b1 / v1.value).max(b2 / v2.value)),
-                    _ => None,
-                };
-                (eps, v1.value, v2.value, name, source, bound)
-            };
-            solution.eps = eps;
-            solution.inner_radius = eps * a;
-            solution.gamma1 = Some(g1);
-            solution.gamma2 = Some(g2);
-            solution.depth = h * g1;
-            solution.force = 2.0 * es * h * a * g2;
-            solution.error_estimate = bound;
-            solution.method = format!("reference:{name}");
-            solution.provenance = source.to_string();
-        }
-        ReferenceFamily::Power(n) => {
-            let full_contact = match scene.load {
-                Load::Depth(d) => power_law::full_contact_gamma2(n, d / h).map(|g2| (d / h, g2)),
-                Load::Force(f) => {
-                    let g2 = f / (2.0 * es * h * a);
-                    power_law::full_contact_gamma1(n, g2).map(|g1| (g1, g2))
-                }
-                Load::ContactRatio(_) => None,
-            };
-            let Some((g1, g2)) = full_contact else {
-                return Err(Error::OutOfRange {
-                    method: "reference".into(),
-                    reason: format!(
-                        "the power-law punch has a closed form only in full contact (n > 1 and \
-                         d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
-                         (--method ring-bem)",
-                        power_law::closure_depth(n)
-                            .map(|d| format!(", here d >= {} h", crate::error::show(d)))
-                            .unwrap_or_default()
-                    ),
-                });
-            };
-            solution.eps = 0.0;
-            solution.inner_radius = 0.0;
-            solution.gamma1 = Some(g1);
-            solution.gamma2 = Some(g2);
-            solution.depth = h * g1;
-            solution.force = 2.0 * es * h * a * g2;
-            solution.error_estimate = Some(0.0);
-            solution.method = "reference:power-full-contact".into();
-            solution.provenance = "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for \
-                                   d >= h (1 + κ_n/(n - 1)), κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)"
-                .into();
-        }
-    }
+    let solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
+    let mut solution = match reference_family(&scene.punch.kind)? {
+        ReferenceFamily::Flat => flat_reference(scene, solution)?,
+        ReferenceFamily::Cone => concave_reference(scene, solution, false)?,
+        ReferenceFamily::Sphere => concave_reference(scene, solution, true)?,
+        ReferenceFamily::Power(n) => power_full_contact(scene, solution, n)?,
+    };
     solution.wall_s = start.elapsed().as_secs_f64();
+    Ok(solution)
+}
+
+/// The flat annulus's `γ(b/a)` from the most trusted reference valid at `b/a`.
+fn flat_reference(scene: &Scene, mut solution: Solution) -> Result<Solution> {
+    let a = scene.punch.rim_radius;
+    let eps = scene.punch.inner_ratio();
+    let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;
+    let (d, f) = flat_depth_force(scene, value.value)?;
+    solution.eps = eps;
+    solution.inner_radius = eps * a;
+    solution.gamma = Some(value.value);
+    solution.depth = d;
+    solution.force = f;
+    solution.error_estimate = value.error_bound.map(|b| b / value.value);
+    solution.method = format!("reference:{name}");
+    solution.provenance = source.to_string();
+    Ok(solution)
+}
+
+/// The cone's or the sphere's `γ1`, `γ2` at the scene's load: the sphere's full contact in
+/// closed form (the MDR), else the contact ratio whose references meet the load.
+fn concave_reference(scene: &Scene, mut solution: Solution, sphere: bool) -> Result<Solution> {
+    let (a, es, h) = (
+        scene.punch.rim_radius,
+        scene.material.effective_modulus,
+        scene.punch.hole_depth,
+    );
+    let (q1, q2) = if !sphere {
+        (Quantity::ConeGamma1, Quantity::ConeGamma2)
+    } else {
+        (Quantity::SphereGamma1, Quantity::SphereGamma2)
+    };
+    let full_contact = match scene.load {
+        Load::Depth(d) if sphere => {
+            reference::sphere_full_contact_gamma2(d / h).map(|g2| (d / h, g2))
+        }
+        Load::Force(f) if sphere => {
+            let g2 = f / (2.0 * es * h * a);
+            (g2 >= 8.0 / 3.0).then_some((g2 + 1.0 / 3.0, g2))
+        }
+        _ => None,
+    };
+    let (eps, g1, g2, name, source, bound) = if let Some((g1, g2)) = full_contact {
+        (
+            0.0,
+            g1,
+            g2,
+            "sphere-full-contact",
+            "MDR: F = 2 E* a (d - h/3) for d >= 3h",
+            Some(0.0),
+        )
+    } else {
+        let eps = match scene.load {
+            Load::ContactRatio(eps) => eps,
+            Load::Depth(d) => invert_reference(q1, d / h)?,
+            Load::Force(f) => invert_reference(q2, f / (2.0 * es * h * a))?,
+        };
+        let (v1, name, source) = best_reference(q1, eps)?;
+        let (v2, _, _) = best_reference(q2, eps)?;
+        let bound = match (v1.error_bound, v2.error_bound) {
+            (Some(b1), Some(b2)) => Some((b1 / v1.value).max(b2 / v2.value)),
+            _ => None,
+        };
+        (eps, v1.value, v2.value, name, source, bound)
+    };
+    solution.eps = eps;
+    solution.inner_radius = eps * a;
+    solution.gamma1 = Some(g1);
+    solution.gamma2 = Some(g2);
+    solution.depth = h * g1;
+    solution.force = 2.0 * es * h * a * g2;
+    solution.error_estimate = bound;
+    solution.method = format!("reference:{name}");
+    solution.provenance = source.to_string();
+    Ok(solution)
+}
+
+/// The power law's full contact by the MDR; its annular contact has no closed form.
+fn power_full_contact(scene: &Scene, mut solution: Solution, n: f64) -> Result<Solution> {
+    let (a, es, h) = (
+        scene.punch.rim_radius,
+        scene.material.effective_modulus,
+        scene.punch.hole_depth,
+    );
+    let full_contact = match scene.load {
+        Load::Depth(d) => power_law::full_contact_gamma2(n, d / h).map(|g2| (d / h, g2)),
+        Load::Force(f) => {
+            let g2 = f / (2.0 * es * h * a);
+            power_law::full_contact_gamma1(n, g2).map(|g1| (g1, g2))
+        }
+        Load::ContactRatio(_) => None,
+    };
+    let Some((g1, g2)) = full_contact else {
+        return Err(Error::OutOfRange {
+            method: "reference".into(),
+            reason: format!(
+                "the power-law punch has a closed form only in full contact (n > 1 and \
+                 d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
+                 (--method ring-bem)",
+                power_law::closure_depth(n)
+                    .map(|d| format!(", here d >= {} h", crate::error::show(d)))
+                    .unwrap_or_default()
+            ),
+        });
+    };
+    solution.eps = 0.0;
+    solution.inner_radius = 0.0;
+    solution.gamma1 = Some(g1);
+    solution.gamma2 = Some(g2);
+    solution.depth = h * g1;
+    solution.force = 2.0 * es * h * a * g2;
+    solution.error_estimate = Some(0.0);
+    solution.method = "reference:power-full-contact".into();
+    solution.provenance = "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for \
+                           d >= h (1 + κ_n/(n - 1)), κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)"
+        .into();
     Ok(solution)
 }
 
