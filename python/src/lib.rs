@@ -92,6 +92,14 @@ fn scene_keywords() -> Vec<String> {
 
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    // A malformed mesh is an error naming the file, not a panic message: silent inside the
+    // mesh parser, every other panic handed to the hook that was there.
+    let previous = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if !ringcontact::mesh::msh::inside_mesh_parser() {
+            previous(info);
+        }
+    }));
     m.add("RingContactError", m.py().get_type::<RingContactError>())?;
     m.add_function(wrap_pyfunction!(solve_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(command, m)?)?;

@@ -29,12 +29,18 @@ fn emit(text: &str) {
 }
 
 /// A panic is a defect of this program, never the user's input: say so in one line (the fuzz
-/// and CLI tests keep it from happening; RUST_BACKTRACE=1 still gives the trace).
+/// and CLI tests keep it from happening; RUST_BACKTRACE=1 still gives the trace). A panic inside
+/// the mesh parser is the input's, already an error naming the file: nothing is printed.
 fn report_panics_in_one_line() {
-    if std::env::var_os("RUST_BACKTRACE").is_some() {
-        return;
-    }
-    std::panic::set_hook(Box::new(|info| {
+    let with_trace = std::env::var_os("RUST_BACKTRACE").is_some();
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if ringcontact::mesh::msh::inside_mesh_parser() {
+            return;
+        }
+        if with_trace {
+            return default(info);
+        }
         let place = info
             .location()
             .map(|l| format!(" at {}:{}", l.file(), l.line()))
