@@ -112,8 +112,11 @@ where
     search(f, interval, guess, slope, tolerances, max_evaluations, true)
 }
 
+/// The search behind [`find_root_with_slope`] and [`find_root_descending`]: two starting points
+/// ([`Search::start`]), then secant steps, bisection once a sign change is bracketed
+/// ([`Search::next_point`]), until a stop.
 fn search<F>(
-    mut f: F,
+    f: F,
     (lo, hi): (f64, f64),
     guess: f64,
     slope: Option<f64>,
@@ -124,184 +127,258 @@ fn search<F>(
 where
     F: FnMut(f64) -> Result<f64, String>,
 {
-    // The way to the root while it is not bracketed (descending functions only): right where
-    // `f > 0`.
-    let downhill = |fx: f64| if fx > 0.0 { 1.0 } else { -1.0 };
-    let mut evaluations = 0;
-    let mut eval = |x: f64, count: &mut usize| -> Result<f64, RootError> {
-        *count += 1;
-        f(x).map_err(RootError::Evaluation)
+    let mut search = Search {
+        f,
+        lo,
+        hi,
+        x_tol,
+        residual_tol,
+        descending,
+        evaluations: 0,
     };
-    let x0 = guess.clamp(lo, hi);
-    let f0 = eval(x0, &mut evaluations)?;
-    if f0 == 0.0 {
-        return Ok(Root {
-            x: x0,
-            evaluations,
-            slope: f64::NAN,
-        });
+    match search.start(guess, slope)? {
+        Start::Root(root) => Ok(root),
+        Start::Points(a, b) => search.iterate(a, b, max_evaluations),
     }
-    // A start already within both tolerances by the given slope (a root of a nearby problem:
-    // the next node count's, where the two agree to the tolerance) is the root.
-    let hint = slope.filter(|s| s.is_finite() && *s != 0.0 && !(descending && *s > 0.0));
-    if let (Some(s), Some(residual_tol)) = (hint, residual_tol) {
-        if f0.abs() <= residual_tol && (f0 / s).abs() <= x_tol {
-            return Ok(Root {
-                x: x0,
-                evaluations,
-                slope: s,
-            });
-        }
+}
+
+/// The way to the root while it is not bracketed (descending functions only): right where
+/// `f > 0`.
+fn downhill(fx: f64) -> f64 {
+    if fx > 0.0 {
+        1.0
+    } else {
+        -1.0
     }
-    // Second point: Newton's step with the given slope, else a small step toward the interior.
-    let newton = hint
-        .map(|s| x0 - f0 / s)
-        .filter(|x| (lo..=hi).contains(x) && *x != x0);
-    let x1 = newton.unwrap_or_else(|| {
-        let step = (1e-3 * (hi - lo)).max(10.0 * x_tol);
-        let downhill_step = x0 + downhill(f0) * step;
-        if descending && (lo..=hi).contains(&downhill_step) {
-            downhill_step
-        } else if descending {
-            // At an end whose side the sign points beyond: the other way, where the ends then
-            // decide whether a root exists.
-            x0 - downhill(f0) * step
-        } else if x0 + step <= hi {
-            x0 + step
+}
+
+/// A sign change of `f` over `[l, h]`, with the values at its ends.
+#[derive(Clone, Copy)]
+struct Bracket {
+    l: f64,
+    fl: f64,
+    h: f64,
+}
+
+impl Bracket {
+    /// The bracket between two points of opposite sign, `None` where their signs agree.
+    fn of((xa, fa): (f64, f64), (xb, fb): (f64, f64)) -> Option<Bracket> {
+        (fa.signum() != fb.signum()).then_some(if xa < xb {
+            Bracket {
+                l: xa,
+                fl: fa,
+                h: xb,
+            }
         } else {
-            x0 - step
+            Bracket {
+                l: xb,
+                fl: fb,
+                h: xa,
+            }
+        })
+    }
+
+    /// The bracket shrunk by a point inside it, keeping the sign change.
+    fn shrunk(self, x: f64, fx: f64) -> Bracket {
+        if fx.signum() == self.fl.signum() {
+            Bracket {
+                l: x,
+                fl: fx,
+                ..self
+            }
+        } else {
+            Bracket { h: x, ..self }
         }
-    });
-    let f1 = eval(x1, &mut evaluations)?;
-    if f1 == 0.0 || (newton.is_some() && (x1 - x0).abs() <= x_tol) {
-        return Ok(Root {
-            x: x1,
-            evaluations,
-            slope: (f1 - f0) / (x1 - x0),
+    }
+}
+
+/// How a search starts: already at the root, or with two points to step from.
+enum Start {
+    Root(Root),
+    Points((f64, f64), (f64, f64)),
+}
+
+/// One root search: the function, its interval and tolerances, and the evaluations spent.
+struct Search<F> {
+    f: F,
+    lo: f64,
+    hi: f64,
+    x_tol: f64,
+    residual_tol: Option<f64>,
+    descending: bool,
+    evaluations: usize,
+}
+
+impl<F: FnMut(f64) -> Result<f64, String>> Search<F> {
+    fn eval(&mut self, x: f64) -> Result<f64, RootError> {
+        self.evaluations += 1;
+        (self.f)(x).map_err(RootError::Evaluation)
+    }
+
+    /// The first two points: the guess, and Newton's step from it with the given slope (else a
+    /// small step toward the interior, or downhill); either may already be the root.
+    fn start(&mut self, guess: f64, slope: Option<f64>) -> Result<Start, RootError> {
+        let (lo, hi, x_tol) = (self.lo, self.hi, self.x_tol);
+        let x0 = guess.clamp(lo, hi);
+        let f0 = self.eval(x0)?;
+        if f0 == 0.0 {
+            return Ok(Start::Root(self.root(x0, f64::NAN)));
+        }
+        // A start already within both tolerances by the given slope (a root of a nearby
+        // problem: the next node count's, where the two agree to the tolerance) is the root.
+        let descending = self.descending;
+        let hint = slope.filter(|s| s.is_finite() && *s != 0.0 && !(descending && *s > 0.0));
+        if let (Some(s), Some(residual_tol)) = (hint, self.residual_tol) {
+            if f0.abs() <= residual_tol && (f0 / s).abs() <= x_tol {
+                return Ok(Start::Root(self.root(x0, s)));
+            }
+        }
+        let newton = hint
+            .map(|s| x0 - f0 / s)
+            .filter(|x| (lo..=hi).contains(x) && *x != x0);
+        let x1 = newton.unwrap_or_else(|| {
+            let step = (1e-3 * (hi - lo)).max(10.0 * x_tol);
+            let downhill_step = x0 + downhill(f0) * step;
+            if descending && (lo..=hi).contains(&downhill_step) {
+                downhill_step
+            } else if descending {
+                // At an end whose side the sign points beyond: the other way, where the ends
+                // then decide whether a root exists.
+                x0 - downhill(f0) * step
+            } else if x0 + step <= hi {
+                x0 + step
+            } else {
+                x0 - step
+            }
         });
+        let f1 = self.eval(x1)?;
+        if f1 == 0.0 || (newton.is_some() && (x1 - x0).abs() <= x_tol) {
+            return Ok(Start::Root(self.root(x1, (f1 - f0) / (x1 - x0))));
+        }
+        if let (Some(hint), Some(residual_tol)) =
+            (slope.filter(|_| newton.is_some()), self.residual_tol)
+        {
+            let tolerances = (x_tol, residual_tol);
+            if let Some(root) = stop_after((x0, f0), (x1, f1), hint, tolerances, self.evaluations) {
+                return Ok(Start::Root(root));
+            }
+        }
+        Ok(Start::Points((x0, f0), (x1, f1)))
     }
-    if let (Some(hint), Some(residual_tol)) = (slope.filter(|_| newton.is_some()), residual_tol) {
-        let tolerances = (x_tol, residual_tol);
-        if let Some(root) = stop_after((x0, f0), (x1, f1), hint, tolerances, evaluations) {
-            return Ok(root);
+
+    fn root(&self, x: f64, slope: f64) -> Root {
+        Root {
+            x,
+            evaluations: self.evaluations,
+            slope,
         }
     }
-    // Bracket, if the two points already straddle the root.
-    let mut bracket: Option<(f64, f64, f64, f64)> = None;
-    let update_bracket =
-        |b: &mut Option<(f64, f64, f64, f64)>, xa: f64, fa: f64, xb: f64, fb: f64| {
-            if fa.signum() != fb.signum() {
-                let (l, fl, h, fh) = if xa < xb {
-                    (xa, fa, xb, fb)
-                } else {
-                    (xb, fb, xa, fa)
-                };
-                match b {
-                    Some((bl, _, bh, _)) if h - l >= *bh - *bl => {}
-                    _ => *b = Some((l, fl, h, fh)),
+
+    /// Secant steps from `a` and `b`, bisection inside a bracket, until a step or the bracket
+    /// is below `x_tol`, [`stop_after`] stops it, or the evaluations run out.
+    fn iterate(
+        &mut self,
+        (mut xa, mut fa): (f64, f64),
+        (mut xb, mut fb): (f64, f64),
+        max_evaluations: usize,
+    ) -> Result<Root, RootError> {
+        let mut bracket = Bracket::of((xa, fa), (xb, fb));
+        let mut last_step = f64::INFINITY;
+        while self.evaluations < max_evaluations {
+            let (next, widened) = self.next_point((xa, fa), (xb, fb), bracket)?;
+            if widened.is_some() {
+                bracket = widened;
+            }
+            let fnext = self.eval(next)?;
+            last_step = (next - xb).abs();
+            if fnext == 0.0 || last_step <= self.x_tol {
+                return Ok(self.root(next, (fnext - fb) / (next - xb)));
+            }
+            if let Some(residual_tol) = self.residual_tol {
+                let slope_before = (fb - fa) / (xb - xa);
+                let tolerances = (self.x_tol, residual_tol);
+                let stop = stop_after(
+                    (xb, fb),
+                    (next, fnext),
+                    slope_before,
+                    tolerances,
+                    self.evaluations,
+                );
+                if let Some(root) = stop {
+                    return Ok(root);
                 }
             }
-        };
-    update_bracket(&mut bracket, x0, f0, x1, f1);
-    let (mut xa, mut fa, mut xb, mut fb) = (x0, f0, x1, f1);
-    let mut last_step = f64::INFINITY;
-    while evaluations < max_evaluations {
+            bracket = match bracket {
+                Some(b) => Some(b.shrunk(next, fnext)),
+                None => Bracket::of((xb, fb), (next, fnext)),
+            };
+            (xa, fa, xb, fb) = (xb, fb, next, fnext);
+            if bracket.is_some_and(|b| b.h - b.l <= self.x_tol) {
+                // The last iterate is an end of the bracket, so within `x_tol` of the root, and
+                // it has been evaluated (the caller may keep its evaluation).
+                return Ok(self.root(xb, (fb - fa) / (xb - xa)));
+            }
+        }
+        Err(RootError::NoConvergence {
+            iterations: self.evaluations,
+            last_step,
+        })
+    }
+
+    /// The next point: the secant's, or the bracket's midpoint where the secant leaves it;
+    /// unbracketed, a descending function's step taken downhill, and a step stuck at an end
+    /// of the interval evaluates both ends (the bracket they make is returned).
+    fn next_point(
+        &mut self,
+        (xa, fa): (f64, f64),
+        (xb, fb): (f64, f64),
+        bracket: Option<Bracket>,
+    ) -> Result<(f64, Option<Bracket>), RootError> {
+        let (lo, hi) = (self.lo, self.hi);
         let mut next = if fb != fa {
             xb - fb * (xb - xa) / (fb - fa)
         } else {
             f64::NAN
         };
-        match bracket {
-            Some((l, _, h, _)) => {
-                if !next.is_finite() || next <= l || next >= h {
-                    next = 0.5 * (l + h);
-                }
+        if let Some(b) = bracket {
+            if !next.is_finite() || next <= b.l || next >= b.h {
+                next = 0.5 * (b.l + b.h);
             }
-            None => {
-                // A descending function's step the wrong way (a local rise) or none at all:
-                // twice the last step the right way.
-                let way = downhill(fb);
-                if descending && (!next.is_finite() || (next - xb) * way <= 0.0) {
-                    next = xb + way * 2.0 * (xb - xa).abs();
-                }
-                // A flat or overflowing secant (e.g. a target of 1e308, where f(x0) and f(x1)
-                // round to the same value) cannot step: the interval's ends decide whether a
-                // root exists at all.
-                // (A secant step below rounding inside the interval, `next == xb` at a root,
-                // is convergence, not an end: the evaluation below returns it.)
-                let clamped = next.is_finite() && next.clamp(lo, hi) != next;
-                let stuck = !next.is_finite() || (clamped && next.clamp(lo, hi) == xb);
-                next = if next.is_finite() {
-                    next.clamp(lo, hi)
-                } else {
-                    xb
-                };
-                if stuck {
-                    // Stuck at an end of the admissible interval: check whether it brackets.
-                    let f_lo = eval(lo, &mut evaluations)?;
-                    let f_hi = eval(hi, &mut evaluations)?;
-                    if f_lo.signum() == f_hi.signum() {
-                        return Err(RootError::NotBracketed { lo, hi, f_lo, f_hi });
-                    }
-                    bracket = Some((lo, f_lo, hi, f_hi));
-                    next = 0.5 * (lo + hi);
-                }
-            }
+            return Ok((next, None));
         }
-        let fnext = eval(next, &mut evaluations)?;
-        last_step = (next - xb).abs();
-        if fnext == 0.0 || last_step <= x_tol {
-            let slope = (fnext - fb) / (next - xb);
-            return Ok(Root {
-                x: next,
-                evaluations,
-                slope,
-            });
+        // A descending function's step the wrong way (a local rise) or none at all: twice the
+        // last step the right way.
+        let way = downhill(fb);
+        if self.descending && (!next.is_finite() || (next - xb) * way <= 0.0) {
+            next = xb + way * 2.0 * (xb - xa).abs();
         }
-        if let Some(residual_tol) = residual_tol {
-            let slope_before = (fb - fa) / (xb - xa);
-            let tolerances = (x_tol, residual_tol);
-            if let Some(root) = stop_after(
-                (xb, fb),
-                (next, fnext),
-                slope_before,
-                tolerances,
-                evaluations,
-            ) {
-                return Ok(root);
-            }
-        }
-        // Shrink the bracket with the new point.
-        if let Some((l, fl, h, fh)) = bracket {
-            bracket = Some(if fnext.signum() == fl.signum() {
-                (next, fnext, h, fh)
-            } else {
-                (l, fl, next, fnext)
-            });
+        // A flat or overflowing secant (e.g. a target of 1e308, where f(x0) and f(x1) round to
+        // the same value) cannot step: the interval's ends decide whether a root exists at all.
+        // (A secant step below rounding inside the interval, `next == xb` at a root, is
+        // convergence, not an end: the evaluation that follows returns it.)
+        let clamped = next.is_finite() && next.clamp(lo, hi) != next;
+        let stuck = !next.is_finite() || (clamped && next.clamp(lo, hi) == xb);
+        next = if next.is_finite() {
+            next.clamp(lo, hi)
         } else {
-            update_bracket(&mut bracket, xb, fb, next, fnext);
+            xb
+        };
+        if !stuck {
+            return Ok((next, None));
         }
-        xa = xb;
-        fa = fb;
-        xb = next;
-        fb = fnext;
-        if let Some((l, _, h, _)) = bracket {
-            if h - l <= x_tol {
-                // The last iterate is an end of the bracket, so within `x_tol` of the root, and
-                // it has been evaluated (the caller may keep its evaluation).
-                let slope = (fb - fa) / (xb - xa);
-                return Ok(Root {
-                    x: xb,
-                    evaluations,
-                    slope,
-                });
-            }
+        // Stuck at an end of the admissible interval: check whether it brackets.
+        let f_lo = self.eval(lo)?;
+        let f_hi = self.eval(hi)?;
+        if f_lo.signum() == f_hi.signum() {
+            return Err(RootError::NotBracketed { lo, hi, f_lo, f_hi });
         }
+        let ends = Bracket {
+            l: lo,
+            fl: f_lo,
+            h: hi,
+        };
+        Ok((0.5 * (lo + hi), Some(ends)))
     }
-    Err(RootError::NoConvergence {
-        iterations: evaluations,
-        last_step,
-    })
 }
 
 /// Relative disagreement of the last secant slope with the one before below which the function
