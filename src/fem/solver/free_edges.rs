@@ -29,13 +29,14 @@ use std::time::Instant;
 
 use super::{
     fem_error, finish, first_adapted_level, grading_step_estimate, prepare_checked, solve_model,
-    FemLoad, FemOptions, FemState, INNER_RADIUS_BOUND, MAX_LADDER_UNKNOWNS, METHOD,
+    FemLoad, FemOptions, FemState, PreparedModel, INNER_RADIUS_BOUND, MAX_LADDER_UNKNOWNS, METHOD,
     UNRESOLVED_COMPONENT,
 };
 use crate::error::{Error, Result};
 use crate::fem::contact::ContactSolution;
 use crate::heartbeat::Heartbeat;
 use crate::mesh::provider::{self, MeshRequest, SizeTarget};
+use crate::mesh::triangulation::Degree;
 use crate::punch::PunchKind;
 
 /// Times the contact line is doubled when the located contact reaches its end.
@@ -96,6 +97,104 @@ struct Rung {
     edge_errors: [f64; 2],
     /// Only located the edges for the next mesh (no estimate against it).
     locator: bool,
+}
+
+impl Rung {
+    /// This rung's force estimate against the rung `below`, and its edges' errors: a level's
+    /// step is the grading's Richardson estimate ([`grading_step_estimate`]; `last_change` and
+    /// `level_force` carry it between levels), a refinement of the same level at its edges is
+    /// that level's grading error plus the change; an edge's error is its change over the
+    /// spacings' ratio ([`edge_error`]), never below the force estimate.
+    fn estimate_against(
+        &mut self,
+        below: &Rung,
+        degree: Degree,
+        last_change: &mut Option<f64>,
+        level_force: &mut Option<f64>,
+    ) -> f64 {
+        let relative = |x: f64, y: f64| (x - y).abs() / x.abs();
+        let change = relative(self.gamma1, below.gamma1).max(relative(self.gamma2, below.gamma2));
+        let force = if self.level == below.level + 1 {
+            let estimate = grading_step_estimate(degree, change, *last_change);
+            *last_change = Some(change);
+            *level_force = Some(estimate);
+            estimate
+        } else {
+            // The same level refined at the edges: its grading error, plus the change.
+            level_force.unwrap_or(change) + change
+        };
+        for k in 0..2 {
+            self.edge_errors[k] = edge_error(
+                self.edges[k] - below.edges[k],
+                below.spacings[k],
+                self.spacings[k],
+            )
+            .max(force);
+        }
+        force
+    }
+}
+
+/// One level of the climb: its mesh (gmsh or the cache) refined around `request`'s edges, the
+/// model prepared on the contact line `[0, frame a]` and solved, warm from the rung below.
+fn solve_level(
+    kind: &PunchKind,
+    load: FemLoad,
+    options: &FemOptions,
+    frame: f64,
+    request: &MeshRequest,
+    previous: Option<Rung>,
+    progress: &Heartbeat,
+) -> Result<(PreparedModel, ContactSolution, f64, f64)> {
+    let tolerance = options.tolerance;
+    let why = format!("the FEM for the {kind} at tolerance {tolerance:e}");
+    if let MeshRequest::FreeEdges { level, .. } = request {
+        progress.set(format!(
+            "level {level}: making its mesh (gmsh, or the cache)"
+        ));
+    }
+    let provided = provider::provide(request, &why)?;
+    let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
+    model.spec.frame = frame;
+    progress.set(format!(
+        "solving {} unknowns on {}",
+        model.stiffness.nrows(),
+        model.path
+    ));
+    let depth_guess = Some(previous.map_or(depth_guess(load), |p| p.gamma1));
+    // The model below's band starts the active-set iteration.
+    let warm = previous.map(|p| super::WarmStart {
+        inner_radius: p.edges[0],
+        band: p.edge_errors[0],
+        outer_radius: p.edges[1],
+    });
+    let (s, gamma1, gamma2) = solve_model(
+        &mut model,
+        kind.clone(),
+        0.0,
+        load,
+        warm,
+        depth_guess,
+        tolerance,
+    )?;
+    if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+        super::trace_level(&model, &s);
+        eprintln!(
+            "fem: level {:?}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",
+            request_level(request),
+            s.outer_radius,
+            s.outer_node_spacing
+        );
+    }
+    Ok((model, s, gamma1, gamma2))
+}
+
+/// The adapted level a mesh request asks for, if any.
+fn request_level(request: &MeshRequest) -> Option<i32> {
+    match request {
+        MeshRequest::FreeEdges { level, .. } => Some(*level),
+        _ => None,
+    }
 }
 
 /// How one climb ended.
@@ -207,7 +306,6 @@ fn climb(
 ) -> Result<Climb> {
     let tolerance = options.tolerance;
     let degree = options.degree;
-    let why = format!("the FEM for the {kind} at tolerance {tolerance:e}");
     let target = SizeTarget {
         tolerance: tolerance / frame,
         degree: degree as usize,
@@ -230,41 +328,10 @@ fn climb(
             target,
             ring_scale: provider::ring_width_scale(edges[1].0 - edges[0].0),
         };
-        progress.set(format!(
-            "level {level}: making its mesh (gmsh, or the cache)"
-        ));
-        let provided = provider::provide(&request, &why)?;
-        let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
-        model.spec.frame = frame;
+        let (model, s, gamma1, gamma2) =
+            solve_level(&kind, load, options, frame, &request, previous, progress)?;
         last_mesh = model.path.clone();
-        progress.set(format!(
-            "solving {} unknowns on {last_mesh}",
-            model.stiffness.nrows()
-        ));
-        let depth_guess = Some(previous.map_or(depth_guess(load), |p| p.gamma1));
-        // The model below's band starts the active-set iteration.
-        let warm = previous.map(|p| super::WarmStart {
-            inner_radius: p.edges[0],
-            band: p.edge_errors[0],
-            outer_radius: p.edges[1],
-        });
-        let (s, gamma1, gamma2) = solve_model(
-            &mut model,
-            kind.clone(),
-            0.0,
-            load,
-            warm,
-            depth_guess,
-            tolerance,
-        )?;
         iterations += s.iterations;
-        if std::env::var_os("RINGCONTACT_TRACE").is_some() {
-            super::trace_level(&model, &s);
-            eprintln!(
-                "fem: level {level}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",
-                s.outer_radius, s.outer_node_spacing
-            );
-        }
         if s.outer_node_spacing == 0.0 {
             return Ok(Climb::LineTooShort);
         }
@@ -281,22 +348,7 @@ fn climb(
             locator,
         };
         if let Some(below) = previous.filter(|p| !p.locator) {
-            let relative = |x: f64, y: f64| (x - y).abs() / x.abs();
-            let change = relative(gamma1, below.gamma1).max(relative(gamma2, below.gamma2));
-            let force = if level == below.level + 1 {
-                let estimate = grading_step_estimate(degree, change, last_change);
-                last_change = Some(change);
-                level_force = Some(estimate);
-                estimate
-            } else {
-                // The same level refined at the edges: its grading error, plus the change.
-                level_force.unwrap_or(change) + change
-            };
-            for k in 0..2 {
-                rung.edge_errors[k] =
-                    edge_error(located[k] - below.edges[k], below.spacings[k], spacings[k])
-                        .max(force);
-            }
+            let force = rung.estimate_against(&below, degree, &mut last_change, &mut level_force);
             let floor = model.truncation_bias() + UNRESOLVED_COMPONENT;
             let total = force.max(rung.edge_errors[0]).max(rung.edge_errors[1]) + floor;
             if total <= tolerance {
