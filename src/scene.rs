@@ -377,7 +377,27 @@ impl SceneSpec {
     pub fn validate(self) -> Result<Scene> {
         let kind = self.punch_kind()?;
         let rim_radius = positive("punch.rim_radius", self.punch.rim_radius.unwrap_or(1.0))?;
+        let inner_radius = self.inner_radius(&kind, rim_radius)?;
+        let hole_depth = self.hole_depth_of(&kind, rim_radius)?;
+        let material = self.material.validate()?;
+        let load = self.load.validate(kind.clone())?;
+        let tolerance = self.accuracy.tolerance.map(valid_tolerance).transpose()?;
+        Ok(Scene {
+            punch: Punch {
+                kind,
+                rim_radius,
+                inner_radius,
+                hole_depth,
+            },
+            material,
+            load,
+            tolerance,
+        })
+    }
 
+    /// The inner radius `b` of a punch with a fixed hole (`0 <= b < a`, from `inner_radius` or
+    /// `b/a`), zero for the others, which take neither.
+    fn inner_radius(&self, kind: &PunchKind, rim_radius: f64) -> Result<f64> {
         let fixed_hole = kind.has_fixed_hole();
         let inner_radius = match (fixed_hole, self.punch.inner_radius, self.inner_ratio) {
             (true, Some(_), Some(_)) => {
@@ -417,77 +437,71 @@ impl SceneSpec {
                 ),
             ));
         }
-
-        let free_band = kind.is_free_band();
-        let hole_depth = match (free_band, self.punch.hole_depth, self.punch.tube_radius) {
-            (false, _, Some(_)) => {
-                return Err(Error::invalid(
-                    "punch.tube_radius",
-                    format!("applies only to shape = torus, not {kind}"),
-                ))
-            }
-            (true, Some(_), _) => {
-                return Err(Error::invalid(
-                    "punch.hole_depth",
-                    "does not apply to the torus: its depth scale h = a²/(2 rho) follows from \
-                     punch.tube_radius",
-                ))
-            }
-            (true, None, Some(rho)) => {
-                let rho = positive("punch.tube_radius", rho)?;
-                let h = rim_radius * rim_radius / (2.0 * rho);
-                finite("punch.tube_radius", h).and_then(|h| positive("punch.tube_radius", h))?
-            }
-            (true, None, None) => {
-                return Err(Error::invalid(
-                    "punch.tube_radius",
-                    "is required for shape = torus (--tube-radius RHO): the gap is \
-                     (r - a)²/(2 rho)",
-                ))
-            }
-            (_, h, None) if kind.is_concave() => positive("punch.hole_depth", h.unwrap_or(1.0))?,
-            (_, Some(_), None) => {
-                return Err(Error::invalid(
-                    "punch.hole_depth",
-                    format!(
-                        "applies only to the concave shapes (cone, sphere, power, table), not \
-                         {kind}"
-                    ),
-                ))
-            }
-            _ => 0.0,
-        };
-
-        let material = self.material.validate()?;
-        let load = self.load.validate(kind.clone())?;
-        let tolerance = match self.accuracy.tolerance {
-            Some(t) => {
-                let t = positive("accuracy.tolerance", t)?;
-                if t >= 1.0 {
-                    return Err(Error::invalid(
-                        "accuracy.tolerance",
-                        format!(
-                            "is a relative error and must be < 1 (got {})",
-                            crate::error::show(t)
-                        ),
-                    ));
-                }
-                Some(t)
-            }
-            None => None,
-        };
-        Ok(Scene {
-            punch: Punch {
-                kind,
-                rim_radius,
-                inner_radius,
-                hole_depth,
-            },
-            material,
-            load,
-            tolerance,
-        })
+        Ok(inner_radius)
     }
+
+    /// The depth scale `h`: the hole depth of a concave punch (default 1), `a²/(2 ρ)` of a free
+    /// band from its tube radius `ρ`, zero for the flat punches, which take neither.
+    fn hole_depth_of(&self, kind: &PunchKind, rim_radius: f64) -> Result<f64> {
+        let free_band = kind.is_free_band();
+        Ok(
+            match (free_band, self.punch.hole_depth, self.punch.tube_radius) {
+                (false, _, Some(_)) => {
+                    return Err(Error::invalid(
+                        "punch.tube_radius",
+                        format!("applies only to shape = torus, not {kind}"),
+                    ))
+                }
+                (true, Some(_), _) => {
+                    return Err(Error::invalid(
+                        "punch.hole_depth",
+                        "does not apply to the torus: its depth scale h = a²/(2 rho) follows from \
+                     punch.tube_radius",
+                    ))
+                }
+                (true, None, Some(rho)) => {
+                    let rho = positive("punch.tube_radius", rho)?;
+                    let h = rim_radius * rim_radius / (2.0 * rho);
+                    finite("punch.tube_radius", h).and_then(|h| positive("punch.tube_radius", h))?
+                }
+                (true, None, None) => {
+                    return Err(Error::invalid(
+                        "punch.tube_radius",
+                        "is required for shape = torus (--tube-radius RHO): the gap is \
+                     (r - a)²/(2 rho)",
+                    ))
+                }
+                (_, h, None) if kind.is_concave() => {
+                    positive("punch.hole_depth", h.unwrap_or(1.0))?
+                }
+                (_, Some(_), None) => {
+                    return Err(Error::invalid(
+                        "punch.hole_depth",
+                        format!(
+                            "applies only to the concave shapes (cone, sphere, power, table), not \
+                         {kind}"
+                        ),
+                    ))
+                }
+                _ => 0.0,
+            },
+        )
+    }
+}
+
+/// A relative tolerance: positive and below 1.
+fn valid_tolerance(t: f64) -> Result<f64> {
+    let t = positive("accuracy.tolerance", t)?;
+    if t >= 1.0 {
+        return Err(Error::invalid(
+            "accuracy.tolerance",
+            format!(
+                "is a relative error and must be < 1 (got {})",
+                crate::error::show(t)
+            ),
+        ));
+    }
+    Ok(t)
 }
 
 impl RawMaterial {

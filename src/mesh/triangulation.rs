@@ -248,23 +248,39 @@ impl Mesh {
     /// groups, and straight quadratic edges.
     pub fn validate(&self, required_tags: &[(i32, &str)]) -> Result<()> {
         let src = &self.source;
-        let n = self.nodes.len();
         if self.cell_count() == 0 {
             return Err(mesh_error(
                 src,
                 "the mesh has no triangles in the solid".into(),
             ));
         }
+        self.check_nodes()?;
+        for c in 0..self.cell_count() {
+            self.check_cell(c)?;
+        }
+        for (tag, name) in required_tags {
+            if !self.has_tag(*tag) {
+                return Err(mesh_error(
+                    src,
+                    format!("the physical group {tag} ({name}) is missing from the boundary"),
+                ));
+            }
+        }
+        Ok(())
+    }
+
+    /// Every node finite and in the half-plane `r >= 0`.
+    fn check_nodes(&self) -> Result<()> {
         for (i, p) in self.nodes.iter().enumerate() {
             if !p[0].is_finite() || !p[1].is_finite() {
                 return Err(mesh_error(
-                    src,
+                    &self.source,
                     format!("{} has a non-finite coordinate", self.node_name(i)),
                 ));
             }
             if p[0] < -1e-12 * (1.0 + p[1].abs()) {
                 return Err(mesh_error(
-                    src,
+                    &self.source,
                     format!(
                         "{} at r = {} lies off the half-plane r >= 0",
                         self.node_name(i),
@@ -273,80 +289,78 @@ impl Mesh {
                 ));
             }
         }
-        for c in 0..self.cell_count() {
-            let cell = self.cell(c);
-            if let Some(&bad) = cell.iter().find(|&&v| v >= n) {
-                return Err(mesh_error(
-                    src,
-                    format!("{} refers to missing node {bad}", self.cell_name(c)),
-                ));
-            }
-            let [p0, p1, p2] = [
-                self.nodes[cell[0]],
-                self.nodes[cell[1]],
-                self.nodes[cell[2]],
-            ];
-            let twice_area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
-            let edge =
-                |a: [f64; 2], b: [f64; 2]| ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt();
-            let longest = edge(p0, p1).max(edge(p1, p2)).max(edge(p2, p0));
-            // Degenerate: flat relative to its own size, or so small that its vertices' coordinates
-            // cannot resolve it (relative to their magnitude, not the domain's: graded meshes have
-            // elements of 1e-10 a next to ones of 1e6 a).
-            let magnitude = p0[0].abs().max(p0[1].abs());
-            if twice_area.abs() <= 1e-14 * longest * longest.max(1e-300)
-                || longest <= 1e-13 * magnitude
-            {
-                return Err(mesh_error(
-                    src,
-                    format!(
-                        "{} with {} is degenerate",
-                        self.cell_name(c),
-                        self.vertex_names(cell)
-                    ),
-                ));
-            }
-            if twice_area < 0.0 {
-                return Err(mesh_error(
-                    src,
-                    format!(
-                        "{} with {} is inverted (clockwise in (r, z))",
-                        self.cell_name(c),
-                        self.vertex_names(cell)
-                    ),
-                ));
-            }
-            // Edge nodes of higher-order triangles: at the fractions k/p of straight edges.
-            let per_edge = self.degree as usize - 1;
-            for (e, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
-                for j in 0..per_edge {
-                    let t = (j + 1) as f64 / self.degree as usize as f64;
-                    let (pa, pb, pm) = (
-                        self.nodes[cell[a]],
-                        self.nodes[cell[b]],
-                        self.nodes[cell[3 + per_edge * e + j]],
-                    );
-                    let expected = [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
-                    if edge(expected, pm) > 1e-9 * edge(pa, pb) {
-                        return Err(mesh_error(
-                            src,
-                            format!(
-                                "{} has a curved edge ({} off the chord); only \
-                                 straight-sided elements are supported (Mesh.SecondOrderLinear = 1)",
-                                self.cell_name(c),
-                                self.node_name(cell[3 + per_edge * e + j])
-                            ),
-                        ));
-                    }
-                }
-            }
+        Ok(())
+    }
+
+    /// Cell `c`: its nodes exist, it is neither degenerate nor inverted, its edges are straight.
+    fn check_cell(&self, c: usize) -> Result<()> {
+        let src = &self.source;
+        let cell = self.cell(c);
+        if let Some(&bad) = cell.iter().find(|&&v| v >= self.nodes.len()) {
+            return Err(mesh_error(
+                src,
+                format!("{} refers to missing node {bad}", self.cell_name(c)),
+            ));
         }
-        for (tag, name) in required_tags {
-            if !self.has_tag(*tag) {
-                return Err(mesh_error(
-                    src,
-                    format!("the physical group {tag} ({name}) is missing from the boundary"),
-                ));
+        let [p0, p1, p2] = [
+            self.nodes[cell[0]],
+            self.nodes[cell[1]],
+            self.nodes[cell[2]],
+        ];
+        let twice_area = (p1[0] - p0[0]) * (p2[1] - p0[1]) - (p2[0] - p0[0]) * (p1[1] - p0[1]);
+        let longest = distance(p0, p1).max(distance(p1, p2)).max(distance(p2, p0));
+        // Degenerate: flat relative to its own size, or so small that its vertices' coordinates
+        // cannot resolve it (relative to their magnitude, not the domain's: graded meshes have
+        // elements of 1e-10 a next to ones of 1e6 a).
+        let magnitude = p0[0].abs().max(p0[1].abs());
+        if twice_area.abs() <= 1e-14 * longest * longest.max(1e-300) || longest <= 1e-13 * magnitude
+        {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "{} with {} is degenerate",
+                    self.cell_name(c),
+                    self.vertex_names(cell)
+                ),
+            ));
+        }
+        if twice_area < 0.0 {
+            return Err(mesh_error(
+                src,
+                format!(
+                    "{} with {} is inverted (clockwise in (r, z))",
+                    self.cell_name(c),
+                    self.vertex_names(cell)
+                ),
+            ));
+        }
+        self.check_straight_edges(c)
+    }
+
+    /// Edge nodes of higher-order triangles: at the fractions `k/p` of straight edges.
+    fn check_straight_edges(&self, c: usize) -> Result<()> {
+        let cell = self.cell(c);
+        let per_edge = self.degree as usize - 1;
+        for (e, (a, b)) in [(0, 1), (1, 2), (2, 0)].into_iter().enumerate() {
+            for j in 0..per_edge {
+                let t = (j + 1) as f64 / self.degree as usize as f64;
+                let (pa, pb, pm) = (
+                    self.nodes[cell[a]],
+                    self.nodes[cell[b]],
+                    self.nodes[cell[3 + per_edge * e + j]],
+                );
+                let expected = [pa[0] + t * (pb[0] - pa[0]), pa[1] + t * (pb[1] - pa[1])];
+                if distance(expected, pm) > 1e-9 * distance(pa, pb) {
+                    return Err(mesh_error(
+                        &self.source,
+                        format!(
+                            "{} has a curved edge ({} off the chord); only \
+                             straight-sided elements are supported (Mesh.SecondOrderLinear = 1)",
+                            self.cell_name(c),
+                            self.node_name(cell[3 + per_edge * e + j])
+                        ),
+                    ));
+                }
             }
         }
         Ok(())
@@ -757,6 +771,11 @@ pub fn structured_rectangle(
         source: format!("structured {nr}x{nz} rectangle {width} x {height}"),
         file_tags: FileTags::default(),
     }
+}
+
+/// Euclidean distance of two points of the `(r, z)` plane.
+fn distance(a: [f64; 2], b: [f64; 2]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2)).sqrt()
 }
 
 #[cfg(test)]
