@@ -218,140 +218,170 @@ fn candidates(name: &str) -> Vec<Form> {
     }
 }
 
+/// The five functions the paper fits, by name.
+const FUNCTIONS: [&str; 5] = [
+    "flat",
+    "cone_gamma1",
+    "cone_gamma2",
+    "sphere_gamma1",
+    "sphere_gamma2",
+];
+
 /// Refit all five functions.
 pub fn run(solver: &RingBemSolver) -> Result<Vec<FitReport>> {
-    let grid = |count: usize| -> Vec<f64> {
-        (0..count)
-            .map(|k| {
-                let t = k as f64 / (count - 1) as f64;
-                0.05 + 0.94 * 0.5 * (1.0 - (std::f64::consts::PI * t).cos())
-            })
-            .collect()
-    };
-    let (fit_x, check_x) = (grid(60), grid(301));
-    let data = |name: &str, xs: &[f64]| -> Result<Vec<f64>> {
-        xs.iter()
-            .map(|&e| -> Result<f64> {
-                Ok(match name {
-                    "flat" => solver.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN),
-                    "cone_gamma1" => solver
-                        .concave_at_ratio(&PunchKind::CONE, e, 1e-10)?
-                        .gamma1
-                        .unwrap_or(f64::NAN),
-                    "cone_gamma2" => solver
-                        .concave_at_ratio(&PunchKind::CONE, e, 1e-10)?
-                        .gamma2
-                        .unwrap_or(f64::NAN),
-                    "sphere_gamma1" => solver
+    let (fit_x, check_x) = (chebyshev_grid(60), chebyshev_grid(301));
+    FUNCTIONS
+        .iter()
+        .map(|name| refit(solver, name, &fit_x, &check_x))
+        .collect()
+}
+
+/// `count` contact ratios over `[0.05, 0.99]`, clustered toward both ends.
+fn chebyshev_grid(count: usize) -> Vec<f64> {
+    (0..count)
+        .map(|k| {
+            let t = k as f64 / (count - 1) as f64;
+            0.05 + 0.94 * 0.5 * (1.0 - (std::f64::consts::PI * t).cos())
+        })
+        .collect()
+}
+
+/// The ring BEM's values of function `name` at the contact ratios `xs` (tolerance 1e-10).
+fn ring_bem_values(solver: &RingBemSolver, name: &str, xs: &[f64]) -> Result<Vec<f64>> {
+    xs.iter()
+        .map(|&e| -> Result<f64> {
+            Ok(match name {
+                "flat" => solver.flat(e, 1e-10)?.gamma,
+                "cone_gamma1" => solver.concave_at_ratio(&PunchKind::CONE, e, 1e-10)?.gamma1,
+                "cone_gamma2" => solver.concave_at_ratio(&PunchKind::CONE, e, 1e-10)?.gamma2,
+                "sphere_gamma1" => {
+                    solver
                         .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
                         .gamma1
-                        .unwrap_or(f64::NAN),
-                    _ => solver
+                }
+                _ => {
+                    solver
                         .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
                         .gamma2
-                        .unwrap_or(f64::NAN),
-                })
-            })
-            .collect()
-    };
-    let mut out = Vec::new();
-    for name in [
-        "flat",
-        "cone_gamma1",
-        "cone_gamma2",
-        "sphere_gamma1",
-        "sphere_gamma2",
-    ] {
-        let (fy, cy) = (data(name, &fit_x)?, data(name, &check_x)?);
-        let (paper, paper_form): (Form, &str) = match name {
-            "flat" => (
-                Form {
-                    formula: "(1 - eps^m)^n",
-                    params: vec![2.915, 0.147],
-                    eval: flat_paper,
-                },
-                "(1 - eps^m)^n",
-            ),
-            "cone_gamma1" => (
-                Form {
-                    formula: "",
-                    params: vec![0.874, 2.09, 0.54, 0.15],
-                    eval: cone_paper,
-                },
-                "(-ln eps)^n (a + b eps + c eps^2)",
-            ),
-            "cone_gamma2" => (
-                Form {
-                    formula: "",
-                    params: vec![0.945, 1.85, 0.45, 0.12],
-                    eval: cone_paper,
-                },
-                "(-ln eps)^n (a + b eps + c eps^2)",
-            ),
-            "sphere_gamma1" => (
-                Form {
-                    formula: "",
-                    params: vec![2.034, 0.91],
-                    eval: sphere1_paper,
-                },
-                "3 (1 - eps^m)^n",
-            ),
-            _ => (
-                Form {
-                    formula: "",
-                    params: vec![2.015, 1.03],
-                    eval: sphere2_paper,
-                },
-                "8/3 (1 - eps^m)^n",
-            ),
-        };
-        // The paper's published numbers are checked against paper_fits (the reference module).
-        let published = |e: f64| match name {
-            "flat" => paper_fits::flat_gamma(e),
-            "cone_gamma1" => paper_fits::cone_gamma(1, e),
-            "cone_gamma2" => paper_fits::cone_gamma(2, e),
-            "sphere_gamma1" => paper_fits::sphere_gamma(1, e),
-            _ => paper_fits::sphere_gamma(2, e),
-        };
-        let (paper_err, paper_at) = max_relative_error(published, &check_x, &cy);
-        let refit = levenberg_marquardt(&paper, &fit_x, &fy);
-        let (err, at) = max_relative_error(|e| (paper.eval)(e, &refit), &check_x, &cy);
-        let scale = match name {
-            "sphere_gamma1" => 3.0,
-            "sphere_gamma2" => 8.0 / 3.0,
-            _ => 1.0,
-        };
-        let mut best: Option<(String, Vec<f64>, f64, f64)> = None;
-        for form in candidates(name) {
-            let scaled: Vec<f64> = fy.iter().map(|y| y / scale).collect();
-            let checked: Vec<f64> = cy.iter().map(|y| y / scale).collect();
-            let p = levenberg_marquardt(&form, &fit_x, &scaled);
-            let (e, at) = max_relative_error(|x| (form.eval)(x, &p), &check_x, &checked);
-            if best.as_ref().is_none_or(|b| e < b.2) {
-                best = Some((form.formula.to_string(), p, e, at));
+                }
             }
-        }
-        let (best_form, best_params, best_err, best_at) =
-            best.ok_or_else(|| Error::NoConvergence {
-                method: "fit".into(),
-                reason: "no candidate form".into(),
-            })?;
-        out.push(FitReport {
-            name: name.into(),
-            paper_form: paper_form.into(),
-            paper_params: paper.params.clone(),
-            paper_max_rel_err: paper_err,
-            paper_max_rel_err_eps: paper_at,
-            params: refit,
-            max_rel_err: err,
-            max_rel_err_eps: at,
-            best_form,
-            best_params,
-            best_max_rel_err: best_err,
-            best_max_rel_err_eps: best_at,
-        });
+            .unwrap_or(f64::NAN))
+        })
+        .collect()
+}
+
+/// The paper's form of function `name` with its published parameters, and the form's formula.
+fn paper_form(name: &str) -> (Form, &'static str) {
+    match name {
+        "flat" => (
+            Form {
+                formula: "(1 - eps^m)^n",
+                params: vec![2.915, 0.147],
+                eval: flat_paper,
+            },
+            "(1 - eps^m)^n",
+        ),
+        "cone_gamma1" => (
+            Form {
+                formula: "",
+                params: vec![0.874, 2.09, 0.54, 0.15],
+                eval: cone_paper,
+            },
+            "(-ln eps)^n (a + b eps + c eps^2)",
+        ),
+        "cone_gamma2" => (
+            Form {
+                formula: "",
+                params: vec![0.945, 1.85, 0.45, 0.12],
+                eval: cone_paper,
+            },
+            "(-ln eps)^n (a + b eps + c eps^2)",
+        ),
+        "sphere_gamma1" => (
+            Form {
+                formula: "",
+                params: vec![2.034, 0.91],
+                eval: sphere1_paper,
+            },
+            "3 (1 - eps^m)^n",
+        ),
+        _ => (
+            Form {
+                formula: "",
+                params: vec![2.015, 1.03],
+                eval: sphere2_paper,
+            },
+            "8/3 (1 - eps^m)^n",
+        ),
     }
-    Ok(out)
+}
+
+/// The paper's published value of function `name` at `e` (checked against the paper's numbers
+/// in the reference module, `paper_fits`).
+fn published(name: &str, e: f64) -> f64 {
+    match name {
+        "flat" => paper_fits::flat_gamma(e),
+        "cone_gamma1" => paper_fits::cone_gamma(1, e),
+        "cone_gamma2" => paper_fits::cone_gamma(2, e),
+        "sphere_gamma1" => paper_fits::sphere_gamma(1, e),
+        _ => paper_fits::sphere_gamma(2, e),
+    }
+}
+
+/// The best of the candidate forms for function `name`: fitted to `(fit_x, fy)`, graded at
+/// `(check_x, cy)`; `(formula, parameters, largest relative error, where)`.
+fn best_candidate(
+    name: &str,
+    (fit_x, fy): (&[f64], &[f64]),
+    (check_x, cy): (&[f64], &[f64]),
+) -> Result<(String, Vec<f64>, f64, f64)> {
+    let scale = match name {
+        "sphere_gamma1" => 3.0,
+        "sphere_gamma2" => 8.0 / 3.0,
+        _ => 1.0,
+    };
+    let mut best: Option<(String, Vec<f64>, f64, f64)> = None;
+    for form in candidates(name) {
+        let scaled: Vec<f64> = fy.iter().map(|y| y / scale).collect();
+        let checked: Vec<f64> = cy.iter().map(|y| y / scale).collect();
+        let p = levenberg_marquardt(&form, fit_x, &scaled);
+        let (e, at) = max_relative_error(|x| (form.eval)(x, &p), check_x, &checked);
+        if best.as_ref().is_none_or(|b| e < b.2) {
+            best = Some((form.formula.to_string(), p, e, at));
+        }
+    }
+    best.ok_or_else(|| Error::NoConvergence {
+        method: "fit".into(),
+        reason: "no candidate form".into(),
+    })
+}
+
+/// Function `name`: the paper's fit graded, its form refitted, and the best candidate form.
+fn refit(solver: &RingBemSolver, name: &str, fit_x: &[f64], check_x: &[f64]) -> Result<FitReport> {
+    let (fy, cy) = (
+        ring_bem_values(solver, name, fit_x)?,
+        ring_bem_values(solver, name, check_x)?,
+    );
+    let (paper, paper_formula) = paper_form(name);
+    let (paper_err, paper_at) = max_relative_error(|e| published(name, e), check_x, &cy);
+    let params = levenberg_marquardt(&paper, fit_x, &fy);
+    let (err, at) = max_relative_error(|e| (paper.eval)(e, &params), check_x, &cy);
+    let (best_form, best_params, best_err, best_at) =
+        best_candidate(name, (fit_x, &fy), (check_x, &cy))?;
+    Ok(FitReport {
+        name: name.into(),
+        paper_form: paper_formula.into(),
+        paper_params: paper.params.clone(),
+        paper_max_rel_err: paper_err,
+        paper_max_rel_err_eps: paper_at,
+        params,
+        max_rel_err: err,
+        max_rel_err_eps: at,
+        best_form,
+        best_params,
+        best_max_rel_err: best_err,
+        best_max_rel_err_eps: best_at,
+    })
 }
 
 #[cfg(test)]

@@ -27,7 +27,7 @@ use std::f64::consts::PI;
 use serde::Serialize;
 
 use super::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
-use crate::bem::ring_contact::RingBemSolver;
+use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::{Error, Result};
 use crate::punch::PunchKind;
 
@@ -96,127 +96,15 @@ pub fn plane_strain_pulloff(s: f64) -> f64 {
 /// The JKR pull-off of the torus under fixed load and fixed grips for `d0/h = s`.
 pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
     check_scale(s)?;
-    let intensity = -s / PI.sqrt();
-    let state = |w: f64, tol: f64, hint: Option<f64>| {
-        solver.torus_with_edge_intensity(w, intensity, tol, hint)
+    let branch = Branch {
+        solver,
+        s,
+        intensity: -s / PI.sqrt(),
     };
-    let centre = |st: &crate::bem::ring_contact::RingState| 0.5 * (st.eps + st.outer_edge);
-    // The branch is followed from a wide band down to the narrowest, each state's centre
-    // search starting from the previous one's (one connected branch). The widest band is
-    // halved until one is in equilibrium; at strong adhesion none is (the band would close
-    // toward a disk, which this analysis does not model).
-    let mut widest = WIDEST;
-    let first = loop {
-        match state(widest, SCAN_TOLERANCE, None) {
-            Ok(st) => break st,
-            Err(e) if widest < 2.0 * MIN_WIDEST => {
-                return Err(Error::OutOfRange {
-                    method: "jkr".into(),
-                    reason: format!(
-                        "the torus at d0/h = {}: no band of half-width {MIN_WIDEST} a or more \
-                         was found in equilibrium with both edges at G = dw ({e}); at strong \
-                         adhesion the contact may close toward a disk, which the torus's JKR \
-                         analysis does not model (checked for d0/h <= 1)",
-                        crate::error::show(s)
-                    ),
-                })
-            }
-            Err(_) => widest *= 0.5,
-        }
-    };
-    let scan: Vec<f64> = (0..SCAN_POINTS)
-        .map(|k| {
-            let t = k as f64 / (SCAN_POINTS - 1) as f64;
-            widest * (NARROWEST / widest).powf(t)
-        })
-        .collect();
-    // (w, d/h, F/(2E*ha), centre) along the branch, w descending (the contact shrinking).
-    let mut curve = vec![(
-        widest,
-        first.gamma1.unwrap_or(f64::NAN),
-        first.gamma2.unwrap_or(f64::NAN),
-        centre(&first),
-    )];
-    let mut end_note = None;
-    for &w in &scan[1..] {
-        let hint = curve.last().map(|p| p.3);
-        match state(w, SCAN_TOLERANCE, hint) {
-            Ok(st) => curve.push((
-                w,
-                st.gamma1.unwrap_or(f64::NAN),
-                st.gamma2.unwrap_or(f64::NAN),
-                centre(&st),
-            )),
-            Err(e) => {
-                end_note = Some(format!("the branch ends at half-width {w:.3e} a: {e}"));
-                break;
-            }
-        }
-    }
-    // Ascending in w from here on (the contact growing).
-    curve.reverse();
-    let locate =
-        |pick: fn(&(f64, f64, f64, f64)) -> f64,
-         quantity: &str|
-         -> Result<std::result::Result<TorusCritical, String>> {
-            let values: Vec<f64> = curve.iter().map(pick).collect();
-            let Some(k) = (1..values.len() - 1)
-                .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
-            else {
-                let narrowest = values[0] < values[values.len() - 1];
-                return Ok(Err(format!(
-                "no minimum of the {quantity} on the branch of half-widths [{:.3e}, {:.3e}] a: \
-                 it lies in a band {}",
-                curve[0].0,
-                curve[curve.len() - 1].0,
-                if narrowest {
-                    format!(
-                        "narrower than the branch reaches{}",
-                        end_note.as_ref().map(|n| format!(" ({n})")).unwrap_or_default()
-                    )
-                } else {
-                    format!("wider than {widest:.3e} a")
-                }
-            )));
-            };
-            let hint = Some(curve[k].3);
-            let value = |w: f64| -> Result<f64> {
-                let st = state(w, STATE_TOLERANCE, hint)?;
-                Ok(pick(&(
-                    w,
-                    st.gamma1.unwrap_or(f64::NAN),
-                    st.gamma2.unwrap_or(f64::NAN),
-                    centre(&st),
-                )))
-            };
-            let bracket = (curve[k - 1].0, curve[k + 1].0);
-            let (w, _) = minimum_in(value, bracket.0, bracket.1)?;
-            let (w, located_to) = stationary_point(value, w, bracket.0, bracket.1)?;
-            let st = state(w, STATE_TOLERANCE, hint)?;
-            let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
-            // w is located to `located_to`; a quantity's change over it is second order where
-            // it is the minimum, first order (its slope in w) for the other one.
-            let step = 1e-9 * w.max(1e-3);
-            let beside = state(w + step, STATE_TOLERANCE, hint)?;
-            let force_slope = (beside.gamma2.unwrap_or(f64::NAN) - g2) / step;
-            let depth_slope = (beside.gamma1.unwrap_or(f64::NAN) - g1) / step;
-            let force = g2 / s;
-            Ok(Ok(TorusCritical {
-                eps: st.eps,
-                outer: st.outer_edge,
-                depth: g1,
-                depth_over_d0: g1 / s,
-                force,
-                error_bound: st.error_estimate * force.abs()
-                    + VALUE_SCATTER * (1.0 + force.abs())
-                    + (force_slope * located_to / s).abs(),
-                depth_error_bound: st.error_estimate * g1.abs()
-                    + VALUE_SCATTER * (1.0 + g1.abs())
-                    + (depth_slope * located_to).abs(),
-            }))
-        };
-    let fixed_load = locate(|p| p.2, "force")?;
-    let fixed_grips = locate(|p| p.1, "depth")?;
+    let (widest, first) = branch.widest_equilibrium()?;
+    let (curve, end_note) = branch.trace(widest, &first);
+    let fixed_load = branch.locate(&curve, |p| p.force, "force", widest, &end_note)?;
+    let fixed_grips = branch.locate(&curve, |p| p.depth, "depth", widest, &end_note)?;
     Ok(TorusJkr {
         punch: PunchKind::TORUS,
         d0_over_h: s,
@@ -226,4 +114,159 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
         fixed_grips: fixed_grips.ok(),
         plane_strain_fixed_load: plane_strain_pulloff(s),
     })
+}
+
+/// One equilibrium of the branch: the half-width `w`, `d/h`, `F/(2E*ha)` and the band's centre.
+#[derive(Clone, Copy)]
+struct BranchPoint {
+    width: f64,
+    depth: f64,
+    force: f64,
+    centre: f64,
+}
+
+impl BranchPoint {
+    fn of(width: f64, st: &RingState) -> Self {
+        BranchPoint {
+            width,
+            depth: st.gamma1.unwrap_or(f64::NAN),
+            force: st.gamma2.unwrap_or(f64::NAN),
+            centre: 0.5 * (st.eps + st.outer_edge),
+        }
+    }
+}
+
+/// The torus's JKR equilibrium branch at `d0/h = s`: both edges at the intensity `K = -s/√π`.
+struct Branch<'a> {
+    solver: &'a RingBemSolver,
+    s: f64,
+    intensity: f64,
+}
+
+impl Branch<'_> {
+    /// The equilibrium of half-width `w`, its centre search started at `hint`.
+    fn state(&self, w: f64, tol: f64, hint: Option<f64>) -> Result<RingState> {
+        self.solver
+            .torus_with_edge_intensity(w, self.intensity, tol, hint)
+    }
+
+    /// The widest band in equilibrium: [`WIDEST`] halved until one is; at strong adhesion none
+    /// is (the band would close toward a disk, which this analysis does not model).
+    fn widest_equilibrium(&self) -> Result<(f64, RingState)> {
+        let mut widest = WIDEST;
+        loop {
+            match self.state(widest, SCAN_TOLERANCE, None) {
+                Ok(st) => return Ok((widest, st)),
+                Err(e) if widest < 2.0 * MIN_WIDEST => {
+                    return Err(Error::OutOfRange {
+                        method: "jkr".into(),
+                        reason: format!(
+                            "the torus at d0/h = {}: no band of half-width {MIN_WIDEST} a or \
+                             more was found in equilibrium with both edges at G = dw ({e}); at \
+                             strong adhesion the contact may close toward a disk, which the \
+                             torus's JKR analysis does not model (checked for d0/h <= 1)",
+                            crate::error::show(self.s)
+                        ),
+                    })
+                }
+                Err(_) => widest *= 0.5,
+            }
+        }
+    }
+
+    /// The branch followed from the widest band down to the narrowest on a logarithmic scan,
+    /// each state's centre search starting from the previous one's (one connected branch);
+    /// ascending in `w` (the contact growing), with a note where it ended early.
+    fn trace(&self, widest: f64, first: &RingState) -> (Vec<BranchPoint>, Option<String>) {
+        let scan = (0..SCAN_POINTS).map(|k| {
+            let t = k as f64 / (SCAN_POINTS - 1) as f64;
+            widest * (NARROWEST / widest).powf(t)
+        });
+        let mut curve = vec![BranchPoint::of(widest, first)];
+        let mut end_note = None;
+        for w in scan.skip(1) {
+            let hint = curve.last().map(|p| p.centre);
+            match self.state(w, SCAN_TOLERANCE, hint) {
+                Ok(st) => curve.push(BranchPoint::of(w, &st)),
+                Err(e) => {
+                    end_note = Some(format!("the branch ends at half-width {w:.3e} a: {e}"));
+                    break;
+                }
+            }
+        }
+        curve.reverse();
+        (curve, end_note)
+    }
+
+    /// The minimum of `pick` (the force under fixed load, the depth under fixed grips) along
+    /// the branch: bracketed on the scan, located by Brent's search and then the slope's zero;
+    /// a note instead where the scan holds no minimum.
+    fn locate(
+        &self,
+        curve: &[BranchPoint],
+        pick: fn(&BranchPoint) -> f64,
+        quantity: &str,
+        widest: f64,
+        end_note: &Option<String>,
+    ) -> Result<std::result::Result<TorusCritical, String>> {
+        let values: Vec<f64> = curve.iter().map(pick).collect();
+        let Some(k) = (1..values.len() - 1)
+            .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
+        else {
+            let narrowest = values[0] < values[values.len() - 1];
+            return Ok(Err(format!(
+                "no minimum of the {quantity} on the branch of half-widths [{:.3e}, {:.3e}] a: \
+                 it lies in a band {}",
+                curve[0].width,
+                curve[curve.len() - 1].width,
+                if narrowest {
+                    format!(
+                        "narrower than the branch reaches{}",
+                        end_note
+                            .as_ref()
+                            .map(|n| format!(" ({n})"))
+                            .unwrap_or_default()
+                    )
+                } else {
+                    format!("wider than {widest:.3e} a")
+                }
+            )));
+        };
+        let hint = Some(curve[k].centre);
+        let value = |w: f64| -> Result<f64> {
+            let st = self.state(w, STATE_TOLERANCE, hint)?;
+            Ok(pick(&BranchPoint::of(w, &st)))
+        };
+        let bracket = (curve[k - 1].width, curve[k + 1].width);
+        let (w, _) = minimum_in(value, bracket.0, bracket.1)?;
+        let (w, located_to) = stationary_point(value, w, bracket.0, bracket.1)?;
+        self.critical_at(w, located_to, hint).map(Ok)
+    }
+
+    /// The critical state at the half-width `w` located to `located_to`: a quantity's change
+    /// over that is second order where it is the minimum, first order (its slope in `w`) for
+    /// the other one; both bounds carry it.
+    fn critical_at(&self, w: f64, located_to: f64, hint: Option<f64>) -> Result<TorusCritical> {
+        let s = self.s;
+        let st = self.state(w, STATE_TOLERANCE, hint)?;
+        let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
+        let step = 1e-9 * w.max(1e-3);
+        let beside = self.state(w + step, STATE_TOLERANCE, hint)?;
+        let force_slope = (beside.gamma2.unwrap_or(f64::NAN) - g2) / step;
+        let depth_slope = (beside.gamma1.unwrap_or(f64::NAN) - g1) / step;
+        let force = g2 / s;
+        Ok(TorusCritical {
+            eps: st.eps,
+            outer: st.outer_edge,
+            depth: g1,
+            depth_over_d0: g1 / s,
+            force,
+            error_bound: st.error_estimate * force.abs()
+                + VALUE_SCATTER * (1.0 + force.abs())
+                + (force_slope * located_to / s).abs(),
+            depth_error_bound: st.error_estimate * g1.abs()
+                + VALUE_SCATTER * (1.0 + g1.abs())
+                + (depth_slope * located_to).abs(),
+        })
+    }
 }

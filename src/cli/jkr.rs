@@ -145,8 +145,14 @@ fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
 }
 
 /// A concave punch: pull-off under fixed load and fixed grips by three routes, and from full
-/// contact.
+/// contact, then where the annular branch ends and the direct check.
 fn concave_text(r: &ConcaveJkr) -> String {
+    concave_table(r).to_terminal() + &concave_notes(r)
+}
+
+/// The pull-off table of a concave punch: per control, both edges, the inner edge only (the
+/// paper's route) and the paper's fitted formulas; then full contact.
+fn concave_table(r: &ConcaveJkr) -> Table {
     let mut t = Table::new(
         &format!(
             "{} d0/h = {}: pull-off (d/h; F in F0, negative = tensile)",
@@ -163,29 +169,6 @@ fn concave_text(r: &ConcaveJkr) -> String {
             Column::text("edge", "governing edge / note"),
         ],
     );
-    let mut critical_row = |control: &str, route: &str, c: &Option<Critical>, note: &str| {
-        let row = match c {
-            Some(c) => vec![
-                control.into(),
-                route.into(),
-                c.eps.into(),
-                Some(c.depth).filter(|d| d.is_finite()).into(),
-                c.force.into(),
-                c.error_bound.into(),
-                c.governing_edge.clone().into(),
-            ],
-            None => vec![
-                control.into(),
-                route.into(),
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                Cell::Missing,
-                note.into(),
-            ],
-        };
-        t.push(row);
-    };
     let none = "no critical state".to_string();
     for (control, both, note, inner, fits) in [
         (
@@ -203,13 +186,10 @@ fn concave_text(r: &ConcaveJkr) -> String {
             r.paper_fits_fixed_grips,
         ),
     ] {
-        critical_row(
-            control,
-            "both edges (this harness)",
-            both,
-            note.as_ref().unwrap_or(&none),
-        );
-        critical_row(control, "inner edge only (the paper's route)", inner, &none);
+        let note = note.as_ref().unwrap_or(&none);
+        critical_row(&mut t, control, "both edges (this harness)", both, note);
+        let paper_route = "inner edge only (the paper's route)";
+        critical_row(&mut t, control, paper_route, inner, &none);
         let fitted = fits.map(|(eps, force)| Critical {
             eps,
             depth: f64::NAN,
@@ -220,22 +200,43 @@ fn concave_text(r: &ConcaveJkr) -> String {
             error_bound: None,
             depth_error_bound: None,
         });
-        critical_row(
-            control,
-            "the paper's route on its fitted formulas",
-            &fitted,
-            &none,
-        );
+        let fitted_route = "the paper's route on its fitted formulas";
+        critical_row(&mut t, control, fitted_route, &fitted, &none);
     }
-    let f = &r.full_contact;
-    critical_row(
-        "either",
-        "from full contact (rim)",
-        &Some(f.pulloff.clone()),
-        &none,
-    );
-    let mut text = t.to_terminal();
-    text += &match &r.floor_contact {
+    let full = Some(r.full_contact.pulloff.clone());
+    critical_row(&mut t, "either", "from full contact (rim)", &full, &none);
+    t
+}
+
+/// One row of [`concave_table`]: the critical state, or `note` where there is none.
+fn critical_row(t: &mut Table, control: &str, route: &str, c: &Option<Critical>, note: &str) {
+    let row = match c {
+        Some(c) => vec![
+            control.into(),
+            route.into(),
+            c.eps.into(),
+            Some(c.depth).filter(|d| d.is_finite()).into(),
+            c.force.into(),
+            c.error_bound.into(),
+            c.governing_edge.clone().into(),
+        ],
+        None => vec![
+            control.into(),
+            route.into(),
+            Cell::Missing,
+            Cell::Missing,
+            Cell::Missing,
+            Cell::Missing,
+            note.into(),
+        ],
+    };
+    t.push(row);
+}
+
+/// Where the annular branch ends (the floor, or full contact) and the direct check at the
+/// fixed-load critical state.
+fn concave_notes(r: &ConcaveJkr) -> String {
+    let mut text = match &r.floor_contact {
         Some(touch) => format!(
             "  the annular branch ends at eps = {:.6} (d/h = {:.4}, F/F0 = {:.4}), where the \
              surface in the hole meets the punch's floor: pressed further the contact is a disk \
@@ -244,7 +245,8 @@ fn concave_text(r: &ConcaveJkr) -> String {
         ),
         None => format!(
             "  full contact is reached when pressed past d/h = {}\n",
-            f.closing_depth
+            r.full_contact
+                .closing_depth
                 .map_or("- (no closing depth)".to_string(), |d| format!("{d:.4}"))
         ),
     };

@@ -154,56 +154,10 @@ impl Part {
 
     /// The part an id names; an error says what is wrong with it.
     pub fn from_id(id: &str) -> Result<Part> {
-        let bad = |why: &str| Error::Plan(format!("job id `{id}`: {why}"));
-        let mut fields = id.split(':');
-        let kind = fields.next().unwrap_or_default();
-        let mut positional = Vec::new();
-        let mut keys: HashMap<&str, &str> = HashMap::new();
-        for f in fields {
-            match f.split_once('=') {
-                Some((k, v)) => {
-                    if keys.insert(k, v).is_some() {
-                        return Err(bad(&format!("`{k}` given twice")));
-                    }
-                }
-                None => positional.push(f),
-            }
-        }
-        let number = |key: &str| -> Result<f64> {
-            let v = keys
-                .get(key)
-                .ok_or_else(|| bad(&format!("needs `{key}=`")))?;
-            v.parse::<f64>()
-                .ok()
-                .filter(|x| x.is_finite())
-                .ok_or_else(|| bad(&format!("`{key}={v}` is not a number")))
-        };
-        let count = |key: &str| -> Result<usize> {
-            let v = keys
-                .get(key)
-                .ok_or_else(|| bad(&format!("needs `{key}=`")))?;
-            v.parse::<usize>()
-                .map_err(|_| bad(&format!("`{key}={v}` is not a count")))
-        };
-        let punch = |name: Option<&&str>| -> Result<PunchKind> {
-            let name = name.ok_or_else(|| bad("needs a punch"))?;
-            let mut why = String::new();
-            if name.starts_with("table-") {
-                // A job names a table by its hash: the report's own table is the one it can be.
-                let report_table = crate::harness::studies::figures::report_table_punch();
-                if let Some(table) = report_table.filter(|t| t.label() == *name) {
-                    return Ok(table);
-                }
-                why = format!(
-                    " (a job's table punch must be the report's, {})",
-                    crate::harness::studies::figures::REPORT_TABLE_FILE
-                );
-            }
-            PunchKind::from_label(name).ok_or_else(|| bad(&format!("no punch `{name}`{why}")))
-        };
-        let part = match kind {
+        let job = JobId::parse(id)?;
+        let part = match job.kind {
             "comparison" => Part::Comparison {
-                tolerance: number("tol")?,
+                tolerance: job.number("tol")?,
             },
             "fenicsx" => Part::Fenicsx,
             "peers" => Part::Peers,
@@ -211,57 +165,41 @@ impl Part {
             "pulloff-live" => Part::PulloffLive,
             "adhesion-peers" => Part::AdhesionPeers,
             "stability" => Part::Stability,
-            "speed" => {
-                let slug = positional.first().ok_or_else(|| bad("needs a problem"))?;
-                let problem = Problem::from_slug(slug).ok_or_else(|| {
-                    bad(&format!(
-                        "no speed-accuracy problem `{slug}` (known: {})",
-                        Problem::ALL.map(|p| p.slug()).join(", ")
-                    ))
-                })?;
-                if keys.contains_key("fem-tol") {
-                    Part::SpeedFem {
-                        problem,
-                        tolerance: number("fem-tol")?,
-                    }
-                } else {
-                    Part::SpeedBase(problem)
-                }
-            }
+            "speed" => job.speed_part()?,
             "convergence" => {
-                let method = positional.get(1).ok_or_else(|| bad("needs a method"))?;
+                let method = job.positional(1).ok_or_else(|| job.bad("needs a method"))?;
                 Part::ConvergenceLevel {
-                    punch: punch(positional.first())?,
+                    punch: job.punch()?,
                     method: Method::from_str(method, false)
-                        .map_err(|_| bad(&format!("no method `{method}`")))?,
-                    eps: number("eps")?,
-                    depth: number("depth")?,
-                    level: count("level")?,
-                    levels: count("of")?,
+                        .map_err(|_| job.bad(&format!("no method `{method}`")))?,
+                    eps: job.number("eps")?,
+                    depth: job.number("depth")?,
+                    level: job.count("level")?,
+                    levels: job.count("of")?,
                 }
             }
-            "adhesion" => Part::Adhesion(punch(positional.first())?),
+            "adhesion" => Part::Adhesion(job.punch()?),
             "pulloff" => {
-                let punch = punch(positional.first())?;
+                let punch = job.punch()?;
                 Part::PulloffSimulation {
                     punch: punch.clone(),
                     eps: if punch == PunchKind::FLAT_ANNULUS {
-                        number("eps")?
+                        job.number("eps")?
                     } else {
                         0.0
                     },
                     d0_over_h: if punch.is_concave() {
-                        number("d0h")?
+                        job.number("d0h")?
                     } else {
                         0.0
                     },
                 }
             }
-            _ => return Err(bad("unknown kind of job")),
+            _ => return Err(job.bad("unknown kind of job")),
         };
         // Only the canonical spelling is accepted, so that an id names one file.
         if part.id() != id {
-            return Err(bad(&format!("write it as `{}`", part.id())));
+            return Err(job.bad(&format!("write it as `{}`", part.id())));
         }
         Ok(part)
     }
@@ -887,4 +825,107 @@ pub(crate) fn write_report(
     };
     tick("tables and pages");
     document::write_files(dir, inputs, &findings)
+}
+/// A job id taken apart: `kind:positional:...:key=value:...`.
+struct JobId<'a> {
+    id: &'a str,
+    kind: &'a str,
+    positional: Vec<&'a str>,
+    keys: HashMap<&'a str, &'a str>,
+}
+
+impl<'a> JobId<'a> {
+    /// The fields of `id`; an error where a key is given twice.
+    fn parse(id: &'a str) -> Result<Self> {
+        let mut fields = id.split(':');
+        let mut job = JobId {
+            id,
+            kind: fields.next().unwrap_or_default(),
+            positional: Vec::new(),
+            keys: HashMap::new(),
+        };
+        for f in fields {
+            match f.split_once('=') {
+                Some((k, v)) => {
+                    if job.keys.insert(k, v).is_some() {
+                        return Err(job.bad(&format!("`{k}` given twice")));
+                    }
+                }
+                None => job.positional.push(f),
+            }
+        }
+        Ok(job)
+    }
+
+    fn bad(&self, why: &str) -> Error {
+        Error::Plan(format!("job id `{}`: {why}", self.id))
+    }
+
+    fn positional(&self, k: usize) -> Option<&'a str> {
+        self.positional.get(k).copied()
+    }
+
+    fn value(&self, key: &str) -> Result<&'a str> {
+        self.keys
+            .get(key)
+            .copied()
+            .ok_or_else(|| self.bad(&format!("needs `{key}=`")))
+    }
+
+    /// The finite number under `key`.
+    fn number(&self, key: &str) -> Result<f64> {
+        let v = self.value(key)?;
+        v.parse::<f64>()
+            .ok()
+            .filter(|x| x.is_finite())
+            .ok_or_else(|| self.bad(&format!("`{key}={v}` is not a number")))
+    }
+
+    /// The count under `key`.
+    fn count(&self, key: &str) -> Result<usize> {
+        let v = self.value(key)?;
+        v.parse::<usize>()
+            .map_err(|_| self.bad(&format!("`{key}={v}` is not a count")))
+    }
+
+    /// The punch the first positional field names; a table punch only as the report's own.
+    fn punch(&self) -> Result<PunchKind> {
+        let name = self
+            .positional(0)
+            .ok_or_else(|| self.bad("needs a punch"))?;
+        let mut why = String::new();
+        if name.starts_with("table-") {
+            // A job names a table by its hash: the report's own table is the one it can be.
+            let report_table = crate::harness::studies::figures::report_table_punch();
+            if let Some(table) = report_table.filter(|t| t.label() == name) {
+                return Ok(table);
+            }
+            why = format!(
+                " (a job's table punch must be the report's, {})",
+                crate::harness::studies::figures::REPORT_TABLE_FILE
+            );
+        }
+        PunchKind::from_label(name).ok_or_else(|| self.bad(&format!("no punch `{name}`{why}")))
+    }
+
+    /// A speed-accuracy part: the problem's base points, or its FEM at `fem-tol`.
+    fn speed_part(&self) -> Result<Part> {
+        let slug = self
+            .positional(0)
+            .ok_or_else(|| self.bad("needs a problem"))?;
+        let problem = Problem::from_slug(slug).ok_or_else(|| {
+            self.bad(&format!(
+                "no speed-accuracy problem `{slug}` (known: {})",
+                Problem::ALL.map(|p| p.slug()).join(", ")
+            ))
+        })?;
+        Ok(if self.keys.contains_key("fem-tol") {
+            Part::SpeedFem {
+                problem,
+                tolerance: self.number("fem-tol")?,
+            }
+        } else {
+            Part::SpeedBase(problem)
+        })
+    }
 }

@@ -185,75 +185,20 @@ pub fn resource(
     let range = eps_range(kind.clone());
     let solved = solve_all(solver, kind.clone(), &grid_over(range, intervals), progress)?;
     let worst = interpolation_error(solver, kind.clone(), &solved, progress)?;
-    let flat = kind == PunchKind::FLAT_ANNULUS;
-    let torus = kind == PunchKind::TORUS;
-    let mut fields = vec![Field::number(
-        "eps",
-        "1",
-        "contact ratio b/a (the flat annulus's hole; the inner contact edge of the others)",
-    )];
-    if flat {
-        fields.push(Field::number(
-            "gamma",
-            "1",
-            "F/(2 E* d a): force of the flat annulus at depth d",
-        ));
-    } else {
-        fields.push(Field::number(
-            "gamma1",
-            "1",
-            "d/h: depth at which the contact ratio is eps",
-        ));
-        fields.push(Field::number(
-            "gamma2",
-            "1",
-            "F/(2 E* h a): force at that depth",
-        ));
-    }
-    if torus {
-        fields.push(Field::number(
-            "outer_radius",
-            "1",
-            "c/a: the band's outer (free) edge; the error estimate covers it too",
-        ));
-    }
-    fields.push(Field::number(
-        "error_estimate",
-        "1",
-        "relative error bound of the gamma columns (the ring BEM's estimate, tolerance 1e-9; the column gives what it reached)",
-    ));
-    if !torus {
-        fields.push(Field::number(
-            "stress_intensity_rim",
-            if flat {
-                "E* d / sqrt(a)"
-            } else {
-                "E* h / sqrt(a)"
-            },
-            "mode-I stress intensity factor at the rim r = a, K = lim sqrt(2 pi (a - r)) p(r) \
-         (from the same solution; not separately bounded)",
-        ));
-    }
-    if flat {
-        fields.push(Field::number(
-            "stress_intensity_inner",
-            "E* d / sqrt(a)",
-            "mode-I stress intensity factor at the inner edge r = b (from the same solution; \
-             not separately bounded)",
-        ));
-    }
+    let fields = function_fields(&kind);
     let mut table = Table::new(
         &format!("{kind}"),
         fields.iter().map(Field::column).collect(),
     );
+    let (fixed_hole, free_band) = table_shape(&kind);
     for (e, s) in solved.eps.iter().zip(&solved.states) {
         let mut row: Vec<Cell> = vec![(*e).into()];
         row.extend(functions(kind.clone(), s).into_iter().map(Cell::from));
         row.push(s.error_estimate.into());
-        if !torus {
+        if !free_band {
             row.push(s.rim_stress_intensity.into());
         }
-        if flat {
+        if fixed_hole {
             row.push(s.inner_stress_intensity.into());
         }
         table.push(row);
@@ -266,13 +211,7 @@ pub fn resource(
         .collect();
     Ok(Resource {
         name: format!("functions-{}", kind.label()),
-        title: if flat {
-            "Flat annular punch: gamma(eps) = F/(2 E* d a)".into()
-        } else if torus {
-            "torus: gamma1(eps) = d/h, gamma2(eps) = F/(2 E* h a) and c/a, h = a²/(2 rho)".into()
-        } else {
-            format!("{kind}: gamma1(eps) = d/h and gamma2(eps) = F/(2 E* h a)")
-        },
+        title: function_title(&kind),
         description: format!(
             "Non-adhesive {kind}, frictionless, on an elastic half-space (effective modulus E*), \
              by the ring BEM at tolerance {TOLERANCE:e}; {} states uniform in s = ln(eps/(1 - \
@@ -292,6 +231,88 @@ pub fn resource(
             .map(|(n, w)| (n.to_string(), *w))
             .collect(),
     })
+}
+
+/// Whether `kind`'s table has a fixed hole (`γ` and the inner edge's intensity) and whether
+/// its contact is a free band (its outer edge, no rim): asked of the profile's contact.
+fn table_shape(kind: &PunchKind) -> (bool, bool) {
+    match kind.contact() {
+        Contact::FixedAnnulus => (true, false),
+        Contact::FreeBand => (false, true),
+        Contact::Disk | Contact::RimAndFreeInner => (false, false),
+    }
+}
+
+/// The title of `kind`'s function table.
+fn function_title(kind: &PunchKind) -> String {
+    match table_shape(kind) {
+        (true, _) => "Flat annular punch: gamma(eps) = F/(2 E* d a)".into(),
+        (_, true) => {
+            format!("{kind}: gamma1(eps) = d/h, gamma2(eps) = F/(2 E* h a) and c/a, h = a²/(2 rho)")
+        }
+        _ => format!("{kind}: gamma1(eps) = d/h and gamma2(eps) = F/(2 E* h a)"),
+    }
+}
+
+/// The columns of `kind`'s function table, with their units and meaning.
+fn function_fields(kind: &PunchKind) -> Vec<Field> {
+    let (fixed_hole, free_band) = table_shape(kind);
+    let mut fields = vec![Field::number(
+        "eps",
+        "1",
+        "contact ratio b/a (the flat annulus's hole; the inner contact edge of the others)",
+    )];
+    if fixed_hole {
+        fields.push(Field::number(
+            "gamma",
+            "1",
+            "F/(2 E* d a): force of the flat annulus at depth d",
+        ));
+    } else {
+        fields.push(Field::number(
+            "gamma1",
+            "1",
+            "d/h: depth at which the contact ratio is eps",
+        ));
+        fields.push(Field::number(
+            "gamma2",
+            "1",
+            "F/(2 E* h a): force at that depth",
+        ));
+    }
+    if free_band {
+        fields.push(Field::number(
+            "outer_radius",
+            "1",
+            "c/a: the band's outer (free) edge; the error estimate covers it too",
+        ));
+    }
+    fields.push(Field::number(
+        "error_estimate",
+        "1",
+        "relative error bound of the gamma columns (the ring BEM's estimate, tolerance 1e-9; the column gives what it reached)",
+    ));
+    if !free_band {
+        fields.push(Field::number(
+            "stress_intensity_rim",
+            if fixed_hole {
+                "E* d / sqrt(a)"
+            } else {
+                "E* h / sqrt(a)"
+            },
+            "mode-I stress intensity factor at the rim r = a, K = lim sqrt(2 pi (a - r)) p(r) \
+         (from the same solution; not separately bounded)",
+        ));
+    }
+    if fixed_hole {
+        fields.push(Field::number(
+            "stress_intensity_inner",
+            "E* d / sqrt(a)",
+            "mode-I stress intensity factor at the inner edge r = b (from the same solution; \
+             not separately bounded)",
+        ));
+    }
+    fields
 }
 
 #[cfg(test)]
