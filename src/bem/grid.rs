@@ -248,18 +248,7 @@ pub fn solve_contact(
     for iteration in 1..=max_iterations {
         report.every_ten_seconds(iteration, residual);
         op.apply(&p, &mut u);
-        // Gap: u - (d - g); under force control d is eliminated by the mean over the contact set.
-        let mut contact = 0usize;
-        let mut mean = 0.0;
-        for i in 0..cells {
-            if allowed[i] {
-                gap[i] = u[i] + profile[i];
-                if p[i] > 0.0 {
-                    mean += gap[i];
-                    contact += 1;
-                }
-            }
-        }
+        let (contact, mean) = fill_gap(&mut gap, &u, profile, allowed, &p);
         if contact == 0 {
             return Err(Error::NoConvergence {
                 method: METHOD.into(),
@@ -267,7 +256,8 @@ pub fn solve_contact(
             });
         }
         if force_control {
-            depth = mean / contact as f64;
+            // Under force control d is eliminated by the mean over the contact set.
+            depth = mean;
         }
         for i in 0..cells {
             if allowed[i] {
@@ -315,6 +305,29 @@ pub fn solve_contact(
             "Polonsky-Keer stopped at the cap of {max_iterations} iterations with complementarity residual {residual:.2e} (tolerance {tolerance:.1e})"
         ),
     })
+}
+
+/// `gap = u + g` on the allowed cells (the depth not yet subtracted); the number of cells in
+/// contact (`p > 0`) and their mean of it.
+fn fill_gap(
+    gap: &mut [f64],
+    u: &[f64],
+    profile: &[f64],
+    allowed: &[bool],
+    p: &[f64],
+) -> (usize, f64) {
+    let mut contact = 0usize;
+    let mut sum = 0.0;
+    for i in 0..gap.len() {
+        if allowed[i] {
+            gap[i] = u[i] + profile[i];
+            if p[i] > 0.0 {
+                sum += gap[i];
+                contact += 1;
+            }
+        }
+    }
+    (contact, sum / contact as f64)
 }
 
 /// The start of the iteration: uniform pressure on the `allowed_count` allowed cells carrying a

@@ -161,35 +161,7 @@ pub fn compare(
         _ => 2.0 * ours.gamma2.unwrap_or(f64::NAN),
     };
     let relative = (our_force - stored.force) / stored.force;
-    // P1/P2: the contact dofs sit at the same points in both codes, compared one by one. P3:
-    // dolfinx places the edge dofs at warped (GLL) points, ours at thirds (the same space, so the
-    // same solution of a linear problem): the count and the ring's ends are compared, an end
-    // that is an edge dof to within the distance of those two points (GLL 0.2764 against 1/3 of
-    // the edge: 0.057 of the element, a sixth of the dof spacing there).
-    let same_active = ours.active_radii.len() == stored.active_contact_radii.len()
-        && if degree == Degree::Cubic {
-            let r = &ours.active_radii;
-            let inner_spacing = match r.len() {
-                0 | 1 => 0.0,
-                _ => r[1] - r[0],
-            };
-            let outer_spacing = match r.len() {
-                0 | 1 => 0.0,
-                n => r[n - 1] - r[n - 2],
-            };
-            let ends = |r: &[f64]| (r.first().copied(), r.last().copied());
-            let (a, b) = (ends(r), ends(&stored.active_contact_radii));
-            let close = |x: Option<f64>, y: Option<f64>, spacing: f64| match (x, y) {
-                (Some(x), Some(y)) => (x - y).abs() <= 1e-9_f64.max(spacing / 5.0),
-                _ => false,
-            };
-            close(a.0, b.0, inner_spacing) && close(a.1, b.1, outer_spacing)
-        } else {
-            ours.active_radii
-                .iter()
-                .zip(&stored.active_contact_radii)
-                .all(|(a, b)| (a - b).abs() <= 1e-9)
-        };
+    let same_active = same_active_set(&ours.active_radii, &stored.active_contact_radii, degree);
     let ring_force = match load {
         FemLoad::Flat => ring.flat(eps, 1e-10)?.gamma.map(|g| 2.0 * g * stored.depth),
         _ => ring
@@ -207,6 +179,36 @@ pub fn compare(
     out.our_error = ring_force.map(|r| (our_force - r) / r);
     out.passed = relative.abs() <= FORCE_AGREEMENT && same_active;
     Ok(out)
+}
+
+/// Whether our contact nodes `ours` are FEniCSx's `theirs`. P1/P2: the contact dofs sit at the
+/// same points in both codes, compared one by one. P3: dolfinx places the edge dofs at warped
+/// (GLL) points, ours at thirds (the same space, so the same solution of a linear problem): the
+/// count and the ring's ends are compared, an end that is an edge dof to within the distance of
+/// those two points (GLL 0.2764 against 1/3 of the edge: 0.057 of the element, a sixth of the
+/// dof spacing there).
+fn same_active_set(ours: &[f64], theirs: &[f64], degree: Degree) -> bool {
+    if ours.len() != theirs.len() {
+        return false;
+    }
+    if degree != Degree::Cubic {
+        return ours.iter().zip(theirs).all(|(a, b)| (a - b).abs() <= 1e-9);
+    }
+    let inner_spacing = match ours.len() {
+        0 | 1 => 0.0,
+        _ => ours[1] - ours[0],
+    };
+    let outer_spacing = match ours.len() {
+        0 | 1 => 0.0,
+        n => ours[n - 1] - ours[n - 2],
+    };
+    let ends = |r: &[f64]| (r.first().copied(), r.last().copied());
+    let (a, b) = (ends(ours), ends(theirs));
+    let close = |x: Option<f64>, y: Option<f64>, spacing: f64| match (x, y) {
+        (Some(x), Some(y)) => (x - y).abs() <= 1e-9_f64.max(spacing / 5.0),
+        _ => false,
+    };
+    close(a.0, b.0, inner_spacing) && close(a.1, b.1, outer_spacing)
 }
 
 /// Compare every stored result of `verify/fenicsx/` (the default set).
