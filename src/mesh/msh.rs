@@ -166,37 +166,53 @@ fn node_tags_in_file_order(bytes: &[u8], name: &str) -> Result<Vec<(u64, usize)>
     if bytes.get(body) == Some(&b'\n') {
         body += 1;
     }
-    let truncated = || err(name, "the $Nodes section ends early (truncated file?)");
     if binary {
-        let mut at = body;
-        let mut take = |n: usize| -> Result<&[u8]> {
-            let slice = bytes.get(at..at + n).ok_or_else(truncated)?;
-            at += n;
-            Ok(slice)
-        };
-        let size = |b: &[u8]| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
-        let blocks = size(take(8)?);
-        let _total = take(8)?;
-        let _min_max = take(16)?;
-        let mut tags = Vec::new();
-        for _ in 0..blocks {
-            let _dim_entity_parametric = take(12)?;
-            let count = size(take(8)?);
-            let tag_bytes = take(
-                usize::try_from(count)
-                    .map_err(|_| truncated())?
-                    .checked_mul(8)
-                    .ok_or_else(truncated)?,
-            )?;
-            tags.extend(tag_bytes.chunks_exact(8).map(|c| (size(c), 0)));
-            let coordinate_bytes = usize::try_from(count)
-                .ok()
-                .and_then(|c| c.checked_mul(24))
-                .ok_or_else(truncated)?;
-            take(coordinate_bytes)?;
-        }
-        return Ok(tags);
+        binary_node_tags(bytes, body, name)
+    } else {
+        text_node_tags(bytes, body, name)
     }
+}
+
+fn truncated_nodes(name: &str) -> Error {
+    err(name, "the $Nodes section ends early (truncated file?)")
+}
+
+/// The node tags of a binary `$Nodes` section starting at byte `body` (line 0: no line numbers).
+fn binary_node_tags(bytes: &[u8], body: usize, name: &str) -> Result<Vec<(u64, usize)>> {
+    let truncated = || truncated_nodes(name);
+    let mut at = body;
+    let mut take = |n: usize| -> Result<&[u8]> {
+        let slice = bytes.get(at..at + n).ok_or_else(truncated)?;
+        at += n;
+        Ok(slice)
+    };
+    let size = |b: &[u8]| u64::from_le_bytes(b.try_into().unwrap_or([0; 8]));
+    let blocks = size(take(8)?);
+    let _total = take(8)?;
+    let _min_max = take(16)?;
+    let mut tags = Vec::new();
+    for _ in 0..blocks {
+        let _dim_entity_parametric = take(12)?;
+        let count = size(take(8)?);
+        let tag_bytes = take(
+            usize::try_from(count)
+                .map_err(|_| truncated())?
+                .checked_mul(8)
+                .ok_or_else(truncated)?,
+        )?;
+        tags.extend(tag_bytes.chunks_exact(8).map(|c| (size(c), 0)));
+        let coordinate_bytes = usize::try_from(count)
+            .ok()
+            .and_then(|c| c.checked_mul(24))
+            .ok_or_else(truncated)?;
+        take(coordinate_bytes)?;
+    }
+    Ok(tags)
+}
+
+/// The node tags of a text `$Nodes` section starting at byte `body`, each with its line number.
+fn text_node_tags(bytes: &[u8], body: usize, name: &str) -> Result<Vec<(u64, usize)>> {
+    let truncated = || truncated_nodes(name);
     let text = std::str::from_utf8(&bytes[body..])
         .map_err(|_| err(name, "the $Nodes section is not text"))?;
     let first_line = bytes[..body].iter().filter(|&&b| b == b'\n').count() + 1;
