@@ -539,7 +539,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
     let (mut fenicsx, mut peers, mut operators) = (None, None, None);
     let mut bases: Vec<BasePoints> = Vec::new();
     let mut ladders: HashMap<&'static str, Vec<Option<CostPoint>>> = HashMap::new();
-    let mut studies: Vec<(StudyCase, Method, usize, Vec<ComputedLevel>)> = Vec::new();
+    let mut studies: Vec<StudyLevels> = Vec::new();
     let mut pulloff = Vec::new();
     let mut live = None;
     let mut adhesion = None;
@@ -581,17 +581,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
                     eps: *eps,
                     depth: *depth,
                 };
-                let same = |s: &&mut (StudyCase, Method, usize, Vec<ComputedLevel>)| {
-                    s.0.punch == case.punch
-                        && s.0.eps == case.eps
-                        && s.0.depth == case.depth
-                        && s.1 == *method
-                        && s.2 == *levels
-                };
-                match studies.iter_mut().find(|s| same(s)) {
-                    Some(s) => s.3.push(l),
-                    None => studies.push((case, *method, *levels, vec![l])),
-                }
+                add_level(&mut studies, case, *method, *levels, l);
             }
             (Part::Adhesion(_), PartResult::Adhesion(p)) => pulloff.extend(p),
             (Part::PulloffLive, PartResult::PulloffLive(l)) => live = Some(l),
@@ -603,20 +593,7 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
             _ => return Err(mismatch()),
         }
     }
-    let mut assembled_studies = Vec::new();
-    for (case, method, levels, computed) in studies {
-        if computed.len() != levels {
-            return Err(Error::Plan(format!(
-                "the {} study of {} has {} of its {levels} levels",
-                method.name(),
-                case.punch,
-                computed.len()
-            )));
-        }
-        let yardstick = convergence::yardstick(&case)?;
-        let levels = computed.into_iter().map(|c| c.level).collect();
-        assembled_studies.push(convergence::assemble(&case, method, yardstick, levels));
-    }
+    let assembled_studies = assemble_studies(studies)?;
     if report_parts == 0 {
         return Ok(Assembled::Convergence(assembled_studies));
     }
@@ -648,6 +625,49 @@ pub fn assemble(results: Vec<(Part, PartResult, f64)>) -> Result<Assembled> {
         },
         stability,
     })
+}
+
+/// The levels of one convergence study, as its jobs computed them.
+type StudyLevels = (StudyCase, Method, usize, Vec<ComputedLevel>);
+
+/// Add level `l` to its study (the same case, method and level count), or start that study.
+fn add_level(
+    studies: &mut Vec<StudyLevels>,
+    case: StudyCase,
+    method: Method,
+    levels: usize,
+    l: ComputedLevel,
+) {
+    let same = |s: &&mut StudyLevels| {
+        s.0.punch == case.punch
+            && s.0.eps == case.eps
+            && s.0.depth == case.depth
+            && s.1 == method
+            && s.2 == levels
+    };
+    match studies.iter_mut().find(|s| same(s)) {
+        Some(s) => s.3.push(l),
+        None => studies.push((case, method, levels, vec![l])),
+    }
+}
+
+/// Each study from its levels (every one present) against the ring BEM's yardstick.
+fn assemble_studies(studies: Vec<StudyLevels>) -> Result<Vec<convergence::Study>> {
+    let mut assembled = Vec::new();
+    for (case, method, levels, computed) in studies {
+        if computed.len() != levels {
+            return Err(Error::Plan(format!(
+                "the {} study of {} has {} of its {levels} levels",
+                method.name(),
+                case.punch,
+                computed.len()
+            )));
+        }
+        let yardstick = convergence::yardstick(&case)?;
+        let levels = computed.into_iter().map(|c| c.level).collect();
+        assembled.push(convergence::assemble(&case, method, yardstick, levels));
+    }
+    Ok(assembled)
 }
 
 /// Compute `parts` in this process (the single-process run) and join them in the plan's order:
