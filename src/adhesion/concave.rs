@@ -376,15 +376,7 @@ fn annular_pulloff(
     // The unloading path: the ratios at the running minimum from the maximum on. A value above
     // it by no more than the solves' tolerance (relative) is on the path: the scatter of a flat
     // stretch is not a jump (a table's real bumps are 1e-3 relative).
-    let slack = branch_tolerance(&branch.kind);
-    let mut visited = vec![false; values.len()];
-    let mut lowest = f64::INFINITY;
-    for k in max_k..=min_k {
-        if values[k] <= lowest + slack * (1.0 + lowest.abs()) {
-            lowest = lowest.min(values[k]);
-            visited[k] = true;
-        }
-    }
+    let visited = unloading_path(&values, max_k, min_k, branch_tolerance(&branch.kind));
     let eval = |e: f64| -> Result<f64> { Ok(value(&branch.at(e)?, s)) };
     let minimum_near = |k: usize| -> Result<(f64, f64)> {
         let bracket = (points[k - 1].eps, points[k + 1].eps);
@@ -438,20 +430,38 @@ fn annular_pulloff(
             }
         }
     }
-    let p = branch.at(critical_eps)?;
-    Ok(Ok((
-        Critical {
-            eps: critical_eps,
-            depth: p.depth(s),
-            depth_over_d0: p.depth(s) / s,
-            force: p.force(s),
-            governing_edge: edge.into(),
-            error_bound: None,
-            depth_error_bound: None,
-        },
-        (eps_max, eps_min),
-        located_to,
-    )))
+    let critical = critical_on_branch(branch, s, critical_eps, edge)?;
+    Ok(Ok((critical, (eps_max, eps_min), located_to)))
+}
+
+/// The ratios `max_k..=min_k` the unloading path visits: those at the running minimum of
+/// `values`, a value above it by no more than the solves' tolerance `slack` (relative) counted
+/// as on it.
+fn unloading_path(values: &[f64], max_k: usize, min_k: usize, slack: f64) -> Vec<bool> {
+    let mut visited = vec![false; values.len()];
+    let mut lowest = f64::INFINITY;
+    for k in max_k..=min_k {
+        if values[k] <= lowest + slack * (1.0 + lowest.abs()) {
+            lowest = lowest.min(values[k]);
+            visited[k] = true;
+        }
+    }
+    visited
+}
+
+/// The branch's state at `eps` as a critical state governed by `edge` (its bounds are set by
+/// the caller).
+fn critical_on_branch(branch: &ConcaveBranch, s: f64, eps: f64, edge: &str) -> Result<Critical> {
+    let p = branch.at(eps)?;
+    Ok(Critical {
+        eps,
+        depth: p.depth(s),
+        depth_over_d0: p.depth(s) / s,
+        force: p.force(s),
+        governing_edge: edge.into(),
+        error_bound: None,
+        depth_error_bound: None,
+    })
 }
 
 /// Full-contact constants of a concave punch by the method of dimensionality reduction: with
