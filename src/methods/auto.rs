@@ -37,7 +37,12 @@ impl Auto {
                 reason: super::VTU_ONLY_FOR_THE_FEM.into(),
             }),
             Method::RingBem => Ok(Box::new(RingBem::new())),
-            _ => Ok(Box::new(Reference)),
+            Method::Reference => Ok(Box::new(Reference)),
+            // Not in `auto`'s order: the grid BEM never certifies a tolerance first.
+            Method::GridBem | Method::Auto => Err(Error::Unsupported {
+                method: method.name().into(),
+                reason: "not one of auto's candidates".into(),
+            }),
         }
     }
 }

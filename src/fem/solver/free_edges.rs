@@ -148,11 +148,10 @@ fn solve_level(
 ) -> Result<(PreparedModel, ContactSolution, f64, f64)> {
     let tolerance = options.tolerance;
     let why = format!("the FEM for the {kind} at tolerance {tolerance:e}");
-    if let MeshRequest::FreeEdges { level, .. } = request {
-        progress.set(format!(
-            "level {level}: making its mesh (gmsh, or the cache)"
-        ));
-    }
+    let level = request_level(request);
+    progress.set(format!(
+        "level {level}: making its mesh (gmsh, or the cache)"
+    ));
     let provided = provider::provide(request, &why)?;
     let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
     model.spec.frame = frame;
@@ -180,20 +179,18 @@ fn solve_level(
     if std::env::var_os("RINGCONTACT_TRACE").is_some() {
         super::trace_level(&model, &s);
         eprintln!(
-            "fem: level {:?}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",
-            request_level(request),
-            s.outer_radius,
-            s.outer_node_spacing
+            "fem: level {level}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",
+            s.outer_radius, s.outer_node_spacing
         );
     }
     Ok((model, s, gamma1, gamma2))
 }
 
-/// The adapted level a mesh request asks for, if any.
-fn request_level(request: &MeshRequest) -> Option<i32> {
+/// The adapted level a free-edges mesh request asks for (the only kind this ladder makes).
+fn request_level(request: &MeshRequest) -> i32 {
     match request {
-        MeshRequest::FreeEdges { level, .. } => Some(*level),
-        _ => None,
+        MeshRequest::FreeEdges { level, .. } => *level,
+        _ => 0,
     }
 }
 
