@@ -32,13 +32,13 @@ use crate::error::{Error, Result};
 use crate::reference::asymptotic::collins_series;
 
 mod concave;
-mod torus;
+mod free_band;
 pub use concave::{
     branch_point, branch_tolerance, concave, full_contact_constants, paper_fit_route, BranchPoint,
     ConcaveBranch, ConcaveJkr, Critical, EpsForce, FloorContact, FullContactBranch, D0H_RANGE,
 };
 use concave::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
-pub use torus::{plane_strain_pulloff, torus_jkr, TorusCritical, TorusJkr};
+pub use free_band::{band_jkr, plane_strain_pulloff, BandCritical, BandJkr};
 
 const TOL: f64 = 1e-11;
 const ROOT_PI: f64 = 1.772_453_850_905_516;

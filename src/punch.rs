@@ -46,7 +46,7 @@ pub use cone::Cone;
 pub use flat::Flat;
 pub use flat_annulus::FlatAnnulus;
 pub use power::{Exponent, Power};
-pub use profile::{Contact, Profile};
+pub use profile::{Contact, Profile, Summary};
 pub use sphere::Sphere;
 pub use table::TableProfile;
 pub use torus::Torus;
@@ -80,6 +80,17 @@ pub enum PunchName {
 }
 
 impl PunchName {
+    /// Every built-in shape, in the order the command line lists them.
+    pub const ALL: [PunchName; 7] = [
+        PunchName::Flat,
+        PunchName::FlatAnnulus,
+        PunchName::Cone,
+        PunchName::Sphere,
+        PunchName::Power,
+        PunchName::Torus,
+        PunchName::Table,
+    ];
+
     /// Name used on the command line and in JSON.
     pub fn as_str(self) -> &'static str {
         match self {
@@ -90,6 +101,43 @@ impl PunchName {
             PunchName::Power => "power",
             PunchName::Torus => "torus",
             PunchName::Table => "table",
+        }
+    }
+
+    /// How this built-in shape's contact is bounded ([`Profile::contact`]), before its
+    /// parameters are known.
+    pub fn contact(self) -> Contact {
+        match self {
+            PunchName::Flat => Flat.contact(),
+            PunchName::FlatAnnulus => FlatAnnulus.contact(),
+            PunchName::Torus => Torus.contact(),
+            PunchName::Cone | PunchName::Sphere | PunchName::Power | PunchName::Table => {
+                Contact::RimAndFreeInner
+            }
+        }
+    }
+
+    /// The built-in names whose contact is `contact`, joined by `separator` (`cone, sphere`);
+    /// every built-in name for `None`.
+    pub fn names(contact: Option<Contact>, separator: &str) -> String {
+        PunchName::ALL
+            .iter()
+            .filter(|name| contact.is_none_or(|c| name.contact() == c))
+            .map(|name| name.as_str())
+            .collect::<Vec<_>>()
+            .join(separator)
+    }
+
+    /// What `verify references` says of this shape: its flags, gap, edges and closed forms.
+    pub fn summary(self) -> Summary {
+        match self {
+            PunchName::Flat => flat::SUMMARY,
+            PunchName::FlatAnnulus => flat_annulus::SUMMARY,
+            PunchName::Cone => cone::SUMMARY,
+            PunchName::Sphere => sphere::SUMMARY,
+            PunchName::Power => power::SUMMARY,
+            PunchName::Torus => torus::SUMMARY,
+            PunchName::Table => table::SUMMARY,
         }
     }
 

@@ -2,7 +2,7 @@
 //!
 //! ```toml
 //! [punch]
-//! shape = "cone"            # flat | flat-annulus | cone | sphere | power | torus
+//! shape = "cone"            # flat | flat-annulus | cone | sphere | power | torus | table
 //! rim_radius = 1.0          # a, length unit of your choice (the torus's ring radius)
 //! hole_depth = 0.1          # h, concave punches (cone, sphere, power) only
 //! # exponent = 2.5          # n of the power law, gap h (1 - (r/a)^n); power only
@@ -28,7 +28,7 @@
 use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
-use crate::punch::{Punch, PunchKind, PunchName};
+use crate::punch::{Contact, Punch, PunchKind, PunchName};
 
 mod keywords;
 pub use keywords::keyword_names;
@@ -229,7 +229,10 @@ impl SceneSpec {
                 self.punch.exponent = None;
                 self.punch.tube_radius = None;
                 self.punch.profile = None;
-                if name == PunchName::Torus {
+                if name
+                    .with_exponent(None)
+                    .is_ok_and(|kind| kind.is_free_band())
+                {
                     self.punch.hole_depth = None;
                 }
             }
@@ -241,18 +244,37 @@ impl SceneSpec {
         self
     }
 
+    /// The scene of the flat keywords `object` (`{"punch": "cone", "depth": 2}`): each key is
+    /// placed in its section of the scene file and read as the file is
+    /// ([`SceneSpec::from_json_value`]); `eps` is `b/a` as `--eps` takes it. Unknown keys, a key
+    /// given twice (`punch` and `shape`), and `eps` beside another load are errors naming them.
+    pub fn from_keywords(
+        object: serde_json::Map<String, serde_json::Value>,
+        origin: &str,
+        base: Option<&std::path::Path>,
+    ) -> Result<Self> {
+        keywords::from_keywords(object, origin, base)
+    }
+
+    /// Set `b/a` as `--eps` does: the flat annulus's hole (against the rim radius), or the
+    /// prescribed contact ratio of a punch whose contact is found (a rim's free inner edge or
+    /// a free band). The flat circular punch has no `b/a`: an error.
+    pub fn eps(self, eps: f64) -> Result<Self> {
+        keywords::with_eps(self, eps)
+    }
+
     /// The punch shape named so far (file or command line), if any.
     pub fn shape_name(&self) -> Option<PunchName> {
         self.punch.shape
     }
 
-    /// Set the torus's tube radius `ρ` (length units).
+    /// Set a free band's tube radius `ρ` (length units), its depth scale `h = a²/(2ρ)`.
     pub fn tube_radius(mut self, rho: f64) -> Self {
         self.punch.tube_radius = Some(rho);
         self
     }
 
-    /// Set the rim radius `a` (the torus's ring radius), length units.
+    /// Set the rim radius `a` (a free band's ring radius), length units.
     pub fn rim_radius(mut self, a: f64) -> Self {
         self.punch.rim_radius = Some(a);
         self
@@ -351,7 +373,7 @@ impl SceneSpec {
         let name = self.punch.shape.ok_or_else(|| {
             Error::invalid(
                 "punch.shape",
-                "is required: one of flat, flat-annulus, cone, sphere, power, torus, table",
+                format!("is required: one of {}", PunchName::names(None, ", ")),
             )
         })?;
         let profile = self
@@ -449,14 +471,20 @@ impl SceneSpec {
                 (false, _, Some(_)) => {
                     return Err(Error::invalid(
                         "punch.tube_radius",
-                        format!("applies only to shape = torus, not {kind}"),
+                        format!(
+                            "applies only to shape = {} (a punch whose contact edges are \
+                             both free), not {kind}",
+                            PunchName::names(Some(Contact::FreeBand), " or ")
+                        ),
                     ))
                 }
                 (true, Some(_), _) => {
                     return Err(Error::invalid(
                         "punch.hole_depth",
-                        "does not apply to the torus: its depth scale h = a²/(2 rho) follows from \
-                     punch.tube_radius",
+                        format!(
+                            "does not apply to the {kind}: its depth scale h = a²/(2 rho) \
+                             follows from punch.tube_radius"
+                        ),
                     ))
                 }
                 (true, None, Some(rho)) => {
@@ -467,8 +495,10 @@ impl SceneSpec {
                 (true, None, None) => {
                     return Err(Error::invalid(
                         "punch.tube_radius",
-                        "is required for shape = torus (--tube-radius RHO): the gap is \
-                     (r - a)²/(2 rho)",
+                        format!(
+                            "is required for shape = {kind} (--tube-radius RHO): its depth \
+                             scale is h = a²/(2 rho)"
+                        ),
                     ))
                 }
                 (_, h, None) if kind.is_concave() => {
@@ -582,8 +612,12 @@ impl RawLoad {
                 return Err(Error::invalid(
                     "load.contact_ratio",
                     format!(
-                        "applies only to the concave punches (cone, sphere, power) and the torus (for {kind} the contact is fixed by the \
-                         geometry; use punch.inner_radius or --eps)"
+                        "applies only to the punches whose contact edges are found ({}; for \
+                         {kind} the contact is fixed by the geometry; use punch.inner_radius or \
+                         --eps)",
+                        PunchName::names(Some(Contact::RimAndFreeInner), ", ")
+                            + ", "
+                            + &PunchName::names(Some(Contact::FreeBand), ", ")
                     ),
                 ));
             }

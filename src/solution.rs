@@ -38,7 +38,7 @@ pub struct Solution {
     /// Outer contact radius `c` (length units): the contact is the annulus
     /// `inner_radius <= r <= outer_radius`. At the rim (`c = a`) for every punch with one.
     pub outer_radius: f64,
-    /// Tube radius `ρ` of the torus (length units; its depth scale is `h = a²/(2ρ)`).
+    /// Tube radius `ρ` of a free band (length units; its depth scale is `h = a²/(2ρ)`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub tube_radius: Option<f64>,
     /// `γ = F / (2 E* d a)` (flat punches).

@@ -417,7 +417,7 @@ fn command_line_json_and_refusals() {
                 "--grid-extent",
                 "1.5",
             ],
-            "--grid-extent sets the square of the torus's grid",
+            "--grid-extent sets the square of a free band's grid",
         ),
         (
             vec![
@@ -431,7 +431,7 @@ fn command_line_json_and_refusals() {
                 "--grid-extent",
                 "1.5",
             ],
-            "--grid-extent sets the square of the torus's grid",
+            "--grid-extent sets the square of a free band's grid",
         ),
         (
             vec![

@@ -746,14 +746,14 @@ fn check_concave(kind: PunchKind) -> Result<()> {
             method: "jkr".into(),
             reason: format!(
                 "the {kind}'s contact has two free edges and no rim: its JKR analysis is \
-                 `adhesion::torus_jkr` (`verify jkr --punch torus`)"
+                 `adhesion::band_jkr` (`verify jkr --punch {kind}`)"
             ),
         });
     }
     Ok(())
 }
 
-/// Refuse a `d0/h` outside [`D0H_RANGE`] (the concave punches' and the torus's analyses).
+/// Refuse a `d0/h` outside [`D0H_RANGE`] (the concave punches' and the free bands' analyses).
 pub(super) fn check_scale(s: f64) -> Result<()> {
     if !(s.is_finite() && s > 0.0) {
         return Err(Error::invalid(

@@ -29,9 +29,9 @@ pub(crate) const MIN_GRID: usize = 8;
 pub struct GridState {
     pub grid: usize,
     pub eps: f64,
-    /// Outer contact edge `c/a` (1, the rim, for every punch but the torus).
+    /// Outer contact edge `c/a` (1, the rim, for every punch but a free band).
     pub outer_edge: f64,
-    /// Half-size `L/a` of the square `[-L, L]²` the grid covers (1 but for the torus).
+    /// Half-size `L/a` of the square `[-L, L]²` the grid covers (1 but for a free band).
     pub square_half_size: f64,
     pub gamma: Option<f64>,
     pub gamma1: Option<f64>,
@@ -67,7 +67,7 @@ pub fn discretise(kind: PunchKind, eps: f64, n: usize) -> GridPunch {
             let r = cell_centre(n, i).hypot(cell_centre(n, j));
             if r <= 1.0 {
                 disk_cells += 1;
-                let inside = kind != PunchKind::FLAT_ANNULUS || r >= eps;
+                let inside = !kind.has_fixed_hole() || r >= eps;
                 allowed[i * n + j] = inside;
                 profile[i * n + j] = kind.gap_shape(r);
             }
@@ -141,14 +141,14 @@ pub fn solve(
     load: GridLoad,
     tolerance: f64,
 ) -> Result<GridState> {
-    if kind == PunchKind::TORUS {
-        return solve_torus(n, load, tolerance);
+    if kind.is_free_band() {
+        return solve_band(&kind, n, load, tolerance);
     }
     check_grid(n)?;
     // A ring narrower than two cells is not resolved: the staircase would carry most of the error
     // and the number would look plausible. Refuse it instead.
     let cell = 2.0 / n as f64;
-    if kind == PunchKind::FLAT_ANNULUS && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
+    if kind.has_fixed_hole() && (1.0 - eps) < MIN_CELLS_ACROSS * cell {
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
@@ -215,70 +215,74 @@ pub fn solve(
     })
 }
 
-/// Half-size of the first (coarse) square the torus is solved on, in units of `a`: it holds the
-/// contact up to `c = 2.9 a` (the ring BEM's `c` at `b = 0.2 a`).
-const TORUS_FIRST_HALF_SIZE: f64 = 3.0;
+/// Half-size of the first (coarse) square a free band is located on, in units of `a`: it holds
+/// a contact up to `c = 2.9 a`.
+const BAND_FIRST_HALF_SIZE: f64 = 3.0;
 
-/// The torus `g = h (1 - r/a)²` (`h = 1`) on an `n x n` grid over `[-L, L]²`: every cell of the
-/// inscribed disk may touch. Its contact band is found by the complementarity iteration, both
+/// A punch whose contact is a free band (both edges free, its gap defined on both sides of the
+/// ring radius `a`, `h = 1`) on an `n x n` grid over `[-L, L]²`: every cell of the inscribed disk
+/// may touch. Its contact band is found by the complementarity iteration, both
 /// edges at once; the edges are read off the contact cells as the smallest and largest centre
 /// radius in contact (staircase, `O(cell)`). The square is sized in two passes: a grid of
 /// `n/4` cells on `[-3a, 3a]²` finds the band, and the final grid spans the band's outer edge
 /// plus a quarter of its width (at least four coarse cells); a contact reaching within two cells
 /// of the square's edge is refused.
-pub fn solve_torus(n: usize, load: GridLoad, tolerance: f64) -> Result<GridState> {
+pub fn solve_band(kind: &PunchKind, n: usize, load: GridLoad, tolerance: f64) -> Result<GridState> {
     check_grid(n)?;
     let start = Instant::now();
-    let half_size = torus_square(n / 4, load, tolerance)?;
-    let fine = solve_torus_on_square(n, half_size, load, tolerance)?;
+    let half_size = band_square(kind, n / 4, load, tolerance)?;
+    let fine = solve_band_on_square(kind, n, half_size, load, tolerance)?;
     Ok(GridState {
         wall_s: start.elapsed().as_secs_f64(),
         ..fine
     })
 }
 
-/// The half-size `L/a` of the torus's square for a load: a solve on `max(coarse, 32)²` cells
+/// The half-size `L/a` of a free band's square for a load: a solve on `max(coarse, 32)²` cells
 /// of the square `[-1.6 a, 1.6 a]²` locates the band `[b, c]`; the square reaches a quarter of
 /// its width (at least four of those cells) beyond `c`. A study refining the grid on a fixed
 /// square takes it from the same `coarse` at every level.
-pub fn torus_square(coarse: usize, load: GridLoad, tolerance: f64) -> Result<f64> {
+pub fn band_square(kind: &PunchKind, coarse: usize, load: GridLoad, tolerance: f64) -> Result<f64> {
     let coarse_n = coarse.max(32);
-    let located = torus_on_square(coarse_n, TORUS_FIRST_HALF_SIZE, load, tolerance)?;
-    let coarse_cell = 2.0 * TORUS_FIRST_HALF_SIZE / coarse_n as f64;
+    let located = band_on_square(kind, coarse_n, BAND_FIRST_HALF_SIZE, load, tolerance)?;
+    let coarse_cell = 2.0 * BAND_FIRST_HALF_SIZE / coarse_n as f64;
     Ok(located.outer + (0.25 * (located.outer - located.inner)).max(4.0 * coarse_cell))
 }
 
-/// The torus on one given square `[-L, L]²` (`half_size = L/a > 1`), `n x n` cells: what
-/// [`solve_torus`] does on its final square, for a grid chosen by the caller (a peer code's).
+/// A free band on one given square `[-L, L]²` (`half_size = L/a > 1`), `n x n` cells: what
+/// [`solve_band`] does on its final square, for a grid chosen by the caller (a peer code's).
 /// A band narrower than [`MIN_CELLS_ACROSS`] cells, or a contact reaching within two cells of
 /// the square's edge, is refused.
-pub fn solve_torus_on_square(
+pub fn solve_band_on_square(
+    kind: &PunchKind,
     n: usize,
     half_size: f64,
     load: GridLoad,
     tolerance: f64,
 ) -> Result<GridState> {
     check_grid(n)?;
-    if !(half_size.is_finite() && half_size > 1.0 && half_size <= TORUS_MAX_HALF_SIZE) {
+    if !(half_size.is_finite() && half_size > 1.0 && half_size <= BAND_MAX_HALF_SIZE) {
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
-                "the torus's grid half-size L = {} a must lie in (1, {TORUS_MAX_HALF_SIZE}] a: \
+                "the {}'s grid half-size L = {} a must lie in (1, {BAND_MAX_HALF_SIZE}] a: \
                  the square [-L, L]² must hold the ring r = a and the band around it",
+                kind.name(),
                 crate::error::show(half_size)
             ),
         });
     }
     let start = Instant::now();
-    let fine = torus_on_square(n, half_size, load, tolerance)?;
+    let fine = band_on_square(kind, n, half_size, load, tolerance)?;
     let cell = 2.0 * half_size / n as f64;
     if (fine.outer - fine.inner) < MIN_CELLS_ACROSS * cell {
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
-                "the torus's contact band [{:.4}, {:.4}] a is {:.2} cells wide on a {n} x {n} grid \
+                "the {}'s contact band [{:.4}, {:.4}] a is {:.2} cells wide on a {n} x {n} grid \
                  over [-{half_size:.3}, {half_size:.3}]² a; at least {MIN_CELLS_ACROSS} cells are \
                  needed (refine the grid or use the ring BEM)",
+                kind.name(),
                 fine.inner,
                 fine.outer,
                 (fine.outer - fine.inner) / cell
@@ -291,22 +295,23 @@ pub fn solve_torus_on_square(
     })
 }
 
-/// Largest square half-size `L/a` accepted for the torus (a band up to about `c = 8 a`).
-pub const TORUS_MAX_HALF_SIZE: f64 = 10.0;
+/// Largest square half-size `L/a` accepted for a free band (a band up to about `c = 8 a`).
+pub const BAND_MAX_HALF_SIZE: f64 = 10.0;
 
-/// A torus solve on one square: the state and the band read off the contact cells.
-struct TorusOnSquare {
+/// A free band's solve on one square: the state and the band read off the contact cells.
+struct BandOnSquare {
     state: GridState,
     inner: f64,
     outer: f64,
 }
 
-fn torus_on_square(
+fn band_on_square(
+    kind: &PunchKind,
     n: usize,
     half_size: f64,
     load: GridLoad,
     tolerance: f64,
-) -> Result<TorusOnSquare> {
+) -> Result<BandOnSquare> {
     let cell = 2.0 * half_size / n as f64;
     let op = GridOperator::new(n, cell);
     let mut allowed = vec![false; n * n];
@@ -317,7 +322,7 @@ fn torus_on_square(
             let r = radius(i, j);
             if r <= half_size {
                 allowed[i * n + j] = true;
-                profile[i * n + j] = PunchKind::TORUS.gap_shape(r);
+                profile[i * n + j] = kind.gap_shape(r);
             }
         }
     }
@@ -340,13 +345,14 @@ fn torus_on_square(
         return Err(Error::OutOfRange {
             method: crate::bem::grid::METHOD.into(),
             reason: format!(
-                "the torus's contact reaches r = {outer:.3} a, within two cells of the grid's \
+                "the {}'s contact reaches r = {outer:.3} a, within two cells of the grid's \
                  square [-{half_size:.3}, {half_size:.3}]² a: the square must extend past the \
-                 band (a larger --grid-extent, a smaller load, or the ring BEM)"
+                 band (a larger --grid-extent, a smaller load, or the ring BEM)",
+                kind.name()
             ),
         });
     }
-    Ok(TorusOnSquare {
+    Ok(BandOnSquare {
         state: GridState {
             grid: n,
             eps: inner,

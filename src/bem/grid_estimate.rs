@@ -77,8 +77,8 @@ pub fn outer_edge(s: &GridState) -> f64 {
 /// The estimate of `fine`, a solve on `fine.grid` cells per side over the square
 /// `[-L, L]²` (`L = fine.square_half_size`), from `coarser(m)`, the same problem on `m` cells
 /// over the same square: the largest of the `γ`s' relative bars and the absolute bars of the
-/// `free_edges` (the edges the solution finds: [`inner_edge`] of a concave punch, both of the
-/// torus; none of a flat punch), see the module docs.
+/// `free_edges` (the edges the solution finds: [`inner_edge`] of a concave punch, both of a
+/// free band; none of a flat punch), see the module docs.
 pub fn estimate(
     fine: &GridState,
     free_edges: &[fn(&GridState) -> f64],

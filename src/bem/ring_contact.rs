@@ -32,9 +32,9 @@ use crate::reference::paper_fits;
 
 use piecewise_gap::{BandEdges, InnerStencil};
 
+mod free_band;
 mod inverse;
 mod piecewise_gap;
-mod torus;
 
 /// Name of this method on the command line and in JSON.
 pub const METHOD: &str = "ring-bem";
@@ -131,7 +131,7 @@ type ScaledPressure = (f64, f64);
 pub struct RingState {
     /// Contact ratio `b/a` (0 for full contact).
     pub eps: f64,
-    /// Outer contact edge `c/a`: 1 (the rim) for every punch but the torus.
+    /// Outer contact edge `c/a`: 1 (the rim) for every punch but a free band.
     pub outer_edge: f64,
     /// Flat punches: `γ`. Concave punches: `γ2` is in `gamma2` and this is `None`.
     pub gamma: Option<f64>,
@@ -236,6 +236,30 @@ fn relative_change(fine: f64, coarse: f64) -> f64 {
 }
 
 impl RingBemSolver {
+    /// The free band `kind` of half-width `half_width` (units of `a`) with the stress intensity
+    /// `intensity` at both edges (units of `E* h / sqrt(a)`; the JKR edges in equilibrium:
+    /// `-sqrt(2 E* Δw) sqrt(a)/(E* h) = -(d0/h)/sqrt(π)`), its centre found, refined until
+    /// `γ1`, `γ2` and both edges change by less than `tolerance` between node counts. No check
+    /// of the pressure's sign (adhesive edges are tensile by design). `centre_hint` starts the
+    /// centre's search (a neighbouring state's centre, to follow one branch); without one it
+    /// starts at `1 + w²` (units of `a`).
+    pub fn band_with_edge_intensity(
+        &self,
+        kind: &PunchKind,
+        half_width: f64,
+        intensity: f64,
+        tolerance: f64,
+        centre_hint: Option<f64>,
+    ) -> Result<RingState> {
+        free_band::BandSolver(self).band_with_edge_intensity(
+            kind,
+            half_width,
+            intensity,
+            tolerance,
+            centre_hint,
+        )
+    }
+
     /// A solver with the default quadrature.
     pub fn new() -> Self {
         Self {
@@ -397,7 +421,7 @@ impl RingBemSolver {
         Self::check_tolerance(tolerance)?;
         Self::check_band(inner, outer, depth)?;
         self.band_refined(inner, outer, tolerance, |n: usize| -> Result<BandState> {
-            let band = self.gap_functionals(table, inner, outer, n)?;
+            let band = piecewise_gap::GapBands(self).gap_functionals(table, inner, outer, n)?;
             Ok(BandState {
                 inner,
                 outer,
@@ -510,7 +534,7 @@ impl RingBemSolver {
     }
 
     /// Concave punch at a fixed node count and contact ratio.
-    /// `outer_hint`: a guess of the torus's outer edge (from a nearby state), ignored by the
+    /// `outer_hint`: a guess of a free band's outer edge (from a nearby state), ignored by the
     /// punches whose outer edge is the rim.
     fn concave_sample(
         &self,
@@ -556,12 +580,13 @@ impl RingBemSolver {
         stencil: &mut InnerStencil,
     ) -> Result<ConcaveSample> {
         if kind.is_free_band() {
-            return self.torus_sample(kind, eps, n, outer_hint);
+            return free_band::BandSolver(self).band_sample(kind, eps, n, outer_hint);
         }
         // A table's collocated field (which draws the pressure) is solved on its band's system.
         let (system, table_band) = match kind.tabulated() {
             Some(table) => {
-                let band = self.gap_band(table, eps, 1.0, n, edges, stencil)?;
+                let band =
+                    piecewise_gap::GapBands(self).gap_band(table, eps, 1.0, n, edges, stencil)?;
                 (band.system().clone(), Some(band))
             }
             None => (self.system(ContactRegion::Annulus { eps }, n), None),
@@ -614,7 +639,7 @@ impl RingBemSolver {
     /// ([`RingBemSolver::complete_outer_edge`], the same to the bit as a full sample's).
     fn completed(&self, kind: &PunchKind, mut sample: ConcaveSample) -> Result<ConcaveSample> {
         if let (Some(table), Some(band)) = (kind.tabulated(), sample.table_band.as_mut()) {
-            self.complete_outer_edge(table, band)?;
+            piecewise_gap::GapBands(self).complete_outer_edge(table, band)?;
             sample.rim_stress_intensity = band.functionals.outer_intensity(sample.gamma1);
         }
         Ok(sample)
@@ -821,7 +846,9 @@ impl RingBemSolver {
         Self::check_tolerance(tolerance)?;
         if kind.is_free_band() {
             let depth_controlled = matches!(controlled, Controlled::Depth);
-            if let Some(state) = self.torus_inverse(kind, target, tolerance, depth_controlled) {
+            if let Some(state) =
+                free_band::BandSolver(self).band_inverse(kind, target, tolerance, depth_controlled)
+            {
                 return state;
             }
         }
@@ -1195,8 +1222,24 @@ const FIRST_SEARCH_RUNG: usize = 1;
 /// the search wandered there or found a root whose surface crosses the floor and refused a
 /// state that exists.
 fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
+    let depth_controlled = matches!(controlled, Controlled::Depth);
+    if kind.approximate_gamma(0.5, depth_controlled).is_some() {
+        let approximant = |eps: f64| kind.approximate_gamma(eps, depth_controlled).unwrap_or(0.0);
+        // Bisection on the profile's approximant, decreasing in eps.
+        let (mut lo, mut hi) = (MIN_CONTACT_RATIO, MAX_CONTACT_RATIO);
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if approximant(mid) > target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        return 0.5 * (lo + hi);
+    }
     if kind.is_free_band() {
-        return torus::initial_inner_edge(target, matches!(controlled, Controlled::Depth));
+        // A band the profile gives no approximant for: its middle, the search does the rest.
+        return 0.5;
     }
     let i = match controlled {
         Controlled::Depth => 1,

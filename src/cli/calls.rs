@@ -18,7 +18,7 @@ use crate::scene::SceneSpec;
 pub struct SolveOptions {
     /// `--grid N`: grid BEM cells per side.
     pub grid: Option<usize>,
-    /// `--grid-extent L`: grid BEM half-size for the torus, in units of `a`.
+    /// `--grid-extent L`: grid BEM half-size for a free band, in units of `a`.
     pub grid_extent: Option<f64>,
     /// `--degree D`: FEM element degree 1, 2 or 3.
     pub degree: Option<u8>,

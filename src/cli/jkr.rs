@@ -1,21 +1,21 @@
 //! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
 
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
-use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr, TorusJkr};
+use crate::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use crate::punch::{Contact, PunchName};
+use crate::punch::{Contact, PunchKind};
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
-    if args.punch == PunchName::Torus {
-        return torus(&args);
-    }
-    let punch = super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?;
+    let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
+    if punch.is_free_band() {
+        return band(&args, &punch);
+    }
     let solver = RingBemSolver::new();
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match punch.contact() {
@@ -261,38 +261,34 @@ fn concave_notes(r: &ConcaveJkr) -> String {
     text
 }
 
-/// The torus (`--punch torus --d0h S`): a Griffith condition at both edges of its band.
-fn torus(args: &JkrArgs) -> Result<Reply, String> {
-    let punch = args
-        .punch
-        .with_exponent(args.exponent)
-        .map_err(super::message)?;
-    refuse_other_family_flags(punch, args.eps, args.d0h)?;
+/// A free band (`--d0h S`): a Griffith condition at both edges of its band.
+fn band(args: &JkrArgs, punch: &PunchKind) -> Result<Reply, String> {
+    let name = punch.name();
     if args.sweep {
-        return Err(
-            "--sweep is built for the cone, the sphere and the power law; for the torus \
-                    give one --d0h D0_OVER_H at a time"
-                .into(),
-        );
+        return Err(format!(
+            "--sweep is built for the cone, the sphere and the power law; for the {name} \
+                 give one --d0h D0_OVER_H at a time"
+        ));
     }
-    let s = args
-        .d0h
-        .ok_or("the torus needs --d0h D0_OVER_H (h = a²/(2 rho), the gap at the axis)")?;
-    let r = adhesion::torus_jkr(&RingBemSolver::new(), s).map_err(message)?;
-    refuse_non_finite(&format!("jkr torus --d0h {s:e}"), &r)?;
+    let s = args.d0h.ok_or(format!(
+        "the {name} needs --d0h D0_OVER_H (h = a²/(2 rho), the gap at the axis)"
+    ))?;
+    let r = adhesion::band_jkr(&RingBemSolver::new(), punch, s).map_err(message)?;
+    refuse_non_finite(&format!("jkr {name} --d0h {s:e}"), &r)?;
     Ok(Reply::ok(if args.json {
         to_json(&r)?
     } else {
-        torus_text(&r)
+        band_text(&r)
     }))
 }
 
-/// The torus's pull-off under fixed load and fixed grips, and the plane-strain asymptote.
-fn torus_text(r: &TorusJkr) -> String {
+/// A free band's pull-off under fixed load and fixed grips, and the plane-strain asymptote.
+fn band_text(r: &BandJkr) -> String {
     let mut t = Table::new(
         &format!(
-            "torus d0/h = {} (h = a²/(2 rho)): pull-off, both edges at G = dw (d in d0, F in F0, \
+            "{} d0/h = {} (h = a²/(2 rho)): pull-off, both edges at G = dw (d in d0, F in F0, \
              negative = tensile)",
+            r.punch.name(),
             crate::error::show(r.d0_over_h)
         ),
         vec![
@@ -335,7 +331,7 @@ fn torus_text(r: &TorusJkr) -> String {
         Cell::Missing,
         Cell::Missing,
         Cell::Missing,
-        r.plane_strain_fixed_load.into(),
+        r.plane_strain_fixed_load.map_or(Cell::Missing, Cell::from),
         Cell::Missing,
         "plane-strain JKR cylinder over 2 pi a (narrow limit d0/h -> 0, asymptote)".into(),
     ]);

@@ -112,7 +112,7 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 
 /// The punch named on the command line, with the power law's `--exponent`, for the commands
 /// built on punches with a rim (`plan`, and `pulloff`, `convergence` and `jkr` but for their
-/// own torus routes); the table is read by the commands that take `--profile`
+/// own free-band routes); the table is read by the commands that take `--profile`
 /// ([`punch_kind_with_profile`]).
 pub(crate) fn punch_kind(
     name: crate::punch::PunchName,
@@ -131,9 +131,9 @@ pub(crate) fn punch_kind(
     let kind = name.with_exponent(exponent).map_err(message)?;
     if !kind.has_rim() {
         return Err(format!(
-            "the {kind} (two free edges) is solved by `verify solve --punch torus` (ring BEM, \
-             FEM, grid BEM), `verify jkr --punch torus`, `verify pulloff --punch torus \
-             --d0h S` and `verify convergence --punch torus --method fem|grid-bem --depth D`; \
+            "the {kind} (two free edges) is solved by `verify solve --punch {kind}` (ring BEM, \
+             FEM, grid BEM), `verify jkr --punch {kind}`, `verify pulloff --punch {kind} \
+             --d0h S` and `verify convergence --punch {kind} --method fem|grid-bem --depth D`; \
              plans of its convergence studies are not built"
         ));
     }
@@ -151,6 +151,20 @@ pub(crate) fn punch_kind_with_profile(
         name.with_parameters(exponent, profile).map_err(message)
     } else {
         punch_kind(name, exponent)
+    }
+}
+
+/// The punch of `--punch`, `--exponent` and `--profile` for the commands with a free-band
+/// route (`jkr`, `pulloff`, `convergence`): a free band as it is, the others as
+/// [`punch_kind_with_profile`].
+pub(crate) fn punch_kind_or_free_band(
+    name: crate::punch::PunchName,
+    exponent: Option<f64>,
+    profile: Option<&std::path::Path>,
+) -> Result<crate::punch::PunchKind, String> {
+    match name.with_exponent(exponent) {
+        Ok(band) if band.is_free_band() && profile.is_none() => Ok(band),
+        _ => punch_kind_with_profile(name, exponent, profile),
     }
 }
 

@@ -7,7 +7,6 @@ use crate::harness::progress::Progress;
 use crate::harness::report::table::{Column, Format, Table};
 use crate::heartbeat::Heartbeat;
 use crate::mesh::provider::{MeshOrigin, ProvidedMesh};
-use crate::punch::PunchKind;
 
 /// The `d0/h` of a concave punch's direct simulation: its load path takes about `250 h/d0`
 /// steps per range below `d0/h = 1` and `200 d0/h` above.
@@ -24,7 +23,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
         heartbeat.set(format!("the first range, rho/d0 = {first}"));
     }
     if case.punch.is_free_band() {
-        torus_band(&args, case, &ranges, &heartbeat)
+        free_band(&args, case, &ranges, &heartbeat)
     } else if args.branch == study::Branch::Annular {
         annular_branch(&args, case, &ranges, &heartbeat)
     } else {
@@ -35,11 +34,8 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
 /// The case and the decreasing ranges of `verify pulloff`, every flag checked against the punch
 /// and the branch.
 fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>), String> {
-    // The torus (two free edges) has its own route: touched, then pulled.
-    let punch = match args.punch.with_exponent(args.exponent) {
-        Ok(free_band) if free_band.is_free_band() => free_band,
-        _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
-    };
+    // A free band (two free edges) has its own route: touched, then pulled.
+    let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     let eps = match punch.has_fixed_hole() {
         true => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
         false => 0.0,
@@ -66,21 +62,21 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         }
         (_, s) => s.unwrap_or(0.0),
     };
-    if punch == PunchKind::FLAT_ANNULUS && !(eps > 0.0 && eps < 1.0) {
+    if punch.has_fixed_hole() && !(eps > 0.0 && eps < 1.0) {
         return Err(format!(
             "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
         ));
     }
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
-    let torus = punch == PunchKind::TORUS;
-    if torus && args.mesh.is_some() {
-        return Err(
-            "the torus's simulation makes its own mesh per range (its contact line uniform at a \
-             third of the zone, 1.5 a long); --mesh does not apply"
-                .into(),
-        );
+    let band = punch.is_free_band();
+    if band && args.mesh.is_some() {
+        return Err(format!(
+            "the {}'s simulation makes its own mesh per range (its contact line uniform at a \
+             third of the zone, 1.5 a long); --mesh does not apply",
+            punch.name()
+        ));
     }
-    let annular = args.branch == study::Branch::Annular || torus;
+    let annular = args.branch == study::Branch::Annular || band;
     if annular && !punch.is_concave() {
         return Err(format!(
             "--branch annular: the annular branch is a concave punch's (cone, sphere); the {} \
@@ -155,15 +151,18 @@ fn annular_branch(
     Ok(Reply::ok(render(&result)))
 }
 
-/// The torus: touched at its lowest circle, then pulled, at each range.
-fn torus_band(
+/// A free band: touched at its lowest circle, then pulled, at each range.
+fn free_band(
     args: &PulloffArgs,
     case: study::Case,
     ranges: &[f64],
     heartbeat: &Heartbeat,
 ) -> Result<Reply, String> {
-    let mut bar = Progress::new("pull-off (torus)", ranges.len() + 1);
-    let result = crate::cohesive::torus::run_torus(case, ranges, |entry| {
+    let mut bar = Progress::new(
+        &format!("pull-off ({})", case.punch.name()),
+        ranges.len() + 1,
+    );
+    let result = crate::cohesive::free_band::run_band(case, ranges, |entry| {
         heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
         bar.tick(&format!(
             "rho/a = {}: F/F0 = {:.4}",
@@ -316,10 +315,11 @@ pub fn render(s: &PulloffStudy) -> String {
         _ => "  no extrapolate: it needs three ranges\n".to_string(),
     };
     match (s.punch.is_concave(), s.jkr_fixed_load_over_f0) {
-        (true, Some(j)) if s.punch == PunchKind::TORUS => {
+        (true, Some(j)) if s.punch.is_free_band() => {
             text += &format!(
-                "  JKR route (verify jkr --punch torus: both edges at G = dw), fixed load: F/F0 = \
-                 {j:.4}\n"
+                "  JKR route (verify jkr --punch {}: both edges at G = dw), fixed load: F/F0 = \
+                 {j:.4}\n",
+                s.punch.name()
             )
         }
         (false, Some(j)) => {

@@ -20,6 +20,7 @@ use crate::harness::studies::comparison;
 use crate::harness::studies::convergence;
 use crate::harness::studies::stability;
 use crate::punch::PunchKind;
+use crate::punch::PunchName;
 use crate::reference;
 
 /// `verify compare`: the ring BEM against the references, the FEM against the ring BEM, the
@@ -189,11 +190,8 @@ pub(super) fn compare_reply(
 /// `verify convergence`: one method refined level by level against the ring BEM; writes the CSV
 /// and the chart into `--out`.
 pub fn convergence(args: ConvergenceArgs) -> Result<Reply, String> {
-    // The torus (two free edges): the FEM's free-edges family or the grid BEM, at `--depth` d/h.
-    let punch = match args.punch.with_exponent(args.exponent) {
-        Ok(free_band) if free_band.is_free_band() => free_band,
-        _ => super::punch_kind_with_profile(args.punch, args.exponent, args.profile.as_deref())?,
-    };
+    // A free band (two free edges): the FEM's free-edges family or the grid BEM, at `--depth` d/h.
+    let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     let case = study_case(punch, args.eps, args.depth)?;
     let levels = args.levels as usize;
     let mut bar = Progress::new("convergence", levels);
@@ -249,11 +247,7 @@ pub(super) fn study_case(
     eps: f64,
     depth: f64,
 ) -> Result<convergence::StudyCase, String> {
-    let eps = if punch == PunchKind::FLAT_ANNULUS {
-        eps
-    } else {
-        0.0
-    };
+    let eps = if punch.has_fixed_hole() { eps } else { 0.0 };
     if !(0.0..1.0).contains(&eps) {
         return Err(format!("--eps {eps}: need 0 <= b/a < 1"));
     }
@@ -452,7 +446,7 @@ pub fn references(args: JsonArgs) -> Result<Reply, String> {
 /// The built-in punches: the flags that name each, its gap, its edges and its closed forms.
 fn punch_table() -> Table {
     let mut t = Table::new(
-        "Punches (gap g(r) at zero depth; contact b <= r <= a, or b <= r <= c for the torus)",
+        "Punches (gap g(r) at zero depth; contact b <= r <= a, or b <= r <= c for a free band)",
         vec![
             Column::text("flags", "flags"),
             Column::text("gap", "gap g(r)"),
@@ -460,52 +454,14 @@ fn punch_table() -> Table {
             Column::text("closed_forms", "closed forms"),
         ],
     );
-    let rows = [
-        (
-            "--punch flat",
-            "0",
-            "rim at a (disk)",
-            "Boussinesq F = 2 E* a d",
-        ),
-        (
-            "--punch flat-annulus --eps B",
-            "0 on [b, a], hole inside",
-            "rims at b and a",
-            "Collins series, narrow-ring asymptote",
-        ),
-        (
-            "--punch cone",
-            "h (1 - r/a)",
-            "rim at a, free inner edge",
-            "none in partial contact; never closes",
-        ),
-        (
-            "--punch sphere",
-            "h (1 - r²/a²)",
-            "rim at a, free inner edge",
-            "full contact d >= 3h: F = 2 E* a (d - h/3)",
-        ),
-        (
-            "--punch power --exponent N",
-            "h (1 - (r/a)^n), n > 0",
-            "rim at a, free inner edge",
-            "full contact (n > 1) by the MDR, `verify solve --method reference`",
-        ),
-        (
-            "--punch torus --tube-radius RHO",
-            "(r - a)²/(2 rho) = h (1 - r/a)², h = a²/(2 rho)",
-            "both free, b < a < c (never closes)",
-            "narrow limit: plane-strain Hertz cylinder (asymptote, tested)",
-        ),
-        (
-            "--punch table --profile FILE",
-            "h ĝ(r/a), ĝ by PCHIP through the file's (r/a, g/h)",
-            "rim at a, free inner edge",
-            "none; full contact by the MDR's quadratures in the ring BEM",
-        ),
-    ];
-    for (flags, gap, edges, closed) in rows {
-        t.push(vec![flags.into(), gap.into(), edges.into(), closed.into()]);
+    for name in PunchName::ALL {
+        let row = name.summary();
+        t.push(vec![
+            row.flags.into(),
+            row.gap.into(),
+            row.edges.into(),
+            row.closed_forms.into(),
+        ]);
     }
     t
 }

@@ -203,7 +203,7 @@ impl TouchedSequence {
 /// Touch and pull at each range on its mesh (`meshes`), the ranges that leave the branch
 /// (`left`) filed apart with the reason, then the smallest range on the branch again on a mesh
 /// with half the elements per zone (the mesh's share of the error bar): the annular branch's
-/// study and the torus's. `what` names the branch in errors.
+/// study and a free band's. `what` names the branch in errors.
 pub(super) fn touched_sequence(
     case: &Case,
     ranges: &[f64],

@@ -8,7 +8,7 @@
 
 pub mod annular;
 pub mod equilibrium;
+pub mod free_band;
 pub mod law;
 pub mod path;
 pub mod study;
-pub mod torus;

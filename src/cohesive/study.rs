@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::cohesive::equilibrium::CohesiveSurface;
 use crate::cohesive::law::ExponentialLaw;
-use crate::cohesive::path::{follow, PathOptions};
+use crate::cohesive::path::{follow, Curve, CurvePoint, PathOptions};
 use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
 use crate::fem::solver::{surface_response_on_mesh, FemOptions};
@@ -721,7 +721,7 @@ fn simulate_ranges(
 /// The case with `eps` zero unless the punch is a flat annulus, checked: `d0/h` of a concave
 /// punch, `0 < b/a < 1` of a flat annulus, the ranges.
 fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
-    let eps = if case.punch == PunchKind::FLAT_ANNULUS {
+    let eps = if case.punch.has_fixed_hole() {
         case.eps
     } else {
         0.0
@@ -729,7 +729,7 @@ fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
     if case.punch.is_concave() {
         check_d0_over_h(&case)?;
     }
-    if case.punch == PunchKind::FLAT_ANNULUS && !(eps > 0.0 && eps < 1.0) {
+    if case.punch.has_fixed_hole() && !(eps > 0.0 && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
             format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
@@ -830,7 +830,7 @@ fn run_sequence(
     Ok(PulloffStudy {
         stopped,
         punch: punch.clone(),
-        eps: (punch == PunchKind::FLAT_ANNULUS).then_some(eps),
+        eps: punch.has_fixed_hole().then_some(eps),
         d0_over_h: punch.is_concave().then_some(case.d0_over_h),
         branch: punch.is_concave().then_some(Branch::Closed),
         law: "exponential: tension (dw/rho) exp(-s/rho), dw = d0^2 E*/(2 pi a) (d0 = a for the \
@@ -1006,7 +1006,7 @@ pub(crate) fn simulate_cases(
     cases
         .par_iter()
         .map(|case| {
-            if case.punch == PunchKind::FLAT_ANNULUS {
+            if case.punch.has_fixed_hole() {
                 return Err(Error::Unsupported {
                     method: "cohesive-fem".into(),
                     reason: "simulate_cases covers contact lines from the axis (flat, cone, \
@@ -1081,7 +1081,6 @@ pub(crate) fn simulate(
     let begun = Instant::now();
     let d0 = case.d0();
     let work = d0 * d0 / (2.0 * std::f64::consts::PI);
-    let f0 = (8.0 * std::f64::consts::PI * work).sqrt();
     let law = ExponentialLaw {
         work,
         range: range * d0,
@@ -1092,11 +1091,53 @@ pub(crate) fn simulate(
         .map(|&r| case.punch.gap_shape(r))
         .collect();
     let surface = CohesiveSurface::new(response, recess, law)?;
-    // Steps of 0.02 d0 on the way out (0.02 h where d0 > h), of 0.02 h on the way in to a
-    // concave punch's preload (its hole closes over several h, node by node, whatever the step).
+    let curve = follow(&surface, path_options(case, branch, band))?;
+    if curve.pulloff.at_band_edge {
+        return Err(Error::NoConvergence {
+            method: "cohesive-fem".into(),
+            reason: format!(
+                "range rho/d0 = {}: the tension still rises where the crack front leaves the \
+                 refined band at the rim (r >= {} a, {RIM_BAND_ZONES} zone lengths): the \
+                 pull-off is not resolved there (a larger range, or --mesh with a finer \
+                 contact line)",
+                crate::error::show(range),
+                crate::error::show(band.unwrap_or(f64::NAN))
+            ),
+        });
+    }
+    let units = CurveUnits {
+        d0,
+        f0: (8.0 * std::f64::consts::PI * work).sqrt(),
+    };
+    let mut entry = units.entry(&curve, case, branch == Branch::Annular);
+    entry.range_over_a = range * d0;
+    entry.tabor = law.tabor();
+    entry.wall_s = begun.elapsed().as_secs_f64();
+    // The curve in units of d0 and F0: (depth, force, unloading).
+    let points = curve
+        .points
+        .iter()
+        .map(|p| (p.depth / units.d0, p.force / units.f0, p.unloading))
+        .collect();
+    let edges = curve
+        .points
+        .iter()
+        .map(|p| CurveEdges {
+            contact: p.contact,
+            zone: p.zone,
+        })
+        .collect();
+    Ok((entry, points, edges))
+}
+
+/// The load path of one simulation: steps of 0.02 d0 on the way out (0.02 h where d0 > h), of
+/// 0.02 h on the way in to a concave punch's preload (its hole closes over several h, node by
+/// node, whatever the step); the annular branch's preload and hops, or a rim band's hops.
+fn path_options(case: &Case, branch: Branch, band: Option<f64>) -> PathOptions {
+    let d0 = case.d0();
     let step = 0.02 * d0.min(1.0);
     let annular = branch == Branch::Annular;
-    let path = PathOptions {
+    PathOptions {
         preload: if annular {
             ANNULAR_PRELOAD
         } else {
@@ -1115,86 +1156,76 @@ pub(crate) fn simulate(
             0.0
         },
         hop_band: if annular { None } else { band },
-    };
-    let curve = follow(&surface, path)?;
-    if curve.pulloff.at_band_edge {
-        return Err(Error::NoConvergence {
-            method: "cohesive-fem".into(),
-            reason: format!(
-                "range rho/d0 = {}: the tension still rises where the crack front leaves the \
-                 refined band at the rim (r >= {} a, {RIM_BAND_ZONES} zone lengths): the \
-                 pull-off is not resolved there (a larger range, or --mesh with a finer \
-                 contact line)",
-                crate::error::show(range),
-                crate::error::show(band.unwrap_or(f64::NAN))
-            ),
-        });
     }
-    let concave = case.punch.is_concave();
-    let preload = curve.points.iter().rposition(|p| !p.unloading).unwrap_or(0);
-    let closed_at_preload = !curve.points[preload].centre_open;
-    // Open before the pull-off, or opened by the jump that ends the branch while the punch stays
-    // on (then that jump is the hole's, not the pull-off).
+}
+
+/// The units a simulation reports in: `d0` and Kendall's `F0 = sqrt(8 π Δw)` (`a = E* = 1`).
+struct CurveUnits {
+    d0: f64,
+    f0: f64,
+}
+
+impl CurveUnits {
+    /// The sequence entry of a followed curve: its pull-off and what the hole did before it
+    /// (the range, the Tabor parameter and the wall time are the caller's).
+    fn entry(&self, curve: &Curve, case: &Case, annular: bool) -> SequenceEntry {
+        let (d0, f0) = (self.d0, self.f0);
+        let concave = case.punch.is_concave();
+        let preload = curve.points.iter().rposition(|p| !p.unloading).unwrap_or(0);
+        let closed_at_preload = !curve.points[preload].centre_open;
+        let reopened = reopened_before_pulloff(curve, preload);
+        // The annular branch: the hole closed (some node in contact, the centre not open)
+        // before the pull-off.
+        let closed = annular
+            .then(|| {
+                curve
+                    .points
+                    .iter()
+                    .take_while(|p| !p.unloading || p.depth >= curve.pulloff.depth)
+                    .find(|p| p.contact.is_some() && !p.centre_open)
+            })
+            .flatten();
+        SequenceEntry {
+            range_over_a: 0.0,
+            tabor: 0.0,
+            pulloff_over_f0: -curve.pulloff.force / f0,
+            pulloff_depth_over_d0: curve.pulloff.depth / d0,
+            smooth_maximum: curve.pulloff.smooth,
+            jumps: curve.jumps.len(),
+            points: curve.points.len(),
+            preload_over_d0: Some(curve.points[preload].depth / d0),
+            hole_closed_at_preload: concave.then_some(closed_at_preload),
+            hole_open_before_pulloff: concave.then_some(reopened.is_some()),
+            hole_reopened_at: reopened
+                .filter(|_| concave)
+                .map(|p| (p.depth / d0, p.force / f0)),
+            unresolved_landing: curve.unresolved_landing.clone(),
+            hole_closed_at: closed.map(|p| (p.depth / d0, p.force / f0)),
+            node_hops: curve.hops,
+            line_element_size: None,
+            rim_band: None,
+            wall_s: 0.0,
+        }
+    }
+}
+
+/// The first state after the preload whose centre is open before the pull-off, or the state the
+/// jump that ends the branch lands on if its centre is open while the punch stays on (then that
+/// jump is the hole's, not the pull-off).
+fn reopened_before_pulloff(curve: &Curve, preload: usize) -> Option<&CurvePoint> {
     let branch = curve.points[preload].branch;
     let landing = curve
         .points
         .iter()
         .skip(preload)
         .find(|p| p.branch > branch);
-    let reopened = curve
+    curve
         .points
         .iter()
         .skip(preload)
         .take_while(|p| p.depth >= curve.pulloff.depth)
         .find(|p| p.centre_open)
-        .or(landing.filter(|p| p.centre_open));
-    // The annular branch: the hole closed (some node in contact, the centre not open) before
-    // the pull-off.
-    let closed = annular
-        .then(|| {
-            curve
-                .points
-                .iter()
-                .take_while(|p| !p.unloading || p.depth >= curve.pulloff.depth)
-                .find(|p| p.contact.is_some() && !p.centre_open)
-        })
-        .flatten();
-    let entry = SequenceEntry {
-        range_over_a: range * d0,
-        tabor: law.tabor(),
-        pulloff_over_f0: -curve.pulloff.force / f0,
-        pulloff_depth_over_d0: curve.pulloff.depth / d0,
-        smooth_maximum: curve.pulloff.smooth,
-        jumps: curve.jumps.len(),
-        points: curve.points.len(),
-        preload_over_d0: Some(curve.points[preload].depth / d0),
-        hole_closed_at_preload: concave.then_some(closed_at_preload),
-        hole_open_before_pulloff: concave.then_some(reopened.is_some()),
-        hole_reopened_at: reopened
-            .filter(|_| concave)
-            .map(|p| (p.depth / d0, p.force / f0)),
-        unresolved_landing: curve.unresolved_landing.clone(),
-        hole_closed_at: closed.map(|p| (p.depth / d0, p.force / f0)),
-        node_hops: curve.hops,
-        line_element_size: None,
-        rim_band: None,
-        wall_s: begun.elapsed().as_secs_f64(),
-    };
-    // The curve in units of d0 and F0: (depth, force, unloading).
-    let points = curve
-        .points
-        .iter()
-        .map(|p| (p.depth / d0, p.force / f0, p.unloading))
-        .collect();
-    let edges = curve
-        .points
-        .iter()
-        .map(|p| CurveEdges {
-            contact: p.contact,
-            zone: p.zone,
-        })
-        .collect();
-    Ok((entry, points, edges))
+        .or(landing.filter(|p| p.centre_open))
 }
 
 /// Linear extrapolation in the range to zero from the two smallest ranges,

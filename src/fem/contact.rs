@@ -138,6 +138,62 @@ enum Extrapolated {
     Root { root: f64, low: f64, high: f64 },
 }
 
+/// What the active-set loop does once an iteration only creeps (changes at most
+/// [`CREEP_CHANGES`] nodes): near a free edge the primal-dual iteration otherwise releases one
+/// node per factorisation (4-7 such steps).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Creep {
+    /// Go on with one factorisation per new active set.
+    Factorise,
+    /// Hand the remaining steps to the banded solve ([`ContactModel::hand_over`]), again after
+    /// each secant jump of the edge.
+    HandToBand,
+}
+
+/// The loop's place in its [`Creep`] strategy.
+struct CreepState {
+    creep: Creep,
+    /// Whether the hand-over is done (or never to be done): the secant may then jump at any step.
+    handed_over: bool,
+}
+
+impl CreepState {
+    fn new(creep: Creep) -> Self {
+        CreepState {
+            creep,
+            handed_over: creep == Creep::Factorise,
+        }
+    }
+
+    /// Whether the edge's secant may jump at a step that changed `changes` nodes: not where the
+    /// loop is about to hand the creep over to the band (its steps then cost responses; a jump
+    /// there delays the hand-over).
+    fn secant_allowed(&self, changes: usize) -> bool {
+        self.handed_over || changes > CREEP_CHANGES
+    }
+
+    /// A secant jump landed near the edge: the band may take over from there (at once when the
+    /// step was creeping already).
+    fn jumped(&mut self) {
+        self.handed_over = self.creep == Creep::Factorise;
+    }
+
+    /// Whether a step that changed `changes` nodes hands over now (once).
+    fn hands_over(&mut self, changes: usize) -> bool {
+        let now = !self.handed_over && changes <= CREEP_CHANGES;
+        self.handed_over |= now;
+        now
+    }
+}
+
+/// One primal-dual step: the displacement, its reactions and gaps, and the next active set.
+struct PrimalDualStep {
+    u: Vec<f64>,
+    reactions: Vec<(f64, f64)>,
+    gaps: Vec<f64>,
+    next: Vec<bool>,
+}
+
 /// How a banded contact solve ended.
 enum BandOutcome {
     /// Converged, with its active set.
@@ -203,7 +259,7 @@ impl<'m> ContactModel<'m> {
         })
     }
 
-    /// The model of a contact with two free edges (the torus): the mesh's contact line `[0, 1]`
+    /// The model of a contact with two free edges (a free band): the mesh's contact line `[0, 1]`
     /// is `[0, frame a]`, with no rim at its end. By the scaling of linear elasticity, a
     /// displacement field `u(x)` of the problem in units of `a` is `frame u'(x / frame)` of the
     /// problem on the mesh, so the gap shape on the mesh is `g(frame r') / frame`, a depth `d`
@@ -288,84 +344,62 @@ impl<'m> ContactModel<'m> {
         initial_active: Option<Vec<bool>>,
     ) -> Result<(ContactSolution, Vec<bool>)> {
         let mut system = self.banded_system(solver, kind.clone(), f64::INFINITY);
-        self.active_set_loop(&mut system, kind, depth, initial_active, false)
+        self.active_set_loop(&mut system, kind, depth, initial_active, Creep::Factorise)
     }
 
-    /// [`Self::concave`] that hands over to the banded solve once the active set only creeps:
-    /// when an iteration changes at most [`CREEP_CHANGES`] nodes, the nodes from
-    /// [`CREEP_BAND_NODES`] (or more) above the inner edge up are held as the core (one more factorisation)
-    /// and the remaining steps cost unit responses instead of factorisations. Near a free edge the
-    /// primal-dual iteration otherwise releases one node per factorisation (4-7 such steps).
-    fn concave_hybrid(
-        &self,
-        system: &mut BandedSystem,
-        kind: PunchKind,
-        depth: f64,
-        initial_active: Option<Vec<bool>>,
-    ) -> Result<(ContactSolution, Vec<bool>)> {
-        self.active_set_loop(system, kind, depth, initial_active, true)
-    }
-
-    /// The primal-dual active-set loop, one factorisation per new active set, with the hand-over
-    /// to the banded solve of [`Self::concave_hybrid`] when `handover`.
+    /// The primal-dual active-set loop as named phases: a primal-dual step (one factorisation
+    /// per new active set, [`Self::primal_dual_step`]); its end where the set repeats; the
+    /// free edge's secant jump ([`Self::edge_secant`]); and, by the `creep` strategy, the
+    /// hand-over of a creeping iteration to the banded solve ([`Self::hand_over`]).
     fn active_set_loop(
         &self,
         system: &mut BandedSystem,
         kind: PunchKind,
         depth: f64,
         initial_active: Option<Vec<bool>>,
-        handover: bool,
+        creep: Creep,
     ) -> Result<(ContactSolution, Vec<bool>)> {
-        let dofs = self.supports.len();
         let bound = self.bound(kind.clone(), depth);
         let mut active = self.initial_active(initial_active, &bound);
-        let zero = vec![0.0; dofs];
-        let mut handed_over = !handover;
+        let mut creep = CreepState::new(creep);
         // The last plain step of the free edge, `(from, to)` radii, for the secant step.
         let mut last_step: Option<(f64, f64)> = None;
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-            let (constrained, prescribed) = self.constraints(&active, &bound);
-            let u = system.solver.solve(&zero, &constrained, &prescribed)?;
-            let reactions = self.reactions(system.solver, &u);
-            let gaps = self.gaps(&bound, &u);
-            let mut next = self.next_active(&active, &reactions, &gaps)?;
+            let step = self.primal_dual_step(system, &bound, &active)?;
+            let mut next = step.next;
             if next == active {
-                let solution = self.converged(&active, reactions, &gaps, depth, u, iteration);
+                let solution = self.converged(
+                    &active,
+                    step.reactions,
+                    &step.gaps,
+                    depth,
+                    step.u,
+                    iteration,
+                );
                 return Ok((solution, active));
             }
             let changes = next.iter().zip(&active).filter(|(a, b)| a != b).count();
-            // No secant step where the hybrid loop is about to hand the creep over to the band
-            // (its steps then cost responses; a jump there delays the hand-over).
-            let step = self.ring_edge(&active).zip(self.ring_edge(&next));
-            let secant_allowed = handed_over || changes > CREEP_CHANGES;
-            if let (Some(step), Some(previous), true) = (step, last_step, secant_allowed) {
-                if let Some(edge) = Self::edge_secant(previous, step) {
-                    next = self.active_set_for_radius(edge);
-                    // The jump lands near the edge: the band may take over from there (at once
-                    // when this step was creeping already).
-                    handed_over = !handover;
+            let edge_step = self.ring_edge(&active).zip(self.ring_edge(&next));
+            if let (Some(edge_step), Some(previous)) = (edge_step, last_step) {
+                if creep.secant_allowed(changes) {
+                    if let Some(edge) = Self::edge_secant(previous, edge_step) {
+                        next = self.active_set_for_radius(edge);
+                        creep.jumped();
+                    }
                 }
             }
-            last_step = step;
-            if !handed_over && changes <= CREEP_CHANGES {
-                handed_over = true;
-                if let Some(first) = next.iter().position(|&a| a) {
-                    // The remaining steps release about as many nodes as this one did, in all.
-                    let band_nodes = CREEP_BAND_NODES.max(2 * changes + 4);
-                    let above = (first + band_nodes).min(next.len() - 1);
-                    let core_radius = self.mesh.nodes[self.contact_nodes[above]][0];
-                    system.set_core(self.core_for(core_radius), core_radius);
-                    match self.concave_banded(system, kind.clone(), depth, next.clone())? {
-                        BandOutcome::Solved(mut solution, active) => {
-                            solution.iterations += iteration;
-                            return Ok((solution, active));
-                        }
-                        BandOutcome::CoreReleased(_, reached) => {
-                            active = reached;
-                            continue;
-                        }
-                        BandOutcome::TooWide => {}
+            last_step = edge_step;
+            if creep.hands_over(changes) {
+                match self.hand_over(system, kind.clone(), depth, &next, changes)? {
+                    Some(BandOutcome::Solved(mut solution, active)) => {
+                        solution.iterations += iteration;
+                        return Ok((solution, active));
                     }
+                    Some(BandOutcome::CoreReleased(_, reached)) => {
+                        active = reached;
+                        continue;
+                    }
+                    Some(BandOutcome::TooWide) | None => {}
                 }
             }
             active = next;
@@ -373,6 +407,52 @@ impl<'m> ContactModel<'m> {
         Err(fem_error(format!(
             "the primal-dual active set did not settle in {MAX_ACTIVE_SET_ITERATIONS} iterations"
         )))
+    }
+
+    /// One primal-dual step from `active`: the displacement with the active nodes held at
+    /// `bound`, its reactions and gaps, and the next active set.
+    fn primal_dual_step(
+        &self,
+        system: &mut BandedSystem,
+        bound: &[f64],
+        active: &[bool],
+    ) -> Result<PrimalDualStep> {
+        let zero = vec![0.0; self.supports.len()];
+        let (constrained, prescribed) = self.constraints(active, bound);
+        let u = system.solver.solve(&zero, &constrained, &prescribed)?;
+        let reactions = self.reactions(system.solver, &u);
+        let gaps = self.gaps(bound, &u);
+        let next = self.next_active(active, &reactions, &gaps)?;
+        Ok(PrimalDualStep {
+            u,
+            reactions,
+            gaps,
+            next,
+        })
+    }
+
+    /// The hand-over of a creeping iteration to the banded solve: the nodes from
+    /// [`CREEP_BAND_NODES`] (or twice the step's `changes` plus four) above the inner edge of
+    /// `next` up are held as the core (one more factorisation), the remaining steps cost unit
+    /// responses ([`Self::concave_banded`]); `None` for an empty active set.
+    fn hand_over(
+        &self,
+        system: &mut BandedSystem,
+        kind: PunchKind,
+        depth: f64,
+        next: &[bool],
+        changes: usize,
+    ) -> Result<Option<BandOutcome>> {
+        let Some(first) = next.iter().position(|&a| a) else {
+            return Ok(None);
+        };
+        // The remaining steps release about as many nodes as this one did, in all.
+        let band_nodes = CREEP_BAND_NODES.max(2 * changes + 4);
+        let above = (first + band_nodes).min(next.len() - 1);
+        let core_radius = self.mesh.nodes[self.contact_nodes[above]][0];
+        system.set_core(self.core_for(core_radius), core_radius);
+        self.concave_banded(system, kind, depth, next.to_vec())
+            .map(Some)
     }
 
     /// A punch with a rim whose converged contact is not one ring `[b, a]` (active nodes near the
@@ -755,7 +835,7 @@ impl<'m> ContactModel<'m> {
             // Two free edges: the band's core (every node above a radius) does not apply; one
             // factorisation per active-set change.
             let (solution, active) =
-                self.active_set_loop(system, kind, depth, initial_active, false)?;
+                self.active_set_loop(system, kind, depth, initial_active, Creep::Factorise)?;
             return Ok((solution, active, false));
         }
         let mut warm = initial_active;
@@ -785,7 +865,8 @@ impl<'m> ContactModel<'m> {
                 }
             }
         }
-        let (solution, active) = self.concave_hybrid(system, kind, depth, warm)?;
+        let (solution, active) =
+            self.active_set_loop(system, kind, depth, warm, Creep::HandToBand)?;
         Ok((solution, active, false))
     }
 

@@ -148,7 +148,7 @@ pub struct FemState {
     pub edge_conditioning: Option<f64>,
     /// The sparse Cholesky backend that factorised the final model.
     pub linear_solver: crate::sparse::Backend,
-    /// A contact with two free edges (the torus): the located outer edge `c/a`; `None` where
+    /// A contact with two free edges (a free band): the located outer edge `c/a`; `None` where
     /// the contact ends at the rim.
     pub outer_edge: Option<f64>,
 }
@@ -500,7 +500,7 @@ struct WarmStart {
     /// Half-width of the band around it where the finer model's edge is expected: twice the
     /// coarser model's estimated error of the inner radius.
     pub band: f64,
-    /// Outer contact radius located on the coarser model: a free edge (the torus), else
+    /// Outer contact radius located on the coarser model: a free edge (a free band), else
     /// infinite (the rim).
     pub outer_radius: f64,
 }
@@ -1203,7 +1203,7 @@ pub fn solve_on_mesh(
     ))
 }
 
-/// One model of the ladder of a punch with two free edges (the torus) on its own, for a
+/// One model of the ladder of a punch with two free edges (a free band) on its own, for a
 /// mesh-convergence study: level `level` of the free-edges mesh family, refined around `edges`
 /// (`(radius, uncertainty)` in units of `a`; `None`: where the rigid profile meets the
 /// surface). The state has no error estimate; its outer edge is in `outer_edge`.

@@ -166,7 +166,7 @@ pub enum MeshRequest {
         /// The solve the mesh is made for (sizes at the edges follow its tolerance), if any.
         target: Option<SizeTarget>,
     },
-    /// Level `level` for a contact with two free edges (the torus), in the mesh's units (the
+    /// Level `level` for a contact with two free edges (a free band), in the mesh's units (the
     /// contact line `[0, 1]`): refined around each located edge `(radius, uncertainty)`
     /// ([`free_edges_parameters`]).
     FreeEdges {
@@ -363,7 +363,7 @@ fn free_edge_window(grading: f64, degree: f64, uncertainty: f64) -> f64 {
     grading * uncertainty / (EDGE_WINDOW_NODES * grading / degree).exp_m1()
 }
 
-/// `gmsh -setnumber` parameters of level `level` for a contact with two free edges (the torus),
+/// `gmsh -setnumber` parameters of level `level` for a contact with two free edges (a free band),
 /// in the mesh's units (the contact line `[0, 1]`): the adapted family's grading, no refinement
 /// at the line's end `r = 1` (not an edge of the contact), and around each located edge
 /// (`inner`, `outer`, known to within `inner_uncertainty`, `outer_uncertainty`) the size of

@@ -56,8 +56,8 @@ impl Solver for GridBem {
 
 /// Why `--grid-extent` is refused where it does not apply.
 pub(super) const EXTENT_ONLY_FOR_A_BAND: &str =
-    "--grid-extent sets the square of the torus's grid: use --punch torus --method grid-bem \
-     (the other punches' grid covers their own [-a, a]²)";
+    "--grid-extent sets the square of a free band's grid (a punch whose contact edges are both \
+     free) with --method grid-bem (the other punches' grid covers their own [-a, a]²)";
 
 /// Solve with the square-grid FFT BEM on `n x n` cells; `extent`: a free band's square
 /// half-size `L/a` (see [`GridBem::extent`]). Its convergence criterion is the complementarity
@@ -91,7 +91,9 @@ fn solve_grid_bem(
     let eps = scene.punch.inner_ratio();
     let start = Instant::now();
     let state = match extent {
-        Some(half_size) => grid_contact::solve_torus_on_square(n, half_size, load, tolerance)?,
+        Some(half_size) => {
+            grid_contact::solve_band_on_square(&kind, n, half_size, load, tolerance)?
+        }
         None => grid_contact::solve(kind.clone(), eps, n, load, tolerance)?,
     };
     let free_edges: &[fn(&grid_contact::GridState) -> f64] = match kind.contact() {
@@ -102,7 +104,13 @@ fn solve_grid_bem(
     let estimate = estimated.then(|| {
         grid_estimate::estimate(&state, free_edges, |m| {
             if kind.is_free_band() {
-                grid_contact::solve_torus_on_square(m, state.square_half_size, load, tolerance)
+                grid_contact::solve_band_on_square(
+                    &kind,
+                    m,
+                    state.square_half_size,
+                    load,
+                    tolerance,
+                )
             } else {
                 grid_contact::solve(kind.clone(), eps, m, load, tolerance)
             }

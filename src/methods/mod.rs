@@ -114,7 +114,7 @@ pub struct MethodOptions {
     pub degree: Option<Degree>,
     /// Grid BEM: cells per side (default 256).
     pub grid: Option<usize>,
-    /// Grid BEM, torus only: half-size `L` of the square `[-L, L]²` in units of `a` (default:
+    /// Grid BEM, free bands only: half-size `L` of the square `[-L, L]²` in units of `a` (default:
     /// sized from a coarse solve; the other punches' grid is their own `[-a, a]²`).
     pub grid_extent: Option<f64>,
     /// Grid BEM: solve the requested grid alone, without the coarser levels of its error

@@ -82,7 +82,7 @@ fn ring_state_to_solution(scene: &Scene, state: &RingState, wall_s: f64) -> Resu
     let k_scale = es * length / a.sqrt();
     Ok(Solution {
         outer_radius: state.outer_edge * a,
-        // The torus has no rim (its outer edge is free: K = 0 there).
+        // A free band has no rim (its outer edge is free: K = 0 there).
         stress_intensity_rim: scene
             .punch
             .kind

@@ -93,6 +93,14 @@ fn cone_hole_lower_bound(depth: f64) -> f64 {
     )
 }
 
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch cone",
+    gap: "h (1 - r/a)",
+    edges: "rim at a, free inner edge",
+    closed_forms: "none in partial contact; never closes",
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -29,3 +29,11 @@ impl Profile for Flat {
         false
     }
 }
+
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch flat",
+    gap: "0",
+    edges: "rim at a (disk)",
+    closed_forms: "Boussinesq F = 2 E* a d",
+};

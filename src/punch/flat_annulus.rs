@@ -30,3 +30,11 @@ impl Profile for FlatAnnulus {
         false
     }
 }
+
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch flat-annulus --eps B",
+    gap: "0 on [b, a], hole inside",
+    edges: "rims at b and a",
+    closed_forms: "Collins series, narrow-ring asymptote",
+};

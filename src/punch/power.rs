@@ -110,3 +110,11 @@ impl Profile for Power {
         self.n()
     }
 }
+
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch power --exponent N",
+    gap: "h (1 - (r/a)^n), n > 0",
+    edges: "rim at a, free inner edge",
+    closed_forms: "full contact (n > 1) by the MDR, `verify solve --method reference`",
+};

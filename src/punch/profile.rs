@@ -17,7 +17,7 @@ pub enum Contact {
     FixedAnnulus,
     /// `[b(d), a]`: a sharp rim at `r = a` and a free inner edge (the concave punches).
     RimAndFreeInner,
-    /// `[b(d), c(d)]` around `r = a`: two free edges and no rim (the torus).
+    /// `[b(d), c(d)]` around `r = a`: two free edges and no rim.
     FreeBand,
 }
 
@@ -26,7 +26,7 @@ pub enum Contact {
 /// [`gap`](Self::gap) and [`slope`](Self::slope) are required; every other answer has a safe
 /// default (no closed form, no closure, the floor of the hole probed).
 pub trait Profile: Send + Sync + std::fmt::Debug {
-    /// Name on the command line and in JSON (`cone`, `torus`, or a user's own).
+    /// Name on the command line and in JSON (`cone`, `flat-annulus`, or a user's own).
     fn name(&self) -> &str;
 
     /// Where the contact lies and which edges are free ([`Contact`]).
@@ -123,8 +123,61 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
         false
     }
 
+    /// An approximation of `γ1 = d/h` (`depth_controlled`) or `γ2 = F/(2 E* h a)` at the inner
+    /// edge `b/a = eps`, decreasing in `eps`, that starts the ring BEM's inverse search; `None`
+    /// (the default): the solver's own start (the paper's fits scaled by the rim slope).
+    fn approximate_gamma(&self, eps: f64, depth_controlled: bool) -> Option<f64> {
+        let _ = (eps, depth_controlled);
+        None
+    }
+
+    /// Where a free band first touches, `r0/a`, and the gap's curvature there, `a² g''(r0)/h`:
+    /// the narrow band's plane-strain limit. `None` (the default): not known.
+    fn first_touch(&self) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// How far the rigid profile pressed to `d/h = depth` past its first touch reaches on each
+    /// side of it: `(inner, outer)` half-widths in units of `a`, where
+    /// `ĝ(r) = ĝ(r0) + d/h` ([`Profile::first_touch`]'s `r0`, `1` if it says none); the inner
+    /// one stops at the axis. By default found by bisection on the gap.
+    fn rigid_half_widths(&self, depth: f64) -> (f64, f64) {
+        let r0 = self.first_touch().map_or(1.0, |(r0, _)| r0);
+        let above = |r: f64| self.gap(r) - self.gap(r0) - depth > 0.0;
+        let bisect = |mut below: f64, mut over: f64| {
+            for _ in 0..100 {
+                let mid = 0.5 * (below + over);
+                if above(mid) {
+                    over = mid;
+                } else {
+                    below = mid;
+                }
+            }
+            0.5 * (below + over)
+        };
+        let inner = if above(0.0) { r0 - bisect(r0, 0.0) } else { r0 };
+        let mut far = 2.0 * r0.max(1.0);
+        for _ in 0..60 {
+            if above(far) {
+                break;
+            }
+            far *= 2.0;
+        }
+        (inner, bisect(r0, far) - r0)
+    }
+
     /// The slope `-ĝ'(1)` at the rim, which scales the paper's fits into a first guess.
     fn rim_slope(&self) -> f64 {
         -self.slope(1.0)
     }
+}
+
+/// What `verify references` says of a built-in punch: the flags that name it, its gap, its edges and
+/// its closed forms.
+#[derive(Clone, Copy, Debug)]
+pub struct Summary {
+    pub flags: &'static str,
+    pub gap: &'static str,
+    pub edges: &'static str,
+    pub closed_forms: &'static str,
 }

@@ -35,3 +35,11 @@ impl Profile for Sphere {
         false
     }
 }
+
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch sphere",
+    gap: "h (1 - r²/a²)",
+    edges: "rim at a, free inner edge",
+    closed_forms: "full contact d >= 3h: F = 2 E* a (d - h/3)",
+};

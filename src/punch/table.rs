@@ -377,6 +377,14 @@ fn end_slope(h0: f64, h1: f64, m0: f64, m1: f64) -> f64 {
     }
 }
 
+/// What `verify references` says of this punch.
+pub(crate) const SUMMARY: super::profile::Summary = super::profile::Summary {
+    flags: "--punch table --profile FILE",
+    gap: "h ĝ(r/a), ĝ by PCHIP through the file's (r/a, g/h)",
+    edges: "rim at a, free inner edge",
+    closed_forms: "none; full contact by the MDR's quadratures in the ring BEM",
+};
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -6,6 +6,7 @@
 
 use super::{PunchName, SceneSpec};
 use crate::error::{Error, Result};
+use crate::punch::Contact;
 
 /// Each flat keyword and the section of the scene file it belongs to.
 const SECTIONS: [(&str, &str); 14] = [
@@ -33,101 +34,95 @@ pub fn keyword_names() -> Vec<&'static str> {
     names
 }
 
-impl SceneSpec {
-    /// The scene of the flat keywords `object` (`{"punch": "cone", "depth": 2}`): each key is
-    /// placed in its section of the scene file and read as the file is
-    /// ([`SceneSpec::from_json_value`]); `eps` is `b/a` as `--eps` takes it. Unknown keys, a key
-    /// given twice (`punch` and `shape`), and `eps` beside another load are errors naming them.
-    pub fn from_keywords(
-        object: serde_json::Map<String, serde_json::Value>,
-        origin: &str,
-        base: Option<&std::path::Path>,
-    ) -> Result<Self> {
-        let mut nested = serde_json::Map::new();
-        let mut eps = None;
-        for (key, value) in object {
-            if value.is_null() {
+/// [`SceneSpec::from_keywords`].
+pub(super) fn from_keywords(
+    object: serde_json::Map<String, serde_json::Value>,
+    origin: &str,
+    base: Option<&std::path::Path>,
+) -> Result<SceneSpec> {
+    let mut nested = serde_json::Map::new();
+    let mut eps = None;
+    for (key, value) in object {
+        if value.is_null() {
+            continue;
+        }
+        let (key, section) = match key.as_str() {
+            "eps" => {
+                eps = Some(value);
                 continue;
             }
-            let (key, section) = match key.as_str() {
-                "eps" => {
-                    eps = Some(value);
-                    continue;
-                }
-                "punch" => ("shape".to_string(), "punch"),
-                _ => match SECTIONS.iter().find(|(k, _)| *k == key) {
-                    Some((_, section)) => (key, *section),
-                    None => {
-                        return Err(Error::invalid(
-                            &key,
-                            format!(
-                                "is not a scene keyword (a scene takes {})",
-                                keyword_names().join(", ")
-                            ),
-                        ))
-                    }
-                },
-            };
-            let entry = nested
-                .entry(section)
-                .or_insert_with(|| serde_json::Value::Object(Default::default()));
-            if let Some(fields) = entry.as_object_mut() {
-                if fields.insert(key.clone(), value).is_some() {
+            "punch" => ("shape".to_string(), "punch"),
+            _ => match SECTIONS.iter().find(|(k, _)| *k == key) {
+                Some((_, section)) => (key, *section),
+                None => {
                     return Err(Error::invalid(
-                        "punch",
-                        "and `shape` both name the shape: give one",
-                    ));
+                        &key,
+                        format!(
+                            "is not a scene keyword (a scene takes {})",
+                            keyword_names().join(", ")
+                        ),
+                    ))
                 }
+            },
+        };
+        let entry = nested
+            .entry(section)
+            .or_insert_with(|| serde_json::Value::Object(Default::default()));
+        if let Some(fields) = entry.as_object_mut() {
+            if fields.insert(key.clone(), value).is_some() {
+                return Err(Error::invalid(
+                    "punch",
+                    "and `shape` both name the shape: give one",
+                ));
             }
         }
-        let eps =
-            match eps {
-                None => None,
-                Some(value) => Some(value.as_f64().ok_or_else(|| {
-                    Error::invalid("eps", format!("must be a number (got {value})"))
-                })?),
-            };
-        let loads = nested
-            .get("load")
-            .and_then(|l| l.as_object())
-            .map_or(0, |l| l.len());
-        let has_inner_radius = nested
-            .get("punch")
-            .and_then(|p| p.get("inner_radius"))
-            .is_some();
-        let spec = Self::from_json_value(serde_json::Value::Object(nested), origin, base)?;
-        let Some(eps) = eps else {
-            return Ok(spec);
-        };
-        if loads > 0 && spec.shape_name() != Some(PunchName::FlatAnnulus) {
-            return Err(Error::invalid(
-                "eps",
-                "prescribes the contact of a concave punch; do not combine it with `depth`, \
-                 `force` or `contact_ratio`",
-            ));
-        }
-        if has_inner_radius {
-            return Err(Error::invalid(
-                "eps",
-                "and `inner_radius` both give the flat annulus's hole: give one",
-            ));
-        }
-        spec.eps(eps)
     }
+    let eps = match eps {
+        None => None,
+        Some(value) => Some(
+            value
+                .as_f64()
+                .ok_or_else(|| Error::invalid("eps", format!("must be a number (got {value})")))?,
+        ),
+    };
+    let loads = nested
+        .get("load")
+        .and_then(|l| l.as_object())
+        .map_or(0, |l| l.len());
+    let has_inner_radius = nested
+        .get("punch")
+        .and_then(|p| p.get("inner_radius"))
+        .is_some();
+    let spec = SceneSpec::from_json_value(serde_json::Value::Object(nested), origin, base)?;
+    let Some(eps) = eps else {
+        return Ok(spec);
+    };
+    if loads > 0 && spec.shape_name().map(PunchName::contact) != Some(Contact::FixedAnnulus) {
+        return Err(Error::invalid(
+            "eps",
+            "prescribes the contact of a concave punch; do not combine it with `depth`, \
+                 `force` or `contact_ratio`",
+        ));
+    }
+    if has_inner_radius {
+        return Err(Error::invalid(
+            "eps",
+            "and `inner_radius` both give the flat annulus's hole: give one",
+        ));
+    }
+    spec.eps(eps)
+}
 
-    /// Set `b/a` as `--eps` does: the flat annulus's hole (against the rim radius), or the
-    /// prescribed contact ratio of a punch whose contact is found (cone, sphere, power, torus,
-    /// table). The flat circular punch has no `b/a`: an error.
-    pub fn eps(self, eps: f64) -> Result<Self> {
-        match self.shape_name() {
-            Some(PunchName::Flat) => Err(Error::invalid(
-                "eps",
-                "does not apply to the flat circular punch; use the flat-annulus punch with \
+/// [`SceneSpec::eps`].
+pub(super) fn with_eps(spec: SceneSpec, eps: f64) -> Result<SceneSpec> {
+    match spec.shape_name().map(PunchName::contact) {
+        Some(Contact::Disk) => Err(Error::invalid(
+            "eps",
+            "does not apply to the flat circular punch; use the flat-annulus punch with \
                  eps = b/a",
-            )),
-            Some(PunchName::FlatAnnulus) | None => Ok(self.inner_ratio(eps)),
-            Some(_) => Ok(self.contact_ratio(eps)),
-        }
+        )),
+        Some(Contact::FixedAnnulus) | None => Ok(spec.inner_ratio(eps)),
+        Some(_) => Ok(spec.contact_ratio(eps)),
     }
 }
 

@@ -42,7 +42,7 @@ impl FaerAnalysis {
 
     fn ordered(pattern: &Pattern<'_>, ordering: SymmetricOrdering<'_, usize>) -> Result<Self> {
         let symbolic =
-            factorize_symbolic_cholesky(pattern.view()?, Side::Lower, ordering, Default::default())
+            factorize_symbolic_cholesky(view(pattern)?, Side::Lower, ordering, Default::default())
                 .map_err(|e| solver_error(format!("symbolic Cholesky analysis failed: {e:?}")))?;
         Ok(Self {
             symbolic: Arc::new(symbolic),
@@ -71,7 +71,7 @@ impl FaerFactor {
         constrained: &[bool],
     ) -> Result<Self> {
         let reduced = pattern.reduced_lower_values(values, constrained);
-        let view = pattern.view()?;
+        let view = view(pattern)?;
         let matrix = SparseColMatRef::new(view, &reduced);
         let symbolic = &analysis.symbolic;
         let par = Par::Seq;
@@ -114,15 +114,13 @@ impl FaerFactor {
 }
 
 /// `pattern` as `faer`'s view.
-impl Pattern<'_> {
-    fn view(&self) -> Result<SymbolicSparseColMatRef<'_, usize>> {
-        self.check()?;
-        Ok(SymbolicSparseColMatRef::new_checked(
-            self.n(),
-            self.n(),
-            self.col_offsets,
-            None,
-            self.row_indices,
-        ))
-    }
+fn view<'p>(pattern: &'p Pattern<'_>) -> Result<SymbolicSparseColMatRef<'p, usize>> {
+    pattern.check()?;
+    Ok(SymbolicSparseColMatRef::new_checked(
+        pattern.n(),
+        pattern.n(),
+        pattern.col_offsets,
+        None,
+        pattern.row_indices,
+    ))
 }

@@ -145,7 +145,7 @@ impl<'a> InverseSearch<'a> {
         let (solver, controlled, target) = (self.solver, self.controlled, self.target);
         let mut stencil = InnerStencil::default();
         let mut rough = |eps: f64| -> std::result::Result<f64, String> {
-            let band = solver
+            let band = piecewise_gap::GapBands(solver)
                 .gap_band(table, eps, 1.0, n, BandEdges::InnerRough, &mut stencil)
                 .map_err(|e| e.to_string())?;
             let gamma1 = band.functionals.free_inner_depth();
@@ -328,7 +328,7 @@ impl<'a> InverseSearch<'a> {
             + 2.0 * (self.pick(fine) - self.target).abs())
             / slope.abs();
         let other_error = (other_fine - other_coarse).abs() + other_slope.abs() * eps_error;
-        // The outer edge (the torus's; the rim, exactly 1, for the others).
+        // The outer edge (a free band's; the rim, exactly 1, for the others).
         let outer_error =
             (outer_fine - coarse.system.region().outer()).abs() + outer_slope.abs() * eps_error;
         let change = eps_error

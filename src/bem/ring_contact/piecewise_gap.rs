@@ -327,9 +327,20 @@ impl PiecewiseGap for Remainder<'_> {
     }
 }
 
-impl RingBemSolver {
+/// The ring BEM's bands of a piecewise gap: its collocation systems and band rule, asked for the
+/// gap's functionals on a band and their derivatives in the band's edges.
+pub(crate) struct GapBands<'a>(pub &'a RingBemSolver);
+
+impl std::ops::Deref for GapBands<'_> {
+    type Target = RingBemSolver;
+    fn deref(&self) -> &RingBemSolver {
+        self.0
+    }
+}
+
+impl GapBands<'_> {
     fn flat_band(&self, inner: f64, outer: f64, n: usize) -> Result<FlatBand> {
-        let system = self.system(ContactRegion::Band { inner, outer }, n);
+        let system = self.0.system(ContactRegion::Band { inner, outer }, n);
         let field = system
             .solve(&vec![1.0; n])
             .ok_or_else(|| no_convergence("singular collocation matrix".into()))?;
@@ -410,7 +421,7 @@ impl RingBemSolver {
             gap,
             smooth: &band.smooth,
         };
-        let integrals = band_integrals(&self.band_rule, &remainder, (inner, outer), &factor);
+        let integrals = band_integrals(&self.0.band_rule, &remainder, (inner, outer), &factor);
         band.functionals.gap_outer_intensity = Some(outer_edge_intensity(
             &band.system,
             &band.smooth_gap,
@@ -494,7 +505,7 @@ impl RingBemSolver {
             gap,
             smooth: &smooth,
         };
-        let integrals = band_integrals(&self.band_rule, &remainder, (inner, outer), &factor);
+        let integrals = band_integrals(&self.0.band_rule, &remainder, (inner, outer), &factor);
         let flat_inner = centre.system.inner_stress_intensity(&centre.field);
         let flat_outer = centre.system.rim_stress_intensity(&centre.field);
         let functionals = GapFunctionals {
@@ -872,7 +883,8 @@ mod tests {
 
     #[test]
     fn functionals_of_a_smooth_gap_equal_its_direct_collocation() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = GapBands(&owner);
         let gap = Wavy {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95, 1.2],
         };
@@ -905,7 +917,8 @@ mod tests {
     /// completed one).
     #[test]
     fn a_band_completed_with_its_outer_edge_equals_one_built_with_both() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = GapBands(&owner);
         let gap = Wavy {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],
         };
@@ -1020,7 +1033,8 @@ mod tests {
     /// stencil's on the wavy gap (its remainder is far larger than a table's) at 16 nodes.
     #[test]
     fn a_rough_band_is_close_to_the_full_one() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = GapBands(&owner);
         let gap = Wavy {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],
         };
@@ -1045,7 +1059,8 @@ mod tests {
     /// its own edge); the reference is the direct collocation of the (analytic) wavy gap.
     #[test]
     fn a_band_on_a_reused_stencil_is_as_accurate_as_one_built_alone() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = GapBands(&owner);
         let gap = Wavy {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],
         };
@@ -1102,7 +1117,8 @@ mod tests {
     /// field, equals the direct collocation's (the wavy gap is analytic: 64 nodes converge).
     #[test]
     fn the_surface_in_the_hole_equals_its_direct_collocation() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = GapBands(&owner);
         let rule = TanhSinhRule::new(1.0 / 16.0);
         let gap = Wavy {
             breaks: vec![0.05, 0.3, 0.55, 0.8, 0.95],

@@ -70,12 +70,19 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
         None => SceneSpec::default(),
     };
     if args.punch.is_none() && args.scene.is_none() {
-        return Err(
-            "give --punch {flat|flat-annulus|cone|sphere|power|torus|table} (power with \
-             --exponent N, torus with --tube-radius RHO, table with --profile FILE) or --scene \
-             FILE"
-                .into(),
-        );
+        let parameters: Vec<String> = PunchName::ALL
+            .iter()
+            .filter_map(|name| {
+                let flags = name.summary().flags;
+                let rest = flags.strip_prefix(&format!("--punch {name}"))?.trim();
+                (!rest.is_empty()).then(|| format!("{name} with {rest}"))
+            })
+            .collect();
+        return Err(format!(
+            "give --punch {{{}}} ({}) or --scene FILE",
+            PunchName::names(None, "|"),
+            parameters.join(", ")
+        ));
     }
     spec = spec.shape_named(args.punch, args.exponent);
     if let Some(rho) = args.tube_radius {
@@ -86,13 +93,13 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     }
     // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
     if let Some(eps) = args.eps {
-        match spec.shape_name() {
-            Some(PunchName::Flat) => {
+        match spec.shape_name().map(PunchName::contact) {
+            Some(Contact::Disk) => {
                 return Err("--eps does not apply to the flat circular punch; \
                             use --punch flat-annulus --eps B_OVER_A"
                     .into())
             }
-            Some(PunchName::FlatAnnulus) | None => {}
+            Some(Contact::FixedAnnulus) | None => {}
             Some(_) if args.depth.is_some() || args.force.is_some() => {
                 return Err("--eps prescribes the contact of a concave punch; \
                             do not combine it with --depth or --force"

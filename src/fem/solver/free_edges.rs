@@ -1,11 +1,11 @@
-//! The FEM's ladder for a contact with two free edges (the torus): the annulus `b <= r <= c`
+//! The FEM's ladder for a contact with two free edges (a free band): the annulus `b <= r <= c`
 //! has no rim, both edges are found by the solution.
 //!
 //! **The model.** The committed and adapted meshes have a contact line `[0, 1]` in their own
-//! length unit. The torus's contact can reach beyond `r = a`, so its model takes the mesh's unit
+//! length unit. A band's contact can reach beyond `r = a`, so its model takes the mesh's unit
 //! as `frame a` ([`ContactModel::with_free_edges`]): the line is `[0, frame a]`, with `frame`
-//! `1.5 (1 + √(d/h))` (beyond the rigid profile's intersection with the surface, which the
-//! contact never passes) and doubled when the located contact reaches the line's end.
+//! 1.5 times the rigid profile's outer intersection with the surface (which the contact never
+//! passes) and doubled when the located contact reaches the line's end.
 //!
 //! **The ladder**, through the same phases as the one-edge ladder (mesh, model, contact,
 //! estimate, decision): a first model on the adapted level that can meet the tolerance locates
@@ -42,33 +42,43 @@ use crate::punch::PunchKind;
 /// Times the contact line is doubled when the located contact reaches its end.
 const MAX_LINE_WIDENINGS: usize = 3;
 
+/// Where the band first touches, `r0/a` ([`Profile::first_touch`](crate::punch::Profile::first_touch)), `1` if the profile does not say.
+fn first_touch(kind: &PunchKind) -> f64 {
+    kind.first_touch().map_or(1.0, |(r0, _)| r0)
+}
+
 /// The depth `d/h` the first model starts from: the scene's under depth control; under force
-/// control `8 γ2 / π²`, the depth whose rigid intersection is twice the half-width
-/// `w = √(2 γ2) / π` of the narrow torus's plane-strain Hertz contact (`F/(2π a) = π E* w²/(4ρ)`
-/// with `ρ = a²/(2h)`), which the contact is narrower than.
-fn depth_guess(load: FemLoad) -> f64 {
+/// control `8 γ2 / (π² r0)`, the depth whose rigid intersection is twice the half-width
+/// `w = √(4 γ2/(π² κ r0))` of the narrow band's plane-strain Hertz contact at its first touch
+/// `r0` (`F/(2π r0) = π E* w²/(4ρ)`, `ρ = a²/(κ h)`), which the contact is narrower than.
+fn depth_guess(kind: &PunchKind, load: FemLoad) -> f64 {
     match load {
-        FemLoad::ConcaveForce(gamma2) => 8.0 * gamma2.max(0.0) / std::f64::consts::PI.powi(2),
+        FemLoad::ConcaveForce(gamma2) => {
+            8.0 * gamma2.max(0.0) / (std::f64::consts::PI.powi(2) * first_touch(kind))
+        }
         FemLoad::ConcaveDepth(depth) => depth.max(0.0),
         FemLoad::Flat => 0.0,
     }
 }
 
-/// The mesh's unit `frame a` for a load: `1.5 (1 + √(d/h))` for the [`depth_guess`] (the rigid
-/// profile `h (1 - r/a)²` meets the surface at `r = a (1 + √(d/h))`, and the contact lies
-/// inside), at least 2 (the line is widened if the contact reaches its end).
-fn initial_frame(load: FemLoad) -> f64 {
-    (1.5 * (1.0 + depth_guess(load).sqrt())).max(2.0)
+/// The mesh's unit `frame a` for a load: 1.5 times the radius where the rigid profile at the
+/// [`depth_guess`] meets the surface outside the band (the contact lies inside), at least 2 (the
+/// line is widened if the contact reaches its end).
+fn initial_frame(kind: &PunchKind, load: FemLoad) -> f64 {
+    let (_, outer) = kind.rigid_half_widths(depth_guess(kind, load));
+    (1.5 * (first_touch(kind) + outer)).max(2.0)
 }
 
 /// Edges `(radius, uncertainty)` of the first model, in units of `a`: the rigid profile's
-/// intersection with the surface at the [`depth_guess`], `a (1 ± √(d/h))`, each known to within
-/// half its distance from `a`.
-fn rigid_edges(load: FemLoad) -> [(f64, f64); 2] {
-    let half_width = depth_guess(load).sqrt();
+/// intersections with the surface at the [`depth_guess`]
+/// ([`Profile::rigid_half_widths`](crate::punch::Profile::rigid_half_widths)), each known to
+/// within half its distance from the first touch.
+fn rigid_edges(kind: &PunchKind, load: FemLoad) -> [(f64, f64); 2] {
+    let r0 = first_touch(kind);
+    let (inner, outer) = kind.rigid_half_widths(depth_guess(kind, load));
     [
-        ((1.0 - half_width).max(0.0), 0.5 * half_width),
-        (1.0 + half_width, 0.5 * half_width),
+        ((r0 - inner).max(0.0), 0.5 * inner),
+        (r0 + outer, 0.5 * outer),
     ]
 }
 
@@ -160,7 +170,7 @@ fn solve_level(
         model.stiffness.nrows(),
         model.path
     ));
-    let depth_guess = Some(previous.map_or(depth_guess(load), |p| p.gamma1));
+    let depth_guess = Some(previous.map_or(depth_guess(kind, load), |p| p.gamma1));
     // The model below's band starts the active-set iteration.
     let warm = previous.map(|p| super::WarmStart {
         inner_radius: p.edges[0],
@@ -201,7 +211,7 @@ enum Climb {
     LineTooShort,
 }
 
-/// Solve a punch whose contact has two free edges (the torus) with the FEM (module
+/// Solve a punch whose contact has two free edges (a free band) with the FEM (module
 /// documentation).
 pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Result<FemState> {
     let start = Instant::now();
@@ -219,7 +229,7 @@ pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Res
     }
     provider::find_project_root()?;
     let progress = Heartbeat::start("fem");
-    let mut frame = initial_frame(load);
+    let mut frame = initial_frame(&kind, load);
     for _ in 0..=MAX_LINE_WIDENINGS {
         match climb(kind.clone(), load, options, frame, start, &progress)? {
             Climb::Solved(state) => return Ok(*state),
@@ -250,9 +260,9 @@ pub(super) fn solve_on_level(
         return Err(fem_error(format!("the {kind} is not a flat punch")));
     }
     provider::find_project_root()?;
-    let frame = initial_frame(load);
+    let frame = initial_frame(&kind, load);
     let tolerance = options.tolerance;
-    let edges = edges.unwrap_or_else(|| rigid_edges(load));
+    let edges = edges.unwrap_or_else(|| rigid_edges(&kind, load));
     let request = MeshRequest::FreeEdges {
         level,
         edges: edges.map(|(r, uncertainty)| (r / frame, uncertainty / frame)),
@@ -272,7 +282,7 @@ pub(super) fn solve_on_level(
         0.0,
         load,
         None,
-        Some(depth_guess(load)),
+        Some(depth_guess(&kind, load)),
         tolerance,
     )?;
     if s.outer_node_spacing == 0.0 {
@@ -308,7 +318,7 @@ fn climb(
         degree: degree as usize,
     };
     let mut level = first_adapted_level(degree, tolerance);
-    let mut edges = rigid_edges(load);
+    let mut edges = rigid_edges(&kind, load);
     let mut previous: Option<Rung> = None;
     let mut last_change: Option<f64> = None;
     // The grading estimate of the current level, kept when the level is refined at the edges.
@@ -393,7 +403,7 @@ fn climb(
     )))
 }
 
-/// The contact must be a ring: one that reaches the axis (a disk, the torus pressed beyond its
+/// The contact must be a ring: one that reaches the axis (a disk, a band pressed beyond its
 /// closure) has one free edge, which this ladder does not treat.
 fn check_open(kind: PunchKind, s: &ContactSolution, mesh: &str) -> Result<()> {
     if s.inner_radius > 0.0 {

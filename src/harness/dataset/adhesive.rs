@@ -192,7 +192,7 @@ pub fn concave(
 }
 
 /// The torus: the pull-off under fixed load and fixed grips (Griffith condition at both free
-/// edges, [`adhesion::torus_jkr`]) at each `d0/h` of `scales`, beside the plane-strain JKR
+/// edges, [`adhesion::band_jkr`]) at each `d0/h` of `scales`, beside the plane-strain JKR
 /// cylinder's fixed-load pull-off (the narrow limit).
 pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) -> Result<Resource> {
     let mut fields = vec![Field::number(
@@ -251,7 +251,7 @@ pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) ->
          narrow limit d0/h -> 0 (an asymptote, no bound)",
     ));
     let mut table = Table::new("torus JKR", fields.iter().map(Field::column).collect());
-    let cells = |c: Option<&adhesion::TorusCritical>| -> Vec<Cell> {
+    let cells = |c: Option<&adhesion::BandCritical>| -> Vec<Cell> {
         match c {
             Some(c) => vec![
                 c.force.into(),
@@ -270,11 +270,11 @@ pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) ->
             k + 1,
             scales.len()
         ));
-        let r = adhesion::torus_jkr(solver, s)?;
+        let r = adhesion::band_jkr(solver, &PunchKind::TORUS, s)?;
         let mut row: Vec<Cell> = vec![s.into()];
         row.extend(cells(r.fixed_load.as_ref()));
         row.extend(cells(r.fixed_grips.as_ref()));
-        row.push(r.plane_strain_fixed_load.into());
+        row.push(r.plane_strain_fixed_load.map_or(Cell::Missing, Cell::from));
         table.push(row);
     }
     Ok(Resource {

@@ -23,15 +23,15 @@ pub const TOLERANCE: f64 = 1e-9;
 /// The contact ratios the ring BEM certifies, the ends of the grid.
 pub const EPS_RANGE: (f64, f64) = (1e-4, 0.9999);
 
-/// The torus's ends: below `b = 0.01 a` its band reaches past `c = 5.8 a` (the parabolic
-/// profile is far outside its validity there) and the ring BEM no longer reaches 1e-9 by
+/// A free band's ends: below `b = 0.01 a` the parabolic ring's band reaches past `c = 5.8 a`
+/// (its profile is far outside its validity there) and the ring BEM no longer reaches 1e-9 by
 /// `b = 1e-4 a`.
-pub const TORUS_EPS_RANGE: (f64, f64) = (1e-2, 0.9999);
+pub const BAND_EPS_RANGE: (f64, f64) = (1e-2, 0.9999);
 
 /// The ends of `kind`'s grid.
 fn eps_range(kind: PunchKind) -> (f64, f64) {
-    if kind == PunchKind::TORUS {
-        TORUS_EPS_RANGE
+    if kind.is_free_band() {
+        BAND_EPS_RANGE
     } else {
         EPS_RANGE
     }
@@ -125,7 +125,7 @@ fn function_names(kind: PunchKind) -> Vec<&'static str> {
     }
 }
 
-/// The function values of a state (`γ`; `γ1` and `γ2`; the torus's also `c/a`).
+/// The function values of a state (`γ`; `γ1` and `γ2`; a free band's also `c/a`).
 fn functions(kind: PunchKind, s: &RingState) -> Vec<f64> {
     match kind.contact() {
         Contact::FixedAnnulus | Contact::Disk => vec![s.gamma.unwrap_or(f64::NAN)],

@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use crate::punch::PunchName;
+use crate::punch::{Contact, PunchName};
 
 /// A quantity a row may give: a state (`eps`, `depth`, `force`) or a graded value.
 #[derive(
@@ -13,7 +13,7 @@ use crate::punch::PunchName;
 )]
 #[serde(rename_all = "lowercase")]
 pub enum Quantity {
-    /// Contact ratio `b/a` (the flat annulus's hole; a concave punch's or the torus's inner edge).
+    /// Contact ratio `b/a` (the flat annulus's hole; a concave punch's or a free band's inner edge).
     Eps,
     /// Indentation depth `d` of the rim.
     Depth,
@@ -21,9 +21,9 @@ pub enum Quantity {
     Force,
     /// `γ = F/(2 E* d a)` of the flat punches.
     Gamma,
-    /// `γ1 = d/h` of the concave punches and the torus.
+    /// `γ1 = d/h` of the concave punches and the free bands.
     Gamma1,
-    /// `γ2 = F/(2 E* h a)` of the concave punches and the torus.
+    /// `γ2 = F/(2 E* h a)` of the concave punches and the free bands.
     Gamma2,
 }
 
@@ -282,7 +282,7 @@ fn row(
             punch_names()
         )
     })?;
-    let flat = matches!(punch, PunchName::Flat | PunchName::FlatAnnulus);
+    let flat = matches!(punch.contact(), Contact::Disk | Contact::FixedAnnulus);
     let given: Vec<(Quantity, f64)> = Quantity::ALL
         .iter()
         .map(|&q| number(q.key()).map(|v| v.map(|v| (q, v))))
@@ -293,8 +293,8 @@ fn row(
     for (q, _) in &given {
         let wrong = match (flat, q) {
             (true, Quantity::Gamma1 | Quantity::Gamma2) => Some("the flat punches' function is gamma = F/(2 E* d a)"),
-            (false, Quantity::Gamma) => Some("a concave punch's (and the torus's) functions are gamma1 = d/h and gamma2 = F/(2 E* h a)"),
-            (true, Quantity::Eps) if punch == PunchName::Flat => Some("the flat punch has no hole (its contact is the disk)"),
+            (false, Quantity::Gamma) => Some("a concave punch's (and a free band's) functions are gamma1 = d/h and gamma2 = F/(2 E* h a)"),
+            (true, Quantity::Eps) if punch.contact() == Contact::Disk => Some("the flat punch has no hole (its contact is the disk)"),
             _ => None,
         };
         if let Some(why) = wrong {
@@ -307,7 +307,7 @@ fn row(
     }
     let mut hole_ratio = None;
     let mut rest = given.clone();
-    if punch == PunchName::FlatAnnulus {
+    if punch.contact() == Contact::FixedAnnulus {
         let eps = given
             .iter()
             .find(|(q, _)| *q == Quantity::Eps)

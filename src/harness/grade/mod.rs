@@ -379,7 +379,7 @@ fn state_range(grading: &Grading) -> Option<(f64, f64)> {
 }
 
 /// The stored peer results (`verify/peers/*.json`: the force a peer found at a given depth) as
-/// rows to grade. The torus records' gap `(1 - r)²` is the torus of tube radius `a/2`.
+/// rows to grade. A free band's records are in units of its `h` (its tube radius `a/2`).
 pub fn peer_rows(records: &[(String, PeerResult)]) -> Vec<ResultRow> {
     records
         .iter()

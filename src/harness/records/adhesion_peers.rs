@@ -98,7 +98,7 @@ pub fn run() -> Result<Vec<AdhesionPeerComparison>> {
             .iter()
             .filter(|s| s.1.range_over_d0 == range)
             .collect();
-        if let Some((file, s)) = here.iter().find(|s| s.1.punch == PunchKind::FLAT_ANNULUS) {
+        if let Some((file, s)) = here.iter().find(|s| s.1.punch.has_fixed_hole()) {
             return Err(Error::Unsupported {
                 method: "tamaas peer".into(),
                 reason: format!("{file}: {} has no stored peer comparison", s.punch),

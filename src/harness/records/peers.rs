@@ -25,7 +25,7 @@ pub struct PeerResult {
     pub punch: PunchKind,
     pub eps: Option<f64>,
     pub grid: usize,
-    /// The torus's square half-size `L/a` (the other punches' grid is `[-a, a]²`).
+    /// A free band's square half-size `L/a` (the other punches' grid is `[-a, a]²`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub grid_extent: Option<f64>,
     pub depth: f64,
@@ -93,15 +93,19 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                     1.0
                 };
                 let load = GridLoad::Depth(depth);
-                // The torus's square is stored with it; every other punch's grid is [-a, a]².
+                // A free band's square is stored with it; every other punch's grid is [-a, a]².
                 let solved = match (stored.punch.is_free_band(), stored.grid_extent) {
-                    (true, Some(half_size)) => {
-                        grid_contact::solve_torus_on_square(stored.grid, half_size, load, 1e-11)
-                    }
+                    (true, Some(half_size)) => grid_contact::solve_band_on_square(
+                        &stored.punch,
+                        stored.grid,
+                        half_size,
+                        load,
+                        1e-11,
+                    ),
                     (true, None) | (false, Some(_)) => Err(crate::error::Error::Unsupported {
                         method: crate::bem::grid::METHOD.into(),
-                        reason: "grid_extent (the square's half-size) is stored for the \
-                                     torus, and only for it"
+                        reason: "grid_extent (the square's half-size) is stored for a \
+                                     free band, and only for it"
                             .into(),
                     }),
                     (false, None) => {

@@ -191,7 +191,7 @@ pub(crate) fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord>
 }
 
 /// The stored simulations of a concave punch's annular branch (`--branch annular`) with a
-/// result (the torus, touched and pulled as well, has no hole: it is not among them).
+/// result (a free band, touched and pulled as well, has no hole: it is not among them).
 pub fn annular(records: &[PulloffRecord]) -> Vec<PulloffRecord> {
     records
         .iter()

@@ -8,7 +8,7 @@ use serde::Serialize;
 use crate::harness::studies::convergence;
 use crate::harness::studies::speed_accuracy::SpeedAccuracy;
 
-/// Pull-off force `-F/F0` of a concave punch (or the torus) at one `d0/h` by each route.
+/// Pull-off force `-F/F0` of a concave punch (or a free band) at one `d0/h` by each route.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct PulloffPoint {
     pub punch: String,
@@ -17,12 +17,12 @@ pub struct PulloffPoint {
     pub fixed_load: Option<f64>,
     /// The paper's route on the paper's fitted formulas.
     pub paper_fits: Option<f64>,
-    /// From full contact (rim criterion; absent for the torus, which has no rim).
+    /// From full contact (rim criterion; absent for a free band, which has no rim).
     pub full_contact: Option<f64>,
-    /// The torus: fixed grips (both edges Griffith, the minimum of the depth).
+    /// A free band: fixed grips (both edges Griffith, the minimum of the depth).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub fixed_grips: Option<f64>,
-    /// The torus: the plane-strain JKR cylinder's fixed-load pull-off over `2π a`, the
+    /// A free band: the plane-strain JKR cylinder's fixed-load pull-off over the ring, the
     /// narrow-band asymptote.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub plane_strain: Option<f64>,

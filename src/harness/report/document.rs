@@ -564,8 +564,8 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
             bars: Vec::new(),
         },
     ];
-    // The paper fitted the cone and the sphere only, the torus has no full contact and only the
-    // torus shows fixed grips and its narrow-band asymptote: no empty legend entries.
+    // The paper fitted the cone and the sphere only, a free band has no full contact and only a
+    // free band shows fixed grips and its narrow-band asymptote: no empty legend entries.
     let mut series: Vec<Series> = series
         .into_iter()
         .filter(|s| !s.points.is_empty())

@@ -25,21 +25,21 @@ pub fn verdicts(
         strongest_pulloff_verdict(pulloff, simulations),
     ];
     out.extend(annular_branch_verdict(simulations));
-    out.extend(torus_narrow_verdict(pulloff));
-    out.extend(torus_direct_verdict(simulations));
+    out.extend(band_narrow_verdicts(pulloff));
+    out.extend(band_direct_verdict(simulations));
     Ok(out)
 }
 
-/// The torus's two-edge JKR pull-off against its direct simulation (a cohesive zone at both
+/// A free band's two-edge JKR pull-off against its direct simulation (a cohesive zone at both
 /// free edges on the FE model, no JKR theory; stored runs): agrees when every stored run's
 /// extrapolate meets the JKR fixed-load value within its error bar; none when no run is stored.
-fn torus_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
-    let torus: Vec<&PulloffStudy> = simulations
+fn band_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
+    let bands: Vec<&PulloffStudy> = simulations
         .iter()
         .filter_map(|r| r.result.as_ref())
-        .filter(|s| s.punch == PunchKind::TORUS)
+        .filter(|s| s.punch.is_free_band())
         .collect();
-    let numbers: Vec<String> = torus
+    let numbers: Vec<String> = bands
         .iter()
         .filter_map(|s| {
             let digits = bar_digits(s.error_bar?);
@@ -53,11 +53,15 @@ fn torus_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
     if numbers.is_empty() {
         return None;
     }
-    let agree = torus.iter().all(|s| s.agrees_with_jkr() == Some(true));
+    let agree = bands.iter().all(|s| s.agrees_with_jkr() == Some(true));
+    let mut names: Vec<&str> = bands.iter().map(|s| s.punch.name()).collect();
+    names.dedup();
     Some(Verdict {
-        claim: "the torus's two-edge JKR pull-off (fixed load), which the references give only \
-                in the narrow limit"
-            .into(),
+        claim: format!(
+            "the {}'s two-edge JKR pull-off (fixed load), which the references give only in the \
+             narrow limit",
+            names.join("'s and the ")
+        ),
         numbers: numbers.join("; "),
         verdict: if agree {
             "agree: the direct simulation meets it within its error bar".into()
@@ -67,14 +71,28 @@ fn torus_direct_verdict(simulations: &[PulloffRecord]) -> Option<Verdict> {
     })
 }
 
-/// The narrow-band limit of the torus's JKR pull-off (the introduction's toroidal contacts;
+/// The narrow-band limit of each free band's JKR pull-off (the introduction's toroidal contacts;
 /// Argatov et al. treat them by asymptotics): as `d0/h -> 0` the fixed-load pull-off tends to
-/// the plane-strain JKR cylinder's carried over `2π a`. Agrees when the relative difference
+/// the plane-strain JKR cylinder's carried over the ring. Agrees when the relative difference
 /// falls as `d0/h` falls and is below 1e-3 at the smallest `d0/h`.
-fn torus_narrow_verdict(pulloff: &[PulloffPoint]) -> Option<Verdict> {
+fn band_narrow_verdicts(pulloff: &[PulloffPoint]) -> Vec<Verdict> {
+    let mut labels: Vec<&str> = pulloff
+        .iter()
+        .filter(|p| p.plane_strain.is_some())
+        .map(|p| p.punch.as_str())
+        .collect();
+    labels.dedup();
+    labels
+        .into_iter()
+        .filter_map(|label| band_narrow_verdict(pulloff, label))
+        .collect()
+}
+
+/// [`band_narrow_verdicts`] of the free band `label`.
+fn band_narrow_verdict(pulloff: &[PulloffPoint], label: &str) -> Option<Verdict> {
     let mut differences: Vec<(f64, f64)> = pulloff
         .iter()
-        .filter(|p| p.punch == PunchKind::TORUS.label())
+        .filter(|p| p.punch == label)
         .filter_map(|p| {
             Some((
                 p.d0_over_h,
@@ -86,7 +104,7 @@ fn torus_narrow_verdict(pulloff: &[PulloffPoint]) -> Option<Verdict> {
     let smallest = differences.first()?.1.abs();
     let falling = differences.windows(2).all(|w| w[0].1.abs() <= w[1].1.abs());
     Some(Verdict {
-        claim: "a narrow torus pulls off as the plane-strain JKR cylinder (d0/h -> 0)".into(),
+        claim: format!("a narrow {label} pulls off as the plane-strain JKR cylinder (d0/h -> 0)"),
         numbers: differences
             .iter()
             .map(|(s, d)| format!("d0/h = {s:.1e}: {d:+.1e}"))
@@ -319,8 +337,8 @@ pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
 /// load on the annular branch, the paper's route on its fits, from full contact.
 pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
-    if kind == PunchKind::TORUS {
-        return torus_pulloff_points(ring);
+    if kind.is_free_band() {
+        return band_pulloff_points(ring, &kind);
     }
     let branch = adhesion::ConcaveBranch::new(ring, kind.clone())?;
     pulloff_scales()
@@ -339,26 +357,26 @@ pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Ve
         .collect()
 }
 
-/// `d0/h` of the torus's pull-off curve: `1e-3 ... 1` at half-decade steps (stronger adhesion
-/// closes the band toward a disk, which the torus's JKR analysis refuses).
-pub(crate) fn torus_pulloff_scales() -> impl Iterator<Item = f64> {
+/// `d0/h` of a free band's pull-off curve: `1e-3 ... 1` at half-decade steps (stronger adhesion
+/// closes the band toward a disk, which the band's JKR analysis refuses).
+pub(crate) fn band_pulloff_scales() -> impl Iterator<Item = f64> {
     (0..=6).map(|k| 10f64.powf(-3.0 + 0.5 * k as f64))
 }
 
-/// Pull-off `-F/F0` of the torus against `d0/h` ([`torus_pulloff_scales`]): fixed load, fixed
+/// Pull-off `-F/F0` of a free band against `d0/h` ([`band_pulloff_scales`]): fixed load, fixed
 /// grips (both edges Griffith) and the plane-strain JKR cylinder's asymptote.
-fn torus_pulloff_points(ring: &RingBemSolver) -> Result<Vec<PulloffPoint>> {
-    torus_pulloff_scales()
+fn band_pulloff_points(ring: &RingBemSolver, kind: &PunchKind) -> Result<Vec<PulloffPoint>> {
+    band_pulloff_scales()
         .map(|s| {
-            let r = adhesion::torus_jkr(ring, s)?;
+            let r = adhesion::band_jkr(ring, kind, s)?;
             Ok(PulloffPoint {
-                punch: PunchKind::TORUS.label(),
+                punch: kind.label(),
                 d0_over_h: s,
                 fixed_load: r.fixed_load.as_ref().map(|c| -c.force),
                 paper_fits: None,
                 full_contact: None,
                 fixed_grips: r.fixed_grips.as_ref().map(|c| -c.force),
-                plane_strain: Some(-r.plane_strain_fixed_load),
+                plane_strain: r.plane_strain_fixed_load.map(|f| -f),
             })
         })
         .collect()

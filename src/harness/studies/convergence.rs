@@ -132,7 +132,7 @@ fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
     (ladder, Degree::Quadratic)
 }
 
-/// The FEM study's mesh levels for a punch with two free edges (the torus): the free-edges
+/// The FEM study's mesh levels for a punch with two free edges (a free band): the free-edges
 /// family from its coarsest level to [`STUDY_MAX_ADAPTED_LEVEL`], quadratic elements (gmsh
 /// needed: the contact line is scaled to the load).
 fn free_edges_study_levels() -> Vec<i32> {
@@ -236,7 +236,7 @@ pub(crate) fn yardstick(case: &StudyCase) -> Result<f64> {
 pub struct ComputedLevel {
     pub level: Level,
     pub free_edge: Option<f64>,
-    /// The torus's outer free edge `c/a` (the FEM's next level refines around both).
+    /// A free band's outer free edge `c/a` (the FEM's next level refines around both).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outer_free_edge: Option<f64>,
 }
@@ -264,7 +264,7 @@ pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result
 
 /// Level `k` of a study when level `k - 1` located the free edge `previous_edge` (the FEM on a
 /// concave punch refines around it; other methods ignore it). Plans, which call it, hold one
-/// edge: they refuse the torus, whose levels refine around two ([`level`] runs those).
+/// edge: they refuse a free band, whose levels refine around two ([`level`] runs those).
 pub(crate) fn level_after(
     case: StudyCase,
     method: Method,
@@ -291,7 +291,7 @@ struct Sized {
     outer_edge: Option<f64>,
 }
 
-/// The free edges a FEM level located (`b/a`, and the torus's `c/a`), around which the next
+/// The free edges a FEM level located (`b/a`, and a free band's `c/a`), around which the next
 /// level is refined; none before the first level and for the other methods.
 #[derive(Clone, Copy, Debug, Default)]
 struct LocatedEdges {
@@ -309,7 +309,7 @@ impl LocatedEdges {
 }
 
 /// Level `k` of a study, the FEM refining around the edges the level below `located`
-/// (concave punches and the torus).
+/// (concave punches and free bands).
 fn compute_level(
     case: &StudyCase,
     method: Method,
@@ -355,8 +355,8 @@ fn compute_level(
     })
 }
 
-/// The grid BEM on `(64 · 2^k)²` cells, on the square `[-a, a]²` (the torus: one square for
-/// every level, [`grid_contact::torus_square`] from a 32² solve).
+/// The grid BEM on `(64 · 2^k)²` cells, on the square `[-a, a]²` (a free band: one square for
+/// every level, [`grid_contact::band_square`] from a 32² solve).
 fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
     let concave = case.punch.is_concave();
     let n = 64usize << k;
@@ -367,8 +367,8 @@ fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
             1.0,
         )
     } else {
-        let half_size = grid_contact::torus_square(32, load, 1e-10)?;
-        let s = grid_contact::solve_torus_on_square(n, half_size, load, 1e-10)?;
+        let half_size = grid_contact::band_square(&case.punch, 32, load, 1e-10)?;
+        let s = grid_contact::solve_band_on_square(&case.punch, n, half_size, load, 1e-10)?;
         (s, half_size)
     };
     let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
@@ -427,7 +427,7 @@ fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<S
     })
 }
 
-/// The FEM on level `k` of the free-edges family (the torus, quadratic elements): the first
+/// The FEM on level `k` of the free-edges family (a free band, quadratic elements): the first
 /// level refined where the rigid profile meets the surface, each further one around both edges
 /// the level below located.
 fn free_edges_fem_level(case: &StudyCase, k: usize, located: LocatedEdges) -> Result<Sized> {

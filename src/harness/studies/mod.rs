@@ -25,14 +25,14 @@ pub(crate) fn scene_of_fem_load(
     tolerance: Option<f64>,
 ) -> Result<Scene> {
     let spec = SceneSpec::default().shape(kind.clone());
-    // The torus of the dimensionless problem: `h = a²/(2ρ) = a`.
-    let spec = if kind == PunchKind::TORUS {
+    // A free band of the dimensionless problem: `h = a²/(2ρ) = a`.
+    let spec = if kind.is_free_band() {
         spec.tube_radius(0.5)
     } else {
         spec
     };
     let spec = match load {
-        FemLoad::Flat if kind == PunchKind::FLAT_ANNULUS => spec.inner_ratio(eps),
+        FemLoad::Flat if kind.has_fixed_hole() => spec.inner_ratio(eps),
         FemLoad::Flat => spec,
         FemLoad::ConcaveDepth(depth) => spec.depth(depth),
         FemLoad::ConcaveForce(force) => spec.force(2.0 * force),

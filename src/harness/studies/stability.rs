@@ -53,8 +53,11 @@ fn flat_reference(ring: &RingBemSolver, eps: f64) -> Reference {
 }
 
 fn concave_reference(ring: &RingBemSolver, kind: PunchKind, depth: f64) -> Reference {
-    if kind == PunchKind::SPHERE && depth >= 3.0 {
-        return Some((depth - 1.0 / 3.0, 0.0));
+    // Past its closure the contact is the disk: the flat punch's force, `dγ2/d(d/h) = 1`.
+    if let Some((closure_depth, closure_force)) = kind.closure() {
+        if depth >= closure_depth {
+            return Some((closure_force + (depth - closure_depth), 0.0));
+        }
     }
     ring.concave_at_depth(&kind, depth, 1e-11)
         .ok()

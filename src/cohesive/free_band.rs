@@ -1,10 +1,10 @@
-//! The torus's pull-off by direct simulation: touched at its lowest circle (`d = 0`), then
+//! A free band's pull-off by direct simulation: touched at its lowest circle (`d = 0`), then
 //! pulled, both free edges of the contact moving until the band lets go. Its JKR limit is the
-//! two-edge JKR solution's fixed-load pull-off ([`crate::adhesion::torus_jkr`], `verify jkr
-//! --punch torus`), which no published solution gives beyond the narrow limit.
+//! two-edge JKR solution's fixed-load pull-off ([`crate::adhesion::band_jkr`], `verify jkr`),
+//! which no published solution gives beyond the narrow limit.
 //!
 //! The contact band moves around `r = a` on both sides, so the model's contact line reaches
-//! past the ring: the mesh's line `[0, 1]` is read in a unit of [`TORUS_FRAME`] `a`
+//! past the ring: the mesh's line `[0, 1]` is read in a unit of [`BAND_FRAME`] `a`
 //! ([`SurfaceResponse::in_units_of_a`]), meshed uniformly at a third of the cohesive zone
 //! `ℓ = π² (ρ/d0)²/2 a` as the annular branch's is, one mesh per range, and the study follows
 //! the annular branch's rules ([`crate::cohesive::annular`]): node hops continue the branch, the
@@ -22,54 +22,55 @@ use crate::error::{Error, Result};
 use crate::fem::solver::surface_response_on_mesh;
 use crate::fem::surface_response::SurfaceResponse;
 use crate::mesh::provider::{self, ProvidedMesh};
-use crate::punch::PunchKind;
 
-/// Length of the model's contact line in units of `a`: the two-edge JKR contact at its
-/// fixed-load pull-off reaches `c = 1.21 a` at `d0/h = 1` (`verify jkr --punch torus`), and a
+/// Length of the model's contact line in units of `a`: the built-in ring's two-edge JKR
+/// contact at its fixed-load pull-off reaches `c = 1.21 a` at `d0/h = 1` (`verify jkr`), and a
 /// contact that reaches the line's end is an error.
-pub const TORUS_FRAME: f64 = 1.5;
+pub const BAND_FRAME: f64 = 1.5;
 
-/// Largest `d0/h` the torus's study takes: the contact at pull-off widens with `d0/h`
-/// (`c = 1.21 a` at 1) and must stay inside the line [`TORUS_FRAME`] `a` long.
-pub const TORUS_MAX_D0_OVER_H: f64 = 1.0;
+/// Largest `d0/h` a free band's study takes: the contact at pull-off widens with `d0/h`
+/// (`c = 1.21 a` at 1) and must stay inside the line [`BAND_FRAME`] `a` long.
+pub const BAND_MAX_D0_OVER_H: f64 = 1.0;
 
-/// Most contact-line elements a torus mesh may ask for (the condensed model is dense).
+/// Most contact-line elements a free band's mesh may ask for (the condensed model is dense).
 const MAX_LINE_ELEMENTS: f64 = 600.0;
 
 /// The mesh at `range`: level [`STUDY_LEVEL`] of the adapted family whose contact line
-/// (`TORUS_FRAME a` long) is uniform at `ℓ / elements_per_zone`; returns the element size in
+/// (`BAND_FRAME a` long) is uniform at `ℓ / elements_per_zone`; returns the element size in
 /// units of `a`.
-fn torus_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(ProvidedMesh, f64)> {
+fn band_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(ProvidedMesh, f64)> {
     let size = case.zone_length(range) / elements_per_zone;
-    let elements = TORUS_FRAME / size;
+    let elements = BAND_FRAME / size;
     if elements > MAX_LINE_ELEMENTS {
-        let smallest = (2.0 * elements_per_zone * TORUS_FRAME
+        let smallest = (2.0 * elements_per_zone * BAND_FRAME
             / (MAX_LINE_ELEMENTS * std::f64::consts::PI.powi(2)))
         .sqrt();
         return Err(Error::invalid(
             "ranges",
             format!(
-                "range rho/d0 = {range}: the torus's contact line ({TORUS_FRAME} a) would need \
+                "range rho/d0 = {range}: the {}'s contact line ({BAND_FRAME} a) would need \
                  {elements:.0} elements of {size:.1e} a (1/{elements_per_zone} of the zone), \
-                 more than {MAX_LINE_ELEMENTS:.0}; use ranges rho/d0 >= {smallest:.3}"
+                 more than {MAX_LINE_ELEMENTS:.0}; use ranges rho/d0 >= {smallest:.3}",
+                case.punch.name()
             ),
         ));
     }
     let mut parameters = provider::adapted_parameters(0.0, STUDY_LEVEL, None, 0.0, None);
     for (name, value) in parameters.iter_mut() {
         if name == "hline" {
-            *value = size / TORUS_FRAME;
+            *value = size / BAND_FRAME;
         }
     }
-    let mesh = provider::generate(&parameters, "the torus's pull-off simulation")?;
+    let what = format!("the {}'s pull-off simulation", case.punch.name());
+    let mesh = provider::generate(&parameters, &what)?;
     Ok((mesh, size))
 }
 
-/// The condensed model of `mesh` in units of `a` ([`TORUS_FRAME`]).
-fn torus_response(mesh: &ProvidedMesh) -> Result<(SurfaceResponse, String)> {
+/// The condensed model of `mesh` in units of `a` ([`BAND_FRAME`]).
+fn band_response(mesh: &ProvidedMesh) -> Result<(SurfaceResponse, String)> {
     let options = crate::cohesive::study::study_options();
     let (response, name) = surface_response_on_mesh(mesh, &options, 0.0)?;
-    Ok((response.in_units_of_a(TORUS_FRAME), name))
+    Ok((response.in_units_of_a(BAND_FRAME), name))
 }
 
 /// Why a simulation is not a pull-off of the touched band, if it is not: its contact reached
@@ -97,7 +98,8 @@ fn left_the_band(
     if let Some((depth, force)) = entry.hole_closed_at {
         return Some(format!(
             "the contact reached the axis at d/d0 = {depth:.4}, F/F0 = {force:.4}: a disk, not \
-             the torus's band"
+             the {}'s band",
+            case.punch.name()
         ));
     }
     entry.unresolved_landing.as_ref().map(|why| {
@@ -109,31 +111,36 @@ fn left_the_band(
     })
 }
 
-/// Run the torus's study of `case` at `ranges` (units of `d0`, decreasing): touch, pull, the
+/// Run a free band's study of `case` at `ranges` (units of `d0`, decreasing): touch, pull, the
 /// most tensile force at each range, the smallest range again with half the elements per zone,
 /// extrapolated linearly to zero range beside the JKR route's fixed-load pull-off (module
 /// documentation).
-pub fn run_torus(
+pub fn run_band(
     case: Case,
     ranges: &[f64],
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
     let start = Instant::now();
-    if case.punch != PunchKind::TORUS {
+    if !case.punch.is_free_band() {
         return Err(Error::invalid(
             "punch",
-            format!("the torus's study takes the torus, not the {}", case.punch),
+            format!(
+                "the free band's study takes a punch whose contact has two free edges, not the {}",
+                case.punch
+            ),
         ));
     }
     check_d0_over_h(&case)?;
-    if case.d0_over_h > TORUS_MAX_D0_OVER_H {
+    if case.d0_over_h > BAND_MAX_D0_OVER_H {
         return Err(Error::invalid(
             "d0h",
             format!(
-                "d0/h = {}: the torus's simulation runs for d0/h <= {TORUS_MAX_D0_OVER_H} (its \
-                 contact must stay inside a line {TORUS_FRAME} a long); `verify jkr --punch \
-                 torus --d0h {}` gives the JKR limit",
+                "d0/h = {}: the {}'s simulation runs for d0/h <= {BAND_MAX_D0_OVER_H} (its \
+                 contact must stay inside a line {BAND_FRAME} a long); `verify jkr --punch \
+                 {} --d0h {}` gives the JKR limit",
                 crate::error::show(case.d0_over_h),
+                case.punch.name(),
+                case.punch.name(),
                 crate::error::show(case.d0_over_h)
             ),
         ));
@@ -141,20 +148,21 @@ pub fn run_torus(
     check_ranges(ranges)?;
     let meshes = ranges
         .iter()
-        .map(|&r| torus_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
+        .map(|&r| band_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
-    let jkr = crate::adhesion::torus_jkr(
+    let jkr = crate::adhesion::band_jkr(
         &crate::bem::ring_contact::RingBemSolver::new(),
+        &case.punch,
         case.d0_over_h,
     )?;
     touched_sequence(
         &case,
         ranges,
-        "pull-off of the torus's band",
+        &format!("pull-off of the {}'s band", case.punch.name()),
         (&meshes, &|range, per_zone| {
-            torus_mesh(&case, range, per_zone)
+            band_mesh(&case, range, per_zone)
         }),
-        &torus_response,
+        &band_response,
         &|response, entry, edges| left_the_band(&case, response, entry, edges),
         &mut progress,
     )?
@@ -162,12 +170,13 @@ pub fn run_torus(
         &case,
         (jkr.fixed_load.map(|c| -c.force), None, None),
         format!(
-            "torus: touched at its lowest circle (d = 0), pulled; the contact line [0, \
-             {TORUS_FRAME} a] meshed uniformly at a third of the zone length per range (mesh \
+            "{}: touched at its lowest circle (d = 0), pulled; the contact line [0, \
+             {BAND_FRAME} a] meshed uniformly at a third of the zone length per range (mesh \
              named: the smallest range's; line_element_size in each entry), the check at two \
              thirds; steps where an edge hops a node (force change under {ANNULAR_HOP_FORCE} \
              F0) continue the branch; pull-off: its most tensile force before the band lets go \
-             (the fixed-load pull-off)"
+             (the fixed-load pull-off)",
+            case.punch.name()
         ),
         start,
     )

@@ -1,10 +1,10 @@
-//! JKR adhesion of the torus: a contact band `[b, c]` with a Griffith condition at both edges.
+//! JKR adhesion of a free band (a profile whose contact has two free edges): a contact band
+//! `[b, c]` with a Griffith condition at both edges.
 //!
-//! Units as in the parent module: `d0 = sqrt(2π a Δw / E*)`, `F0 = 2 E* a d0`, `h = a²/(2ρ)`,
-//! `s = d0/h`. An edge is in equilibrium when its energy release rate `K²/(2E*)` equals `Δw`,
+//! Units as in the parent module: `d0 = sqrt(2π a Δw / E*)`, `F0 = 2 E* a d0`, `s = d0/h`. An edge is in equilibrium when its energy release rate `K²/(2E*)` equals `Δw`,
 //! i.e. `K = -sqrt(2 E* Δw)`, which is `-s/sqrt(π)` in units of `E* h/sqrt(a)`. For a band
 //! half-width `w` the ring BEM finds the band's centre and the depth `d` with that intensity at
-//! both edges ([`RingBemSolver::torus_with_edge_intensity`]): the equilibrium curve
+//! both edges ([`RingBemSolver::band_with_edge_intensity`]): the equilibrium curve
 //! `(b(w), c(w), d(w), F(w))`, no flat-annulus superposition (the band moves at both ends). The
 //! width parametrises it (the inner edge does not: a narrow adhesive band drifts toward the
 //! axis as it shrinks).
@@ -16,11 +16,12 @@
 //! search, then by the slope's zero (`stationary_point`: a minimum told by its values alone
 //! scatters by the square root of their noise).
 //!
-//! **Narrow limit.** For `d0/h -> 0` the pull-off band is narrow and the ring is a plane-strain
-//! cylinder of radius `ρ` over the length `2π a`: `P = π E* w²/(4ρ) - sqrt(2π E* Δw w)` per unit
+//! **Narrow limit.** For `d0/h -> 0` the pull-off band is narrow and sits where the band first
+//! touches, `r0` ([`Profile::first_touch`](crate::punch::Profile::first_touch)), a plane-strain
+//! cylinder of radius `ρ` (the gap's radius of curvature there) over the length `2π r0`: `P = π E* w²/(4ρ) - sqrt(2π E* Δw w)` per unit
 //! length for the half-width `w` (Barquins 1988; the adhesive part is the flat strip's
 //! `K = -P_a/sqrt(π w)`), with the fixed-load pull-off at `w_c = (2 ρ² Δw/(π E*))^(1/3)`,
-//! `P_c = -(3/4) π E* w_c²/ρ`. [`plane_strain_pulloff`] gives it in the torus's units.
+//! `P_c = -(3/4) π E* w_c²/ρ`. [`plane_strain_pulloff`] gives it in the units above.
 
 use std::f64::consts::PI;
 
@@ -44,9 +45,9 @@ const WIDEST: f64 = 1.0;
 /// The widest band is halved down to this half-width in search of an equilibrium.
 const MIN_WIDEST: f64 = 0.05;
 
-/// A critical (pull-off) state of the torus.
+/// A critical (pull-off) state of a free band.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
-pub struct TorusCritical {
+pub struct BandCritical {
     /// Inner edge `b/a`.
     pub eps: f64,
     /// Outer edge `c/a`.
@@ -65,39 +66,52 @@ pub struct TorusCritical {
     pub depth_error_bound: f64,
 }
 
-/// The JKR analysis of the torus for one `d0/h`.
+/// The JKR analysis of a free band for one `d0/h`.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
-pub struct TorusJkr {
+pub struct BandJkr {
     #[serde(flatten)]
     pub punch: PunchKind,
     pub d0_over_h: f64,
     /// Pull-off under fixed load (the minimum of `F` along the equilibrium curve).
-    pub fixed_load: Option<TorusCritical>,
+    pub fixed_load: Option<BandCritical>,
     /// Pull-off under fixed grips (the minimum of `d`, with its force).
-    pub fixed_grips: Option<TorusCritical>,
+    pub fixed_grips: Option<BandCritical>,
     /// Why there is no fixed-load pull-off state in the ring BEM's range, if there is none.
     pub fixed_load_note: Option<String>,
     /// Why there is no fixed-grips pull-off state in the ring BEM's range, if there is none.
     pub fixed_grips_note: Option<String>,
     /// The plane-strain JKR cylinder's fixed-load pull-off in the same units (`F/F0`): the
-    /// narrow limit `d0/h -> 0`, an asymptote (no error bound).
-    pub plane_strain_fixed_load: f64,
+    /// narrow limit `d0/h -> 0`, an asymptote (no error bound); `None` for a profile that does
+    /// not say where its band first touches.
+    pub plane_strain_fixed_load: Option<f64>,
 }
 
 /// The fixed-load pull-off of the plane-strain JKR cylinder carried over the ring's length
-/// `2π a`, in units of `F0` for `s = d0/h` (see the module docs): with `h = 1`, `ρ = a/2`,
-/// `Δw = s²/(2π)`, `w_c = (s²/(4π²))^(1/3)` and `F_c = 2π P_c = -3π² w_c²`, so
-/// `F_c/F0 = -3π² w_c²/(2s)`.
-pub fn plane_strain_pulloff(s: f64) -> f64 {
-    let w = (s * s / (4.0 * PI * PI)).cbrt();
-    -3.0 * PI * PI * w * w / (2.0 * s)
+/// `2π r0`, in units of `F0` for `s = d0/h` (see the module docs), for a band first touching at
+/// `r0` (units of `a`) where the gap's curvature is `κ = a² g''(r0)/h`: with `h = 1`,
+/// `ρ = 1/κ`, `Δw = s²/(2π)`, `w_c = (s²/(π² κ²))^(1/3)` and
+/// `F_c = 2π r0 P_c = -(3/2) π² κ r0 w_c²`, so `F_c/F0 = -3π² κ r0 w_c²/(4s)`.
+pub fn plane_strain_pulloff(s: f64, r0: f64, curvature: f64) -> f64 {
+    let w = (s * s / (PI * PI * curvature * curvature)).cbrt();
+    -3.0 * PI * PI * curvature * r0 * w * w / (4.0 * s)
 }
 
-/// The JKR pull-off of the torus under fixed load and fixed grips for `d0/h = s`.
-pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
+/// The JKR pull-off of a free band `kind` under fixed load and fixed grips for `d0/h = s`.
+pub fn band_jkr(solver: &RingBemSolver, kind: &PunchKind, s: f64) -> Result<BandJkr> {
     check_scale(s)?;
+    if !kind.is_free_band() {
+        return Err(Error::Unsupported {
+            method: "jkr".into(),
+            reason: format!(
+                "the {} has a rim: its JKR analysis is the concave punches' or the flat \
+                 annulus's, not a free band's",
+                kind.name()
+            ),
+        });
+    }
     let branch = Branch {
         solver,
+        kind,
         s,
         intensity: -s / PI.sqrt(),
     };
@@ -105,14 +119,16 @@ pub fn torus_jkr(solver: &RingBemSolver, s: f64) -> Result<TorusJkr> {
     let (curve, end_note) = branch.trace(widest, &first);
     let fixed_load = branch.locate(&curve, |p| p.force, "force", widest, &end_note)?;
     let fixed_grips = branch.locate(&curve, |p| p.depth, "depth", widest, &end_note)?;
-    Ok(TorusJkr {
-        punch: PunchKind::TORUS,
+    Ok(BandJkr {
+        punch: kind.clone(),
         d0_over_h: s,
         fixed_load_note: fixed_load.as_ref().err().cloned(),
         fixed_grips_note: fixed_grips.as_ref().err().cloned(),
         fixed_load: fixed_load.ok(),
         fixed_grips: fixed_grips.ok(),
-        plane_strain_fixed_load: plane_strain_pulloff(s),
+        plane_strain_fixed_load: kind
+            .first_touch()
+            .map(|(r0, curvature)| plane_strain_pulloff(s, r0, curvature)),
     })
 }
 
@@ -136,9 +152,10 @@ impl BranchPoint {
     }
 }
 
-/// The torus's JKR equilibrium branch at `d0/h = s`: both edges at the intensity `K = -s/√π`.
+/// A free band's JKR equilibrium branch at `d0/h = s`: both edges at the intensity `K = -s/√π`.
 struct Branch<'a> {
     solver: &'a RingBemSolver,
+    kind: &'a PunchKind,
     s: f64,
     intensity: f64,
 }
@@ -147,7 +164,7 @@ impl Branch<'_> {
     /// The equilibrium of half-width `w`, its centre search started at `hint`.
     fn state(&self, w: f64, tol: f64, hint: Option<f64>) -> Result<RingState> {
         self.solver
-            .torus_with_edge_intensity(w, self.intensity, tol, hint)
+            .band_with_edge_intensity(self.kind, w, self.intensity, tol, hint)
     }
 
     /// The widest band in equilibrium: [`WIDEST`] halved until one is; at strong adhesion none
@@ -161,10 +178,11 @@ impl Branch<'_> {
                     return Err(Error::OutOfRange {
                         method: "jkr".into(),
                         reason: format!(
-                            "the torus at d0/h = {}: no band of half-width {MIN_WIDEST} a or \
+                            "the {} at d0/h = {}: no band of half-width {MIN_WIDEST} a or \
                              more was found in equilibrium with both edges at G = dw ({e}); at \
                              strong adhesion the contact may close toward a disk, which the \
-                             torus's JKR analysis does not model (checked for d0/h <= 1)",
+                             band's JKR analysis does not model (checked for d0/h <= 1)",
+                            self.kind.name(),
                             crate::error::show(self.s)
                         ),
                     })
@@ -208,7 +226,7 @@ impl Branch<'_> {
         quantity: &str,
         widest: f64,
         end_note: &Option<String>,
-    ) -> Result<std::result::Result<TorusCritical, String>> {
+    ) -> Result<std::result::Result<BandCritical, String>> {
         let values: Vec<f64> = curve.iter().map(pick).collect();
         let Some(k) = (1..values.len() - 1)
             .find(|&k| values[k] <= values[k - 1] && values[k] <= values[k + 1])
@@ -246,7 +264,7 @@ impl Branch<'_> {
     /// The critical state at the half-width `w` located to `located_to`: a quantity's change
     /// over that is second order where it is the minimum, first order (its slope in `w`) for
     /// the other one; both bounds carry it.
-    fn critical_at(&self, w: f64, located_to: f64, hint: Option<f64>) -> Result<TorusCritical> {
+    fn critical_at(&self, w: f64, located_to: f64, hint: Option<f64>) -> Result<BandCritical> {
         let s = self.s;
         let st = self.state(w, STATE_TOLERANCE, hint)?;
         let (g1, g2) = (st.gamma1.unwrap_or(f64::NAN), st.gamma2.unwrap_or(f64::NAN));
@@ -255,7 +273,7 @@ impl Branch<'_> {
         let force_slope = (beside.gamma2.unwrap_or(f64::NAN) - g2) / step;
         let depth_slope = (beside.gamma1.unwrap_or(f64::NAN) - g1) / step;
         let force = g2 / s;
-        Ok(TorusCritical {
+        Ok(BandCritical {
             eps: st.eps,
             outer: st.outer_edge,
             depth: g1,

@@ -1,6 +1,7 @@
-//! The torus with the ring BEM: a contact band `[b, c]` whose both edges are free.
+//! A free band with the ring BEM: a contact band `[b, c]` whose both edges are free (the
+//! profile's [`Contact::FreeBand`](crate::punch::Contact::FreeBand)).
 //!
-//! With `h = 1` (`a = E* = 1`) the gap is `ĝ(r) = (1 - r)²` on both sides of the ring radius. On
+//! With `h = 1` (`a = E* = 1`) the gap `ĝ(r)` is defined on both sides of the ring radius. On
 //! a band `[b, c]` the pressure is `d φ¹ + φ²` (`φ¹`: the field of `w = 1`, `φ²`: of `w = -ĝ`),
 //! each with inverse-square-root coefficients `α_b` and `α_c` at the two edges. A free edge
 //! carries none:
@@ -12,10 +13,10 @@
 //!
 //! The first fixes the depth for a band; the second is one equation for the outer edge `c`
 //! given the inner edge `b`, solved by the safeguarded secant. So the inner edge `b/a` (`eps`)
-//! parametrises the torus's states as it does the concave punches', `γ1(eps) = d/h` and
+//! parametrises a band's states as it does the concave punches', `γ1(eps) = d/h` and
 //! `γ2(eps) = F/(2 E* h a)` decrease with it. Depth or force control finds both edges at once by
-//! Newton's method on `R(b, c) = 0`, `γ(b, c) = target` ([`RingBemSolver::torus_at_target`])
-//! at every rung of the node ladder ([`RingBemSolver::torus_inverse`]), with the nested search
+//! Newton's method on `R(b, c) = 0`, `γ(b, c) = target` ([`BandSolver::band_at_target`])
+//! at every rung of the node ladder ([`BandSolver::band_inverse`]), with the nested search
 //! (the edge search inside the concave punches' search on `b`) where Newton does not converge.
 //! Both unknown radii are found to the search's tolerance (1 % of the requested one) or its
 //! rounding at each node count; the self-convergence estimate covers `b`, `c`, `γ1` and `γ2`
@@ -43,37 +44,52 @@ use super::{
 /// method accepts, so that the discretisation, not the search, sets the estimate.
 const OUTER_EDGE_TOLERANCE: f64 = 1e-13;
 
-impl RingBemSolver {
-    /// The torus's band `[b, c]` at a fixed node count: its collocation system and the fields
+/// The ring BEM's solver of free bands: its collocation systems and refinement ladder, asked for
+/// bands `[b, c]` whose edges are both free.
+pub(super) struct BandSolver<'a>(pub &'a RingBemSolver);
+
+impl std::ops::Deref for BandSolver<'_> {
+    type Target = RingBemSolver;
+    fn deref(&self) -> &RingBemSolver {
+        self.0
+    }
+}
+
+impl BandSolver<'_> {
+    /// The band `[b, c]` at a fixed node count: its collocation system and the fields
     /// of `w = 1` and `w = -ĝ`.
-    fn torus_band(&self, kind: &PunchKind, inner: f64, outer: f64, n: usize) -> Result<TorusBand> {
-        let system = self.system(ContactRegion::Band { inner, outer }, n);
+    fn band(&self, kind: &PunchKind, inner: f64, outer: f64, n: usize) -> Result<Band> {
+        let system = self.0.system(ContactRegion::Band { inner, outer }, n);
         let minus_gap: Vec<f64> = system.radii().iter().map(|&r| -kind.gap(r)).collect();
         let singular = || no_convergence("singular collocation matrix".into());
         let one = system.solve(&vec![1.0; n]).ok_or_else(singular)?;
         let gap = system.solve(&minus_gap).ok_or_else(singular)?;
-        Ok(TorusBand { system, one, gap })
+        Ok(Band { system, one, gap })
     }
 
-    /// The torus at a fixed node count with its inner edge at `eps`: the outer edge `c` where
-    /// both edges are free (by the safeguarded secant on [`TorusBand::mismatch`]), the depth
+    /// The band at a fixed node count with its inner edge at `eps`: the outer edge `c` where
+    /// both edges are free (by the safeguarded secant on [`Band::mismatch`]), the depth
     /// `γ1 = d/h` and `γ2 = F/(2 E* h a)` (see the module docs). `outer_hint` starts the edge
     /// search (a nearby state's edge); without one it starts from [`outer_edge_guess`].
-    pub(super) fn torus_sample(
+    pub(super) fn band_sample(
         &self,
         kind: &PunchKind,
         eps: f64,
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
-        let band_at = |outer: f64| self.torus_band(kind, eps, outer, n);
+        let band_at = |outer: f64| self.band(kind, eps, outer, n);
         let last = LastBand::default();
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
             .filter(|c| c.is_finite())
             .unwrap_or_else(|| outer_edge_guess(eps))
             .clamp(lo, hi);
-        let what = format!("torus with inner edge b/a = {}", crate::error::show(eps));
+        let what = format!(
+            "{} with inner edge b/a = {}",
+            kind.name(),
+            crate::error::show(eps)
+        );
         let root = find_root(
             last.residual(band_at, 0.0),
             lo,
@@ -86,26 +102,20 @@ impl RingBemSolver {
         Ok(last.at(root.x, band_at)?.sample(0.0))
     }
 
-    /// The torus's band of half-width `w` with the stress intensity `K = intensity` at both
+    /// The band of half-width `w` with the stress intensity `K = intensity` at both
     /// edges: the centre `m` (band `[m - w, m + w]`) by the safeguarded secant on
-    /// [`TorusBand::mismatch`]. The JKR equilibria are parametrised by the width, not by the
+    /// [`Band::mismatch`]. The JKR equilibria are parametrised by the width, not by the
     /// inner edge: a narrow adhesive band shifts toward the axis as it shrinks (at `d0/h = 0.1`
     /// wholly inside `r < a`), so the inner edge is not monotone along the curve, while the width is.
-    fn torus_width_sample(
+    fn band_width_sample(
         &self,
+        kind: &PunchKind,
         half_width: f64,
         n: usize,
         centre_hint: Option<f64>,
         intensity: f64,
     ) -> Result<ConcaveSample> {
-        let band_at = |centre: f64| {
-            self.torus_band(
-                &PunchKind::TORUS,
-                centre - half_width,
-                centre + half_width,
-                n,
-            )
-        };
+        let band_at = |centre: f64| self.band(kind, centre - half_width, centre + half_width, n);
         let last = LastBand::default();
         let lo = half_width + MIN_CONTACT_RATIO;
         let hi = 3.0 + 3.0 * half_width;
@@ -114,7 +124,8 @@ impl RingBemSolver {
             .unwrap_or(1.0 + half_width * half_width)
             .clamp(lo, hi);
         let what = format!(
-            "torus band of half-width {} a",
+            "{} band of half-width {} a",
+            kind.name(),
             crate::error::show(half_width)
         );
         let root = find_root(
@@ -129,35 +140,31 @@ impl RingBemSolver {
         Ok(last.at(root.x, band_at)?.sample(intensity))
     }
 
-    /// The torus's band of half-width `half_width` (units of `a`) with the stress intensity
-    /// `intensity` at both edges (units of `E* h / sqrt(a)`; the JKR edges in equilibrium:
-    /// `-sqrt(2 E* Δw) sqrt(a)/(E* h) = -(d0/h)/sqrt(π)`), its centre found, refined until
-    /// `γ1`, `γ2` and both edges change by less than `tolerance` between node counts. No check
-    /// of the pressure's sign (adhesive edges are tensile by design). `centre_hint` starts the
-    /// centre's search (a neighbouring state's centre, to follow one branch); without one it
-    /// starts at `1 + w²` (units of `a`).
-    pub fn torus_with_edge_intensity(
+    /// [`RingBemSolver::band_with_edge_intensity`].
+    pub(super) fn band_with_edge_intensity(
         &self,
+        kind: &PunchKind,
         half_width: f64,
         intensity: f64,
         tolerance: f64,
         centre_hint: Option<f64>,
     ) -> Result<RingState> {
-        Self::check_tolerance(tolerance)?;
+        RingBemSolver::check_tolerance(tolerance)?;
         if !(intensity.is_finite() && half_width.is_finite() && half_width > 0.0) {
             return Err(out_of_range(format!(
-                "torus band of half-width {} with edge intensity {}: need a finite positive \
+                "{} band of half-width {} with edge intensity {}: need a finite positive \
                  width and a finite intensity",
+                kind.name(),
                 crate::error::show(half_width),
                 crate::error::show(intensity)
             )));
         }
         let last_centre = std::cell::Cell::new(centre_hint);
-        let (fine, n, estimate) = self.refine(
+        let (fine, n, estimate) = self.0.refine(
             tolerance,
             |n| {
                 let sample =
-                    self.torus_width_sample(half_width, n, last_centre.get(), intensity)?;
+                    self.band_width_sample(kind, half_width, n, last_centre.get(), intensity)?;
                 let region = sample.system.region();
                 last_centre.set(Some(0.5 * (region.inner() + region.outer())));
                 Ok(sample)
@@ -175,21 +182,21 @@ impl RingBemSolver {
     }
 }
 
-/// Iterations of [`RingBemSolver::torus_at_target`] before it gives up (and the nested search
+/// Iterations of [`BandSolver::band_at_target`] before it gives up (and the nested search
 /// takes over).
 const DIRECT_MAX_ITERATIONS: usize = 40;
 
-/// Consecutive steps of [`RingBemSolver::torus_at_target`] that leave the residual above 0.9 of
+/// Consecutive steps of [`BandSolver::band_at_target`] that leave the residual above 0.9 of
 /// its previous size before it gives up. Near the root the residual sits at rounding and the
 /// steps stop on their own size first.
 const DIRECT_MAX_STALLED: usize = 4;
 
-impl RingBemSolver {
-    /// The torus at a fixed node count with the depth (`depth_controlled`) or the force at
+impl BandSolver<'_> {
+    /// The band at a fixed node count with the depth (`depth_controlled`) or the force at
     /// `target` (`γ1` or `γ2`): both unknown edges at once, by Newton's method on
     ///
     /// ```text
-    /// R(b, c) = 0              (both edges free, [`TorusBand::mismatch`])
+    /// R(b, c) = 0              (both edges free, [`Band::mismatch`])
     /// γ(b, c)/target - 1 = 0   (γ = γ1 or γ2 at the depth of a free inner edge)
     /// ```
     ///
@@ -203,114 +210,47 @@ impl RingBemSolver {
     /// does not converge: the caller then runs the nested search (an edge search inside a
     /// search on `b`), which is safeguarded but costs several times more bands.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn torus_at_target(
+    pub(super) fn band_at_target(
         &self,
         kind: &PunchKind,
         n: usize,
         target: f64,
         depth_controlled: bool,
         start: (f64, f64),
-        jacobian: Option<TorusJacobian>,
+        jacobian: Option<BandJacobian>,
         eps_tolerance: f64,
-    ) -> Option<TorusTarget> {
-        let pick = if depth_controlled { 1 } else { 2 };
-        // The band's values `[R, γ1, γ2]` at `(b, c)`.
-        let values = |b: f64, c: f64| -> Option<([f64; 3], TorusBand)> {
-            let band = self.torus_band(kind, b, c, n).ok()?;
-            let v = band.values();
-            v.iter().all(|x| x.is_finite()).then_some((v, band))
-        };
-        let residual = |v: &[f64; 3]| [v[0], v[pick] / target - 1.0];
-        let admissible = |b: f64, c: f64| {
-            (MIN_CONTACT_RATIO..=super::MAX_CONTACT_RATIO).contains(&b)
-                && c > b * (1.0 + 2.0 * MIN_BAND_RATIO)
-                && c <= outer_edge_bound(b)
+    ) -> Option<BandTarget> {
+        let newton = BandNewton {
+            solver: self,
+            kind,
+            n,
+            target,
+            pick: if depth_controlled { 1 } else { 2 },
+            eps_tolerance,
         };
         let (mut b, mut c) = start;
-        if !(b.is_finite() && c.is_finite() && admissible(b, c)) {
+        if !(b.is_finite() && c.is_finite() && newton.admissible(b, c)) {
             return None;
         }
-        let (mut v, mut band) = values(b, c)?;
+        let (mut v, mut band) = newton.values(b, c)?;
         let mut jacobian = match jacobian.filter(|j| j.iter().flatten().all(|x| x.is_finite())) {
             Some(given) => given,
-            None => {
-                // By forward differences (steps far above rounding, far below the edges'
-                // scales).
-                let (hb, hc) = (1e-7 * b.max(1e-3), 1e-7 * c);
-                let (vb, _) = values(b + hb, c)?;
-                let (vc, _) = values(b, c + hc)?;
-                std::array::from_fn(|i| [(vb[i] - v[i]) / hb, (vc[i] - v[i]) / hc])
-            }
+            None => newton.differenced_jacobian(b, c, &v)?,
         };
         // Steps that did not shrink the residual (a start outside Newton's basin): after a few
         // the nested search takes over.
-        let size = |r: &[f64; 2]| r[0].hypot(r[1]);
         let mut stalled = 0;
         for _ in 0..DIRECT_MAX_ITERATIONS {
-            let f = residual(&v);
-            let newton = [
-                jacobian[0],
-                [jacobian[pick][0] / target, jacobian[pick][1] / target],
-            ];
-            let det = newton[0][0] * newton[1][1] - newton[0][1] * newton[1][0];
-            if !(det.is_finite() && det != 0.0) {
-                return None;
-            }
-            let mut step = [
-                -(newton[1][1] * f[0] - newton[0][1] * f[1]) / det,
-                -(-newton[1][0] * f[0] + newton[0][0] * f[1]) / det,
-            ];
+            let f = newton.residual(&v);
+            let mut step = newton.step(&jacobian, &f)?;
             let outer_tolerance = (10.0 * OUTER_EDGE_TOLERANCE).max(eps_tolerance * c);
             if step[0].abs() <= eps_tolerance && step[1].abs() <= outer_tolerance {
-                // Converged: this state where it meets the target to the tolerance, else the
-                // state after the last (small) step, whose residual is far below the step's
-                // but not below the values' rounding; of the two the one with the smaller
-                // residuals where the step's only moved them in the rounding. The residual is returned for the caller's estimate.
-                let (b, band, residual) = if f[1].abs() <= eps_tolerance {
-                    (b, band, f[1])
-                } else {
-                    let (b_next, c_next) = (b + step[0], c + step[1]);
-                    if !admissible(b_next, c_next) {
-                        return None;
-                    }
-                    let (v_next, band_next) = values(b_next, c_next)?;
-                    let f_next = residual(&v_next);
-                    if size(&f_next) < size(&f) {
-                        (b_next, band_next, f_next[1])
-                    } else {
-                        (b, band, f[1])
-                    }
-                };
-                return Some(TorusTarget {
-                    eps: b,
-                    sample: band.sample(0.0),
-                    jacobian,
-                    residual: residual.abs(),
-                });
+                return newton.converged((b, c), band, &f, step, jacobian);
             }
-            // Shorten a step that leaves the admissible edges (or moves b by more than half).
-            let mut shortened = 0;
-            while !admissible(b + step[0], c + step[1]) || step[0].abs() > 0.5 * b {
-                step = [0.5 * step[0], 0.5 * step[1]];
-                shortened += 1;
-                if shortened > 30 {
-                    return None;
-                }
-            }
-            let (next, next_band) = values(b + step[0], c + step[1])?;
-            // Broyden's update, J += ((Δv - J s) sᵀ) / (sᵀ s), where the step is long enough
-            // for the values' rounding (about 1e-14) not to swamp it: the Jacobian also gives
-            // the next node count its start.
-            let norm = step[0] * step[0] + step[1] * step[1];
-            if norm.sqrt() > BROYDEN_MIN_STEP * c {
-                for (i, row) in jacobian.iter_mut().enumerate() {
-                    let predicted = row[0] * step[0] + row[1] * step[1];
-                    let miss = (next[i] - v[i]) - predicted;
-                    row[0] += miss * step[0] / norm;
-                    row[1] += miss * step[1] / norm;
-                }
-            }
-            stalled = if size(&residual(&next)) < 0.9 * size(&f) {
+            newton.shorten(&mut step, b, c)?;
+            let (next, next_band) = newton.values(b + step[0], c + step[1])?;
+            broyden_update(&mut jacobian, step, &v, &next, c);
+            stalled = if size(&newton.residual(&next)) < 0.9 * size(&f) {
                 0
             } else {
                 stalled + 1
@@ -324,10 +264,149 @@ impl RingBemSolver {
     }
 }
 
-impl RingBemSolver {
-    /// The torus at a depth (`depth_controlled`, `target = γ1 = d/h`) or a force
+/// The size of a residual `[R, γ/target - 1]`.
+fn size(r: &[f64; 2]) -> f64 {
+    r[0].hypot(r[1])
+}
+
+/// Broyden's update, `J += ((Δv - J s) sᵀ) / (sᵀ s)`, where the step is long enough for the
+/// values' rounding (about 1e-14) not to swamp it: the Jacobian also gives the next node count
+/// its start.
+fn broyden_update(
+    jacobian: &mut BandJacobian,
+    step: [f64; 2],
+    v: &[f64; 3],
+    next: &[f64; 3],
+    c: f64,
+) {
+    let norm = step[0] * step[0] + step[1] * step[1];
+    if norm.sqrt() > BROYDEN_MIN_STEP * c {
+        for (i, row) in jacobian.iter_mut().enumerate() {
+            let predicted = row[0] * step[0] + row[1] * step[1];
+            let miss = (next[i] - v[i]) - predicted;
+            row[0] += miss * step[0] / norm;
+            row[1] += miss * step[1] / norm;
+        }
+    }
+}
+
+/// Newton's method on both edges of a band at one node count
+/// ([`BandSolver::band_at_target`]): the problem and its phases.
+struct BandNewton<'a> {
+    solver: &'a BandSolver<'a>,
+    kind: &'a PunchKind,
+    n: usize,
+    target: f64,
+    /// 1: depth control (`γ1`), 2: force control (`γ2`).
+    pick: usize,
+    eps_tolerance: f64,
+}
+
+impl BandNewton<'_> {
+    /// The band's values `[R, γ1, γ2]` at `(b, c)`, `None` where they are not finite.
+    fn values(&self, b: f64, c: f64) -> Option<([f64; 3], Band)> {
+        let band = self.solver.band(self.kind, b, c, self.n).ok()?;
+        let v = band.values();
+        v.iter().all(|x| x.is_finite()).then_some((v, band))
+    }
+
+    /// The residual `[R, γ/target - 1]`.
+    fn residual(&self, v: &[f64; 3]) -> [f64; 2] {
+        [v[0], v[self.pick] / self.target - 1.0]
+    }
+
+    /// Whether `MIN_CONTACT_RATIO <= b < c <= hi` holds, with room for the band.
+    fn admissible(&self, b: f64, c: f64) -> bool {
+        (MIN_CONTACT_RATIO..=super::MAX_CONTACT_RATIO).contains(&b)
+            && c > b * (1.0 + 2.0 * MIN_BAND_RATIO)
+            && c <= outer_edge_bound(b)
+    }
+
+    /// The Jacobian by forward differences (steps far above rounding, far below the edges'
+    /// scales).
+    fn differenced_jacobian(&self, b: f64, c: f64, v: &[f64; 3]) -> Option<BandJacobian> {
+        let (hb, hc) = (1e-7 * b.max(1e-3), 1e-7 * c);
+        let (vb, _) = self.values(b + hb, c)?;
+        let (vc, _) = self.values(b, c + hc)?;
+        Some(std::array::from_fn(|i| {
+            [(vb[i] - v[i]) / hb, (vc[i] - v[i]) / hc]
+        }))
+    }
+
+    /// Newton's step for the residual `f`, `None` where the Jacobian is singular.
+    fn step(&self, jacobian: &BandJacobian, f: &[f64; 2]) -> Option<[f64; 2]> {
+        let target = self.target;
+        let newton = [
+            jacobian[0],
+            [
+                jacobian[self.pick][0] / target,
+                jacobian[self.pick][1] / target,
+            ],
+        ];
+        let det = newton[0][0] * newton[1][1] - newton[0][1] * newton[1][0];
+        if !(det.is_finite() && det != 0.0) {
+            return None;
+        }
+        Some([
+            -(newton[1][1] * f[0] - newton[0][1] * f[1]) / det,
+            -(-newton[1][0] * f[0] + newton[0][0] * f[1]) / det,
+        ])
+    }
+
+    /// Shorten a step that leaves the admissible edges (or moves `b` by more than half);
+    /// `None` after 30 halvings.
+    fn shorten(&self, step: &mut [f64; 2], b: f64, c: f64) -> Option<()> {
+        let mut shortened = 0;
+        while !self.admissible(b + step[0], c + step[1]) || step[0].abs() > 0.5 * b {
+            *step = [0.5 * step[0], 0.5 * step[1]];
+            shortened += 1;
+            if shortened > 30 {
+                return None;
+            }
+        }
+        Some(())
+    }
+
+    /// Converged: this state where it meets the target to the tolerance, else the state after
+    /// the last (small) step, whose residual is far below the step's but not below the values'
+    /// rounding; of the two the one with the smaller residuals where the step's only moved them
+    /// in the rounding. The residual is returned for the caller's estimate.
+    fn converged(
+        &self,
+        (b, c): (f64, f64),
+        band: Band,
+        f: &[f64; 2],
+        step: [f64; 2],
+        jacobian: BandJacobian,
+    ) -> Option<BandTarget> {
+        let (b, band, residual) = if f[1].abs() <= self.eps_tolerance {
+            (b, band, f[1])
+        } else {
+            let (b_next, c_next) = (b + step[0], c + step[1]);
+            if !self.admissible(b_next, c_next) {
+                return None;
+            }
+            let (v_next, band_next) = self.values(b_next, c_next)?;
+            let f_next = self.residual(&v_next);
+            if size(&f_next) < size(f) {
+                (b_next, band_next, f_next[1])
+            } else {
+                (b, band, f[1])
+            }
+        };
+        Some(BandTarget {
+            eps: b,
+            sample: band.sample(0.0),
+            jacobian,
+            residual: residual.abs(),
+        })
+    }
+}
+
+impl BandSolver<'_> {
+    /// The band at a depth (`depth_controlled`, `target = γ1 = d/h`) or a force
     /// (`target = γ2 = F/(2 E* h a)`), both edges by Newton's method at every rung of the node
-    /// ladder ([`Self::torus_at_target`]), each rung started from the previous rung's edges and
+    /// ladder ([`Self::band_at_target`]), each rung started from the previous rung's edges and
     /// Jacobian; a state whose inner edge needs a rung ([`starting_rung`]) more than one above
     /// the first climbs to the rung just below that one first, which starts the needed rung
     /// close to its root and is its rung below (six evaluations on the cheaper rung, two on the
@@ -338,7 +417,7 @@ impl RingBemSolver {
     /// residual (the search's own error: each rung stops after a step below 1 % of the
     /// tolerance, and the residual of the state, at rounding then, is counted). `None` where
     /// Newton's method does not converge at some rung: the caller then runs the nested search.
-    pub(super) fn torus_inverse(
+    pub(super) fn band_inverse(
         &self,
         kind: &PunchKind,
         target: f64,
@@ -346,15 +425,20 @@ impl RingBemSolver {
         depth_controlled: bool,
     ) -> Option<Result<RingState>> {
         let search_tolerance = 0.01 * tolerance;
-        let start_eps = initial_inner_edge(target, depth_controlled);
+        let controlled = if depth_controlled {
+            super::Controlled::Depth
+        } else {
+            super::Controlled::Force
+        };
+        let start_eps = super::initial_ratio(kind, target, controlled);
         let mut start = (start_eps, outer_edge_guess(start_eps));
         let mut jacobian = None;
         let mut rung = FIRST_SEARCH_RUNG;
-        let mut below: Option<(usize, TorusTarget)> = None;
+        let mut below: Option<(usize, BandTarget)> = None;
         loop {
             let n = NODE_LADDER[rung];
-            let at = |n: usize, start: (f64, f64), jacobian: Option<TorusJacobian>| {
-                self.torus_at_target(
+            let at = |n: usize, start: (f64, f64), jacobian: Option<BandJacobian>| {
+                self.band_at_target(
                     kind,
                     n,
                     target,
@@ -385,7 +469,10 @@ impl RingBemSolver {
                 Err(e) => return Some(Err(e)),
             };
             if estimate <= tolerance {
-                return Some(self.concave_state(kind, fine.eps, fine.sample, n, estimate));
+                return Some(
+                    self.0
+                        .concave_state(kind, fine.eps, fine.sample, n, estimate),
+                );
             }
             if rung + 1 >= NODE_LADDER.len() {
                 return Some(Err(no_convergence(if estimate.is_finite() {
@@ -407,24 +494,24 @@ impl RingBemSolver {
     }
 }
 
-/// What [`RingBemSolver::torus_at_target`] found at one node count.
-pub(super) struct TorusTarget {
+/// What [`BandSolver::band_at_target`] found at one node count.
+pub(super) struct BandTarget {
     /// The inner edge `b/a`.
     pub eps: f64,
     /// The state there (both edges free, the target met).
     pub sample: ConcaveSample,
     /// The Jacobian of `[R, γ1, γ2]` in `(b, c)` at the end (Broyden's estimate).
-    pub jacobian: TorusJacobian,
+    pub jacobian: BandJacobian,
     /// The target's residual there, `|γ/target - 1|` (the search's error; at rounding once
     /// converged, about 1e-10 for the widest bands).
     pub residual: f64,
 }
 
-impl TorusTarget {
+impl BandTarget {
     /// The change from the state `coarse` (another node count's): of the edges `b` and `c`
     /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), the largest.
-    fn change_from(&self, coarse: &TorusTarget) -> f64 {
-        let outer = |t: &TorusTarget| t.sample.system.region().outer();
+    fn change_from(&self, coarse: &BandTarget) -> f64 {
+        let outer = |t: &BandTarget| t.sample.system.region().outer();
         (self.eps - coarse.eps)
             .abs()
             .max((outer(self) - outer(coarse)).abs())
@@ -433,21 +520,21 @@ impl TorusTarget {
     }
 }
 
-/// The derivatives of a torus band's `[R, γ1, γ2]` ([`TorusBand::values`]) in its edges
+/// The derivatives of a band's `[R, γ1, γ2]` ([`Band::values`]) in its edges
 /// `(b, c)`, one row per value.
-pub(super) type TorusJacobian = [[f64; 2]; 3];
+pub(super) type BandJacobian = [[f64; 2]; 3];
 
-/// The least step (relative to the outer edge) that updates [`TorusJacobian`] by Broyden's rule.
+/// The least step (relative to the outer edge) that updates [`BandJacobian`] by Broyden's rule.
 const BROYDEN_MIN_STEP: f64 = 1e-9;
 
-/// A band of the torus at one node count: its system and the fields of `w = 1` and `w = -ĝ`.
-struct TorusBand {
+/// A band at one node count: its system and the fields of `w = 1` and `w = -ĝ`.
+struct Band {
     system: RingSystem,
     one: RingField,
     gap: RingField,
 }
 
-impl TorusBand {
+impl Band {
     /// Edge coefficient of the intensity `K`: `α = K sqrt((c - b)/(2π))`.
     fn coefficient(&self, intensity: f64) -> f64 {
         let region = self.system.region();
@@ -504,14 +591,14 @@ impl TorusBand {
 /// The last band a one-unknown search evaluated, kept so that the root's band is not solved
 /// again (`Root::x` is the last point a search evaluates).
 #[derive(Default)]
-struct LastBand(std::cell::RefCell<Option<(f64, TorusBand)>>);
+struct LastBand(std::cell::RefCell<Option<(f64, Band)>>);
 
 impl LastBand {
     /// The search's residual: the mismatch `R` of the band `band_at(x)` from the edge
-    /// intensity `intensity` ([`TorusBand::mismatch`]), the band kept.
+    /// intensity `intensity` ([`Band::mismatch`]), the band kept.
     fn residual<'a>(
         &'a self,
-        band_at: impl Fn(f64) -> Result<TorusBand> + 'a,
+        band_at: impl Fn(f64) -> Result<Band> + 'a,
         intensity: f64,
     ) -> impl FnMut(f64) -> std::result::Result<f64, String> + 'a {
         move |x| {
@@ -523,7 +610,7 @@ impl LastBand {
     }
 
     /// The band at `x`: the kept one if it is there, else solved by `band_at`.
-    fn at(self, x: f64, band_at: impl Fn(f64) -> Result<TorusBand>) -> Result<TorusBand> {
+    fn at(self, x: f64, band_at: impl Fn(f64) -> Result<Band>) -> Result<Band> {
         match self.0.into_inner() {
             Some((kept, band)) if kept == x => Ok(band),
             _ => band_at(x),
@@ -562,37 +649,6 @@ pub(super) fn outer_edge_guess(eps: f64) -> f64 {
     (1.0 / eps).min(1.3 + (1.0 / eps).ln())
 }
 
-/// Starting inner edge of the torus for a depth (`γ1 = d/h`) or a force (`γ2 = F/(2 E* h a)`)
-/// target, from the larger of two approximants of the ring BEM's curves. Narrow: the ring as a
-/// plane-strain cylinder of half-width `w = 1 - eps` (`ρ = a/2` when `h = 1`), `γ2 ≈ π² w²/2`
-/// (Hertz, `P = π E* w²/(4ρ)` per unit length over the length `2πa`) and `γ1 ≈ w² (ln(16/w) - 1)`
-/// (the ring's logarithmic approach). Wide: powers of `L = ln(a/b)` through the ring BEM's curves
-/// (`γ1 = 15.6, 49.7, 163` and `γ2 = 41.9, 205, 1109` at `b = 0.1, 0.01, 1e-4 a`),
-/// `γ1 ≈ 3.8 L^1.7`, `γ2 ≈ 5.8 L^2.35`. A start only: the search converges on the ring BEM's
-/// own `γ1` or `γ2`, and a poor start costs evaluations (and a higher first node count), not
-/// accuracy.
-pub(super) fn initial_inner_edge(target: f64, depth_controlled: bool) -> f64 {
-    let approximant = |eps: f64| {
-        let (w, log) = (1.0 - eps, (1.0 / eps).ln());
-        if depth_controlled {
-            (w * w * ((16.0 / w).ln() - 1.0)).max(3.8 * log.powf(1.7))
-        } else {
-            (0.5 * std::f64::consts::PI.powi(2) * w * w).max(5.8 * log.powf(2.35))
-        }
-    };
-    // Bisection on the approximant, decreasing in eps.
-    let (mut lo, mut hi) = (super::MIN_CONTACT_RATIO, super::MAX_CONTACT_RATIO);
-    for _ in 0..60 {
-        let mid = 0.5 * (lo + hi);
-        if approximant(mid) > target {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -603,13 +659,19 @@ mod tests {
     /// return a wrong state.
     #[test]
     fn newton_on_both_edges_agrees_with_the_nested_search() {
-        let solver = RingBemSolver::new();
+        let owner = RingBemSolver::new();
+        let solver = BandSolver(&owner);
         let n = 16;
         for (depth_controlled, target) in [(true, 0.01), (true, 1.0), (false, 2.0), (false, 1e-4)] {
             let pick = |s: &ConcaveSample| if depth_controlled { s.gamma1 } else { s.gamma2 };
-            let start = initial_inner_edge(target, depth_controlled);
+            let controlled = if depth_controlled {
+                super::super::Controlled::Depth
+            } else {
+                super::super::Controlled::Force
+            };
+            let start = super::super::initial_ratio(&PunchKind::TORUS, target, controlled);
             let direct = solver
-                .torus_at_target(
+                .band_at_target(
                     &PunchKind::TORUS,
                     n,
                     target,
@@ -622,7 +684,7 @@ mod tests {
             let nested = find_root(
                 |eps| {
                     let s = solver
-                        .torus_sample(&PunchKind::TORUS, eps, n, None)
+                        .band_sample(&PunchKind::TORUS, eps, n, None)
                         .map_err(|e| e.to_string())?;
                     Ok(pick(&s) - target)
                 },
@@ -634,7 +696,7 @@ mod tests {
             )
             .unwrap();
             let outer = solver
-                .torus_sample(&PunchKind::TORUS, nested.x, n, None)
+                .band_sample(&PunchKind::TORUS, nested.x, n, None)
                 .unwrap();
             let (b, c) = (direct.eps, direct.sample.system.region().outer());
             println!(
@@ -647,7 +709,7 @@ mod tests {
             assert!((pick(&direct.sample) / target - 1.0).abs() < 1e-11);
         }
         // A narrow band started far off: no state, or the right one.
-        let wrong = solver.torus_at_target(
+        let wrong = solver.band_at_target(
             &PunchKind::TORUS,
             n,
             1e-4,
