@@ -153,7 +153,11 @@ fn main() {
         for (kind, eps, load, label) in states() {
             let (force_ref, eps_ref, outer_ref) = reference(kind.clone(), eps, load);
             let options = FemOptions {
-                linear_solver: Default::default(),
+                // As `verify` does: the environment's backend, else the built-in one.
+                linear_solver: std::env::var(ringcontact::sparse::ENVIRONMENT_VARIABLE)
+                    .ok()
+                    .and_then(|name| name.parse().ok())
+                    .unwrap_or_default(),
                 degree,
                 tolerance,
                 mesh: None,

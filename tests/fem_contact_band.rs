@@ -3,6 +3,8 @@
 //! same discrete problem, so they must agree to rounding (the reference is the independent
 //! factorisation-per-iteration route), whatever side of the true free edge the warm start lies.
 
+mod common;
+
 use ringcontact::discretisation::assembly::assemble_stiffness;
 use ringcontact::discretisation::element::Lame;
 use ringcontact::discretisation::quadrature::TriangleRule;
@@ -34,14 +36,16 @@ fn the_banded_solve_equals_the_refactorising_loop_with_one_factorisation() {
     let k = stiffness(&mesh);
     let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
     for (kind, depth) in [(PunchKind::CONE, 2.0), (PunchKind::SPHERE, 1.5)] {
-        let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+        let mut reference_solver =
+            ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
         let (reference, _) = contact
             .concave(&mut reference_solver, kind.clone(), depth, None)
             .unwrap();
         // Warm starts on both sides of the edge, within a band of 0.03 a.
         for offset in [-0.02, -0.005, 0.004, 0.015] {
             let guess = reference.inner_radius + offset;
-            let mut solver = ConstrainedCholesky::new(&k).unwrap();
+            let mut solver =
+                ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
             let mut system = contact.banded_system(&mut solver, kind.clone(), guess + 0.03);
             let (banded, _, was_banded) = contact
                 .concave_with(
@@ -73,14 +77,15 @@ fn a_band_that_misses_the_edge_is_moved_or_replaced_never_wrong() {
     let k = stiffness(&mesh);
     let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
     let (kind, depth) = (PunchKind::CONE, 2.0);
-    let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+    let mut reference_solver =
+        ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
     let (reference, _) = contact
         .concave(&mut reference_solver, kind.clone(), depth, None)
         .unwrap();
     // A core that starts below the true edge (the warm start is far too low, the band narrow):
     // core nodes must be released, and the answer must still be the reference.
     for guess in [0.1, 0.3, 0.44] {
-        let mut solver = ConstrainedCholesky::new(&k).unwrap();
+        let mut solver = ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
         let mut system = contact.banded_system(&mut solver, kind.clone(), guess + 1e-3);
         let (solution, _, _) = contact
             .concave_with(
@@ -121,12 +126,13 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
         )
         .unwrap();
         let contact = ContactModel::new(&mesh, k.nrows()).unwrap();
-        let mut reference_solver = ConstrainedCholesky::new(&k).unwrap();
+        let mut reference_solver =
+            ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
         let (reference, _) = contact
             .concave(&mut reference_solver, kind.clone(), depth, None)
             .unwrap();
         let options = FemOptions {
-            linear_solver: Default::default(),
+            linear_solver: common::linear_solver(),
             degree,
             tolerance: 0.9,
             mesh: Some(path.clone()),

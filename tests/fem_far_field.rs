@@ -2,6 +2,8 @@
 //! energy) against the classical fixed arc, on the committed meshes: the reference is Boussinesq's
 //! flat punch `γ(0) = 1` (exact), and the ring BEM for the cone.
 
+mod common;
+
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
@@ -10,7 +12,7 @@ use ringcontact::punch::PunchKind;
 
 fn solve_on(mesh: &str, kind: PunchKind, load: FemLoad, far_field: FarField) -> FemState {
     let options = FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: common::linear_solver(),
         degree: Degree::Quadratic,
         // A single mesh: the tolerance only gates the domain check.
         tolerance: 0.9,
@@ -92,7 +94,7 @@ fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
     use ringcontact::discretisation::quadrature::stiffness_rule;
     for far_field in [FarField::Boussinesq, FarField::Fixed] {
         let options = FemOptions {
-            linear_solver: Default::default(),
+            linear_solver: common::linear_solver(),
             degree: Degree::Cubic,
             tolerance: 0.9,
             mesh: Some(solver::mesh_directory().join("small-domain-R5.msh")),

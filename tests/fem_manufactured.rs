@@ -8,6 +8,8 @@
 //! `b = -div σ` in cylindrical coordinates (derivation in the comments below) makes it an exact
 //! solution; `u = u*` is prescribed on the top, side and bottom, `u_r = 0` on the axis.
 
+mod common;
+
 use ringcontact::discretisation::assembly::assemble_stiffness;
 use ringcontact::discretisation::element::Lame;
 use ringcontact::discretisation::norms::{body_force_vector, errors, ExactField};
@@ -81,7 +83,7 @@ fn solve_with(
         constrained[2 * node] = true;
         prescribed[2 * node] = 0.0;
     }
-    let mut solver = ConstrainedCholesky::new(&k).unwrap();
+    let mut solver = ConstrainedCholesky::with_backend(&k, common::linear_solver()).unwrap();
     let u = solver.solve(&f, &constrained, &prescribed).unwrap();
     let (l2, energy) = errors(&mesh, &u, &Manufactured, material);
     (1.0 / cells as f64, l2, energy)

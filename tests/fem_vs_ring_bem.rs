@@ -18,7 +18,7 @@ fn fem(kind: PunchKind, eps: f64, load: FemLoad, tolerance: f64) -> FemState {
 /// Options of a ladder solve (meshes made for the scene) of `degree` at `tolerance`.
 fn ladder_options(degree: Degree, tolerance: f64) -> FemOptions {
     FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: common::linear_solver(),
         degree,
         tolerance,
         mesh: None,
@@ -165,7 +165,7 @@ fn linear_elements_converge_toward_the_ring_bem() {
     let errors: Vec<f64> = (0..3)
         .map(|level| {
             let options = FemOptions {
-                linear_solver: Default::default(),
+                linear_solver: common::linear_solver(),
                 degree: Degree::Linear,
                 tolerance: 1e-3,
                 mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
@@ -190,7 +190,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
     // The rigid frictionless punch depends on E* only; the FEM must reproduce that.
     let run = |nu: f64| {
         let options = FemOptions {
-            linear_solver: Default::default(),
+            linear_solver: common::linear_solver(),
             degree: Degree::Quadratic,
             tolerance: 1e-3,
             mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
@@ -206,7 +206,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
 #[test]
 fn mismatched_mesh_and_scene_are_errors() {
     let options = FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: common::linear_solver(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),

@@ -31,7 +31,7 @@ fn committed_disk_response(level: usize) -> ringcontact::fem::surface_response::
         "test",
     )
     .unwrap();
-    surface_response_on_mesh(&mesh, &study::study_options(), 0.0)
+    surface_response_on_mesh(&mesh, &study::study_options(Default::default()), 0.0)
         .unwrap()
         .0
 }
@@ -77,6 +77,7 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
         punch: PunchKind::FLAT,
         eps: 0.0,
         d0_over_h: 0.0,
+        linear_solver: Default::default(),
     };
     // The study as `verify pulloff` runs it: a mesh per range with a refined band at the rim.
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
@@ -114,6 +115,7 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
         punch: PunchKind::FLAT_ANNULUS,
         eps,
         d0_over_h: 0.0,
+        linear_solver: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
     let jkr = ringcontact::adhesion::flat_annulus(&RingBemSolver::new(), eps).unwrap();
@@ -211,6 +213,7 @@ fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() 
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 10.0,
+        linear_solver: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
     assert!(s
@@ -314,6 +317,7 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
         punch: PunchKind::FLAT_ANNULUS,
         eps: 0.9,
         d0_over_h: 0.0,
+        linear_solver: Default::default(),
     };
     assert!(!study::left_the_branch(&annulus, &entry));
     // The same entry for a concave punch is on another branch.
@@ -321,6 +325,7 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 1.0,
+        linear_solver: Default::default(),
     };
     assert!(study::left_the_branch(&cone, &entry));
 }
@@ -377,6 +382,7 @@ fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::mesh::provider
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 0.3,
+        linear_solver: Default::default(),
     };
     (
         case,
@@ -442,6 +448,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 1.0,
+        linear_solver: Default::default(),
     };
     let s = ringcontact::cohesive::annular::run_annular(case, &[0.1], |_| {}).unwrap();
     assert_eq!(s.branch, Some(study::Branch::Annular));
@@ -488,6 +495,7 @@ fn annular_branch_is_declined_where_the_hole_closes_on_touch() {
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 3.0,
+        linear_solver: Default::default(),
     };
     let error = ringcontact::cohesive::annular::run_annular(case, &[0.1], |_| {})
         .unwrap_err()
@@ -522,6 +530,7 @@ fn a_table_of_the_spheres_profile_lets_go_like_the_sphere() {
             punch,
             eps: 0.0,
             d0_over_h,
+            linear_solver: Default::default(),
         };
         let s = study::run(case, &[0.0125], &mesh, None, |_| {}).unwrap();
         assert!(s.excluded.is_empty(), "{:?}", s.excluded);

@@ -7,6 +7,7 @@ use std::process::ExitCode;
 use clap::{CommandFactory, FromArgMatches};
 
 use ringcontact::cli::{self, args::Cli};
+use ringcontact::harness::settings;
 use ringcontact::mesh::provider;
 use ringcontact::sparse::{self, Backend};
 
@@ -80,12 +81,12 @@ fn main() -> ExitCode {
         // Read by the data lookups of the library (provider::find_project_root).
         provider::set_data_directory(dir.clone());
     }
-    // Chosen before any solver thread starts; plan jobs get it passed on (harness::plan). The
-    // environment's choice is read by the library itself (`Backend::of_process`): here an
-    // unknown name is refused rather than ignored.
+    // Chosen before any model is built; plan jobs get it passed on (harness::plan). The
+    // environment's choice is read by `harness::settings::linear_solver`: here an unknown name
+    // is refused rather than ignored.
     match cli.linear_solver.as_deref().map(str::parse::<Backend>) {
         Some(Ok(backend)) => {
-            sparse::set_process_backend(backend);
+            settings::choose_linear_solver(backend);
         }
         Some(Err(e)) => {
             eprintln!("error: {e}");

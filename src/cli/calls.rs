@@ -51,7 +51,7 @@ pub fn solve_keyword_scenes(
         degree,
         grid: options.grid,
         grid_extent: options.grid_extent,
-        ..Default::default()
+        ..crate::harness::settings::method_options()
     };
     let values: Vec<serde_json::Value> = serde_json::from_str(scenes_json)
         .map_err(|e| format!("the scenes are not a JSON array: {e}"))?;

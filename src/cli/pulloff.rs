@@ -118,6 +118,7 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         punch,
         eps,
         d0_over_h,
+        linear_solver: crate::harness::settings::linear_solver(),
     };
     Ok((case, ranges))
 }

@@ -108,7 +108,7 @@ pub fn run_annular(
         .iter()
         .map(|&r| annular_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
-    let options = crate::cohesive::study::study_options();
+    let options = crate::cohesive::study::study_options(case.linear_solver);
     touched_sequence(
         &case,
         ranges,

@@ -67,8 +67,11 @@ fn band_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(Provide
 }
 
 /// The condensed model of `mesh` in units of `a` ([`BAND_FRAME`]).
-fn band_response(mesh: &ProvidedMesh) -> Result<(SurfaceResponse, String)> {
-    let options = crate::cohesive::study::study_options();
+fn band_response(
+    mesh: &ProvidedMesh,
+    linear_solver: crate::sparse::Backend,
+) -> Result<(SurfaceResponse, String)> {
+    let options = crate::cohesive::study::study_options(linear_solver);
     let (response, name) = surface_response_on_mesh(mesh, &options, 0.0)?;
     Ok((response.in_units_of_a(BAND_FRAME), name))
 }
@@ -162,7 +165,7 @@ pub fn run_band(
         (&meshes, &|range, per_zone| {
             band_mesh(&case, range, per_zone)
         }),
-        &band_response,
+        &|mesh| band_response(mesh, case.linear_solver),
         &|response, entry, edges| left_the_band(&case, response, entry, edges),
         &mut progress,
     )?

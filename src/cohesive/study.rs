@@ -22,6 +22,7 @@ use crate::fem::surface_response::SurfaceResponse;
 use crate::mesh::provider::{self, MeshRequest, ProvidedMesh};
 use crate::mesh::triangulation::Degree;
 use crate::punch::{Contact, PunchKind};
+use crate::sparse::Backend;
 
 /// Default ranges `ρ/d0`: Tabor parameter `λ` 9, 18, 36 and 90 (a factor 10).
 pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
@@ -109,6 +110,8 @@ pub(crate) const ANNULAR_HOP_FORCE: f64 = 0.01;
 #[derive(Clone, Debug)]
 pub struct Case {
     pub punch: PunchKind,
+    /// The FEM's sparse Cholesky for the condensation (`verify --linear-solver`).
+    pub linear_solver: Backend,
     /// `b/a` of the flat annulus.
     pub eps: f64,
     /// `d0/h` of a concave punch.
@@ -594,7 +597,8 @@ fn simulate_in_rim_band(
     level: i32,
 ) -> Result<(SequenceEntry, Vec<CurveSample>, Vec<CurveEdges>, ModelInfo)> {
     let (mesh, width, size) = rim_band_mesh(case, range, per, level)?;
-    let (response, name) = surface_response_on_mesh(&mesh, &study_options(), case.eps)?;
+    let (response, name) =
+        surface_response_on_mesh(&mesh, &study_options(case.linear_solver), case.eps)?;
     let (mut entry, curve, edges) =
         simulate(&response, case, range, Branch::Closed, Some(1.0 - width))?;
     let info = ModelInfo::of(&mesh, name, &response)?;
@@ -772,7 +776,7 @@ fn run_sequence(
     let start = Instant::now();
     let case = checked_case(case, ranges)?;
     let (punch, eps) = (case.punch.clone(), case.eps);
-    let options = study_options();
+    let options = study_options(case.linear_solver);
     let shared = match fixed {
         Some((mesh, _)) => {
             let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
@@ -945,9 +949,9 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
 }
 
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
-pub fn study_options() -> FemOptions {
+pub fn study_options(linear_solver: Backend) -> FemOptions {
     FemOptions {
-        linear_solver: Default::default(),
+        linear_solver,
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,
@@ -960,7 +964,7 @@ pub fn study_options() -> FemOptions {
 /// (the report's live check: a concave case must keep its hole closed, else it is declined).
 pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<LiveSimulation> {
     let start = Instant::now();
-    let options = study_options();
+    let options = study_options(case.linear_solver);
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
     let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed, None)?;
     LiveSimulation::unless_declined(
@@ -999,7 +1003,12 @@ pub(crate) fn simulate_cases(
     range: f64,
     mesh: &ProvidedMesh,
 ) -> Result<Vec<LiveSimulation>> {
-    let options = study_options();
+    // The cases share one condensation, on the first one's backend.
+    let options = study_options(
+        cases
+            .first()
+            .map_or(Backend::default(), |c| c.linear_solver),
+    );
     let start = Instant::now();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, 0.0)?;
     let condensation_s = start.elapsed().as_secs_f64();

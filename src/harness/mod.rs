@@ -10,4 +10,5 @@ pub mod progress;
 pub mod records;
 pub mod report;
 pub mod report_jobs;
+pub mod settings;
 pub mod studies;

@@ -236,7 +236,7 @@ fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
         command.env(crate::mesh::provider::DATA_DIR_VARIABLE, root);
         command.env(
             crate::sparse::ENVIRONMENT_VARIABLE,
-            crate::sparse::Backend::of_process().name(),
+            crate::harness::settings::linear_solver().name(),
         );
     }
     let output = command.args(&args).output();

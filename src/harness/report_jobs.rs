@@ -400,6 +400,7 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
         punch: punch.clone(),
         eps,
         d0_over_h,
+        linear_solver: crate::harness::settings::linear_solver(),
     };
     let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
     let file = match &punch {

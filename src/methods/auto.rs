@@ -6,12 +6,15 @@ use super::{Fem, Method, Reference, RingBem, Solver};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::solution::Solution;
+use crate::sparse::Backend;
 
 /// The cheapest method whose own error estimate meets the scene's tolerance (default 1e-6).
 #[derive(Clone, Debug, Default)]
 pub struct Auto {
     /// Where the FEM, if chosen, writes its displacement field; the other methods then decline.
     pub vtu: Option<PathBuf>,
+    /// The FEM's sparse Cholesky, if it is chosen (default [`Backend::BUILT_IN`]).
+    pub linear_solver: Option<Backend>,
 }
 
 impl Solver for Auto {
@@ -30,6 +33,7 @@ impl Auto {
         match method {
             Method::Fem => Ok(Box::new(Fem {
                 vtu: self.vtu.clone(),
+                linear_solver: self.linear_solver,
                 ..Fem::default()
             })),
             _ if self.vtu.is_some() => Err(Error::Unsupported {

@@ -11,6 +11,7 @@ use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::mesh::triangulation::Degree;
 use crate::scene::{Load, Scene};
 use crate::solution::{FemProvenance, Solution};
+use crate::sparse::Backend;
 
 /// The FEM and its own options; the default climbs the mesh ladder to the scene's tolerance.
 #[derive(Clone, Debug, Default)]
@@ -23,6 +24,8 @@ pub struct Fem {
     pub far_field: Option<FarField>,
     /// Write the final displacement field as VTK (`.vtu`) here.
     pub vtu: Option<PathBuf>,
+    /// The sparse Cholesky that factorises (default [`Backend::BUILT_IN`]).
+    pub linear_solver: Option<Backend>,
 }
 
 impl Solver for Fem {
@@ -57,7 +60,7 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
     };
     let tolerance = scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE);
     let fem_options = FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: options.linear_solver.unwrap_or_default(),
         // A given mesh keeps the quadratic default; the ladder picks by tolerance.
         degree: options.degree.unwrap_or(if options.mesh.is_some() {
             Degree::Quadratic

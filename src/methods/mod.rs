@@ -89,6 +89,7 @@ impl Method {
                 degree: options.degree,
                 far_field: options.far_field,
                 vtu: options.vtu.clone(),
+                linear_solver: options.linear_solver,
             }),
             Method::GridBem => Box::new(GridBem {
                 cells: options.grid.unwrap_or(DEFAULT_GRID),
@@ -97,6 +98,7 @@ impl Method {
             }),
             Method::Auto => Box::new(Auto {
                 vtu: options.vtu.clone(),
+                linear_solver: options.linear_solver,
             }),
         })
     }
@@ -124,6 +126,10 @@ pub struct MethodOptions {
     pub vtu: Option<PathBuf>,
     /// FEM: the condition on the far arc (default [`FarField::Boussinesq`]).
     pub far_field: Option<FarField>,
+    /// FEM (and `auto` where it picks the FEM): the sparse Cholesky (`--linear-solver`; default
+    /// [`crate::sparse::Backend::BUILT_IN`]). Every method takes it: the other methods have
+    /// no sparse factorisation to choose.
+    pub linear_solver: Option<crate::sparse::Backend>,
 }
 
 impl MethodOptions {

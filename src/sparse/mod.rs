@@ -25,7 +25,7 @@ pub mod faer_llt;
 pub mod native;
 
 use std::str::FromStr;
-use std::sync::{Arc, OnceLock};
+use std::sync::Arc;
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
@@ -49,9 +49,9 @@ pub enum Backend {
 }
 
 impl Default for Backend {
-    /// The backend of this process ([`Backend::of_process`]).
+    /// [`Backend::BUILT_IN`]: a model uses another only where its options name one.
     fn default() -> Self {
-        Self::of_process()
+        Self::BUILT_IN
     }
 }
 
@@ -70,19 +70,6 @@ impl Backend {
     /// The backend a model gets unless its options name another: 1.3-2.2x faster than
     /// [`Backend::Faer`] on the FEM's targets (docs/decisions.md, `benches/records/linear-solver.md`).
     pub const BUILT_IN: Backend = Backend::Native;
-
-    /// The backend of this process: the one [`set_process_backend`] chose (the `verify`
-    /// binary's `--linear-solver`), else the environment's `RINGCONTACT_LINEAR_SOLVER` (read,
-    /// never set; an unknown name is ignored here and refused by the binary), else
-    /// [`Backend::BUILT_IN`].
-    pub fn of_process() -> Self {
-        *PROCESS_BACKEND.get_or_init(|| {
-            std::env::var(ENVIRONMENT_VARIABLE)
-                .ok()
-                .and_then(|v| v.parse().ok())
-                .unwrap_or(Self::BUILT_IN)
-        })
-    }
 }
 
 impl FromStr for Backend {
@@ -100,16 +87,9 @@ impl FromStr for Backend {
     }
 }
 
-static PROCESS_BACKEND: OnceLock<Backend> = OnceLock::new();
-
-/// The environment variable naming the process's backend ([`Backend::of_process`]).
+/// The environment variable a program reads for its backend (`verify`, the tests); the library
+/// reads none: a model's backend is its options' `linear_solver`.
 pub const ENVIRONMENT_VARIABLE: &str = "RINGCONTACT_LINEAR_SOLVER";
-
-/// Choose the backend of every model this process builds without naming one (the `verify`
-/// binary's `--linear-solver`); only the first call counts. Returns whether it was taken.
-pub fn set_process_backend(backend: Backend) -> bool {
-    PROCESS_BACKEND.set(backend).is_ok() || PROCESS_BACKEND.get() == Some(&backend)
-}
 
 /// The symbolic analysis of one pattern on one backend ([`analyse`], [`analyse_bare`]): what
 /// every numeric factorisation of that pattern reuses.

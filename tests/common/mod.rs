@@ -73,3 +73,16 @@ pub fn assert_study_converges(json: &serde_json::Value, label: &str, finest: f64
         "{label}: {errors:?}"
     );
 }
+
+/// The FEM's sparse Cholesky for the tests: `RINGCONTACT_LINEAR_SOLVER` (set by `.ci/run` to run
+/// the FEM's tests once more on `faer`), else the library's built-in one. The library reads no
+/// environment variable: a test passes its choice explicitly.
+#[allow(dead_code)]
+pub fn linear_solver() -> ringcontact::sparse::Backend {
+    match std::env::var(ringcontact::sparse::ENVIRONMENT_VARIABLE) {
+        Ok(name) => name
+            .parse()
+            .unwrap_or_else(|e| panic!("{}: {e}", ringcontact::sparse::ENVIRONMENT_VARIABLE)),
+        Err(_) => ringcontact::sparse::Backend::default(),
+    }
+}

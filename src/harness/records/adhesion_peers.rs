@@ -79,6 +79,7 @@ fn case_of(stored: &TamaasPulloff) -> Case {
         punch: stored.punch.clone(),
         eps: 0.0,
         d0_over_h: stored.d0_over_h.unwrap_or(0.0),
+        linear_solver: crate::harness::settings::linear_solver(),
     }
 }
 

@@ -145,7 +145,7 @@ pub fn compare(
         Contact::RimAndFreeInner | Contact::FreeBand => (0.0, FemLoad::ConcaveDepth(stored.depth)),
     };
     let options = FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: crate::harness::settings::linear_solver(),
         degree,
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),

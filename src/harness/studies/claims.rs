@@ -315,6 +315,7 @@ pub(crate) fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
         punch: PunchKind::CONE,
         eps: 0.0,
         d0_over_h: 10.0,
+        linear_solver: crate::harness::settings::linear_solver(),
     };
     let ranges = study::default_ranges();
     study::simulate_as_studied(case, ranges[ranges.len() - 1])

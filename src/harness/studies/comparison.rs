@@ -221,7 +221,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     // `--method fem` at its default tolerance, P2, on the meshes it picks.
     let options = MethodOptions {
         degree: Some(Degree::Quadratic),
-        ..MethodOptions::default()
+        ..crate::harness::settings::method_options()
     };
     let mut checks = Vec::new();
     let cases = [

@@ -386,7 +386,7 @@ fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
 /// field, the solve's own tolerance 1e-3 (each level is one model, its estimate unused).
 fn study_options(degree: Degree) -> FemOptions {
     FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: crate::harness::settings::linear_solver(),
         degree,
         tolerance: 1e-3,
         mesh: None,

@@ -207,7 +207,7 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
     let grid_bem = ring_averaged_grid_pressure(256, 64)?;
     let options = FemOptions {
-        linear_solver: Default::default(),
+        linear_solver: crate::harness::settings::linear_solver(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

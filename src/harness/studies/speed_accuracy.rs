@@ -483,7 +483,7 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
         for level in 0..3 {
             let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
             let options = FemOptions {
-                linear_solver: Default::default(),
+                linear_solver: crate::harness::settings::linear_solver(),
                 degree,
                 tolerance: 1e-3,
                 mesh: Some(mesh),

@@ -284,7 +284,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let coarse = MethodOptions {
         mesh: Some(crate::fem::mesh_directory().join("disk-L0.msh")),
         degree: Some(crate::mesh::triangulation::Degree::Linear),
-        ..MethodOptions::default()
+        ..crate::harness::settings::method_options()
     };
     let p = probe(
         Method::Fem,
@@ -296,7 +296,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     push(p);
     let small = MethodOptions {
         mesh: Some(crate::fem::mesh_directory().join("small-domain-R5.msh")),
-        ..MethodOptions::default()
+        ..crate::harness::settings::method_options()
     };
     let p = probe(
         Method::Fem,
@@ -313,7 +313,7 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     for (eps, n) in [(0.9, 64), (0.97, 64), (0.99, 64), (0.99, 512)] {
         let options = MethodOptions {
             grid: Some(n),
-            ..MethodOptions::default()
+            ..crate::harness::settings::method_options()
         };
         let p = probe(
             Method::GridBem,
@@ -331,7 +331,7 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     ] {
         let options = MethodOptions {
             grid: Some(n),
-            ..MethodOptions::default()
+            ..crate::harness::settings::method_options()
         };
         let p = probe(
             Method::GridBem,
@@ -391,7 +391,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     }
     let mesh_options = |path: std::path::PathBuf| MethodOptions {
         mesh: Some(path),
-        ..MethodOptions::default()
+        ..crate::harness::settings::method_options()
     };
     let swapped = swapped_tag_mesh();
     let p = must_decline(
