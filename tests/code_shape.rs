@@ -40,8 +40,8 @@ fn code_of(line: &str) -> String {
             '\'' => {
                 // A character literal ('{', '\n'); a lifetime ('a) has no closing quote nearby.
                 let rest: String = chars.clone().take(4).collect();
-                let closing = if rest.starts_with('\\') {
-                    rest[1..].find('\'').map(|i| i + 1)
+                let closing = if let Some(escaped) = rest.strip_prefix('\\') {
+                    escaped.find('\'').map(|i| i + 1)
                 } else {
                     rest.chars().nth(1).filter(|&q| q == '\'').map(|_| 1)
                 };
