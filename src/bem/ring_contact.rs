@@ -236,30 +236,6 @@ fn relative_change(fine: f64, coarse: f64) -> f64 {
 }
 
 impl RingBemSolver {
-    /// The free band `kind` of half-width `half_width` (units of `a`) with the stress intensity
-    /// `intensity` at both edges (units of `E* h / sqrt(a)`; the JKR edges in equilibrium:
-    /// `-sqrt(2 E* Δw) sqrt(a)/(E* h) = -(d0/h)/sqrt(π)`), its centre found, refined until
-    /// `γ1`, `γ2` and both edges change by less than `tolerance` between node counts. No check
-    /// of the pressure's sign (adhesive edges are tensile by design). `centre_hint` starts the
-    /// centre's search (a neighbouring state's centre, to follow one branch); without one it
-    /// starts at `1 + w²` (units of `a`).
-    pub fn band_with_edge_intensity(
-        &self,
-        kind: &PunchKind,
-        half_width: f64,
-        intensity: f64,
-        tolerance: f64,
-        centre_hint: Option<f64>,
-    ) -> Result<RingState> {
-        free_band::BandSolver(self).band_with_edge_intensity(
-            kind,
-            half_width,
-            intensity,
-            tolerance,
-            centre_hint,
-        )
-    }
-
     /// A solver with the default quadrature.
     pub fn new() -> Self {
         Self {
@@ -893,6 +869,30 @@ impl RingBemSolver {
             }
             (e, _) => e,
         })
+    }
+
+    /// The free band `kind` of half-width `half_width` (units of `a`) with the stress intensity
+    /// `intensity` at both edges (units of `E* h / sqrt(a)`; the JKR edges in equilibrium:
+    /// `-sqrt(2 E* Δw) sqrt(a)/(E* h) = -(d0/h)/sqrt(π)`), its centre found, refined until
+    /// `γ1`, `γ2` and both edges change by less than `tolerance` between node counts. No check
+    /// of the pressure's sign (adhesive edges are tensile by design). `centre_hint` starts the
+    /// centre's search (a neighbouring state's centre, to follow one branch); without one it
+    /// starts at `1 + w²` (units of `a`).
+    pub fn band_with_edge_intensity(
+        &self,
+        kind: &PunchKind,
+        half_width: f64,
+        intensity: f64,
+        tolerance: f64,
+        centre_hint: Option<f64>,
+    ) -> Result<RingState> {
+        free_band::BandSolver(self).band_with_edge_intensity(
+            kind,
+            half_width,
+            intensity,
+            tolerance,
+            centre_hint,
+        )
     }
 
     /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
