@@ -158,6 +158,7 @@ fn main() {
                     .ok()
                     .and_then(|name| name.parse().ok())
                     .unwrap_or_default(),
+                trace: std::env::var_os("RINGCONTACT_TRACE").is_some(),
                 degree,
                 tolerance,
                 mesh: None,

@@ -133,6 +133,7 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
             .unwrap();
         let options = FemOptions {
             linear_solver: common::linear_solver(),
+            trace: false,
             degree,
             tolerance: 0.9,
             mesh: Some(path.clone()),

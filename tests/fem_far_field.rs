@@ -13,6 +13,7 @@ use ringcontact::punch::PunchKind;
 fn solve_on(mesh: &str, kind: PunchKind, load: FemLoad, far_field: FarField) -> FemState {
     let options = FemOptions {
         linear_solver: common::linear_solver(),
+        trace: false,
         degree: Degree::Quadratic,
         // A single mesh: the tolerance only gates the domain check.
         tolerance: 0.9,
@@ -95,6 +96,7 @@ fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
     for far_field in [FarField::Boussinesq, FarField::Fixed] {
         let options = FemOptions {
             linear_solver: common::linear_solver(),
+            trace: false,
             degree: Degree::Cubic,
             tolerance: 0.9,
             mesh: Some(solver::mesh_directory().join("small-domain-R5.msh")),

@@ -19,6 +19,7 @@ fn fem(kind: PunchKind, eps: f64, load: FemLoad, tolerance: f64) -> FemState {
 fn ladder_options(degree: Degree, tolerance: f64) -> FemOptions {
     FemOptions {
         linear_solver: common::linear_solver(),
+        trace: false,
         degree,
         tolerance,
         mesh: None,
@@ -166,6 +167,7 @@ fn linear_elements_converge_toward_the_ring_bem() {
         .map(|level| {
             let options = FemOptions {
                 linear_solver: common::linear_solver(),
+                trace: false,
                 degree: Degree::Linear,
                 tolerance: 1e-3,
                 mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
@@ -191,6 +193,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
     let run = |nu: f64| {
         let options = FemOptions {
             linear_solver: common::linear_solver(),
+            trace: false,
             degree: Degree::Quadratic,
             tolerance: 1e-3,
             mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
@@ -207,6 +210,7 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
 fn mismatched_mesh_and_scene_are_errors() {
     let options = FemOptions {
         linear_solver: common::linear_solver(),
+        trace: false,
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),

@@ -77,6 +77,7 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
             for backend in BACKENDS {
                 let options = FemOptions {
                     linear_solver: backend,
+                    trace: false,
                     degree,
                     tolerance,
                     mesh: None,

@@ -23,6 +23,7 @@ fn solve_text(text: &str, kind: PunchKind, name: &str) -> Result<f64, String> {
     std::fs::write(&path, text).unwrap();
     let options = FemOptions {
         linear_solver: Default::default(),
+        trace: false,
         degree: Degree::Quadratic,
         tolerance: 0.9,
         mesh: Some(path.clone()),

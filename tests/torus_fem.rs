@@ -15,6 +15,7 @@ use ringcontact::punch::PunchKind;
 fn options(tolerance: f64) -> FemOptions {
     FemOptions {
         linear_solver: Default::default(),
+        trace: false,
         degree: default_degree(tolerance),
         tolerance,
         mesh: None,

@@ -952,6 +952,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
 pub fn study_options(linear_solver: Backend) -> FemOptions {
     FemOptions {
         linear_solver,
+        trace: false,
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

@@ -104,6 +104,9 @@ pub struct FemOptions {
     pub far_field: FarField,
     /// The sparse Cholesky backend that factorises the stiffness ([`crate::sparse::Backend`]).
     pub linear_solver: crate::sparse::Backend,
+    /// One line per model on standard error: size, phase times, contact cost (a program's
+    /// `RINGCONTACT_TRACE=1`).
+    pub trace: bool,
 }
 
 /// A solved FEM state.
@@ -296,6 +299,8 @@ struct ModelSpec {
     /// Where the scene's contact line starts, `b/a` (0 for a closed one).
     contact_start: f64,
     linear_solver: crate::sparse::Backend,
+    /// [`FemOptions::trace`].
+    trace: bool,
     /// The mesh's length unit in units of `a`: 1, except for a contact with two free edges,
     /// whose mesh's contact line `[0, 1]` is `[0, frame a]` ([`ContactModel::with_free_edges`]).
     frame: f64,
@@ -693,7 +698,7 @@ fn linear_edge_locator(
     .ok()?;
     let (s, depth, _) =
         solve_model(&mut linear, kind, eps, load, None, depth_guess, tolerance).ok()?;
-    if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+    if linear.spec.trace {
         trace_level(&linear, &s);
     }
     let spacing = full_contact_spacing(&s).unwrap_or(s.inner_node_spacing);
@@ -773,6 +778,7 @@ fn prepare_checked(
         far_field: options.far_field,
         contact_start,
         linear_solver: options.linear_solver,
+        trace: options.trace,
         frame: 1.0,
     };
     let model = prepare(provided, spec)?;
@@ -849,7 +855,7 @@ fn finish(
     }
 }
 
-/// One line per model on standard error (`RINGCONTACT_TRACE=1`): size, phase times, contact cost.
+/// One line per model on standard error ([`FemOptions::trace`]): size, phase times, contact cost.
 fn trace_level(model: &PreparedModel, solution: &ContactSolution) {
     let t = &model.timings;
     eprintln!(
@@ -1186,7 +1192,7 @@ pub fn solve_on_mesh(
         None,
         options.tolerance,
     )?;
-    if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+    if model.spec.trace {
         trace_level(&model, &s);
     }
     rim_resolves_the_ring(&model, kind, &s)?;
@@ -1522,7 +1528,7 @@ impl<'o> Ladder<'o> {
             self.options.tolerance,
         )?;
         self.iterations += s.iterations;
-        if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+        if model.spec.trace {
             trace_level(model, &s);
         }
         let state = state_of(load, eps, &s, x, y);

@@ -1,6 +1,7 @@
 //! The program's choices that the library takes as explicit values: the linear-solver backend
 //! of every FEM model the harness and the command line build (`verify --linear-solver`, else
-//! the environment's `RINGCONTACT_LINEAR_SOLVER`, else the library's built-in one).
+//! the environment's `RINGCONTACT_LINEAR_SOLVER`, else the library's built-in one), and the
+//! FEM's trace (`RINGCONTACT_TRACE`).
 
 use std::sync::OnceLock;
 
@@ -27,10 +28,17 @@ pub fn linear_solver() -> Backend {
     })
 }
 
-/// Method options with nothing set but this program's [`linear_solver`].
+/// Whether this program's FEM models trace each model on standard error (`RINGCONTACT_TRACE`
+/// set).
+pub fn trace() -> bool {
+    std::env::var_os("RINGCONTACT_TRACE").is_some()
+}
+
+/// Method options with nothing set but this program's [`linear_solver`] and [`trace`].
 pub fn method_options() -> MethodOptions {
     MethodOptions {
         linear_solver: Some(linear_solver()),
+        trace: trace(),
         ..MethodOptions::default()
     }
 }

@@ -15,6 +15,8 @@ pub struct Auto {
     pub vtu: Option<PathBuf>,
     /// The FEM's sparse Cholesky, if it is chosen (default [`Backend::BUILT_IN`]).
     pub linear_solver: Option<Backend>,
+    /// The FEM's trace, if it is chosen.
+    pub trace: bool,
 }
 
 impl Solver for Auto {
@@ -34,6 +36,7 @@ impl Auto {
             Method::Fem => Ok(Box::new(Fem {
                 vtu: self.vtu.clone(),
                 linear_solver: self.linear_solver,
+                trace: self.trace,
                 ..Fem::default()
             })),
             _ if self.vtu.is_some() => Err(Error::Unsupported {

@@ -26,6 +26,8 @@ pub struct Fem {
     pub vtu: Option<PathBuf>,
     /// The sparse Cholesky that factorises (default [`Backend::BUILT_IN`]).
     pub linear_solver: Option<Backend>,
+    /// One line per model on standard error ([`FemOptions::trace`]).
+    pub trace: bool,
 }
 
 impl Solver for Fem {
@@ -61,6 +63,7 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
     let tolerance = scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE);
     let fem_options = FemOptions {
         linear_solver: options.linear_solver.unwrap_or_default(),
+        trace: options.trace,
         // A given mesh keeps the quadratic default; the ladder picks by tolerance.
         degree: options.degree.unwrap_or(if options.mesh.is_some() {
             Degree::Quadratic

@@ -90,6 +90,7 @@ impl Method {
                 far_field: options.far_field,
                 vtu: options.vtu.clone(),
                 linear_solver: options.linear_solver,
+                trace: options.trace,
             }),
             Method::GridBem => Box::new(GridBem {
                 cells: options.grid.unwrap_or(DEFAULT_GRID),
@@ -99,6 +100,7 @@ impl Method {
             Method::Auto => Box::new(Auto {
                 vtu: options.vtu.clone(),
                 linear_solver: options.linear_solver,
+                trace: options.trace,
             }),
         })
     }
@@ -130,6 +132,9 @@ pub struct MethodOptions {
     /// [`crate::sparse::Backend::BUILT_IN`]). Every method takes it: the other methods have
     /// no sparse factorisation to choose.
     pub linear_solver: Option<crate::sparse::Backend>,
+    /// FEM (and `auto` where it picks the FEM): one line per model on standard error
+    /// (`RINGCONTACT_TRACE=1`).
+    pub trace: bool,
 }
 
 impl MethodOptions {

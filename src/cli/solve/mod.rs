@@ -60,6 +60,7 @@ pub(crate) fn solve_scene_by(
         grid_without_estimate: args.no_grid_estimate,
         vtu: args.vtu.clone(),
         linear_solver: Some(crate::harness::settings::linear_solver()),
+        trace: crate::harness::settings::trace(),
     };
     methods::solve_with(scene, method, &options).map_err(message)
 }

@@ -186,7 +186,7 @@ fn solve_level(
         depth_guess,
         tolerance,
     )?;
-    if std::env::var_os("RINGCONTACT_TRACE").is_some() {
+    if model.spec.trace {
         super::trace_level(&model, &s);
         eprintln!(
             "fem: level {level}: c/a = {:.10} (node spacing there {:.2e}), frame {frame}",

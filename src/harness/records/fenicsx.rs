@@ -146,6 +146,7 @@ pub fn compare(
     };
     let options = FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
+        trace: crate::harness::settings::trace(),
         degree,
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),

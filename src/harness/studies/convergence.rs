@@ -387,6 +387,7 @@ fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
 fn study_options(degree: Degree) -> FemOptions {
     FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
+        trace: crate::harness::settings::trace(),
         degree,
         tolerance: 1e-3,
         mesh: None,

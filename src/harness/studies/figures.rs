@@ -208,6 +208,7 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
     let grid_bem = ring_averaged_grid_pressure(256, 64)?;
     let options = FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
+        trace: crate::harness::settings::trace(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

@@ -484,6 +484,7 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
             let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
             let options = FemOptions {
                 linear_solver: crate::harness::settings::linear_solver(),
+                trace: crate::harness::settings::trace(),
                 degree,
                 tolerance: 1e-3,
                 mesh: Some(mesh),
