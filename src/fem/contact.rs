@@ -362,10 +362,11 @@ impl<'m> ContactModel<'m> {
         let bound = self.bound(kind.clone(), depth);
         let mut active = self.initial_active(initial_active, &bound);
         let mut creep = CreepState::new(creep);
+        let zero = vec![0.0; self.supports.len()];
         // The last plain step of the free edge, `(from, to)` radii, for the secant step.
         let mut last_step: Option<(f64, f64)> = None;
         for iteration in 1..=MAX_ACTIVE_SET_ITERATIONS {
-            let step = self.primal_dual_step(system, &bound, &active)?;
+            let step = self.primal_dual_step(system, &bound, &active, &zero)?;
             let mut next = step.next;
             if next == active {
                 let solution = self.converged(
@@ -410,16 +411,16 @@ impl<'m> ContactModel<'m> {
     }
 
     /// One primal-dual step from `active`: the displacement with the active nodes held at
-    /// `bound`, its reactions and gaps, and the next active set.
+    /// `bound` (no body force: `zero`), its reactions and gaps, and the next active set.
     fn primal_dual_step(
         &self,
         system: &mut BandedSystem,
         bound: &[f64],
         active: &[bool],
+        zero: &[f64],
     ) -> Result<PrimalDualStep> {
-        let zero = vec![0.0; self.supports.len()];
         let (constrained, prescribed) = self.constraints(active, bound);
-        let u = system.solver.solve(&zero, &constrained, &prescribed)?;
+        let u = system.solver.solve(zero, &constrained, &prescribed)?;
         let reactions = self.reactions(system.solver, &u);
         let gaps = self.gaps(bound, &u);
         let next = self.next_active(active, &reactions, &gaps)?;
