@@ -172,8 +172,8 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
     }
 }
 
-/// What `verify references` says of a built-in punch: the flags that name it, its gap, its edges and
-/// its closed forms.
+/// What `verify references` says of a built-in punch: the flags that name it, its gap, its
+/// edges and its closed forms.
 #[derive(Clone, Copy, Debug)]
 pub struct Summary {
     pub flags: &'static str,
