@@ -3,21 +3,12 @@
 //! regression would be written (a rough scanner: comments, strings and character literals are
 //! blanked before braces are counted).
 
+mod common;
+
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 const LONGEST_FUNCTION: usize = 100;
-
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
-        let path = entry.path();
-        if path.is_dir() {
-            sources(&path, out);
-        } else if path.extension().is_some_and(|x| x == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// `line` with its comment, string and character literals blanked, so that only code braces
 /// remain.
@@ -107,12 +98,7 @@ fn function_lengths(text: &str) -> Vec<(String, usize)> {
 }
 
 fn all_sources() -> Vec<PathBuf> {
-    let mut files = Vec::new();
-    sources(
-        &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"),
-        &mut files,
-    );
-    files
+    common::rust_sources(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"))
 }
 
 #[test]

@@ -5,6 +5,8 @@
 //! (`src/sparse/native/`; the one CPU prefetch hint in `src/numerics/prefetch.rs` aside).
 //! Read from the sources (`crate::` paths outside comments and unit tests).
 
+mod common;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
@@ -33,17 +35,6 @@ const LAYERS: [(&str, u8); 22] = [
     ("lib", 10),
     ("bin", 10),
 ];
-
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
-        let path = entry.path();
-        if path.is_dir() {
-            sources(&path, out);
-        } else if path.extension().is_some_and(|x| x == "rs") {
-            out.push(path);
-        }
-    }
-}
 
 /// `src/a/b.rs` -> `a::b`, `src/a/mod.rs` -> `a`.
 fn module_of(src: &Path, file: &Path) -> String {
@@ -99,8 +90,7 @@ fn layer(module: &str) -> u8 {
 #[test]
 fn no_import_runs_up_a_layer_and_no_files_import_each_other() {
     let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    sources(&src, &mut files);
+    let files = common::rust_sources(&src);
     let modules: BTreeSet<String> = files.iter().map(|f| module_of(&src, f)).collect();
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for file in &files {
@@ -137,8 +127,7 @@ fn no_import_runs_up_a_layer_and_no_files_import_each_other() {
 #[test]
 fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
     let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    sources(&src, &mut files);
+    let files = common::rust_sources(&src);
     let mut per_folder: BTreeMap<PathBuf, usize> = BTreeMap::new();
     for file in &files {
         *per_folder
@@ -182,8 +171,7 @@ fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
 #[test]
 fn the_harness_reaches_the_fem_only_through_its_api() {
     let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    sources(&src.join("harness"), &mut files);
+    let files = common::rust_sources(&src.join("harness"));
     assert!(!files.is_empty(), "no harness sources found");
     let internals = [
         "fem::solver",

@@ -4,28 +4,21 @@
 //! `mesh::msh::inside_mesh_parser` to stay silent on a malformed mesh). Those choices belong to a program (`src/bin/`), so a program that links `ringcontact`
 //! gets none of them. Checked on the sources, where a regression would be written.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
-fn library_sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for entry in std::fs::read_dir(dir).unwrap().filter_map(|e| e.ok()) {
-        let path = entry.path();
-        if path.is_dir() {
-            if path.file_name().is_some_and(|n| n != "bin") {
-                library_sources(&path, out);
-            }
-        } else if path.extension().is_some_and(|x| x == "rs") {
-            out.push(path);
-        }
-    }
+/// The library's sources: every file below `src/` but the programs in `src/bin/`.
+fn library_sources(src: &Path) -> Vec<PathBuf> {
+    common::rust_sources(src)
+        .into_iter()
+        .filter(|file| !file.strip_prefix(src).unwrap().starts_with("bin"))
+        .collect()
 }
 
 #[test]
 fn the_library_sets_no_process_state() {
-    let mut files = Vec::new();
-    library_sources(
-        &PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"),
-        &mut files,
-    );
+    let files = library_sources(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"));
     assert!(files.len() > 50, "found {} sources", files.len());
     let forbidden = [
         "#[global_allocator]",
@@ -66,8 +59,7 @@ fn the_library_sets_no_process_state() {
 #[test]
 fn the_core_reads_environment_variables_only_where_listed() {
     let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let mut files = Vec::new();
-    library_sources(&root, &mut files);
+    let files = library_sources(&root);
     let program_side = ["harness", "cli"];
     let still_reading = [
         "heartbeat.rs",

@@ -1225,17 +1225,12 @@ fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
     let depth_controlled = matches!(controlled, Controlled::Depth);
     if kind.approximate_gamma(0.5, depth_controlled).is_some() {
         let approximant = |eps: f64| kind.approximate_gamma(eps, depth_controlled).unwrap_or(0.0);
-        // Bisection on the profile's approximant, decreasing in eps.
-        let (mut lo, mut hi) = (MIN_CONTACT_RATIO, MAX_CONTACT_RATIO);
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if approximant(mid) > target {
-                lo = mid;
-            } else {
-                hi = mid;
-            }
-        }
-        return 0.5 * (lo + hi);
+        return bisect_decreasing(
+            approximant,
+            target,
+            (MIN_CONTACT_RATIO, MAX_CONTACT_RATIO),
+            60,
+        );
     }
     if kind.is_free_band() {
         // A band the profile gives no approximant for: its middle, the search does the rest.
@@ -1252,12 +1247,27 @@ fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
     } else {
         (2.0 * target / rim_slope, paper_fits::sphere_gamma)
     };
-    let fit = |eps: f64| fit(i, eps);
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.
-    let (mut lo, mut hi) = (min_contact_ratio(kind), MAX_CONTACT_RATIO);
-    for _ in 0..50 {
+    bisect_decreasing(
+        |eps| fit(i, eps),
+        target,
+        (min_contact_ratio(kind), MAX_CONTACT_RATIO),
+        50,
+    )
+}
+
+/// Where `f`, decreasing on `(lo, hi)`, crosses `target`: the midpoint after `halvings`
+/// bisections (an end of the range where it does not cross).
+fn bisect_decreasing(
+    f: impl Fn(f64) -> f64,
+    target: f64,
+    (lo, hi): (f64, f64),
+    halvings: usize,
+) -> f64 {
+    let (mut lo, mut hi) = (lo, hi);
+    for _ in 0..halvings {
         let mid = 0.5 * (lo + hi);
-        if fit(mid) > target {
+        if f(mid) > target {
             lo = mid;
         } else {
             hi = mid;

@@ -13,9 +13,6 @@ use crate::punch::{Contact, PunchKind};
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
-    if punch.is_free_band() {
-        return band(&args, &punch);
-    }
     let solver = RingBemSolver::new();
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match punch.contact() {
@@ -35,13 +32,14 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
                 flat_annulus_text(&r)
             }
         }
-        Contact::RimAndFreeInner | Contact::FreeBand if args.sweep => {
+        Contact::FreeBand => return band(&args, &punch),
+        Contact::RimAndFreeInner if args.sweep => {
             let mut bar = Progress::new("sweep", 25);
             let sweep = sweeps::pulloff_sweep(&solver, punch.clone(), &out, |s| bar.tick(s))
                 .map_err(message)?;
             sweep_output(&sweep, args.json)?
         }
-        Contact::RimAndFreeInner | Contact::FreeBand => {
+        Contact::RimAndFreeInner => {
             let concave = punch.clone();
             let s = args
                 .d0h

@@ -83,7 +83,7 @@ fn flat_reference(scene: &Scene, mut solution: Solution) -> Result<Solution> {
 
 /// The cone's or the sphere's `γ1`, `γ2` at the scene's load: the sphere's full contact in
 /// closed form (the MDR), else the contact ratio whose references meet the load.
-fn concave_reference(scene: &Scene, mut solution: Solution, sphere: bool) -> Result<Solution> {
+fn concave_reference(scene: &Scene, solution: Solution, sphere: bool) -> Result<Solution> {
     let (a, es, h) = (
         scene.punch.rim_radius,
         scene.material.effective_modulus,
@@ -127,6 +127,29 @@ fn concave_reference(scene: &Scene, mut solution: Solution, sphere: bool) -> Res
         };
         (eps, v1.value, v2.value, name, source, bound)
     };
+    Ok(concave_solution(
+        solution,
+        scene,
+        (eps, g1, g2),
+        bound,
+        (&format!("reference:{name}"), source),
+    ))
+}
+
+/// `solution` at the concave state `(b/a, γ1 = d/h, γ2 = F/(2 E* h a))` of `scene`, with its
+/// relative error bound and its method's name and provenance.
+fn concave_solution(
+    mut solution: Solution,
+    scene: &Scene,
+    (eps, g1, g2): (f64, f64, f64),
+    bound: Option<f64>,
+    (method, provenance): (&str, &str),
+) -> Solution {
+    let (a, es, h) = (
+        scene.punch.rim_radius,
+        scene.material.effective_modulus,
+        scene.punch.hole_depth,
+    );
     solution.eps = eps;
     solution.inner_radius = eps * a;
     solution.gamma1 = Some(g1);
@@ -134,13 +157,13 @@ fn concave_reference(scene: &Scene, mut solution: Solution, sphere: bool) -> Res
     solution.depth = h * g1;
     solution.force = 2.0 * es * h * a * g2;
     solution.error_estimate = bound;
-    solution.method = format!("reference:{name}");
-    solution.provenance = source.to_string();
-    Ok(solution)
+    solution.method = method.to_string();
+    solution.provenance = provenance.to_string();
+    solution
 }
 
 /// The power law's full contact by the MDR; its annular contact has no closed form.
-fn power_full_contact(scene: &Scene, mut solution: Solution, n: f64) -> Result<Solution> {
+fn power_full_contact(scene: &Scene, solution: Solution, n: f64) -> Result<Solution> {
     let (a, es, h) = (
         scene.punch.rim_radius,
         scene.material.effective_modulus,
@@ -167,18 +190,17 @@ fn power_full_contact(scene: &Scene, mut solution: Solution, n: f64) -> Result<S
             ),
         });
     };
-    solution.eps = 0.0;
-    solution.inner_radius = 0.0;
-    solution.gamma1 = Some(g1);
-    solution.gamma2 = Some(g2);
-    solution.depth = h * g1;
-    solution.force = 2.0 * es * h * a * g2;
-    solution.error_estimate = Some(0.0);
-    solution.method = "reference:power-full-contact".into();
-    solution.provenance = "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for \
-                           d >= h (1 + κ_n/(n - 1)), κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)"
-        .into();
-    Ok(solution)
+    Ok(concave_solution(
+        solution,
+        scene,
+        (0.0, g1, g2),
+        Some(0.0),
+        (
+            "reference:power-full-contact",
+            "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for d >= h (1 + κ_n/(n - 1)), \
+             κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)",
+        ),
+    ))
 }
 
 /// The closed-form references that hold for a punch, asked of its profile.

@@ -86,3 +86,22 @@ pub fn linear_solver() -> ringcontact::sparse::Backend {
         Err(_) => ringcontact::sparse::Backend::default(),
     }
 }
+
+/// Every `.rs` file below `dir`, for the tests that read the sources.
+#[allow(dead_code)]
+pub fn rust_sources(dir: &std::path::Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    let mut pending = vec![dir.to_path_buf()];
+    while let Some(dir) = pending.pop() {
+        for entry in std::fs::read_dir(&dir).unwrap().filter_map(|e| e.ok()) {
+            let path = entry.path();
+            if path.is_dir() {
+                pending.push(path);
+            } else if path.extension().is_some_and(|x| x == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    out.sort();
+    out
+}

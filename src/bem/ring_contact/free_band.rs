@@ -78,8 +78,6 @@ impl BandSolver<'_> {
         n: usize,
         outer_hint: Option<f64>,
     ) -> Result<ConcaveSample> {
-        let band_at = |outer: f64| self.band(kind, eps, outer, n);
-        let last = LastBand::default();
         let (lo, hi) = (eps * (1.0 + 2.0 * MIN_BAND_RATIO), outer_edge_bound(eps));
         let guess = outer_hint
             .filter(|c| c.is_finite())
@@ -90,16 +88,12 @@ impl BandSolver<'_> {
             kind.name(),
             crate::error::show(eps)
         );
-        let root = find_root(
-            last.residual(band_at, 0.0),
-            lo,
-            hi,
-            guess,
-            OUTER_EDGE_TOLERANCE,
-            80,
+        search_band(
+            |outer| self.band(kind, eps, outer, n),
+            0.0,
+            (lo, hi, guess),
+            (&what, "outer edge"),
         )
-        .map_err(|e| search_error(e, &what, "outer edge", lo, hi))?;
-        Ok(last.at(root.x, band_at)?.sample(0.0))
     }
 
     /// The band of half-width `w` with the stress intensity `K = intensity` at both
@@ -115,8 +109,6 @@ impl BandSolver<'_> {
         centre_hint: Option<f64>,
         intensity: f64,
     ) -> Result<ConcaveSample> {
-        let band_at = |centre: f64| self.band(kind, centre - half_width, centre + half_width, n);
-        let last = LastBand::default();
         let lo = half_width + MIN_CONTACT_RATIO;
         let hi = 3.0 + 3.0 * half_width;
         let guess = centre_hint
@@ -128,16 +120,12 @@ impl BandSolver<'_> {
             kind.name(),
             crate::error::show(half_width)
         );
-        let root = find_root(
-            last.residual(band_at, intensity),
-            lo,
-            hi,
-            guess,
-            OUTER_EDGE_TOLERANCE,
-            80,
+        search_band(
+            |centre| self.band(kind, centre - half_width, centre + half_width, n),
+            intensity,
+            (lo, hi, guess),
+            (&what, "centre"),
         )
-        .map_err(|e| search_error(e, &what, "centre", lo, hi))?;
-        Ok(last.at(root.x, band_at)?.sample(intensity))
     }
 
     /// [`RingBemSolver::band_with_edge_intensity`].
@@ -616,6 +604,28 @@ impl LastBand {
             _ => band_at(x),
         }
     }
+}
+
+/// The band of `band_at(x)` whose edges both carry the intensity `intensity`, `x` found by the
+/// safeguarded secant on [`Band::mismatch`] in `(lo, hi)` from `guess`; `what` and `unknown`
+/// name the band and `x` in errors.
+fn search_band(
+    band_at: impl Fn(f64) -> Result<Band>,
+    intensity: f64,
+    (lo, hi, guess): (f64, f64, f64),
+    (what, unknown): (&str, &str),
+) -> Result<ConcaveSample> {
+    let last = LastBand::default();
+    let root = find_root(
+        last.residual(&band_at, intensity),
+        lo,
+        hi,
+        guess,
+        OUTER_EDGE_TOLERANCE,
+        80,
+    )
+    .map_err(|e| search_error(e, what, unknown, lo, hi))?;
+    Ok(last.at(root.x, band_at)?.sample(intensity))
 }
 
 fn search_error(e: RootError, what: &str, unknown: &str, lo: f64, hi: f64) -> crate::error::Error {
