@@ -229,10 +229,7 @@ impl SceneSpec {
                 self.punch.exponent = None;
                 self.punch.tube_radius = None;
                 self.punch.profile = None;
-                if name
-                    .with_exponent(None)
-                    .is_ok_and(|kind| kind.is_free_band())
-                {
+                if name.contact() == Contact::FreeBand {
                     self.punch.hole_depth = None;
                 }
             }

@@ -162,9 +162,10 @@ pub(crate) fn punch_kind_or_free_band(
     exponent: Option<f64>,
     profile: Option<&std::path::Path>,
 ) -> Result<crate::punch::PunchKind, String> {
-    match name.with_exponent(exponent) {
-        Ok(band) if band.is_free_band() && profile.is_none() => Ok(band),
-        _ => punch_kind_with_profile(name, exponent, profile),
+    if name.contact() == crate::punch::Contact::FreeBand && profile.is_none() {
+        name.with_exponent(exponent).map_err(message)
+    } else {
+        punch_kind_with_profile(name, exponent, profile)
     }
 }
 

@@ -42,7 +42,9 @@ use crate::punch::PunchKind;
 /// Times the contact line is doubled when the located contact reaches its end.
 const MAX_LINE_WIDENINGS: usize = 3;
 
-/// Where the band first touches, `r0/a` ([`Profile::first_touch`](crate::punch::Profile::first_touch)), `1` if the profile does not say.
+/// Where the band first touches, `r0/a`
+/// ([`Profile::first_touch`](crate::punch::Profile::first_touch)), `1` if the profile does not
+/// say.
 fn first_touch(kind: &PunchKind) -> f64 {
     kind.first_touch().map_or(1.0, |(r0, _)| r0)
 }
