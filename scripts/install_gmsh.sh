@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Install gmsh from PyPI into the project's own environment .venv-gmsh (ignored by git), where the
-# FEM finds it at run time (src/mesh/gmsh.rs). Idempotent; needs python3 with venv and PyPI access
+# FEM finds it at run time (crates/ringcontact/src/mesh/gmsh.rs). Idempotent; needs python3 with venv and PyPI access
 # the first time. Pinned: generated meshes are cached and compared by content, and stored
 # FEniCSx results on generated meshes name their SHA-256. Prints the installed version.
 set -euo pipefail

@@ -9,8 +9,10 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 use ringcontact::discretisation::export::{assemble_system, load_mesh, read_matrix, write_system};
-use ringcontact::harness::records::operator::{compare_operator, load_records, OPERATOR_GOAL};
 use ringcontact::mesh::triangulation::{structured_rectangle, tags, Degree};
+use ringcontact_verify::harness::records::operator::{
+    compare_operator, load_records, OPERATOR_GOAL,
+};
 
 fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))

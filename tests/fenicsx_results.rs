@@ -4,7 +4,7 @@
 //! set. A result whose mesh changed is caught as stale and not used.
 
 use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::harness::records::fenicsx::{
+use ringcontact_verify::harness::records::fenicsx::{
     self, compare, large_results_directory, load_results, results_directory, FORCE_AGREEMENT,
 };
 

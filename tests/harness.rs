@@ -5,10 +5,10 @@ use std::process::Command;
 
 mod common;
 
-use ringcontact::harness::studies::stability;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::SceneSpec;
+use ringcontact_verify::harness::studies::stability;
 
 #[test]
 fn no_method_returns_a_wrong_number_without_an_error() {

@@ -4,10 +4,10 @@
 
 use std::path::PathBuf;
 
-use ringcontact::harness::records::fenicsx;
-use ringcontact::harness::records::peers;
-use ringcontact::harness::records::stored;
-use ringcontact::harness::report::history;
+use ringcontact_verify::harness::records::fenicsx;
+use ringcontact_verify::harness::records::peers;
+use ringcontact_verify::harness::records::stored;
+use ringcontact_verify::harness::report::history;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(

@@ -1,8 +1,10 @@
-//! The library's layout keeps its layers (docs/architecture.md): each top-level module belongs
-//! to a layer, and no file imports a module of a higher layer; no files import each other,
+//! The library's layout keeps its layers (docs/architecture.md): each top-level module of the
+//! library (`crates/ringcontact/src`) and of the program's crate (`src`: the harness, the
+//! command line) belongs to a layer, and no file imports a module of a higher layer; no files import each other,
 //! directly or around a circle; no folder holds more than twelve files; `unsafe` code and
 //! `faer`'s internal supernodal layouts stay inside the native linear-algebra backend
-//! (`src/sparse/native/`; the one CPU prefetch hint in `src/numerics/prefetch.rs` aside).
+//! (`sparse/native/`; the one CPU prefetch hint in `numerics/prefetch.rs` aside). The library
+//! depends on no command-line crate (its manifest).
 //! Read from the sources (`crate::` paths outside comments and unit tests).
 
 mod common;
@@ -11,7 +13,8 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Layer of each top-level module, from the ground up.
-const LAYERS: [(&str, u8); 22] = [
+const LAYERS: [(&str, u8); 23] = [
+    ("choice", 0),
     ("error", 0),
     ("finite_guard", 0),
     ("heartbeat", 0),
@@ -89,12 +92,17 @@ fn layer(module: &str) -> u8 {
 
 #[test]
 fn no_import_runs_up_a_layer_and_no_files_import_each_other() {
-    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let files = common::rust_sources(&src);
-    let modules: BTreeSet<String> = files.iter().map(|f| module_of(&src, f)).collect();
+    check_layers(&common::library_root());
+    check_layers(&common::program_root());
+}
+
+/// The layers of one crate whose sources are below `src` (`crate::` paths name its modules).
+fn check_layers(src: &Path) {
+    let files = common::rust_sources(src);
+    let modules: BTreeSet<String> = files.iter().map(|f| module_of(src, f)).collect();
     let mut graph: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
     for file in &files {
-        let module = module_of(&src, file);
+        let module = module_of(src, file);
         let mut uses = imports(&code_of(file), &modules);
         uses.remove(&module);
         for used in &uses {
@@ -126,8 +134,9 @@ fn no_import_runs_up_a_layer_and_no_files_import_each_other() {
 
 #[test]
 fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
-    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let files = common::rust_sources(&src);
+    let src = common::library_root();
+    let mut files = common::rust_sources(&src);
+    files.extend(common::rust_sources(&common::program_root()));
     let mut per_folder: BTreeMap<PathBuf, usize> = BTreeMap::new();
     for file in &files {
         *per_folder
@@ -165,13 +174,12 @@ fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
     }
 }
 
-/// The harness asks the methods for solutions (`methods::Method`) and the FEM only through the
-/// names `src/fem/mod.rs` exports for what only the FEM offers: never a module inside the FEM,
+/// The harness and the command line ask the methods for solutions (`methods::Method`) and the
+/// FEM only through the names `fem/mod.rs` exports for what only the FEM offers: never a module inside the FEM,
 /// the discretisation or the linear algebra's backends.
 #[test]
 fn the_harness_reaches_the_fem_only_through_its_api() {
-    let src = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let files = common::rust_sources(&src.join("harness"));
+    let files = common::rust_sources(&common::program_root());
     assert!(!files.is_empty(), "no harness sources found");
     let internals = [
         "fem::solver",
@@ -187,9 +195,27 @@ fn the_harness_reaches_the_fem_only_through_its_api() {
         for internal in internals {
             assert!(
                 !code.contains(internal),
-                "{} reaches into {internal} (use methods::Method or the names in src/fem/mod.rs)",
+                "{} reaches into {internal} (use methods::Method or the names in fem/mod.rs)",
                 file.display()
             );
         }
+    }
+}
+
+/// The library crate carries no command line, progress bars, markdown renderer or allocator:
+/// those belong to the program's crate (the root `Cargo.toml`).
+#[test]
+fn the_library_depends_on_no_program_crate() {
+    let manifest = common::library_root().parent().unwrap().join("Cargo.toml");
+    let text = std::fs::read_to_string(&manifest).unwrap();
+    let table: toml::Table = text.parse().unwrap();
+    let dependencies = table["dependencies"].as_table().unwrap();
+    assert!(dependencies.contains_key("faer"), "read the wrong manifest");
+    for program_crate in ["clap", "indicatif", "pulldown-cmark", "mimalloc"] {
+        assert!(
+            !dependencies.contains_key(program_crate),
+            "{} depends on {program_crate}: it belongs to the program's crate",
+            manifest.display()
+        );
     }
 }

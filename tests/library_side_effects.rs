@@ -1,24 +1,23 @@
 //! The library sets nothing process-wide: no global allocator, no allocator options, no
 //! transparent-huge-page or thread-affinity calls, no environment variable set at run time, no
 //! global parallelism of `faer`, and no panic hook (a program's hook may ask
-//! `mesh::msh::inside_mesh_parser` to stay silent on a malformed mesh). Those choices belong to a program (`src/bin/`), so a program that links `ringcontact`
-//! gets none of them. Checked on the sources, where a regression would be written.
+//! `mesh::msh::inside_mesh_parser` to stay silent on a malformed mesh). Those choices belong to
+//! a program (`src/bin/verify.rs`), so a program that links `ringcontact` gets none of them.
+//! Checked on the library's sources (`crates/ringcontact/src`), where a regression would be
+//! written.
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
-/// The library's sources: every file below `src/` but the programs in `src/bin/`.
-fn library_sources(src: &Path) -> Vec<PathBuf> {
-    common::rust_sources(src)
-        .into_iter()
-        .filter(|file| !file.strip_prefix(src).unwrap().starts_with("bin"))
-        .collect()
+/// The library's sources.
+fn library_sources() -> Vec<PathBuf> {
+    common::rust_sources(&common::library_root())
 }
 
 #[test]
 fn the_library_sets_no_process_state() {
-    let files = library_sources(&PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src"));
+    let files = library_sources();
     assert!(files.len() > 50, "found {} sources", files.len());
     let forbidden = [
         "#[global_allocator]",
@@ -49,18 +48,15 @@ fn the_library_sets_no_process_state() {
     }
 }
 
-/// The library's core (everything but the harness, the command line and the programs in
-/// `src/bin/`, which become the program's own crate) reads no environment variable outside
-/// the files listed here, each a setting not yet passed as an explicit value: the progress
-/// lines' interval, the mesh and data locations, gmsh's executable and the native solver's
-/// split threshold. The linear-solver backend and the FEM's trace are explicit options
+/// The library reads no environment variable outside the files listed here, each a setting not
+/// yet passed as an explicit value: the progress lines' interval, the mesh and data locations,
+/// gmsh's executable and the native solver's split threshold. The linear-solver backend and the FEM's trace are explicit options
 /// (`FemOptions::linear_solver`, `FemOptions::trace`, and the same in `MethodOptions`): no core
 /// file may read them.
 #[test]
 fn the_core_reads_environment_variables_only_where_listed() {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("src");
-    let files = library_sources(&root);
-    let program_side = ["harness", "cli"];
+    let root = common::library_root();
+    let files = library_sources();
     let still_reading = [
         "heartbeat.rs",
         "mesh/provider.rs",
@@ -71,9 +67,6 @@ fn the_core_reads_environment_variables_only_where_listed() {
     let mut readers = Vec::new();
     for file in &files {
         let relative = file.strip_prefix(&root).unwrap();
-        if program_side.iter().any(|p| relative.starts_with(p)) {
-            continue;
-        }
         let whole = std::fs::read_to_string(file).unwrap();
         let text = whole.split("#[cfg(test)]").next().unwrap_or_default();
         if text.contains("env::var") {
@@ -83,7 +76,7 @@ fn the_core_reads_environment_variables_only_where_listed() {
     for reader in &readers {
         assert!(
             still_reading.contains(&reader.as_str()),
-            "src/{reader} reads an environment variable: the library takes its settings as \
+            "{reader} reads an environment variable: the library takes its settings as \
              explicit values (a program reads the environment)"
         );
     }

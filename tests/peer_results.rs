@@ -1,7 +1,7 @@
 //! Tamaas and ContactMechanics (stored by scripts/peers/run_peers.sh) against our grid BEM on the
 //! same grids and profiles: forces within 1e-6 relative.
 
-use ringcontact::harness::records::peers::{self, PEER_AGREEMENT};
+use ringcontact_verify::harness::records::peers::{self, PEER_AGREEMENT};
 
 #[test]
 fn stored_peer_results_agree_with_our_grid_bem() {

@@ -6,10 +6,10 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-use ringcontact::harness::plan::Plan;
-use ringcontact::harness::report_jobs::{self, Part};
 use ringcontact::methods::Method;
 use ringcontact::punch::PunchKind;
+use ringcontact_verify::harness::plan::Plan;
+use ringcontact_verify::harness::report_jobs::{self, Part};
 
 fn verify(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_verify"))

@@ -1,4 +1,4 @@
-//! The direct simulation of adhesive contact (`src/cohesive/`): the FE model condensed onto its
+//! The direct simulation of adhesive contact (`crates/ringcontact/src/cohesive/`): the FE model condensed onto its
 //! contact line, an exponential adhesion law, displacement control.
 //!
 //! References: Boussinesq's flat punch `F = 2 E* a d` and the ring BEM's non-adhesive cone (an
@@ -337,7 +337,8 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
 /// uncertainty under 3 % of F0 with gmsh's study meshes).
 #[test]
 fn tamaas_pulloff_agrees_with_the_simulation_at_the_same_range() {
-    let rows = ringcontact::harness::records::adhesion_peers::run().expect("the comparison runs");
+    let rows =
+        ringcontact_verify::harness::records::adhesion_peers::run().expect("the comparison runs");
     // The stored peer results (verify/peers/adhesion/, Tamaas 2.9): the flat punch, the cone
     // and the sphere at d0/h = 10.
     for wanted in [

@@ -145,7 +145,7 @@ fn the_stored_grid_peer_results_are_reproduced_by_their_commands() {
     }
     check_forces(
         &records,
-        ringcontact::harness::records::peers::PEER_AGREEMENT,
+        ringcontact_verify::harness::records::peers::PEER_AGREEMENT,
     );
 }
 

@@ -2,13 +2,13 @@
 //! of `(r/a, g/h)` points, interpolated by monotone cubics (PCHIP).
 //!
 //! Independent checks: tables sampled from the sphere's profile `1 - (r/a)²` at 6 to 41 points,
-//! solved by the ring BEM (through the flat band's fields, `src/bem/ring_contact/piecewise_gap.rs`)
+//! solved by the ring BEM (through the flat band's fields, `crates/ringcontact/src/bem/ring_contact/piecewise_gap.rs`)
 //! and by the FEM at `--tol 1e-7`, tend to the sphere's converged ring-BEM state (1e-12) as the
 //! table is refined, and agree with each other within the FEM's estimate. Two facts bound the
 //! difference from the sphere: the contact problem is monotone in the gap, so a gap within `δ` of
 //! the sphere's changes `γ2 = F/(2 E* h a)` at a given depth by at most `δ` (the force's slope in
 //! the depth is at most `2 E* a`), and `δ` falls at least as the square of the spacing (the
-//! interpolant's order next to the axis, `src/punch/table.rs`). A state the ring BEM's single
+//! interpolant's order next to the axis, `crates/ringcontact/src/punch/table.rs`). A state the ring BEM's single
 //! annulus cannot model is refused with the reason, and bad tables are errors naming the line.
 
 mod common;

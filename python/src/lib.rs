@@ -8,8 +8,8 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
-use ringcontact::cli::calls::{self, SolveOptions};
 use ringcontact::provenance;
+use ringcontact_verify::cli::calls::{self, SolveOptions};
 
 create_exception!(
     ringcontact,

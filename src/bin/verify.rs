@@ -1,15 +1,15 @@
 //! `verify`: the command line of the cross-verification harness. It parses the arguments
-//! ([`ringcontact::cli::args`]), hands them to [`ringcontact::cli::dispatch`] and prints the
+//! ([`ringcontact_verify::cli::args`]), hands them to [`ringcontact_verify::cli::dispatch`] and prints the
 //! reply; every subcommand's work lives in the library.
 
 use std::process::ExitCode;
 
 use clap::{CommandFactory, FromArgMatches};
 
-use ringcontact::cli::{self, args::Cli};
-use ringcontact::harness::settings;
 use ringcontact::mesh::provider;
 use ringcontact::sparse::{self, Backend};
+use ringcontact_verify::cli::{self, args::Cli};
+use ringcontact_verify::harness::settings;
 
 /// Write `text` to standard output and flush. A reader that went away (`verify ... | head`)
 /// ends the program quietly with status 141 (as if by SIGPIPE); any other write error (a full

@@ -5,14 +5,15 @@ use std::path::PathBuf;
 
 use clap::{Args, Parser, Subcommand};
 
+use super::choice;
 use crate::harness::report::document;
-use crate::methods::Method;
-use crate::punch::PunchName;
-use crate::scene::DEFAULT_TOLERANCE;
+use ringcontact::methods::Method;
+use ringcontact::punch::PunchName;
+use ringcontact::scene::DEFAULT_TOLERANCE;
 
 /// The cells per side `--grid` takes: the grid BEM's own range.
-const GRID_RANGE: std::ops::RangeInclusive<u64> =
-    (crate::bem::grid_contact::MIN_GRID as u64)..=(crate::bem::grid_contact::MAX_GRID as u64);
+const GRID_RANGE: std::ops::RangeInclusive<u64> = (ringcontact::bem::grid_contact::MIN_GRID as u64)
+    ..=(ringcontact::bem::grid_contact::MAX_GRID as u64);
 
 /// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
 /// half-space (flat annular, conical concave, spherical concave; flat circular as a check).
@@ -382,7 +383,7 @@ pub struct HistoryArgs {
 #[derive(Args)]
 pub struct PulloffArgs {
     /// Punch shape (cone and sphere: from full contact, pressed until the hole closes).
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
     /// (n = 1 is the cone, n = 2 the sphere).
@@ -407,8 +408,8 @@ pub struct PulloffArgs {
     /// then pulled, the inner edge moving outward (JKR limit: the annular contact's fixed-load
     /// pull-off, the paper's route); its contact line is meshed uniformly at a third of the
     /// zone per range (gmsh needed).
-    #[arg(long, value_enum, default_value_t = crate::cohesive::study::Branch::Closed)]
-    pub branch: crate::cohesive::study::Branch,
+    #[arg(long, value_parser = choice::parser::<ringcontact::cohesive::study::Branch>(), default_value = "closed")]
+    pub branch: ringcontact::cohesive::study::Branch,
     /// A gmsh .msh file (units of a; physical groups as in meshes/half_space.geo) instead of the
     /// default mesh.
     #[arg(long)]
@@ -422,7 +423,7 @@ pub struct PulloffArgs {
 #[derive(Args)]
 pub struct JkrArgs {
     /// Punch shape: flat-annulus, a concave one (cone, sphere, power, table) or torus.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
     /// (n = 1 is the cone, n = 2 the sphere).
@@ -453,7 +454,7 @@ pub struct JkrArgs {
 #[derive(Args)]
 pub struct ConvergenceArgs {
     /// Punch shape.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
     /// (n = 1 is the cone, n = 2 the sphere).
@@ -463,7 +464,7 @@ pub struct ConvergenceArgs {
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
     /// Method to refine.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<Method>())]
     pub method: Method,
     /// Number of refinement levels.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(2..=8))]
@@ -568,7 +569,7 @@ pub struct JsonArgs {
 #[derive(Args, Clone)]
 pub struct SolveArgs {
     /// Punch shape.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: Option<PunchName>,
     /// Exponent n of the power-law punch (`--punch power`): gap h (1 - (r/a)^n), any n > 0
     /// (n = 1 is the cone, n = 2 the sphere).
@@ -595,7 +596,7 @@ pub struct SolveArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub force: Option<f64>,
     /// Method.
-    #[arg(long, value_enum, default_value = "ring-bem")]
+    #[arg(long, value_parser = choice::parser::<Method>(), default_value = "ring-bem")]
     pub method: Method,
     /// Scene file (TOML, see verify/scenes/); flags given as well override its values.
     #[arg(long)]
@@ -619,8 +620,8 @@ pub struct SolveArgs {
     /// default): the arc follows the point-force field, bias O((a/R)^2); `fixed`: u = 0 there,
     /// the classical truncation (too stiff by about 1.2 a/R), the model of the stored FEniCSx
     /// results.
-    #[arg(long, value_enum)]
-    pub far_field: Option<crate::discretisation::far_field::FarField>,
+    #[arg(long, value_parser = choice::parser::<ringcontact::discretisation::far_field::FarField>())]
+    pub far_field: Option<ringcontact::discretisation::far_field::FarField>,
     /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
     /// made by gmsh, 2 on the committed meshes and with --mesh].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
@@ -659,7 +660,7 @@ pub struct SolveArgs {
 #[command(group(clap::ArgGroup::new("state").required(true).args(["eps", "depth", "force"])))]
 pub struct TableArgs {
     /// Punch shape.
-    #[arg(long, value_enum)]
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: Option<PunchName>,
     /// Exponent n of the power-law punch (`--punch power`).
     #[arg(long)]
@@ -686,14 +687,14 @@ pub struct TableArgs {
     #[arg(long, value_name = "LIST", allow_hyphen_values = true)]
     pub force: Option<String>,
     /// Method.
-    #[arg(long, value_enum, default_value = "ring-bem")]
+    #[arg(long, value_parser = choice::parser::<Method>(), default_value = "ring-bem")]
     pub method: Method,
     /// Relative tolerance wanted [default: the scene's, else the method's].
     #[arg(long)]
     pub tol: Option<f64>,
     /// FEM only: the condition on the far arc (as `verify solve`).
-    #[arg(long, value_enum)]
-    pub far_field: Option<crate::discretisation::far_field::FarField>,
+    #[arg(long, value_parser = choice::parser::<ringcontact::discretisation::far_field::FarField>())]
+    pub far_field: Option<ringcontact::discretisation::far_field::FarField>,
     /// FEM only: element degree 1, 2 or 3 (as `verify solve`).
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub degree: Option<u8>,
@@ -790,13 +791,13 @@ pub struct PlanArgs {
     #[arg(long, value_delimiter = ',')]
     pub fem_tolerances: Option<Vec<f64>>,
     /// Convergence plan: punch shape.
-    #[arg(long, value_enum, requires = "convergence")]
+    #[arg(long, value_parser = choice::parser::<PunchName>(), requires = "convergence")]
     pub punch: Option<PunchName>,
     /// Convergence plan: the power law's exponent n (`--punch power`).
     #[arg(long, requires = "convergence")]
     pub exponent: Option<f64>,
     /// Convergence plan: the method to refine.
-    #[arg(long, value_enum, requires = "convergence")]
+    #[arg(long, value_parser = choice::parser::<Method>(), requires = "convergence")]
     pub method: Option<Method>,
     /// Convergence plan: number of levels.
     #[arg(long, default_value_t = 4, value_parser = clap::value_parser!(u64).range(2..=8))]

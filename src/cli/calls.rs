@@ -3,15 +3,16 @@
 //! converts and releases the interpreter lock. Nothing here computes anything the subcommands
 //! do not.
 
-use clap::{CommandFactory, FromArgMatches, ValueEnum};
+use clap::{CommandFactory, FromArgMatches};
+use ringcontact::choice::Choice;
 
 use super::{message, refuse_non_finite, Reply};
 use crate::harness::grade::{self, GradeReport};
-use crate::heartbeat::Heartbeat;
-use crate::mesh::triangulation::Degree;
-use crate::methods::{self, Method, MethodOptions};
-use crate::provenance::Provenance;
-use crate::scene::SceneSpec;
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::provenance::Provenance;
+use ringcontact::scene::SceneSpec;
 
 /// The method options a keyword solve takes besides the scene (as `verify solve`'s flags).
 #[derive(Clone, Debug, Default)]
@@ -35,9 +36,11 @@ pub fn solve_keyword_scenes(
     options: &SolveOptions,
     base: Option<&std::path::Path>,
 ) -> Result<String, String> {
-    let method = Method::from_str(method, false).map_err(|_| {
-        let names: Vec<&str> = Method::value_variants().iter().map(|m| m.name()).collect();
-        format!("method {method:?} is not one of {}", names.join(", "))
+    let method = Method::named(method).ok_or_else(|| {
+        format!(
+            "method {method:?} is not one of {}",
+            Method::names_joined(", ")
+        )
     })?;
     let degree = match options.degree {
         None => None,

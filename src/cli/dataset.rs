@@ -4,8 +4,8 @@ use super::{message, output_directory, to_json, Reply};
 use crate::cli::args::DatasetArgs;
 use crate::harness::dataset::{self, Size};
 use crate::harness::report::table::{Column, Format, Table};
-use crate::heartbeat::Heartbeat;
-use crate::provenance::Provenance;
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::provenance::Provenance;
 
 /// `verify dataset [--out DIR] [--small]`: compute and write the tables, print what was written.
 pub fn dataset(args: DatasetArgs) -> Result<Reply, String> {

@@ -3,8 +3,8 @@
 use super::{to_json, Reply};
 use crate::cli::args::GradeArgs;
 use crate::harness::grade::{self, GradeReport, Grading};
-use crate::heartbeat::Heartbeat;
-use crate::provenance::Provenance;
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::provenance::Provenance;
 
 /// `verify grade --results FILE`: grade every value, print the rows and the summary (or JSON),
 /// write the chart with `--svg`; fails (exit status 1) when a value is beyond `--tol`.

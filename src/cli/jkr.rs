@@ -1,13 +1,13 @@
 //! `verify jkr`: the JKR adhesive solution built on the ring BEM's non-adhesive solutions.
 
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
-use crate::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr};
-use crate::bem::ring_contact::RingBemSolver;
 use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use crate::punch::{Contact, PunchKind};
+use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::punch::{Contact, PunchKind};
 
 /// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
@@ -155,7 +155,7 @@ fn concave_table(r: &ConcaveJkr) -> Table {
         &format!(
             "{} d0/h = {}: pull-off (d/h; F in F0, negative = tensile)",
             r.punch,
-            crate::error::show(r.d0_over_h)
+            ringcontact::error::show(r.d0_over_h)
         ),
         vec![
             Column::text("control", "control"),
@@ -287,7 +287,7 @@ fn band_text(r: &BandJkr) -> String {
             "{} d0/h = {} (h = a²/(2 rho)): pull-off, both edges at G = dw (d in d0, F in F0, \
              negative = tensile)",
             r.punch.name(),
-            crate::error::show(r.d0_over_h)
+            ringcontact::error::show(r.d0_over_h)
         ),
         vec![
             Column::text("control", "control"),

@@ -6,6 +6,7 @@
 
 pub mod args;
 pub mod calls;
+pub mod choice;
 mod dataset;
 mod grade;
 mod jkr;
@@ -18,7 +19,7 @@ mod studies;
 use args::{Command, CompareArgs};
 
 use crate::harness::report::document;
-use crate::scene::DEFAULT_TOLERANCE;
+use ringcontact::scene::DEFAULT_TOLERANCE;
 
 /// What a command prints on standard output, and its verdict (exit status 0 when `success`).
 #[derive(Debug, Default)]
@@ -102,7 +103,7 @@ fn to_json<T: serde::Serialize>(value: &T) -> Result<String, String> {
 /// A result with a non-finite number is an error naming the field, never `inf` or `null` on
 /// standard output with exit 0.
 fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), String> {
-    crate::finite_guard::check_finite(value).map_err(|field| {
+    ringcontact::finite_guard::check_finite(value).map_err(|field| {
         format!(
             "{what} produced a non-finite result ({field}): the input is beyond the range where \
              the numbers are representable"
@@ -115,10 +116,10 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 /// own free-band routes); the table is read by the commands that take `--profile`
 /// ([`punch_kind_with_profile`]).
 pub(crate) fn punch_kind(
-    name: crate::punch::PunchName,
+    name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
-) -> Result<crate::punch::PunchKind, String> {
-    if name == crate::punch::PunchName::Table {
+) -> Result<ringcontact::punch::PunchKind, String> {
+    if name == ringcontact::punch::PunchName::Table {
         return Err(
             "the table punch is solved by `verify solve --punch table --profile FILE`, its JKR \
              solution by `verify jkr --punch table --profile FILE --d0h S`, its pull-off \
@@ -143,11 +144,11 @@ pub(crate) fn punch_kind(
 /// The punch of `--punch`, `--exponent` and `--profile`: a table (or any punch given a profile,
 /// which then says why it takes none) from its file, the others as [`punch_kind`].
 pub(crate) fn punch_kind_with_profile(
-    name: crate::punch::PunchName,
+    name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
     profile: Option<&std::path::Path>,
-) -> Result<crate::punch::PunchKind, String> {
-    if name == crate::punch::PunchName::Table || profile.is_some() {
+) -> Result<ringcontact::punch::PunchKind, String> {
+    if name == ringcontact::punch::PunchName::Table || profile.is_some() {
         name.with_parameters(exponent, profile).map_err(message)
     } else {
         punch_kind(name, exponent)
@@ -158,11 +159,11 @@ pub(crate) fn punch_kind_with_profile(
 /// route (`jkr`, `pulloff`, `convergence`): a free band as it is, the others as
 /// [`punch_kind_with_profile`].
 pub(crate) fn punch_kind_or_free_band(
-    name: crate::punch::PunchName,
+    name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
     profile: Option<&std::path::Path>,
-) -> Result<crate::punch::PunchKind, String> {
-    if name.contact() == crate::punch::Contact::FreeBand && profile.is_none() {
+) -> Result<ringcontact::punch::PunchKind, String> {
+    if name.contact() == ringcontact::punch::Contact::FreeBand && profile.is_none() {
         name.with_exponent(exponent).map_err(message)
     } else {
         punch_kind_with_profile(name, exponent, profile)
@@ -174,7 +175,7 @@ pub(crate) fn punch_kind_or_free_band(
 /// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
 /// `F0` already). Used by `verify jkr` and `verify pulloff`.
 fn refuse_other_family_flags(
-    punch: crate::punch::PunchKind,
+    punch: ringcontact::punch::PunchKind,
     eps: Option<f64>,
     d0h: Option<f64>,
 ) -> Result<(), String> {
@@ -203,8 +204,10 @@ fn chosen_mesh(
     match (mesh, parameters) {
         (Some(path), _) => Ok(Some(path.to_path_buf())),
         (None, Some(text)) => {
-            let parameters = crate::mesh::provider::parse_parameters(text).map_err(message)?;
-            let provided = crate::mesh::provider::generate(&parameters, why).map_err(message)?;
+            let parameters =
+                ringcontact::mesh::provider::parse_parameters(text).map_err(message)?;
+            let provided =
+                ringcontact::mesh::provider::generate(&parameters, why).map_err(message)?;
             Ok(Some(provided.path))
         }
         (None, None) => Ok(None),
@@ -217,7 +220,7 @@ fn chosen_mesh(
 fn output_directory(given: Option<&std::path::Path>, default: &str) -> std::path::PathBuf {
     match given {
         Some(path) => path.to_path_buf(),
-        None => crate::mesh::provider::find_project_root()
+        None => ringcontact::mesh::provider::find_project_root()
             .map(|root| root.join(default))
             .unwrap_or_else(|_| default.into()),
     }

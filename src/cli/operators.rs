@@ -3,11 +3,11 @@
 
 use super::{message, to_json, Reply};
 use crate::cli::args::{ExportArgs, FenicsxArgs, MeshArgs};
-use crate::discretisation::export::export_mesh;
 use crate::harness::records::fenicsx;
 use crate::harness::records::operator;
-use crate::mesh::provider::{self, MeshRequest};
-use crate::mesh::triangulation::Degree;
+use ringcontact::discretisation::export::export_mesh;
+use ringcontact::mesh::provider::{self, MeshRequest};
+use ringcontact::mesh::triangulation::Degree;
 
 /// `verify fenicsx`: every stored FEniCSx result against our FEM, and the stored operator
 /// comparisons (`--operators`: those alone).

@@ -2,11 +2,11 @@
 
 use super::{message, refuse_non_finite, refuse_other_family_flags, to_json, Reply};
 use crate::cli::args::PulloffArgs;
-use crate::cohesive::study::{self, PulloffStudy};
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Column, Format, Table};
-use crate::heartbeat::Heartbeat;
-use crate::mesh::provider::{MeshOrigin, ProvidedMesh};
+use ringcontact::cohesive::study::{self, PulloffStudy};
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::mesh::provider::{MeshOrigin, ProvidedMesh};
 
 /// The `d0/h` of a concave punch's direct simulation: its load path takes about `250 h/d0`
 /// steps per range below `d0/h = 1` and `200 d0/h` above.
@@ -53,11 +53,11 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
                  and 200 d0/h above: 833 at d0/h = 0.3 and 2 250 at 10, whose stored runs took \
                  52 and 25 s, but 2.5e6 at 1e-4. \
                  `verify jkr {} --d0h {}` gives the JKR limit for d0/h in [1e-6, 1e6]",
-                crate::error::show(s),
+                ringcontact::error::show(s),
                 PULLOFF_D0H_RANGE.0,
                 PULLOFF_D0H_RANGE.1,
                 punch.flags(),
-                crate::error::show(s)
+                ringcontact::error::show(s)
             ));
         }
         (_, s) => s.unwrap_or(0.0),
@@ -131,7 +131,7 @@ fn annular_branch(
     heartbeat: &Heartbeat,
 ) -> Result<Reply, String> {
     let mut bar = Progress::new("pull-off (annular branch)", ranges.len() + 1);
-    let result = crate::cohesive::annular::run_annular(case, ranges, |entry| {
+    let result = ringcontact::cohesive::annular::run_annular(case, ranges, |entry| {
         heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
         bar.tick(&format!(
             "rho/a = {}: F/F0 = {:.4}{}",
@@ -163,7 +163,7 @@ fn free_band(
         &format!("pull-off ({})", case.punch.name()),
         ranges.len() + 1,
     );
-    let result = crate::cohesive::free_band::run_band(case, ranges, |entry| {
+    let result = ringcontact::cohesive::free_band::run_band(case, ranges, |entry| {
         heartbeat.set(format!("the range after rho/a = {}", entry.range_over_a));
         bar.tick(&format!(
             "rho/a = {}: F/F0 = {:.4}",

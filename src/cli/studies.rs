@@ -4,7 +4,6 @@
 use std::fmt::Write as _;
 
 use super::{message, to_json, Reply};
-use crate::bem::ring_contact::RingBemSolver;
 use crate::cli::args::{CompareArgs, ConvergenceArgs, HistoryArgs, JsonArgs};
 use crate::harness::progress::Progress;
 use crate::harness::records::baselines;
@@ -19,14 +18,15 @@ use crate::harness::report_jobs;
 use crate::harness::studies::comparison;
 use crate::harness::studies::convergence;
 use crate::harness::studies::stability;
-use crate::punch::PunchKind;
-use crate::punch::PunchName;
-use crate::reference;
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::punch::PunchKind;
+use ringcontact::punch::PunchName;
+use ringcontact::reference;
 
 /// `verify compare`: the ring BEM against the references, the FEM against the ring BEM, the
 /// stored FEniCSx and peer results, and the report directory (unless `--no-report`).
 pub fn compare(args: CompareArgs) -> Result<Reply, String> {
-    let floor = crate::fem::solver::MIN_TOLERANCE;
+    let floor = ringcontact::fem::MIN_TOLERANCE;
     if let Some(t) = args
         .fem_tolerances
         .iter()
@@ -76,7 +76,7 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         return Err("the report's parts did not make a report".into());
     };
     if let Some(fresh) = &args.fresh {
-        let committed = crate::mesh::provider::project_root().join("verify");
+        let committed = ringcontact::mesh::provider::project_root().join("verify");
         inputs.baselines = baselines::compare(fresh, &committed).map_err(message)?;
     }
     let extras =
@@ -329,7 +329,7 @@ pub fn history(args: HistoryArgs) -> Result<Reply, String> {
 /// `verify fit`: the paper's approximations refitted to ring-BEM data, and better forms.
 pub fn fit(args: JsonArgs) -> Result<Reply, String> {
     let solver = RingBemSolver::new();
-    let reports = crate::fit::run(&solver).map_err(message)?;
+    let reports = ringcontact::fit::run(&solver).map_err(message)?;
     if args.json {
         // One entry per function, keyed by its name.
         let map: serde_json::Map<String, serde_json::Value> = reports

@@ -14,8 +14,8 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
-use crate::error::{Error, Result};
 use crate::harness::report_jobs::{JobRecord, Part, PartResult};
+use ringcontact::error::{Error, Result};
 
 /// The first line of every plan file.
 const MAGIC: &str = "# ringcontact plan v1";
@@ -232,10 +232,10 @@ fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
     let args: Vec<&str> = job.command.split_whitespace().skip(1).collect();
     // The job reads the data directory this process reads (`--data-dir` is not inherited).
     let mut command = Command::new(executable);
-    if let Ok(root) = crate::mesh::provider::find_project_root() {
-        command.env(crate::mesh::provider::DATA_DIR_VARIABLE, root);
+    if let Ok(root) = ringcontact::mesh::provider::find_project_root() {
+        command.env(ringcontact::mesh::provider::DATA_DIR_VARIABLE, root);
         command.env(
-            crate::sparse::ENVIRONMENT_VARIABLE,
+            ringcontact::sparse::ENVIRONMENT_VARIABLE,
             crate::harness::settings::linear_solver().name(),
         );
     }

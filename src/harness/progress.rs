@@ -7,7 +7,7 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-pub use crate::heartbeat::{plain_interval, PLAIN_INTERVAL_S};
+pub use ringcontact::heartbeat::{plain_interval, PLAIN_INTERVAL_S};
 
 /// Progress of a sweep of known length.
 pub(crate) struct Progress {

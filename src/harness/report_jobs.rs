@@ -12,12 +12,9 @@ use std::collections::HashMap;
 use std::sync::{Condvar, Mutex};
 use std::time::Instant;
 
-use clap::ValueEnum;
+use ringcontact::choice::Choice;
 use serde::{Deserialize, Serialize};
 
-use crate::bem::ring_contact::RingBemSolver;
-use crate::cohesive::study::{self, LiveSimulation};
-use crate::error::{Error, Result};
 use crate::harness::records::adhesion_peers::{self, AdhesionPeerComparison};
 use crate::harness::records::fenicsx::{self, FenicsxComparison};
 use crate::harness::records::operator::{self, OperatorStatus};
@@ -29,8 +26,11 @@ use crate::harness::studies::convergence::{self, ComputedLevel, StudyCase};
 use crate::harness::studies::speed_accuracy::{self, BasePoints, CostPoint, Problem};
 use crate::harness::studies::stability::{self, Probe};
 use crate::harness::studies::{claims, figures};
-use crate::methods::Method;
-use crate::punch::{Contact, PunchKind};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::cohesive::study::{self, LiveSimulation};
+use ringcontact::error::{Error, Result};
+use ringcontact::methods::Method;
+use ringcontact::punch::{Contact, PunchKind};
 
 /// Grid size up to which the stored peer results are compared (as `verify compare`).
 pub(crate) const PEER_MAX_GRID: usize = 256;
@@ -170,8 +170,8 @@ impl Part {
                 let method = job.positional(1).ok_or_else(|| job.bad("needs a method"))?;
                 Part::ConvergenceLevel {
                     punch: job.punch()?,
-                    method: Method::from_str(method, false)
-                        .map_err(|_| job.bad(&format!("no method `{method}`")))?,
+                    method: Method::named(method)
+                        .ok_or_else(|| job.bad(&format!("no method `{method}`")))?,
                     eps: job.number("eps")?,
                     depth: job.number("depth")?,
                     level: job.count("level")?,

@@ -5,8 +5,8 @@
 
 use std::sync::OnceLock;
 
-use crate::methods::MethodOptions;
-use crate::sparse::{Backend, ENVIRONMENT_VARIABLE};
+use ringcontact::methods::MethodOptions;
+use ringcontact::sparse::{Backend, ENVIRONMENT_VARIABLE};
 
 static LINEAR_SOLVER: OnceLock<Backend> = OnceLock::new();
 

@@ -87,6 +87,18 @@ pub fn linear_solver() -> ringcontact::sparse::Backend {
     }
 }
 
+/// The library's sources (`crates/ringcontact/src`, the crate without a command line).
+#[allow(dead_code)]
+pub fn library_root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("crates/ringcontact/src")
+}
+
+/// The harness's and the command line's sources (`src`, the root crate with `verify`).
+#[allow(dead_code)]
+pub fn program_root() -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+}
+
 /// Every `.rs` file below `dir`, for the tests that read the sources.
 #[allow(dead_code)]
 pub fn rust_sources(dir: &std::path::Path) -> Vec<std::path::PathBuf> {

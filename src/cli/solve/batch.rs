@@ -5,9 +5,9 @@ use std::path::Path;
 use super::solve_scene_by;
 use crate::cli::args::SolveArgs;
 use crate::cli::{message, Reply};
-use crate::heartbeat::Heartbeat;
-use crate::methods::Method;
-use crate::scene::SceneSpec;
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::methods::Method;
+use ringcontact::scene::SceneSpec;
 
 /// Solve every scene of the JSON-lines file `path` (`-`: standard input) in order. Each
 /// non-blank line is a JSON object with the keys of a scene file and optionally `"method"`;
@@ -84,10 +84,10 @@ fn solve_line(
     let method = match object.remove("method") {
         None => args.method,
         Some(serde_json::Value::String(name)) => {
-            <Method as clap::ValueEnum>::from_str(&name, false).map_err(|_| {
+            <Method as ringcontact::choice::Choice>::named(&name).ok_or_else(|| {
                 format!(
-                    "{origin}: method {name:?} is not one of ring-bem, reference, fem, \
-                     grid-bem, auto"
+                    "{origin}: method {name:?} is not one of {}",
+                    <Method as ringcontact::choice::Choice>::names_joined(", ")
                 )
             })?
         }

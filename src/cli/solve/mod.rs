@@ -8,11 +8,11 @@ pub(super) mod table;
 use super::{message, to_json, Reply};
 use crate::cli::args::SolveArgs;
 use crate::harness::report::table::{readable, Column, Table};
-use crate::mesh::triangulation::Degree;
-use crate::methods::{self, MethodOptions};
-use crate::punch::{Contact, PunchName};
-use crate::scene::{Scene, SceneSpec};
-use crate::solution::Solution;
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::{self, MethodOptions};
+use ringcontact::punch::{Contact, PunchName};
+use ringcontact::scene::{Scene, SceneSpec};
+use ringcontact::solution::Solution;
 
 /// `verify solve`: the scene from `--scene` and the flags (flags override the file), solved by
 /// `--method`; prints the state (or one JSON object). With `--batch FILE`: one scene per line.
@@ -40,7 +40,7 @@ pub(crate) fn solve_scene_by(
     method: methods::Method,
     args: &SolveArgs,
 ) -> Result<Solution, String> {
-    if args.mesh_parameters.is_some() && method != crate::methods::Method::Fem {
+    if args.mesh_parameters.is_some() && method != ringcontact::methods::Method::Fem {
         return Err(format!(
             "--mesh-parameters makes a mesh for --method fem only (not {})",
             method.name()

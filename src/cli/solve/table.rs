@@ -4,10 +4,10 @@ use super::{scene_of, solve_scene, states};
 use crate::cli::args::{SolveArgs, TableArgs};
 use crate::cli::{message, Reply};
 use crate::harness::report::table::{Cell, Column, Format, Table};
-use crate::heartbeat::Heartbeat;
-use crate::provenance::Provenance;
-use crate::scene::Scene;
-use crate::solution::Solution;
+use ringcontact::heartbeat::Heartbeat;
+use ringcontact::provenance::Provenance;
+use ringcontact::scene::Scene;
+use ringcontact::solution::Solution;
 
 /// Which quantity the listed states give.
 #[derive(Clone, Copy)]

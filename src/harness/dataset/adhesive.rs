@@ -2,12 +2,12 @@
 //! the concave punches' pull-off against `d0/h` under fixed load and fixed grips, and the
 //! refitted formulas with their largest errors.
 
-use crate::adhesion::{self, Critical};
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::Result;
-use crate::fit;
 use crate::harness::report::table::{Cell, Table};
-use crate::punch::PunchKind;
+use ringcontact::adhesion::{self, Critical};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::Result;
+use ringcontact::fit;
+use ringcontact::punch::PunchKind;
 
 use super::{Field, Resource};
 

@@ -10,10 +10,10 @@
 //! to 100 times closer than the cubic of the values). Its error is found at the midpoint of
 //! every interior interval against a fresh solve there.
 
-use crate::bem::ring_contact::{RingBemSolver, RingState};
-use crate::error::Result;
 use crate::harness::report::table::{Cell, Table};
-use crate::punch::{Contact, PunchKind};
+use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
+use ringcontact::error::Result;
+use ringcontact::punch::{Contact, PunchKind};
 
 use super::{Field, Resource};
 

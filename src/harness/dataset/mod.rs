@@ -12,11 +12,11 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::{Error, Result};
 use crate::harness::report::table::{Column, Format, Table};
-use crate::provenance::Provenance;
-use crate::punch::{PunchKind, PunchName};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::{Error, Result};
+use ringcontact::provenance::Provenance;
+use ringcontact::punch::{PunchKind, PunchName};
 
 /// One column of a table: its name, unit and meaning (a Frictionless table-schema field).
 #[derive(Clone, Debug)]

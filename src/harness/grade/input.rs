@@ -5,7 +5,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use crate::punch::{Contact, PunchName};
+use ringcontact::punch::{Contact, PunchName};
 
 /// A quantity a row may give: a state (`eps`, `depth`, `force`) or a graded value.
 #[derive(
@@ -225,7 +225,7 @@ fn check_header(header: &[String], origin: &str) -> Result<(), String> {
     if !has("punch") {
         return Err(format!(
             "{origin}: missing column `punch` (one of {}); the columns are {}",
-            punch_names(),
+            PunchName::names(None, ", "),
             header.join(", ")
         ));
     }
@@ -249,14 +249,6 @@ fn check_header(header: &[String], origin: &str) -> Result<(), String> {
     Ok(())
 }
 
-fn punch_names() -> String {
-    <PunchName as clap::ValueEnum>::value_variants()
-        .iter()
-        .map(|p| p.as_str())
-        .collect::<Vec<_>>()
-        .join(", ")
-}
-
 /// One row from its cells.
 fn row(
     place: &str,
@@ -276,10 +268,10 @@ fn row(
         }
     };
     let name = text("punch").ok_or_else(|| format!("{place}, column punch: empty"))?;
-    let punch = <PunchName as clap::ValueEnum>::from_str(name, false).map_err(|_| {
+    let punch = PunchName::parse(name).ok_or_else(|| {
         format!(
             "{place}, column punch: unknown punch {name:?} (one of {})",
-            punch_names()
+            PunchName::names(None, ", ")
         )
     })?;
     let flat = matches!(punch.contact(), Contact::Disk | Contact::FixedAnnulus);

@@ -13,12 +13,12 @@ use serde::{Deserialize, Serialize};
 
 pub use input::{Quantity, ResultRow};
 
-use crate::error::Error;
 use crate::harness::records::peers::PeerResult;
 use crate::harness::report::table::{readable, verdict, Cell, Column, Format, Table};
-use crate::methods::{self, Method};
-use crate::scene::{Scene, SceneSpec};
-use crate::solution::Solution;
+use ringcontact::error::Error;
+use ringcontact::methods::{self, Method};
+use ringcontact::scene::{Scene, SceneSpec};
+use ringcontact::solution::Solution;
 
 /// The ring BEM's tolerance for the references.
 pub const REFERENCE_TOLERANCE: f64 = 1e-12;
@@ -105,7 +105,7 @@ pub struct Grading {
 pub struct GradeReport<'a> {
     /// The results graded: a file's path, or what the caller names them.
     pub results: String,
-    pub provenance: crate::provenance::Provenance,
+    pub provenance: ringcontact::provenance::Provenance,
     #[serde(flatten)]
     pub grading: &'a Grading,
 }
@@ -388,7 +388,7 @@ pub fn peer_rows(records: &[(String, PeerResult)]) -> Vec<ResultRow> {
             punch: r
                 .punch
                 .shape_name()
-                .unwrap_or(crate::punch::PunchName::Table),
+                .unwrap_or(ringcontact::punch::PunchName::Table),
             exponent: r.punch.exponent(),
             tube_radius: r.punch.is_free_band().then_some(0.5),
             profile: r.punch.table().map(|t| t.source().into()),
@@ -499,7 +499,7 @@ pub fn verdict_sentence(g: &Grading) -> String {
 
 /// The stored peer results (`verify/peers/`) graded at [`PEER_TOLERANCE`]; `None` when none
 /// are stored.
-pub fn grade_stored_peers() -> crate::error::Result<Option<Grading>> {
+pub fn grade_stored_peers() -> ringcontact::error::Result<Option<Grading>> {
     let records = crate::harness::records::peers::load_results()?;
     if records.is_empty() {
         return Ok(None);

@@ -8,10 +8,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::cohesive::study::{self, Case, LiveSimulation};
-use crate::error::{Error, Result};
 use crate::harness::report::table::{verdict, Column, Format, Table};
-use crate::punch::PunchKind;
+use ringcontact::cohesive::study::{self, Case, LiveSimulation};
+use ringcontact::error::{Error, Result};
+use ringcontact::punch::PunchKind;
 
 /// One of Tamaas's runs of a case (one cell and grid).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -67,7 +67,7 @@ pub struct AdhesionPeerComparison {
 
 /// The stored Tamaas pull-offs (none without the directory).
 pub fn load() -> Result<Vec<(String, TamaasPulloff)>> {
-    let dir = crate::mesh::provider::project_root().join("verify/peers/adhesion");
+    let dir = ringcontact::mesh::provider::project_root().join("verify/peers/adhesion");
     if !dir.is_dir() {
         return Ok(Vec::new());
     }

@@ -13,8 +13,8 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use serde_json::Value;
 
-use crate::error::{Error, Result};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
+use ringcontact::error::{Error, Result};
 
 /// One number of a fresh result against its baseline.
 #[derive(Clone, Debug, Serialize, Deserialize)]

@@ -11,8 +11,8 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
 use crate::harness::report::table::{Column, Format, Table};
+use ringcontact::error::{Error, Result};
 
 /// Median, range and count of a timed quantity's runs (seconds, or a ratio).
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -87,7 +87,7 @@ pub(crate) struct RowTime {
 
 /// The records' directory, `benches/records/` of the project.
 pub(crate) fn records_directory() -> PathBuf {
-    crate::mesh::provider::project_root()
+    ringcontact::mesh::provider::project_root()
         .join("benches")
         .join("records")
 }

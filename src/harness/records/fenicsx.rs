@@ -12,12 +12,12 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::{Error, Result};
-use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
-use crate::mesh::triangulation::Degree;
-use crate::punch::{Contact, PunchKind};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::{Error, Result};
+use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::punch::{Contact, PunchKind};
 
 /// Relative force agreement required of two codes solving the identical discrete problem.
 pub const FORCE_AGREEMENT: f64 = 1e-8;
@@ -72,9 +72,9 @@ pub struct FenicsxComparison {
 }
 
 /// Root of the repository (where `meshes/` and `verify/` live): the project root the mesh
-/// provider uses ([`crate::mesh::provider::project_root`]).
+/// provider uses ([`ringcontact::mesh::provider::project_root`]).
 pub(crate) fn repository_root() -> PathBuf {
-    crate::mesh::provider::project_root()
+    ringcontact::mesh::provider::project_root()
 }
 
 /// Directory of the stored FEniCSx results.
@@ -118,7 +118,10 @@ pub fn compare(
     let mesh_path = match (&stored.mesh_parameters, mesh_path.exists()) {
         (_, true) => mesh_path,
         (Some(parameters), false) => {
-            match crate::mesh::provider::generate(parameters, &format!("FEniCSx result {file}")) {
+            match ringcontact::mesh::provider::generate(
+                parameters,
+                &format!("FEniCSx result {file}"),
+            ) {
                 Ok(provided) => provided.path,
                 Err(_) => {
                     out.status = "needs-gmsh".into();
@@ -131,7 +134,7 @@ pub fn compare(
             return Ok(out);
         }
     };
-    if crate::mesh::provider::sha256_file(&mesh_path)? != stored.mesh_sha256 {
+    if ringcontact::mesh::provider::sha256_file(&mesh_path)? != stored.mesh_sha256 {
         out.status = "stale".into();
         return Ok(out);
     }
@@ -151,7 +154,7 @@ pub fn compare(
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),
         poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Fixed,
+        far_field: ringcontact::discretisation::far_field::FarField::Fixed,
     };
     let start = Instant::now();
     let ours = fem_solver::solve(stored.punch.clone(), eps, load, &options)?;

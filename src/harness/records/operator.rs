@@ -16,12 +16,12 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::discretisation::export::{
+use crate::harness::report::table::{verdict, Column, Format, Table};
+use ringcontact::discretisation::export::{
     assemble_system, load_mesh, read_dofs, read_matrix, DofRecord,
 };
-use crate::error::{Error, Result};
-use crate::harness::report::table::{verdict, Column, Format, Table};
-use crate::mesh::triangulation::Degree;
+use ringcontact::error::{Error, Result};
+use ringcontact::mesh::triangulation::Degree;
 
 /// What one operator comparison found.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
@@ -135,7 +135,8 @@ pub fn load_records() -> Result<Vec<OperatorStatus>> {
         let status = match locate_mesh(&root, &record, &file) {
             None => "mesh absent".to_string(),
             Some(mesh)
-                if crate::mesh::provider::sha256_file(&mesh)? == record.comparison.mesh_sha256 =>
+                if ringcontact::mesh::provider::sha256_file(&mesh)?
+                    == record.comparison.mesh_sha256 =>
             {
                 "current".to_string()
             }
@@ -162,7 +163,7 @@ fn locate_mesh(root: &Path, record: &OperatorRecord, file: &str) -> Option<std::
     }
     let parameters = mesh_parameters_of(&record.reproduce)?;
     let why = format!("FEniCSx operator comparison {file}");
-    crate::mesh::provider::generate(&parameters, &why)
+    ringcontact::mesh::provider::generate(&parameters, &why)
         .ok()
         .map(|made| made.path)
 }
@@ -171,7 +172,7 @@ fn locate_mesh(root: &Path, record: &OperatorRecord, file: &str) -> Option<std::
 fn mesh_parameters_of(reproduce: &str) -> Option<Vec<(String, f64)>> {
     let mut words = reproduce.split_whitespace();
     words.find(|word| *word == "--mesh-parameters")?;
-    crate::mesh::provider::parse_parameters(words.next()?).ok()
+    ringcontact::mesh::provider::parse_parameters(words.next()?).ok()
 }
 
 /// Stored comparisons that are current and above the goal (1 when there are none: nothing was
@@ -317,7 +318,7 @@ pub fn compare_operator(mesh: &Path, degree: Degree, dir: &Path) -> Result<Opera
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
     Ok(OperatorComparison {
         mesh: mesh.display().to_string(),
-        mesh_sha256: crate::mesh::provider::sha256_file(mesh)?,
+        mesh_sha256: ringcontact::mesh::provider::sha256_file(mesh)?,
         degree: degree as u8,
         dofs: n,
         nnz_ours: k.nnz(),

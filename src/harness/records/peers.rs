@@ -7,11 +7,11 @@ use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
 
-use crate::bem::grid::GridLoad;
-use crate::bem::grid_contact;
-use crate::error::Result;
 use crate::harness::report::table::{verdict, Column, Format, Table};
-use crate::punch::PunchKind;
+use ringcontact::bem::grid::GridLoad;
+use ringcontact::bem::grid_contact;
+use ringcontact::error::Result;
+use ringcontact::punch::PunchKind;
 
 /// Relative force agreement required on the same grid.
 pub const PEER_AGREEMENT: f64 = 1e-6;
@@ -102,18 +102,20 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                         load,
                         1e-11,
                     ),
-                    (true, None) | (false, Some(_)) => Err(crate::error::Error::Unsupported {
-                        method: crate::bem::grid::METHOD.into(),
-                        reason: "grid_extent (the square's half-size) is stored for a \
+                    (true, None) | (false, Some(_)) => {
+                        Err(ringcontact::error::Error::Unsupported {
+                            method: ringcontact::bem::grid::METHOD.into(),
+                            reason: "grid_extent (the square's half-size) is stored for a \
                                      free band, and only for it"
-                            .into(),
-                    }),
+                                .into(),
+                        })
+                    }
                     (false, None) => {
                         grid_contact::solve(stored.punch.clone(), eps, stored.grid, load, 1e-11)
                     }
                 };
                 let s = solved.map_err(|e| {
-                    crate::error::Error::file(
+                    ringcontact::error::Error::file(
                         "compare the stored peer result",
                         &results_directory().join(&file),
                         e,

@@ -5,9 +5,9 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::cohesive::study::PulloffStudy;
-use crate::error::{Error, Result};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
+use ringcontact::cohesive::study::PulloffStudy;
+use ringcontact::error::{Error, Result};
 
 /// One stored simulation.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -37,7 +37,7 @@ fn natural_key(name: &str) -> (String, f64) {
 /// Every stored record, in the natural order of the file names (none when the directory is
 /// absent).
 pub fn load() -> Result<Vec<PulloffRecord>> {
-    let dir = crate::mesh::provider::project_root().join("verify/pulloff");
+    let dir = ringcontact::mesh::provider::project_root().join("verify/pulloff");
     let Ok(entries) = std::fs::read_dir(&dir) else {
         return Ok(Vec::new());
     };
@@ -184,7 +184,7 @@ pub fn table(records: &[PulloffRecord]) -> Table {
 pub(crate) fn with_branches(records: &[PulloffRecord]) -> Option<&PulloffRecord> {
     records.iter().find(|r| {
         r.result.as_ref().is_some_and(|s| {
-            s.branch != Some(crate::cohesive::study::Branch::Annular)
+            s.branch != Some(ringcontact::cohesive::study::Branch::Annular)
                 && s.curves.iter().any(|c| c.left_the_branch)
         })
     })
@@ -197,7 +197,7 @@ pub fn annular(records: &[PulloffRecord]) -> Vec<PulloffRecord> {
         .iter()
         .filter(|r| {
             r.result.as_ref().is_some_and(|s| {
-                s.branch == Some(crate::cohesive::study::Branch::Annular) && s.punch.has_rim()
+                s.branch == Some(ringcontact::cohesive::study::Branch::Annular) && s.punch.has_rim()
             })
         })
         .cloned()
@@ -225,7 +225,7 @@ pub(crate) fn branches_table(records: &[PulloffRecord]) -> Table {
     );
     for r in records {
         let Some(s) = &r.result else { continue };
-        if s.branch == Some(crate::cohesive::study::Branch::Annular) {
+        if s.branch == Some(ringcontact::cohesive::study::Branch::Annular) {
             continue;
         }
         let on_branch = s.sequence.last().map(|e| e.pulloff_over_f0);

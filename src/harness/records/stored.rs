@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use serde::de::DeserializeOwned;
 
-use crate::error::{Error, Result};
+use ringcontact::error::{Error, Result};
 
 /// Read every `*.json` in `dir` as a `T`, sorted by file name; `what` names the kind of result in
 /// errors. A missing or unreadable directory is an error (a comparison must not silently compare

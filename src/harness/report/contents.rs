@@ -40,7 +40,7 @@ pub struct ReportExtras {
     pub pulloff_simulations: Vec<crate::harness::records::pulloff::PulloffRecord>,
     /// This run's single pull-off simulation (cone, `d0/h = 10`, the smallest default range), or
     /// why it failed.
-    pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
+    pub pulloff_live: std::result::Result<ringcontact::cohesive::study::LiveSimulation, String>,
     /// Tamaas's pull-off (stored, `verify/peers/adhesion/`) against this run's simulations.
     #[serde(default)]
     pub adhesion_peers: Vec<crate::harness::records::adhesion_peers::AdhesionPeerComparison>,

@@ -12,7 +12,6 @@ pub use crate::harness::studies::speed_accuracy::{
     CostPoint, SpeedAccuracy, DEFAULT_FEM_TOLERANCES,
 };
 
-use crate::error::{Error, Result};
 use crate::harness::records::fenicsx::FenicsxComparison;
 use crate::harness::records::operator::OperatorStatus;
 use crate::harness::records::peers::PeerComparison;
@@ -28,8 +27,9 @@ use crate::harness::studies::figures::{
     concave_ratios, flat_ratios, ConcaveCurves, FunctionCurves, Points, PressureProfiles,
     REPORT_TABLE_SAMPLES,
 };
-use crate::punch::PunchKind;
-use crate::reference::paper_fits;
+use ringcontact::error::{Error, Result};
+use ringcontact::punch::PunchKind;
+use ringcontact::reference::paper_fits;
 
 /// Where each range's pull of `record` ended, against the range: on the closed hole's branch
 /// (the rim's pull-off, extrapolated to zero range beside the JKR route's full-contact value),
@@ -169,7 +169,7 @@ fn adhesion_peer_chart(
 }
 
 /// The live simulation's force-displacement curve: pressing, pulling, the pull-off marked.
-fn pulloff_curve_chart(live: &crate::cohesive::study::LiveSimulation) -> String {
+fn pulloff_curve_chart(live: &ringcontact::cohesive::study::LiveSimulation) -> String {
     let part = |unloading: bool| -> Vec<(f64, f64)> {
         live.curve
             .iter()
@@ -465,7 +465,7 @@ fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
 /// `dir/dataset/` so that the report links it wherever the report is; nothing where the project
 /// has none.
 fn copy_dataset(dir: &Path) -> Result<()> {
-    let Ok(root) = crate::mesh::provider::find_project_root() else {
+    let Ok(root) = ringcontact::mesh::provider::find_project_root() else {
         return Ok(());
     };
     let source = root.join(DATASET_DIRECTORY);
@@ -509,7 +509,7 @@ pub struct ReportInputs {
     /// The pull-off simulations shown (the stored ones, or this run's).
     pub pulloff_simulations: Vec<crate::harness::records::pulloff::PulloffRecord>,
     /// This run's single pull-off simulation, or why it failed.
-    pub pulloff_live: std::result::Result<crate::cohesive::study::LiveSimulation, String>,
+    pub pulloff_live: std::result::Result<ringcontact::cohesive::study::LiveSimulation, String>,
     /// The stored Tamaas pull-offs against this run's simulations.
     pub adhesion_peers: Vec<crate::harness::records::adhesion_peers::AdhesionPeerComparison>,
     /// Fresh peer and pull-off results against the committed baselines (none without
@@ -809,7 +809,7 @@ pub fn headline(
     // An operator comparison whose generated mesh could not be found or made is not run: for
     // want of gmsh, or (with gmsh) because its record names no parameters or gmsh failed.
     let operators_absent = operators.len() - operators_compared;
-    let gmsh = crate::fem::gmsh_found();
+    let gmsh = ringcontact::fem::gmsh_found();
     let need_gmsh = fenicsx.len() - fenicsx_compared
         + comparison.fem_not_run
         + if gmsh { 0 } else { operators_absent };
@@ -834,7 +834,7 @@ pub fn headline(
 
 /// Whether the project holds the committed dataset (copied into every report).
 fn dir_has_dataset() -> bool {
-    crate::mesh::provider::find_project_root().is_ok_and(|root| {
+    ringcontact::mesh::provider::find_project_root().is_ok_and(|root| {
         root.join(DATASET_DIRECTORY)
             .join("datapackage.json")
             .is_file()

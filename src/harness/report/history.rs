@@ -7,8 +7,8 @@ use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 
-use crate::error::{Error, Result};
 use crate::harness::report::table::{Cell, Column, Format, Table};
+use ringcontact::error::{Error, Result};
 
 /// Time ratio over the previous run that counts as a regression.
 pub(crate) const SLOWDOWN: f64 = 1.5;

@@ -12,9 +12,9 @@ use std::path::{Path, PathBuf};
 
 use pulldown_cmark::{html, Options, Parser};
 
-use crate::error::{Error, Result};
 use crate::harness::report::history::{Headline, MIN_TIME, SLOWDOWN};
 use crate::harness::report::svg::{escape, Series};
+use ringcontact::error::{Error, Result};
 
 /// Name of the page in the report directory.
 const INDEX: &str = "index.html";

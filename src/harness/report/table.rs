@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 
 use serde_json::{Map, Value};
 
-use crate::error::{Error, Result};
+use ringcontact::error::{Error, Result};
 
 /// How a numeric column is shown to people (CSV and JSON always carry full precision).
 #[derive(Clone, Copy, Debug, PartialEq)]

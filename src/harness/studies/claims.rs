@@ -2,13 +2,13 @@
 //! computations they rest on: the JKR routes against `d0/h` ([`pulloff_points`]) and the
 //! report's single direct simulation ([`live_pulloff`]).
 
-use crate::adhesion;
-use crate::bem::ring_contact::RingBemSolver;
-use crate::cohesive::study::{Branch, PulloffStudy};
-use crate::error::Result;
 use crate::harness::records::pulloff::PulloffRecord;
 use crate::harness::report::contents::{PulloffPoint, Verdict};
-use crate::punch::PunchKind;
+use ringcontact::adhesion;
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::cohesive::study::{Branch, PulloffStudy};
+use ringcontact::error::Result;
+use ringcontact::punch::PunchKind;
 
 /// Each claim of the paper with this run's numbers and the verdict: the fits (section 2), the
 /// outer edge governing the flat annulus (section 3), regime independence, the strongest
@@ -120,7 +120,7 @@ fn band_narrow_verdict(pulloff: &[PulloffPoint], label: &str) -> Option<Verdict>
 
 /// Section 2: the fitted formulas against the ring BEM's data.
 fn fits_verdict(ring: &RingBemSolver) -> Result<Verdict> {
-    let fits = crate::fit::run(ring)?;
+    let fits = ringcontact::fit::run(ring)?;
     let worst: Vec<String> = fits
         .iter()
         .map(|f| {
@@ -309,8 +309,8 @@ fn refutes_paper_route(studies: &[&PulloffStudy]) -> bool {
 
 /// The cone at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
 /// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
-pub(crate) fn live_pulloff() -> Result<crate::cohesive::study::LiveSimulation> {
-    use crate::cohesive::study;
+pub(crate) fn live_pulloff() -> Result<ringcontact::cohesive::study::LiveSimulation> {
+    use ringcontact::cohesive::study;
     let case = study::Case {
         punch: PunchKind::CONE,
         eps: 0.0,

@@ -11,14 +11,14 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::figures;
-use crate::bem::ring_contact::{RingBemSolver, RingState};
-use crate::error::Result;
-use crate::fem::FemLoad;
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
-use crate::mesh::triangulation::Degree;
-use crate::methods::{self, Method, MethodOptions};
-use crate::punch::{Exponent, PunchKind};
-use crate::reference::{self, power_law, Quantity, ReferenceKind};
+use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
+use ringcontact::error::Result;
+use ringcontact::fem::FemLoad;
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::punch::{Exponent, PunchKind};
+use ringcontact::reference::{self, power_law, Quantity, ReferenceKind};
 
 /// Contact ratios of the flat-annulus table.
 const FLAT_RATIOS: [f64; 10] = [0.0, 0.01, 0.05, 0.1, 0.3, 0.5, 0.7, 0.9, 0.95, 0.99];
@@ -198,7 +198,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(torus_free_edge_checks(&solver, tolerance)?);
     identities.extend(table_punch_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
-    let fem_not_run = if crate::fem::gmsh_found() {
+    let fem_not_run = if ringcontact::fem::gmsh_found() {
         0
     } else {
         TORUS_FEM_DEPTHS.len()
@@ -240,7 +240,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     // The torus's meshes are made for the scene (gmsh): without it these are not run (counted).
     let torus = TORUS_FEM_DEPTHS
         .iter()
-        .filter(|_| crate::fem::gmsh_found())
+        .filter(|_| ringcontact::fem::gmsh_found())
         .map(|&d| (PunchKind::TORUS, 0.0, FemLoad::ConcaveDepth(d)));
     for (kind, eps, load) in cases.into_iter().chain(table).chain(torus) {
         let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;

@@ -15,18 +15,18 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use crate::bem::grid::GridLoad;
-use crate::bem::grid_contact;
-use crate::bem::ring::{ContactRegion, RingSystem};
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::{Error, Result};
-use crate::fem::{self as fem_solver, FemLoad, FemOptions};
-use crate::mesh::provider;
-use crate::mesh::triangulation::Degree;
-use crate::methods::Method;
-use crate::numerics::richardson::observed_order;
-use crate::numerics::tanh_sinh::TanhSinhRule;
-use crate::punch::PunchKind;
+use ringcontact::bem::grid::GridLoad;
+use ringcontact::bem::grid_contact;
+use ringcontact::bem::ring::{ContactRegion, RingSystem};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::{Error, Result};
+use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
+use ringcontact::mesh::provider;
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Method;
+use ringcontact::numerics::richardson::observed_order;
+use ringcontact::numerics::tanh_sinh::TanhSinhRule;
+use ringcontact::punch::PunchKind;
 
 use crate::harness::report::svg;
 use crate::harness::report::table::{Column, Format, Table};
@@ -392,7 +392,7 @@ fn study_options(degree: Degree) -> FemOptions {
         tolerance: 1e-3,
         mesh: None,
         poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
     }
 }
 

@@ -5,13 +5,13 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::bem::grid::{solve_contact, GridLoad, GridOperator};
-use crate::bem::grid_contact::{self, cell_centre, discretise};
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::Result;
-use crate::fem::{self as fem_solver, FemLoad, FemOptions};
-use crate::mesh::triangulation::Degree;
-use crate::punch::{Exponent, PunchKind, TableProfile};
+use ringcontact::bem::grid::{solve_contact, GridLoad, GridOperator};
+use ringcontact::bem::grid_contact::{self, cell_centre, discretise};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::Result;
+use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::punch::{Exponent, PunchKind, TableProfile};
 
 /// A curve or a set of points `(x, y)`.
 pub(crate) type Points = Vec<(f64, f64)>;
@@ -57,7 +57,7 @@ pub(crate) fn report_table_punch() -> Option<PunchKind> {
     let path = if relative.is_file() {
         relative.to_path_buf()
     } else {
-        crate::mesh::files::project_root().join(relative)
+        ringcontact::mesh::files::project_root().join(relative)
     };
     TableProfile::load(&path).ok().map(PunchKind::new)
 }
@@ -213,12 +213,12 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
         tolerance: 1e-3,
         mesh: None,
         poisson_ratio: 0.0,
-        far_field: crate::discretisation::far_field::FarField::Boussinesq,
+        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
     };
     let fem_state =
         fem_solver::solve(PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
     // Nodal estimates in the contact, clipped near the rim singularity.
-    let fem = crate::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
+    let fem = ringcontact::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
         .into_iter()
         .filter(|&(r, p)| p > 0.0 && r < 0.99)
         .collect();
@@ -273,7 +273,7 @@ pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over
     let x = d0_over_h;
     let all: Vec<(f64, f64)> = ratios
         .filter_map(|ratio| {
-            let p = crate::adhesion::branch_point(ring, punch.clone(), ratio)
+            let p = ringcontact::adhesion::branch_point(ring, punch.clone(), ratio)
                 .ok()
                 .filter(|p| p.clears_floor(x))?;
             let point = (p.depth(x) / x, p.force(x));

@@ -10,12 +10,12 @@ pub mod speed_accuracy;
 pub mod stability;
 pub mod sweeps;
 
-use crate::error::Result;
-use crate::fem::FemLoad;
-use crate::punch::PunchKind;
-use crate::scene::{Scene, SceneSpec};
+use ringcontact::error::Result;
+use ringcontact::fem::FemLoad;
+use ringcontact::punch::PunchKind;
+use ringcontact::scene::{Scene, SceneSpec};
 
-/// The scene a FEM load describes, for a solve through [`crate::methods::Method`]: punch
+/// The scene a FEM load describes, for a solve through [`ringcontact::methods::Method`]: punch
 /// `kind`, `b/a = eps` (flat annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
 /// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
 pub(crate) fn scene_of_fem_load(

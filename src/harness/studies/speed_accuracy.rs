@@ -10,17 +10,17 @@ use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
 
-use crate::bem::grid::GridLoad;
-use crate::bem::grid_contact;
-use crate::bem::ring::{ContactRegion, RingSystem};
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::{Error, Result};
-use crate::fem::{self as fem_solver, FemLoad, FemOptions};
 use crate::harness::records::fenicsx::FenicsxComparison;
-use crate::mesh::triangulation::Degree;
-use crate::methods::{self, Method, MethodOptions};
-use crate::numerics::tanh_sinh::TanhSinhRule;
-use crate::punch::PunchKind;
+use ringcontact::bem::grid::GridLoad;
+use ringcontact::bem::grid_contact;
+use ringcontact::bem::ring::{ContactRegion, RingSystem};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::{Error, Result};
+use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
+use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::numerics::tanh_sinh::TanhSinhRule;
+use ringcontact::punch::PunchKind;
 
 /// One (time, error) point of a method on a problem.
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -489,7 +489,7 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
                 tolerance: 1e-3,
                 mesh: Some(mesh),
                 poisson_ratio: 0.0,
-                far_field: crate::discretisation::far_field::FarField::Boussinesq,
+                far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
             };
             let (s, t) = timed(|| {
                 fem_solver::solve(problem.kind.clone(), problem.eps, problem.load, &options)

@@ -12,13 +12,13 @@
 
 use serde::Serialize;
 
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::Result;
-use crate::fem::FemLoad;
-use crate::methods::{self, Method, MethodOptions};
-use crate::punch::PunchKind;
-use crate::reference::asymptotic::{collins_series, narrow_ring};
-use crate::scene::{Scene, SceneSpec};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::Result;
+use ringcontact::fem::FemLoad;
+use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::punch::PunchKind;
+use ringcontact::reference::asymptotic::{collins_series, narrow_ring};
+use ringcontact::scene::{Scene, SceneSpec};
 
 use crate::harness::report::table::{Cell, Column, Format, Table};
 
@@ -139,7 +139,8 @@ fn must_decline(
 /// swapped, written to a temporary file.
 fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
     let text =
-        std::fs::read_to_string(crate::fem::mesh_directory().join("small-domain-R5.msh")).ok()?;
+        std::fs::read_to_string(ringcontact::fem::mesh_directory().join("small-domain-R5.msh"))
+            .ok()?;
     let swapped: Vec<String> = text
         .lines()
         .map(|line| {
@@ -282,8 +283,8 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         push(p);
     }
     let coarse = MethodOptions {
-        mesh: Some(crate::fem::mesh_directory().join("disk-L0.msh")),
-        degree: Some(crate::mesh::triangulation::Degree::Linear),
+        mesh: Some(ringcontact::fem::mesh_directory().join("disk-L0.msh")),
+        degree: Some(ringcontact::mesh::triangulation::Degree::Linear),
         ..crate::harness::settings::method_options()
     };
     let p = probe(
@@ -295,7 +296,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     );
     push(p);
     let small = MethodOptions {
-        mesh: Some(crate::fem::mesh_directory().join("small-domain-R5.msh")),
+        mesh: Some(ringcontact::fem::mesh_directory().join("small-domain-R5.msh")),
         ..crate::harness::settings::method_options()
     };
     let p = probe(
@@ -346,9 +347,9 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 
 /// Iteration caps: Polonsky-Keer stopped after 3 iterations must be an error, not a number.
 fn iteration_cap_probe() -> Probe {
-    use crate::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
+    use ringcontact::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
     let op = GridOperator::new(64, 2.0 / 64.0);
-    let punch = crate::bem::grid_contact::discretise(PunchKind::SPHERE, 0.0, 64);
+    let punch = ringcontact::bem::grid_contact::discretise(PunchKind::SPHERE, 0.0, 64);
     let outcome = solve_contact(
         &op,
         &punch.allowed,
@@ -404,7 +405,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     if let Some(path) = swapped {
         let _ = std::fs::remove_file(path);
     }
-    let annulus = crate::fem::mesh_directory().join("annulus-0.5-L0.msh");
+    let annulus = ringcontact::fem::mesh_directory().join("annulus-0.5-L0.msh");
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus.clone()),

@@ -1,5 +1,5 @@
 //! The adhesive sweeps of `verify jkr --sweep`: typed rows, one [`Table`] for every output
-//! format, and the charts, written next to the physics they use ([`crate::adhesion`]).
+//! format, and the charts, written next to the physics they use ([`ringcontact::adhesion`]).
 //!
 //! * [`flat_annulus_sweep`]: critical depths `d_c/d0` and forces `F_c/F0` of both edges against
 //!   `b/a` (the paper's Fig. 7-8), with Collins' series (21) and Argatov's asymptote (22).
@@ -9,12 +9,12 @@
 
 use std::path::{Path, PathBuf};
 
-use crate::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
-use crate::bem::ring_contact::RingBemSolver;
-use crate::error::{Error, Result};
 use crate::harness::report::svg;
 use crate::harness::report::table::{Cell, Column, Format, Table};
-use crate::punch::PunchKind;
+use ringcontact::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::error::{Error, Result};
+use ringcontact::punch::PunchKind;
 
 /// What a sweep returns: its rows, the table of them, and the files written.
 pub(crate) struct Sweep<R> {
