@@ -132,18 +132,20 @@ fn main() {
         })
         .collect();
     let cache = std::env::temp_dir().join(format!("ringcontact-targets-{}", std::process::id()));
-    std::env::set_var("RINGCONTACT_MESH_CACHE", &cache);
+    let data = ringcontact::mesh::files::DataPaths {
+        cache: cache.clone(),
+        ..Default::default()
+    };
     // Find gmsh once (its version probe is per process, not per state).
-    let root = ringcontact::mesh::provider::project_root();
     let probe = Instant::now();
-    ringcontact::mesh::gmsh::Gmsh::get(&root, "the targets benchmark").expect("gmsh is needed");
+    ringcontact::mesh::gmsh::Gmsh::get(&data, "the targets benchmark").expect("gmsh is needed");
     println!(
         "gmsh found in {:.3} s (once per process); mesh cache {}",
         probe.elapsed().as_secs_f64(),
         cache.display()
     );
     for &tolerance in &tolerances {
-        let degree = solver::default_degree(tolerance);
+        let degree = solver::default_degree(&data, tolerance);
         println!("\n--tol {tolerance:e} (default degree P{})", degree as u8);
         println!(
             "{:<32} {:>9} {:>9} {:>8} {:>5} {:>9} {:>9} {:>9}",
@@ -159,6 +161,8 @@ fn main() {
                     .and_then(|name| name.parse().ok())
                     .unwrap_or_default(),
                 trace: std::env::var_os("RINGCONTACT_TRACE").is_some(),
+                data: data.clone(),
+                progress: Default::default(),
                 degree,
                 tolerance,
                 mesh: None,

@@ -82,7 +82,9 @@ fn fresh_directory(name: &str) -> PathBuf {
 
 fn gmsh_usable() -> bool {
     std::env::var_os("RINGCONTACT_REQUIRE_GMSH").is_some()
-        || ringcontact::mesh::provider::gmsh_available()
+        || ringcontact::mesh::provider::gmsh_available(
+            &ringcontact::mesh::files::DataPaths::default(),
+        )
 }
 
 fn run_all(file: &str, minimum: usize) {

@@ -134,6 +134,8 @@ fn a_single_mesh_solve_starts_from_its_linear_model_and_factorises_once() {
         let options = FemOptions {
             linear_solver: common::linear_solver(),
             trace: false,
+            data: Default::default(),
+            progress: Default::default(),
             degree,
             tolerance: 0.9,
             mesh: Some(path.clone()),

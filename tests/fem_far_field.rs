@@ -14,6 +14,8 @@ fn solve_on(mesh: &str, kind: PunchKind, load: FemLoad, far_field: FarField) -> 
     let options = FemOptions {
         linear_solver: common::linear_solver(),
         trace: false,
+        data: Default::default(),
+        progress: Default::default(),
         degree: Degree::Quadratic,
         // A single mesh: the tolerance only gates the domain check.
         tolerance: 0.9,
@@ -97,6 +99,8 @@ fn the_cubic_field_satisfies_the_full_systems_bubble_equations() {
         let options = FemOptions {
             linear_solver: common::linear_solver(),
             trace: false,
+            data: Default::default(),
+            progress: Default::default(),
             degree: Degree::Cubic,
             tolerance: 0.9,
             mesh: Some(solver::mesh_directory().join("small-domain-R5.msh")),

@@ -20,6 +20,8 @@ fn ladder_options(degree: Degree, tolerance: f64) -> FemOptions {
     FemOptions {
         linear_solver: common::linear_solver(),
         trace: false,
+        data: Default::default(),
+        progress: Default::default(),
         degree,
         tolerance,
         mesh: None,
@@ -168,6 +170,8 @@ fn linear_elements_converge_toward_the_ring_bem() {
             let options = FemOptions {
                 linear_solver: common::linear_solver(),
                 trace: false,
+                data: Default::default(),
+                progress: Default::default(),
                 degree: Degree::Linear,
                 tolerance: 1e-3,
                 mesh: Some(dir.join(format!("annulus-0.5-L{level}.msh"))),
@@ -194,6 +198,8 @@ fn the_answer_does_not_depend_on_poisson_ratio() {
         let options = FemOptions {
             linear_solver: common::linear_solver(),
             trace: false,
+            data: Default::default(),
+            progress: Default::default(),
             degree: Degree::Quadratic,
             tolerance: 1e-3,
             mesh: Some(solver::mesh_directory().join("disk-L1.msh")),
@@ -211,6 +217,8 @@ fn mismatched_mesh_and_scene_are_errors() {
     let options = FemOptions {
         linear_solver: common::linear_solver(),
         trace: false,
+        data: Default::default(),
+        progress: Default::default(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: Some(solver::mesh_directory().join("annulus-0.5-L0.msh")),
@@ -273,7 +281,11 @@ fn the_estimate_bounds_the_error_at_29_states_at_1e3_and_1e6() {
         return;
     }
     for tolerance in [1e-3, 1e-6] {
-        check_degree(solver::default_degree(tolerance), &many_states(), tolerance);
+        check_degree(
+            solver::default_degree(&ringcontact::mesh::files::DataPaths::default(), tolerance),
+            &many_states(),
+            tolerance,
+        );
     }
 }
 
@@ -653,5 +665,9 @@ fn power_law_punches_agree_with_the_ring_bem_to_1e6() {
     cases.push((power(6.0), 0.0, FemLoad::ConcaveDepth(1.8)));
     cases.push((power(20.0), 0.0, FemLoad::ConcaveDepth(0.9)));
     cases.push((power(50.0), 0.0, FemLoad::ConcaveForce(0.5)));
-    check_degree(solver::default_degree(1e-6), &cases, 1e-6);
+    check_degree(
+        solver::default_degree(&ringcontact::mesh::files::DataPaths::default(), 1e-6),
+        &cases,
+        1e-6,
+    );
 }

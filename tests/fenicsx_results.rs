@@ -16,8 +16,8 @@ fn every_committed_result_matches_the_committed_meshes_and_our_fem() {
         "expected the default suite of stored results, found {}",
         rows.len()
     );
-    let gmsh =
-        ringcontact::mesh::gmsh::Gmsh::find(&ringcontact::mesh::provider::project_root()).is_some();
+    let gmsh = ringcontact::mesh::gmsh::Gmsh::find(&ringcontact::mesh::files::DataPaths::default())
+        .is_some();
     for row in &rows {
         if row.status == "needs-gmsh" {
             // Results on meshes made by gmsh are remade before the comparison; without gmsh

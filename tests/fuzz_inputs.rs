@@ -244,7 +244,9 @@ fn mutated_meshes_never_panic() {
 
 #[test]
 fn mutated_scenes_never_panic() {
-    let dir = ringcontact::mesh::provider::project_root().join("verify/scenes");
+    let dir = ringcontact::mesh::files::DataPaths::default()
+        .root
+        .join("verify/scenes");
     let mut inputs = Vec::new();
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();

@@ -15,7 +15,7 @@ use ringcontact::punch::PunchKind;
 use ringcontact::sparse::constrained::ConstrainedCholesky;
 use ringcontact::sparse::Backend;
 
-const BACKENDS: [Backend; 2] = [Backend::Native, Backend::Faer];
+const BACKENDS: [Backend; 2] = [Backend::BUILT_IN, Backend::Faer];
 
 /// The ring BEM's force-like output and `eps` of a state (converged to 1e-10).
 fn ring_bem(kind: PunchKind, eps: f64, load: FemLoad) -> (f64, f64) {
@@ -78,6 +78,8 @@ fn every_backend_solves_the_fem_suite_to_its_estimate_and_the_backends_agree() {
                 let options = FemOptions {
                     linear_solver: backend,
                     trace: false,
+                    data: Default::default(),
+                    progress: Default::default(),
                     degree,
                     tolerance,
                     mesh: None,

@@ -24,6 +24,8 @@ fn solve_text(text: &str, kind: PunchKind, name: &str) -> Result<f64, String> {
     let options = FemOptions {
         linear_solver: Default::default(),
         trace: false,
+        data: Default::default(),
+        progress: Default::default(),
         degree: Degree::Quadratic,
         tolerance: 0.9,
         mesh: Some(path.clone()),

@@ -24,6 +24,7 @@ use ringcontact::punch::PunchKind;
 /// gmsh needed).
 fn committed_disk_response(level: usize) -> ringcontact::fem::surface_response::SurfaceResponse {
     let mesh = provide(
+        &ringcontact::mesh::files::DataPaths::default(),
         &MeshRequest::Committed {
             family: "disk".into(),
             level,
@@ -31,9 +32,16 @@ fn committed_disk_response(level: usize) -> ringcontact::fem::surface_response::
         "test",
     )
     .unwrap();
-    surface_response_on_mesh(&mesh, &study::study_options(Default::default()), 0.0)
-        .unwrap()
-        .0
+    surface_response_on_mesh(
+        &mesh,
+        &study::study_options(
+            Default::default(),
+            &ringcontact::mesh::files::DataPaths::default(),
+        ),
+        0.0,
+    )
+    .unwrap()
+    .0
 }
 
 #[test]
@@ -78,6 +86,7 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
         eps: 0.0,
         d0_over_h: 0.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     // The study as `verify pulloff` runs it: a mesh per range with a refined band at the rim.
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
@@ -116,6 +125,7 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
         eps,
         d0_over_h: 0.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
     let jkr = ringcontact::adhesion::flat_annulus(&RingBemSolver::new(), eps).unwrap();
@@ -214,6 +224,7 @@ fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() 
         eps: 0.0,
         d0_over_h: 10.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
     assert!(s
@@ -318,6 +329,7 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
         eps: 0.9,
         d0_over_h: 0.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     assert!(!study::left_the_branch(&annulus, &entry));
     // The same entry for a concave punch is on another branch.
@@ -326,6 +338,7 @@ fn a_flat_annulus_inner_edge_letting_go_is_not_a_hole_reopening() {
         eps: 0.0,
         d0_over_h: 1.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     assert!(study::left_the_branch(&cone, &entry));
 }
@@ -384,10 +397,16 @@ fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::mesh::provider
         eps: 0.0,
         d0_over_h: 0.3,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     (
         case,
-        study::study_mesh(0.0, study::STUDY_LEVEL - 1).unwrap(),
+        study::study_mesh(
+            &ringcontact::mesh::files::DataPaths::default(),
+            0.0,
+            study::STUDY_LEVEL - 1,
+        )
+        .unwrap(),
     )
 }
 
@@ -450,6 +469,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
         eps: 0.0,
         d0_over_h: 1.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     let s = ringcontact::cohesive::annular::run_annular(case, &[0.1], |_| {}).unwrap();
     assert_eq!(s.branch, Some(study::Branch::Annular));
@@ -497,6 +517,7 @@ fn annular_branch_is_declined_where_the_hole_closes_on_touch() {
         eps: 0.0,
         d0_over_h: 3.0,
         linear_solver: Default::default(),
+        data: Default::default(),
     };
     let error = ringcontact::cohesive::annular::run_annular(case, &[0.1], |_| {})
         .unwrap_err()
@@ -525,13 +546,19 @@ fn a_table_of_the_spheres_profile_lets_go_like_the_sphere() {
         .with_parameters(None, Some(&path))
         .unwrap();
     let d0_over_h = 0.5;
-    let mesh = study::study_mesh(0.0, study::STUDY_LEVEL - 1).unwrap();
+    let mesh = study::study_mesh(
+        &ringcontact::mesh::files::DataPaths::default(),
+        0.0,
+        study::STUDY_LEVEL - 1,
+    )
+    .unwrap();
     let pulloff = |punch| {
         let case = study::Case {
             punch,
             eps: 0.0,
             d0_over_h,
             linear_solver: Default::default(),
+            data: Default::default(),
         };
         let s = study::run(case, &[0.0125], &mesh, None, |_| {}).unwrap();
         assert!(s.excluded.is_empty(), "{:?}", s.excluded);

@@ -54,7 +54,9 @@ fn long_tests() -> bool {
 
 fn gmsh_usable() -> bool {
     std::env::var_os("RINGCONTACT_REQUIRE_GMSH").is_some()
-        || ringcontact::mesh::provider::gmsh_available()
+        || ringcontact::mesh::provider::gmsh_available(
+            &ringcontact::mesh::files::DataPaths::default(),
+        )
 }
 
 /// Run a stored command of ours and parse its JSON output.

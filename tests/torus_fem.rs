@@ -16,7 +16,9 @@ fn options(tolerance: f64) -> FemOptions {
     FemOptions {
         linear_solver: Default::default(),
         trace: false,
-        degree: default_degree(tolerance),
+        data: Default::default(),
+        progress: Default::default(),
+        degree: default_degree(&ringcontact::mesh::files::DataPaths::default(), tolerance),
         tolerance,
         mesh: None,
         poisson_ratio: 0.0,

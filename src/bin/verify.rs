@@ -6,7 +6,6 @@ use std::process::ExitCode;
 
 use clap::{CommandFactory, FromArgMatches};
 
-use ringcontact::mesh::provider;
 use ringcontact::sparse::{self, Backend};
 use ringcontact_verify::cli::{self, args::Cli};
 use ringcontact_verify::harness::settings;
@@ -78,8 +77,8 @@ fn main() -> ExitCode {
         Err(e) => e.exit(),
     };
     if let Some(dir) = &cli.data_dir {
-        // Read by the data lookups of the library (provider::find_project_root).
-        provider::set_data_directory(dir.clone());
+        // Read by this program's data lookups (settings::find_data), passed to the library.
+        settings::choose_data_directory(dir.clone());
     }
     // Chosen before any model is built; plan jobs get it passed on (harness::plan). The
     // environment's choice is read by `harness::settings::linear_solver`: here an unknown name
@@ -102,7 +101,7 @@ fn main() -> ExitCode {
         }
     }
     if cli::needs_data(&cli.command) {
-        if let Err(e) = provider::find_project_root() {
+        if let Err(e) = settings::find_data() {
             eprintln!("error: {e}");
             return ExitCode::FAILURE;
         }

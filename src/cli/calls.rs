@@ -80,7 +80,10 @@ pub fn solve_keyword_scenes(
                 .map_err(|e| named(k, e.to_string()))
         })
         .collect::<Result<Vec<_>, _>>()?;
-    let heartbeat = Heartbeat::start("ringcontact.solve");
+    let heartbeat = Heartbeat::start(
+        "ringcontact.solve",
+        crate::harness::progress::fem_progress(),
+    );
     let mut solutions = Vec::with_capacity(count);
     for (k, scene) in scenes.iter().enumerate() {
         heartbeat.set(name(k));

@@ -11,7 +11,7 @@ use ringcontact::provenance::Provenance;
 pub fn dataset(args: DatasetArgs) -> Result<Reply, String> {
     let out = output_directory(args.out.as_deref(), "reports/dataset");
     let size = if args.small { Size::Small } else { Size::Full };
-    let heartbeat = Heartbeat::start("verify dataset");
+    let heartbeat = Heartbeat::start("verify dataset", crate::harness::progress::fem_progress());
     let resources =
         dataset::build(size, &|step| heartbeat.set(step.to_string())).map_err(message)?;
     drop(heartbeat);

@@ -51,7 +51,7 @@ pub(super) fn grade_rows(
     tol: f64,
     label: &str,
 ) -> Result<Grading, String> {
-    let heartbeat = Heartbeat::start(label);
+    let heartbeat = Heartbeat::start(label, crate::harness::progress::fem_progress());
     grade::grade(rows, tol, &|k, n| {
         heartbeat.set(format!("row {} of {n}", k + 1))
     })

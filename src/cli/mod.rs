@@ -206,8 +206,12 @@ fn chosen_mesh(
         (None, Some(text)) => {
             let parameters =
                 ringcontact::mesh::provider::parse_parameters(text).map_err(message)?;
-            let provided =
-                ringcontact::mesh::provider::generate(&parameters, why).map_err(message)?;
+            let provided = ringcontact::mesh::provider::generate(
+                &crate::harness::settings::data_paths(),
+                &parameters,
+                why,
+            )
+            .map_err(message)?;
             Ok(Some(provided.path))
         }
         (None, None) => Ok(None),
@@ -220,7 +224,8 @@ fn chosen_mesh(
 fn output_directory(given: Option<&std::path::Path>, default: &str) -> std::path::PathBuf {
     match given {
         Some(path) => path.to_path_buf(),
-        None => ringcontact::mesh::provider::find_project_root()
+        None => crate::harness::settings::find_data()
+            .map(|data| data.root)
             .map(|root| root.join(default))
             .unwrap_or_else(|_| default.into()),
     }

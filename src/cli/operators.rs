@@ -95,8 +95,12 @@ fn export_and_compare(
 pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
     if let Some(text) = &args.parameters {
         let parameters = provider::parse_parameters(text).map_err(message)?;
-        let provided =
-            provider::generate(&parameters, "verify mesh --parameters").map_err(message)?;
+        let provided = provider::generate(
+            &crate::harness::settings::data_paths(),
+            &parameters,
+            "verify mesh --parameters",
+        )
+        .map_err(message)?;
         return describe_mesh(&provided, None, &parameters);
     }
     if !(0.0..1.0).contains(&args.eps) {
@@ -147,7 +151,12 @@ pub fn mesh(args: MeshArgs) -> Result<Reply, String> {
         edge_uncertainty: args.edge_uncertainty,
         target,
     };
-    let provided = provider::provide(&request, "verify mesh").map_err(message)?;
+    let provided = provider::provide(
+        &crate::harness::settings::data_paths(),
+        &request,
+        "verify mesh",
+    )
+    .map_err(message)?;
     let parameters = provider::adapted_parameters(
         args.eps,
         args.level,

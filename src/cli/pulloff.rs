@@ -18,7 +18,7 @@ pub fn pulloff(args: PulloffArgs) -> Result<Reply, String> {
     let (case, ranges) = checked_case_and_ranges(&args)?;
     // A range takes from a few seconds to a minute (meshing, condensation, the load path): a
     // plain line every ten seconds between the bar's ticks says which one is running.
-    let heartbeat = Heartbeat::start("pull-off");
+    let heartbeat = Heartbeat::start("pull-off", crate::harness::progress::fem_progress());
     if let Some(first) = ranges.first() {
         heartbeat.set(format!("the first range, rho/d0 = {first}"));
     }
@@ -97,7 +97,7 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         } else if args.mesh.is_some() {
             study::DEFAULT_RANGES.to_vec()
         } else {
-            study::default_ranges()
+            study::default_ranges(&crate::harness::settings::data_paths())
         }
     });
     if let Some(r) = ranges
@@ -119,6 +119,7 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
         eps,
         d0_over_h,
         linear_solver: crate::harness::settings::linear_solver(),
+        data: crate::harness::settings::data_paths(),
     };
     Ok((case, ranges))
 }

@@ -76,7 +76,7 @@ pub fn compare(args: CompareArgs) -> Result<Reply, String> {
         return Err("the report's parts did not make a report".into());
     };
     if let Some(fresh) = &args.fresh {
-        let committed = ringcontact::mesh::provider::project_root().join("verify");
+        let committed = crate::harness::settings::project_root().join("verify");
         inputs.baselines = baselines::compare(fresh, &committed).map_err(message)?;
     }
     let extras =

@@ -232,8 +232,8 @@ fn run_job(executable: &Path, job: &Job, results: &Path) -> Result<bool> {
     let args: Vec<&str> = job.command.split_whitespace().skip(1).collect();
     // The job reads the data directory this process reads (`--data-dir` is not inherited).
     let mut command = Command::new(executable);
-    if let Ok(root) = ringcontact::mesh::provider::find_project_root() {
-        command.env(ringcontact::mesh::provider::DATA_DIR_VARIABLE, root);
+    if let Ok(root) = crate::harness::settings::find_data().map(|data| data.root) {
+        command.env(crate::harness::settings::DATA_DIR_VARIABLE, root);
         command.env(
             ringcontact::sparse::ENVIRONMENT_VARIABLE,
             crate::harness::settings::linear_solver().name(),

@@ -7,7 +7,22 @@ use std::io::IsTerminal;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-pub use ringcontact::heartbeat::{plain_interval, PLAIN_INTERVAL_S};
+pub use ringcontact::heartbeat::PLAIN_INTERVAL_S;
+
+/// [`PLAIN_INTERVAL_S`], or the positive number of seconds `RINGCONTACT_PROGRESS_S` gives.
+pub fn plain_interval() -> std::time::Duration {
+    let seconds = std::env::var("RINGCONTACT_PROGRESS_S")
+        .ok()
+        .and_then(|v| v.trim().parse::<f64>().ok())
+        .filter(|s| s.is_finite() && *s > 0.0 && *s < 1e6)
+        .unwrap_or(PLAIN_INTERVAL_S);
+    std::time::Duration::from_secs_f64(seconds)
+}
+
+/// The progress lines this program's FEM solves write: every [`plain_interval`].
+pub fn fem_progress() -> ringcontact::heartbeat::Progress {
+    ringcontact::heartbeat::Progress::Every(plain_interval())
+}
 
 /// Progress of a sweep of known length.
 pub(crate) struct Progress {

@@ -401,8 +401,13 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
         eps,
         d0_over_h,
         linear_solver: crate::harness::settings::linear_solver(),
+        data: crate::harness::settings::data_paths(),
     };
-    let outcome = study::run_on_study_meshes(case, &study::default_ranges(), |_| {});
+    let outcome = study::run_on_study_meshes(
+        case,
+        &study::default_ranges(&crate::harness::settings::data_paths()),
+        |_| {},
+    );
     let file = match &punch {
         p if p.has_fixed_hole() => format!("{}-{eps}.json", p.name()),
         p if p.is_concave() => format!("{}-d0h{d0_over_h}.json", p.label()),

@@ -4,8 +4,8 @@
 /// a message, unless `RINGCONTACT_REQUIRE_GMSH=1` (set by `.ci/run` after it installs gmsh).
 #[allow(dead_code)]
 pub fn gmsh_available(test: &str) -> bool {
-    let root = ringcontact::mesh::provider::project_root();
-    if ringcontact::mesh::gmsh::Gmsh::find(&root).is_some() {
+    let data = ringcontact::mesh::files::DataPaths::default();
+    if ringcontact::mesh::gmsh::Gmsh::find(&data).is_some() {
         return true;
     }
     assert!(

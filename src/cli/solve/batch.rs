@@ -29,7 +29,10 @@ pub fn solve_batch(path: &Path, args: &SolveArgs) -> Result<Reply, String> {
             path.display()
         ));
     }
-    let heartbeat = Heartbeat::start("verify solve --batch");
+    let heartbeat = Heartbeat::start(
+        "verify solve --batch",
+        crate::harness::progress::fem_progress(),
+    );
     let mut out = String::new();
     let mut failed = 0usize;
     for (k, (number, line)) in lines.iter().enumerate() {

@@ -61,6 +61,8 @@ pub(crate) fn solve_scene_by(
         vtu: args.vtu.clone(),
         linear_solver: Some(crate::harness::settings::linear_solver()),
         trace: crate::harness::settings::trace(),
+        data: Some(crate::harness::settings::data_paths()),
+        progress: crate::harness::progress::fem_progress(),
     };
     methods::solve_with(scene, method, &options).map_err(message)
 }

@@ -47,7 +47,7 @@ pub fn table(args: TableArgs) -> Result<Reply, String> {
                 .map_err(|e| format!("--{} {value}: {e}", kind.name()))
         })
         .collect::<Result<_, _>>()?;
-    let heartbeat = Heartbeat::start("verify table");
+    let heartbeat = Heartbeat::start("verify table", crate::harness::progress::fem_progress());
     let mut solutions = Vec::with_capacity(scenes.len());
     for (k, (value, state, scene)) in scenes.iter().enumerate() {
         heartbeat.set(format!(

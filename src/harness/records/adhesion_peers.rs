@@ -67,7 +67,7 @@ pub struct AdhesionPeerComparison {
 
 /// The stored Tamaas pull-offs (none without the directory).
 pub fn load() -> Result<Vec<(String, TamaasPulloff)>> {
-    let dir = ringcontact::mesh::provider::project_root().join("verify/peers/adhesion");
+    let dir = crate::harness::settings::project_root().join("verify/peers/adhesion");
     if !dir.is_dir() {
         return Ok(Vec::new());
     }
@@ -80,6 +80,7 @@ fn case_of(stored: &TamaasPulloff) -> Case {
         eps: 0.0,
         d0_over_h: stored.d0_over_h.unwrap_or(0.0),
         linear_solver: crate::harness::settings::linear_solver(),
+        data: crate::harness::settings::data_paths(),
     }
 }
 
@@ -92,8 +93,16 @@ pub fn run() -> Result<Vec<AdhesionPeerComparison>> {
     let mut ranges: Vec<f64> = stored.iter().map(|s| s.1.range_over_d0).collect();
     ranges.sort_by(f64::total_cmp);
     ranges.dedup();
-    let fine = study::study_mesh(0.0, study::STUDY_LEVEL)?;
-    let coarse = study::study_mesh(0.0, study::STUDY_LEVEL - 1)?;
+    let fine = study::study_mesh(
+        &crate::harness::settings::data_paths(),
+        0.0,
+        study::STUDY_LEVEL,
+    )?;
+    let coarse = study::study_mesh(
+        &crate::harness::settings::data_paths(),
+        0.0,
+        study::STUDY_LEVEL - 1,
+    )?;
     for range in ranges {
         let here: Vec<&(String, TamaasPulloff)> = stored
             .iter()

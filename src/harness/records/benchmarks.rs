@@ -87,7 +87,7 @@ pub(crate) struct RowTime {
 
 /// The records' directory, `benches/records/` of the project.
 pub(crate) fn records_directory() -> PathBuf {
-    ringcontact::mesh::provider::project_root()
+    crate::harness::settings::project_root()
         .join("benches")
         .join("records")
 }

@@ -72,9 +72,9 @@ pub struct FenicsxComparison {
 }
 
 /// Root of the repository (where `meshes/` and `verify/` live): the project root the mesh
-/// provider uses ([`ringcontact::mesh::provider::project_root`]).
+/// provider uses ([`crate::harness::settings::project_root`]).
 pub(crate) fn repository_root() -> PathBuf {
-    ringcontact::mesh::provider::project_root()
+    crate::harness::settings::project_root()
 }
 
 /// Directory of the stored FEniCSx results.
@@ -119,6 +119,7 @@ pub fn compare(
         (_, true) => mesh_path,
         (Some(parameters), false) => {
             match ringcontact::mesh::provider::generate(
+                &crate::harness::settings::data_paths(),
                 parameters,
                 &format!("FEniCSx result {file}"),
             ) {
@@ -150,6 +151,8 @@ pub fn compare(
     let options = FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
         trace: crate::harness::settings::trace(),
+        data: crate::harness::settings::data_paths(),
+        progress: crate::harness::progress::fem_progress(),
         degree,
         tolerance: fem_solver::DEFAULT_TOLERANCE,
         mesh: Some(mesh_path),

@@ -163,9 +163,13 @@ fn locate_mesh(root: &Path, record: &OperatorRecord, file: &str) -> Option<std::
     }
     let parameters = mesh_parameters_of(&record.reproduce)?;
     let why = format!("FEniCSx operator comparison {file}");
-    ringcontact::mesh::provider::generate(&parameters, &why)
-        .ok()
-        .map(|made| made.path)
+    ringcontact::mesh::provider::generate(
+        &crate::harness::settings::data_paths(),
+        &parameters,
+        &why,
+    )
+    .ok()
+    .map(|made| made.path)
 }
 
 /// The `NAME=VALUE,...` after `--mesh-parameters` in a `reproduce` command, parsed.

@@ -37,7 +37,7 @@ fn natural_key(name: &str) -> (String, f64) {
 /// Every stored record, in the natural order of the file names (none when the directory is
 /// absent).
 pub fn load() -> Result<Vec<PulloffRecord>> {
-    let dir = ringcontact::mesh::provider::project_root().join("verify/pulloff");
+    let dir = crate::harness::settings::project_root().join("verify/pulloff");
     let Ok(entries) = std::fs::read_dir(&dir) else {
         return Ok(Vec::new());
     };

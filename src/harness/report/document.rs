@@ -465,7 +465,7 @@ fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
 /// `dir/dataset/` so that the report links it wherever the report is; nothing where the project
 /// has none.
 fn copy_dataset(dir: &Path) -> Result<()> {
-    let Ok(root) = ringcontact::mesh::provider::find_project_root() else {
+    let Ok(root) = crate::harness::settings::find_data().map(|data| data.root) else {
         return Ok(());
     };
     let source = root.join(DATASET_DIRECTORY);
@@ -809,7 +809,7 @@ pub fn headline(
     // An operator comparison whose generated mesh could not be found or made is not run: for
     // want of gmsh, or (with gmsh) because its record names no parameters or gmsh failed.
     let operators_absent = operators.len() - operators_compared;
-    let gmsh = ringcontact::fem::gmsh_found();
+    let gmsh = ringcontact::fem::gmsh_found(&crate::harness::settings::data_paths());
     let need_gmsh = fenicsx.len() - fenicsx_compared
         + comparison.fem_not_run
         + if gmsh { 0 } else { operators_absent };
@@ -834,11 +834,13 @@ pub fn headline(
 
 /// Whether the project holds the committed dataset (copied into every report).
 fn dir_has_dataset() -> bool {
-    ringcontact::mesh::provider::find_project_root().is_ok_and(|root| {
-        root.join(DATASET_DIRECTORY)
-            .join("datapackage.json")
-            .is_file()
-    })
+    crate::harness::settings::find_data()
+        .map(|data| data.root)
+        .is_ok_and(|root| {
+            root.join(DATASET_DIRECTORY)
+                .join("datapackage.json")
+                .is_file()
+        })
 }
 
 fn markdown(

@@ -316,8 +316,9 @@ pub(crate) fn live_pulloff() -> Result<ringcontact::cohesive::study::LiveSimulat
         eps: 0.0,
         d0_over_h: 10.0,
         linear_solver: crate::harness::settings::linear_solver(),
+        data: crate::harness::settings::data_paths(),
     };
-    let ranges = study::default_ranges();
+    let ranges = study::default_ranges(&crate::harness::settings::data_paths());
     study::simulate_as_studied(case, ranges[ranges.len() - 1])
 }
 

@@ -107,7 +107,7 @@ const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
 /// (`g = 0.89`) with cubic elements (errors from about 5e-4 down to a few 1e-9 in six
 /// levels); without, the committed levels with quadratic elements.
 fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
-    if fem_solver::gmsh_found() {
+    if fem_solver::gmsh_found(&crate::harness::settings::data_paths()) {
         let start = fem_solver::contact_start(&case.punch, case.eps);
         let ladder = (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
             .map(|level| provider::MeshRequest::Adapted {
@@ -120,15 +120,18 @@ fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
             .collect();
         return (ladder, Degree::Cubic);
     }
-    let ladder = fem_solver::mesh_sequence(case.punch.clone(), case.eps, 1e-3)
-        .into_iter()
-        .filter(|r| match r {
-            provider::MeshRequest::Adapted { level, .. } => {
-                *level <= STUDY_MAX_ADAPTED_LEVEL as i32
-            }
-            _ => true,
-        })
-        .collect();
+    let ladder = fem_solver::mesh_sequence(
+        &crate::harness::settings::data_paths(),
+        case.punch.clone(),
+        case.eps,
+        1e-3,
+    )
+    .into_iter()
+    .filter(|r| match r {
+        provider::MeshRequest::Adapted { level, .. } => *level <= STUDY_MAX_ADAPTED_LEVEL as i32,
+        _ => true,
+    })
+    .collect();
     (ladder, Degree::Quadratic)
 }
 
@@ -388,6 +391,8 @@ fn study_options(degree: Degree) -> FemOptions {
     FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
         trace: crate::harness::settings::trace(),
+        data: crate::harness::settings::data_paths(),
+        progress: crate::harness::progress::fem_progress(),
         degree,
         tolerance: 1e-3,
         mesh: None,
@@ -409,7 +414,11 @@ fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<S
     // Concave punches: refine around the free edge of the previous level's solve.
     let request = request.with_free_edge(previous_edge, 0.0);
     let label = request.label();
-    let provided = provider::provide(&request, "the FEM convergence study")?;
+    let provided = provider::provide(
+        &crate::harness::settings::data_paths(),
+        &request,
+        "the FEM convergence study",
+    )?;
     let load = if concave {
         FemLoad::ConcaveDepth(case.depth)
     } else {

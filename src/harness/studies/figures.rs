@@ -57,7 +57,7 @@ pub(crate) fn report_table_punch() -> Option<PunchKind> {
     let path = if relative.is_file() {
         relative.to_path_buf()
     } else {
-        ringcontact::mesh::files::project_root().join(relative)
+        crate::harness::settings::project_root().join(relative)
     };
     TableProfile::load(&path).ok().map(PunchKind::new)
 }
@@ -209,6 +209,8 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
     let options = FemOptions {
         linear_solver: crate::harness::settings::linear_solver(),
         trace: crate::harness::settings::trace(),
+        data: crate::harness::settings::data_paths(),
+        progress: crate::harness::progress::fem_progress(),
         degree: Degree::Quadratic,
         tolerance: 1e-3,
         mesh: None,

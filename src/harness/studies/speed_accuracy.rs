@@ -324,11 +324,11 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
 /// `tolerance`, when gmsh is there (`None` without gmsh, and when the solve fails: the reason is
 /// written to standard error and the point left out).
 pub(crate) fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
-    if !fem_solver::gmsh_found() {
+    if !fem_solver::gmsh_found(&crate::harness::settings::data_paths()) {
         return None;
     }
     let cost = problem.cost_problem();
-    let degree = fem_solver::default_degree(tolerance);
+    let degree = fem_solver::default_degree(&crate::harness::settings::data_paths(), tolerance);
     let solve = || {
         let scene =
             super::scene_of_fem_load(cost.kind.clone(), cost.eps, cost.load, Some(tolerance))?;
@@ -481,10 +481,13 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
             break;
         };
         for level in 0..3 {
-            let mesh = fem_solver::mesh_directory().join(format!("{family}-L{level}.msh"));
+            let mesh =
+                crate::harness::settings::mesh_directory().join(format!("{family}-L{level}.msh"));
             let options = FemOptions {
                 linear_solver: crate::harness::settings::linear_solver(),
                 trace: crate::harness::settings::trace(),
+                data: crate::harness::settings::data_paths(),
+                progress: crate::harness::progress::fem_progress(),
                 degree,
                 tolerance: 1e-3,
                 mesh: Some(mesh),

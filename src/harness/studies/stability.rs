@@ -138,9 +138,10 @@ fn must_decline(
 /// The committed `small-domain-R5.msh` with the physical tags of its arc (3) and axis (4)
 /// swapped, written to a temporary file.
 fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
-    let text =
-        std::fs::read_to_string(ringcontact::fem::mesh_directory().join("small-domain-R5.msh"))
-            .ok()?;
+    let text = std::fs::read_to_string(
+        crate::harness::settings::mesh_directory().join("small-domain-R5.msh"),
+    )
+    .ok()?;
     let swapped: Vec<String> = text
         .lines()
         .map(|line| {
@@ -283,7 +284,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         push(p);
     }
     let coarse = MethodOptions {
-        mesh: Some(ringcontact::fem::mesh_directory().join("disk-L0.msh")),
+        mesh: Some(crate::harness::settings::mesh_directory().join("disk-L0.msh")),
         degree: Some(ringcontact::mesh::triangulation::Degree::Linear),
         ..crate::harness::settings::method_options()
     };
@@ -296,7 +297,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     );
     push(p);
     let small = MethodOptions {
-        mesh: Some(ringcontact::fem::mesh_directory().join("small-domain-R5.msh")),
+        mesh: Some(crate::harness::settings::mesh_directory().join("small-domain-R5.msh")),
         ..crate::harness::settings::method_options()
     };
     let p = probe(
@@ -405,7 +406,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     if let Some(path) = swapped {
         let _ = std::fs::remove_file(path);
     }
-    let annulus = ringcontact::fem::mesh_directory().join("annulus-0.5-L0.msh");
+    let annulus = crate::harness::settings::mesh_directory().join("annulus-0.5-L0.msh");
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus.clone()),

@@ -55,7 +55,11 @@ fn annular_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(Prov
             *value = size;
         }
     }
-    let mesh = provider::generate(&parameters, "the annular branch's pull-off simulation")?;
+    let mesh = provider::generate(
+        &case.data,
+        &parameters,
+        "the annular branch's pull-off simulation",
+    )?;
     Ok((mesh, size))
 }
 
@@ -108,7 +112,7 @@ pub fn run_annular(
         .iter()
         .map(|&r| annular_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
-    let options = crate::cohesive::study::study_options(case.linear_solver);
+    let options = crate::cohesive::study::study_options(case.linear_solver, &case.data);
     touched_sequence(
         &case,
         ranges,

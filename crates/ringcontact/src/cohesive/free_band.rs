@@ -62,7 +62,7 @@ fn band_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(Provide
         }
     }
     let what = format!("the {}'s pull-off simulation", case.punch.name());
-    let mesh = provider::generate(&parameters, &what)?;
+    let mesh = provider::generate(&case.data, &parameters, &what)?;
     Ok((mesh, size))
 }
 
@@ -70,8 +70,9 @@ fn band_mesh(case: &Case, range: f64, elements_per_zone: f64) -> Result<(Provide
 fn band_response(
     mesh: &ProvidedMesh,
     linear_solver: crate::sparse::Backend,
+    data: &crate::mesh::files::DataPaths,
 ) -> Result<(SurfaceResponse, String)> {
-    let options = crate::cohesive::study::study_options(linear_solver);
+    let options = crate::cohesive::study::study_options(linear_solver, data);
     let (response, name) = surface_response_on_mesh(mesh, &options, 0.0)?;
     Ok((response.in_units_of_a(BAND_FRAME), name))
 }
@@ -165,7 +166,7 @@ pub fn run_band(
         (&meshes, &|range, per_zone| {
             band_mesh(&case, range, per_zone)
         }),
-        &|mesh| band_response(mesh, case.linear_solver),
+        &|mesh| band_response(mesh, case.linear_solver, &case.data),
         &|response, entry, edges| left_the_band(&case, response, entry, edges),
         &mut progress,
     )?

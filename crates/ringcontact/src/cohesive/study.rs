@@ -19,6 +19,8 @@ use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
 use crate::fem::solver::{surface_response_on_mesh, FemOptions};
 use crate::fem::surface_response::SurfaceResponse;
+use crate::heartbeat::Progress;
+use crate::mesh::files::DataPaths;
 use crate::mesh::provider::{self, MeshRequest, ProvidedMesh};
 use crate::mesh::triangulation::Degree;
 use crate::punch::{Contact, PunchKind};
@@ -35,8 +37,8 @@ const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
 
 /// The default ranges where the study runs: [`DEFAULT_RANGES`] with gmsh (rim bands), else
 /// [`COMMITTED_MESH_RANGES`].
-pub fn default_ranges() -> Vec<f64> {
-    if provider::gmsh_available() {
+pub fn default_ranges(data: &DataPaths) -> Vec<f64> {
+    if provider::gmsh_available(data) {
         DEFAULT_RANGES.to_vec()
     } else {
         COMMITTED_MESH_RANGES.to_vec()
@@ -137,6 +139,8 @@ pub struct Case {
     pub punch: PunchKind,
     /// The FEM's sparse Cholesky for the condensation (`verify --linear-solver`).
     pub linear_solver: Backend,
+    /// Where the meshes and gmsh are.
+    pub data: DataPaths,
     /// `b/a` of the flat annulus.
     pub eps: f64,
     /// `d0/h` of a concave punch.
@@ -407,7 +411,7 @@ pub const STUDY_LEVEL: i32 = 3;
 
 /// The mesh the study runs on (`level` of the adapted family, made by gmsh), else, without
 /// gmsh, the committed level of the ratio (`b/a` = 0, 0.5, 0.9) closest to it.
-pub fn study_mesh(eps: f64, level: i32) -> Result<ProvidedMesh> {
+pub fn study_mesh(data: &DataPaths, eps: f64, level: i32) -> Result<ProvidedMesh> {
     let adapted = MeshRequest::Adapted {
         contact_start: eps,
         level,
@@ -415,10 +419,11 @@ pub fn study_mesh(eps: f64, level: i32) -> Result<ProvidedMesh> {
         edge_uncertainty: 0.0,
         target: None,
     };
-    match provider::provide(&adapted, "the pull-off simulation") {
+    match provider::provide(data, &adapted, "the pull-off simulation") {
         Ok(mesh) => Ok(mesh),
-        Err(gmsh_error) => match provider::committed_family(eps) {
+        Err(gmsh_error) => match provider::committed_family(data, eps) {
             Some(family) => provider::provide(
+                data,
                 &MeshRequest::Committed {
                     family,
                     level: (level - 1).clamp(0, provider::COMMITTED_MAX_LEVEL as i32) as usize,
@@ -499,11 +504,11 @@ pub fn run_on_study_meshes(
     ranges: &[f64],
     mut progress: impl FnMut(&SequenceEntry),
 ) -> Result<PulloffStudy> {
-    if provider::gmsh_available() {
+    if provider::gmsh_available(&case.data) {
         return run_rim_band(case, ranges, progress);
     }
-    let mesh = study_mesh(case.eps, STUDY_LEVEL)?;
-    let check = study_mesh(case.eps, STUDY_LEVEL - 1)?;
+    let mesh = study_mesh(&case.data, case.eps, STUDY_LEVEL)?;
+    let check = study_mesh(&case.data, case.eps, STUDY_LEVEL - 1)?;
     let mut study = run(case, ranges, &mesh, Some(&check), &mut progress)?;
     study.note += &format!(
         " (gmsh not found: the committed meshes, no rim band; `{}` installs it for the banded \
@@ -542,7 +547,11 @@ fn rim_band_mesh(
     let mut parameters = provider::adapted_parameters(case.eps, level, None, 0.0, None);
     parameters.push(("band".to_string(), width));
     parameters.push(("hband".to_string(), size));
-    let mesh = provider::generate(&parameters, "the pull-off simulation's rim band")?;
+    let mesh = provider::generate(
+        &case.data,
+        &parameters,
+        "the pull-off simulation's rim band",
+    )?;
     Ok((mesh, width, size))
 }
 
@@ -622,8 +631,11 @@ fn simulate_in_rim_band(
     level: i32,
 ) -> Result<(SequenceEntry, Vec<CurveSample>, Vec<CurveEdges>, ModelInfo)> {
     let (mesh, width, size) = rim_band_mesh(case, range, per, level)?;
-    let (response, name) =
-        surface_response_on_mesh(&mesh, &study_options(case.linear_solver), case.eps)?;
+    let (response, name) = surface_response_on_mesh(
+        &mesh,
+        &study_options(case.linear_solver, &case.data),
+        case.eps,
+    )?;
     let (mut entry, curve, edges) =
         simulate(&response, case, range, Branch::Closed, Some(1.0 - width))?;
     let info = ModelInfo::of(&mesh, name, &response)?;
@@ -801,7 +813,7 @@ fn run_sequence(
     let start = Instant::now();
     let case = checked_case(case, ranges)?;
     let (punch, eps) = (case.punch.clone(), case.eps);
-    let options = study_options(case.linear_solver);
+    let options = study_options(case.linear_solver, &case.data);
     let shared = match fixed {
         Some((mesh, _)) => {
             let (response, name) = surface_response_on_mesh(mesh, &options, eps)?;
@@ -974,7 +986,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
 }
 
 /// The FE model the study condenses: P2, `ν = 0`, Boussinesq's far field.
-pub fn study_options(linear_solver: Backend) -> FemOptions {
+pub fn study_options(linear_solver: Backend, data: &DataPaths) -> FemOptions {
     FemOptions {
         linear_solver,
         trace: false,
@@ -983,6 +995,8 @@ pub fn study_options(linear_solver: Backend) -> FemOptions {
         mesh: None,
         poisson_ratio: 0.0,
         far_field: FarField::Boussinesq,
+        data: data.clone(),
+        progress: Progress::Silent,
     }
 }
 
@@ -990,7 +1004,7 @@ pub fn study_options(linear_solver: Backend) -> FemOptions {
 /// (the report's live check: a concave case must keep its hole closed, else it is declined).
 pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<LiveSimulation> {
     let start = Instant::now();
-    let options = study_options(case.linear_solver);
+    let options = study_options(case.linear_solver, &case.data);
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, case.eps)?;
     let (entry, curve, _) = simulate(&response, &case, range, Branch::Closed, None)?;
     LiveSimulation::unless_declined(
@@ -1006,8 +1020,9 @@ pub fn simulate_once(case: Case, range: f64, mesh: &ProvidedMesh) -> Result<Live
 /// study mesh (the committed level closest to it without gmsh). A concave case whose hole opens
 /// is declined.
 pub fn simulate_as_studied(case: Case, range: f64) -> Result<LiveSimulation> {
-    if !provider::gmsh_available() {
-        return simulate_once(case.clone(), range, &study_mesh(case.eps, STUDY_LEVEL)?);
+    if !provider::gmsh_available(&case.data) {
+        let mesh = study_mesh(&case.data, case.eps, STUDY_LEVEL)?;
+        return simulate_once(case.clone(), range, &mesh);
     }
     let start = Instant::now();
     let (entry, curve, _, model) =
@@ -1030,11 +1045,10 @@ pub fn simulate_cases(
     mesh: &ProvidedMesh,
 ) -> Result<Vec<LiveSimulation>> {
     // The cases share one condensation, on the first one's backend.
-    let options = study_options(
-        cases
-            .first()
-            .map_or(Backend::default(), |c| c.linear_solver),
-    );
+    let Some(first) = cases.first() else {
+        return Ok(Vec::new());
+    };
+    let options = study_options(first.linear_solver, &first.data);
     let start = Instant::now();
     let (response, mesh_name) = surface_response_on_mesh(mesh, &options, 0.0)?;
     let condensation_s = start.elapsed().as_secs_f64();

@@ -8,11 +8,11 @@ use crate::discretisation::vertex_ordering::{
     vertex_graph, vertex_led_node_order_of, vertex_order, VertexCells,
 };
 use crate::mesh::triangulation::Mesh;
-use crate::sparse::{split_min_dofs, Backend, NodeOrdering};
+use crate::sparse::{Backend, NodeOrdering};
 
 /// What a model's analysis ([`crate::sparse::Analysis`]) needs from its mesh alone:
 /// the vertex-led node order ([`crate::discretisation::vertex_ordering::vertex_led_node_order`]) and, for the native backend and a model
-/// of at least [`split_min_dofs`] unknowns, a split by a separator read off that order's
+/// of at least [`Backend::split_min_dofs`] unknowns, a split by a separator read off that order's
 /// elimination tree or a ring of the mesh, whichever promises the shorter factorisation
 /// ([`crate::discretisation::separator`]). Needs no pattern, so it is computed while the pattern
 /// is built (one vertex graph and one minimum-degree order of it serve the node order and the
@@ -38,7 +38,9 @@ pub(crate) fn node_ordering_of_raised<'m>(
     if !same_vertices(vertex_mesh, mesh) {
         return node_ordering(mesh, backend);
     }
-    let wants_split = backend == Backend::Native && 2 * mesh.nodes.len() >= split_min_dofs();
+    let wants_split = backend
+        .split_min_dofs()
+        .is_some_and(|least| 2 * mesh.nodes.len() >= least);
     let (order, split) = rayon::join(
         || vertex_led_node_order_of(mesh, &incidence, &graph, &vertices),
         || {
@@ -80,14 +82,14 @@ mod tests {
         };
         for degree in [Degree::Quadratic, Degree::Cubic] {
             let raised = vertex_mesh.with_degree(degree);
-            let beside = node_ordering_of_raised(&vertex_mesh, Backend::Native, || &raised);
-            let own = node_ordering(&raised, Backend::Native);
+            let beside = node_ordering_of_raised(&vertex_mesh, Backend::BUILT_IN, || &raised);
+            let own = node_ordering(&raised, Backend::BUILT_IN);
             assert!(beside.split.is_some(), "{degree:?}: the split is exercised");
             assert!(same(&beside, &own), "{degree:?}");
         }
         let other = structured_rectangle(2.0, 1.0, 30, 20, 1, 2, 3).with_degree(Degree::Quadratic);
-        let beside = node_ordering_of_raised(&vertex_mesh, Backend::Native, || &other);
+        let beside = node_ordering_of_raised(&vertex_mesh, Backend::BUILT_IN, || &other);
         assert_eq!(beside.order.len(), other.nodes.len());
-        assert!(same(&beside, &node_ordering(&other, Backend::Native)));
+        assert!(same(&beside, &node_ordering(&other, Backend::BUILT_IN)));
     }
 }

@@ -31,7 +31,8 @@ use crate::discretisation::node_ordering::node_ordering_of_raised;
 use crate::discretisation::quadrature::stiffness_rule;
 use crate::error::{Error, Result};
 use crate::fem::contact::{ContactModel, ContactSolution};
-use crate::heartbeat::Heartbeat;
+use crate::heartbeat::{Heartbeat, Progress};
+use crate::mesh::files::DataPaths;
 use crate::mesh::msh::{read_msh_hashed, PendingHash};
 use crate::mesh::provider::{self, MeshOrigin, MeshRequest, ProvidedMesh, SizeTarget};
 use crate::mesh::triangulation::{tags, Degree, Mesh};
@@ -107,6 +108,28 @@ pub struct FemOptions {
     /// One line per model on standard error: size, phase times, contact cost (a program's
     /// `RINGCONTACT_TRACE=1`).
     pub trace: bool,
+    /// Where the committed meshes, the mesh cache and gmsh are.
+    pub data: DataPaths,
+    /// How often a long ladder reports on standard error.
+    pub progress: Progress,
+}
+
+impl Default for FemOptions {
+    /// Quadratic elements to [`DEFAULT_TOLERANCE`], `ν = 0`, Boussinesq's far field, the
+    /// built-in backend, the checkout's data found from the current directory.
+    fn default() -> Self {
+        FemOptions {
+            degree: Degree::Quadratic,
+            tolerance: DEFAULT_TOLERANCE,
+            mesh: None,
+            poisson_ratio: 0.0,
+            far_field: FarField::Boussinesq,
+            linear_solver: crate::sparse::Backend::default(),
+            trace: false,
+            data: DataPaths::default(),
+            progress: Progress::default(),
+        }
+    }
 }
 
 /// A solved FEM state.
@@ -202,9 +225,10 @@ fn fem_error(reason: String) -> Error {
     }
 }
 
-/// Directory of the committed meshes (see [`provider::mesh_directory`]).
+/// Directory of the committed meshes of the checkout found from the current directory
+/// ([`DataPaths::default`]).
 pub fn mesh_directory() -> PathBuf {
-    provider::mesh_directory()
+    DataPaths::default().meshes
 }
 
 /// Where the contact line of the punch's mesh starts: `b/a` for the flat annulus, else 0.
@@ -220,12 +244,17 @@ pub fn contact_start(kind: &PunchKind, eps: f64) -> f64 {
 /// exists for this contact line and the tolerance is at least [`COMMITTED_TOLERANCE_FLOOR`]),
 /// continued by the adapted family made by gmsh; otherwise the adapted family alone, from the
 /// level whose predicted error (about `3.5e-4 · 0.13^k` for P2) is within 100 x the tolerance.
-pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
+pub fn mesh_sequence(
+    data: &DataPaths,
+    kind: PunchKind,
+    eps: f64,
+    tolerance: f64,
+) -> Vec<MeshRequest> {
     let start_line = contact_start(&kind, eps);
     let mut sequence = Vec::new();
     let mut first_adapted: i32 = 0;
     if tolerance >= COMMITTED_TOLERANCE_FLOOR {
-        if let Some(family) = provider::committed_family(start_line) {
+        if let Some(family) = provider::committed_family(data, start_line) {
             for level in 0..=provider::COMMITTED_MAX_LEVEL {
                 sequence.push(MeshRequest::Committed {
                     family: family.clone(),
@@ -250,14 +279,6 @@ pub fn mesh_sequence(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReque
         });
     }
     sequence
-}
-
-fn display_path(path: &Path) -> String {
-    let root = provider::project_root();
-    path.strip_prefix(&root)
-        .unwrap_or(path)
-        .display()
-        .to_string()
 }
 
 /// One mesh loaded, assembled and symbolically factorised.
@@ -471,7 +492,7 @@ fn assemble_model(
         domain_radius,
         arc_grading,
         far_field,
-        path: display_path(provided.path.as_path()),
+        path: display_path(&provided.path),
         provided: provided.clone(),
         spec,
         stiffness,
@@ -486,10 +507,18 @@ fn assemble_model(
     })
 }
 
+/// `path` relative to the data directory it lies in (`meshes/disk-L1.msh`), else whole.
+fn display_path(path: &Path) -> String {
+    match path.parent().map(DataPaths::find_from) {
+        Some(Ok(data)) => data.display(path),
+        _ => path.display().to_string(),
+    }
+}
+
 /// The error of a mesh whose degree could not be raised (a panic while raising: not expected).
 fn unraisable_mesh_error(provided: &ProvidedMesh, degree: Degree) -> Error {
     Error::InvalidMesh {
-        path: display_path(provided.path.as_path()),
+        path: display_path(&provided.path),
         message: format!(
             "internal: its degree could not be raised to {}",
             degree as usize
@@ -850,7 +879,7 @@ fn finish(
             .map(|r| r.describe()),
         timings: model.timings,
         edge_conditioning,
-        linear_solver: model.symbolic.backend(),
+        linear_solver: model.spec.linear_solver,
         outer_edge: None,
     }
 }
@@ -889,17 +918,18 @@ const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
 /// Element degree when none is asked for: cubic on meshes made for the scene (gmsh found, or a
 /// tolerance below [`CUBIC_BELOW_TOLERANCE`]); quadratic on the committed ladder, whose levels
 /// were made for it.
-pub fn default_degree(tolerance: f64) -> Degree {
-    if tolerance < CUBIC_BELOW_TOLERANCE || gmsh_found() {
+pub fn default_degree(data: &DataPaths, tolerance: f64) -> Degree {
+    if tolerance < CUBIC_BELOW_TOLERANCE || gmsh_found(data) {
         Degree::Cubic
     } else {
         Degree::Quadratic
     }
 }
 
-/// Whether gmsh can make meshes here (found once per process, see [`crate::mesh::gmsh::Gmsh::get`]).
-pub fn gmsh_found() -> bool {
-    crate::mesh::gmsh::Gmsh::get(&provider::project_root(), "").is_ok()
+/// Whether gmsh can make meshes for `data` (found once per process, see
+/// [`crate::mesh::gmsh::Gmsh::get`]).
+pub fn gmsh_found(data: &DataPaths) -> bool {
+    crate::mesh::gmsh::Gmsh::get(data, "").is_ok()
 }
 
 /// Share of the edge's conditioning times the model's force error that bounds the located
@@ -993,11 +1023,16 @@ fn first_adapted_level(degree: Degree, tolerance: f64) -> i32 {
 /// The committed levels climbed first: L0-L2 of the family for this contact line, when there is
 /// one, the tolerance is at least [`COMMITTED_TOLERANCE_FLOOR`] and gmsh is not there to make
 /// meshes for the scene (which are smaller for the same accuracy); else none.
-fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshRequest> {
-    if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found() {
+fn committed_ladder(
+    data: &DataPaths,
+    kind: PunchKind,
+    eps: f64,
+    tolerance: f64,
+) -> Vec<MeshRequest> {
+    if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found(data) {
         return Vec::new();
     }
-    let Some(family) = provider::committed_family(contact_start(&kind, eps)) else {
+    let Some(family) = provider::committed_family(data, contact_start(&kind, eps)) else {
         return Vec::new();
     };
     (0..=provider::COMMITTED_MAX_LEVEL)
@@ -1012,8 +1047,8 @@ fn committed_ladder(kind: PunchKind, eps: f64, tolerance: f64) -> Vec<MeshReques
 /// of its contact line (a few thousand unknowns), which locates the free edge for the first
 /// adapted mesh to refine around. Its force, whose error is dominated by the unrefined edge, does
 /// not enter a Richardson estimate.
-fn edge_locator(kind: PunchKind, eps: f64) -> Vec<MeshRequest> {
-    provider::committed_family(contact_start(&kind, eps))
+fn edge_locator(data: &DataPaths, kind: PunchKind, eps: f64) -> Vec<MeshRequest> {
+    provider::committed_family(data, contact_start(&kind, eps))
         .map(|family| MeshRequest::Committed { family, level: 0 })
         .into_iter()
         .collect()
@@ -1254,7 +1289,7 @@ pub fn solve(kind: PunchKind, eps: f64, load: FemLoad, options: &FemOptions) -> 
         return solve_on_mesh(kind, eps, load, &provided, options);
     }
     // The mesh families live in the project's data directory: say so if it cannot be found.
-    provider::find_project_root()?;
+    options.data.check()?;
     let mut ladder = Ladder::new(Problem { kind, eps, load }, options, start);
     while let Some(rung) = ladder.next_rung() {
         let mut model = ladder.prepare(&rung)?;
@@ -1387,7 +1422,7 @@ impl<'o> Ladder<'o> {
     /// from the first level that can meet the tolerance.
     fn new(problem: Problem, options: &'o FemOptions, start: Instant) -> Self {
         let Problem { kind, eps, .. } = problem.clone();
-        let ladder = committed_ladder(kind.clone(), eps, options.tolerance);
+        let ladder = committed_ladder(&options.data, kind.clone(), eps, options.tolerance);
         let next_level = if ladder.is_empty() {
             first_adapted_level(options.degree, options.tolerance)
         } else {
@@ -1395,7 +1430,7 @@ impl<'o> Ladder<'o> {
         };
         let locating = ladder.is_empty() && kind.is_concave();
         let committed = if locating {
-            edge_locator(kind.clone(), eps)
+            edge_locator(&options.data, kind.clone(), eps)
         } else {
             ladder
         };
@@ -1403,7 +1438,7 @@ impl<'o> Ladder<'o> {
             problem,
             options,
             start,
-            progress: Heartbeat::start("fem"),
+            progress: Heartbeat::start("fem", options.progress),
             why: format!(
                 "the FEM for the {kind} at tolerance {:e}",
                 options.tolerance
@@ -1475,7 +1510,7 @@ impl<'o> Ladder<'o> {
             Some(k) => format!("level {k}: making its mesh (gmsh, or the cache)"),
             None => "a committed mesh".to_string(),
         });
-        let provided = provider::provide(&rung.request, &self.why)?;
+        let provided = provider::provide(&self.options.data, &rung.request, &self.why)?;
         // The edge locator only places the next mesh's refinement, and its domain need not meet
         // the tolerance: quadratic at the loose tolerances, the solve's degree below 1e-4, whose
         // closer edge gives the next mesh a narrower window.

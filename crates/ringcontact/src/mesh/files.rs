@@ -1,6 +1,6 @@
 //! Where the project's data lives and how files are named by their content: the data directory
-//! (`--data-dir`, `RINGCONTACT_DATA_DIR`, else found upward from the current directory), the
-//! committed meshes' and the mesh cache's directories, and SHA-256 digests.
+//! (the one holding `meshes/half_space.geo`), its committed meshes, the mesh cache and gmsh, as
+//! one explicit value ([`DataPaths`]) a program chooses; and SHA-256 digests.
 
 use std::path::{Path, PathBuf};
 
@@ -8,78 +8,90 @@ use sha2::{Digest, Sha256};
 
 use crate::error::{Error, Result};
 
-/// Environment variable naming the project's data directory (`verify --data-dir` sets it).
-pub const DATA_DIR_VARIABLE: &str = "RINGCONTACT_DATA_DIR";
+/// The file that marks a directory as the project's data directory.
+pub const DATA_MARKER: &str = "meshes/half_space.geo";
 
-/// The data directory a program chose (`verify --data-dir`), set once before any lookup.
-static DATA_DIRECTORY: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-
-/// Make `dir` the project's data directory for the rest of the process (what `verify
-/// --data-dir` does; it takes precedence over `RINGCONTACT_DATA_DIR`). The first call wins.
-pub fn set_data_directory(dir: PathBuf) {
-    let _ = DATA_DIRECTORY.set(dir);
+/// Where the FEM's data lives: the project's data directory, the committed meshes, the cache of
+/// meshes gmsh made, and gmsh itself. A program builds it from its flags (`verify --data-dir`)
+/// or its environment; the library never reads either. [`Default`] is the data directory found
+/// upward from the current one (a checkout's), with the usual layout below it.
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub struct DataPaths {
+    /// The project's data directory (holding `meshes/half_space.geo` and `verify/`).
+    pub root: PathBuf,
+    /// The committed meshes (`root/meshes`).
+    pub meshes: PathBuf,
+    /// The meshes gmsh made, and the versions of gmsh probed (`root/.mesh-cache`).
+    pub cache: PathBuf,
+    /// gmsh's executable when chosen; else `root/.venv-gmsh` (made by
+    /// `scripts/install_gmsh.sh`), then `gmsh` on the `PATH`.
+    pub gmsh: Option<PathBuf>,
 }
 
-/// The project's data directory (the one holding `meshes/half_space.geo` and `verify/`):
-/// `RINGCONTACT_DATA_DIR` (or `verify --data-dir`), else the first directory upward from the
-/// current one that holds `meshes/half_space.geo`. Never a path compiled into the binary: a copy
-/// of the checkout, a moved one or an installed binary reads the data of where it runs.
-pub fn find_project_root() -> Result<PathBuf> {
-    let marker = "meshes/half_space.geo";
-    let chosen = DATA_DIRECTORY
-        .get()
-        .cloned()
-        .or_else(|| std::env::var_os(DATA_DIR_VARIABLE).map(PathBuf::from));
-    if let Some(dir) = chosen {
-        if dir.join(marker).is_file() {
-            return Ok(dir);
+impl DataPaths {
+    /// The usual layout below the data directory `root`: `meshes/`, `.mesh-cache/`, gmsh found.
+    pub fn at(root: PathBuf) -> DataPaths {
+        DataPaths {
+            meshes: root.join("meshes"),
+            cache: root.join(".mesh-cache"),
+            gmsh: None,
+            root,
         }
-        return Err(Error::file(
-            "use as the data directory",
-            &dir,
-            format!("it has no {marker} (set by --data-dir or {DATA_DIR_VARIABLE})"),
-        ));
     }
-    let cwd = std::env::current_dir().map_err(|e| Error::file("find", Path::new("."), e))?;
-    cwd.ancestors()
-        .find(|dir| dir.join(marker).is_file())
-        .map(Path::to_path_buf)
-        .ok_or_else(|| {
-            Error::file(
-                "find the project's data from",
-                &cwd,
-                format!(
-                    "no {marker} here or in any parent directory; run inside a checkout of the \
-                     project, or pass --data-dir DIR (or set {DATA_DIR_VARIABLE}) to one"
-                ),
-            )
-        })
+
+    /// The data directory `dir` or the first one upward from it that holds
+    /// [`DATA_MARKER`], with the usual layout; an error naming `dir` when there is none.
+    pub fn find_from(dir: &Path) -> Result<DataPaths> {
+        dir.ancestors()
+            .find(|candidate| candidate.join(DATA_MARKER).is_file())
+            .map(|root| DataPaths::at(root.to_path_buf()))
+            .ok_or_else(|| {
+                Error::file(
+                    "find the project's data from",
+                    dir,
+                    format!(
+                        "no {DATA_MARKER} here or in any parent directory; run inside a checkout \
+                         of the project, or name the data directory (verify --data-dir DIR)"
+                    ),
+                )
+            })
+    }
+
+    /// [`Self::find_from`] the current directory.
+    pub fn find() -> Result<DataPaths> {
+        let cwd = std::env::current_dir().map_err(|e| Error::file("find", Path::new("."), e))?;
+        DataPaths::find_from(&cwd)
+    }
+
+    /// An error unless the data directory holds [`DATA_MARKER`] (a directory a user named that
+    /// is not the project's data).
+    pub fn check(&self) -> Result<()> {
+        if self.root.join(DATA_MARKER).is_file() {
+            return Ok(());
+        }
+        Err(Error::file(
+            "use as the data directory",
+            &self.root,
+            format!("it has no {DATA_MARKER}"),
+        ))
+    }
+
+    /// `path` relative to the data directory where it lies below it.
+    pub fn display(&self, path: &Path) -> String {
+        path.strip_prefix(&self.root)
+            .unwrap_or(path)
+            .display()
+            .to_string()
+    }
 }
 
-/// [`find_project_root`], or the current directory when there is none (the error then surfaces
-/// where a file is missing).
-pub fn project_root() -> PathBuf {
-    find_project_root().unwrap_or_else(|_| std::env::current_dir().unwrap_or_default())
-}
-
-/// Directory of the committed meshes (`RINGCONTACT_MESHES` overrides).
-pub fn mesh_directory() -> PathBuf {
-    std::env::var_os("RINGCONTACT_MESHES")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| project_root().join("meshes"))
-}
-
-/// Directory of generated meshes.
-pub fn cache_directory() -> PathBuf {
-    cache_directory_of(&project_root())
-}
-
-/// Directory of generated meshes of the project at `root` (`RINGCONTACT_MESH_CACHE`
-/// overrides); it also remembers gmsh's version (`crate::mesh::gmsh::Gmsh::find`).
-pub fn cache_directory_of(root: &Path) -> PathBuf {
-    std::env::var_os("RINGCONTACT_MESH_CACHE")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root.join(".mesh-cache"))
+impl Default for DataPaths {
+    /// [`DataPaths::find`], or the current directory's layout when no data directory is found
+    /// (the error then surfaces where a file is missing, or from [`DataPaths::check`]).
+    fn default() -> Self {
+        DataPaths::find()
+            .unwrap_or_else(|_| DataPaths::at(std::env::current_dir().unwrap_or_default()))
+    }
 }
 
 /// SHA-256 of a file, hex.

@@ -1,18 +1,20 @@
 //! Finding and running gmsh at run time (never at build time).
 //!
-//! Looked for, in order: the executable named by `RINGCONTACT_GMSH`; the project's own
-//! environment `.venv-gmsh` (PyPI `gmsh`, made by `scripts/install_gmsh.sh`; its `bin/gmsh` is a
-//! Python script, run with the environment's interpreter); a `gmsh` executable on `PATH`
-//! (Debian's `gmsh`, or any other). When none is found, the error names the one command that
+//! Looked for, in order: the executable [`DataPaths::gmsh`] names (a program's choice, `verify`
+//! reads `RINGCONTACT_GMSH`); the project's own environment `.venv-gmsh` (PyPI `gmsh`, made by
+//! `scripts/install_gmsh.sh`; its `bin/gmsh` is a Python script, run with the environment's
+//! interpreter); a `gmsh` executable on `PATH` (Debian's `gmsh`, or any other), resolved as the
+//! operating system resolves a program. When none is found, the error names the one command that
 //! installs it. The version each probe finds is remembered in the mesh cache
 //! (`gmsh-version-*.txt`) until the files behind the command change.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::OnceLock;
+use std::sync::{Mutex, OnceLock};
 
 use crate::error::{Error, Result};
-use crate::mesh::files::{cache_directory_of, sha256_hex};
+use crate::mesh::files::{sha256_hex, DataPaths};
 
 /// Longest a single gmsh run may take before it is stopped (the finest adapted level takes
 /// about 5 s on 2 cores).
@@ -168,18 +170,14 @@ impl Gmsh {
         Some(probed)
     }
 
-    /// Find gmsh (see the module documentation); `project` is the project's root directory, and
-    /// each probe's version is remembered in its mesh cache ([`Self::probe_remembered`]).
-    pub fn find(project: &Path) -> Option<Gmsh> {
-        Gmsh::find_remembering_in(project, &cache_directory_of(project))
-    }
-
-    /// [`Self::find`], remembering versions in `memo_dir`.
-    fn find_remembering_in(project: &Path, memo_dir: &Path) -> Option<Gmsh> {
-        if let Some(path) = std::env::var_os("RINGCONTACT_GMSH") {
-            return Gmsh::probe_remembered(PathBuf::from(path), Vec::new(), memo_dir);
+    /// Find gmsh (see the module documentation) for the data of `data`, each probe's version
+    /// remembered in its mesh cache ([`Self::probe_remembered`]).
+    pub fn find(data: &DataPaths) -> Option<Gmsh> {
+        let memo_dir = &data.cache;
+        if let Some(path) = &data.gmsh {
+            return Gmsh::probe_remembered(path.clone(), Vec::new(), memo_dir);
         }
-        let venv = project.join(".venv-gmsh");
+        let venv = data.root.join(".venv-gmsh");
         let (python, script) = (venv.join("bin/python"), venv.join("bin/gmsh"));
         if python.exists() && script.exists() {
             if let Some(g) =
@@ -191,20 +189,30 @@ impl Gmsh {
         Gmsh::probe_remembered(PathBuf::from("gmsh"), Vec::new(), memo_dir)
     }
 
-    /// The gmsh of this process (found once and remembered), or the error that says how to get
-    /// one; `why` says what the mesh was for.
-    pub fn get(project: &Path, why: &str) -> Result<Gmsh> {
-        static FOUND: OnceLock<Option<Gmsh>> = OnceLock::new();
-        FOUND
-            .get_or_init(|| Gmsh::find(project))
-            .clone()
-            .ok_or_else(|| {
-                gmsh_error(format!(
-                    "{why} needs a mesh that is not committed, and gmsh was not found (looked for \
-                     $RINGCONTACT_GMSH, {}/.venv-gmsh and `gmsh` on PATH); install it with `{INSTALL_COMMAND}`",
-                    project.display()
-                ))
-            })
+    /// The gmsh of `data` (found once per data location in a process, then remembered), or the
+    /// error that says how to get one; `why` says what the mesh was for.
+    pub fn get(data: &DataPaths, why: &str) -> Result<Gmsh> {
+        static FOUND: OnceLock<Mutex<HashMap<DataPaths, Option<Gmsh>>>> = OnceLock::new();
+        let found = FOUND.get_or_init(Mutex::default);
+        let known = found.lock().ok().and_then(|map| map.get(data).cloned());
+        let gmsh = known.unwrap_or_else(|| {
+            let probed = Gmsh::find(data);
+            if let Ok(mut map) = found.lock() {
+                map.insert(data.clone(), probed.clone());
+            }
+            probed
+        });
+        gmsh.ok_or_else(|| {
+            let named = data
+                .gmsh
+                .as_ref()
+                .map_or(String::new(), |p| format!("{}, ", p.display()));
+            gmsh_error(format!(
+                "{why} needs a mesh that is not committed, and gmsh was not found (looked for \
+                 {named}{}/.venv-gmsh and `gmsh` on PATH); install it with `{INSTALL_COMMAND}`",
+                data.root.display()
+            ))
+        })
     }
 
     /// Mesh `geo` in 2-D with `-setnumber` parameters, writing `out` (`.msh` 4.1).

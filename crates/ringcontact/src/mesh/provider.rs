@@ -16,18 +16,15 @@
 //! corner patches in Rust ([`crate::mesh::corner_refinement`]), which the provided mesh carries as a
 //! request applied when it is read.
 //!
-//! The cache lives in `<project>/.mesh-cache/` (ignored by git; `RINGCONTACT_MESH_CACHE`
-//! overrides), keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
+//! The cache lives in [`DataPaths::cache`] (`<project>/.mesh-cache/` by default, ignored by git),
+//! keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
 
 use std::path::{Path, PathBuf};
 
 use crate::error::{Error, Result};
 use crate::mesh::corner_refinement::CornerRefinement;
 use crate::mesh::files::hex;
-pub use crate::mesh::files::{
-    cache_directory, cache_directory_of, find_project_root, mesh_directory, project_root,
-    set_data_directory, sha256_file, sha256_hex, DATA_DIR_VARIABLE,
-};
+pub use crate::mesh::files::{sha256_file, sha256_hex, DataPaths};
 use crate::mesh::gmsh::Gmsh;
 use sha2::{Digest, Sha256};
 
@@ -260,19 +257,20 @@ impl ProvidedMesh {
     }
 }
 
-/// Whether gmsh can be found ([`Gmsh::get`]): the meshes made per scene are available.
-pub fn gmsh_available() -> bool {
-    Gmsh::get(&project_root(), "").is_ok()
+/// Whether gmsh can be found for `data` ([`Gmsh::get`]): the meshes made per scene are
+/// available.
+pub fn gmsh_available(data: &DataPaths) -> bool {
+    Gmsh::get(data, "").is_ok()
 }
 
 /// Committed family for a contact line starting at `b/a` (`disk` for 0), if there is one.
-pub(crate) fn committed_family(contact_start: f64) -> Option<String> {
+pub(crate) fn committed_family(data: &DataPaths, contact_start: f64) -> Option<String> {
     let name = if contact_start == 0.0 {
         "disk".to_string()
     } else {
         format!("annulus-{contact_start}")
     };
-    mesh_directory()
+    data.meshes
         .join(format!("{name}-L0.msh"))
         .exists()
         .then_some(name)
@@ -406,16 +404,16 @@ pub(crate) fn free_edges_parameters(
     ]
 }
 
-/// Provide the mesh of `request` (committed file, cache, or gmsh); `why` names the scene for the
-/// error when gmsh is needed and missing.
-pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
+/// Provide the mesh of `request` from `data` (committed file, cache, or gmsh); `why` names the
+/// scene for the error when gmsh is needed and missing.
+pub fn provide(data: &DataPaths, request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
     match request {
         MeshRequest::Committed { family, level } => {
-            if std::env::var_os("RINGCONTACT_MESHES").is_none() {
+            let path = data.meshes.join(format!("{family}-L{level}.msh"));
+            if !path.is_file() && data.meshes == data.root.join("meshes") {
                 // A missing data directory is named as such, not as a missing mesh.
-                find_project_root()?;
+                data.check()?;
             }
-            let path = mesh_directory().join(format!("{family}-L{level}.msh"));
             Ok(ProvidedMesh {
                 path,
                 origin: MeshOrigin::Committed,
@@ -442,7 +440,7 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
                 *target,
             );
             let parameters = adapted_parameters(start, level, edge, uncertainty, target);
-            let mut provided = generate(&parameters, why)?;
+            let mut provided = generate(data, &parameters, why)?;
             provided.corner_refinement =
                 adapted_corner_refinement(start, level, edge, uncertainty, target);
             Ok(provided)
@@ -453,6 +451,7 @@ pub fn provide(request: &MeshRequest, why: &str) -> Result<ProvidedMesh> {
             target,
             ring_scale,
         } => generate(
+            data,
             &free_edges_parameters(*level, *edges, *target, *ring_scale),
             why,
         ),
@@ -581,15 +580,14 @@ pub fn format_parameters(parameters: &[(String, f64)]) -> String {
         .join(",")
 }
 
-/// Mesh `meshes/half_space.geo` with `parameters`, through the cache.
-pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
-    let root = project_root();
-    let geo = mesh_directory().join("half_space.geo");
+/// Mesh `meshes/half_space.geo` of `data` with `parameters`, through its cache.
+pub fn generate(data: &DataPaths, parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh> {
+    let geo = data.meshes.join("half_space.geo");
     let geo_bytes = std::fs::read(&geo).map_err(|e| Error::InvalidMesh {
         path: geo.display().to_string(),
         message: format!("cannot read the geometry file: {e}"),
     })?;
-    let gmsh = Gmsh::get(&root, why)?;
+    let gmsh = Gmsh::get(data, why)?;
     let mut hasher = Sha256::new();
     hasher.update(&geo_bytes);
     for (name, value) in parameters {
@@ -597,7 +595,7 @@ pub fn generate(parameters: &[(String, f64)], why: &str) -> Result<ProvidedMesh>
     }
     hasher.update(format!("gmsh {}", gmsh.version).as_bytes());
     let key = hex(&hasher.finalize());
-    let dir = cache_directory();
+    let dir = data.cache.clone();
     let path = dir.join(format!("{}.msh", &key[..24]));
     if path.exists() && !ends_with_a_section_end(&path) {
         // Cut short after gmsh made it (files enter the cache whole, renamed from a partial
@@ -668,8 +666,9 @@ mod tests {
     fn a_mesh_file_cut_short_is_told_from_a_whole_one() {
         let dir = std::env::temp_dir().join(format!("ringcontact-tail-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
-        let whole = std::fs::read(mesh_directory().join("annulus-0.5-L0.msh")).unwrap();
-        let binary = std::fs::read(mesh_directory().join("small-domain-R5-binary.msh")).unwrap();
+        let meshes = DataPaths::default().meshes;
+        let whole = std::fs::read(meshes.join("annulus-0.5-L0.msh")).unwrap();
+        let binary = std::fs::read(meshes.join("small-domain-R5-binary.msh")).unwrap();
         let cases: [(&str, &[u8], bool); 5] = [
             ("whole.msh", &whole, true),
             ("binary.msh", &binary, true),

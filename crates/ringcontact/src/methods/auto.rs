@@ -4,6 +4,8 @@ use std::path::PathBuf;
 
 use super::{Fem, Method, Reference, RingBem, Solver};
 use crate::error::{Error, Result};
+use crate::heartbeat::Progress;
+use crate::mesh::files::DataPaths;
 use crate::scene::Scene;
 use crate::solution::Solution;
 use crate::sparse::Backend;
@@ -17,6 +19,10 @@ pub struct Auto {
     pub linear_solver: Option<Backend>,
     /// The FEM's trace, if it is chosen.
     pub trace: bool,
+    /// Where the FEM's meshes and gmsh are, if it is chosen ([`Fem::data`]).
+    pub data: Option<DataPaths>,
+    /// How often the FEM, if chosen, reports on standard error.
+    pub progress: Progress,
 }
 
 impl Solver for Auto {
@@ -37,6 +43,8 @@ impl Auto {
                 vtu: self.vtu.clone(),
                 linear_solver: self.linear_solver,
                 trace: self.trace,
+                data: self.data.clone(),
+                progress: self.progress,
                 ..Fem::default()
             })),
             _ if self.vtu.is_some() => Err(Error::Unsupported {

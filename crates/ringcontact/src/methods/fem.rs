@@ -8,6 +8,8 @@ use super::Solver;
 use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
+use crate::heartbeat::Progress;
+use crate::mesh::files::DataPaths;
 use crate::mesh::triangulation::Degree;
 use crate::scene::{Load, Scene};
 use crate::solution::{FemProvenance, Solution};
@@ -28,6 +30,10 @@ pub struct Fem {
     pub linear_solver: Option<Backend>,
     /// One line per model on standard error ([`FemOptions::trace`]).
     pub trace: bool,
+    /// Where the meshes and gmsh are (default: the checkout found from the current directory).
+    pub data: Option<DataPaths>,
+    /// How often a long ladder reports on standard error.
+    pub progress: Progress,
 }
 
 impl Solver for Fem {
@@ -61,6 +67,7 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
         }
     };
     let tolerance = scene.tolerance.unwrap_or(fem_solver::DEFAULT_TOLERANCE);
+    let data = options.data.clone().unwrap_or_default();
     let fem_options = FemOptions {
         linear_solver: options.linear_solver.unwrap_or_default(),
         trace: options.trace,
@@ -68,12 +75,14 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
         degree: options.degree.unwrap_or(if options.mesh.is_some() {
             Degree::Quadratic
         } else {
-            fem_solver::default_degree(tolerance)
+            fem_solver::default_degree(&data, tolerance)
         }),
         tolerance,
         mesh: options.mesh.clone(),
         poisson_ratio: scene.material.poisson_ratio.unwrap_or(0.0),
         far_field: options.far_field.unwrap_or(FarField::Boussinesq),
+        data,
+        progress: options.progress,
     };
     let state = fem_solver::solve(kind.clone(), scene.punch.inner_ratio(), load, &fem_options)?;
     let outer_radius = state.outer_edge.map_or(a, |c| c * a);

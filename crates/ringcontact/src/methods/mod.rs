@@ -128,6 +128,8 @@ impl Method {
                 vtu: options.vtu.clone(),
                 linear_solver: options.linear_solver,
                 trace: options.trace,
+                data: options.data.clone(),
+                progress: options.progress,
             }),
             Method::GridBem => Box::new(GridBem {
                 cells: options.grid.unwrap_or(DEFAULT_GRID),
@@ -138,6 +140,8 @@ impl Method {
                 vtu: options.vtu.clone(),
                 linear_solver: options.linear_solver,
                 trace: options.trace,
+                data: options.data.clone(),
+                progress: options.progress,
             }),
         })
     }
@@ -172,6 +176,11 @@ pub struct MethodOptions {
     /// FEM (and `auto` where it picks the FEM): one line per model on standard error
     /// (`RINGCONTACT_TRACE=1`).
     pub trace: bool,
+    /// FEM (and `auto`): where the meshes and gmsh are (`--data-dir`; default: the checkout
+    /// found from the current directory). Every method takes it.
+    pub data: Option<crate::mesh::files::DataPaths>,
+    /// FEM (and `auto`): how often a long ladder reports on standard error.
+    pub progress: crate::heartbeat::Progress,
 }
 
 impl MethodOptions {

@@ -44,8 +44,9 @@ pub enum Backend {
     /// `faer`'s public sparse Cholesky ([`faer_llt`]), in one thread.
     Faer,
     /// This crate's supernodal factorisation on `faer`'s symbolic layout, split over two cores
-    /// where the model admits a separator ([`native`]).
-    Native,
+    /// where the model admits a separator and has at least `split_min_dofs` unknowns
+    /// ([`native`]; [`SPLIT_MIN_DOFS`] by default).
+    Native { split_min_dofs: usize },
 }
 
 impl Default for Backend {
@@ -63,13 +64,24 @@ impl Backend {
     pub fn name(self) -> &'static str {
         match self {
             Backend::Faer => "faer",
-            Backend::Native => "native",
+            Backend::Native { .. } => "native",
+        }
+    }
+
+    /// Fewest unknowns for which a model's factorisation is split over two cores; `None` for a
+    /// backend that never splits.
+    pub fn split_min_dofs(self) -> Option<usize> {
+        match self {
+            Backend::Faer => None,
+            Backend::Native { split_min_dofs } => Some(split_min_dofs),
         }
     }
 
     /// The backend a model gets unless its options name another: 1.3-2.2x faster than
     /// [`Backend::Faer`] on the FEM's targets (docs/decisions.md, `benches/records/linear-solver.md`).
-    pub const BUILT_IN: Backend = Backend::Native;
+    pub const BUILT_IN: Backend = Backend::Native {
+        split_min_dofs: SPLIT_MIN_DOFS,
+    };
 }
 
 impl FromStr for Backend {
@@ -78,7 +90,7 @@ impl FromStr for Backend {
     fn from_str(s: &str) -> std::result::Result<Self, String> {
         match s {
             "faer" => Ok(Backend::Faer),
-            "native" => Ok(Backend::Native),
+            "native" => Ok(Backend::BUILT_IN),
             other => Err(format!(
                 "unknown linear solver '{other}': use one of {}",
                 Backend::NAMES.join(", ")
@@ -122,7 +134,7 @@ enum FactorKind {
 /// there): returns both results.
 ///
 /// The native backend splits the model in two parts by `ordering`'s separator when it has at
-/// least [`split_min_dofs`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] and no
+/// least [`Backend::split_min_dofs`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] and no
 /// entry of `K` couples the parts; otherwise it factorises the whole matrix.
 pub fn analyse_beside<R: Send>(
     pattern: Pattern<'_>,
@@ -148,7 +160,7 @@ pub fn analyse_beside<R: Send>(
             .map(AnalysisKind::NativeWhole)
     };
     let split = ordering.split.as_ref().filter(|split| {
-        dofs >= split_min_dofs()
+        backend.split_min_dofs().is_some_and(|least| dofs >= least)
             && 2 * split.count(Side::Separator) + dofs % 2 <= SPLIT_MAX_SEPARATOR_DOFS
     });
     let Some(split) = split else {
@@ -180,7 +192,7 @@ pub fn analyse(
 pub fn analyse_bare(pattern: Pattern<'_>, backend: Backend) -> Result<Analysis> {
     let shape = (pattern.n(), pattern.nnz());
     let kind = match backend {
-        Backend::Native => AnalysisKind::NativeWhole(SymbolicFactor::of_pattern(
+        Backend::Native { .. } => AnalysisKind::NativeWhole(SymbolicFactor::of_pattern(
             pattern.col_offsets,
             pattern.row_indices,
         )?),
@@ -193,14 +205,6 @@ impl Analysis {
     /// Whether this analysis is of a pattern of `n` rows and `nnz` entries.
     pub fn fits(&self, n: usize, nnz: usize) -> bool {
         self.shape == (n, nnz)
-    }
-
-    /// The backend that made it.
-    pub fn backend(&self) -> Backend {
-        match self.kind {
-            AnalysisKind::Faer(_) => Backend::Faer,
-            AnalysisKind::NativeWhole(_) | AnalysisKind::NativeSplit(_) => Backend::Native,
-        }
     }
 
     /// One phrase for traces: the backend, whole or split (the parts' and the separator's
@@ -423,15 +427,6 @@ pub struct NodeOrdering {
 /// Fewest unknowns for which a model's factorisation is split over two cores: below it the
 /// split gains nothing (docs/decisions.md, "Where the constants come from").
 pub const SPLIT_MIN_DOFS: usize = 3_000;
-
-/// [`SPLIT_MIN_DOFS`], or the environment's `RINGCONTACT_SPLIT_MIN_DOFS` (to compare the split
-/// factorisation with the whole one on the same model).
-pub fn split_min_dofs() -> usize {
-    std::env::var("RINGCONTACT_SPLIT_MIN_DOFS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(SPLIT_MIN_DOFS)
-}
 
 /// Most separator unknowns a split may have (its Schur complement is dense).
 pub const SPLIT_MAX_SEPARATOR_DOFS: usize = 2_000;

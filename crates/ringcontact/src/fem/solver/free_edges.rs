@@ -164,7 +164,7 @@ fn solve_level(
     progress.set(format!(
         "level {level}: making its mesh (gmsh, or the cache)"
     ));
-    let provided = provider::provide(request, &why)?;
+    let provided = provider::provide(&options.data, request, &why)?;
     let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
     model.spec.frame = frame;
     progress.set(format!(
@@ -229,8 +229,8 @@ pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Res
     if matches!(load, FemLoad::Flat) {
         return Err(fem_error(format!("the {kind} is not a flat punch")));
     }
-    provider::find_project_root()?;
-    let progress = Heartbeat::start("fem");
+    options.data.check()?;
+    let progress = Heartbeat::start("fem", options.progress);
     let mut frame = initial_frame(&kind, load);
     for _ in 0..=MAX_LINE_WIDENINGS {
         match climb(kind.clone(), load, options, frame, start, &progress)? {
@@ -261,7 +261,7 @@ pub(super) fn solve_on_level(
     if matches!(load, FemLoad::Flat) {
         return Err(fem_error(format!("the {kind} is not a flat punch")));
     }
-    provider::find_project_root()?;
+    options.data.check()?;
     let frame = initial_frame(&kind, load);
     let tolerance = options.tolerance;
     let edges = edges.unwrap_or_else(|| rigid_edges(&kind, load));
@@ -275,7 +275,7 @@ pub(super) fn solve_on_level(
         ring_scale: provider::ring_width_scale(edges[1].0 - edges[0].0),
     };
     let why = format!("the FEM convergence study of the {kind}");
-    let provided = provider::provide(&request, &why)?;
+    let provided = provider::provide(&options.data, &request, &why)?;
     let mut model = prepare_checked(&provided, options, 0.0, tolerance)?;
     model.spec.frame = frame;
     let (s, gamma1, gamma2) = solve_model(
