@@ -219,3 +219,57 @@ fn the_library_depends_on_no_program_crate() {
         );
     }
 }
+
+/// The harness's studies reach the methods through their public interface (`methods::Solver`,
+/// `Method::ladder` for convergence levels); the files listed here still name the BEM's or the
+/// FEM's own modules (the JKR analysis takes the ring BEM's solver, the stability and speed
+/// studies drive single models), and the list may only shrink.
+#[test]
+fn harness_files_naming_bem_or_fem_modules_do_not_grow() {
+    let root = common::program_root();
+    let still_naming = [
+        "cli/args.rs",
+        "cli/jkr.rs",
+        "cli/plan.rs",
+        "cli/studies.rs",
+        "harness/dataset/adhesive.rs",
+        "harness/dataset/functions.rs",
+        "harness/dataset/mod.rs",
+        "harness/records/fenicsx.rs",
+        "harness/records/peers.rs",
+        "harness/report/document.rs",
+        "harness/report_jobs.rs",
+        "harness/studies/claims.rs",
+        "harness/studies/comparison.rs",
+        "harness/studies/figures.rs",
+        "harness/studies/mod.rs",
+        "harness/studies/speed_accuracy.rs",
+        "harness/studies/stability.rs",
+        "harness/studies/sweeps.rs",
+    ];
+    let mut naming = Vec::new();
+    for file in common::rust_sources(&root) {
+        let code = code_of(&file);
+        if code.contains("ringcontact::bem") || code.contains("ringcontact::fem") {
+            let relative = file
+                .strip_prefix(&root)
+                .unwrap()
+                .to_string_lossy()
+                .replace('\\', "/");
+            naming.push(relative);
+        }
+    }
+    let new: Vec<&String> = naming
+        .iter()
+        .filter(|f| !still_naming.contains(&f.as_str()))
+        .collect();
+    assert!(
+        new.is_empty(),
+        "{new:?} name the BEM's or the FEM's modules: ask the methods (methods::Solver, \
+         Method::ladder) instead"
+    );
+    assert!(
+        naming.iter().any(|f| f == "harness/studies/stability.rs"),
+        "the scanner found none of the listed files: {naming:?}"
+    );
+}

@@ -15,17 +15,11 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use ringcontact::bem::grid::GridLoad;
-use ringcontact::bem::grid_contact;
-use ringcontact::bem::ring::{ContactRegion, RingSystem};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
-use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
-use ringcontact::mesh::provider;
-use ringcontact::mesh::triangulation::Degree;
+pub use ringcontact::methods::ladder::StudyCase;
+use ringcontact::methods::ladder::{self, Ladder, LocatedEdges, Rung};
 use ringcontact::methods::Method;
 use ringcontact::numerics::richardson::observed_order;
-use ringcontact::numerics::tanh_sinh::TanhSinhRule;
 use ringcontact::punch::PunchKind;
 
 use crate::harness::report::svg;
@@ -72,7 +66,7 @@ pub struct Study {
     #[serde(default)]
     pub stopped: Option<String>,
     /// FEM: the unresolved error component of its finest model
-    /// ([`fem_solver::UNRESOLVED_COMPONENT`]), which refinement does not reduce and a GCI from
+    /// ([`Ladder::error_floor`]), which refinement does not reduce and a GCI from
     /// level differences cannot see.
     pub error_floor: Option<f64>,
 }
@@ -86,95 +80,14 @@ fn richardson(f1: f64, f2: f64, f3: f64, r21: f64, r32: f64) -> Option<(f64, f64
     Some((extrapolate, gci12, gci23 / (r21.powf(p) * gci12)))
 }
 
-/// What to study.
-#[derive(Clone, Debug)]
-pub struct StudyCase {
-    pub punch: PunchKind,
-    /// `b/a` of the flat annulus.
-    pub eps: f64,
-    /// `d/h` of a concave punch.
-    pub depth: f64,
-}
-
-/// Finest adapted mesh level a FEM convergence study runs with quadratic elements (about 1.7 M
-/// unknowns).
-const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
-/// Finest adapted level with cubic elements (level 3: about 0.6 M unknowns, force error near
-/// 2e-9).
-const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
-
-/// The FEM study's meshes and degree: with gmsh, the adapted family from its coarsest level
-/// (`g = 0.89`) with cubic elements (errors from about 5e-4 down to a few 1e-9 in six
-/// levels); without, the committed levels with quadratic elements.
-fn fem_study_ladder(case: &StudyCase) -> (Vec<provider::MeshRequest>, Degree) {
-    if fem_solver::gmsh_found(&crate::harness::settings::data_paths()) {
-        let start = fem_solver::contact_start(&case.punch, case.eps);
-        let ladder = (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
-            .map(|level| provider::MeshRequest::Adapted {
-                contact_start: start,
-                level,
-                free_edge: None,
-                edge_uncertainty: 0.0,
-                target: None,
-            })
-            .collect();
-        return (ladder, Degree::Cubic);
-    }
-    let ladder = fem_solver::mesh_sequence(
-        &crate::harness::settings::data_paths(),
-        case.punch.clone(),
-        case.eps,
-        1e-3,
-    )
-    .into_iter()
-    .filter(|r| match r {
-        provider::MeshRequest::Adapted { level, .. } => *level <= STUDY_MAX_ADAPTED_LEVEL as i32,
-        _ => true,
-    })
-    .collect();
-    (ladder, Degree::Quadratic)
-}
-
-/// The FEM study's mesh levels for a punch with two free edges (a free band): the free-edges
-/// family from its coarsest level to [`STUDY_MAX_ADAPTED_LEVEL`], quadratic elements (gmsh
-/// needed: the contact line is scaled to the load).
-fn free_edges_study_levels() -> Vec<i32> {
-    (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_ADAPTED_LEVEL as i32).collect()
+/// The ladder `method` climbs, with this program's settings (backend, trace, data, progress).
+fn ladder_of(method: Method) -> Result<Box<dyn Ladder>> {
+    method.ladder(&crate::harness::settings::method_options())
 }
 
 /// Refuse a study whose finest level cannot be run, before running the coarser ones.
 pub(crate) fn check_levels(case: &StudyCase, method: Method, levels: usize) -> Result<()> {
-    if method == Method::GridBem && (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
-        return Err(Error::OutOfRange {
-            method: "grid-bem".into(),
-            reason: format!(
-                "{levels} levels would end at a {0} x {0} grid; at most {1} levels (64 .. {2})",
-                64usize << (levels - 1),
-                (grid_contact::MAX_GRID / 64).trailing_zeros() + 1,
-                grid_contact::MAX_GRID
-            ),
-        });
-    }
-    if method == Method::Fem {
-        // Levels past adapted level 5 (P2, about 1.7 M unknowns) or 3 (P3, 0.6 M) take more
-        // than minutes and tens of GB; the study stops there.
-        let available = if case.punch.has_rim() {
-            fem_study_ladder(case).0.len()
-        } else {
-            free_edges_study_levels().len()
-        };
-        if levels > available {
-            return Err(Error::OutOfRange {
-                method: "fem".into(),
-                reason: format!(
-                    "the FEM study has {available} mesh levels here (up to adapted level \
-                     {STUDY_MAX_ADAPTED_LEVEL} with P2, about 1.7 M unknowns, or \
-                     {STUDY_MAX_CUBIC_LEVEL} with P3, 0.6 M); asked for {levels}"
-                ),
-            });
-        }
-    }
-    Ok(())
+    ladder_of(method)?.check_levels(case, levels)
 }
 
 /// Run a study of `levels` refinements with `method`; `progress` is called after each level. A
@@ -186,7 +99,8 @@ pub fn run(
     levels: usize,
     mut progress: impl FnMut(&Level),
 ) -> Result<Study> {
-    check_levels(&case, method, levels)?;
+    let ladder = ladder_of(method)?;
+    ladder.check_levels(&case, levels)?;
     let yardstick = yardstick(&case)?;
     let mut out: Vec<Level> = Vec::new();
     let mut located = LocatedEdges::default();
@@ -201,7 +115,7 @@ pub fn run(
                 k + 1
             );
         }
-        let computed = match compute_level(&case, method, k, located, yardstick) {
+        let computed = match compute_level(&case, ladder.as_ref(), k, located, yardstick) {
             Ok(computed) => computed,
             Err(e) if k > 0 => {
                 stopped = Some(format!("level {} of {levels} failed: {e}", k + 1));
@@ -209,7 +123,7 @@ pub fn run(
             }
             Err(e) => return Err(e),
         };
-        located = LocatedEdges::of(&computed);
+        located = located_by(&computed);
         out.push(computed.level);
         set_observed_orders(&mut out);
         progress(&out[out.len() - 1]);
@@ -221,16 +135,9 @@ pub fn run(
 }
 
 /// The ring BEM's value the study measures against (tolerance 1e-11): `γ2` at the depth of a
-/// concave punch, `γ` of a flat one.
+/// concave punch, `γ` of a flat one ([`ladder::reference_value`]).
 pub(crate) fn yardstick(case: &StudyCase) -> Result<f64> {
-    let ring = RingBemSolver::new();
-    Ok(if case.punch.is_concave() {
-        ring.concave_at_depth(&case.punch, case.depth, 1e-11)?
-            .gamma2
-            .unwrap_or(f64::NAN)
-    } else {
-        ring.flat(case.eps, 1e-11)?.gamma.unwrap_or(f64::NAN)
-    })
+    ladder::reference_value(case)
 }
 
 /// One level of a study and, for the FEM on a concave punch, the free edge `b/a` it located (the
@@ -248,7 +155,8 @@ pub struct ComputedLevel {
 /// first solves the coarser levels for the free edge each refines around (as [`run`] does),
 /// so the level is the same as in one process.
 pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result<ComputedLevel> {
-    check_levels(&case, method, levels)?;
+    let ladder = ladder_of(method)?;
+    ladder.check_levels(&case, levels)?;
     if k >= levels {
         return Err(Error::OutOfRange {
             method: method.name().into(),
@@ -257,12 +165,13 @@ pub fn level(case: StudyCase, method: Method, k: usize, levels: usize) -> Result
     }
     let yardstick = yardstick(&case)?;
     let mut located = LocatedEdges::default();
-    if method == Method::Fem && case.punch.is_concave() {
+    if ladder.refines_around_located_edges(&case) {
         for coarser in 0..k {
-            located = LocatedEdges::of(&compute_level(&case, method, coarser, located, yardstick)?);
+            let coarser = compute_level(&case, ladder.as_ref(), coarser, located, yardstick)?;
+            located = located_by(&coarser);
         }
     }
-    compute_level(&case, method, k, located, yardstick)
+    compute_level(&case, ladder.as_ref(), k, located, yardstick)
 }
 
 /// Level `k` of a study when level `k - 1` located the free edge `previous_edge` (the FEM on a
@@ -275,73 +184,41 @@ pub(crate) fn level_after(
     levels: usize,
     previous_edge: Option<f64>,
 ) -> Result<ComputedLevel> {
-    check_levels(&case, method, levels)?;
+    let ladder = ladder_of(method)?;
+    ladder.check_levels(&case, levels)?;
     let located = LocatedEdges {
         inner: previous_edge,
         outer: None,
     };
-    compute_level(&case, method, k, located, yardstick(&case)?)
+    compute_level(&case, ladder.as_ref(), k, located, yardstick(&case)?)
 }
 
-/// One level's solve: its label, size `h`, unknowns and value, and (FEM, concave punches) the
-/// free edge found.
-struct Sized {
-    label: String,
-    size: f64,
-    unknowns: usize,
-    value: f64,
-    free_edge: Option<f64>,
-    outer_edge: Option<f64>,
-}
-
-/// The free edges a FEM level located (`b/a`, and a free band's `c/a`), around which the next
-/// level is refined; none before the first level and for the other methods.
-#[derive(Clone, Copy, Debug, Default)]
-struct LocatedEdges {
-    inner: Option<f64>,
-    outer: Option<f64>,
-}
-
-impl LocatedEdges {
-    fn of(level: &ComputedLevel) -> Self {
-        Self {
-            inner: level.free_edge,
-            outer: level.outer_free_edge,
-        }
+/// The edges a computed level located, around which the next one is refined.
+fn located_by(level: &ComputedLevel) -> LocatedEdges {
+    LocatedEdges {
+        inner: level.free_edge,
+        outer: level.outer_free_edge,
     }
 }
 
-/// Level `k` of a study, the FEM refining around the edges the level below `located`
-/// (concave punches and free bands).
+/// Level `k` of a study on `ladder`, refined around the edges the level below `located`
+/// (the FEM on concave punches and free bands).
 fn compute_level(
     case: &StudyCase,
-    method: Method,
+    ladder: &dyn Ladder,
     k: usize,
     located: LocatedEdges,
     yardstick: f64,
 ) -> Result<ComputedLevel> {
     let start = Instant::now();
-    let solved = match method {
-        Method::GridBem => grid_bem_level(case, k)?,
-        Method::Fem if !case.punch.has_rim() => free_edges_fem_level(case, k, located)?,
-        Method::Fem => fem_level(case, k, located.inner)?,
-        Method::RingBem => ring_bem_level(case, k)?,
-        Method::Reference | Method::Auto => {
-            return Err(Error::Unsupported {
-                method: method.name().into(),
-                reason: "convergence studies refine one method: choose ring-bem, fem or grid-bem"
-                    .into(),
-            })
-        }
-    };
-    let Sized {
+    let Rung {
         label,
         size,
         unknowns,
         value,
         free_edge,
         outer_edge,
-    } = solved;
+    } = ladder.level(case, k, located)?;
     let level = Level {
         label,
         size,
@@ -355,151 +232,6 @@ fn compute_level(
         level,
         free_edge,
         outer_free_edge: outer_edge,
-    })
-}
-
-/// The grid BEM on `(64 · 2^k)²` cells, on the square `[-a, a]²` (a free band: one square for
-/// every level, [`grid_contact::band_square`] from a 32² solve).
-fn grid_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
-    let concave = case.punch.is_concave();
-    let n = 64usize << k;
-    let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
-    let (s, half_size) = if case.punch.has_rim() {
-        (
-            grid_contact::solve(case.punch.clone(), case.eps, n, load, 1e-10)?,
-            1.0,
-        )
-    } else {
-        let half_size = grid_contact::band_square(&case.punch, 32, load, 1e-10)?;
-        let s = grid_contact::solve_band_on_square(&case.punch, n, half_size, load, 1e-10)?;
-        (s, half_size)
-    };
-    let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-    Ok(Sized {
-        label: format!("{n}x{n}"),
-        size: 2.0 * half_size / n as f64,
-        unknowns: n * n,
-        value,
-        free_edge: None,
-        outer_edge: None,
-    })
-}
-
-/// The FEM options of a study's levels: elements of `degree`, `ν = 0`, Boussinesq's far
-/// field, the solve's own tolerance 1e-3 (each level is one model, its estimate unused).
-fn study_options(degree: Degree) -> FemOptions {
-    FemOptions {
-        linear_solver: crate::harness::settings::linear_solver(),
-        trace: crate::harness::settings::trace(),
-        data: crate::harness::settings::data_paths(),
-        progress: crate::harness::progress::fem_progress(),
-        degree,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
-    }
-}
-
-/// The FEM on level `k` of its study ladder, refined around `previous_edge` (concave punches).
-fn fem_level(case: &StudyCase, k: usize, previous_edge: Option<f64>) -> Result<Sized> {
-    let concave = case.punch.is_concave();
-    let (sequence, degree) = fem_study_ladder(case);
-    let Some(request) = sequence.get(k).cloned() else {
-        return Err(Error::OutOfRange {
-            method: "fem".into(),
-            reason: format!("the FEM has {} mesh levels", sequence.len()),
-        });
-    };
-    // Concave punches: refine around the free edge of the previous level's solve.
-    let request = request.with_free_edge(previous_edge, 0.0);
-    let label = request.label();
-    let provided = provider::provide(
-        &crate::harness::settings::data_paths(),
-        &request,
-        "the FEM convergence study",
-    )?;
-    let load = if concave {
-        FemLoad::ConcaveDepth(case.depth)
-    } else {
-        FemLoad::Flat
-    };
-    let options = study_options(degree);
-    let s = fem_solver::solve_on_mesh(case.punch.clone(), case.eps, load, &provided, &options)?;
-    let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
-    Ok(Sized {
-        label: format!("{label} P{}", degree as u8),
-        size: 1.0 / (s.dofs as f64).sqrt(),
-        unknowns: s.dofs,
-        value,
-        free_edge: concave.then_some(s.eps),
-        outer_edge: None,
-    })
-}
-
-/// The FEM on level `k` of the free-edges family (a free band, quadratic elements): the first
-/// level refined where the rigid profile meets the surface, each further one around both edges
-/// the level below located.
-fn free_edges_fem_level(case: &StudyCase, k: usize, located: LocatedEdges) -> Result<Sized> {
-    let levels = free_edges_study_levels();
-    let Some(&level) = levels.get(k) else {
-        return Err(Error::OutOfRange {
-            method: "fem".into(),
-            reason: format!(
-                "the FEM has {} mesh levels for the {}",
-                levels.len(),
-                case.punch
-            ),
-        });
-    };
-    let edges = match (located.inner, located.outer) {
-        (Some(inner), Some(outer)) => Some([(inner, 0.0), (outer, 0.0)]),
-        _ => None,
-    };
-    let options = study_options(Degree::Quadratic);
-    let load = FemLoad::ConcaveDepth(case.depth);
-    let s =
-        fem_solver::solve_free_edges_on_level(case.punch.clone(), load, level, edges, &options)?;
-    Ok(Sized {
-        label: format!("free-edges-L{level} P2"),
-        size: 1.0 / (s.dofs as f64).sqrt(),
-        unknowns: s.dofs,
-        value: s.gamma2.unwrap_or(f64::NAN),
-        free_edge: Some(s.eps),
-        outer_edge: s.outer_edge,
-    })
-}
-
-/// The ring BEM with `6 + 2k` nodes (flat punches).
-fn ring_bem_level(case: &StudyCase, k: usize) -> Result<Sized> {
-    let concave = case.punch.is_concave();
-    let n = 6 + 2 * k;
-    let rule = TanhSinhRule::new(1.0 / 16.0);
-    let region = if case.eps > 0.0 {
-        ContactRegion::Annulus { eps: case.eps }
-    } else {
-        ContactRegion::Disk
-    };
-    if concave {
-        return Err(Error::Unsupported {
-            method: "ring-bem".into(),
-            reason: "convergence studies of the ring BEM cover the flat punches (its concave states are certified by the node ladder)".into(),
-        });
-    }
-    let system = RingSystem::assemble(region, n, &rule);
-    let field = system
-        .solve(&vec![1.0; n])
-        .ok_or_else(|| Error::NoConvergence {
-            method: "ring-bem".into(),
-            reason: "singular system".into(),
-        })?;
-    Ok(Sized {
-        label: format!("N = {n}"),
-        size: 1.0 / n as f64,
-        unknowns: n,
-        value: 0.5 * field.force,
-        free_edge: None,
-        outer_edge: None,
     })
 }
 
@@ -533,7 +265,8 @@ pub fn assemble(case: &StudyCase, method: Method, yardstick: f64, levels: Vec<Le
         Some((Some(p1), Some(p2))) => Some(p1 / p2),
         _ => None,
     };
-    let expected = expected_order(case, method);
+    let ladder = ladder_of(method).ok();
+    let expected = ladder.as_ref().and_then(|l| l.expected_order(case));
     let (richardson, bar) = if m >= 3 {
         let (f1, f2, f3) = (out[m - 1].value, out[m - 2].value, out[m - 3].value);
         let (r21, r32) = (
@@ -548,7 +281,7 @@ pub fn assemble(case: &StudyCase, method: Method, yardstick: f64, levels: Vec<Le
     } else {
         (None, None)
     };
-    let error_floor = (method == Method::Fem).then_some(fem_solver::UNRESOLVED_COMPONENT);
+    let error_floor = ladder.and_then(|l| l.error_floor());
     let gci = bar
         .as_ref()
         .map(|b| b.value.max(error_floor.unwrap_or(0.0)));
@@ -574,19 +307,6 @@ pub fn assemble(case: &StudyCase, method: Method, yardstick: f64, levels: Vec<Le
         asymptotic_ratio: ratio,
         stopped: None,
         error_floor,
-    }
-}
-
-/// The order at which a method's value converges under refinement, where one is known: the
-/// grid BEM's piecewise-constant pressure 1 (observed nearer 0.7 with the staircase edge), the
-/// FEM's force, a functional of the solution, `2p` for elements of degree `p` on meshes graded
-/// toward the singular edges. The ring BEM converges faster than any power (none).
-fn expected_order(case: &StudyCase, method: Method) -> Option<f64> {
-    match method {
-        Method::GridBem => Some(1.0),
-        Method::Fem if !case.punch.has_rim() => Some(2.0 * Degree::Quadratic as u8 as f64),
-        Method::Fem => Some(2.0 * fem_study_ladder(case).1 as u8 as f64),
-        _ => None,
     }
 }
 

@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::ladder::{Ladder, LocatedEdges, Rung, StudyCase};
 use super::units::base;
 use super::Solver;
 use crate::bem::grid::GridLoad;
@@ -35,6 +36,55 @@ impl Default for GridBem {
             extent: None,
             with_estimate: true,
         }
+    }
+}
+
+/// The grid BEM's ladder: `(64 · 2^k)²` cells on the square `[-a, a]²` (a free band: one
+/// square for every level, [`grid_contact::band_square`] from a 32² solve); first order in the
+/// cell size.
+impl Ladder for GridBem {
+    fn check_levels(&self, _case: &StudyCase, levels: usize) -> Result<()> {
+        if (64usize << (levels.max(1) - 1)) > grid_contact::MAX_GRID {
+            return Err(Error::OutOfRange {
+                method: "grid-bem".into(),
+                reason: format!(
+                    "{levels} levels would end at a {0} x {0} grid; at most {1} levels (64 .. {2})",
+                    64usize << (levels - 1),
+                    (grid_contact::MAX_GRID / 64).trailing_zeros() + 1,
+                    grid_contact::MAX_GRID
+                ),
+            });
+        }
+        Ok(())
+    }
+
+    fn level(&self, case: &StudyCase, k: usize, _located: LocatedEdges) -> Result<Rung> {
+        let concave = case.punch.is_concave();
+        let n = 64usize << k;
+        let load = GridLoad::Depth(if concave { case.depth } else { 1.0 });
+        let (s, half_size) = if case.punch.has_rim() {
+            (
+                grid_contact::solve(case.punch.clone(), case.eps, n, load, 1e-10)?,
+                1.0,
+            )
+        } else {
+            let half_size = grid_contact::band_square(&case.punch, 32, load, 1e-10)?;
+            let s = grid_contact::solve_band_on_square(&case.punch, n, half_size, load, 1e-10)?;
+            (s, half_size)
+        };
+        let value = s.gamma.or(s.gamma2).unwrap_or(f64::NAN);
+        Ok(Rung {
+            label: format!("{n}x{n}"),
+            size: 2.0 * half_size / n as f64,
+            unknowns: n * n,
+            value,
+            free_edge: None,
+            outer_edge: None,
+        })
+    }
+
+    fn expected_order(&self, _case: &StudyCase) -> Option<f64> {
+        Some(1.0)
     }
 }
 

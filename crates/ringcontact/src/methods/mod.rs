@@ -22,6 +22,7 @@ use crate::solution::Solution;
 mod auto;
 mod fem;
 mod grid_bem;
+pub mod ladder;
 mod reference;
 mod ring_bem;
 mod units;
@@ -144,6 +145,28 @@ impl Method {
                 progress: options.progress,
             }),
         })
+    }
+
+    /// This method's refinement ladder ([`ladder::Ladder`]) for convergence studies, with the
+    /// FEM's backend, trace, data and progress from `options`; an error for a method that does
+    /// not refine (`reference`, `auto`).
+    pub fn ladder(self, options: &MethodOptions) -> Result<Box<dyn ladder::Ladder>> {
+        match self {
+            Method::RingBem => Ok(Box::new(RingBem::new())),
+            Method::GridBem => Ok(Box::new(GridBem::default())),
+            Method::Fem => Ok(Box::new(Fem {
+                linear_solver: options.linear_solver,
+                trace: options.trace,
+                data: options.data.clone(),
+                progress: options.progress,
+                ..Fem::default()
+            })),
+            Method::Reference | Method::Auto => Err(Error::Unsupported {
+                method: self.name().into(),
+                reason: "convergence studies refine one method: choose ring-bem, fem or grid-bem"
+                    .into(),
+            }),
+        }
     }
 }
 

@@ -3,10 +3,13 @@
 
 use std::time::Instant;
 
+use super::ladder::{Ladder, LocatedEdges, Rung, StudyCase};
 use super::units::base;
 use super::Solver;
+use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::{self, RingBemSolver, RingState};
-use crate::error::Result;
+use crate::error::{Error, Result};
+use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::scene::{Load, Scene};
 use crate::solution::{PressureSample, Solution};
 
@@ -31,6 +34,47 @@ impl Solver for RingBem {
 
     fn compute(&self, scene: &Scene) -> Result<Solution> {
         solve_ring_bem(scene, &self.solver)
+    }
+}
+
+/// The ring BEM's ladder: `6 + 2k` nodes on a flat punch's contact (its concave states are
+/// certified by their own node ladder).
+impl Ladder for RingBem {
+    fn check_levels(&self, _case: &StudyCase, _levels: usize) -> Result<()> {
+        Ok(())
+    }
+
+    fn level(&self, case: &StudyCase, k: usize, _located: LocatedEdges) -> Result<Rung> {
+        let n = 6 + 2 * k;
+        let rule = TanhSinhRule::new(1.0 / 16.0);
+        let region = if case.eps > 0.0 {
+            ContactRegion::Annulus { eps: case.eps }
+        } else {
+            ContactRegion::Disk
+        };
+        if case.punch.is_concave() {
+            return Err(Error::Unsupported {
+                method: "ring-bem".into(),
+                reason: "convergence studies of the ring BEM cover the flat punches (its concave \
+                         states are certified by the node ladder)"
+                    .into(),
+            });
+        }
+        let system = RingSystem::assemble(region, n, &rule);
+        let field = system
+            .solve(&vec![1.0; n])
+            .ok_or_else(|| Error::NoConvergence {
+                method: "ring-bem".into(),
+                reason: "singular system".into(),
+            })?;
+        Ok(Rung {
+            label: format!("N = {n}"),
+            size: 1.0 / n as f64,
+            unknowns: n,
+            value: 0.5 * field.force,
+            free_edge: None,
+            outer_edge: None,
+        })
     }
 }
 
