@@ -7,13 +7,13 @@ use clap::{Args, Parser, Subcommand};
 
 use super::choice;
 use crate::harness::report::document;
-use ringcontact::methods::Method;
+use ringcontact::methods::{GridBem, Method};
 use ringcontact::punch::PunchName;
 use ringcontact::scene::DEFAULT_TOLERANCE;
 
 /// The cells per side `--grid` takes: the grid BEM's own range.
-const GRID_RANGE: std::ops::RangeInclusive<u64> = (ringcontact::bem::grid_contact::MIN_GRID as u64)
-    ..=(ringcontact::bem::grid_contact::MAX_GRID as u64);
+const GRID_RANGE: std::ops::RangeInclusive<u64> =
+    (GridBem::MIN_CELLS as u64)..=(GridBem::MAX_CELLS as u64);
 
 /// Cross-verification harness for rigid punches with ring-shaped contact on an elastic
 /// half-space (flat annular, conical concave, spherical concave; flat circular as a check).

@@ -21,7 +21,7 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
     if !(args.tol.is_finite() && args.tol > 0.0 && args.tol < 1.0) {
         return Err(format!("--tol {}: need 0 < tol < 1", args.tol));
     }
-    let floor = ringcontact::fem::MIN_TOLERANCE;
+    let floor = ringcontact::methods::Fem::MIN_TOLERANCE;
     if let Some(t) = args
         .fem_tolerances
         .iter()

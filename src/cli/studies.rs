@@ -26,7 +26,7 @@ use ringcontact::reference;
 /// `verify compare`: the ring BEM against the references, the FEM against the ring BEM, the
 /// stored FEniCSx and peer results, and the report directory (unless `--no-report`).
 pub fn compare(args: CompareArgs) -> Result<Reply, String> {
-    let floor = ringcontact::fem::MIN_TOLERANCE;
+    let floor = ringcontact::methods::Fem::MIN_TOLERANCE;
     if let Some(t) = args
         .fem_tolerances
         .iter()

@@ -809,7 +809,7 @@ pub fn headline(
     // An operator comparison whose generated mesh could not be found or made is not run: for
     // want of gmsh, or (with gmsh) because its record names no parameters or gmsh failed.
     let operators_absent = operators.len() - operators_compared;
-    let gmsh = ringcontact::fem::gmsh_found(&crate::harness::settings::data_paths());
+    let gmsh = ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths());
     let need_gmsh = fenicsx.len() - fenicsx_compared
         + comparison.fem_not_run
         + if gmsh { 0 } else { operators_absent };

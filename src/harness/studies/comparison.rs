@@ -198,11 +198,12 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(torus_free_edge_checks(&solver, tolerance)?);
     identities.extend(table_punch_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
-    let fem_not_run = if ringcontact::fem::gmsh_found(&crate::harness::settings::data_paths()) {
-        0
-    } else {
-        TORUS_FEM_DEPTHS.len()
-    };
+    let fem_not_run =
+        if ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths()) {
+            0
+        } else {
+            TORUS_FEM_DEPTHS.len()
+        };
     Ok(ComparisonReport {
         tolerance,
         rows,
@@ -240,7 +241,9 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     // The torus's meshes are made for the scene (gmsh): without it these are not run (counted).
     let torus = TORUS_FEM_DEPTHS
         .iter()
-        .filter(|_| ringcontact::fem::gmsh_found(&crate::harness::settings::data_paths()))
+        .filter(|_| {
+            ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths())
+        })
         .map(|&d| (PunchKind::TORUS, 0.0, FemLoad::ConcaveDepth(d)));
     for (kind, eps, load) in cases.into_iter().chain(table).chain(torus) {
         let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;

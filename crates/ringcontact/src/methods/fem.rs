@@ -46,6 +46,9 @@ const STUDY_MAX_ADAPTED_LEVEL: usize = 5;
 const STUDY_MAX_CUBIC_LEVEL: i32 = 3;
 
 impl Fem {
+    /// The smallest tolerance the FEM takes ([`fem_solver::MIN_TOLERANCE`]).
+    pub const MIN_TOLERANCE: f64 = fem_solver::MIN_TOLERANCE;
+
     /// The options of a study's levels: this FEM's backend, trace, data and progress, elements
     /// of `degree`, `ν = 0`, Boussinesq's far field, the solve's own tolerance 1e-3 (each level
     /// is one model, its estimate unused).

@@ -29,6 +29,13 @@ pub struct GridBem {
     pub with_estimate: bool,
 }
 
+impl GridBem {
+    /// The fewest cells per side the grid BEM takes.
+    pub const MIN_CELLS: usize = grid_contact::MIN_GRID;
+    /// The most cells per side the grid BEM takes.
+    pub const MAX_CELLS: usize = grid_contact::MAX_GRID;
+}
+
 impl Default for GridBem {
     fn default() -> Self {
         GridBem {
