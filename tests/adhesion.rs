@@ -309,3 +309,59 @@ fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() 
     }
     assert!(power(2.5).may_meet_hole_floor());
 }
+
+/// `adhesion::jkr` picks the analysis by the punch's contact: a small-holed annulus lets go as
+/// Kendall's flat punch (`d_c = -d0`, `F_c = -F0`, Kendall 1971); the torus's narrow band as the
+/// plane-strain JKR cylinder it tends to (within 1e-3 at `d0/h = 1e-3`, as
+/// `tests/torus_jkr.rs` checks against the closed form); and a
+/// value of the other family, or a missing one, is an error naming it.
+#[test]
+fn one_entry_routes_every_punch_and_names_a_missing_value() {
+    let solver = RingBemSolver::new();
+    let flat = PunchKind::FLAT_ANNULUS;
+    match adhesion::jkr(&solver, &flat, Some(0.01), None).unwrap() {
+        adhesion::Jkr::FlatAnnulus(r) => {
+            assert!((r.dc_outer + 1.0).abs() < 1e-6 && (r.fc_outer + 1.0).abs() < 1e-6)
+        }
+        other => panic!("the flat annulus routed to {other:?}"),
+    }
+    match adhesion::jkr(&solver, &PunchKind::TORUS, None, Some(1e-3)).unwrap() {
+        adhesion::Jkr::Band(r) => {
+            let asymptote = r
+                .plane_strain_fixed_load
+                .expect("the narrow band's asymptote");
+            let force = r.fixed_load.expect("a fixed-load pull-off").force;
+            assert!(
+                (force / asymptote - 1.0).abs() < 1e-3,
+                "{force} vs {asymptote}"
+            );
+        }
+        other => panic!("the torus routed to {other:?}"),
+    }
+    assert!(matches!(
+        adhesion::jkr(&solver, &PunchKind::CONE, None, Some(0.5)).unwrap(),
+        adhesion::Jkr::Concave(_)
+    ));
+    for (kind, eps, d0h, named) in [
+        (PunchKind::CONE, None, None, "`d0h` is needed"),
+        (
+            PunchKind::CONE,
+            Some(0.5),
+            Some(1.0),
+            "`eps` fixes the flat annulus's hole",
+        ),
+        (flat.clone(), None, None, "`eps` is needed"),
+        (
+            flat.clone(),
+            Some(0.5),
+            Some(1.0),
+            "`d0h` is a concave punch's",
+        ),
+        (PunchKind::FLAT, None, Some(1.0), "Kendall's"),
+    ] {
+        let message = adhesion::jkr(&solver, &kind, eps, d0h)
+            .unwrap_err()
+            .to_string();
+        assert!(message.contains(named), "{kind}: {message}");
+    }
+}

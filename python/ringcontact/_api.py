@@ -111,13 +111,6 @@ def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, 
     Depths in ``d0``, forces in ``F0 = sqrt(8 pi a^3 E* dw)``, negative when tensile.
     Returns a dict.
     """
-    words = ["jkr", "--punch", str(punch), "--json"]
-    words += _flag("exponent", exponent)
-    words += _flag("profile", None if profile is None else os.fspath(profile))
-    words += _flag("eps", eps) + _flag("d0h", d0h)
-    if sweep:
-        words.append("--sweep")
-    words += _flag("out", None if out is None else os.fspath(out))
     call = _call(
         "jkr",
         punch=punch,
@@ -128,6 +121,21 @@ def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, 
         sweep=sweep,
         out=out,
     )
+    if not sweep:
+        text = _native.jkr(
+            str(punch),
+            call,
+            exponent=None if exponent is None else float(exponent),
+            profile=None if profile is None else os.fspath(profile),
+            eps=None if eps is None else float(eps),
+            d0h=None if d0h is None else float(d0h),
+        )
+        return json.loads(text)
+    words = ["jkr", "--punch", str(punch), "--json", "--sweep"]
+    words += _flag("exponent", exponent)
+    words += _flag("profile", None if profile is None else os.fspath(profile))
+    words += _flag("eps", eps) + _flag("d0h", d0h)
+    words += _flag("out", None if out is None else os.fspath(out))
     return _json_command(words, call)
 
 

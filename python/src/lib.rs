@@ -8,7 +8,11 @@ use pyo3::create_exception;
 use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
+use ringcontact::adhesion;
+use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::finite_guard;
 use ringcontact::provenance;
+use ringcontact::punch::PunchName;
 use ringcontact_verify::cli::calls::{self, SolveOptions};
 
 create_exception!(
@@ -42,6 +46,45 @@ fn solve_scenes(
     py.detach(|| {
         provenance::called_as(&call, || {
             calls::solve_keyword_scenes(&scenes, &method, &options, base.as_deref())
+        })
+    })
+    .map_err(RingContactError::new_err)
+}
+
+/// The JKR solution of the punch named `punch` (with its `exponent` or `profile`) at `b/a = eps`
+/// (the flat annulus) or at the work of adhesion `d0/h = d0h` (the others), from the library's
+/// [`adhesion::jkr`]: the JSON of `verify jkr --json`. `call` names the Python call.
+#[pyfunction]
+#[pyo3(signature = (punch, call, exponent=None, profile=None, eps=None, d0h=None))]
+fn jkr(
+    py: Python<'_>,
+    punch: String,
+    call: String,
+    exponent: Option<f64>,
+    profile: Option<std::path::PathBuf>,
+    eps: Option<f64>,
+    d0h: Option<f64>,
+) -> PyResult<String> {
+    py.detach(|| {
+        provenance::called_as(&call, || {
+            let name = PunchName::parse(&punch).ok_or_else(|| {
+                format!(
+                    "unknown punch {punch:?} (one of {})",
+                    PunchName::names(None, ", ")
+                )
+            })?;
+            let kind = name
+                .with_parameters(exponent, profile.as_deref())
+                .map_err(|e| e.to_string())?;
+            let solution =
+                adhesion::jkr(&RingBemSolver::new(), &kind, eps, d0h).map_err(|e| e.to_string())?;
+            finite_guard::check_finite(&solution).map_err(|field| {
+                format!(
+                    "{call} produced a non-finite result ({field}): the input is beyond the \
+                     range where the numbers are representable"
+                )
+            })?;
+            serde_json::to_string(&solution).map_err(|e| e.to_string())
         })
     })
     .map_err(RingContactError::new_err)
@@ -103,6 +146,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("RingContactError", m.py().get_type::<RingContactError>())?;
     m.add_function(wrap_pyfunction!(solve_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(command, m)?)?;
+    m.add_function(wrap_pyfunction!(jkr, m)?)?;
     m.add_function(wrap_pyfunction!(grade_text, m)?)?;
     m.add_function(wrap_pyfunction!(build, m)?)?;
     m.add_function(wrap_pyfunction!(scene_keywords, m)?)?;

@@ -44,10 +44,18 @@ def test_jkr_of_a_table_punch_tends_to_the_sphere_it_samples():
         rc.jkr("table", d0h=0.5)
 
 
-def test_jkr_errors_are_the_tools_messages():
-    with pytest.raises(rc.RingContactError, match="need --d0h"):
+def test_jkr_errors_name_the_keyword():
+    # The library's own messages, in the keywords a Python call gives (not the command line's
+    # flags).
+    with pytest.raises(rc.RingContactError, match="`d0h` is needed: the cone's work of adhesion"):
         rc.jkr("cone")
-    with pytest.raises(rc.RingContactError, match="invalid value 'blob'"):
+    with pytest.raises(rc.RingContactError, match=r'unknown punch "blob" \(one of flat, '):
         rc.jkr("blob", d0h=1)
     with pytest.raises(rc.RingContactError, match="0 < b/a < 1"):
         rc.jkr("flat-annulus", eps=0.0)
+    with pytest.raises(rc.RingContactError, match="`eps` fixes the flat annulus's hole"):
+        rc.jkr("sphere", eps=0.5, d0h=1)
+    with pytest.raises(rc.RingContactError, match="`d0h` is a concave punch's work of adhesion"):
+        rc.jkr("flat-annulus", eps=0.5, d0h=1)
+    with pytest.raises(rc.RingContactError, match="Kendall's"):
+        rc.jkr("flat", d0h=1)

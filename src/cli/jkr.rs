@@ -5,58 +5,76 @@ use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr};
+use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr, Jkr};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::punch::{Contact, PunchKind};
 
-/// `verify jkr`: one flat annulus (`--eps`), one concave punch (`--d0h`), or a sweep (`--sweep`).
+/// `verify jkr`: one flat annulus (`--eps`), one concave punch or free band (`--d0h`), or a
+/// sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
     let solver = RingBemSolver::new();
-    let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
-    let text = match punch.contact() {
-        Contact::FixedAnnulus if args.sweep => sweep_output(
-            &sweeps::flat_annulus_sweep(&solver, &out).map_err(message)?,
-            args.json,
-        )?,
+    if args.sweep {
+        return sweep(&args, &punch, &solver);
+    }
+    let name = punch.name();
+    let what = match punch.contact() {
+        Contact::Disk => return Err(KENDALL.into()),
         Contact::FixedAnnulus => {
             let eps = args
                 .eps
                 .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
-            let r = adhesion::flat_annulus(&solver, eps).map_err(message)?;
-            refuse_non_finite(&format!("jkr flat-annulus --eps {eps}"), &r)?;
-            if args.json {
-                to_json(&r)?
-            } else {
-                flat_annulus_text(&r)
-            }
-        }
-        Contact::FreeBand => return band(&args, &punch),
-        Contact::RimAndFreeInner if args.sweep => {
-            let mut bar = Progress::new("sweep", 25);
-            let sweep = sweeps::pulloff_sweep(&solver, punch.clone(), &out, |s| bar.tick(s))
-                .map_err(message)?;
-            sweep_output(&sweep, args.json)?
+            format!("jkr flat-annulus --eps {eps}")
         }
         Contact::RimAndFreeInner => {
-            let concave = punch.clone();
             let s = args
                 .d0h
                 .ok_or("the concave punches need --d0h D0_OVER_H (or --sweep)")?;
-            let r = adhesion::concave(&solver, concave.clone(), s).map_err(message)?;
-            refuse_non_finite(&format!("jkr {concave} --d0h {s:e}"), &r)?;
-            if args.json {
-                to_json(&r)?
-            } else {
-                concave_text(&r)
-            }
+            format!("jkr {punch} --d0h {s:e}")
         }
-        Contact::Disk => {
-            return Err(
-                "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)".into(),
-            )
+        Contact::FreeBand => {
+            let s = args.d0h.ok_or(format!(
+                "the {name} needs --d0h D0_OVER_H (h = a²/(2 rho), the gap at the axis)"
+            ))?;
+            format!("jkr {name} --d0h {s:e}")
         }
+    };
+    let r = adhesion::jkr(&solver, &punch, args.eps, args.d0h).map_err(message)?;
+    refuse_non_finite(&what, &r)?;
+    Ok(Reply::ok(match (&r, args.json) {
+        (_, true) => to_json(&r)?,
+        (Jkr::FlatAnnulus(r), false) => flat_annulus_text(r),
+        (Jkr::Concave(r), false) => concave_text(r),
+        (Jkr::Band(r), false) => band_text(r),
+    }))
+}
+
+/// What `verify jkr` says of the flat circular punch.
+const KENDALL: &str = "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)";
+
+/// `verify jkr --sweep`: the flat annulus over `b/a`, a concave punch over `d0/h`.
+fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Reply, String> {
+    let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
+    let text = match punch.contact() {
+        Contact::FixedAnnulus => sweep_output(
+            &sweeps::flat_annulus_sweep(solver, &out).map_err(message)?,
+            args.json,
+        )?,
+        Contact::RimAndFreeInner => {
+            let mut bar = Progress::new("sweep", 25);
+            let sweep = sweeps::pulloff_sweep(solver, punch.clone(), &out, |s| bar.tick(s))
+                .map_err(message)?;
+            sweep_output(&sweep, args.json)?
+        }
+        Contact::FreeBand => {
+            return Err(format!(
+                "--sweep is built for the cone, the sphere and the power law; for the {} give \
+                 one --d0h D0_OVER_H at a time",
+                punch.name()
+            ))
+        }
+        Contact::Disk => return Err(KENDALL.into()),
     };
     Ok(Reply::ok(text))
 }
@@ -257,27 +275,6 @@ fn concave_notes(r: &ConcaveJkr) -> String {
             .map_or("-".to_string(), |v| format!("{v:.1e}"))
     );
     text
-}
-
-/// A free band (`--d0h S`): a Griffith condition at both edges of its band.
-fn band(args: &JkrArgs, punch: &PunchKind) -> Result<Reply, String> {
-    let name = punch.name();
-    if args.sweep {
-        return Err(format!(
-            "--sweep is built for the cone, the sphere and the power law; for the {name} \
-                 give one --d0h D0_OVER_H at a time"
-        ));
-    }
-    let s = args.d0h.ok_or(format!(
-        "the {name} needs --d0h D0_OVER_H (h = a²/(2 rho), the gap at the axis)"
-    ))?;
-    let r = adhesion::band_jkr(&RingBemSolver::new(), punch, s).map_err(message)?;
-    refuse_non_finite(&format!("jkr {name} --d0h {s:e}"), &r)?;
-    Ok(Reply::ok(if args.json {
-        to_json(&r)?
-    } else {
-        band_text(&r)
-    }))
 }
 
 /// A free band's pull-off under fixed load and fixed grips, and the plane-strain asymptote.

@@ -31,8 +31,10 @@ use crate::bem::ring_contact::{
 use crate::error::{Error, Result};
 use crate::reference::asymptotic::collins_series;
 
+mod any_punch;
 mod concave;
 mod free_band;
+pub use any_punch::{jkr, Jkr};
 pub use concave::{
     branch_point, branch_tolerance, concave, full_contact_constants, paper_fit_route, BranchPoint,
     ConcaveBranch, ConcaveJkr, Critical, EpsForce, FloorContact, FullContactBranch, D0H_RANGE,

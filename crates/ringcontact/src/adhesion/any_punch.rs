@@ -1,0 +1,81 @@
+//! The JKR solution of any punch at one state, chosen by how its contact is bounded: the flat
+//! annulus at its `b/a`, a punch with a rim and a free inner edge or a free band at its work of
+//! adhesion `d0/h`.
+
+use serde::Serialize;
+
+use super::{band_jkr, concave, flat_annulus, BandJkr, ConcaveJkr, FlatAnnulusJkr};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::punch::{Contact, PunchKind};
+
+/// One punch's JKR solution (serialised as the solution it holds).
+#[derive(Clone, Debug, Serialize)]
+#[serde(untagged)]
+pub enum Jkr {
+    /// A fixed annulus: the critical states at either edge.
+    FlatAnnulus(FlatAnnulusJkr),
+    /// A rim and a free inner edge: pull-off under fixed load, fixed grips, from full contact.
+    Concave(Box<ConcaveJkr>),
+    /// Two free edges: pull-off under fixed load and fixed grips.
+    Band(BandJkr),
+}
+
+/// The JKR solution of `kind`: at `b/a = eps` for a fixed annulus, at the work of adhesion
+/// `d0/h = d0h` (`d0 = sqrt(2π a Δw / E*)`) for a free inner edge or a free band; an error
+/// naming the value that is missing or belongs to the other family.
+pub fn jkr(
+    solver: &RingBemSolver,
+    kind: &PunchKind,
+    eps: Option<f64>,
+    d0h: Option<f64>,
+) -> Result<Jkr> {
+    let name = kind.name();
+    match kind.contact() {
+        Contact::Disk => Err(Error::invalid(
+            "punch",
+            "the flat circular punch is Kendall's: F_c = -F0, d_c = -d0 (give the flat \
+             annulus with its b/a)",
+        )),
+        Contact::FixedAnnulus => {
+            if d0h.is_some() {
+                return Err(Error::invalid(
+                    "d0h",
+                    format!(
+                        "is a concave punch's work of adhesion in units of h; the {name}'s \
+                         results are in units of d0 and F0 already"
+                    ),
+                ));
+            }
+            let eps = eps.ok_or_else(|| {
+                Error::invalid("eps", format!("is needed: the {name}'s b/a (0 < b/a < 1)"))
+            })?;
+            flat_annulus(solver, eps).map(Jkr::FlatAnnulus)
+        }
+        Contact::RimAndFreeInner | Contact::FreeBand => {
+            if eps.is_some() {
+                return Err(Error::invalid(
+                    "eps",
+                    format!(
+                        "fixes the flat annulus's hole; the {name}'s contact ratio is found, not \
+                         given (give d0h)"
+                    ),
+                ));
+            }
+            let s = d0h.ok_or_else(|| {
+                Error::invalid(
+                    "d0h",
+                    format!(
+                        "is needed: the {name}'s work of adhesion as d0/h, d0 = sqrt(2 pi a dw / \
+                         E*)"
+                    ),
+                )
+            })?;
+            if kind.contact() == Contact::FreeBand {
+                band_jkr(solver, kind, s).map(Jkr::Band)
+            } else {
+                concave(solver, kind.clone(), s).map(|r| Jkr::Concave(Box::new(r)))
+            }
+        }
+    }
+}
