@@ -96,7 +96,7 @@ def solve(punch=None, *, method="ring-bem", grid=None, grid_extent=None, degree=
 def references():
     """The analytic references and fits the tool knows, with the range of ``eps`` where each
     holds and its source (``verify references --json``): a list of dicts."""
-    return _json_command(["references", "--json"], _call("references"))
+    return json.loads(_native.references())
 
 
 def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, out=None):

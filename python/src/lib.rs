@@ -90,6 +90,14 @@ fn jkr(
     .map_err(RingContactError::new_err)
 }
 
+/// The analytic references and fits the library knows ([`ringcontact::reference::catalogue`]):
+/// the JSON of `verify references --json`.
+#[pyfunction]
+fn references() -> PyResult<String> {
+    serde_json::to_string(&ringcontact::reference::catalogue())
+        .map_err(|e| RingContactError::new_err(e.to_string()))
+}
+
 /// Run the `verify` subcommand `words` (e.g. `["jkr", "--punch", "cone", "--d0h", "1",
 /// "--json"]`); its standard output and whether its verdict passed. `call` names the Python call
 /// in the provenance of what it writes.
@@ -147,6 +155,7 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(solve_scenes, m)?)?;
     m.add_function(wrap_pyfunction!(command, m)?)?;
     m.add_function(wrap_pyfunction!(jkr, m)?)?;
+    m.add_function(wrap_pyfunction!(references, m)?)?;
     m.add_function(wrap_pyfunction!(grade_text, m)?)?;
     m.add_function(wrap_pyfunction!(build, m)?)?;
     m.add_function(wrap_pyfunction!(scene_keywords, m)?)?;

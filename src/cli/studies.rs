@@ -398,19 +398,7 @@ pub fn fit(args: JsonArgs) -> Result<Reply, String> {
 /// `verify references`: the analytic references and where each is valid.
 pub fn references(args: JsonArgs) -> Result<Reply, String> {
     if args.json {
-        let list: Vec<serde_json::Value> = reference::catalogue()
-            .iter()
-            .map(|r| {
-                serde_json::json!({
-                    "name": r.name,
-                    "quantity": r.quantity,
-                    "kind": r.kind,
-                    "eps_range": [r.eps_range.0, r.eps_range.1],
-                    "source": r.source,
-                })
-            })
-            .collect();
-        return Ok(Reply::ok(to_json(&list)?));
+        return Ok(Reply::ok(to_json(&reference::catalogue())?));
     }
     let mut t = Table::new(
         "Analytic references",

@@ -65,6 +65,21 @@ pub struct Reference {
     eval: fn(f64) -> ReferenceValue,
 }
 
+/// A reference as `verify references --json` lists it: its name, quantity, kind, range of `eps`
+/// as `[low, high]` and source (keys in alphabetical order).
+impl Serialize for Reference {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut fields = serializer.serialize_struct("Reference", 5)?;
+        fields.serialize_field("eps_range", &[self.eps_range.0, self.eps_range.1])?;
+        fields.serialize_field("kind", &self.kind)?;
+        fields.serialize_field("name", self.name)?;
+        fields.serialize_field("quantity", &self.quantity)?;
+        fields.serialize_field("source", self.source)?;
+        fields.end()
+    }
+}
+
 /// How much a reference can be trusted.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
