@@ -77,12 +77,10 @@ pub struct Solution {
     /// displacement field's, not by the mesh at the edge.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub edge_conditioning: Option<f64>,
-    /// Cells per side of the square grid (grid BEM only).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub grid: Option<usize>,
-    /// Grid BEM: half-size `L` of the grid's square `[-L, L]²`, in the scene's length unit.
-    #[serde(default, skip_serializing_if = "Option::is_none")]
-    pub grid_extent: Option<f64>,
+    /// The grid BEM's grid (grid BEM only), written as keys of the solution itself (`grid`,
+    /// `grid_extent`).
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub grid_bem: Option<GridBemPart>,
     /// Why this method was chosen (`--method auto`).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub selection: Option<String>,
@@ -90,6 +88,17 @@ pub struct Solution {
     pub pressure: Vec<PressureSample>,
     /// How the numbers were obtained, in one line.
     pub provenance: String,
+}
+
+/// The grid BEM's part of a [`Solution`]: its grid. Its keys are the solution's own in JSON.
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
+pub struct GridBemPart {
+    /// Cells per side of the square grid.
+    #[serde(rename = "grid")]
+    pub cells: usize,
+    /// Half-size `L` of the grid's square `[-L, L]²`, in the scene's length unit.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub grid_extent: Option<f64>,
 }
 
 /// The FEM's part of a [`Solution`]: the finest model's size, its mesh with where it came from,
@@ -367,8 +376,7 @@ mod tests {
             fem: None,
             complementarity_residual: None,
             edge_conditioning: None,
-            grid: None,
-            grid_extent: None,
+            grid_bem: None,
             selection: None,
             pressure: Vec::new(),
             provenance: String::new(),

@@ -11,7 +11,7 @@ use crate::bem::{grid_contact, grid_estimate};
 use crate::error::{Error, Result};
 use crate::punch::Contact;
 use crate::scene::{Load, Scene};
-use crate::solution::Solution;
+use crate::solution::{GridBemPart, Solution};
 
 /// Default cells per side of the grid BEM.
 pub const DEFAULT_GRID: usize = 256;
@@ -189,8 +189,10 @@ fn solve_grid_bem(
         unknowns: n * n,
         iterations: state.iterations,
         complementarity_residual: Some(state.residual),
-        grid: Some(n),
-        grid_extent: Some(state.square_half_size * a),
+        grid_bem: Some(GridBemPart {
+            cells: n,
+            grid_extent: Some(state.square_half_size * a),
+        }),
         error_estimate: estimate.and_then(Result::ok),
         provenance: format!(
             "square-grid FFT BEM (Love kernel, 2N zero padding, Polonsky-Keer CG), {n} x {n} cells on \
