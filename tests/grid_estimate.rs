@@ -1,8 +1,8 @@
-//! The grid BEM's error estimate on a single grid (`crates/ringcontact/src/bem/grid_estimate.rs`) bounds its actual
-//! error against the ring BEM at 1e-12 (the yardstick, independent: spectral collocation on
-//! rings, no grid), for each output: the `γ`s relative, the free edges absolute. A sample of the
-//! 192 states it was measured on, every punch, depth and force control, 64² and 128² cells, and
-//! the hardest: the sphere's small hole near full contact (`d = 2.95 h`) on 256² cells.
+//! The grid BEM's error estimate on a single grid (`bem/grid_estimate.rs` of the library) bounds
+//! its actual error against the ring BEM at 1e-12 (the yardstick, independent: spectral collocation
+//! on rings, no grid), for each output: the `γ`s relative, the free edges absolute. A sample of the
+//! 192 states it was measured on, every punch, depth and force control, 64² and 128² cells, and the
+//! hardest: the sphere's small hole near full contact (`d = 2.95 h`) on 256² cells.
 
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::scene::SceneSpec;

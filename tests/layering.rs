@@ -1,7 +1,7 @@
 //! The library's layout keeps its layers (docs/architecture.md): each top-level module of the
 //! library (`crates/ringcontact/src`) and of the program's crate (`src`: the harness, the
-//! command line) belongs to a layer, and no file imports a module of a higher layer; no files import each other,
-//! directly or around a circle; no folder holds more than twelve files; `unsafe` code and
+//! command line) belongs to a layer, and no file imports a module of a higher layer; no files
+//! import each other, directly or around a circle; no folder holds more than twelve files; `unsafe` code and
 //! `faer`'s internal supernodal layouts stay inside the native linear-algebra backend
 //! (`sparse/native/`; the one CPU prefetch hint in `numerics/prefetch.rs` aside). The library
 //! depends on no command-line crate (its manifest).
@@ -175,8 +175,8 @@ fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
 }
 
 /// The harness and the command line ask the methods for solutions (`methods::Method`) and the
-/// FEM only through the names `fem/mod.rs` exports for what only the FEM offers: never a module inside the FEM,
-/// the discretisation or the linear algebra's backends.
+/// FEM only through the names `fem/mod.rs` exports for what only the FEM offers: never a module
+/// inside the FEM, the discretisation or the linear algebra's backends.
 #[test]
 fn the_harness_reaches_the_fem_only_through_its_api() {
     let files = common::rust_sources(&common::program_root());

@@ -1,6 +1,6 @@
 //! `verify`: the command line of the cross-verification harness. It parses the arguments
-//! ([`ringcontact_verify::cli::args`]), hands them to [`ringcontact_verify::cli::dispatch`] and prints the
-//! reply; every subcommand's work lives in the library.
+//! ([`ringcontact_verify::cli::args`]), hands them to [`ringcontact_verify::cli::dispatch`] and
+//! prints the reply; every subcommand's work lives in the harness and the library.
 
 use std::process::ExitCode;
 

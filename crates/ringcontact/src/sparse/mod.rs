@@ -134,8 +134,9 @@ enum FactorKind {
 /// there): returns both results.
 ///
 /// The native backend splits the model in two parts by `ordering`'s separator when it has at
-/// least [`Backend::split_min_dofs`] unknowns, the separator at most [`SPLIT_MAX_SEPARATOR_DOFS`] and no
-/// entry of `K` couples the parts; otherwise it factorises the whole matrix.
+/// least [`Backend::split_min_dofs`] unknowns, the separator at most
+/// [`SPLIT_MAX_SEPARATOR_DOFS`] and no entry of `K` couples the parts; otherwise it factorises
+/// the whole matrix.
 pub fn analyse_beside<R: Send>(
     pattern: Pattern<'_>,
     ordering: &NodeOrdering,
