@@ -28,8 +28,19 @@ pub fn choose_data_directory(dir: PathBuf) {
 /// This program's data ([`DataPaths`]): the chosen directory, else `RINGCONTACT_DATA_DIR`, else
 /// the first directory upward from the current one holding `meshes/half_space.geo`; its parts
 /// moved by `RINGCONTACT_MESHES`, `RINGCONTACT_MESH_CACHE` and `RINGCONTACT_GMSH`. An error
-/// names a chosen directory that is not the project's data, or the absence of one.
+/// names a chosen directory that is not the project's data, or the absence of one. Looked up
+/// once per process; a failed lookup is tried again.
 pub fn find_data() -> Result<DataPaths> {
+    static FOUND: OnceLock<DataPaths> = OnceLock::new();
+    if let Some(data) = FOUND.get() {
+        return Ok(data.clone());
+    }
+    let data = locate_data()?;
+    Ok(FOUND.get_or_init(|| data).clone())
+}
+
+/// [`find_data`]'s lookup.
+fn locate_data() -> Result<DataPaths> {
     let chosen = DATA_DIRECTORY
         .get()
         .cloned()
@@ -109,13 +120,10 @@ fn with_split_threshold(backend: Backend) -> Backend {
 /// [`Backend::BUILT_IN`].
 pub fn linear_solver() -> Backend {
     *LINEAR_SOLVER.get_or_init(|| {
-        std::env::var(ENVIRONMENT_VARIABLE)
+        let named = std::env::var(ENVIRONMENT_VARIABLE)
             .ok()
-            .and_then(|name| name.parse().ok())
-            .map_or_else(
-                || with_split_threshold(Backend::default()),
-                with_split_threshold,
-            )
+            .and_then(|name| name.parse().ok());
+        with_split_threshold(named.unwrap_or_default())
     })
 }
 
