@@ -52,7 +52,7 @@ fn annuli(ratios: &[f64]) -> Vec<State> {
 
 /// A state's punch as its row names it (a table by its profile, not its path).
 fn name(kind: &PunchKind) -> String {
-    match kind.table() {
+    match kind.piecewise() {
         Some(_) => "table (sphere-21)".to_string(),
         None => kind.to_string(),
     }

@@ -96,7 +96,7 @@ fn time_inverse_state(
         String::new()
     };
     // A table's name carries its file's path: the row names its profile only.
-    let name = match kind.table() {
+    let name = match kind.piecewise() {
         Some(_) => "table (sphere-21)".to_string(),
         None => kind.to_string(),
     };

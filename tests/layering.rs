@@ -274,3 +274,77 @@ fn harness_files_naming_bem_or_fem_modules_do_not_grow() {
         "{cleared:?} no longer name the BEM's or the FEM's modules: take them off the list"
     );
 }
+
+/// How far a built-in punch spreads: the files of the library's and the program's sources that
+/// name it (in code or prose), against a ceiling that may only come down. A punch's target is
+/// four files: its own, the registry (`punch.rs`), the command line's flag list and one more;
+/// the torus meets it, the others are on their way (the studies take their states from
+/// `harness/cases.rs` and ask the profile for the rest).
+#[test]
+fn built_in_punch_names_spread_no_further() {
+    // Each name as runs of lower-case words (`PunchKind::FLAT` is `punchkind flat`).
+    let names: [(&str, &[&str], usize); 7] = [
+        (
+            "flat",
+            &["flat punch", "punchkind flat", "punchname flat"],
+            40,
+        ),
+        (
+            "flat-annulus",
+            &[
+                "flat annulus",
+                "flat annular",
+                "flatannulus",
+                "flat_annulus",
+            ],
+            48,
+        ),
+        ("cone", &["cone", "cones", "conical"], 45),
+        ("sphere", &["sphere", "spheres", "spherical"], 43),
+        (
+            "power",
+            &["power law", "punchname power", "punchkind power"],
+            28,
+        ),
+        ("torus", &["torus", "tori"], 4),
+        (
+            "table",
+            &["table punch", "punchname table", "tableprofile"],
+            16,
+        ),
+    ];
+    let mut files = common::rust_sources(&common::library_root());
+    files.extend(common::rust_sources(&common::program_root()));
+    let texts: Vec<(String, String)> = files
+        .iter()
+        .map(|file| {
+            let text = std::fs::read_to_string(file).unwrap().to_lowercase();
+            let words: Vec<&str> = text
+                .split(|c: char| !c.is_alphanumeric() && c != '_')
+                .filter(|w| !w.is_empty())
+                .collect();
+            (file.display().to_string(), format!(" {} ", words.join(" ")))
+        })
+        .collect();
+    let mut too_far = Vec::new();
+    for (punch, patterns, ceiling) in names {
+        let naming: Vec<&str> = texts
+            .iter()
+            .filter(|(_, words)| patterns.iter().any(|p| words.contains(&format!(" {p} "))))
+            .map(|(file, _)| file.as_str())
+            .collect();
+        println!("{punch}: {} files", naming.len());
+        if naming.len() > ceiling {
+            too_far.push(format!(
+                "{punch}: {} files, ceiling {ceiling}: {naming:#?}",
+                naming.len()
+            ));
+        }
+    }
+    assert!(
+        too_far.is_empty(),
+        "a built-in punch is named in more files than before (ask the profile, or take the \
+         state from harness/cases.rs):\n{}",
+        too_far.join("\n")
+    );
+}

@@ -441,3 +441,76 @@ fn a_convergence_study_of_a_table_is_bounded_by_its_bar() {
     assert!(!out.status.success());
     assert!(String::from_utf8_lossy(&out.stderr).contains("applies only to shape = table"));
 }
+
+/// The sphere's gap `1 - (r/a)²`, declared by a user as two pieces meeting at `r = a/2`: a
+/// profile of their own that is only piecewise smooth (as far as the solver knows).
+#[derive(Debug)]
+struct SphereInPieces;
+
+impl ringcontact::punch::Profile for SphereInPieces {
+    fn name(&self) -> &str {
+        "sphere-in-pieces"
+    }
+    fn contact(&self) -> ringcontact::punch::Contact {
+        ringcontact::punch::Contact::RimAndFreeInner
+    }
+    fn gap(&self, rho: f64) -> f64 {
+        1.0 - rho * rho
+    }
+    fn slope(&self, rho: f64) -> f64 {
+        -2.0 * rho
+    }
+    fn piecewise(&self) -> Option<&dyn ringcontact::punch::PiecewiseProfile> {
+        Some(self)
+    }
+}
+
+impl ringcontact::punch::PiecewiseProfile for SphereInPieces {
+    fn value(&self, rho: f64) -> f64 {
+        1.0 - rho * rho
+    }
+    fn increment(&self, rho: f64, offset: f64) -> f64 {
+        -(2.0 * rho + offset) * offset
+    }
+    fn slope(&self, rho: f64) -> f64 {
+        -2.0 * rho
+    }
+    fn curvature(&self, _rho: f64) -> f64 {
+        -2.0
+    }
+    fn break_points(&self) -> &[f64] {
+        &[0.0, 0.5, 1.0]
+    }
+    fn content_key(&self) -> &str {
+        "sphere-in-pieces"
+    }
+}
+
+/// A user's own profile that declares itself piecewise takes the piecewise route (the band
+/// through the flat band's fields, panel by panel between its break points) with no table and
+/// no registry; on the sphere's gap it finds the state the analytic collocation of the built-in
+/// sphere finds, within the two estimates (two routes through the ring BEM).
+#[test]
+fn a_users_own_piecewise_profile_takes_the_piecewise_route() {
+    let solver = RingBemSolver::new();
+    let own = PunchKind::new(SphereInPieces);
+    assert!(own.piecewise().is_some());
+    for depth in [0.5, 1.5] {
+        let pieces = solver.concave_at_depth(&own, depth, 1e-10).unwrap();
+        let sphere = solver
+            .concave_at_depth(&PunchKind::SPHERE, depth, 1e-12)
+            .unwrap();
+        let allowed = pieces.error_estimate + sphere.error_estimate + 1e-12;
+        let (g2, g2_sphere) = (pieces.gamma2.unwrap(), sphere.gamma2.unwrap());
+        println!(
+            "d/h {depth}: gamma2 {g2:.14} pieces, {g2_sphere:.14} sphere; b/a {:.14} {:.14}; \
+             estimates {:.1e} {:.1e}",
+            pieces.eps, sphere.eps, pieces.error_estimate, sphere.error_estimate
+        );
+        assert!(
+            (g2 / g2_sphere - 1.0).abs() <= allowed,
+            "gamma2 {g2} {g2_sphere}"
+        );
+        assert!((pieces.eps - sphere.eps).abs() <= allowed, "eps");
+    }
+}

@@ -113,23 +113,18 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
 
 /// The punch named on the command line, with the power law's `--exponent`, for the commands
 /// built on punches with a rim (`plan`, and `pulloff`, `convergence` and `jkr` but for their
-/// own free-band routes); the table is read by the commands that take `--profile`
+/// own free-band routes); a punch given by a file is read by the commands that take `--profile`
 /// ([`punch_kind_with_profile`]).
 pub(crate) fn punch_kind(
     name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
 ) -> Result<ringcontact::punch::PunchKind, String> {
-    if name == ringcontact::punch::PunchName::Table {
-        return Err(
-            "the table punch is solved by `verify solve --punch table --profile FILE`, its JKR \
-             solution by `verify jkr --punch table --profile FILE --d0h S`, its pull-off \
-             simulation by `verify pulloff --punch table --profile FILE --d0h S` and its \
-             convergence studies by `verify convergence --punch table --profile FILE`; plans of \
-             its convergence studies are not built"
-                .into(),
-        );
-    }
-    let kind = name.with_exponent(exponent).map_err(message)?;
+    let kind = name.with_exponent(exponent).map_err(|e| {
+        format!(
+            "{e}; the commands that take --profile read it (`verify solve`, `jkr`, `pulloff`, \
+             `convergence`); plans of its convergence studies are not built"
+        )
+    })?;
     if !kind.has_rim() {
         return Err(format!(
             "the {kind} (two free edges) is solved by `verify solve --punch {kind}` (ring BEM, \
@@ -141,17 +136,25 @@ pub(crate) fn punch_kind(
     Ok(kind)
 }
 
-/// The punch of `--punch`, `--exponent` and `--profile`: a table (or any punch given a profile,
-/// which then says why it takes none) from its file, the others as [`punch_kind`].
+/// The punch of `--punch`, `--exponent` and `--profile`: one given a profile from its file (or
+/// the shape's reason to take none), the others as [`punch_kind`].
 pub(crate) fn punch_kind_with_profile(
     name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
     profile: Option<&std::path::Path>,
 ) -> Result<ringcontact::punch::PunchKind, String> {
-    if name == ringcontact::punch::PunchName::Table || profile.is_some() {
-        name.with_parameters(exponent, profile).map_err(message)
-    } else {
-        punch_kind(name, exponent)
+    match profile {
+        Some(_) => name.with_parameters(exponent, profile).map_err(message),
+        None => name
+            .with_exponent(exponent)
+            .map_err(message)
+            .and_then(|kind| {
+                if kind.has_rim() {
+                    Ok(kind)
+                } else {
+                    punch_kind(name, exponent)
+                }
+            }),
     }
 }
 

@@ -3,6 +3,7 @@
 //! with ours ([`records`]), the report that shows them ([`report`]), and the report's work as
 //! independent jobs ([`report_jobs`], [`plan`]).
 
+pub mod cases;
 pub mod dataset;
 pub mod grade;
 pub mod plan;

@@ -15,6 +15,7 @@ use std::time::Instant;
 use ringcontact::choice::Choice;
 use serde::{Deserialize, Serialize};
 
+use crate::harness::cases;
 use crate::harness::records::adhesion_peers::{self, AdhesionPeerComparison};
 use crate::harness::records::fenicsx::{self, FenicsxComparison};
 use crate::harness::records::operator::{self, OperatorStatus};
@@ -251,7 +252,7 @@ impl Part {
             // d0/h), the report's table 2.7 s, a free band 3.7 s; the live simulation 9.5 s (one
             // core), the Tamaas cases 15 s.
             Part::Adhesion(p) if p.is_free_band() => 3.7,
-            Part::Adhesion(p) if p.tabulated().is_some() => 2.7,
+            Part::Adhesion(p) if p.piecewise().is_some() => 2.7,
             Part::Adhesion(_) => 1.2,
             Part::PulloffLive => 9.5,
             Part::AdhesionPeers => 15.0,
@@ -446,7 +447,7 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
     for method in [Method::GridBem, Method::Fem] {
         parts.extend(convergence_parts(REPORT_STUDY, method, REPORT_STUDY_LEVELS));
     }
-    for punch in crate::harness::studies::figures::report_profile_punches() {
+    for punch in cases::report_profile_punches() {
         parts.push(Part::Adhesion(punch));
     }
     parts.push(Part::PulloffLive);
@@ -914,24 +915,21 @@ impl<'a> JobId<'a> {
             .map_err(|_| self.bad(&format!("`{key}={v}` is not a count")))
     }
 
-    /// The punch the first positional field names; a table punch only as the report's own.
+    /// The punch the first positional field names (its label); a punch given by a file only as
+    /// the report's own.
     fn punch(&self) -> Result<PunchKind> {
         let name = self
             .positional(0)
             .ok_or_else(|| self.bad("needs a punch"))?;
-        let mut why = String::new();
-        if name.starts_with("table-") {
-            // A job names a table by its hash: the report's own table is the one it can be.
-            let report_table = crate::harness::studies::figures::report_table_punch();
-            if let Some(table) = report_table.filter(|t| t.label() == name) {
-                return Ok(table);
-            }
-            why = format!(
-                " (a job's table punch must be the report's, {})",
-                crate::harness::studies::figures::REPORT_TABLE_FILE
-            );
+        if let Some(own) = cases::report_table_punch().filter(|t| t.label() == name) {
+            return Ok(own);
         }
-        PunchKind::from_label(name).ok_or_else(|| self.bad(&format!("no punch `{name}`{why}")))
+        PunchKind::from_label(name).ok_or_else(|| {
+            self.bad(&format!(
+                "no punch `{name}` (a job's punch given by a file must be the report's, {})",
+                cases::REPORT_TABLE_FILE
+            ))
+        })
     }
 
     /// A speed-accuracy part: the problem's base points, or its FEM at `fem-tol`.

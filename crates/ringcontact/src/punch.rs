@@ -46,7 +46,7 @@ pub use cone::Cone;
 pub use flat::Flat;
 pub use flat_annulus::FlatAnnulus;
 pub use power::{Exponent, Power};
-pub use profile::{Contact, Profile, Summary};
+pub use profile::{Contact, PiecewiseProfile, Profile, Summary};
 pub use sphere::Sphere;
 pub use table::TableProfile;
 pub use torus::Torus;
@@ -270,11 +270,6 @@ impl PunchKind {
         self.exponent_parameter()
     }
 
-    /// The table punch's profile (`None` for the other shapes).
-    pub fn table(&self) -> Option<&TableProfile> {
-        self.tabulated()
-    }
-
     /// Dimensionless gap `g(r)/h` at `rho = r/a` ([`Profile::gap`]).
     pub fn gap_shape(&self, rho: f64) -> f64 {
         self.gap(rho)
@@ -299,6 +294,16 @@ impl PunchKind {
     /// Whether both contact edges are free (a band around the ring radius).
     pub fn is_free_band(&self) -> bool {
         self.contact() == Contact::FreeBand
+    }
+
+    /// The built-in punches whose contact is `contact` and that take no parameter (every
+    /// shape but the power law and the table), in the command line's order.
+    pub fn built_in(contact: Contact) -> Vec<PunchKind> {
+        PunchName::ALL
+            .into_iter()
+            .filter(|name| name.contact() == contact)
+            .filter_map(|name| name.with_parameters(None, None).ok())
+            .collect()
     }
 
     /// The built-in punch of a [`label`](Profile::label) (`cone`, `power-n2.5`), if it names
@@ -418,15 +423,19 @@ impl TryFrom<PunchRecord> for PunchKind {
             record.exponent,
             record.profile_file.as_deref().map(Path::new),
         )?;
-        if let (Some(table), Some(recorded)) = (kind.table(), &record.profile_sha256) {
-            if table.sha256() != recorded {
+        let now = kind.record();
+        if let (Some(file), Some(sha), Some(recorded)) = (
+            &now.profile_file,
+            &now.profile_sha256,
+            &record.profile_sha256,
+        ) {
+            if sha != recorded {
                 return Err(Error::invalid(
                     "profile_sha256",
                     format!(
                         "the profile `{}` has changed since the record was written (SHA-256 {} \
                          now, {recorded} recorded)",
-                        table.source(),
-                        table.sha256()
+                        file, sha
                     ),
                 ));
             }

@@ -2,14 +2,13 @@
 //!
 //! ```toml
 //! [punch]
-//! shape = "cone"            # flat | flat-annulus | cone | sphere | power | torus | table
-//! rim_radius = 1.0          # a, length unit of your choice (the torus's ring radius)
-//! hole_depth = 0.1          # h, concave punches (cone, sphere, power) only
-//! # exponent = 2.5          # n of the power law, gap h (1 - (r/a)^n); power only
-//! # tube_radius = 0.2       # rho of the torus, gap (r - a)²/(2 rho); torus only
-//! # profile = "tip.csv"     # (r/a, g/h) points of a measured profile; table only (path
-//! #                         # relative to the scene file)
-//! # inner_radius = 0.5      # b, flat-annulus only, 0 <= b < a
+//! shape = "cone"            # a built-in shape (`verify references` lists them)
+//! rim_radius = 1.0          # a, length unit of your choice (a ring's radius where it has no rim)
+//! hole_depth = 0.1          # h, the depth of a recessed shape's hole (its gap at the axis)
+//! # exponent = 2.5          # a shape's own parameter, where it takes one: exponent (n of a
+//! #                         # power law), tube_radius (rho of a ring's section), profile ((r/a,
+//! #                         # g/h) points, relative to the scene file), inner_radius (b of a
+//! #                         # fixed annulus, 0 <= b < a)
 //!
 //! [material]
 //! effective_modulus = 1.0   # E* = E/(1 - nu²); or give youngs_modulus and poisson_ratio
@@ -193,7 +192,8 @@ impl SceneSpec {
         self.accuracy.tolerance
     }
 
-    /// Set the table punch's profile file (read relative to the working directory).
+    /// Set the profile file of a punch given by points (read relative to the working
+    /// directory).
     pub fn profile(mut self, path: &std::path::Path) -> Self {
         self.punch.profile = Some(path.to_path_buf());
         self.profile_base = None;
@@ -213,8 +213,8 @@ impl SceneSpec {
         self.own_profile = None;
         self.punch.shape = kind.shape_name();
         self.punch.exponent = kind.exponent();
-        if let Some(table) = kind.table() {
-            self = self.profile(std::path::Path::new(table.source()));
+        if let Some(file) = kind.record().profile_file {
+            self = self.profile(std::path::Path::new(&file));
         }
         self
     }

@@ -191,14 +191,22 @@ pub fn concave(
     })
 }
 
-/// The torus: the pull-off under fixed load and fixed grips (Griffith condition at both free
+/// A free band: the pull-off under fixed load and fixed grips (Griffith condition at both free
 /// edges, [`adhesion::band_jkr`]) at each `d0/h` of `scales`, beside the plane-strain JKR
 /// cylinder's fixed-load pull-off (the narrow limit).
-pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) -> Result<Resource> {
+pub fn free_band(
+    solver: &RingBemSolver,
+    band: &PunchKind,
+    scales: &[f64],
+    progress: &dyn Fn(&str),
+) -> Result<Resource> {
+    let gap = band
+        .shape_name()
+        .map_or_else(|| band.describe(), |name| name.summary().gap.to_string());
     let mut fields = vec![Field::number(
         "d0_over_h",
         "1",
-        "work of adhesion as d0/h, d0 = sqrt(2 pi a dw / E*), h = a^2/(2 rho)",
+        &format!("work of adhesion as d0/h, d0 = sqrt(2 pi a dw / E*), h from the gap {gap}"),
     )];
     for (prefix, what) in [
         (
@@ -250,7 +258,11 @@ pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) ->
         "the plane-strain JKR cylinder's fixed-load pull-off over the length 2 pi a, F/F0: the \
          narrow limit d0/h -> 0 (an asymptote, no bound)",
     ));
-    let mut table = Table::new("torus JKR", fields.iter().map(Field::column).collect());
+    let label = band.label();
+    let mut table = Table::new(
+        &format!("{label} JKR"),
+        fields.iter().map(Field::column).collect(),
+    );
     let cells = |c: Option<&adhesion::BandCritical>| -> Vec<Cell> {
         match c {
             Some(c) => vec![
@@ -266,11 +278,11 @@ pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) ->
     };
     for (k, &s) in scales.iter().enumerate() {
         progress(&format!(
-            "torus JKR: {} of {} (d0/h = {s:.3e})",
+            "{label} JKR: {} of {} (d0/h = {s:.3e})",
             k + 1,
             scales.len()
         ));
-        let r = adhesion::band_jkr(solver, &PunchKind::TORUS, s)?;
+        let r = adhesion::band_jkr(solver, band, s)?;
         let mut row: Vec<Cell> = vec![s.into()];
         row.extend(cells(r.fixed_load.as_ref()));
         row.extend(cells(r.fixed_grips.as_ref()));
@@ -278,15 +290,18 @@ pub fn torus(solver: &RingBemSolver, scales: &[f64], progress: &dyn Fn(&str)) ->
         table.push(row);
     }
     Ok(Resource {
-        name: "jkr-torus".into(),
-        title: "Torus: JKR pull-off against d0/h (both edges free)".into(),
-        description: "JKR-adhesive parabolic torus of ring radius a and tube radius rho: the \
-                      band b <= r <= c with the Griffith condition at both edges, from the ring \
-                      BEM's equilibria; the pull-off under fixed load and under fixed grips, and \
-                      the plane-strain JKR cylinder's (the narrow limit). In units of \
-                      h = a^2/(2 rho) the torus is one family for every rho. \
-                      Units: F0 = sqrt(8 pi a^3 E* dw), d0 = sqrt(2 pi a dw / E*)."
-            .into(),
+        name: format!("jkr-{label}"),
+        title: format!(
+            "{}: JKR pull-off against d0/h (both edges free)",
+            capitalised(&label)
+        ),
+        description: format!(
+            "JKR-adhesive {label}, gap {gap}: the band b <= r <= c with the Griffith condition \
+             at both edges, from the ring BEM's equilibria; the pull-off under fixed load and \
+             under fixed grips, and the plane-strain JKR cylinder's (the narrow limit). In \
+             units of h the band is one family for every size of its section. \
+             Units: F0 = sqrt(8 pi a^3 E* dw), d0 = sqrt(2 pi a dw / E*)."
+        ),
         fields,
         table,
         interpolation_error: Vec::new(),
@@ -356,5 +371,13 @@ pub fn fits(solver: &RingBemSolver) -> Result<Resource> {
         fields,
         table,
         interpolation_error: Vec::new(),
+    })
+}
+
+/// `label` with its first letter upper case (a table's title).
+fn capitalised(label: &str) -> String {
+    let mut letters = label.chars();
+    letters.next().map_or_else(String::new, |first| {
+        first.to_uppercase().chain(letters).collect()
     })
 }

@@ -12,11 +12,11 @@ use std::path::{Path, PathBuf};
 
 use serde_json::{json, Value};
 
+use crate::harness::cases;
 use crate::harness::report::table::{Column, Format, Table};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
 use ringcontact::provenance::Provenance;
-use ringcontact::punch::{PunchKind, PunchName};
 
 /// One column of a table: its name, unit and meaning (a Frictionless table-schema field).
 #[derive(Clone, Debug)]
@@ -120,9 +120,9 @@ impl Size {
             .collect()
     }
 
-    /// The torus's `d0/h`, from 1e-3 to 1 evenly in the logarithm (its JKR analysis is checked
-    /// up to `d0/h = 1`; at 1e-3 it is within 3e-5 of the plane-strain cylinder).
-    fn torus_scales(self) -> Vec<f64> {
+    /// A free band's `d0/h`, from 1e-3 to 1 evenly in the logarithm (its JKR analysis is
+    /// checked up to `d0/h = 1`; at 1e-3 it is within 3e-5 of the plane-strain cylinder).
+    fn band_scales(self) -> Vec<f64> {
         self.adhesion_scales()
             .into_iter()
             .map(|s| format!("{:.11e}", s / 100.0).parse().unwrap_or(s / 100.0))
@@ -134,14 +134,7 @@ impl Size {
 pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
     let solver = RingBemSolver::new();
     let mut resources = Vec::new();
-    let power = PunchName::Power.with_exponent(Some(1.5))?;
-    for kind in [
-        PunchKind::FLAT_ANNULUS,
-        PunchKind::CONE,
-        PunchKind::SPHERE,
-        power.clone(),
-        PunchKind::TORUS,
-    ] {
+    for kind in cases::dataset_function_punches() {
         resources.push(functions::resource(
             &solver,
             kind,
@@ -154,7 +147,7 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
         &size.annulus_ratios(),
         progress,
     )?);
-    for kind in [PunchKind::CONE, PunchKind::SPHERE, power] {
+    for kind in cases::dataset_recessed_jkr_punches() {
         resources.push(adhesive::concave(
             &solver,
             kind,
@@ -162,7 +155,14 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
             progress,
         )?);
     }
-    resources.push(adhesive::torus(&solver, &size.torus_scales(), progress)?);
+    for band in cases::free_bands() {
+        resources.push(adhesive::free_band(
+            &solver,
+            &band,
+            &size.band_scales(),
+            progress,
+        )?);
+    }
     progress("fits");
     resources.push(adhesive::fits(&solver)?);
     Ok(resources)
@@ -221,12 +221,17 @@ pub fn write(
         "name": "ringcontact-reference-dataset",
         "title": "Converged reference values for rigid punches with ring-shaped contact",
         "description": format!(
-            "Frictionless normal contact of rigid axisymmetric punches (flat annular; conical, \
-             spherical and power-law concave; the parabolic torus) with an elastic half-space, \
-             without and with JKR adhesion, computed by the ring-element BEM of ringcontact. \
-             Dimensionless: a = h = E* = 1 (flat punches F = 2 E* d a gamma; concave punches \
-             and the torus, h = a²/(2 rho), d = h gamma1, F = 2 E* h a gamma2). \
+            "Frictionless normal contact of rigid axisymmetric punches ({}) with an elastic \
+             half-space, without and with JKR adhesion, computed by the ring-element BEM of \
+             ringcontact. Dimensionless: a = h = E* = 1 (a punch whose contact is fixed, \
+             F = 2 E* d a gamma; a punch whose contact edges are found, h its gap at the axis, \
+             d = h gamma1, F = 2 E* h a gamma2). \
              Every table is given as CSV (the resource's path) and as JSON (json_copy). {}",
+            cases::dataset_function_punches()
+                .iter()
+                .map(|kind| kind.label())
+                .collect::<Vec<_>>()
+                .join(", "),
             match size {
                 Size::Full => "Full grids.",
                 Size::Small => "The small copy: coarser grids (`verify dataset --small`); \

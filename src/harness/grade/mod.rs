@@ -379,19 +379,18 @@ fn state_range(grading: &Grading) -> Option<(f64, f64)> {
 }
 
 /// The stored peer results (`verify/peers/*.json`: the force a peer found at a given depth) as
-/// rows to grade. A free band's records are in units of its `h` (its tube radius `a/2`).
+/// rows to grade. A free band's records are in units of its `h` (its tube radius `a/2`). A
+/// record is read by a built-in punch's name, so each has one.
 pub fn peer_rows(records: &[(String, PeerResult)]) -> Vec<ResultRow> {
     records
         .iter()
-        .map(|(file, r)| ResultRow {
+        .filter_map(|(file, r)| Some((file, r, r.punch.shape_name()?)))
+        .map(|(file, r, punch)| ResultRow {
             place: file.clone(),
-            punch: r
-                .punch
-                .shape_name()
-                .unwrap_or(ringcontact::punch::PunchName::Table),
+            punch,
             exponent: r.punch.exponent(),
             tube_radius: r.punch.is_free_band().then_some(0.5),
-            profile: r.punch.table().map(|t| t.source().into()),
+            profile: r.punch.record().profile_file.map(Into::into),
             hole_ratio: r.punch.has_fixed_hole().then_some(r.eps).flatten(),
             state: Some((Quantity::Depth, r.depth)),
             values: vec![(Quantity::Force, r.force)],

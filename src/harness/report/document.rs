@@ -12,6 +12,7 @@ pub use crate::harness::studies::speed_accuracy::{
     CostPoint, SpeedAccuracy, DEFAULT_FEM_TOLERANCES,
 };
 
+use crate::harness::cases::REPORT_TABLE_SAMPLES;
 use crate::harness::records::fenicsx::FenicsxComparison;
 use crate::harness::records::operator::OperatorStatus;
 use crate::harness::records::peers::PeerComparison;
@@ -25,7 +26,6 @@ use crate::harness::studies::comparison::ComparisonReport;
 use crate::harness::studies::convergence;
 use crate::harness::studies::figures::{
     concave_ratios, flat_ratios, ConcaveCurves, FunctionCurves, Points, PressureProfiles,
-    REPORT_TABLE_SAMPLES,
 };
 use ringcontact::error::{Error, Result};
 use ringcontact::punch::PunchKind;
@@ -291,7 +291,7 @@ fn function_charts(
             write(
                 dir,
                 &format!("gammas-{}.svg", kind.label()),
-                &torus_chart(c, &curves.torus_grid_bem),
+                &band_chart(c, &curves.band_grid_bem),
             )?;
             continue;
         }
@@ -317,7 +317,7 @@ fn function_charts(
         // The report's table samples another punch's profile: that punch's curves under its
         // own (drawn first, so that the table's stay visible where they coincide).
         let mut lines = Vec::new();
-        if kind.tabulated().is_some() {
+        if kind.piecewise().is_some() {
             let sampled = REPORT_TABLE_SAMPLES;
             if let Some(s) = curves.concave.iter().find(|s| s.punch == sampled) {
                 lines.push(series(&format!("gamma1 {sampled}"), s.gamma1.clone()));
@@ -356,12 +356,13 @@ fn function_charts(
 
 /// A punch as a chart's title names it: a table by its file's name (its path is in the text).
 fn chart_name(kind: PunchKind) -> String {
-    match kind.table() {
-        Some(t) => format!(
-            "table {}",
-            Path::new(t.source())
+    match kind.record().profile_file {
+        Some(file) => format!(
+            "{} {}",
+            kind.name(),
+            Path::new(&file)
                 .file_name()
-                .map_or_else(|| t.source().into(), |n| n.to_string_lossy())
+                .map_or_else(|| file.clone(), |n| n.to_string_lossy().into_owned())
         ),
         None => kind.to_string(),
     }
@@ -406,9 +407,9 @@ fn table_difference_chart(c: &ConcaveCurves) -> String {
     )
 }
 
-/// The torus against its depth `d/h` (log-log): the force `gamma2 = F/(2 E* h a)` by the ring
+/// A free band against its depth `d/h` (log-log): the force `gamma2 = F/(2 E* h a)` by the ring
 /// BEM and the grid BEM, and both free edges `b/a`, `c/a`.
-fn torus_chart(c: &ConcaveCurves, grid_bem: &Points) -> String {
+fn band_chart(c: &ConcaveCurves, grid_bem: &Points) -> String {
     let against_depth = |values: &Points| -> Points {
         c.gamma1
             .iter()
@@ -572,7 +573,7 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
         .collect();
     // The report's table samples another punch's profile: that punch's fixed-load pull-off,
     // drawn first (the table's stays visible where they coincide).
-    if kind.tabulated().is_some() {
+    if kind.piecewise().is_some() {
         let sampled = REPORT_TABLE_SAMPLES;
         series.insert(
             0,
@@ -695,7 +696,7 @@ pub(crate) fn write_files(
 /// The pull-off charts: the JKR routes against `d0/h`, this run's simulation, the stored
 /// studies' branches, the annular route, Tamaas's curves.
 fn adhesion_charts(dir: &Path, inputs: &ReportInputs, findings: &Findings) -> Result<()> {
-    for kind in crate::harness::studies::figures::report_profile_punches() {
+    for kind in crate::harness::cases::report_profile_punches() {
         write(
             dir,
             &format!("pulloff-{}.svg", kind.label()),
@@ -896,10 +897,10 @@ fn markdown(
                grids, which interpolate to 1e-8.\n\n";
     }
     md += "## Charts\n\n![](gamma-flat-annulus.svg)\n";
-    let punches = crate::harness::studies::figures::report_profile_punches();
+    let punches = crate::harness::cases::report_profile_punches();
     for kind in &punches {
         let _ = writeln!(md, "![](gammas-{}.svg)", kind.label());
-        if kind.table().is_some() {
+        if kind.piecewise().is_some() {
             let _ = writeln!(md, "![](gammas-{}-difference.svg)", kind.label());
         }
     }

@@ -349,7 +349,7 @@ fn pulloff_simulation_table(extras: &ReportExtras) -> ReportTable {
              `scripts/pulloff/run_all.py --out verify/pulloff`; the nightly run compares fresh runs with them). JKR route: fixed-load pull-off (flat punches), from full contact \
              (concave punches, pressed until their hole closes: 3h, or deeper for small \
              d0/h), and for the `-annular` cases the fixed-load pull-off of the annular \
-             contact (touched with the hole open, then pulled); for the `torus-` cases \
+             contact (touched with the hole open, then pulled); for a free band's cases \
              (touched at the lowest circle, then pulled, a cohesive zone at both free edges) \
              the two-edge JKR solution's fixed-load pull-off. A range at which the closed \
              hole reopens on the way out is on another branch: it is left out (named) and a \

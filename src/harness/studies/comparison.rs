@@ -11,13 +11,14 @@ use std::time::Instant;
 use serde::Serialize;
 
 use super::figures;
+use crate::harness::cases::{self, power};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
 use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
 use ringcontact::error::Result;
 use ringcontact::fem::FemLoad;
 use ringcontact::mesh::triangulation::Degree;
 use ringcontact::methods::{self, Method, MethodOptions};
-use ringcontact::punch::{Exponent, PunchKind};
+use ringcontact::punch::PunchKind;
 use ringcontact::reference::{self, power_law, Quantity, ReferenceKind};
 
 /// Contact ratios of the flat-annulus table.
@@ -79,7 +80,7 @@ pub struct CrossCheck {
     pub ring_bem_error_estimate: f64,
     pub relative_difference: f64,
     pub eps_difference: f64,
-    /// The torus: FEM minus ring BEM of the outer edge `c/a` (absent where it is the rim).
+    /// A free band: FEM minus ring BEM of the outer edge `c/a` (absent where it is the rim).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub outer_difference: Option<f64>,
     pub dofs: usize,
@@ -195,14 +196,14 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(full_contact_limit_checks(&solver, tolerance)?);
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
     identities.extend(power_law_checks(&solver, tolerance)?);
-    identities.extend(torus_free_edge_checks(&solver, tolerance)?);
+    identities.extend(free_band_edge_checks(&solver, tolerance)?);
     identities.extend(table_punch_checks(&solver, tolerance)?);
     let fem = fem_cross_checks(&solver, tolerance)?;
     let fem_not_run =
         if ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths()) {
             0
         } else {
-            TORUS_FEM_DEPTHS.len()
+            cases::BAND_FEM_DEPTHS.len() * cases::free_bands().len()
         };
     Ok(ComparisonReport {
         tolerance,
@@ -213,11 +214,8 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     })
 }
 
-/// The torus's depths `d/h` the FEM is checked at against the ring BEM (meshes made by gmsh).
-const TORUS_FEM_DEPTHS: [f64; 2] = [0.1, 2.0];
-
-/// The FEM (default tolerance, P2, committed meshes; the torus on meshes gmsh makes) against
-/// the ring BEM on states of all punches.
+/// The FEM (default tolerance, P2, committed meshes; a free band on meshes gmsh makes) against
+/// the ring BEM on the states of [`cases::fem_cross_check_states`].
 fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
     // `--method fem` at its default tolerance, P2, on the meshes it picks.
     let options = MethodOptions {
@@ -225,27 +223,21 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
         ..crate::harness::settings::method_options()
     };
     let mut checks = Vec::new();
-    let cases = [
-        (PunchKind::FLAT, 0.0, FemLoad::Flat),
-        (PunchKind::FLAT_ANNULUS, 0.5, FemLoad::Flat),
-        (PunchKind::FLAT_ANNULUS, 0.9, FemLoad::Flat),
-        (PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(0.5)),
-        (PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(2.0)),
-        (PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5)),
-        (PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(3.5)),
-        (power(1.5), 0.0, FemLoad::ConcaveDepth(2.0)),
-        (power(3.0), 0.0, FemLoad::ConcaveDepth(2.0)),
-    ];
-    // The report's table punch on the committed meshes, where the checkout has its file.
-    let table = figures::report_table_punch().map(|kind| (kind, 0.0, FemLoad::ConcaveDepth(1.5)));
-    // The torus's meshes are made for the scene (gmsh): without it these are not run (counted).
-    let torus = TORUS_FEM_DEPTHS
-        .iter()
-        .filter(|_| {
-            ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths())
-        })
-        .map(|&d| (PunchKind::TORUS, 0.0, FemLoad::ConcaveDepth(d)));
-    for (kind, eps, load) in cases.into_iter().chain(table).chain(torus) {
+    let load = |depth: Option<f64>| depth.map_or(FemLoad::Flat, FemLoad::ConcaveDepth);
+    let cases = cases::fem_cross_check_states()
+        .into_iter()
+        .map(|(kind, eps, depth)| (kind, eps, load(depth)));
+    // The report's punch given by points on the committed meshes, where the checkout has it.
+    let table = cases::report_table_punch().map(|kind| (kind, 0.0, FemLoad::ConcaveDepth(1.5)));
+    // A free band's meshes are made for the scene (gmsh): without it these are not run (counted).
+    let gmsh = ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths());
+    let bands = cases::free_bands()
+        .into_iter()
+        .filter(|_| gmsh)
+        .flat_map(|band| {
+            cases::BAND_FEM_DEPTHS.map(|d| (band.clone(), 0.0, FemLoad::ConcaveDepth(d)))
+        });
+    for (kind, eps, load) in cases.chain(table).chain(bands) {
         let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;
         let fem = methods::solve_with(&scene, Method::Fem, &options)?;
         // A FEM solution always carries its model's part.
@@ -306,7 +298,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
 
 /// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
 /// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
-/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve. The torus's band `[b, c]`
+/// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve. A free band `[b, c]`
 /// has both edges free, so its stiffness is the flat annulus `b/c` scaled by `c`:
 /// `γ2'(b) = c γ(b/c) γ1'(b)` (`c = a` for the punches with a rim).
 fn incremental_stiffness_checks(
@@ -314,16 +306,7 @@ fn incremental_stiffness_checks(
     tolerance: f64,
 ) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
-    // The power law with n = 3 is one annulus only down to b ≈ 0.55 a (docs/conventions.md
-    // fact 8).
-    let cases: [(PunchKind, &[f64]); 5] = [
-        (PunchKind::CONE, &[0.1, 0.5, 0.9]),
-        (PunchKind::SPHERE, &[0.1, 0.5, 0.9]),
-        (power(1.5), &[0.1, 0.5, 0.9]),
-        (power(3.0), &[0.6, 0.9]),
-        (PunchKind::TORUS, &[0.1, 0.5, 0.9]),
-    ];
-    for (kind, ratios) in cases {
+    for (kind, ratios) in cases::stiffness_identity_ratios() {
         for &eps in ratios {
             let step = 1e-3 * eps.min(1.0 - eps);
             let at = |e: f64| solver.concave_at_ratio(&kind, e, tolerance);
@@ -447,48 +430,53 @@ fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Identi
     Ok(checks)
 }
 
-/// The torus's two edges are free: the ring BEM on the prescribed band `[b, c]` at the state's
-/// depth (the other path: both edges given, both intensities computed) finds `K = 0` at each,
+/// A free band's two edges: the ring BEM on the prescribed band `[b, c]` at the state's depth
+/// (the other path: both edges given, both intensities computed) finds `K = 0` at each,
 /// relative to the band's scale `F/(π (b + c) sqrt(c - b))`, and the state's force.
-fn torus_free_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn free_band_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
-    for eps in [0.3, 0.8] {
-        let state = solver.concave_at_ratio(&PunchKind::TORUS, eps, tolerance)?;
-        let (c, depth) = (state.outer_edge, state.gamma1.unwrap_or(f64::NAN));
-        let band = solver.prescribed_band(|r| (1.0 - r) * (1.0 - r), eps, c, depth, tolerance)?;
-        let scale = band.force / (std::f64::consts::PI * (eps + c) * (c - eps).sqrt());
-        let largest = band
-            .inner_stress_intensity
-            .abs()
-            .max(band.outer_stress_intensity.abs());
-        let residual = largest / scale;
-        let allowed = 1e-8_f64.max(100.0 * tolerance);
-        checks.push(IdentityCheck {
-            name: "torus: K = 0 at both edges of its band (prescribed-band solve), |K| / scale"
-                .into(),
-            eps,
-            lhs: residual,
-            rhs: 0.0,
-            relative_residual: residual,
-            tolerance: allowed,
-            passed: residual <= allowed,
-        });
+    for band in cases::free_bands() {
+        for eps in cases::BAND_EDGE_RATIOS {
+            let state = solver.concave_at_ratio(&band, eps, tolerance)?;
+            let (c, depth) = (state.outer_edge, state.gamma1.unwrap_or(f64::NAN));
+            let gap = |r: f64| band.gap_shape(r);
+            let band_state = solver.prescribed_band(gap, eps, c, depth, tolerance)?;
+            let scale = band_state.force / (std::f64::consts::PI * (eps + c) * (c - eps).sqrt());
+            let largest = band_state
+                .inner_stress_intensity
+                .abs()
+                .max(band_state.outer_stress_intensity.abs());
+            let residual = largest / scale;
+            let allowed = 1e-8_f64.max(100.0 * tolerance);
+            checks.push(IdentityCheck {
+                name: format!(
+                    "{band}: K = 0 at both edges of its band (prescribed-band solve), |K| / scale"
+                ),
+                eps,
+                lhs: residual,
+                rhs: 0.0,
+                relative_residual: residual,
+                tolerance: allowed,
+                passed: residual <= allowed,
+            });
+        }
     }
     Ok(checks)
 }
 
-/// Depths `d/h` at which the report's table punch is checked against the punch it samples.
+/// Depths `d/h` at which the report's punch given by points is checked against the punch it
+/// samples.
 const TABLE_CHECK_DEPTHS: [f64; 3] = [0.5, 1.5, 2.5];
 
-/// The report's table punch ([`figures::report_table_punch`], the sphere's profile at 21 points)
-/// against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest difference of the
-/// two gaps `g/h` (the contact problem is monotone in the gap,
+/// The report's punch given by points ([`cases::report_table_punch`], the sphere's profile at 21
+/// points) against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest difference
+/// of the two gaps `g/h` (the contact problem is monotone in the gap,
 /// [`figures::largest_gap_difference`]). None where the checkout has no table file.
 fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
-    let Some(table) = figures::report_table_punch() else {
+    let Some(table) = cases::report_table_punch() else {
         return Ok(Vec::new());
     };
-    let sampled = figures::REPORT_TABLE_SAMPLES;
+    let sampled = cases::REPORT_TABLE_SAMPLES;
     let delta = figures::largest_gap_difference(table.clone(), sampled.clone());
     let mut checks = Vec::new();
     for depth in TABLE_CHECK_DEPTHS {
@@ -499,7 +487,7 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
         checks.push(IdentityCheck {
             name: format!(
                 "table ({sampled} sampled, {}) at d = {depth}h: |gamma2 - {sampled}'s| <= largest gap difference (monotone contact)",
-                figures::REPORT_TABLE_FILE
+                cases::REPORT_TABLE_FILE
             ),
             eps: state.eps,
             lhs: difference,
@@ -510,11 +498,6 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
         });
     }
     Ok(checks)
-}
-
-/// The power-law punch of exponent `n` (a valid exponent: the harness names only fixed ones).
-fn power(n: f64) -> PunchKind {
-    PunchKind::power(Exponent::new(n).expect("a positive finite exponent"))
 }
 
 /// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
@@ -653,7 +636,7 @@ pub(crate) fn fem_table(comparison: &ComparisonReport) -> Table {
             Column::number("eps_difference", "eps diff", Format::SignedScientific(2)),
             Column::number(
                 "outer_difference",
-                "c/a diff (torus)",
+                "c/a diff (band)",
                 Format::SignedScientific(2),
             ),
             Column::number("fem_estimate", "FEM estimate", Format::Scientific(1)),

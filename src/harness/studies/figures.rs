@@ -5,13 +5,14 @@
 
 use serde::{Deserialize, Serialize};
 
+use crate::harness::cases::{report_profile_punches, REPORT_TABLE_SAMPLES};
 use ringcontact::bem::grid::{solve_contact, GridLoad, GridOperator};
 use ringcontact::bem::grid_contact::{self, cell_centre, discretise};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::Result;
 use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
 use ringcontact::mesh::triangulation::Degree;
-use ringcontact::punch::{Exponent, PunchKind, TableProfile};
+use ringcontact::punch::PunchKind;
 
 /// A curve or a set of points `(x, y)`.
 pub(crate) type Points = Vec<(f64, f64)>;
@@ -26,42 +27,6 @@ pub(crate) fn concave_ratios() -> Vec<f64> {
     (1..=50).map(|k| 0.05 + 0.9 * k as f64 / 50.0).collect()
 }
 
-/// The concave punches whose functions the report charts: the paper's cone and sphere, two
-/// power laws, `n = 1.5` (closes by a shrinking hole) and `n = 3` (closes from a disk and an
-/// annulus), and the table punch of [`REPORT_TABLE_FILE`] (where the checkout has it).
-pub(crate) fn report_concave_punches() -> Vec<PunchKind> {
-    let power = |n: f64| Exponent::new(n).map(PunchKind::power).ok();
-    [
-        Some(PunchKind::CONE),
-        Some(PunchKind::SPHERE),
-        power(1.5),
-        power(3.0),
-        report_table_punch(),
-    ]
-    .into_iter()
-    .flatten()
-    .collect()
-}
-
-/// The report's table punch: the sphere's profile `g/h = 1 - (r/a)²` sampled at 21 points and
-/// interpolated (PCHIP), charted beside the sphere it samples ([`REPORT_TABLE_SAMPLES`]).
-pub(crate) const REPORT_TABLE_FILE: &str = "verify/profiles/sphere-21.csv";
-/// The punch whose profile [`REPORT_TABLE_FILE`] samples.
-pub(crate) const REPORT_TABLE_SAMPLES: PunchKind = PunchKind::SPHERE;
-
-/// The table punch of [`REPORT_TABLE_FILE`], relative to the current directory when it is the
-/// project's root, else under the project's root; `None` where no checkout holds the file (the
-/// report then has no table chart). A job id names it by its label (`table-<sha256 prefix>`).
-pub(crate) fn report_table_punch() -> Option<PunchKind> {
-    let relative = std::path::Path::new(REPORT_TABLE_FILE);
-    let path = if relative.is_file() {
-        relative.to_path_buf()
-    } else {
-        crate::harness::settings::project_root().join(relative)
-    };
-    TableProfile::load(&path).ok().map(PunchKind::new)
-}
-
 fn is_power(punch: &PunchKind) -> bool {
     punch.exponent_parameter().is_some()
 }
@@ -73,7 +38,7 @@ pub(crate) struct ConcaveCurves {
     pub punch: PunchKind,
     pub gamma1: Points,
     pub gamma2: Points,
-    /// The outer edge `c/a` at the same `b/a` (the torus only; the others' is the rim).
+    /// The outer edge `c/a` at the same `b/a` (a free band only; the others' is the rim).
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub outer: Points,
     /// The report's table only: `(d/h, gamma2)` of the punch it samples
@@ -106,21 +71,14 @@ pub(crate) struct FunctionCurves {
     pub flat_grid_bem: Points,
     /// The functions of [`report_profile_punches`] at [`concave_ratios`] (where one annulus).
     pub concave: Vec<ConcaveCurves>,
-    /// `(d/h, gamma2)` of the torus by the grid BEM at [`TORUS_GRID_DEPTHS`] (128², its own
-    /// square; those that solved).
-    #[serde(default)]
-    pub torus_grid_bem: Points,
+    /// `(d/h, gamma2)` of the free band by the grid BEM at [`BAND_GRID_DEPTHS`] (128², its own
+    /// square; those that solved). The JSON key names the built-in free band, the torus.
+    #[serde(default, rename = "torus_grid_bem")]
+    pub band_grid_bem: Points,
 }
 
-/// Depths `d/h` at which the report's torus chart shows the grid BEM.
-pub(crate) const TORUS_GRID_DEPTHS: [f64; 3] = [0.1, 0.5, 2.0];
-
-/// The punches whose functions the report charts: [`report_concave_punches`] and the torus.
-pub(crate) fn report_profile_punches() -> Vec<PunchKind> {
-    let mut punches = report_concave_punches();
-    punches.push(PunchKind::TORUS);
-    punches
-}
+/// Depths `d/h` at which the report's free-band chart shows the grid BEM.
+pub(crate) const BAND_GRID_DEPTHS: [f64; 3] = [0.1, 0.5, 2.0];
 
 /// Compute the function curves (ring BEM to 1e-10, grid BEM on 128²).
 pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
@@ -148,7 +106,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
                 // A power law flatter than the sphere is one annulus only for the wider holes
                 // (docs/conventions.md fact 8), and so is a table whose interpolant is flatter
                 // at the axis: the curve stops where the ring BEM refuses.
-                Err(_) if is_power(&punch) || punch.table().is_some() => continue,
+                Err(_) if is_power(&punch) || punch.piecewise().is_some() => continue,
                 Err(e) => return Err(e),
             };
             gamma1.push((e, s.gamma1.unwrap_or(f64::NAN)));
@@ -158,7 +116,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
             }
         }
         let (mut sampled_at_depth, mut gap_difference) = (Vec::new(), None);
-        if punch.table().is_some() {
+        if punch.piecewise().is_some() {
             for &(_, depth) in &gamma1 {
                 let s = ring.concave_at_depth(&REPORT_TABLE_SAMPLES, depth, 1e-10)?;
                 sampled_at_depth.push((depth, s.gamma2.unwrap_or(f64::NAN)));
@@ -174,10 +132,12 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
             gap_difference,
         });
     }
-    let torus_grid_bem = TORUS_GRID_DEPTHS
+    let band_grid_bem = crate::harness::cases::free_bands()
         .into_iter()
-        .filter_map(|d| {
-            grid_contact::solve(PunchKind::TORUS, 0.0, 128, GridLoad::Depth(d), 1e-10)
+        .take(1)
+        .flat_map(|band| BAND_GRID_DEPTHS.map(|d| (band.clone(), d)))
+        .filter_map(|(band, d)| {
+            grid_contact::solve(band, 0.0, 128, GridLoad::Depth(d), 1e-10)
                 .ok()
                 .and_then(|s| Some((d, s.gamma2?)))
         })
@@ -186,7 +146,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         flat_ring_bem,
         flat_grid_bem,
         concave,
-        torus_grid_bem,
+        band_grid_bem,
     })
 }
 

@@ -108,13 +108,13 @@ const UNPROBED_CLEARANCE: [f64; HOLE_PROBES] = [f64::INFINITY; HOLE_PROBES];
 /// [`branch_tolerance`]: the widest rings of a steep-walled profile, where the pressure gathers
 /// at the rim and the inner edge's small `φ(b)` loses digits to rounding (the power laws
 /// `n = 30, 50` at `b = 0.004 a` settle to 4e-10 and 9e-10, the cone to 1e-13). The last is
-/// the table punch's own tolerance.
+/// a piecewise profile's own tolerance.
 const FALLBACK_BRANCH_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
-/// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a table punch, whose edge
+/// Tolerance of the branch's ring-BEM solves: 1e-10; 1e-8 for a piecewise profile, whose edge
 /// derivatives settle to about 1e-9 at the scan's smallest contact ratios (`docs/methods.md`).
 pub fn branch_tolerance(kind: &PunchKind) -> f64 {
-    if kind.tabulated().is_some() {
+    if kind.piecewise().is_some() {
         1e-8
     } else {
         1e-10
@@ -375,7 +375,7 @@ fn annular_pulloff(
     }
     // The unloading path: the ratios at the running minimum from the maximum on. A value above
     // it by no more than the solves' tolerance (relative) is on the path: the scatter of a flat
-    // stretch is not a jump (a table's real bumps are 1e-3 relative).
+    // stretch is not a jump (a piecewise profile's real bumps are 1e-3 relative).
     let visited = unloading_path(&values, max_k, min_k, branch_tolerance(&branch.kind));
     let eval = |e: f64| -> Result<f64> { Ok(value(&branch.at(e)?, s)) };
     let minimum_near = |k: usize| -> Result<(f64, f64)> {
@@ -473,8 +473,8 @@ fn critical_on_branch(branch: &ConcaveBranch, s: f64, eps: f64, edge: &str) -> R
 /// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
 /// A profile that is neither a power law nor a table has none here (an error naming it).
 pub fn full_contact_constants(kind: &PunchKind) -> Result<(f64, f64)> {
-    if let Some(table) = kind.tabulated() {
-        let fc = crate::reference::mdr::table_full_contact(table);
+    if let Some(pieces) = kind.piecewise() {
+        let fc = crate::reference::mdr::piecewise_full_contact(pieces);
         return Ok((fc.force_offset, fc.kappa_h));
     }
     match kind.power_law_exponent() {
@@ -692,7 +692,7 @@ impl<'a> ConcaveBranch<'a> {
     /// `F/F0 = γ2/s - γ/κ_in`: `δF = γ2 e_c/s + γ e_f/κ_in + γ δκ_in/κ_in²`,
     /// `δd = γ1 e_c + s δκ_in/κ_in²`, with `e_c`, `e_f` the concave and flat states' relative
     /// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 (1e-8
-    /// for a table, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the change of
+    /// for a piecewise profile, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the change of
     /// the branch's force and depth when every input comes from the solves at 1e-7. Added to
     /// it: the values' scatter ([`VALUE_SCATTER`] times one plus the two terms' sizes) and
     /// each quantity's slope along the branch times `located_to`, the uncertainty of the
@@ -786,9 +786,9 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
 
 /// Both edges' intensities (units `E* h / sqrt(a)`) of the adhesive contact at a critical
 /// state, solved directly: the annulus `[eps, 1]` pressed to the state's depth, collocated at 40
-/// nodes (the table punch: its band through the flat band's fields, refined to 1e-9).
+/// nodes (a piecewise profile: its band through the flat band's fields, refined to 1e-9).
 fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
-    if kind.tabulated().is_some() {
+    if kind.piecewise().is_some() {
         let band = solver.punch_band(&kind, c.eps, 1.0, c.depth, 1e-9)?;
         return Ok((band.inner_stress_intensity, band.outer_stress_intensity));
     }

@@ -8,7 +8,7 @@
 //! and `φ²` the field for `w = -ĝ`. A free (non-adhesive) inner edge carries no singularity, so
 //! `d φ¹(b) + h φ²(b) = 0`, which gives `γ1 = d/h = -φ²(b)/φ¹(b)` and
 //! `γ2 = (γ1 F¹ + F²) / 2` from one factorisation and two right-hand sides.
-//! The table punch's piecewise-cubic gap, whose kinks the collocation converges on only
+//! A piecewise profile's piecewise-cubic gap, whose kinks the collocation converges on only
 //! algebraically, takes `γ1`, `γ2` and the rim intensity from its flat band's fields instead
 //! (`ring_contact/piecewise_gap.rs`); its collocated field only draws the pressure samples.
 //!
@@ -50,17 +50,17 @@ pub(crate) const MIN_CONTACT_RATIO: f64 = 1e-4;
 /// Largest contact ratio `b/a` the method accepts (a ring of width `1e-4 a`).
 pub(crate) const MAX_CONTACT_RATIO: f64 = 0.9999;
 
-/// Smallest contact ratio a table punch's search visits: its band functionals
+/// Smallest contact ratio a piecewise profile's search visits: its band functionals
 /// ([`piecewise_gap`]) settle to 1e-11 for `b >= 0.004 a` and to about 1e-9 at `1e-3 a`, while at
 /// `1e-4 a` they return nonsense (`γ1 = -1322` for a sampled cosine dimple): a search that
 /// reached down there wandered for 60 solves instead of saying that the state needs a narrower
 /// ring.
-const TABLE_MIN_CONTACT_RATIO: f64 = 1e-3;
+const PIECEWISE_MIN_CONTACT_RATIO: f64 = 1e-3;
 
 /// The smallest contact ratio the inverse problem of `kind` searches.
 fn min_contact_ratio(kind: &PunchKind) -> f64 {
-    if kind.tabulated().is_some() {
-        TABLE_MIN_CONTACT_RATIO
+    if kind.piecewise().is_some() {
+        PIECEWISE_MIN_CONTACT_RATIO
     } else {
         MIN_CONTACT_RATIO
     }
@@ -184,20 +184,20 @@ const MIN_BAND_RATIO: f64 = 1e-4;
 struct ConcaveSample {
     gamma1: f64,
     gamma2: f64,
-    /// Rim intensity, units of `E* h / sqrt(a)` (`None` in a table's search sample,
+    /// Rim intensity, units of `E* h / sqrt(a)` (`None` in a piecewise profile's search sample,
     /// [`RingBemSolver::search_sample`]).
     rim_stress_intensity: Option<f64>,
     system: RingSystem,
     /// The collocated pressure field (pressure samples, the hole's floor).
     field: RingField,
-    /// The depth `d/h` the field was built with: `gamma1`, except for the table punch, whose
+    /// The depth `d/h` the field was built with: `gamma1`, except for a piecewise profile, whose
     /// `γ1`, `γ2` and rim intensity come from [`piecewise_gap`] while its field (collocated,
     /// converging algebraically at the table's points) only draws the pressure and checks the
     /// surface.
     field_depth: f64,
-    /// The table punch's band fields, which draw the surface in the hole to the method's
+    /// A piecewise profile's band fields, which draw the surface in the hole to the method's
     /// accuracy (the collocated field's is algebraic).
-    table_band: Option<piecewise_gap::GapBand>,
+    piecewise_band: Option<piecewise_gap::GapBand>,
 }
 
 /// The ring-BEM solver; holds the quadrature rule so it is built once, and counts the
@@ -380,7 +380,7 @@ impl RingBemSolver {
 
     /// The band `[inner, outer]` held in contact at `depth` (`d/h`) by the punch `kind` (gap
     /// `ĝ(r)`, `h = a = E* = 1`): [`Self::prescribed_band`] for every punch whose gap is
-    /// analytic on the band; the table punch's piecewise cubic through its flat band's fields
+    /// analytic on the band; a piecewise profile's piecewise cubic through its flat band's fields
     /// (`ring_contact/piecewise_gap.rs`), which keeps the geometric convergence the collocation of its kinks
     /// loses.
     pub fn punch_band(
@@ -391,13 +391,13 @@ impl RingBemSolver {
         depth: f64,
         tolerance: f64,
     ) -> Result<BandState> {
-        let Some(table) = kind.tabulated() else {
+        let Some(pieces) = kind.piecewise() else {
             return self.prescribed_band(|r| kind.gap(r), inner, outer, depth, tolerance);
         };
         Self::check_tolerance(tolerance)?;
         Self::check_band(inner, outer, depth)?;
         self.band_refined(inner, outer, tolerance, |n: usize| -> Result<BandState> {
-            let band = piecewise_gap::GapBands(self).gap_functionals(table, inner, outer, n)?;
+            let band = piecewise_gap::GapBands(self).gap_functionals(&pieces, inner, outer, n)?;
             Ok(BandState {
                 inner,
                 outer,
@@ -530,10 +530,10 @@ impl RingBemSolver {
     }
 
     /// [`Self::concave_sample`] for a search on the inner edge, which needs `γ1` and `γ2` only:
-    /// a table's band is built without its rim's derivative (six factorisations instead of
+    /// a piecewise profile's band is built without its rim's derivative (six factorisations instead of
     /// eleven), so its `rim_stress_intensity` is `None` until [`Self::completed`] adds it. The
     /// same as [`Self::concave_sample`] for every other punch. A search passes the same
-    /// `stencil` to all its samples at one node count: a table's samples close to the first
+    /// `stencil` to all its samples at one node count: a piecewise profile's samples close to the first
     /// reuse its neighbouring bands ([`InnerStencil`]).
     fn search_sample(
         &self,
@@ -558,24 +558,24 @@ impl RingBemSolver {
         if kind.is_free_band() {
             return free_band::BandSolver(self).band_sample(kind, eps, n, outer_hint);
         }
-        // A table's collocated field (which draws the pressure) is solved on its band's system.
-        let (system, table_band) = match kind.tabulated() {
-            Some(table) => {
+        // A piecewise profile's collocated field (which draws the pressure) is solved on its band's system.
+        let (system, piecewise_band) = match kind.piecewise() {
+            Some(pieces) => {
                 let band =
-                    piecewise_gap::GapBands(self).gap_band(table, eps, 1.0, n, edges, stencil)?;
+                    piecewise_gap::GapBands(self).gap_band(&pieces, eps, 1.0, n, edges, stencil)?;
                 (band.system().clone(), Some(band))
             }
             None => (self.system(ContactRegion::Annulus { eps }, n), None),
         };
         let collocated = Self::collocated_sample(kind, system)?;
-        match table_band {
+        match piecewise_band {
             Some(band) => {
                 let gamma1 = band.functionals.free_inner_depth();
                 Ok(ConcaveSample {
                     gamma1,
                     gamma2: 0.5 * band.functionals.force(gamma1),
                     rim_stress_intensity: band.functionals.outer_intensity(gamma1),
-                    table_band: Some(band),
+                    piecewise_band: Some(band),
                     ..collocated
                 })
             }
@@ -585,7 +585,7 @@ impl RingBemSolver {
 
     /// The concave punch's gap collocated on `system` (an annulus with its rim at `a`): the
     /// depth of a free inner edge, `γ1 = -α²_b / α¹_b` from the fields of `w = 1` and `w = -ĝ`,
-    /// its force and rim intensity. Spectrally accurate for an analytic gap; for a table's
+    /// its force and rim intensity. Spectrally accurate for an analytic gap; for a piecewise profile's
     /// piecewise cubic only algebraically (its value there draws the pressure and starts the
     /// search, [`piecewise_gap`] gives the state).
     fn collocated_sample(kind: &PunchKind, system: RingSystem) -> Result<ConcaveSample> {
@@ -605,17 +605,17 @@ impl RingBemSolver {
             gamma2: 0.5 * field.force,
             rim_stress_intensity: Some(system.rim_stress_intensity(&field)),
             field_depth: gamma1,
-            table_band: None,
+            piecewise_band: None,
             system,
             field,
         })
     }
 
-    /// A search sample made whole: a table's rim intensity added
+    /// A search sample made whole: a piecewise profile's rim intensity added
     /// ([`RingBemSolver::complete_outer_edge`], the same to the bit as a full sample's).
     fn completed(&self, kind: &PunchKind, mut sample: ConcaveSample) -> Result<ConcaveSample> {
-        if let (Some(table), Some(band)) = (kind.tabulated(), sample.table_band.as_mut()) {
-            piecewise_gap::GapBands(self).complete_outer_edge(table, band)?;
+        if let (Some(pieces), Some(band)) = (kind.piecewise(), sample.piecewise_band.as_mut()) {
+            piecewise_gap::GapBands(self).complete_outer_edge(&pieces, band)?;
             sample.rim_stress_intensity = band.functionals.outer_intensity(sample.gamma1);
         }
         Ok(sample)
@@ -652,9 +652,9 @@ impl RingBemSolver {
         kind: &PunchKind,
         sample: &'s ConcaveSample,
     ) -> (f64, Box<dyn Fn(f64) -> Option<f64> + 's>) {
-        match (kind.tabulated(), &sample.table_band) {
-            (Some(table), Some(band)) => {
-                let surface = band.hole_surface(table, sample.gamma1, &self.rule);
+        match (kind.piecewise(), &sample.piecewise_band) {
+            (Some(pieces), Some(band)) => {
+                let surface = band.hole_surface(&pieces, sample.gamma1, &self.rule);
                 (sample.gamma1, Box::new(move |r| surface.at(r, &self.rule)))
             }
             _ => (
@@ -909,8 +909,8 @@ impl RingBemSolver {
         tolerance: f64,
     ) -> Result<RingState> {
         Self::check_tolerance(tolerance)?;
-        if let Some(table) = kind.tabulated() {
-            return Ok(table_full_contact(table, depth_over_hole));
+        if let Some(pieces) = kind.piecewise() {
+            return Ok(piecewise_full_contact(pieces, depth_over_hole));
         }
         let ((system, field), n, estimate) =
             self.full_contact_disk(kind, depth_over_hole, tolerance)?;
@@ -938,8 +938,8 @@ impl RingBemSolver {
         target: f64,
         tolerance: f64,
     ) -> Result<RingState> {
-        if let Some(table) = kind.tabulated() {
-            let offset = crate::reference::mdr::table_full_contact(table).force_offset;
+        if let Some(pieces) = kind.piecewise() {
+            let offset = crate::reference::mdr::piecewise_full_contact(pieces).force_offset;
             return self.full_contact(kind, target + offset, tolerance);
         }
         let gamma2 = |d: f64| -> Result<f64> {
@@ -955,13 +955,13 @@ impl RingBemSolver {
     }
 }
 
-/// A table punch in full contact at `d/h = depth`, from the method of dimensionality
-/// reduction's quadrature of the interpolated profile ([`crate::reference::mdr`], exact for the
-/// piecewise cubic but for rounding): `γ2 = d/h - c_F` and the rim intensity
+/// A piecewise profile in full contact at `d/h = depth`, from the method of dimensionality
+/// reduction's quadrature over its pieces ([`crate::reference::mdr`], exact for a piecewise
+/// polynomial but for rounding): `γ2 = d/h - c_F` and the rim intensity
 /// `K = (d/h + κ_h) / sqrt(π)` (units `E* h / sqrt(a)`). The collocated disk would converge only
-/// algebraically at the table's points; no pressure samples are drawn.
-fn table_full_contact(table: &crate::punch::TableProfile, depth: f64) -> RingState {
-    let full = crate::reference::mdr::table_full_contact(table);
+/// algebraically at the break points; no pressure samples are drawn.
+fn piecewise_full_contact(pieces: &dyn crate::punch::PiecewiseProfile, depth: f64) -> RingState {
+    let full = crate::reference::mdr::piecewise_full_contact(pieces);
     RingState {
         eps: 0.0,
         outer_edge: 1.0,
@@ -1094,15 +1094,15 @@ fn inverse_error(e: RootError, kind: &PunchKind, target: f64, controlled: Contro
 /// Whether the contact of a closing punch is the full disk at `target` (`d/h` or
 /// `F/(2 E* h a)`, as `controlled` says): at or beyond [`closure`]. A table is first compared
 /// with the MDR's lower bounds of its closure
-/// ([`crate::reference::mdr::table_closure_lower_bounds`]): a state short of them is open
+/// ([`crate::reference::mdr::piecewise_closure_lower_bounds`]): a state short of them is open
 /// without the closure's maximisation.
 fn is_closed(kind: &PunchKind, target: f64, controlled: Controlled) -> bool {
     let pick = |(depth, force): (f64, f64)| match controlled {
         Controlled::Depth => depth,
         Controlled::Force => force,
     };
-    if let Some(table) = kind.tabulated() {
-        match crate::reference::mdr::table_closure_lower_bounds(table) {
+    if let Some(pieces) = kind.piecewise() {
+        match crate::reference::mdr::piecewise_closure_lower_bounds(pieces) {
             Some(bounds) if target < pick(bounds) => return false,
             None => return false,
             Some(_) => {}
@@ -1172,10 +1172,10 @@ fn starting_rung(eps: f64) -> usize {
     NODE_LADDER.iter().position(|&m| m == n).unwrap_or(1)
 }
 
-/// First rung of the node ladder worth trying for a table's band at contact ratio `eps`: its
+/// First rung of the node ladder worth trying for a piecewise profile's band at contact ratio `eps`: its
 /// flat band's field and the gap's smooth part, not the gap itself, set the node count
 /// (docs/decisions.md, "Where the constants come from").
-fn table_starting_rung(eps: f64) -> usize {
+fn piecewise_starting_rung(eps: f64) -> usize {
     let n = if eps >= 0.1 {
         16
     } else if eps >= 0.02 {
@@ -1197,11 +1197,11 @@ const SLOPE_MIN_SEPARATION: f64 = 1e-9;
 /// estimate (the slopes are then good to about this, and the estimate needs a few per cent).
 const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
 
-/// Tolerance in `eps` of a table's pre-search on its rough samples: below their own error
+/// Tolerance in `eps` of a piecewise profile's pre-search on its rough samples: below their own error
 /// (about 1e-6), which the accurate search then removes.
 const PRESEARCH_TOLERANCE: f64 = 1e-6;
 
-/// Most evaluations of a table's pre-search: 5 to 8 where `γ` is monotone, 13 for the sampled
+/// Most evaluations of a piecewise profile's pre-search: 5 to 8 where `γ` is monotone, 13 for the sampled
 /// sphere at `d/h = 2.97`, where it is flat with humps; past these the search starts from the
 /// fit's guess.
 const PRESEARCH_EVALUATIONS: usize = 24;

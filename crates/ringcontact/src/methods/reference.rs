@@ -224,7 +224,7 @@ fn reference_family(kind: &PunchKind) -> Result<ReferenceFamily> {
     if !kind.is_concave() {
         return Ok(ReferenceFamily::Flat);
     }
-    if kind.tabulated().is_some() {
+    if kind.piecewise().is_some() {
         return Err(none(format!(
             "the {} punch has no closed form (its full contact is a quadrature of the \
              interpolated profile); it is the ring BEM's (--method ring-bem)",

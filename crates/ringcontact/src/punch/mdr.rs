@@ -1,6 +1,6 @@
 //! Full contact of any concave punch `g(r) = h ĝ(r/a)` (`ĝ(0) = 1`, `ĝ(1) = 0`) by the method of
 //! dimensionality reduction (MDR; Popov & Heß 2015, ch. 3), by quadrature: the power law's
-//! closed forms ([`super::power_law`]) for a profile given as a table.
+//! closed forms ([`super::power_law`]) for a profile given by points.
 //!
 //! In full contact the deflection on the disk is `w = d - h ĝ(r)`. Its MDR profile is
 //! `q(x) = d - h G(x)` with
@@ -33,7 +33,7 @@ use std::sync::{Mutex, OnceLock};
 
 use crate::numerics::gauss_legendre::gauss_legendre;
 use crate::numerics::golden::golden_section_max;
-use crate::punch::TableProfile;
+use crate::punch::PiecewiseProfile;
 
 /// A concave profile `ĝ(ρ)` on `0 <= ρ <= 1`, `ĝ(0) = 1`, `ĝ(1) = 0`, smooth between
 /// breakpoints.
@@ -128,44 +128,47 @@ pub fn full_contact(profile: &dyn ConcaveProfile) -> FullContact {
     }
 }
 
-impl ConcaveProfile for TableProfile {
+/// A piecewise profile as the MDR's quadratures read it.
+struct Pieces<'a>(&'a dyn PiecewiseProfile);
+
+impl ConcaveProfile for Pieces<'_> {
     fn slope(&self, rho: f64) -> f64 {
-        TableProfile::slope(self, rho)
+        self.0.slope(rho)
     }
     fn curvature(&self, rho: f64) -> f64 {
-        TableProfile::curvature(self, rho)
+        self.0.curvature(rho)
     }
     fn breakpoints(&self) -> Vec<f64> {
-        self.knots().to_vec()
+        self.0.break_points().to_vec()
     }
 }
 
-/// [`full_contact`] of a table profile, computed once per table and process.
-pub fn table_full_contact(table: &TableProfile) -> FullContact {
-    static CACHE: OnceLock<PerTable<FullContact>> = OnceLock::new();
-    once_per_table(&CACHE, table, || full_contact(table))
+/// [`full_contact`] of a piecewise profile, computed once per content and process.
+pub fn piecewise_full_contact(profile: &dyn PiecewiseProfile) -> FullContact {
+    static CACHE: OnceLock<PerContent<FullContact>> = OnceLock::new();
+    once_per_content(&CACHE, profile, || full_contact(&Pieces(profile)))
 }
 
-/// Values computed from a table, by the table's digest.
-type PerTable<T> = Mutex<HashMap<String, T>>;
+/// Values computed from a piecewise profile, by its content's key.
+type PerContent<T> = Mutex<HashMap<String, T>>;
 
-/// `compute()` for `table`, kept in `cache` so each table's is computed once per process.
-fn once_per_table<T: Copy>(
-    cache: &OnceLock<PerTable<T>>,
-    table: &TableProfile,
+/// `compute()` for `profile`, kept in `cache` so each content's is computed once per process.
+fn once_per_content<T: Copy>(
+    cache: &OnceLock<PerContent<T>>,
+    profile: &dyn PiecewiseProfile,
     compute: impl FnOnce() -> T,
 ) -> T {
     let cache = cache.get_or_init(|| Mutex::new(HashMap::new()));
     if let Some(known) = cache
         .lock()
         .ok()
-        .and_then(|m| m.get(table.sha256()).copied())
+        .and_then(|m| m.get(profile.content_key()).copied())
     {
         return known;
     }
     let computed = compute();
     if let Ok(mut map) = cache.lock() {
-        map.insert(table.sha256().to_string(), computed);
+        map.insert(profile.content_key().to_string(), computed);
     }
     computed
 }
@@ -189,10 +192,10 @@ pub fn closure_lower_bounds(profile: &dyn ConcaveProfile) -> Option<(f64, f64)> 
     Some((at_axis, at_axis - force_offset))
 }
 
-/// [`closure_lower_bounds`] of a table profile, computed once per table and process.
-pub fn table_closure_lower_bounds(table: &TableProfile) -> Option<(f64, f64)> {
-    static CACHE: OnceLock<PerTable<Option<(f64, f64)>>> = OnceLock::new();
-    once_per_table(&CACHE, table, || closure_lower_bounds(table))
+/// [`closure_lower_bounds`] of a piecewise profile, computed once per content and process.
+pub fn piecewise_closure_lower_bounds(profile: &dyn PiecewiseProfile) -> Option<(f64, f64)> {
+    static CACHE: OnceLock<PerContent<Option<(f64, f64)>>> = OnceLock::new();
+    once_per_content(&CACHE, profile, || closure_lower_bounds(&Pieces(profile)))
 }
 
 fn breakpoints(profile: &dyn ConcaveProfile) -> Vec<f64> {

@@ -5,7 +5,7 @@
 //! own file; a user's own punch is another, written outside the crate and handed to the solvers
 //! as [`PunchKind::new`](super::PunchKind::new).
 
-use super::{PunchName, PunchRecord, TableProfile};
+use super::{PunchName, PunchRecord};
 
 /// Where a punch's contact lies and which of its edges are free (found by the solution, the
 /// pressure zero there without adhesion) or fixed (a sharp edge, the pressure singular).
@@ -19,6 +19,23 @@ pub enum Contact {
     RimAndFreeInner,
     /// `[b(d), c(d)]` around `r = a`: two free edges and no rim.
     FreeBand,
+}
+
+/// A dimensionless gap `ĝ(ρ)` that is smooth between known break points (a profile given by
+/// points and interpolated): what the ring BEM and the MDR need to integrate it piece by piece.
+pub trait PiecewiseProfile: Send + Sync {
+    /// `ĝ(ρ)`.
+    fn value(&self, rho: f64) -> f64;
+    /// `ĝ(ρ + offset) - ĝ(ρ)`, precise relative to itself as `offset -> 0`.
+    fn increment(&self, rho: f64, offset: f64) -> f64;
+    /// `dĝ/dρ`.
+    fn slope(&self, rho: f64) -> f64;
+    /// `d²ĝ/dρ²`.
+    fn curvature(&self, rho: f64) -> f64;
+    /// The break points in `[0, 1]` (ascending), where derivatives of the gap may jump.
+    fn break_points(&self) -> &[f64];
+    /// A name of the pieces' content (a digest): values computed from them are kept under it.
+    fn content_key(&self) -> &str;
 }
 
 /// One axisymmetric rigid punch, dimensionless: the gap `ĝ(ρ) = g/h` at `ρ = r/a` and what the
@@ -83,9 +100,10 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
         None
     }
 
-    /// The tabulated profile whose piecewise cubic the ring BEM integrates piece by piece
-    /// (kinks and all), if the punch is given by points.
-    fn tabulated(&self) -> Option<&TableProfile> {
+    /// The gap as pieces smooth between break points, if it is only piecewise smooth: the ring
+    /// BEM then integrates it piece by piece (kinks and all) and its full contact comes from
+    /// the MDR's quadratures over the pieces.
+    fn piecewise(&self) -> Option<&dyn PiecewiseProfile> {
         None
     }
 

@@ -187,6 +187,27 @@ fn hex_sha256(bytes: &[u8]) -> String {
         .collect()
 }
 
+impl super::profile::PiecewiseProfile for TableProfile {
+    fn value(&self, rho: f64) -> f64 {
+        TableProfile::value(self, rho)
+    }
+    fn increment(&self, rho: f64, offset: f64) -> f64 {
+        TableProfile::increment(self, rho, offset)
+    }
+    fn slope(&self, rho: f64) -> f64 {
+        TableProfile::slope(self, rho)
+    }
+    fn curvature(&self, rho: f64) -> f64 {
+        TableProfile::curvature(self, rho)
+    }
+    fn break_points(&self) -> &[f64] {
+        self.knots()
+    }
+    fn content_key(&self) -> &str {
+        self.sha256()
+    }
+}
+
 impl Profile for TableProfile {
     fn name(&self) -> &str {
         "table"
@@ -219,19 +240,19 @@ impl Profile for TableProfile {
             ..PunchRecord::named(self.name())
         }
     }
-    fn tabulated(&self) -> Option<&TableProfile> {
+    fn piecewise(&self) -> Option<&dyn super::profile::PiecewiseProfile> {
         Some(self)
     }
     /// The MDR's quadrature of the interpolant ([`super::mdr`]): a table smooth at
     /// the axis closes; one with a slope there does not.
     fn closure(&self) -> Option<(f64, f64)> {
-        let full = super::mdr::table_full_contact(self);
+        let full = super::mdr::piecewise_full_contact(self);
         Some((full.closure_depth?, full.closure_force()?))
     }
     /// Whether its full-contact pressure first vanishes on a ring [`OPENING_OFF_AXIS`] or more
     /// from the axis (the MDR).
     fn flatter_than_the_sphere(&self) -> bool {
-        super::mdr::table_full_contact(self).opening_radius >= OPENING_OFF_AXIS
+        super::mdr::piecewise_full_contact(self).opening_radius >= OPENING_OFF_AXIS
     }
 }
 

@@ -568,7 +568,7 @@ impl Band {
             gamma2: 0.5 * field.force,
             rim_stress_intensity: Some(self.system.rim_stress_intensity(&field)),
             field_depth: gamma1,
-            table_band: None,
+            piecewise_band: None,
             system: self.system,
             field,
         }
@@ -672,6 +672,7 @@ mod tests {
         let owner = RingBemSolver::new();
         let solver = BandSolver(&owner);
         let n = 16;
+        let band = PunchKind::built_in(crate::punch::Contact::FreeBand)[0].clone();
         for (depth_controlled, target) in [(true, 0.01), (true, 1.0), (false, 2.0), (false, 1e-4)] {
             let pick = |s: &ConcaveSample| if depth_controlled { s.gamma1 } else { s.gamma2 };
             let controlled = if depth_controlled {
@@ -679,10 +680,10 @@ mod tests {
             } else {
                 super::super::Controlled::Force
             };
-            let start = super::super::initial_ratio(&PunchKind::TORUS, target, controlled);
+            let start = super::super::initial_ratio(&band, target, controlled);
             let direct = solver
                 .band_at_target(
-                    &PunchKind::TORUS,
+                    &band,
                     n,
                     target,
                     depth_controlled,
@@ -694,7 +695,7 @@ mod tests {
             let nested = find_root(
                 |eps| {
                     let s = solver
-                        .band_sample(&PunchKind::TORUS, eps, n, None)
+                        .band_sample(&band, eps, n, None)
                         .map_err(|e| e.to_string())?;
                     Ok(pick(&s) - target)
                 },
@@ -705,9 +706,7 @@ mod tests {
                 80,
             )
             .unwrap();
-            let outer = solver
-                .band_sample(&PunchKind::TORUS, nested.x, n, None)
-                .unwrap();
+            let outer = solver.band_sample(&band, nested.x, n, None).unwrap();
             let (b, c) = (direct.eps, direct.sample.system.region().outer());
             println!(
                 "target {target}: direct b {b:.15} c {c:.15}, nested b {:.15} c {:.15}",
@@ -719,15 +718,7 @@ mod tests {
             assert!((pick(&direct.sample) / target - 1.0).abs() < 1e-11);
         }
         // A narrow band started far off: no state, or the right one.
-        let wrong = solver.band_at_target(
-            &PunchKind::TORUS,
-            n,
-            1e-4,
-            false,
-            (0.9968, 1.303),
-            None,
-            1e-12,
-        );
+        let wrong = solver.band_at_target(&band, n, 1e-4, false, (0.9968, 1.303), None, 1e-12);
         if let Some(found) = wrong {
             assert!((found.eps - 0.99683348).abs() < 1e-6, "{}", found.eps);
         }

@@ -4,19 +4,19 @@
 //! One rung runs four named phases: [`InverseSearch::search_rung`] (the root on that rung's node
 //! count), [`InverseSearch::root_slopes`] (`dγ1/deps`, `dγ2/deps`, `dc/deps` at the root),
 //! [`InverseSearch::rung_estimate`] (the change from the rung below carried to the root) and
-//! [`InverseSearch::climb_from`] (what the next rung starts from). A table punch first runs a
-//! rough pre-search ([`InverseSearch::table_presearch`]).
+//! [`InverseSearch::climb_from`] (what the next rung starts from). A piecewise profile first runs a
+//! rough pre-search ([`InverseSearch::piecewise_presearch`]).
 
 use super::piecewise_gap::{self, BandEdges, InnerStencil, InnerStencils};
 use super::{
     floored_estimate, free_edge_floor, initial_ratio, inverse_error, min_contact_ratio,
-    no_convergence, outer_edge_hint, starting_rung, table_starting_rung, ConcaveSample, Controlled,
-    RingBemSolver, RingState, FIRST_SEARCH_RUNG, MAX_CONTACT_RATIO, NODE_LADDER,
+    no_convergence, outer_edge_hint, piecewise_starting_rung, starting_rung, ConcaveSample,
+    Controlled, RingBemSolver, RingState, FIRST_SEARCH_RUNG, MAX_CONTACT_RATIO, NODE_LADDER,
     PRESEARCH_EVALUATIONS, PRESEARCH_TOLERANCE, SLOPE_MIN_SEPARATION, SLOPE_TRUSTED_ESTIMATE,
 };
 use crate::error::Result;
 use crate::numerics::roots::{find_root_descending, find_root_with_slope};
-use crate::punch::{PunchKind, TableProfile};
+use crate::punch::{PiecewiseProfile, PunchKind};
 
 /// Slopes `[dγ1/deps, dγ2/deps, dc/deps]` at a root.
 type Slopes = [f64; 3];
@@ -51,7 +51,7 @@ pub(super) struct InverseSearch<'a> {
     /// The previous rung's root and its sample: the coarse sample of the next rung where that
     /// one's root is the same ratio (its search stopped at its start).
     previous_root: Option<(usize, f64, ConcaveSample)>,
-    /// A table's samples at each node count share their neighbouring bands where they lie
+    /// A piecewise profile's samples at each node count share their neighbouring bands where they lie
     /// close together: the search's last samples, and the next rung's coarse sample.
     stencils: InnerStencils,
 }
@@ -80,12 +80,12 @@ impl<'a> InverseSearch<'a> {
             outer_guess: None,
             previous_slopes: None,
             probe_slope: false,
-            climb_first: kind.tabulated().is_some(),
+            climb_first: kind.piecewise().is_some(),
             previous_root: None,
             stencils: InnerStencils::default(),
         };
-        if let Some(table) = kind.tabulated() {
-            search.table_presearch(table);
+        if let Some(pieces) = kind.piecewise() {
+            search.piecewise_presearch(pieces);
         }
         search
     }
@@ -97,7 +97,7 @@ impl<'a> InverseSearch<'a> {
             let root = self.search_rung(n)?;
             let slopes = self.root_slopes(&root, n)?;
             if std::mem::take(&mut self.climb_first) && self.rung + 1 < NODE_LADDER.len() {
-                // A table's first rung is not estimated against the rung below (a search sample
+                // A piecewise profile's first rung is not estimated against the rung below (a search sample
                 // there builds its own inner stencil: six factorisations) but taken as the
                 // coarse sample of the rung above, whose search starts at this root with its
                 // slope and, where the two node counts agree to the tolerance, stops there:
@@ -120,8 +120,8 @@ impl<'a> InverseSearch<'a> {
                     self.tolerance
                 )));
             }
-            let needed = match self.kind.tabulated() {
-                Some(_) => table_starting_rung(root.eps),
+            let needed = match self.kind.piecewise() {
+                Some(_) => piecewise_starting_rung(root.eps),
                 None => starting_rung(root.eps),
             };
             self.rung = (self.rung + 1).max(needed);
@@ -135,18 +135,18 @@ impl<'a> InverseSearch<'a> {
         prescribed(self.controlled, sample)
     }
 
-    /// A table's rough pre-search: a sample takes six collocation systems (one within its
+    /// A piecewise profile's rough pre-search: a sample takes six collocation systems (one within its
     /// stencil's reach, [`InnerStencil`]), a rough one, its inner derivative of second order,
     /// three. The rough root at 16 nodes (`γ` within 4e-6 of the accurate one, where the direct
     /// collocation is far off near closure) starts the search, with its slope, on the rung that
     /// root needs. The rough search walks downhill past `γ`'s humps ([`find_root_descending`]).
-    fn table_presearch(&mut self, table: &TableProfile) {
+    fn piecewise_presearch(&mut self, pieces: &dyn PiecewiseProfile) {
         let n = NODE_LADDER[FIRST_SEARCH_RUNG];
         let (solver, controlled, target) = (self.solver, self.controlled, self.target);
         let mut stencil = InnerStencil::default();
         let mut rough = |eps: f64| -> std::result::Result<f64, String> {
             let band = piecewise_gap::GapBands(solver)
-                .gap_band(table, eps, 1.0, n, BandEdges::InnerRough, &mut stencil)
+                .gap_band(&pieces, eps, 1.0, n, BandEdges::InnerRough, &mut stencil)
                 .map_err(|e| e.to_string())?;
             let gamma1 = band.functionals.free_inner_depth();
             Ok(match controlled {
@@ -172,7 +172,7 @@ impl<'a> InverseSearch<'a> {
             Err(_) => self.probe_slope = true,
         }
         // The start says which rung the state needs: the search starts there.
-        self.rung = table_starting_rung(self.guess);
+        self.rung = piecewise_starting_rung(self.guess);
     }
 
     /// The root on `n` nodes, from the guess and slope the previous phases left; the last three
@@ -201,7 +201,7 @@ impl<'a> InverseSearch<'a> {
         };
         let mut slope_hint = self.slope_hint;
         if self.probe_slope {
-            // A table's pre-search slope can be far off where `γ` is flat (deep states), and a
+            // A piecewise profile's pre-search slope can be far off where `γ` is flat (deep states), and a
             // step from it lands outside the first sample's inner stencil, whose neighbours the
             // next sample then rebuilds (five factorisations). The slope from a second sample
             // inside that stencil (one factorisation) makes the first step Newton's on the
@@ -243,7 +243,7 @@ impl<'a> InverseSearch<'a> {
             .filter(|(at, _)| *at != eps)
             .max_by(|(a, _), (b, _)| (a - eps).abs().total_cmp(&(b - eps).abs()))
             .map(|(at, s)| (*at, s.gamma1, s.gamma2, s.system.region().outer()));
-        // The root's sample becomes the state's (a table's search sample gains its rim
+        // The root's sample becomes the state's (a piecewise profile's search sample gains its rim
         // intensity once the state is accepted: the estimate does not read it).
         let fine = match history.iter().position(|(at, _)| *at == eps) {
             Some(i) => history.remove(i).1,

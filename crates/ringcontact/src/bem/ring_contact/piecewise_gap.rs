@@ -1,4 +1,4 @@
-//! A band pressed by a punch whose gap is only piecewise smooth (the table punch's
+//! A band pressed by a punch whose gap is only piecewise smooth (a profile given by points, its
 //! piecewise cubic, `C¹` with curvature jumps at its points), solved to the ring BEM's spectral
 //! accuracy through the flat band's field and its edge derivatives.
 //!
@@ -34,7 +34,7 @@ use crate::error::Result;
 use crate::numerics::chebyshev::{chebyshev_series, ChebyshevNodes};
 use crate::numerics::elliptic::complete_k_from_complementary;
 use crate::numerics::tanh_sinh::{PanelNode, TanhSinhRule};
-use crate::punch::TableProfile;
+use crate::punch::PiecewiseProfile;
 
 use super::{no_convergence, RingBemSolver};
 
@@ -72,15 +72,15 @@ pub(crate) trait PiecewiseGap {
     fn break_points(&self) -> &[f64];
 }
 
-impl PiecewiseGap for TableProfile {
+impl PiecewiseGap for &dyn PiecewiseProfile {
     fn value(&self, r: f64) -> f64 {
-        TableProfile::value(self, r)
+        (**self).value(r)
     }
     fn increment(&self, r: f64, offset: f64) -> f64 {
-        TableProfile::increment(self, r, offset)
+        (**self).increment(r, offset)
     }
     fn break_points(&self) -> &[f64] {
-        self.knots()
+        (**self).break_points()
     }
 }
 
@@ -904,7 +904,7 @@ mod tests {
                 (f.outer_intensity(depth).unwrap() - direct.outer_stress_intensity).abs() / scale,
             ];
             // 3e-14 on [0.3, 1], 1.4e-10 on [0.02, 1] (the wave leaves a remainder of 5 % of
-            // the gap, far more than a table's, for the edge derivatives to carry).
+            // the gap, far more than a piecewise profile's, for the edge derivatives to carry).
             assert!(
                 errors.iter().all(|e| *e < 1e-9),
                 "band [{inner}, {outer}]: {errors:?}"
@@ -1030,7 +1030,7 @@ mod tests {
     }
 
     /// A rough band's depth of a free inner edge is within the stated 4e-6 of the full
-    /// stencil's on the wavy gap (its remainder is far larger than a table's) at 16 nodes.
+    /// stencil's on the wavy gap (its remainder is far larger than a piecewise profile's) at 16 nodes.
     #[test]
     fn a_rough_band_is_close_to_the_full_one() {
         let owner = RingBemSolver::new();
@@ -1067,7 +1067,7 @@ mod tests {
         let depth = 0.7;
         // At 48 nodes, both ways: at most 3.2e-13 on [0.3, 1] and [0.7, 1]; 4.4e-9 near
         // [0.02, 1], where the wave leaves a remainder of 5 % of the gap for the differences'
-        // rounding (a table's is far smaller).
+        // rounding (a piecewise profile's is far smaller).
         for (first, bound) in [(0.3, 1e-11), (0.02, 1e-8), (0.7, 1e-11)] {
             let mut stencil = InnerStencil::default();
             solver
