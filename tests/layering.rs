@@ -277,9 +277,10 @@ fn harness_files_naming_bem_or_fem_modules_do_not_grow() {
 
 /// How far a built-in punch spreads: the files of the library's and the program's sources that
 /// name it (in code or prose), against a ceiling that may only come down. A punch's target is
-/// four files: its own, the registry (`punch.rs`), the command line's flag list and one more;
-/// the torus meets it, the others are on their way (the studies take their states from
-/// `harness/cases.rs` and ask the profile for the rest).
+/// four files: its own, the registry (`punch.rs`), the command line's flag list (`cli/args.rs`)
+/// and the harness's case list (`harness/cases.rs`). The torus and the table punch meet it (a
+/// free band and a piecewise profile are found by what they are); the others are still named
+/// by the solvers' and the studies' prose and tests.
 #[test]
 fn built_in_punch_names_spread_no_further() {
     // Each name as runs of lower-case words (`PunchKind::FLAT` is `punchkind flat`).
@@ -287,7 +288,7 @@ fn built_in_punch_names_spread_no_further() {
         (
             "flat",
             &["flat punch", "punchkind flat", "punchname flat"],
-            40,
+            26,
         ),
         (
             "flat-annulus",
@@ -297,20 +298,20 @@ fn built_in_punch_names_spread_no_further() {
                 "flatannulus",
                 "flat_annulus",
             ],
-            48,
+            46,
         ),
-        ("cone", &["cone", "cones", "conical"], 45),
-        ("sphere", &["sphere", "spheres", "spherical"], 43),
+        ("cone", &["cone", "cones", "conical"], 43),
+        ("sphere", &["sphere", "spheres", "spherical"], 39),
         (
             "power",
             &["power law", "punchname power", "punchkind power"],
-            28,
+            24,
         ),
         ("torus", &["torus", "tori"], 4),
         (
             "table",
             &["table punch", "punchname table", "tableprofile"],
-            16,
+            4,
         ),
     ];
     let mut files = common::rust_sources(&common::library_root());

@@ -2,6 +2,7 @@
 //! The studies take their cases from here and ask each profile for everything else (its
 //! contact, its edges, its references); a punch with a free band is found by its contact.
 
+use ringcontact::methods::ladder::StudyCase;
 use ringcontact::punch::{Contact, Exponent, PunchKind};
 
 /// A state a study solves: the punch, its contact ratio `b/a` (the fixed annulus's hole, 0
@@ -118,4 +119,38 @@ pub(crate) fn report_profile_punches() -> Vec<PunchKind> {
     let mut punches = report_concave_punches();
     punches.extend(free_bands());
     punches
+}
+
+/// The convergence study the report shows: the sphere at `d = 1.5 h`.
+pub(crate) const REPORT_STUDY: StudyCase = StudyCase {
+    punch: PunchKind::SPHERE,
+    eps: 0.0,
+    depth: 1.5,
+};
+
+/// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.py`'s cases):
+/// `(punch, b/a, d0/h)`, the flat punch and annuli, and the paper's recessed punches at four
+/// works of adhesion.
+pub(crate) fn pulloff_simulations() -> Vec<(PunchKind, f64, f64)> {
+    let mut cases = vec![
+        (PunchKind::FLAT, 0.0, 0.0),
+        (PunchKind::FLAT_ANNULUS, 0.5, 0.0),
+        (PunchKind::FLAT_ANNULUS, 0.9, 0.0),
+    ];
+    for d0_over_h in [0.3, 1.0, 3.0, 10.0] {
+        for punch in paper_recessed_punches() {
+            cases.push((punch, 0.0, d0_over_h));
+        }
+    }
+    cases
+}
+
+/// The recessed punches of the study the tool verifies, whose claims the report checks.
+pub(crate) fn paper_recessed_punches() -> [PunchKind; 2] {
+    [PunchKind::CONE, PunchKind::SPHERE]
+}
+
+/// The pull-off the report simulates live: `(punch, d0/h)`, the cone with its hole closed.
+pub(crate) fn live_pulloff() -> (PunchKind, f64) {
+    (PunchKind::CONE, 10.0)
 }

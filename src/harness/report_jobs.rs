@@ -445,7 +445,11 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
         }
     }
     for method in [Method::GridBem, Method::Fem] {
-        parts.extend(convergence_parts(REPORT_STUDY, method, REPORT_STUDY_LEVELS));
+        parts.extend(convergence_parts(
+            cases::REPORT_STUDY,
+            method,
+            REPORT_STUDY_LEVELS,
+        ));
     }
     for punch in cases::report_profile_punches() {
         parts.push(Part::Adhesion(punch));
@@ -455,12 +459,6 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
     parts
 }
 
-/// The convergence study the report shows: the sphere at `d = 1.5 h`.
-const REPORT_STUDY: StudyCase = StudyCase {
-    punch: PunchKind::SPHERE,
-    eps: 0.0,
-    depth: 1.5,
-};
 /// Levels of the report's convergence studies.
 const REPORT_STUDY_LEVELS: usize = 3;
 
@@ -480,33 +478,14 @@ pub(crate) fn convergence_parts(case: StudyCase, method: Method, levels: usize) 
 
 /// The pull-off simulations of the nightly run (`scripts/pulloff/run_all.py`'s cases).
 fn pulloff_parts() -> Vec<Part> {
-    let mut parts = vec![
-        Part::PulloffSimulation {
-            punch: PunchKind::FLAT,
-            eps: 0.0,
-            d0_over_h: 0.0,
-        },
-        Part::PulloffSimulation {
-            punch: PunchKind::FLAT_ANNULUS,
-            eps: 0.5,
-            d0_over_h: 0.0,
-        },
-        Part::PulloffSimulation {
-            punch: PunchKind::FLAT_ANNULUS,
-            eps: 0.9,
-            d0_over_h: 0.0,
-        },
-    ];
-    for x in [0.3, 1.0, 3.0, 10.0] {
-        for punch in [PunchKind::CONE, PunchKind::SPHERE] {
-            parts.push(Part::PulloffSimulation {
-                punch,
-                eps: 0.0,
-                d0_over_h: x,
-            });
-        }
-    }
-    parts
+    cases::pulloff_simulations()
+        .into_iter()
+        .map(|(punch, eps, d0_over_h)| Part::PulloffSimulation {
+            punch,
+            eps,
+            d0_over_h,
+        })
+        .collect()
 }
 
 /// The nightly suite: the report's parts with the FEM down to `fem_tolerances` (1e-8), the

@@ -203,61 +203,7 @@ pub fn free_band(
     let gap = band
         .shape_name()
         .map_or_else(|| band.describe(), |name| name.summary().gap.to_string());
-    let mut fields = vec![Field::number(
-        "d0_over_h",
-        "1",
-        &format!("work of adhesion as d0/h, d0 = sqrt(2 pi a dw / E*), h from the gap {gap}"),
-    )];
-    for (prefix, what) in [
-        (
-            "fixed_load",
-            "under fixed load (the minimum of F along the equilibria)",
-        ),
-        (
-            "fixed_grips",
-            "under fixed grips (the minimum of d along the equilibria)",
-        ),
-    ] {
-        fields.extend([
-            Field::number(
-                &format!("{prefix}_force"),
-                "F0",
-                &format!("pull-off {what}: force F/F0 (negative: tensile)"),
-            ),
-            Field::number(
-                &format!("{prefix}_force_error"),
-                "F0",
-                "absolute error bound of the force before it (the ring BEM's estimate and the \
-                 location's tolerance)",
-            ),
-            Field::number(
-                &format!("{prefix}_eps"),
-                "1",
-                &format!("pull-off {what}: inner edge of the band, b/a"),
-            ),
-            Field::number(
-                &format!("{prefix}_outer_radius"),
-                "1",
-                &format!("pull-off {what}: outer edge of the band, c/a"),
-            ),
-            Field::number(
-                &format!("{prefix}_depth"),
-                "h",
-                &format!("pull-off {what}: depth d/h (negative: pulled)"),
-            ),
-            Field::number(
-                &format!("{prefix}_depth_error"),
-                "h",
-                "absolute error bound of the depth before it",
-            ),
-        ]);
-    }
-    fields.push(Field::number(
-        "plane_strain_fixed_load_force",
-        "F0",
-        "the plane-strain JKR cylinder's fixed-load pull-off over the length 2 pi a, F/F0: the \
-         narrow limit d0/h -> 0 (an asymptote, no bound)",
-    ));
+    let fields = band_fields(&gap);
     let label = band.label();
     let mut table = Table::new(
         &format!("{label} JKR"),
@@ -372,6 +318,67 @@ pub fn fits(solver: &RingBemSolver) -> Result<Resource> {
         table,
         interpolation_error: Vec::new(),
     })
+}
+
+/// The columns of a free band's JKR table: `d0/h`, then the pull-off under fixed load and
+/// under fixed grips (force, edges, depth, with their bounds), and the plane-strain cylinder's.
+fn band_fields(gap: &str) -> Vec<Field> {
+    let mut fields = vec![Field::number(
+        "d0_over_h",
+        "1",
+        &format!("work of adhesion as d0/h, d0 = sqrt(2 pi a dw / E*), h from the gap {gap}"),
+    )];
+    for (prefix, what) in [
+        (
+            "fixed_load",
+            "under fixed load (the minimum of F along the equilibria)",
+        ),
+        (
+            "fixed_grips",
+            "under fixed grips (the minimum of d along the equilibria)",
+        ),
+    ] {
+        fields.extend([
+            Field::number(
+                &format!("{prefix}_force"),
+                "F0",
+                &format!("pull-off {what}: force F/F0 (negative: tensile)"),
+            ),
+            Field::number(
+                &format!("{prefix}_force_error"),
+                "F0",
+                "absolute error bound of the force before it (the ring BEM's estimate and the \
+                 location's tolerance)",
+            ),
+            Field::number(
+                &format!("{prefix}_eps"),
+                "1",
+                &format!("pull-off {what}: inner edge of the band, b/a"),
+            ),
+            Field::number(
+                &format!("{prefix}_outer_radius"),
+                "1",
+                &format!("pull-off {what}: outer edge of the band, c/a"),
+            ),
+            Field::number(
+                &format!("{prefix}_depth"),
+                "h",
+                &format!("pull-off {what}: depth d/h (negative: pulled)"),
+            ),
+            Field::number(
+                &format!("{prefix}_depth_error"),
+                "h",
+                "absolute error bound of the depth before it",
+            ),
+        ]);
+    }
+    fields.push(Field::number(
+        "plane_strain_fixed_load_force",
+        "F0",
+        "the plane-strain JKR cylinder's fixed-load pull-off over the length 2 pi a, F/F0: the \
+         narrow limit d0/h -> 0 (an asymptote, no bound)",
+    ));
+    fields
 }
 
 /// `label` with its first letter upper case (a table's title).

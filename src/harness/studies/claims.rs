@@ -2,6 +2,7 @@
 //! computations they rest on: the JKR routes against `d0/h` ([`pulloff_points`]) and the
 //! report's single direct simulation ([`live_pulloff`]).
 
+use crate::harness::cases;
 use crate::harness::records::pulloff::PulloffRecord;
 use crate::harness::report::contents::{PulloffPoint, Verdict};
 use ringcontact::adhesion;
@@ -167,7 +168,7 @@ fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 /// Pull-off almost the same under fixed grips and fixed load, at `d0/h = 1`.
 fn regime_verdict(ring: &RingBemSolver) -> Result<Verdict> {
     let mut spreads = Vec::new();
-    for kind in [PunchKind::CONE, PunchKind::SPHERE] {
+    for kind in cases::paper_recessed_punches() {
         let r = adhesion::concave(ring, kind.clone(), 1.0)?;
         if let (Some(l), Some(g)) = (r.fixed_load, r.fixed_grips) {
             spreads.push(format!(
@@ -311,10 +312,11 @@ fn refutes_paper_route(studies: &[&PulloffStudy]) -> bool {
 /// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
 pub(crate) fn live_pulloff() -> Result<ringcontact::cohesive::study::LiveSimulation> {
     use ringcontact::cohesive::study;
+    let (punch, d0_over_h) = cases::live_pulloff();
     let case = study::Case {
-        punch: PunchKind::CONE,
+        punch,
         eps: 0.0,
-        d0_over_h: 10.0,
+        d0_over_h,
         linear_solver: crate::harness::settings::linear_solver(),
         data: crate::harness::settings::data_paths(),
     };
