@@ -86,7 +86,9 @@ fn the_factor_one_half_in_the_narrow_ring_force() {
 fn spherical_punch_full_contact_limits() {
     let solver = RingBemSolver::new();
     // d = 3h: F = 16/3 E* h a (Barber; MDR).
-    let onset = solver.sphere_full_contact(3.0, TOL).unwrap();
+    let onset = solver
+        .full_contact(&ringcontact::punch::PunchKind::SPHERE, 3.0, TOL)
+        .unwrap();
     assert_relative_eq!(onset.gamma2.unwrap(), 8.0 / 3.0, max_relative = 1e-12);
     // Beyond: F = 2 E* a (d - h/3).
     for &d in &[3.2, 4.0, 10.0] {

@@ -182,7 +182,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     // Sphere at the onset of full contact (eps -> 0 limit, exact d = 3h, F = 16/3 E* h a),
     // reached from the full-contact side by the disk discretisation.
     let start = Instant::now();
-    let onset = solver.sphere_full_contact(3.0, tolerance)?;
+    let onset = solver.full_contact(&PunchKind::SPHERE, 3.0, tolerance)?;
     let wall = start.elapsed().as_secs_f64();
     rows.push(row(
         Quantity::SphereGamma2,

@@ -895,11 +895,6 @@ impl RingBemSolver {
         )
     }
 
-    /// Spherical punch in full contact (`d >= 3h`): the disk with `w = d - h (1 - r²)`.
-    pub fn sphere_full_contact(&self, depth_over_hole: f64, tolerance: f64) -> Result<RingState> {
-        self.full_contact(&PunchKind::SPHERE, depth_over_hole, tolerance)
-    }
-
     /// A concave punch whose contact closes (the sphere at `d >= 3h`, the power law with
     /// `n > 1` at `d >= h (1 + κ_n/(n - 1))`) in full contact: the disk with `w = d - g(r)`.
     pub fn full_contact(
