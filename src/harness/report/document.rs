@@ -295,19 +295,6 @@ fn function_charts(
             )?;
             continue;
         }
-        let fit = |i: usize| -> Points {
-            concave_ratios()
-                .into_iter()
-                .map(|e| {
-                    let value = if kind == PunchKind::CONE {
-                        paper_fits::cone_gamma(i, e)
-                    } else {
-                        paper_fits::sphere_gamma(i, e)
-                    };
-                    (e, value)
-                })
-                .collect()
-        };
         let fem: Points = comparison
             .fem
             .iter()
@@ -331,12 +318,15 @@ fn function_charts(
         }
         lines.push(series("gamma1 ring BEM", c.gamma1.clone()));
         lines.push(series("gamma2 ring BEM", c.gamma2.clone()));
-        // The paper fitted the cone and the sphere only.
-        if kind.exponent_parameter().is_none()
-            && matches!(kind.power_law_exponent(), Some(1.0 | 2.0))
-        {
-            lines.push(series("gamma1 paper fit", fit(1)));
-            lines.push(series("gamma2 paper fit", fit(2)));
+        // The paper's fits, for the punches it fitted.
+        for function in [1, 2] {
+            if let Some(fit) = ringcontact::reference::fit_of(&kind, function) {
+                let points = concave_ratios()
+                    .into_iter()
+                    .filter_map(|e| Some((e, fit.evaluate(e)?.value)))
+                    .collect();
+                lines.push(series(&format!("gamma{function} paper fit"), points));
+            }
         }
         lines.push(series("gamma2 FEM P2", fem));
         // Markers: the FEM's one or two states stay visible.

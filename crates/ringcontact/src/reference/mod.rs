@@ -12,6 +12,8 @@ pub use crate::punch::power_law;
 
 use serde::Serialize;
 
+use crate::punch::PunchKind;
+
 /// A dimensionless function the references approximate.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -37,6 +39,24 @@ impl Quantity {
             Quantity::ConeGamma2 => "gamma2 (cone)",
             Quantity::SphereGamma1 => "gamma1 (sphere)",
             Quantity::SphereGamma2 => "gamma2 (sphere)",
+        }
+    }
+
+    /// The punch whose function this is.
+    pub fn punch(self) -> PunchKind {
+        match self {
+            Quantity::FlatGamma => PunchKind::FLAT_ANNULUS,
+            Quantity::ConeGamma1 | Quantity::ConeGamma2 => PunchKind::CONE,
+            Quantity::SphereGamma1 | Quantity::SphereGamma2 => PunchKind::SPHERE,
+        }
+    }
+
+    /// Which function: 0 for `γ` (`F = 2 E* d a γ`), 1 for `γ1 = d/h`, 2 for `γ2 = F/(2 E* h a)`.
+    pub fn function(self) -> usize {
+        match self {
+            Quantity::FlatGamma => 0,
+            Quantity::ConeGamma1 | Quantity::SphereGamma1 => 1,
+            Quantity::ConeGamma2 | Quantity::SphereGamma2 => 2,
         }
     }
 }
@@ -124,6 +144,16 @@ pub fn catalogue() -> Vec<Reference> {
     all.extend(paper_fits::references());
     all.sort_by_key(|r| r.kind);
     all
+}
+
+/// The fitted approximation of `kind`'s function `function` (0: `γ`, 1: `γ1`, 2: `γ2`), where
+/// the catalogue has one (the paper fitted the flat annulus, the cone and the sphere).
+pub fn fit_of(kind: &PunchKind, function: usize) -> Option<Reference> {
+    catalogue().into_iter().find(|r| {
+        r.kind == ReferenceKind::Fit
+            && r.quantity.function() == function
+            && r.quantity.punch() == *kind
+    })
 }
 
 /// References for `quantity` valid at `eps`, most trusted first.
