@@ -234,7 +234,6 @@ fn harness_files_naming_bem_or_fem_modules_do_not_grow() {
         "harness/dataset/functions.rs",
         "harness/dataset/mod.rs",
         "harness/records/fenicsx.rs",
-        "harness/records/peers.rs",
         "harness/report_jobs.rs",
         "harness/studies/claims.rs",
         "harness/studies/comparison.rs",

@@ -8,10 +8,11 @@ use std::path::PathBuf;
 use serde::{Deserialize, Serialize};
 
 use crate::harness::report::table::{verdict, Column, Format, Table};
-use ringcontact::bem::grid::GridLoad;
-use ringcontact::bem::grid_contact;
 use ringcontact::error::Result;
+use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
+use ringcontact::scene::SceneSpec;
+use ringcontact::solution::Solution;
 
 /// Relative force agreement required on the same grid.
 pub const PEER_AGREEMENT: f64 = 1e-6;
@@ -92,26 +93,17 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
                 } else {
                     1.0
                 };
-                let load = GridLoad::Depth(depth);
-                // A free band's square is stored with it; every other punch's grid is [-a, a]².
                 let solved = match (stored.punch.is_free_band(), stored.grid_extent) {
-                    (true, Some(half_size)) => grid_contact::solve_band_on_square(
-                        &stored.punch,
-                        stored.grid,
-                        half_size,
-                        load,
-                        1e-11,
-                    ),
+                    (true, Some(_)) | (false, None) => {
+                        our_grid_bem(&stored.punch, eps, depth, stored.grid, stored.grid_extent)
+                    }
                     (true, None) | (false, Some(_)) => {
                         Err(ringcontact::error::Error::Unsupported {
-                            method: ringcontact::bem::grid::METHOD.into(),
+                            method: Method::GridBem.name().into(),
                             reason: "grid_extent (the square's half-size) is stored for a \
                                      free band, and only for it"
                                 .into(),
                         })
-                    }
-                    (false, None) => {
-                        grid_contact::solve(stored.punch.clone(), eps, stored.grid, load, 1e-11)
                     }
                 };
                 let s = solved.map_err(|e| {
@@ -144,6 +136,33 @@ pub fn run(max_grid: usize) -> Result<Vec<PeerComparison>> {
         });
     }
     Ok(rows)
+}
+
+/// Our grid BEM as the peers run theirs: the requested grid alone (no error estimate), on the
+/// unit scene (`a = E* = 1`; `h = 1`, a free band's tube radius `a/2`), at depth `d/h`
+/// (`eps`: the fixed annulus's `b/a`), to a complementarity residual of 1e-11.
+fn our_grid_bem(
+    punch: &PunchKind,
+    eps: f64,
+    depth: f64,
+    cells: usize,
+    extent: Option<f64>,
+) -> Result<Solution> {
+    let mut spec = SceneSpec::default().shape(punch.clone());
+    if punch.is_free_band() {
+        spec = spec.tube_radius(0.5);
+    }
+    if punch.has_fixed_hole() {
+        spec = spec.inner_ratio(eps);
+    }
+    let scene = spec.depth(depth).tolerance(1e-11).validate()?;
+    let options = MethodOptions {
+        grid: Some(cells),
+        grid_extent: extent,
+        grid_without_estimate: true,
+        ..crate::harness::settings::method_options()
+    };
+    methods::solve_with(&scene, Method::GridBem, &options)
 }
 
 /// Number of disagreements, plus one if nothing was compared.
