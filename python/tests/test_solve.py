@@ -85,17 +85,17 @@ def test_the_torus_and_the_power_law_take_their_keywords():
 @pytest.mark.parametrize(
     "keywords, words",
     [
-        ({"punch": "flat-annulus", "eps": 1.2}, "`punch.inner_radius` must satisfy 0 <= b < a"),
+        ({"punch": "flat-annulus", "eps": 1.2}, "`eps` must satisfy 0 <= b < a"),
         ({"punch": "cone", "depth": 1, "effective_modulus": -1}, "effective_modulus` must be > 0"),
         ({"punch": "cone", "depth": float("nan")}, "`depth` must be a finite number"),
         ({"punch": "cone", "depth": [1, 2], "force": [1]}, "differ in length: depth (2), force (1)"),
-        ({"punch": "cone", "depth": [1, -2]}, "state 2 of 2: invalid scene: `load.depth` must be > 0"),
-        ({"punch": "cone", "depth": [1, "x"]}, "state 2 of 2: invalid scene: `load.depth` must be a number"),
+        ({"punch": "cone", "depth": [1, -2]}, "state 2 of 2: invalid scene: `depth` must be > 0"),
+        ({"punch": "cone", "depth": [1, "x"]}, "state 2 of 2: invalid scene: `depth` must be a number"),
         ({"punch": "cone", "depth": []}, "no state: depth is an empty sequence"),
         ({"punch": "cone", "eps": 0.5, "depth": 1}, "do not combine it with `depth`"),
         ({"punch": "cone", "shape": "sphere"}, "`punch` and `shape` both name the shape"),
         ({"punch": "table", "profile": "no-such-tip.csv", "depth": 1}, "no-such-tip.csv"),
-        ({"depth": 1}, "punch.shape"),
+        ({"depth": 1}, "`punch` is required"),
     ],
 )
 def test_bad_scenes_raise_the_tools_message(keywords, words):

@@ -148,8 +148,8 @@ pd.read_csv('DIR/functions-cone.csv'); R: read.csv(...); frictionless: Package('
 
 The function tables are uniform in s = ln(eps/(1 - eps)); exp of the cubic in s through
 ln(value) at the four nearest rows interpolates them to the error stated (measured at every
-interval's midpoint). The full dataset takes about two minutes; --small (the copy in
-verify/dataset/) a few seconds.
+interval's midpoint). The full dataset takes seconds; --small (the copy in verify/dataset/)
+about one.
 
 Examples:
   verify dataset                       into reports/dataset/

@@ -75,9 +75,10 @@ pub fn solve_keyword_scenes(
             let serde_json::Value::Object(object) = value else {
                 return Err(named(k, "a scene is an object of keywords".into()));
             };
+            let given: Vec<String> = object.keys().cloned().collect();
             SceneSpec::from_keywords(object, &name(k), base)
                 .and_then(SceneSpec::validate)
-                .map_err(|e| named(k, e.to_string()))
+                .map_err(|e| named(k, ringcontact::scene::in_keywords(e, &given).to_string()))
         })
         .collect::<Result<Vec<_>, _>>()?;
     let heartbeat = Heartbeat::start(

@@ -44,11 +44,15 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     refuse_non_finite(&what, &r)?;
     Ok(Reply::ok(match (&r, args.json) {
         (_, true) => to_json(&r)?,
-        (Jkr::FlatAnnulus(r), false) => flat_annulus_text(r),
-        (Jkr::Concave(r), false) => concave_text(r),
-        (Jkr::Band(r), false) => band_text(r),
+        (Jkr::FlatAnnulus(r), false) => flat_annulus_text(r) + UNITS,
+        (Jkr::Concave(r), false) => concave_text(r) + UNITS,
+        (Jkr::Band(r), false) => band_text(r) + UNITS,
     }))
 }
+
+/// The units of the text answers (the JSON's are in `verify jkr --help`).
+const UNITS: &str = "  units: F0 = sqrt(8 pi E* dw a^3) (Kendall's flat-punch pull-off), d0 = \
+                     sqrt(2 pi a dw / E*), dw the work of adhesion\n";
 
 /// What `verify jkr` says of the flat circular punch.
 const KENDALL: &str = "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)";

@@ -30,7 +30,7 @@ use crate::error::{Error, Result};
 use crate::punch::{Contact, Punch, PunchKind, PunchName};
 
 mod keywords;
-pub use keywords::keyword_names;
+pub use keywords::{in_keywords, keyword_names};
 
 /// Default tolerance of the ring BEM (each method has its own default; see `methods`).
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;

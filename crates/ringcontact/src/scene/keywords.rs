@@ -113,6 +113,28 @@ pub(super) fn from_keywords(
     spec.eps(eps)
 }
 
+/// The error of a scene given by keywords (`given`: the keywords the caller passed), naming
+/// the keyword given (`eps`, `force`, `inner_radius`) rather than the scene file's `section.key`
+/// or the command line's flag.
+pub fn in_keywords(error: Error, given: &[String]) -> Error {
+    let Error::InvalidScene { field, rule } = error else {
+        return error;
+    };
+    let gave = |keyword: &str| given.iter().any(|g| g == keyword);
+    let key = field.rsplit('.').next().unwrap_or(&field).to_string();
+    let field = match key.as_str() {
+        "contact_ratio" | "inner_radius" if gave("eps") => "eps".to_string(),
+        "shape" if !gave("shape") => "punch".to_string(),
+        _ => key,
+    };
+    let rule = rule
+        .replace("(or pass --eps b/a)", "(or give eps = b/a)")
+        .replace(" (--depth, --force, --eps)", " (or eps)")
+        .replace("punch.inner_radius or --eps", "inner_radius or eps")
+        .replace("as inner_radius and as --eps", "as inner_radius and as eps");
+    Error::InvalidScene { field, rule }
+}
+
 /// [`SceneSpec::eps`].
 pub(super) fn with_eps(spec: SceneSpec, eps: f64) -> Result<SceneSpec> {
     match spec.shape_name().map(PunchName::contact) {
@@ -217,6 +239,39 @@ mod tests {
     }
 
     /// Unknown keys, a shape named twice, `eps` beside a load: errors naming the key.
+    /// Validation errors of a keyword scene name the keywords the caller gave, not the scene
+    /// file's sections or the command line's flags.
+    #[test]
+    fn validation_errors_name_the_keywords_given() {
+        let cases = [
+            (
+                r#"{"punch": "cone", "eps": 1.5}"#,
+                "`eps` must satisfy 0 < b/a < 1",
+            ),
+            (r#"{"punch": "sphere", "force": -1}"#, "`force` must be > 0"),
+            (
+                r#"{"punch": "flat-annulus"}"#,
+                "`inner_radius` is required for shape = flat-annulus (or give eps = b/a)",
+            ),
+            (r#"{"punch": "cone"}"#, "(or eps)"),
+        ];
+        for (text, expected) in cases {
+            let object: serde_json::Map<String, serde_json::Value> =
+                serde_json::from_str(text).unwrap();
+            let given: Vec<String> = object.keys().cloned().collect();
+            let error = SceneSpec::from_keywords(object, "test", None)
+                .and_then(SceneSpec::validate)
+                .map_err(|e| in_keywords(e, &given))
+                .unwrap_err()
+                .to_string();
+            assert!(error.contains(expected), "{text}: {error}");
+            assert!(
+                !error.contains("load.") && !error.contains("--"),
+                "{text}: {error}"
+            );
+        }
+    }
+
     #[test]
     fn bad_keywords_are_named() {
         for (keywords_text, expected) in [
