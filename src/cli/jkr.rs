@@ -51,7 +51,7 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
 }
 
 /// The units of the text answers (the JSON's are in `verify jkr --help`).
-const UNITS: &str = "  units: F0 = sqrt(8 pi E* dw a^3) (Kendall's flat-punch pull-off), d0 = \
+const UNITS: &str = "  units: F0 = sqrt(8 pi E* dw a^3) (Kendall's force), d0 = \
                      sqrt(2 pi a dw / E*), dw the work of adhesion\n";
 
 /// What `verify jkr` says of the flat circular punch.
