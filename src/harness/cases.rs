@@ -1,6 +1,7 @@
-//! The states the studies solve, punch by punch: the harness's one list of built-in punches.
-//! The studies take their cases from here and ask each profile for everything else (its
-//! contact, its edges, its references); a punch with a free band is found by its contact.
+//! The states the studies solve, punch by punch: the comparison, the report's charts and jobs,
+//! the claims and the dataset take their cases from here and ask each profile for everything
+//! else (its contact, its edges, its references); a punch with a free band is found by its
+//! contact. The stability and speed-accuracy studies still keep their own lists.
 
 use ringcontact::methods::ladder::StudyCase;
 use ringcontact::punch::{Contact, Exponent, PunchKind};
