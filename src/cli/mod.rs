@@ -119,25 +119,33 @@ pub(crate) fn punch_kind(
     name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
 ) -> Result<ringcontact::punch::PunchKind, String> {
-    let kind = name.with_exponent(exponent).map_err(|e| {
-        format!(
+    let kind = name.with_exponent(exponent).map_err(|e| match &e {
+        ringcontact::error::Error::InvalidScene { field, .. } if field == "profile" => format!(
             "{e}; the commands that take --profile read it (`verify solve`, `jkr`, `pulloff`, \
              `convergence`); plans of its convergence studies are not built"
-        )
+        ),
+        _ => message(e),
     })?;
-    if !kind.has_rim() {
-        return Err(format!(
-            "the {kind} (two free edges) is solved by `verify solve --punch {kind}` (ring BEM, \
-             FEM, grid BEM), `verify jkr --punch {kind}`, `verify pulloff --punch {kind} \
-             --d0h S` and `verify convergence --punch {kind} --method fem|grid-bem --depth D`; \
-             plans of its convergence studies are not built"
-        ));
+    with_a_rim(kind)
+}
+
+/// `kind` if its contact has a rim; a free band's error names the commands that solve it.
+fn with_a_rim(
+    kind: ringcontact::punch::PunchKind,
+) -> Result<ringcontact::punch::PunchKind, String> {
+    if kind.has_rim() {
+        return Ok(kind);
     }
-    Ok(kind)
+    Err(format!(
+        "the {kind} (two free edges) is solved by `verify solve --punch {kind}` (ring BEM, FEM, \
+         grid BEM), `verify jkr --punch {kind}`, `verify pulloff --punch {kind} --d0h S` and \
+         `verify convergence --punch {kind} --method fem|grid-bem --depth D`; plans of its \
+         convergence studies are not built"
+    ))
 }
 
 /// The punch of `--punch`, `--exponent` and `--profile`: one given a profile from its file (or
-/// the shape's reason to take none), the others as [`punch_kind`].
+/// the shape's reason to take none), the others as [`punch_kind`] without its note on plans.
 pub(crate) fn punch_kind_with_profile(
     name: ringcontact::punch::PunchName,
     exponent: Option<f64>,
@@ -145,16 +153,7 @@ pub(crate) fn punch_kind_with_profile(
 ) -> Result<ringcontact::punch::PunchKind, String> {
     match profile {
         Some(_) => name.with_parameters(exponent, profile).map_err(message),
-        None => name
-            .with_exponent(exponent)
-            .map_err(message)
-            .and_then(|kind| {
-                if kind.has_rim() {
-                    Ok(kind)
-                } else {
-                    punch_kind(name, exponent)
-                }
-            }),
+        None => with_a_rim(name.with_exponent(exponent).map_err(message)?),
     }
 }
 

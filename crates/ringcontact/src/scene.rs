@@ -422,7 +422,7 @@ impl SceneSpec {
             (true, Some(_), Some(_)) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
-                    "is given twice (as inner_radius and as --eps); give one",
+                    "is given twice (as inner_radius and as eps = b/a); give one",
                 ))
             }
             (true, Some(b), None) => finite("punch.inner_radius", b)?,
@@ -430,7 +430,7 @@ impl SceneSpec {
             (true, None, None) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
-                    "is required for shape = flat-annulus (or pass --eps b/a)",
+                    "is required for shape = flat-annulus (or give eps = b/a)",
                 ))
             }
             (_, Some(_), _) | (_, _, Some(_)) => {
@@ -610,8 +610,8 @@ impl RawLoad {
                     "load.contact_ratio",
                     format!(
                         "applies only to the punches whose contact edges are found ({}; for \
-                         {kind} the contact is fixed by the geometry; use punch.inner_radius or \
-                         --eps)",
+                         {kind} the contact is fixed by the geometry; use inner_radius or eps \
+                         = b/a)",
                         PunchName::names(Some(Contact::RimAndFreeInner), ", ")
                             + ", "
                             + &PunchName::names(Some(Contact::FreeBand), ", ")
@@ -630,9 +630,7 @@ impl RawLoad {
         if kind.is_concave() {
             Err(Error::invalid(
                 "load",
-                format!(
-                    "{kind} needs one of depth, force or contact_ratio (--depth, --force, --eps)"
-                ),
+                format!("{kind} needs one of depth, force or contact_ratio (or eps = b/a)"),
             ))
         } else {
             Ok(Load::Depth(1.0))

@@ -11,7 +11,6 @@ use crate::harness::report::table::{verdict, Column, Format, Table};
 use ringcontact::error::Result;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
-use ringcontact::scene::SceneSpec;
 use ringcontact::solution::Solution;
 
 /// Relative force agreement required on the same grid.
@@ -148,14 +147,10 @@ fn our_grid_bem(
     cells: usize,
     extent: Option<f64>,
 ) -> Result<Solution> {
-    let mut spec = SceneSpec::default().shape(punch.clone());
-    if punch.is_free_band() {
-        spec = spec.tube_radius(0.5);
-    }
-    if punch.has_fixed_hole() {
-        spec = spec.inner_ratio(eps);
-    }
-    let scene = spec.depth(depth).tolerance(1e-11).validate()?;
+    let scene = crate::harness::studies::unit_spec(punch.clone(), eps)
+        .depth(depth)
+        .tolerance(1e-11)
+        .validate()?;
     let options = MethodOptions {
         grid: Some(cells),
         grid_extent: extent,

@@ -198,13 +198,7 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     identities.extend(power_law_checks(&solver, tolerance)?);
     identities.extend(free_band_edge_checks(&solver, tolerance)?);
     identities.extend(table_punch_checks(&solver, tolerance)?);
-    let fem = fem_cross_checks(&solver, tolerance)?;
-    let fem_not_run =
-        if ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths()) {
-            0
-        } else {
-            cases::BAND_FEM_DEPTHS.len() * cases::free_bands().len()
-        };
+    let (fem, fem_not_run) = fem_cross_checks(&solver, tolerance)?;
     Ok(ComparisonReport {
         tolerance,
         rows,
@@ -215,8 +209,9 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
 }
 
 /// The FEM (default tolerance, P2, committed meshes; a free band on meshes gmsh makes) against
-/// the ring BEM on the states of [`cases::fem_cross_check_states`].
-fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossCheck>> {
+/// the ring BEM on the states of [`cases::fem_cross_check_states`]; with the number of states
+/// not run for want of gmsh.
+fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<(Vec<CrossCheck>, usize)> {
     // `--method fem` at its default tolerance, P2, on the meshes it picks.
     let options = MethodOptions {
         degree: Some(Degree::Quadratic),
@@ -231,12 +226,14 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
     let table = cases::report_table_punch().map(|kind| (kind, 0.0, FemLoad::ConcaveDepth(1.5)));
     // A free band's meshes are made for the scene (gmsh): without it these are not run (counted).
     let gmsh = ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths());
-    let bands = cases::free_bands()
+    let bands: Vec<_> = cases::free_bands()
         .into_iter()
-        .filter(|_| gmsh)
         .flat_map(|band| {
             cases::BAND_FEM_DEPTHS.map(|d| (band.clone(), 0.0, FemLoad::ConcaveDepth(d)))
-        });
+        })
+        .collect();
+    let not_run = if gmsh { 0 } else { bands.len() };
+    let bands = bands.into_iter().filter(|_| gmsh);
     for (kind, eps, load) in cases.chain(table).chain(bands) {
         let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;
         let fem = methods::solve_with(&scene, Method::Fem, &options)?;
@@ -293,7 +290,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<CrossC
                 && outer_difference.is_none_or(|c| c.abs() <= allowed),
         });
     }
-    Ok(checks)
+    Ok((checks, not_run))
 }
 
 /// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.

@@ -15,6 +15,19 @@ use ringcontact::fem::FemLoad;
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::{Scene, SceneSpec};
 
+/// The punch `kind` on the unit scene (`a = h = E* = 1`): a free band's tube radius `a/2` (its
+/// `h = a²/(2ρ) = a`), a fixed annulus's hole `b/a = eps`; the load still to be given.
+pub(crate) fn unit_spec(kind: PunchKind, eps: f64) -> SceneSpec {
+    let spec = SceneSpec::default().shape(kind.clone());
+    if kind.is_free_band() {
+        spec.tube_radius(0.5)
+    } else if kind.has_fixed_hole() {
+        spec.inner_ratio(eps)
+    } else {
+        spec
+    }
+}
+
 /// The scene a FEM load describes, for a solve through [`ringcontact::methods::Method`]: punch
 /// `kind`, `b/a = eps` (flat annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
 /// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
@@ -24,15 +37,8 @@ pub(crate) fn scene_of_fem_load(
     load: FemLoad,
     tolerance: Option<f64>,
 ) -> Result<Scene> {
-    let spec = SceneSpec::default().shape(kind.clone());
-    // A free band of the dimensionless problem: `h = a²/(2ρ) = a`.
-    let spec = if kind.is_free_band() {
-        spec.tube_radius(0.5)
-    } else {
-        spec
-    };
+    let spec = unit_spec(kind, eps);
     let spec = match load {
-        FemLoad::Flat if kind.has_fixed_hole() => spec.inner_ratio(eps),
         FemLoad::Flat => spec,
         FemLoad::ConcaveDepth(depth) => spec.depth(depth),
         FemLoad::ConcaveForce(force) => spec.force(2.0 * force),

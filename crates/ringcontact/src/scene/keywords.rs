@@ -114,8 +114,7 @@ pub(super) fn from_keywords(
 }
 
 /// The error of a scene given by keywords (`given`: the keywords the caller passed), naming
-/// the keyword given (`eps`, `force`, `inner_radius`) rather than the scene file's `section.key`
-/// or the command line's flag.
+/// the keyword given (`eps`, `force`, `inner_radius`) rather than the scene file's `section.key`.
 pub fn in_keywords(error: Error, given: &[String]) -> Error {
     let Error::InvalidScene { field, rule } = error else {
         return error;
@@ -127,11 +126,6 @@ pub fn in_keywords(error: Error, given: &[String]) -> Error {
         "shape" if !gave("shape") => "punch".to_string(),
         _ => key,
     };
-    let rule = rule
-        .replace("(or pass --eps b/a)", "(or give eps = b/a)")
-        .replace(" (--depth, --force, --eps)", " (or eps)")
-        .replace("punch.inner_radius or --eps", "inner_radius or eps")
-        .replace("as inner_radius and as --eps", "as inner_radius and as eps");
     Error::InvalidScene { field, rule }
 }
 
@@ -253,7 +247,7 @@ mod tests {
                 r#"{"punch": "flat-annulus"}"#,
                 "`inner_radius` is required for shape = flat-annulus (or give eps = b/a)",
             ),
-            (r#"{"punch": "cone"}"#, "(or eps)"),
+            (r#"{"punch": "cone"}"#, "(or eps = b/a)"),
         ];
         for (text, expected) in cases {
             let object: serde_json::Map<String, serde_json::Value> =
