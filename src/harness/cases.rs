@@ -16,6 +16,18 @@ pub(crate) fn free_bands() -> Vec<PunchKind> {
     PunchKind::built_in(Contact::FreeBand)
 }
 
+/// The flat punch of hole `b/a = eps`: the disk at 0, else the fixed annulus.
+pub(crate) fn flat_punch(eps: f64) -> PunchKind {
+    if eps == 0.0 {
+        PunchKind::FLAT
+    } else {
+        PunchKind::FLAT_ANNULUS
+    }
+}
+
+/// The state `(punch, d/h)` whose contact pressure the report draws by three methods.
+pub(crate) const PRESSURE_PROFILE: (PunchKind, f64) = (PunchKind::SPHERE, 1.5);
+
 /// The power-law punch `h (1 - (r/a)^n)`.
 pub(crate) fn power(n: f64) -> PunchKind {
     PunchKind::power(Exponent::new(n).expect("a positive finite exponent"))
@@ -154,4 +166,128 @@ pub(crate) fn paper_recessed_punches() -> [PunchKind; 2] {
 /// The pull-off the report simulates live: `(punch, d0/h)`, the cone with its hole closed.
 pub(crate) fn live_pulloff() -> (PunchKind, f64) {
     (PunchKind::CONE, 10.0)
+}
+
+/// The punches whose full-contact limit `γ1 - γ2 -> 1 - κ_n/(n + 1)` the comparison checks:
+/// the paper's two recessed punches and a power law between them.
+pub(crate) fn full_contact_limit_punches() -> Vec<PunchKind> {
+    let [first, second] = paper_recessed_punches();
+    vec![first, second, power(1.5)]
+}
+
+/// A problem of the speed-accuracy study: its name in report.json, its slug (job ids, file
+/// names) and chart title, the punch and state (`b/a`; `d/h` of a recessed punch, `None` for
+/// a flat one), the committed mesh family of its contact line, how the ring BEM's points are
+/// made, and about how long its base points take (s).
+pub(crate) struct SpeedProblem {
+    pub(crate) name: &'static str,
+    pub(crate) slug: &'static str,
+    pub(crate) title: &'static str,
+    pub(crate) kind: PunchKind,
+    pub(crate) eps: f64,
+    pub(crate) depth: Option<f64>,
+    pub(crate) family: Option<&'static str>,
+    pub(crate) ring_points: RingPoints,
+    pub(crate) expected_s: f64,
+}
+
+/// How the speed-accuracy study makes a problem's ring-BEM points.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum RingPoints {
+    /// The bare ring system at a few node counts (it converges geometrically).
+    NodeCounts,
+    /// The solver at tolerances 1e-2 to 1e-9, each point with the solver's estimate.
+    EstimatedTolerances,
+    /// The solver at tolerances 1e-2 to 1e-9.
+    Tolerances,
+}
+
+/// The speed-accuracy study's problems, in the report's order: the flat annulus at two holes,
+/// the sphere and the cone under depth control (the last two problems, the FEM's full solve
+/// against FEniCSx on the meshes the FEM makes).
+pub(crate) fn speed_problems() -> Vec<SpeedProblem> {
+    vec![
+        SpeedProblem {
+            name: "FlatHalf",
+            slug: "flat-annulus-0.5",
+            title: "flat annulus b/a = 0.5, gamma",
+            kind: PunchKind::FLAT_ANNULUS,
+            eps: 0.5,
+            depth: None,
+            family: Some("annulus-0.5"),
+            ring_points: RingPoints::NodeCounts,
+            expected_s: 0.9,
+        },
+        SpeedProblem {
+            name: "Sphere",
+            slug: "sphere-1.5",
+            title: "sphere d/h = 1.5, gamma2",
+            kind: PunchKind::SPHERE,
+            eps: 0.0,
+            depth: Some(1.5),
+            family: Some("disk"),
+            ring_points: RingPoints::EstimatedTolerances,
+            expected_s: 1.9,
+        },
+        SpeedProblem {
+            name: "Cone",
+            slug: "cone-2",
+            title: "cone d/h = 2, gamma2",
+            kind: PunchKind::CONE,
+            eps: 0.0,
+            depth: Some(2.0),
+            family: None,
+            ring_points: RingPoints::Tolerances,
+            expected_s: 1.6,
+        },
+        SpeedProblem {
+            name: "FlatThick",
+            slug: "flat-annulus-0.3",
+            title: "flat annulus b/a = 0.3, gamma",
+            kind: PunchKind::FLAT_ANNULUS,
+            eps: 0.3,
+            depth: None,
+            family: None,
+            ring_points: RingPoints::Tolerances,
+            expected_s: 0.9,
+        },
+    ]
+}
+
+/// The punches and states the stability study drives toward their limits.
+pub(crate) struct StabilityPunches {
+    /// The punch whose contact is the disk.
+    pub(crate) disk: PunchKind,
+    /// The punch whose contact is a fixed annulus.
+    pub(crate) annulus: PunchKind,
+    /// A recessed punch whose hole never closes, and depths `d/h` from the first touch to deep
+    /// (its hole shrinks exponentially).
+    pub(crate) open_hole: (PunchKind, Vec<f64>),
+    /// A recessed punch whose hole closes (at `d = 3h`), and depths about its closure.
+    pub(crate) closing_hole: (PunchKind, Vec<f64>),
+    /// The FEM's recessed states `(punch, d/h)`.
+    pub(crate) fem_states: Vec<(PunchKind, f64)>,
+    /// The grid BEM's recessed states `(punch, d/h, cells per side)`.
+    pub(crate) grid_states: Vec<(PunchKind, f64, usize)>,
+}
+
+/// The stability study's punches and states.
+pub(crate) fn stability_punches() -> StabilityPunches {
+    let (cone, sphere) = (PunchKind::CONE, PunchKind::SPHERE);
+    StabilityPunches {
+        disk: PunchKind::FLAT,
+        annulus: PunchKind::FLAT_ANNULUS,
+        open_hole: (cone.clone(), vec![1e-3, 0.01, 5.0, 10.0, 14.0, 40.0]),
+        closing_hole: (sphere.clone(), vec![2.99, 2.999999, 3.0, 3.5]),
+        fem_states: vec![
+            (cone.clone(), 0.2),
+            (cone.clone(), 8.0),
+            (sphere.clone(), 2.95),
+        ],
+        grid_states: vec![
+            (cone.clone(), 0.05, 64),
+            (cone, 0.05, 512),
+            (sphere, 2.999, 64),
+        ],
+    }
 }

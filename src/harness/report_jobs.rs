@@ -224,11 +224,7 @@ impl Part {
             Part::Fenicsx => 9.0,
             Part::Peers => 7.7,
             Part::Operators => 0.1,
-            Part::SpeedBase(p) => match p {
-                Problem::Sphere => 1.9,
-                Problem::Cone => 1.6,
-                Problem::FlatHalf | Problem::FlatThick => 0.9,
-            },
+            Part::SpeedBase(p) => p.expected_s(),
             Part::SpeedFem { tolerance, .. } => {
                 if *tolerance >= 1e-3 {
                     0.1
@@ -438,7 +434,7 @@ pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> 
         Part::Peers,
         Part::Operators,
     ];
-    for problem in Problem::ALL {
+    for problem in Problem::all() {
         parts.push(Part::SpeedBase(problem));
         for &tolerance in fem_tolerances {
             parts.push(Part::SpeedFem { problem, tolerance });
@@ -919,7 +915,11 @@ impl<'a> JobId<'a> {
         let problem = Problem::from_slug(slug).ok_or_else(|| {
             self.bad(&format!(
                 "no speed-accuracy problem `{slug}` (known: {})",
-                Problem::ALL.map(|p| p.slug()).join(", ")
+                Problem::all()
+                    .iter()
+                    .map(|p| p.slug())
+                    .collect::<Vec<_>>()
+                    .join(", ")
             ))
         })?;
         Ok(if self.keys.contains_key("fem-tol") {

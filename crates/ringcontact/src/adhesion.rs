@@ -29,7 +29,7 @@ use crate::bem::ring_contact::{
     free_edge_floor, RingBemSolver, MAX_CONTACT_RATIO, MIN_CONTACT_RATIO,
 };
 use crate::error::{Error, Result};
-use crate::reference::asymptotic::collins_series;
+use crate::punch::collins_series;
 
 mod any_punch;
 mod concave;

@@ -10,8 +10,7 @@ use serde::Serialize;
 
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::punch::PunchKind;
-use crate::reference::paper_fits;
+use crate::reference::{self, Reference, ReferenceKind};
 
 /// A parametrised form `f(eps; θ)` with a readable formula.
 pub struct Form {
@@ -246,23 +245,36 @@ fn chebyshev_grid(count: usize) -> Vec<f64> {
         .collect()
 }
 
-/// The ring BEM's values of function `name` at the contact ratios `xs` (tolerance 1e-10).
+/// The paper's fit of function `name` (`flat` for `γ`, else the quantity's key: `cone_gamma1`),
+/// as the profile that declares it gives it.
+fn paper_fit(name: &str) -> Result<Reference> {
+    let key = if name == "flat" { "flat_gamma" } else { name };
+    reference::catalogue()
+        .into_iter()
+        .find(|r| r.kind == ReferenceKind::Fit && r.quantity.key() == key)
+        .ok_or_else(|| Error::NoConvergence {
+            method: "fit".into(),
+            reason: format!("no paper fit of '{name}'"),
+        })
+}
+
+/// The ring BEM's values of function `name` at the contact ratios `xs` (tolerance 1e-10), on
+/// the punch whose fit it is.
 fn ring_bem_values(solver: &RingBemSolver, name: &str, xs: &[f64]) -> Result<Vec<f64>> {
+    let quantity = paper_fit(name)?.quantity;
+    let function = quantity.function();
+    let kind = reference::fitted_punch(quantity).filter(|_| function > 0);
     xs.iter()
         .map(|&e| -> Result<f64> {
-            Ok(match name {
-                "flat" => solver.flat(e, 1e-10)?.gamma,
-                "cone_gamma1" => solver.concave_at_ratio(&PunchKind::CONE, e, 1e-10)?.gamma1,
-                "cone_gamma2" => solver.concave_at_ratio(&PunchKind::CONE, e, 1e-10)?.gamma2,
-                "sphere_gamma1" => {
-                    solver
-                        .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
-                        .gamma1
-                }
-                _ => {
-                    solver
-                        .concave_at_ratio(&PunchKind::SPHERE, e, 1e-10)?
-                        .gamma2
+            Ok(match &kind {
+                None => solver.flat(e, 1e-10)?.gamma,
+                Some(kind) => {
+                    let state = solver.concave_at_ratio(kind, e, 1e-10)?;
+                    if function == 1 {
+                        state.gamma1
+                    } else {
+                        state.gamma2
+                    }
                 }
             }
             .unwrap_or(f64::NAN))
@@ -316,18 +328,6 @@ fn paper_form(name: &str) -> (Form, &'static str) {
     }
 }
 
-/// The paper's published value of function `name` at `e` (checked against the paper's numbers
-/// in the reference module, `paper_fits`).
-fn published(name: &str, e: f64) -> f64 {
-    match name {
-        "flat" => paper_fits::flat_gamma(e),
-        "cone_gamma1" => paper_fits::cone_gamma(1, e),
-        "cone_gamma2" => paper_fits::cone_gamma(2, e),
-        "sphere_gamma1" => paper_fits::sphere_gamma(1, e),
-        _ => paper_fits::sphere_gamma(2, e),
-    }
-}
-
 /// The best of the candidate forms for function `name`: fitted to `(fit_x, fy)`, graded at
 /// `(check_x, cy)`; `(formula, parameters, largest relative error, where)`.
 fn best_candidate(
@@ -363,7 +363,8 @@ fn refit(solver: &RingBemSolver, name: &str, fit_x: &[f64], check_x: &[f64]) -> 
         ring_bem_values(solver, name, check_x)?,
     );
     let (paper, paper_formula) = paper_form(name);
-    let (paper_err, paper_at) = max_relative_error(|e| published(name, e), check_x, &cy);
+    let published = paper_fit(name)?.eval;
+    let (paper_err, paper_at) = max_relative_error(|e| published(e).value, check_x, &cy);
     let params = levenberg_marquardt(&paper, fit_x, &fy);
     let (err, at) = max_relative_error(|e| (paper.eval)(e, &params), check_x, &cy);
     let (best_form, best_params, best_err, best_at) =

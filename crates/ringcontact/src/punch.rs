@@ -34,6 +34,7 @@ pub mod mdr;
 mod power;
 pub mod power_law;
 mod profile;
+mod references;
 mod sphere;
 pub mod table;
 mod torus;
@@ -44,9 +45,10 @@ use std::sync::Arc;
 
 pub use cone::Cone;
 pub use flat::Flat;
-pub use flat_annulus::FlatAnnulus;
+pub use flat_annulus::{collins_series, narrow_ring, FlatAnnulus};
 pub use power::{Exponent, Power};
 pub use profile::{Contact, PiecewiseProfile, Profile, Summary};
+pub use references::{Quantity, Reference, ReferenceKind, ReferenceValue};
 pub use sphere::Sphere;
 pub use table::TableProfile;
 pub use torus::Torus;
@@ -302,6 +304,14 @@ impl PunchKind {
         PunchName::ALL
             .into_iter()
             .filter(|name| name.contact() == contact)
+            .filter_map(|name| name.with_parameters(None, None).ok())
+            .collect()
+    }
+
+    /// Every built-in punch that takes no parameter, in the command line's order.
+    pub fn every_built_in() -> Vec<PunchKind> {
+        PunchName::ALL
+            .into_iter()
             .filter_map(|name| name.with_parameters(None, None).ok())
             .collect()
     }

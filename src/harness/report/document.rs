@@ -28,8 +28,7 @@ use crate::harness::studies::figures::{
     concave_ratios, flat_ratios, ConcaveCurves, FunctionCurves, Points, PressureProfiles,
 };
 use ringcontact::error::{Error, Result};
-use ringcontact::punch::PunchKind;
-use ringcontact::reference::paper_fits;
+use ringcontact::punch::{Contact, PunchKind};
 
 /// Where each range's pull of `record` ended, against the range: on the closed hole's branch
 /// (the rim's pull-off, extrapolated to zero range beside the JKR route's full-contact value),
@@ -269,22 +268,28 @@ fn function_charts(
         .filter(|c| !c.punch.is_concave())
         .map(|c| (c.fem_eps, c.fem_value))
         .collect();
-    let fit: Points = flat_ratios()
-        .into_iter()
-        .map(|e| (e, paper_fits::flat_gamma(e)))
-        .collect();
-    let chart = linear_chart(
-        "flat annulus: gamma = F/(2 E* d a) against b/a",
-        "eps = b/a",
-        "gamma",
-        &[
-            series("ring BEM", curves.flat_ring_bem.clone()),
-            series("paper fit (3)", fit),
-            series("FEM P2 (points)", fem_points),
-            series("grid BEM 128² (points)", curves.flat_grid_bem.clone()),
-        ],
-    );
-    write(dir, "gamma-flat-annulus.svg", &chart)?;
+    for annulus in PunchKind::built_in(Contact::FixedAnnulus) {
+        let annulus_fit = ringcontact::reference::fit_of(&annulus, 0);
+        let fit: Points = flat_ratios()
+            .into_iter()
+            .filter_map(|e| Some((e, (annulus_fit?.eval)(e).value)))
+            .collect();
+        let chart = linear_chart(
+            &format!(
+                "{}: gamma = F/(2 E* d a) against b/a",
+                annulus.name().replace('-', " ")
+            ),
+            "eps = b/a",
+            "gamma",
+            &[
+                series("ring BEM", curves.flat_ring_bem.clone()),
+                series("paper fit (3)", fit),
+                series("FEM P2 (points)", fem_points.clone()),
+                series("grid BEM 128² (points)", curves.flat_grid_bem.clone()),
+            ],
+        );
+        write(dir, &format!("gamma-{}.svg", annulus.label()), &chart)?;
+    }
     for c in &curves.concave {
         let kind = c.punch.clone();
         if !kind.has_rim() {

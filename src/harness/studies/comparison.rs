@@ -18,7 +18,7 @@ use ringcontact::error::Result;
 use ringcontact::fem::FemLoad;
 use ringcontact::mesh::triangulation::Degree;
 use ringcontact::methods::{self, Method, MethodOptions};
-use ringcontact::punch::PunchKind;
+use ringcontact::punch::{Contact, PunchKind};
 use ringcontact::reference::{self, power_law, Quantity, ReferenceKind};
 
 /// Contact ratios of the flat-annulus table.
@@ -152,25 +152,24 @@ fn row(quantity: Quantity, state: &RingState, value: f64, wall_s: f64) -> Row {
 pub fn run(tolerance: f64) -> Result<ComparisonReport> {
     let solver = RingBemSolver::new();
     let mut rows = Vec::new();
-    for &eps in &FLAT_RATIOS {
-        let start = Instant::now();
-        let state = solver.flat(eps, tolerance)?;
-        let wall = start.elapsed().as_secs_f64();
-        rows.push(row(
-            Quantity::FlatGamma,
-            &state,
-            state.gamma.unwrap_or(f64::NAN),
-            wall,
-        ));
+    for kind in PunchKind::built_in(Contact::FixedAnnulus) {
+        let Some(quantity) = reference::quantity_of(&kind, 0) else {
+            continue;
+        };
+        for &eps in &FLAT_RATIOS {
+            let start = Instant::now();
+            let state = solver.flat(eps, tolerance)?;
+            let wall = start.elapsed().as_secs_f64();
+            rows.push(row(quantity, &state, state.gamma.unwrap_or(f64::NAN), wall));
+        }
     }
-    for (kind, q1, q2) in [
-        (PunchKind::CONE, Quantity::ConeGamma1, Quantity::ConeGamma2),
-        (
-            PunchKind::SPHERE,
-            Quantity::SphereGamma1,
-            Quantity::SphereGamma2,
-        ),
-    ] {
+    for kind in PunchKind::built_in(Contact::RimAndFreeInner) {
+        let (Some(q1), Some(q2)) = (
+            reference::quantity_of(&kind, 1),
+            reference::quantity_of(&kind, 2),
+        ) else {
+            continue;
+        };
         for &eps in &CONCAVE_RATIOS {
             let start = Instant::now();
             let state = solver.concave_at_ratio(&kind, eps, tolerance)?;
@@ -178,20 +177,17 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
             rows.push(row(q1, &state, state.gamma1.unwrap_or(f64::NAN), wall));
             rows.push(row(q2, &state, state.gamma2.unwrap_or(f64::NAN), wall));
         }
+        // The onset of full contact where the hole closes (the eps -> 0 limit, exact), reached
+        // from the full-contact side by the disk discretisation.
+        if let Some((depth, _)) = kind.closure() {
+            let start = Instant::now();
+            let onset = solver.full_contact(&kind, depth, tolerance)?;
+            let wall = start.elapsed().as_secs_f64();
+            rows.push(row(q2, &onset, onset.gamma2.unwrap_or(f64::NAN), wall));
+        }
     }
-    // Sphere at the onset of full contact (eps -> 0 limit, exact d = 3h, F = 16/3 E* h a),
-    // reached from the full-contact side by the disk discretisation.
-    let start = Instant::now();
-    let onset = solver.full_contact(&PunchKind::SPHERE, 3.0, tolerance)?;
-    let wall = start.elapsed().as_secs_f64();
-    rows.push(row(
-        Quantity::SphereGamma2,
-        &onset,
-        onset.gamma2.unwrap_or(f64::NAN),
-        wall,
-    ));
-
-    rows.sort_by_key(|r| r.quantity as u8);
+    let order = reference::quantities();
+    rows.sort_by_key(|r| order.iter().position(|q| *q == r.quantity));
     let mut identities = incremental_stiffness_checks(&solver, tolerance)?;
     identities.extend(full_contact_limit_checks(&solver, tolerance)?);
     identities.extend(edge_intensity_checks(&solver, tolerance)?);
@@ -346,23 +342,18 @@ fn incremental_stiffness_checks(
 }
 
 /// Small-`eps` limits from the full-contact solutions (method of dimensionality reduction): a
-/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0`
-/// `γ1 - γ2 -> 1 - π/4` (cone: `F = 2 E* a (d - h (1 - π/4))` in full contact) and
-/// `γ1 - γ2 -> 1/3` (sphere: `F = 2 E* a (d - h/3)`). Checked at `eps = 0.01` with the bound
+/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0` the power-law gap of exponent
+/// `n` has `γ1 - γ2 -> 1 - κ_n/(n + 1)` (`F = 2 E* a (d - h (1 - κ_n/(n + 1)))` in full
+/// contact): `1 - π/4` for `n = 1`, `1/3` for `n = 2`. Checked at `eps = 0.01` with the bound
 /// `eps³`.
 fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let eps = 0.01_f64;
     let mut checks = Vec::new();
-    let power_limit = 1.0 - power_law::kappa(1.5) / 2.5;
-    for (kind, limit, label) in [
-        (
-            PunchKind::CONE,
-            1.0 - std::f64::consts::FRAC_PI_4,
-            "1 - pi/4",
-        ),
-        (PunchKind::SPHERE, 1.0 / 3.0, "1/3"),
-        (power(1.5), power_limit, "1 - kappa_n/(n + 1)"),
-    ] {
+    for kind in cases::full_contact_limit_punches() {
+        let Some(n) = kind.power_law_exponent() else {
+            continue;
+        };
+        let (limit, label) = full_contact_limit(n);
         let state = solver.concave_at_ratio(&kind, eps, tolerance)?;
         let difference = state.gamma1.unwrap_or(f64::NAN) - state.gamma2.unwrap_or(f64::NAN);
         let residual = (difference - limit).abs() / limit;
@@ -380,6 +371,18 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
     Ok(checks)
 }
 
+/// `γ1 - γ2` of the power-law gap of exponent `n` in full contact, `1 - κ_n/(n + 1)`, written
+/// in closed form where it has one (`n = 1`: `1 - π/4`; `n = 2`: `1/3`).
+fn full_contact_limit(n: f64) -> (f64, &'static str) {
+    if n == 1.0 {
+        (1.0 - std::f64::consts::FRAC_PI_4, "1 - pi/4")
+    } else if n == 2.0 {
+        (1.0 / 3.0, "1/3")
+    } else {
+        (1.0 - power_law::kappa(n) / (n + 1.0), "1 - kappa_n/(n + 1)")
+    }
+}
+
 /// The power-law punch `h (1 - (r/a)^n)`: with `n = 1` and `n = 2` it is the cone and the
 /// sphere (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past its closure depth
 /// its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at `d = 3h`, where the
@@ -387,7 +390,10 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
 fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let eps = 0.3;
-    for (named, n) in [(PunchKind::CONE, 1.0), (PunchKind::SPHERE, 2.0)] {
+    let named_power_laws = PunchKind::built_in(Contact::RimAndFreeInner)
+        .into_iter()
+        .filter_map(|kind| Some((kind.power_law_exponent()?, kind)));
+    for (n, named) in named_power_laws {
         let lhs = solver
             .concave_at_ratio(&power(n), eps, tolerance)?
             .gamma2

@@ -1,11 +1,11 @@
 //! The data behind the report's charts that the methods compute: the dimensionless functions
-//! against `eps` ([`FunctionCurves`]), the sphere's pressure profile by three methods
+//! against `eps` ([`FunctionCurves`]), the pressure profile of one state by three methods
 //! ([`PressureProfiles`]) and the JKR route's adhesive annular branch ([`annular_jkr_branch`]).
 //! The report only draws them.
 
 use serde::{Deserialize, Serialize};
 
-use crate::harness::cases::{report_profile_punches, REPORT_TABLE_SAMPLES};
+use crate::harness::cases::{self, report_profile_punches, REPORT_TABLE_SAMPLES};
 use ringcontact::bem::grid::{solve_contact, GridLoad, GridOperator};
 use ringcontact::bem::grid_contact::{self, cell_centre, discretise};
 use ringcontact::bem::ring_contact::RingBemSolver;
@@ -17,7 +17,7 @@ use ringcontact::punch::PunchKind;
 /// A curve or a set of points `(x, y)`.
 pub(crate) type Points = Vec<(f64, f64)>;
 
-/// `b/a` of the flat annulus's curve: 61 points on `[0, 0.99]`.
+/// `b/a` of the fixed annulus's curve: 61 points on `[0, 0.99]`.
 pub(crate) fn flat_ratios() -> Vec<f64> {
     (0..=60).map(|k| 0.99 * k as f64 / 60.0).collect()
 }
@@ -65,14 +65,14 @@ pub(crate) fn largest_gap_difference(one: PunchKind, other: PunchKind) -> f64 {
 /// The dimensionless functions against `eps` that the methods compute for the report's charts.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub(crate) struct FunctionCurves {
-    /// `gamma = F/(2 E* d a)` of the flat annulus by the ring BEM at [`flat_ratios`].
+    /// `gamma = F/(2 E* d a)` of the fixed annulus by the ring BEM at [`flat_ratios`].
     pub flat_ring_bem: Points,
     /// The same by the grid BEM on 128² at `b/a` = 0, 0.5, 0.9 (those that solved).
     pub flat_grid_bem: Points,
     /// The functions of [`report_profile_punches`] at [`concave_ratios`] (where one annulus).
     pub concave: Vec<ConcaveCurves>,
     /// `(d/h, gamma2)` of the free band by the grid BEM at [`BAND_GRID_DEPTHS`] (128², its own
-    /// square; those that solved). The JSON key names the built-in free band, the torus.
+    /// square; those that solved). The JSON key names the built-in free band.
     #[serde(default, rename = "torus_grid_bem")]
     pub band_grid_bem: Points,
 }
@@ -88,12 +88,9 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         .collect::<Result<_>>()?;
     let mut flat_grid_bem = Vec::new();
     for e in [0.0, 0.5, 0.9] {
-        let kind = if e == 0.0 {
-            PunchKind::FLAT
-        } else {
-            PunchKind::FLAT_ANNULUS
-        };
-        if let Ok(s) = grid_contact::solve(kind, e, 128, GridLoad::Depth(1.0), 1e-10) {
+        if let Ok(s) =
+            grid_contact::solve(cases::flat_punch(e), e, 128, GridLoad::Depth(1.0), 1e-10)
+        {
             flat_grid_bem.push((e, s.gamma.unwrap_or(f64::NAN)));
         }
     }
@@ -103,9 +100,8 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         for e in concave_ratios() {
             let s = match ring.concave_at_ratio(&punch, e, 1e-10) {
                 Ok(s) => s,
-                // A power law flatter than the sphere is one annulus only for the wider holes
-                // (docs/conventions.md fact 8), and so is a table whose interpolant is flatter
-                // at the axis: the curve stops where the ring BEM refuses.
+                // A profile flatter at the axis than `r²` has one annulus only for the wider
+                // holes (docs/conventions.md fact 8): the curve stops where the ring BEM refuses.
                 Err(_) if is_power(&punch) || punch.piecewise().is_some() => continue,
                 Err(e) => return Err(e),
             };
@@ -150,7 +146,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
     })
 }
 
-/// Contact pressure `p a/(E* h)` against `r/a` of the sphere at `d = 1.5 h` by three methods.
+/// Contact pressure `p a/(E* h)` against `r/a` at [`cases::PRESSURE_PROFILE`] by three methods.
 #[derive(Clone, Debug, Serialize, Deserialize)]
 pub(crate) struct PressureProfiles {
     /// The ring BEM's nodal pressures.
@@ -161,9 +157,10 @@ pub(crate) struct PressureProfiles {
     pub fem: Points,
 }
 
-/// Compute the sphere's pressure profiles at `d = 1.5 h`.
+/// Compute the pressure profiles at [`cases::PRESSURE_PROFILE`].
 pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
-    let state = ring.concave_at_depth(&PunchKind::SPHERE, 1.5, 1e-10)?;
+    let (kind, depth) = cases::PRESSURE_PROFILE;
+    let state = ring.concave_at_depth(&kind, depth, 1e-10)?;
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
     let grid_bem = ring_averaged_grid_pressure(256, 64)?;
     let options = FemOptions {
@@ -177,8 +174,7 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
         poisson_ratio: 0.0,
         far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
     };
-    let fem_state =
-        fem_solver::solve(PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5), &options)?;
+    let fem_state = fem_solver::solve(kind, 0.0, FemLoad::ConcaveDepth(depth), &options)?;
     // Nodal estimates in the contact, clipped near the rim singularity.
     let fem = ringcontact::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
         .into_iter()
@@ -191,16 +187,17 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
     })
 }
 
-/// The grid BEM's pressure of the sphere at `d = 1.5 h` on `n²` cells, averaged over `bins`
+/// The grid BEM's pressure at [`cases::PRESSURE_PROFILE`] on `n²` cells, averaged over `bins`
 /// rings of equal width inside `r < a`.
 fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
+    let (kind, depth) = cases::PRESSURE_PROFILE;
     let op = GridOperator::new(n, 2.0 / n as f64);
-    let punch = discretise(PunchKind::SPHERE, 0.0, n);
+    let punch = discretise(kind, 0.0, n);
     let c = solve_contact(
         &op,
         &punch.allowed,
         &punch.profile,
-        GridLoad::Depth(1.5),
+        GridLoad::Depth(depth),
         1e-10,
         10_000,
     )?;
@@ -228,7 +225,7 @@ fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
 /// `b/a` while the depth rises, up to `d = 0`.
 pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over_h: f64) -> Points {
     // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets go
-    // near the rim: the cone at d0/h = 0.3 at b/a = 0.98).
+    // near the rim: at b/a = 0.98 for the linear gap at d0/h = 0.3).
     let ratios = (0..=66)
         .map(|k| 0.30 + 0.01 * k as f64)
         .chain((1..=7).map(|k| 0.96 + 0.005 * k as f64));

@@ -1,5 +1,5 @@
-//! Speed against accuracy: error against wall time of every method on four problems (the flat
-//! annulus `b/a = 0.5` and `0.3`, the sphere at `d = 1.5 h`, the cone at `d = 2 h`).
+//! Speed against accuracy: error against wall time of every method on the problems of
+//! [`cases::speed_problems`].
 //!
 //! Each problem's points come from independent pieces, so that a run can be split into jobs
 //! ([`crate::harness::report_jobs`]): the base points ([`base_points`]: ring BEM, FEM on the committed levels,
@@ -9,6 +9,8 @@
 use std::time::Instant;
 
 use serde::{Deserialize, Serialize};
+
+use crate::harness::cases::{self, RingPoints, SpeedProblem};
 
 use crate::harness::records::fenicsx::FenicsxComparison;
 use ringcontact::bem::grid::GridLoad;
@@ -158,91 +160,84 @@ pub(crate) fn unbounded_estimates(studies: &[SpeedAccuracy]) -> usize {
         .count()
 }
 
-/// A problem of the speed-accuracy study.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
-pub enum Problem {
-    /// Flat annulus `b/a = 0.5`, `γ` (ring BEM at several node counts).
-    FlatHalf,
-    /// Sphere under depth control `d = 1.5 h`, `γ2` (ring BEM at several tolerances).
-    Sphere,
-    /// Cone under depth control `d = 2 h`, `γ2`.
-    Cone,
-    /// Flat annulus `b/a = 0.3`, `γ`.
-    FlatThick,
-}
+/// A problem of the speed-accuracy study: an index into [`cases::speed_problems`], written in
+/// JSON by its case's name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Problem(usize);
 
 impl Problem {
     /// Every problem, in the report's order.
-    pub(crate) const ALL: [Problem; 4] = [
-        Problem::FlatHalf,
-        Problem::Sphere,
-        Problem::Cone,
-        Problem::FlatThick,
-    ];
+    pub(crate) fn all() -> Vec<Problem> {
+        (0..cases::speed_problems().len()).map(Problem).collect()
+    }
+
+    /// The problem's case.
+    fn case(self) -> SpeedProblem {
+        cases::speed_problems().swap_remove(self.0)
+    }
 
     /// Short name (job ids, file names).
     pub(crate) fn slug(self) -> &'static str {
-        match self {
-            Problem::FlatHalf => "flat-annulus-0.5",
-            Problem::Sphere => "sphere-1.5",
-            Problem::Cone => "cone-2",
-            Problem::FlatThick => "flat-annulus-0.3",
-        }
+        self.case().slug
     }
 
     /// The problem named `slug`.
     pub(crate) fn from_slug(slug: &str) -> Option<Problem> {
-        Problem::ALL.into_iter().find(|p| p.slug() == slug)
+        Problem::all().into_iter().find(|p| p.slug() == slug)
     }
 
     /// The chart's title.
     pub(crate) fn title(self) -> &'static str {
-        match self {
-            Problem::FlatHalf => "flat annulus b/a = 0.5, gamma",
-            Problem::Sphere => "sphere d/h = 1.5, gamma2",
-            Problem::Cone => "cone d/h = 2, gamma2",
-            Problem::FlatThick => "flat annulus b/a = 0.3, gamma",
-        }
+        self.case().title
     }
 
-    /// The ring BEM's value the points are compared with: `γ` of the flat annulus 0.5 at
-    /// tolerance 1e-12, the others' `γ` or `γ2` at 1e-11.
+    /// About how long its base points take, in seconds (for the balance of the report's shards).
+    pub(crate) fn expected_s(self) -> f64 {
+        self.case().expected_s
+    }
+
+    /// The ring BEM's value the points are compared with: `γ` at tolerance 1e-12 for the
+    /// problem whose points are node counts, the others' `γ` or `γ2` at 1e-11.
     pub(crate) fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
-        match self {
-            Problem::FlatHalf => Ok(ring.flat(0.5, 1e-12)?.gamma.unwrap_or(f64::NAN)),
-            _ => self.cost_problem().value_of_ring_bem(ring, 1e-11),
+        let cost = self.cost_problem();
+        match self.case().ring_points {
+            RingPoints::NodeCounts => Ok(ring.flat(cost.eps, 1e-12)?.gamma.unwrap_or(f64::NAN)),
+            _ => cost.value_of_ring_bem(ring, 1e-11),
         }
     }
 
     fn cost_problem(self) -> CostProblem {
-        match self {
-            Problem::FlatHalf => CostProblem {
-                kind: PunchKind::FLAT_ANNULUS,
-                eps: 0.5,
-                family: Some("annulus-0.5"),
-                load: FemLoad::Flat,
-            },
-            Problem::Sphere => CostProblem {
-                kind: PunchKind::SPHERE,
-                eps: 0.0,
-                family: Some("disk"),
-                load: FemLoad::ConcaveDepth(1.5),
-            },
-            // The cone and the flat annulus 0.3: the FEM's full solve against FEniCSx on the
-            // meshes the FEM makes (and the committed ones), with the ring BEM and the grid BEM.
-            Problem::Cone => CostProblem {
-                kind: PunchKind::CONE,
-                eps: 0.0,
-                family: None,
-                load: FemLoad::ConcaveDepth(2.0),
-            },
-            Problem::FlatThick => CostProblem {
-                kind: PunchKind::FLAT_ANNULUS,
-                eps: 0.3,
-                family: None,
-                load: FemLoad::Flat,
+        let case = self.case();
+        CostProblem {
+            kind: case.kind,
+            eps: case.eps,
+            family: case.family,
+            load: match case.depth {
+                Some(depth) => FemLoad::ConcaveDepth(depth),
+                None => FemLoad::Flat,
             },
         }
+    }
+}
+
+impl Serialize for Problem {
+    fn serialize<S: serde::Serializer>(
+        &self,
+        serializer: S,
+    ) -> std::result::Result<S::Ok, S::Error> {
+        serializer.serialize_str(self.case().name)
+    }
+}
+
+impl<'de> Deserialize<'de> for Problem {
+    fn deserialize<D: serde::Deserializer<'de>>(
+        deserializer: D,
+    ) -> std::result::Result<Self, D::Error> {
+        let name = String::deserialize(deserializer)?;
+        Problem::all()
+            .into_iter()
+            .find(|p| p.case().name == name)
+            .ok_or_else(|| serde::de::Error::custom(format!("unknown problem '{name}'")))
     }
 }
 
@@ -255,21 +250,21 @@ pub struct BasePoints {
     pub points: Vec<CostPoint>,
 }
 
-/// The yardstick and the base points of `problem`: the ring BEM (at several node counts for the
-/// flat annulus 0.5, at tolerances 1e-2 .. 1e-9 otherwise), the FEM with P1 and P2 on the
+/// The yardstick and the base points of `problem`: the ring BEM (as its case's [`RingPoints`]
+/// says), the FEM with P1 and P2 on the
 /// committed levels L0-L2 where the problem has a committed family, and the grid BEM at 64² to
 /// 256² cells.
 pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints> {
     let cost = problem.cost_problem();
     let yardstick = problem.yardstick(ring)?;
-    let mut points = match problem {
-        Problem::FlatHalf => {
+    let mut points = match problem.case().ring_points {
+        RingPoints::NodeCounts => {
             let rule = TanhSinhRule::new(1.0 / 16.0);
             // The ring BEM at a few node counts (it converges geometrically).
             let mut points = Vec::new();
             for n in [3usize, 4, 5, 6, 8] {
                 let (g, t) = timed(|| {
-                    let region = ContactRegion::Annulus { eps: 0.5 };
+                    let region = ContactRegion::Annulus { eps: cost.eps };
                     RingSystem::assemble(region, n, &rule)
                         .solve(&vec![1.0; n])
                         .map(|f| 0.5 * f.force)
@@ -282,10 +277,11 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
             }
             points
         }
-        Problem::Sphere => {
+        RingPoints::EstimatedTolerances => {
+            let depth = cost.load_depth();
             let mut points = Vec::new();
             for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
-                let (s, t) = timed(|| ring.concave_at_depth(&PunchKind::SPHERE, 1.5, tol))?;
+                let (s, t) = timed(|| ring.concave_at_depth(&cost.kind, depth, tol))?;
                 points.push(estimated_point(
                     "ring-bem",
                     format!("tol {tol:.0e}"),
@@ -297,7 +293,7 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
             }
             points
         }
-        Problem::Cone | Problem::FlatThick => {
+        RingPoints::Tolerances => {
             let mut points = Vec::new();
             for tol in [1e-2, 1e-4, 1e-6, 1e-9] {
                 let (value, t) = timed(|| cost.value_of_ring_bem(ring, tol))?;
@@ -382,7 +378,7 @@ pub fn speed_accuracy(
     fem_tolerances: &[f64],
 ) -> Result<Vec<SpeedAccuracy>> {
     let mut out = Vec::new();
-    for problem in Problem::ALL {
+    for problem in Problem::all() {
         let base = base_points(ring, problem)?;
         let ladder: Vec<Option<CostPoint>> = fem_tolerances
             .iter()
@@ -462,6 +458,14 @@ struct CostProblem {
 }
 
 impl CostProblem {
+    /// The depth `d/h` of a concave problem (0 for a flat one).
+    fn load_depth(&self) -> f64 {
+        match self.load {
+            FemLoad::ConcaveDepth(d) => d,
+            _ => 0.0,
+        }
+    }
+
     /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
     fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
         let value = match self.load {

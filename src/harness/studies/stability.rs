@@ -18,6 +18,8 @@ use ringcontact::fem::FemLoad;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference::asymptotic::{collins_series, narrow_ring};
+
+use crate::harness::cases;
 use ringcontact::scene::{Scene, SceneSpec};
 
 use crate::harness::report::table::{Cell, Column, Format, Table};
@@ -52,12 +54,16 @@ fn flat_reference(ring: &RingBemSolver, eps: f64) -> Reference {
         .and_then(|s| s.gamma.map(|g| (g, 1e-12 * g)))
 }
 
+/// Past its closure the contact is the disk and `dγ2/d(d/h) = 1`: `γ2 = γ2_c + (γ1 - d_c)`
+/// from the closure `(d_c, γ2_c)` the profile declares, exact.
+fn beyond_closure(kind: &PunchKind, depth: f64) -> Reference {
+    let (closure_depth, closure_force) = kind.closure()?;
+    (depth >= closure_depth).then_some((closure_force + (depth - closure_depth), 0.0))
+}
+
 fn concave_reference(ring: &RingBemSolver, kind: PunchKind, depth: f64) -> Reference {
-    // Past its closure the contact is the disk: the flat punch's force, `dγ2/d(d/h) = 1`.
-    if let Some((closure_depth, closure_force)) = kind.closure() {
-        if depth >= closure_depth {
-            return Some((closure_force + (depth - closure_depth), 0.0));
-        }
+    if let Some(reference) = beyond_closure(&kind, depth) {
+        return Some(reference);
     }
     ring.concave_at_depth(&kind, depth, 1e-11)
         .ok()
@@ -163,14 +169,14 @@ fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
     Some(path)
 }
 
-/// The flat punch (`eps = 0`) or the flat annulus of `b/a = eps` on the unit scene.
+/// The disk (`eps = 0`) or the fixed annulus of `b/a = eps` on the unit scene.
 fn flat_scene(eps: f64) -> Result<Scene> {
-    let kind = if eps == 0.0 {
-        PunchKind::FLAT
-    } else {
-        PunchKind::FLAT_ANNULUS
-    };
-    super::scene_of_fem_load(kind, eps, FemLoad::Flat, None)
+    super::scene_of_fem_load(cases::flat_punch(eps), eps, FemLoad::Flat, None)
+}
+
+/// A punch's name as words, hyphens as spaces.
+fn words(kind: &PunchKind) -> String {
+    kind.name().replace('-', " ")
 }
 
 /// A concave punch at depth `d/h` on the unit scene.
@@ -198,52 +204,51 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
     probes
 }
 
-/// Ring BEM: eps -> 0 and -> 1, the cone's blow-up, the sphere at the edge of full contact,
-/// a tolerance below its rounding floor.
+/// Ring BEM: eps -> 0 and -> 1, the open hole's blow-up, the closing hole at the edge of full
+/// contact, a tolerance below its rounding floor.
 fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
+    let punches = cases::stability_punches();
+    let annulus = words(&punches.annulus);
     for eps in [0.0, 1e-5, 1e-4, 1e-3, 0.5, 0.999, 0.9999, 0.99999] {
         let p = probe(
             Method::RingBem,
             &none,
-            format!("flat annulus b/a = {eps}"),
+            format!("{annulus} b/a = {eps}"),
             flat_scene(eps),
             flat_reference(ring, eps),
         );
         push(p);
     }
-    for depth in [1e-3, 0.01, 5.0, 10.0, 14.0, 40.0] {
+    let (open, open_depths) = &punches.open_hole;
+    for &depth in open_depths.iter() {
         let reference = None; // the ring BEM is its own yardstick here; MDR limits are in the tests
         let p = probe(
             Method::RingBem,
             &none,
-            format!("cone d/h = {depth}"),
-            concave_scene(PunchKind::CONE, depth, None),
+            format!("{open} d/h = {depth}"),
+            concave_scene(open.clone(), depth, None),
             reference,
         );
         push(p);
     }
-    for depth in [2.99, 2.999999, 3.0, 3.5] {
-        let reference = if depth >= 3.0 {
-            Some((depth - 1.0 / 3.0, 0.0))
-        } else {
-            None
-        };
+    let (closing, closing_depths) = &punches.closing_hole;
+    for &depth in closing_depths.iter() {
         let p = probe(
             Method::RingBem,
             &none,
-            format!("sphere d/h = {depth}"),
-            concave_scene(PunchKind::SPHERE, depth, None),
-            reference,
+            format!("{closing} d/h = {depth}"),
+            concave_scene(closing.clone(), depth, None),
+            beyond_closure(closing, depth),
         );
         push(p);
     }
     let p = probe(
         Method::RingBem,
         &none,
-        "flat annulus b/a = 0.5, tolerance 1e-15".into(),
+        format!("{annulus} b/a = 0.5, tolerance 1e-15"),
         SceneSpec::default()
-            .shape(PunchKind::FLAT_ANNULUS)
+            .shape(punches.annulus.clone())
             .inner_ratio(0.5)
             .tolerance(1e-15)
             .validate(),
@@ -269,11 +274,9 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         );
         push(p);
     }
-    for (kind, depth) in [
-        (PunchKind::CONE, 0.2),
-        (PunchKind::CONE, 8.0),
-        (PunchKind::SPHERE, 2.95),
-    ] {
+    let punches = cases::stability_punches();
+    let disk = &punches.disk;
+    for (kind, depth) in punches.fem_states {
         let p = probe(
             Method::Fem,
             &none,
@@ -291,7 +294,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let p = probe(
         Method::Fem,
         &coarse,
-        "flat, coarsest mesh L0, P1 (single mesh)".into(),
+        format!("{disk}, coarsest mesh L0, P1 (single mesh)"),
         flat_scene(0.0),
         flat_reference(ring, 0.0),
     );
@@ -303,7 +306,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let p = probe(
         Method::Fem,
         &small,
-        "flat, small domain R = 5a (single mesh)".into(),
+        format!("{disk}, small domain R = 5a (single mesh)"),
         flat_scene(0.0),
         flat_reference(ring, 0.0),
     );
@@ -312,6 +315,8 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 
 /// Grid BEM: rings narrower than the cells, coarse grids, near full contact.
 fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+    let punches = cases::stability_punches();
+    let annulus = words(&punches.annulus);
     for (eps, n) in [(0.9, 64), (0.97, 64), (0.99, 64), (0.99, 512)] {
         let options = MethodOptions {
             grid: Some(n),
@@ -320,17 +325,13 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
         let p = probe(
             Method::GridBem,
             &options,
-            format!("flat annulus b/a = {eps}, {n}²"),
+            format!("{annulus} b/a = {eps}, {n}²"),
             flat_scene(eps),
             flat_reference(ring, eps),
         );
         push(p);
     }
-    for (kind, depth, n) in [
-        (PunchKind::CONE, 0.05, 64),
-        (PunchKind::CONE, 0.05, 512),
-        (PunchKind::SPHERE, 2.999, 64),
-    ] {
+    for (kind, depth, n) in punches.grid_states {
         let options = MethodOptions {
             grid: Some(n),
             ..crate::harness::settings::method_options()
@@ -350,7 +351,8 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 fn iteration_cap_probe() -> Probe {
     use ringcontact::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
     let op = GridOperator::new(64, 2.0 / 64.0);
-    let punch = ringcontact::bem::grid_contact::discretise(PunchKind::SPHERE, 0.0, 64);
+    let (closing, _) = cases::stability_punches().closing_hole;
+    let punch = ringcontact::bem::grid_contact::discretise(closing.clone(), 0.0, 64);
     let outcome = solve_contact(
         &op,
         &punch.allowed,
@@ -361,7 +363,7 @@ fn iteration_cap_probe() -> Probe {
     );
     Probe {
         method: "grid-bem".into(),
-        probe: "sphere d/h = 1.5, 64², iteration cap 3".into(),
+        probe: format!("{closing} d/h = 1.5, 64², iteration cap 3"),
         outcome: if outcome.is_err() {
             "error".into()
         } else {
@@ -379,11 +381,10 @@ fn iteration_cap_probe() -> Probe {
 /// right.
 fn declined_probes(push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
-    for (kind, depth) in [
-        (PunchKind::FLAT, 1e308),
-        (PunchKind::CONE, 1e308),
-        (PunchKind::SPHERE, 1e308),
-    ] {
+    let punches = cases::stability_punches();
+    let (disk, open) = (&punches.disk, &punches.open_hole.0);
+    let overflowing = [disk, open, &punches.closing_hole.0].map(|kind| (kind.clone(), 1e308));
+    for (kind, depth) in overflowing {
         let scene = SceneSpec::default()
             .shape(kind.clone())
             .depth(depth)
@@ -399,7 +400,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     let p = must_decline(
         Method::Fem,
         &mesh_options(swapped.clone().unwrap_or_default()),
-        "flat on a mesh with far and axis tags swapped",
+        &format!("{disk} on a mesh with far and axis tags swapped"),
         flat_scene(0.0),
     );
     push(p);
@@ -410,14 +411,14 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus.clone()),
-        "cone on an annulus mesh (contact line from r = b)",
-        concave_scene(PunchKind::CONE, 2.0, None),
+        &format!("{open} on an annulus mesh (contact line from r = b)"),
+        concave_scene(open.clone(), 2.0, None),
     );
     push(p);
     let p = must_decline(
         Method::Fem,
         &mesh_options(annulus),
-        "flat punch on an annulus mesh",
+        &format!("{disk} punch on an annulus mesh"),
         flat_scene(0.0),
     );
     push(p);
@@ -426,11 +427,12 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
 /// References outside their ranges.
 fn reference_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
+    let annulus = words(&cases::stability_punches().annulus);
     for eps in [0.5, 0.95] {
         let p = probe(
             Method::Reference,
             &none,
-            format!("flat annulus b/a = {eps}"),
+            format!("{annulus} b/a = {eps}"),
             flat_scene(eps),
             flat_reference(ring, eps),
         );

@@ -820,14 +820,17 @@ pub type EpsForce = (f64, f64);
 /// `(fixed load, fixed grips)` as `(eps, F/F0)`, each `None` where the fitted branch has no
 /// interior minimum.
 pub fn paper_fit_route(kind: PunchKind, s: f64) -> (Option<EpsForce>, Option<EpsForce>) {
-    use crate::reference::paper_fits::{cone_gamma, sphere_gamma};
-    // The paper fitted the cone and the sphere only.
-    let fit: fn(usize, f64) -> f64 = match kind.power_law_exponent() {
-        Some(1.0) => cone_gamma,
-        Some(2.0) => sphere_gamma,
-        _ => return (None, None),
+    // The fits the profile declares (the paper fitted two concave punches).
+    let (Some(fit1), Some(fit2)) = (
+        crate::reference::fit_of(&kind, 1),
+        crate::reference::fit_of(&kind, 2),
+    ) else {
+        return (None, None);
     };
-    let g = |i: usize, e: f64| fit(i, e);
+    let g = |i: usize, e: f64| {
+        let fit = if i == 1 { &fit1 } else { &fit2 };
+        (fit.eval)(e).value
+    };
     let d1 = |i: usize, e: f64| {
         let h = 1e-6 * e.min(1.0 - e);
         (g(i, e + h) - g(i, e - h)) / (2.0 * h)

@@ -27,8 +27,8 @@ use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::{Error, Result};
 use crate::numerics::roots::RootError;
 use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::power_law;
 use crate::punch::PunchKind;
-use crate::reference::paper_fits;
 
 use piecewise_gap::{BandEdges, InnerStencil};
 
@@ -1196,26 +1196,17 @@ const SLOPE_TRUSTED_ESTIMATE: f64 = 1e-3;
 /// (about 1e-6), which the accurate search then removes.
 const PRESEARCH_TOLERANCE: f64 = 1e-6;
 
-/// Most evaluations of a piecewise profile's pre-search: 5 to 8 where `γ` is monotone, 13 for the sampled
-/// sphere at `d/h = 2.97`, where it is flat with humps; past these the search starts from the
-/// fit's guess.
+/// Most evaluations of a piecewise profile's pre-search (5 to 8 where `γ` is monotone, about 13
+/// where it is flat with humps); past these the search starts from the fit's guess.
 const PRESEARCH_EVALUATIONS: usize = 24;
 
 /// The rung of the inverse problem's first search (N = 16): a state that needs more nodes
 /// climbs from its root.
 const FIRST_SEARCH_RUNG: usize = 1;
 
-/// Starting contact ratio for the inverse problem. The paper's fits are used only to start the
+/// Starting contact ratio for the inverse problem: the profile's approximant where it has one,
+/// else the fit [`power_law::starting_fit`] picks for its rim slope. Fits only start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.
-///
-/// A concave punch whose gap has the slope `s = -a g'(a)/h >= 1.5` at the rim (`n` for the
-/// power law) starts from the sphere of the same rim slope, of depth `s h / 2` (so
-/// `γ(ε) ≈ (s/2) γ_sphere(ε)`, exact for the sphere and as the contact narrows toward the rim,
-/// `d -> 0`); a shallower one from the cone's fit, unscaled. The sphere's fit taken
-/// unscaled started a steep-walled profile (`n = 20`, `d = 0.9 h`: `ε = 0.86` against the root
-/// `0.988`) inside the hole, where `γ1` is not monotone (it rises again toward the hole's floor):
-/// the search wandered there or found a root whose surface crosses the floor and refused a
-/// state that exists.
 fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
     let depth_controlled = matches!(controlled, Controlled::Depth);
     if kind.approximate_gamma(0.5, depth_controlled).is_some() {
@@ -1235,13 +1226,7 @@ fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
-    let rim_slope = kind.rim_slope();
-    // The sphere keeps its own fit, unscaled (2 * target / 2 is exact).
-    let (target, fit): (f64, fn(usize, f64) -> f64) = if rim_slope < 1.5 {
-        (target, paper_fits::cone_gamma)
-    } else {
-        (2.0 * target / rim_slope, paper_fits::sphere_gamma)
-    };
+    let (target, fit) = power_law::starting_fit(kind.rim_slope(), target);
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.
     bisect_decreasing(
         |eps| fit(i, eps),

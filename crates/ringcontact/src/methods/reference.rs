@@ -43,32 +43,47 @@ fn best_reference(
         .ok_or_else(|| Error::OutOfRange {
             method: "reference".into(),
             reason: format!(
-                "no analytic reference for {quantity:?} is valid at eps = {}",
+                "no analytic reference for {} is valid at eps = {}",
+                quantity.label(),
                 crate::error::show(eps)
             ),
         })
 }
 
-/// Solve with the analytic references (exact results, series, asymptotes, the paper's fits).
+/// Solve with the analytic references (exact results, series, asymptotes, the paper's fits)
+/// that the punch's profile declares, and the full contact past its declared closure.
 fn solve_reference(scene: &Scene) -> Result<Solution> {
     let start = Instant::now();
     // Every field below is set from the reference that applies.
     let solution = base(scene, "reference", 0.0, (None, None, None), 0.0)?;
-    let mut solution = match reference_family(&scene.punch.kind)? {
-        ReferenceFamily::Flat => flat_reference(scene, solution)?,
-        ReferenceFamily::Cone => concave_reference(scene, solution, false)?,
-        ReferenceFamily::Sphere => concave_reference(scene, solution, true)?,
-        ReferenceFamily::Power(n) => power_full_contact(scene, solution, n)?,
+    let mut solution = if scene.punch.kind.is_concave() {
+        concave_reference(scene, solution)?
+    } else {
+        flat_reference(scene, solution)?
     };
     solution.wall_s = start.elapsed().as_secs_f64();
     Ok(solution)
 }
 
-/// The flat annulus's `γ(b/a)` from the most trusted reference valid at `b/a`.
+/// The error of a punch without a closed form at this state.
+fn no_closed_form(reason: String) -> Error {
+    Error::OutOfRange {
+        method: "reference".into(),
+        reason,
+    }
+}
+
+/// A flat punch's `γ(b/a)` from the most trusted reference valid at `b/a`.
 fn flat_reference(scene: &Scene, mut solution: Solution) -> Result<Solution> {
+    let kind = &scene.punch.kind;
     let a = scene.punch.rim_radius;
     let eps = scene.punch.inner_ratio();
-    let (value, name, source) = best_reference(Quantity::FlatGamma, eps)?;
+    let quantity = reference::quantity_of(kind, 0).ok_or_else(|| {
+        no_closed_form(format!(
+            "the {kind} declares no closed form; it is the ring BEM's (--method ring-bem)"
+        ))
+    })?;
+    let (value, name, source) = best_reference(quantity, eps)?;
     let (d, f) = flat_depth_force(scene, value.value)?;
     solution.eps = eps;
     solution.inner_radius = eps * a;
@@ -81,59 +96,81 @@ fn flat_reference(scene: &Scene, mut solution: Solution) -> Result<Solution> {
     Ok(solution)
 }
 
-/// The cone's or the sphere's `γ1`, `γ2` at the scene's load: the sphere's full contact in
-/// closed form (the MDR), else the contact ratio whose references meet the load.
-fn concave_reference(scene: &Scene, solution: Solution, sphere: bool) -> Result<Solution> {
-    let (a, es, h) = (
+/// A concave punch's `γ1`, `γ2` at the scene's load: past the closure its profile declares, the
+/// full contact in closed form; else the contact ratio where the profile's references meet the
+/// load.
+fn concave_reference(scene: &Scene, solution: Solution) -> Result<Solution> {
+    let kind = &scene.punch.kind;
+    refuse_without_closed_form(kind)?;
+    if let Some(full) = full_contact(scene, &solution) {
+        return Ok(full);
+    }
+    let (h, a, es) = (
+        scene.punch.hole_depth,
         scene.punch.rim_radius,
         scene.material.effective_modulus,
-        scene.punch.hole_depth,
     );
-    let (q1, q2) = if !sphere {
-        (Quantity::ConeGamma1, Quantity::ConeGamma2)
-    } else {
-        (Quantity::SphereGamma1, Quantity::SphereGamma2)
+    let (Some(q1), Some(q2)) = (
+        reference::quantity_of(kind, 1),
+        reference::quantity_of(kind, 2),
+    ) else {
+        return Err(no_closed_form(without_references(kind)));
     };
-    let full_contact = match scene.load {
-        Load::Depth(d) if sphere => {
-            reference::sphere_full_contact_gamma2(d / h).map(|g2| (d / h, g2))
-        }
-        Load::Force(f) if sphere => {
-            let g2 = f / (2.0 * es * h * a);
-            (g2 >= 8.0 / 3.0).then_some((g2 + 1.0 / 3.0, g2))
-        }
+    let eps = match scene.load {
+        Load::ContactRatio(eps) => eps,
+        Load::Depth(d) => invert_reference(q1, d / h)?,
+        Load::Force(f) => invert_reference(q2, f / (2.0 * es * h * a))?,
+    };
+    let (v1, name, source) = best_reference(q1, eps)?;
+    let (v2, _, _) = best_reference(q2, eps)?;
+    let bound = match (v1.error_bound, v2.error_bound) {
+        (Some(b1), Some(b2)) => Some((b1 / v1.value).max(b2 / v2.value)),
         _ => None,
-    };
-    let (eps, g1, g2, name, source, bound) = if let Some((g1, g2)) = full_contact {
-        (
-            0.0,
-            g1,
-            g2,
-            "sphere-full-contact",
-            "MDR: F = 2 E* a (d - h/3) for d >= 3h",
-            Some(0.0),
-        )
-    } else {
-        let eps = match scene.load {
-            Load::ContactRatio(eps) => eps,
-            Load::Depth(d) => invert_reference(q1, d / h)?,
-            Load::Force(f) => invert_reference(q2, f / (2.0 * es * h * a))?,
-        };
-        let (v1, name, source) = best_reference(q1, eps)?;
-        let (v2, _, _) = best_reference(q2, eps)?;
-        let bound = match (v1.error_bound, v2.error_bound) {
-            (Some(b1), Some(b2)) => Some((b1 / v1.value).max(b2 / v2.value)),
-            _ => None,
-        };
-        (eps, v1.value, v2.value, name, source, bound)
     };
     Ok(concave_solution(
         solution,
         scene,
-        (eps, g1, g2),
+        (eps, v1.value, v2.value),
         bound,
         (&format!("reference:{name}"), source),
     ))
+}
+
+/// Refuse the profiles whose references are never closed forms: a piecewise (interpolated)
+/// gap and a free band.
+fn refuse_without_closed_form(kind: &PunchKind) -> Result<()> {
+    if kind.piecewise().is_some() {
+        return Err(no_closed_form(format!(
+            "the {} punch has no closed form (its full contact is a quadrature of the \
+             interpolated profile); it is the ring BEM's (--method ring-bem)",
+            kind.name()
+        )));
+    }
+    if kind.is_free_band() {
+        return Err(no_closed_form(format!(
+            "the {} has no closed form (its narrow limit, the plane-strain Hertz cylinder, is an \
+             asymptote without an error bound); it is the ring BEM's (--method ring-bem)",
+            kind.name()
+        )));
+    }
+    Ok(())
+}
+
+/// Why a concave punch without references of its annular contact has no answer here.
+fn without_references(kind: &PunchKind) -> String {
+    match kind.power_law_exponent() {
+        Some(n) => format!(
+            "the power-law punch has a closed form only in full contact (n > 1 and \
+             d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
+             (--method ring-bem)",
+            power_law::closure_depth(n)
+                .map(|d| format!(", here d >= {} h", crate::error::show(d)))
+                .unwrap_or_default()
+        ),
+        None => {
+            format!("the {kind} has no closed form here; it is the ring BEM's (--method ring-bem)")
+        }
+    }
 }
 
 /// `solution` at the concave state `(b/a, γ1 = d/h, γ2 = F/(2 E* h a))` of `scene`, with its
@@ -162,91 +199,43 @@ fn concave_solution(
     solution
 }
 
-/// The power law's full contact by the MDR; its annular contact has no closed form.
-fn power_full_contact(scene: &Scene, solution: Solution, n: f64) -> Result<Solution> {
+/// The full contact past the closure `(d_c/h, γ2_c)` the profile declares: the contact is the
+/// disk there and a rigid shift adds the flat punch's stiffness, `γ2 = γ2_c + (γ1 - d_c/h)`.
+fn full_contact(scene: &Scene, solution: &Solution) -> Option<Solution> {
+    let kind = &scene.punch.kind;
+    let (closure_depth, closure_force) = kind.closure()?;
     let (a, es, h) = (
         scene.punch.rim_radius,
         scene.material.effective_modulus,
         scene.punch.hole_depth,
     );
-    let full_contact = match scene.load {
-        Load::Depth(d) => power_law::full_contact_gamma2(n, d / h).map(|g2| (d / h, g2)),
+    let (g1, g2) = match scene.load {
+        Load::Depth(d) => {
+            let g1 = d / h;
+            (g1 >= closure_depth).then_some((g1, closure_force + (g1 - closure_depth)))
+        }
         Load::Force(f) => {
             let g2 = f / (2.0 * es * h * a);
-            power_law::full_contact_gamma1(n, g2).map(|g1| (g1, g2))
+            (g2 >= closure_force).then_some((closure_depth + (g2 - closure_force), g2))
         }
         Load::ContactRatio(_) => None,
-    };
-    let Some((g1, g2)) = full_contact else {
-        return Err(Error::OutOfRange {
-            method: "reference".into(),
-            reason: format!(
-                "the power-law punch has a closed form only in full contact (n > 1 and \
-                 d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
-                 (--method ring-bem)",
-                power_law::closure_depth(n)
-                    .map(|d| format!(", here d >= {} h", crate::error::show(d)))
-                    .unwrap_or_default()
-            ),
-        });
-    };
-    Ok(concave_solution(
-        solution,
+    }?;
+    let provenance = format!(
+        "MDR: full contact from d = {} h at F = {} E* h a; beyond, F = 2 E* a (d - {} h)",
+        crate::error::show(closure_depth),
+        crate::error::show(2.0 * closure_force),
+        crate::error::show(closure_depth - closure_force)
+    );
+    Some(concave_solution(
+        solution.clone(),
         scene,
         (0.0, g1, g2),
         Some(0.0),
         (
-            "reference:power-full-contact",
-            "MDR: F = 2 E* a ((d - h) + κ_n h/(n + 1)) for d >= h (1 + κ_n/(n - 1)), \
-             κ_n = (n √π/2) Γ(n/2)/Γ((n+1)/2)",
+            &format!("reference:{}-full-contact", kind.name()),
+            &provenance,
         ),
     ))
-}
-
-/// The closed-form references that hold for a punch, asked of its profile.
-enum ReferenceFamily {
-    /// The flat circular and annular punch's `γ(b/a)`.
-    Flat,
-    /// The cone's `γ1`, `γ2` (series and asymptotes).
-    Cone,
-    /// The sphere's `γ1`, `γ2` and its full contact.
-    Sphere,
-    /// The power law's full contact (the MDR).
-    Power(f64),
-}
-
-/// Which [`ReferenceFamily`] holds for `kind`; an error saying why where none does.
-fn reference_family(kind: &PunchKind) -> Result<ReferenceFamily> {
-    let none = |reason: String| Error::OutOfRange {
-        method: "reference".into(),
-        reason,
-    };
-    if !kind.is_concave() {
-        return Ok(ReferenceFamily::Flat);
-    }
-    if kind.piecewise().is_some() {
-        return Err(none(format!(
-            "the {} punch has no closed form (its full contact is a quadrature of the \
-             interpolated profile); it is the ring BEM's (--method ring-bem)",
-            kind.name()
-        )));
-    }
-    if kind.is_free_band() {
-        return Err(none(format!(
-            "the {} has no closed form (its narrow limit, the plane-strain Hertz cylinder, is an \
-             asymptote without an error bound); it is the ring BEM's (--method ring-bem)",
-            kind.name()
-        )));
-    }
-    match (kind.exponent_parameter(), kind.power_law_exponent()) {
-        (Some(n), _) => Ok(ReferenceFamily::Power(n)),
-        (None, Some(1.0)) => Ok(ReferenceFamily::Cone),
-        (None, Some(2.0)) => Ok(ReferenceFamily::Sphere),
-        (None, Some(n)) => Ok(ReferenceFamily::Power(n)),
-        (None, None) => Err(none(format!(
-            "the {kind} has no closed form here; it is the ring BEM's (--method ring-bem)"
-        ))),
-    }
 }
 
 /// `eps` where the most trusted reference for `quantity` equals `target` (references decrease
@@ -269,7 +258,8 @@ fn invert_reference(quantity: Quantity, target: f64) -> Result<f64> {
     .map_err(|e| Error::OutOfRange {
         method: "reference".into(),
         reason: format!(
-            "cannot invert {quantity:?} = {} with the references: {e:?}",
+            "cannot invert {} = {} with the references: {e:?}",
+            quantity.label(),
             crate::error::show(target)
         ),
     })

@@ -1,6 +1,11 @@
 //! The conical concave punch, gap `h (1 - r/a)`: the power law with `n = 1`.
 
-use super::{Contact, Profile, PunchName};
+use super::{Contact, Profile, PunchName, Quantity, Reference, ReferenceKind, ReferenceValue};
+
+/// `γ1 = d/h` of this punch.
+pub const GAMMA1: Quantity = Quantity::new("cone_gamma1", "gamma1 (cone)", 1);
+/// `γ2 = F/(2 E* h a)` of this punch.
+pub const GAMMA2: Quantity = Quantity::new("cone_gamma2", "gamma2 (cone)", 2);
 
 /// Conical concave punch: its apex (a kink) keeps a hole open at every depth.
 #[derive(Clone, Copy, Debug, Default)]
@@ -34,6 +39,38 @@ impl Profile for Cone {
     fn hole_lower_bound(&self, depth_over_hole: f64) -> Option<f64> {
         Some(cone_hole_lower_bound(depth_over_hole))
     }
+    fn references(&self) -> Vec<Reference> {
+        // The open interval the paper plotted: the forms diverge at eps = 0.
+        let open = (1e-12, 1.0 - 1e-12);
+        vec![
+            Reference {
+                name: "paper-fit",
+                source: "paper eq. (8)-(9)",
+                quantity: GAMMA1,
+                eps_range: open,
+                kind: ReferenceKind::Fit,
+                eval: |e| ReferenceValue::unbounded(paper_fit(1, e)),
+            },
+            Reference {
+                name: "paper-fit",
+                source: "paper eq. (8)-(9)",
+                quantity: GAMMA2,
+                eps_range: open,
+                kind: ReferenceKind::Fit,
+                eval: |e| ReferenceValue::unbounded(paper_fit(2, e)),
+            },
+        ]
+    }
+}
+
+/// The paper's fit, eq. (8)-(9): `γ_i ≈ (-ln eps)^n_i (a_i + b_i eps + c_i eps²)`.
+pub fn paper_fit(i: usize, eps: f64) -> f64 {
+    let (n, a, b, c) = if i == 1 {
+        (0.874, 2.09, 0.54, 0.15)
+    } else {
+        (0.945, 1.85, 0.45, 0.12)
+    };
+    (-eps.ln()).powf(n) * (a + b * eps + c * eps * eps)
 }
 
 /// The conical punch's hole `b/a` at depth `d/h` (`γ1(b/a) = d/h`), ascending in depth: the ring

@@ -1,6 +1,21 @@
 //! The flat circular punch (Boussinesq): contact is the whole face `r <= a`, gap 0.
 
-use super::{Contact, Profile, PunchName};
+use super::{Contact, Profile, PunchName, Quantity, Reference, ReferenceKind, ReferenceValue};
+
+/// `γ(eps) = F/(2 E* d a)` of the flat punches (`eps = b/a`, 0 for the disk).
+pub const GAMMA: Quantity = Quantity::new("flat_gamma", "gamma (flat punches)", 0);
+
+/// Boussinesq's flat circular punch: `F = 2 E* a d`, so `γ(0) = 1` exactly.
+pub fn boussinesq() -> Reference {
+    Reference {
+        name: "boussinesq",
+        source: "Boussinesq flat circular punch, F = 2 E* a d",
+        quantity: GAMMA,
+        eps_range: (0.0, 0.0),
+        kind: ReferenceKind::Exact,
+        eval: |_| ReferenceValue::exact(1.0),
+    }
+}
 
 /// Flat circular punch: `F = 2 E* d a`, the pressure `E* d / (π sqrt(a² - r²))`.
 #[derive(Clone, Copy, Debug, Default)]
@@ -27,6 +42,9 @@ impl Profile for Flat {
     }
     fn may_meet_hole_floor(&self) -> bool {
         false
+    }
+    fn references(&self) -> Vec<Reference> {
+        vec![boussinesq()]
     }
 }
 

@@ -56,6 +56,12 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
     /// Slope `dĝ/dρ` of the gap.
     fn slope(&self, rho: f64) -> f64;
 
+    /// The closed forms, series, asymptotes and fits that hold for this punch (none by
+    /// default): the analytic references solve with them and the harness grades against them.
+    fn references(&self) -> Vec<super::Reference> {
+        Vec::new()
+    }
+
     /// A name unique to the profile and its parameters, for file names, labels and cache keys
     /// (`power-n2.5`); two profiles with one label are taken to be the same punch.
     fn label(&self) -> String {
