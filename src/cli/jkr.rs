@@ -73,7 +73,7 @@ fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Re
         }
         Contact::FreeBand => {
             return Err(format!(
-                "--sweep is built for the cone, the sphere and the power law; for the {} give \
+                "--sweep is built for a fixed annulus and a punch with a rim; for the {} give \
                  one --d0h D0_OVER_H at a time",
                 punch.name()
             ))

@@ -111,7 +111,7 @@ fn refuse_non_finite<T: serde::Serialize>(what: &str, value: &T) -> Result<(), S
     })
 }
 
-/// The punch named on the command line, with the power law's `--exponent`, for the commands
+/// The punch named on the command line, with its `--exponent`, for the commands
 /// built on punches with a rim (`plan`, and `pulloff`, `convergence` and `jkr` but for their
 /// own free-band routes); a punch given by a file is read by the commands that take `--profile`
 /// ([`punch_kind_with_profile`]).

@@ -5,8 +5,8 @@
 //! shape = "cone"            # a built-in shape (`verify references` lists them)
 //! rim_radius = 1.0          # a, length unit of your choice (a ring's radius where it has no rim)
 //! hole_depth = 0.1          # h, the depth of a recessed shape's hole (its gap at the axis)
-//! # exponent = 2.5          # a shape's own parameter, where it takes one: exponent (n of a
-//! #                         # power law), tube_radius (rho of a ring's section), profile ((r/a,
+//! # exponent = 2.5          # a shape's own parameter, where it takes one: exponent (n of
+//! #                         # h (1 - (r/a)^n)), tube_radius (rho of a ring's section), profile ((r/a,
 //! #                         # g/h) points, relative to the scene file), inner_radius (b of a
 //! #                         # fixed annulus, 0 <= b < a)
 //!
@@ -200,7 +200,7 @@ impl SceneSpec {
         self
     }
 
-    /// Set the punch shape (with the power law's exponent and the table's profile file); a
+    /// Set the punch shape (with its parameters: an exponent, a profile file); a
     /// user's own profile (`PunchKind::new(MyProfile)`) is taken as it is.
     pub fn shape(mut self, kind: PunchKind) -> Self {
         if kind.shape_name().is_none() {
@@ -219,7 +219,7 @@ impl SceneSpec {
         self
     }
 
-    /// Set the punch shape by name and the power law's exponent, each only where given (a
+    /// Set the punch shape by name and its exponent, each only where given (a
     /// scene file's values stay where the command line is silent).
     pub fn shape_named(mut self, name: Option<PunchName>, exponent: Option<f64>) -> Self {
         if let Some(name) = name {

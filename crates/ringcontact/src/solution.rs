@@ -20,7 +20,7 @@ pub struct PressureSample {
 /// punches `d = h γ1(eps)`, `F = 2 E* h a γ2(eps)`.
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct Solution {
-    /// Punch shape: the key `punch` (its name), and `exponent` for the power law.
+    /// Punch shape: the key `punch` (its name), and `exponent` where the shape takes one.
     #[serde(flatten)]
     pub punch: PunchKind,
     /// Method that produced the numbers (`ring-bem`, `reference:<name>`, ...).

@@ -36,7 +36,7 @@ pub const RESOLUTION: f64 = 100.0;
 pub struct GradedValue {
     /// Where the row is in the results file (`line 7`, `row 3`).
     pub place: String,
-    /// Punch name (with `exponent` for the power law).
+    /// Punch name (with `exponent` where the shape takes one).
     pub punch: String,
     /// What sets the state and its value (`eps`, `depth`, `force`; the flat annulus's `eps`).
     pub state: String,

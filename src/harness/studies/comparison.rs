@@ -342,7 +342,7 @@ fn incremental_stiffness_checks(
 }
 
 /// Small-`eps` limits from the full-contact solutions (method of dimensionality reduction): a
-/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0` the power-law gap of exponent
+/// small hole perturbs the force by `O(eps³)`, so as `eps -> 0` the gap `1 - ρ^n` of exponent
 /// `n` has `γ1 - γ2 -> 1 - κ_n/(n + 1)` (`F = 2 E* a (d - h (1 - κ_n/(n + 1)))` in full
 /// contact): `1 - π/4` for `n = 1`, `1/3` for `n = 2`. Checked at `eps = 0.01` with the bound
 /// `eps³`.
@@ -371,7 +371,7 @@ fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<V
     Ok(checks)
 }
 
-/// `γ1 - γ2` of the power-law gap of exponent `n` in full contact, `1 - κ_n/(n + 1)`, written
+/// `γ1 - γ2` of the gap `1 - ρ^n` in full contact, `1 - κ_n/(n + 1)`, written
 /// in closed form where it has one (`n = 1`: `1 - π/4`; `n = 2`: `1/3`).
 fn full_contact_limit(n: f64) -> (f64, &'static str) {
     if n == 1.0 {
@@ -383,8 +383,8 @@ fn full_contact_limit(n: f64) -> (f64, &'static str) {
     }
 }
 
-/// The power-law punch `h (1 - (r/a)^n)`: with `n = 1` and `n = 2` it is the cone and the
-/// sphere (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past its closure depth
+/// The gap `h (1 - (r/a)^n)` with a free exponent: with the exponent of each built-in punch that
+/// fixes one it is that punch (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past its closure depth
 /// its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at `d = 3h`, where the
 /// disk basis is exact to rounding; docs/conventions.md fact 8).
 fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {

@@ -225,8 +225,8 @@ pub struct ConcaveJkr {
     /// Direct check: rim intensity from the fresh solve minus the formula's (units `d0`).
     pub direct_rim_difference: Option<f64>,
     /// Where the annular branch grown from the rim ends because the surface in the hole meets
-    /// the punch's floor (a profile flatter than the sphere at the axis, the power law with
-    /// `n > 2`): pressed further the contact is a disk or a ring and the annulus, which this
+    /// the punch's floor (a profile flatter than `1 - ρ²` at the axis, as `1 - ρ^n`
+    /// with `n > 2`): pressed further the contact is a disk or a ring and the annulus, which this
     /// analysis does not model. `None` where the hole closes first.
     #[serde(default)]
     pub floor_contact: Option<FloorContact>,
@@ -468,10 +468,10 @@ fn critical_on_branch(branch: &ConcaveBranch, s: f64, eps: f64, edge: &str) -> R
 /// the profile `w = d - h ĝ(r)` on the whole disk, `F = 2 E* a (d - c_F h)` and the rim intensity
 /// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (sphere) and `c_F = 1 - π/4`,
 /// `κ_h = π/2 - 1` (cone). (The disk BEM reproduces the sphere's to 1e-12; the cone's profile has a
-/// kink on the axis, where the disk basis converges slowly.) The power law `h (1 - (r/a)^n)`:
+/// kink on the axis, where the disk basis converges slowly.) The gap `h (1 - (r/a)^n)`:
 /// `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of [`crate::reference::power_law::kappa`]
 /// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
-/// A profile that is neither a power law nor a table has none here (an error naming it).
+/// A profile that is neither `1 - ρ^n` nor piecewise has none here (an error naming it).
 pub fn full_contact_constants(kind: &PunchKind) -> Result<(f64, f64)> {
     if let Some(pieces) = kind.piecewise() {
         let fc = crate::reference::mdr::piecewise_full_contact(pieces);

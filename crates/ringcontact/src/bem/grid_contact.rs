@@ -87,8 +87,8 @@ const HOLE_CONTACT_CELLS: f64 = 3.0;
 
 /// A concave punch's contact on the grid must be one ring `[b, a]`, the contact the harness
 /// compares (its `eps` is read off the contact area): cells in contact more than
-/// [`HOLE_CONTACT_CELLS`] inside `eps` mean the punch touches the floor of its hole (the power
-/// law with `n > 2` before its ring closes), a disk or a ring and the annulus.
+/// [`HOLE_CONTACT_CELLS`] inside `eps` mean the punch touches the floor of its hole (a gap
+/// `1 - ρ^n` with `n > 2` before its ring closes), a disk or a ring and the annulus.
 fn check_one_ring(
     kind: PunchKind,
     n: usize,

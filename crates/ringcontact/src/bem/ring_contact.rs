@@ -40,7 +40,7 @@ mod piecewise_gap;
 pub const METHOD: &str = "ring-bem";
 
 /// Node counts tried in turn by the adaptive refinement. The rungs above 80 serve the widest
-/// rings of steep-walled profiles (the power law `n = 50` at `b = 0.004 a` changes by 3e-5
+/// rings of steep-walled profiles (`1 - ρ^50` at `b = 0.004 a` changes by 3e-5
 /// from 64 to 80 nodes and by 2e-11 from 96 to 128); every other state meets its tolerance
 /// below them.
 const NODE_LADDER: [usize; 11] = [12, 16, 20, 24, 32, 40, 48, 64, 80, 96, 128];
@@ -76,7 +76,7 @@ pub(crate) const MIN_TOLERANCE: f64 = 1e-12;
 const ROUNDING_FLOOR: f64 = 1e-13;
 
 /// On a band `[b, c]` a free edge's position and the depth that places it there have a rounding
-/// floor `c/b` times this: the free inner edge's depth of the cone at N = 32..128 nodes scatters
+/// floor `c/b` times this: the free inner edge's depth of a linear gap at N = 32..128 nodes scatters
 /// by 5e-10 relative at `b/c = 1e-4`, 5e-11 at 1e-3, 6e-12 at 1e-2, 4e-13 at 0.1 (whichever
 /// quadrature assembles the rows: `φ(b) = 0` extrapolates the field to the edge). Node counts
 /// that agree better than this are not taken as proof of a smaller error.
@@ -446,12 +446,12 @@ impl RingBemSolver {
         Ok(state)
     }
 
-    /// Flat punch (`eps = 0`) or flat annulus (`0 < eps <= 0.9999`) at unit depth: `γ(eps)`.
+    /// The flat disk (`eps = 0`) or fixed annulus (`0 < eps <= 0.9999`) at unit depth: `γ(eps)`.
     pub fn flat(&self, eps: f64, tolerance: f64) -> Result<RingState> {
         Ok(self.flat_with_hole_lag(eps, tolerance, false)?.0)
     }
 
-    /// The flat annulus `[eps, 1]` pressed to unit depth ([`Self::flat`]) and how far its
+    /// The fixed annulus `[eps, 1]` pressed to unit depth ([`Self::flat`]) and how far its
     /// surface in the hole lags behind the punch, `1 - w(r)` at the radii of [`hole_probes`]
     /// (positive: the surface there sinks less than the punch).
     pub fn flat_hole_lag(&self, eps: f64, tolerance: f64) -> Result<(RingState, Vec<f64>)> {
@@ -623,8 +623,8 @@ impl RingBemSolver {
 
     /// The punch must not touch the floor of the hole: the surface there stays clear of the
     /// punch, `w(r) >= d - g(r)` for `r < b` (deflection positive into the solid), checked at
-    /// [`HOLE_PROBES`] radii. A profile flatter than the sphere at the axis (the power law with
-    /// `n > 2`) touches the floor before the ring closes: its contact is then a disk and an
+    /// [`HOLE_PROBES`] radii. A profile flatter than a parabola at the axis (`1 - ρ^n`
+    /// with `n > 2`) touches the floor before the ring closes: its contact is then a disk and an
     /// annulus, which one annulus does not model.
     fn check_hole_clear(&self, kind: &PunchKind, eps: f64, sample: &ConcaveSample) -> Result<()> {
         if !kind.has_rim() {
@@ -728,7 +728,7 @@ impl RingBemSolver {
 
     /// The field with a free inner edge at a prescribed `eps` (zero inverse-square-root
     /// coefficient there), whether or not it is a non-adhesive contact: the JKR branches add the
-    /// flat annulus's field to it, and their own edges decide. No check of its sign or of the
+    /// fixed annulus's field to it, and their own edges decide. No check of its sign or of the
     /// hole's floor.
     pub fn free_inner_edge_field(
         &self,
@@ -803,9 +803,8 @@ impl RingBemSolver {
         tolerance: f64,
     ) -> Result<RingState> {
         if is_closed(kind, target, Controlled::Force) {
-            // Full contact: the solver finds the depth from its own force (not from the MDR
-            // relation F = 2 E* a (d - h/3) of the sphere, or its power-law form, which the
-            // tests check it against).
+            // Full contact: the solver finds the depth from its own force (not from the MDR's
+            // closed forms, which the tests check it against).
             return self.full_contact_at_force(kind, target, tolerance);
         }
         self.concave_inverse(kind, target, tolerance, Controlled::Force)
@@ -895,8 +894,8 @@ impl RingBemSolver {
         )
     }
 
-    /// A concave punch whose contact closes (the sphere at `d >= 3h`, the power law with
-    /// `n > 1` at `d >= h (1 + κ_n/(n - 1))`) in full contact: the disk with `w = d - g(r)`.
+    /// A concave punch whose contact closes (`1 - ρ^n` with `n > 1` at
+    /// `d >= h (1 + κ_n/(n - 1))`, `3h` for `n = 2`) in full contact: the disk with `w = d - g(r)`.
     pub fn full_contact(
         &self,
         kind: &PunchKind,
@@ -941,7 +940,7 @@ impl RingBemSolver {
             Ok(0.5 * self.full_contact_disk(kind, d, tolerance)?.0 .1.force)
         };
         // γ2 is linear in the depth: the line through two states in full contact, at closure
-        // and h deeper. (Through d = 0 and h, tensile states, the power law n = 3 stopped at an
+        // and h deeper. (Through d = 0 and h, tensile states, `1 - ρ³` stopped at an
         // estimate of 1.1e-7 at N = 80, where its compressive states meet 1e-9 at N = 40.)
         let closed = closure(kind).map_or(0.0, |(depth, _)| depth);
         let (at_closure, deeper) = (gamma2(closed)?, gamma2(closed + 1.0)?);
@@ -1074,8 +1073,8 @@ fn inverse_error(e: RootError, kind: &PunchKind, target: f64, controlled: Contro
         } => no_convergence(format!(
             "contact-ratio search stopped after {iterations} solves (last step {last_step:.1e}){}",
             match closure(kind) {
-                // A profile flatter than the sphere can spend the whole search between annuli
-                // that all touch the floor (the power law n = 3 under F = 4 E* h a).
+                // A profile flatter than a parabola can spend the whole search between annuli
+                // that all touch the floor (`1 - ρ³` under F = 4 E* h a).
                 Some((depth, _)) if flatter_than_the_sphere(kind) => {
                     floor_touch_note("short of", depth, "can be")
                 }
@@ -1106,20 +1105,18 @@ fn is_closed(kind: &PunchKind, target: f64, controlled: Controlled) -> bool {
     closure(kind).is_some_and(|c| target >= pick(c))
 }
 
-/// Where a concave punch's contact closes, `(d/h, F/(2 E* h a))`: exactly `(3, 8/3)` for the
-/// sphere, the MDR's closed form for the power law with `n > 1`
-/// ([`crate::reference::power_law`]) and its quadrature for a table smooth at the axis
-/// ([`crate::reference::mdr`]); `None` for the cone, every `n <= 1` and a table with a slope at
-/// the axis, whose hole never closes.
+/// Where a concave punch's contact closes, `(d/h, F/(2 E* h a))`, as its profile declares it
+/// ([`crate::punch::Profile::closure`]); `None` for a profile with a slope at the axis, whose
+/// hole never closes.
 fn closure(kind: &PunchKind) -> Option<(f64, f64)> {
     kind.profile().closure()
 }
 
-/// Why a profile flatter than the sphere at the axis has no annulus state `where_` (`up to`,
+/// Why a profile flatter than a parabola at the axis has no annulus state `where_` (`up to`,
 /// `short of`) full contact at `d = depth h`: its contact `is` or `can be` a disk and an annulus.
 fn floor_touch_note(where_: &str, depth: f64, is: &str) -> String {
     format!(
-        "; a profile flatter than the sphere at the axis (the power law's n > 2, a table whose \
+        "; a profile flatter than a parabola at the axis (1 - (r/a)^n with n > 2, a table whose \
          full contact opens on a ring) touches the floor of its hole before the ring closes: \
          {where_} full contact at d = {} h the contact {is} a disk and an annulus, which the \
          ring BEM does not model",
@@ -1127,7 +1124,7 @@ fn floor_touch_note(where_: &str, depth: f64, is: &str) -> String {
     )
 }
 
-/// Whether the profile is flatter than the sphere at the axis (the power law with `n > 2`; a
+/// Whether the profile is flatter than a parabola at the axis (`1 - ρ^n` with `n > 2`; a
 /// table whose full-contact pressure first vanishes on a ring, `OPENING_OFF_AXIS` or more
 /// from the axis, by the MDR): its contact closes from a disk and an annulus, not by a
 /// shrinking hole.

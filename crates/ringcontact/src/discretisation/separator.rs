@@ -19,7 +19,7 @@
 //!   ([`rebalanced_level`]) is estimated as well. On the 92 528-unknown annulus (`b/a` = 0.3,
 //!   P2) the central level's parts carried 3.95e8 and 2.88e8 multiply-adds (`faer`'s count),
 //!   the rebalanced level's 3.34e8 and 3.25e8. When the rebalanced level is still unbalanced
-//!   (the power law overshot or fell short), one secant step between the two levels is
+//!   (the rate model overshot or fell short), one secant step between the two levels is
 //!   estimated as well ([`interpolated_level`]): on the 14 558-unknown annulus (`b/a` = 0.5, P2)
 //!   the central level left 1.75e7 and 2.81e7, the rebalanced one overshot, and the secant's
 //!   2.45e7 and 2.42e7 took 9 % less factorisation time.
@@ -529,7 +529,7 @@ fn rebalanced_level(levels: &Levels, cut: usize, parts: [f64; 2]) -> Option<usiz
 
 /// The level between two estimated level splits where the parts' works should be equal, by
 /// linear interpolation of the difference of the two parts' works over the levels (a secant
-/// step after [`rebalanced_level`], whose power law overshot or fell short): `None` when the
+/// step after [`rebalanced_level`], whose rate model overshot or fell short): `None` when the
 /// difference is the same at both, or the level is one of the two or outside the inner levels.
 fn interpolated_level(
     levels: &Levels,
@@ -959,7 +959,7 @@ mod tests {
             interpolated_level(&levels, (2, [1.0, 4.0]), (6, [3.0, 2.0])),
             Some(5)
         );
-        // Both on the same side (the power law fell short): the line goes on past the second
+        // Both on the same side (the rate model fell short): the line goes on past the second
         // (-4 at level 2, -2 at level 4: zero at level 6).
         assert_eq!(
             interpolated_level(&levels, (2, [1.0, 5.0]), (4, [1.0, 3.0])),

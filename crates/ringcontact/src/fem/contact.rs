@@ -457,8 +457,8 @@ impl<'m> ContactModel<'m> {
     }
 
     /// A punch with a rim whose converged contact is not one ring `[b, a]` (active nodes near the
-    /// axis, free ones, then the ring: the punch touches the floor of its hole, as the power law
-    /// with `n > 2` does before its ring closes) is declined by name: the model locates one free
+    /// axis, free ones, then the ring: the punch touches the floor of its hole, as a gap
+    /// `1 - ρ^n` with `n > 2` does before its ring closes) is declined by name: the model locates one free
     /// edge, and refining the mesh cannot make a disk and an annulus one. Only a disk that is
     /// resolved is taken as one: at least as wide as the free stretch between it and the ring,
     /// or held by [`RESOLVED_DISK_NODES`] nodes (a coarse model of a nearly closed hole may hold the axis node alone, which a finer one

@@ -160,7 +160,7 @@ fn refuse_without_closed_form(kind: &PunchKind) -> Result<()> {
 fn without_references(kind: &PunchKind) -> String {
     match kind.power_law_exponent() {
         Some(n) => format!(
-            "the power-law punch has a closed form only in full contact (n > 1 and \
+            "the gap h (1 - (r/a)^n) has a closed form only in full contact (n > 1 and \
              d >= h (1 + κ_n/(n - 1)){}); its annular contact is the ring BEM's \
              (--method ring-bem)",
             power_law::closure_depth(n)

@@ -1,4 +1,4 @@
-//! The conical concave punch, gap `h (1 - r/a)`: the power law with `n = 1`.
+//! The conical concave punch, gap `h (1 - r/a)`: `h (1 - (r/a)^n)` with `n = 1`.
 
 use super::{Contact, Profile, PunchName, Quantity, Reference, ReferenceKind, ReferenceValue};
 

@@ -1,6 +1,6 @@
 //! Full contact of any concave punch `g(r) = h ĝ(r/a)` (`ĝ(0) = 1`, `ĝ(1) = 0`) by the method of
-//! dimensionality reduction (MDR; Popov & Heß 2015, ch. 3), by quadrature: the power law's
-//! closed forms ([`super::power_law`]) for a profile given by points.
+//! dimensionality reduction (MDR; Popov & Heß 2015, ch. 3), by quadrature: the closed
+//! forms of `1 - ρ^n` ([`super::power_law`]) for a profile given by points.
 //!
 //! In full contact the deflection on the disk is `w = d - h ĝ(r)`. Its MDR profile is
 //! `q(x) = d - h G(x)` with
@@ -306,7 +306,7 @@ mod tests {
     use super::*;
     use crate::reference::power_law;
 
-    /// The power law `1 - ρ^n`, whose constants have closed forms.
+    /// The gap `1 - ρ^n`, whose constants have closed forms.
     struct PowerLaw(f64);
 
     impl ConcaveProfile for PowerLaw {

@@ -1,4 +1,4 @@
-//! The power-law concave punch `g(r) = h (1 - (r/a)^n)` in full contact, in closed form by the
+//! The concave gap `g(r) = h (1 - (r/a)^n)` in full contact, in closed form by the
 //! method of dimensionality reduction (MDR; Popov & Heß, *Method of Dimensionality Reduction in
 //! Contact Mechanics and Friction*, 2015, ch. 3).
 //!
@@ -82,7 +82,7 @@ fn zero_pressure_depth(n: f64, r: f64, rule: &TanhSinhRule) -> f64 {
     n * top * integral - 1.0
 }
 
-/// Depth `d_c / h` from which the power-law punch is in full contact (the full-contact
+/// Depth `d_c / h` from which the gap `1 - ρ^n` is in full contact (the full-contact
 /// pressure nonnegative everywhere): `1 + κ_n / (n - 1)` for `1 < n <= 2`, and for `n > 2`
 /// `1 + κ_n max_r (n sqrt(1 - r²) I_n(r) - 1)`, the maximum found by a scan of 256 radii and a
 /// golden-section refinement (to 1e-10 in `r`, so to about 1e-15 in the value at a smooth

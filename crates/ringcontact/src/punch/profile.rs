@@ -93,15 +93,15 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
         }
     }
 
-    /// The exponent `n` when the gap is the power law `1 - ρ^n` (1 the cone, 2 the sphere),
+    /// The exponent `n` when the gap is `1 - ρ^n`,
     /// which the closed-form references of [`crate::reference::power_law`] and the paper's fits
     /// hold for.
     fn power_law_exponent(&self) -> Option<f64> {
         None
     }
 
-    /// The power law's exponent as a parameter of the punch (only the `power` shape; the cone and
-    /// the sphere have it by definition).
+    /// The exponent `n` of `1 - ρ^n` when it is a parameter of the punch (a punch whose exponent
+    /// is fixed by its definition has none).
     fn exponent_parameter(&self) -> Option<f64> {
         None
     }

@@ -1,4 +1,4 @@
-//! The spherical (parabolic) concave punch, gap `h (1 - r²/a²)`: the power law with `n = 2`.
+//! The spherical (parabolic) concave punch, gap `h (1 - r²/a²)`: `h (1 - (r/a)^n)` with `n = 2`.
 
 use super::{Contact, Profile, PunchName, Quantity, Reference, ReferenceKind, ReferenceValue};
 

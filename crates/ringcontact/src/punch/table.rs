@@ -257,8 +257,8 @@ impl Profile for TableProfile {
 }
 
 /// Radius (units of `a`) from which a table's full contact is taken to open on a ring rather
-/// than at the axis: the MDR's maximisation places the sphere's own opening within 1e-10 of it,
-/// the power law's `n = 2.05` at 0.035.
+/// than at the axis: the MDR's maximisation places the opening of `1 - ρ²` within 1e-10 of it,
+/// that of `1 - ρ^2.05` at 0.035.
 const OPENING_OFF_AXIS: f64 = 1e-3;
 
 /// The points of a table file, checked: at least [`MIN_POINTS`], finite, `r/a` strictly

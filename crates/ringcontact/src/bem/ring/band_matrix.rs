@@ -45,7 +45,7 @@ const MAX_POINTS: usize = 640;
 
 /// The rule resolves the Chebyshev coefficients of `R_i L_j` down to `e^{-50}`: a margin over 16
 /// digits, since their decay is estimated from the nearest singularity alone (sized for
-/// `e^{-37}`, the free-edge depth of the power law `n = 0.25` at `b/c = 1e-4` moved by 4e-10).
+/// `e^{-37}`, the free-edge depth of `1 - ρ^0.25` at `b/c = 1e-4` moved by 4e-10).
 const LOG_RESOLUTION: f64 = 50.0;
 
 /// Points, product weights and Lagrange table of one `(N, M)` pair.
