@@ -12,7 +12,7 @@ use ringcontact::punch::PunchKind;
 #[test]
 fn a_small_hole_detaches_like_kendalls_flat_punch() {
     // eps -> 0: outer-edge detachment at d_c = -d0, F_c = -F0 (Kendall 1971).
-    let r = adhesion::flat_annulus(&RingBemSolver::new(), 0.01).unwrap();
+    let r = adhesion::fixed_annulus(&RingBemSolver::new(), 0.01).unwrap();
     assert!(
         (r.dc_outer + 1.0).abs() < 1e-6 && (r.fc_outer + 1.0).abs() < 1e-6,
         "{r:?}"
@@ -24,7 +24,7 @@ fn a_small_hole_detaches_like_kendalls_flat_punch() {
 fn flat_annulus_agrees_with_collins_and_approaches_argatov() {
     let solver = RingBemSolver::new();
     // Collins' series in (16)-(17): truncation error O(eps^7) in gamma.
-    let r = adhesion::flat_annulus(&solver, 0.1).unwrap();
+    let r = adhesion::fixed_annulus(&solver, 0.1).unwrap();
     let c = r.collins.unwrap();
     assert!(
         (r.dc_outer - c.depth).abs() < 1e-6 && (r.fc_outer - c.force).abs() < 1e-6,
@@ -32,7 +32,7 @@ fn flat_annulus_agrees_with_collins_and_approaches_argatov() {
     );
     // Argatov's narrow-ring asymptote (22) is leading order: the difference shrinks toward eps = 1.
     let diff = |eps: f64| {
-        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         let a = r.argatov.unwrap();
         ((r.fc_outer - a.force) / a.force).abs()
     };
@@ -47,7 +47,7 @@ fn a_small_holes_inner_edge_follows_collins_down_to_the_range_end() {
     // here (γ' ~ 1e-9 against γ ~ 1): it once gave a d_c 24 % off at eps = 1e-4.
     let solver = RingBemSolver::new();
     for eps in [1e-4, 3e-4, 1e-3, 1e-2] {
-        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         let gp = -4.0 * eps * eps / (PI * PI)
             - 8.0 * eps.powi(4) / (3.0 * PI * PI)
             - 32.0 * eps.powi(5) / (9.0 * PI.powi(4));
@@ -59,7 +59,7 @@ fn a_small_holes_inner_edge_follows_collins_down_to_the_range_end() {
         );
     }
     // The validated range's other end: the derivative's stencil stays inside it.
-    assert!(adhesion::flat_annulus(&solver, 0.9999).is_ok());
+    assert!(adhesion::fixed_annulus(&solver, 0.9999).is_ok());
 }
 
 #[test]
@@ -67,7 +67,7 @@ fn the_outer_edge_governs_and_edge_intensities_are_consistent() {
     // Paper: "the annular flat punch will always start to detach at the outer boundary".
     let solver = RingBemSolver::new();
     for eps in [0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 0.99] {
-        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         assert_eq!(r.governing_edge, "outer", "eps = {eps}");
         assert!(r.dc_outer.abs() < r.dc_inner.abs());
         // κ read off the pressure field vs κ from the force derivative (docs/conventions.md fact 7).
@@ -132,7 +132,7 @@ fn strong_adhesion_leaves_no_stable_annular_state() {
 fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
     let solver = RingBemSolver::new();
     for eps in [0.01, 0.015, 0.02] {
-        let r = adhesion::flat_annulus(&solver, eps).unwrap();
+        let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         let c = r.collins.unwrap();
         let bounds = r.error_bounds.expect("bounds");
         let truncation = 10.0 * eps.powi(7);
@@ -162,7 +162,7 @@ fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
 fn no_flat_annulus_bound_is_zero() {
     let solver = RingBemSolver::new();
     for eps in [1e-3, 0.1, 0.5, 0.9] {
-        let b = adhesion::flat_annulus(&solver, eps)
+        let b = adhesion::fixed_annulus(&solver, eps)
             .unwrap()
             .error_bounds
             .expect("bounds");
@@ -320,7 +320,7 @@ fn one_entry_routes_every_punch_and_names_a_missing_value() {
     let solver = RingBemSolver::new();
     let flat = PunchKind::FLAT_ANNULUS;
     match adhesion::jkr(&solver, &flat, Some(0.01), None).unwrap() {
-        adhesion::Jkr::FlatAnnulus(r) => {
+        adhesion::Jkr::FixedAnnulus(r) => {
             assert!((r.dc_outer + 1.0).abs() < 1e-6 && (r.fc_outer + 1.0).abs() < 1e-6)
         }
         other => panic!("the flat annulus routed to {other:?}"),

@@ -419,7 +419,7 @@ fn export_writes_the_three_files_and_refuses_bad_input() {
 }
 
 #[test]
-fn the_flat_annulus_sweep_writes_its_csv_with_the_documented_columns() {
+fn the_fixed_annulus_sweep_writes_its_csv_with_the_documented_columns() {
     let dir = std::env::temp_dir().join(format!("ringcontact-sweep-{}", std::process::id()));
     let out = verify(&[
         "jkr",

@@ -128,7 +128,7 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
         data: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
-    let jkr = ringcontact::adhesion::flat_annulus(&RingBemSolver::new(), eps).unwrap();
+    let jkr = ringcontact::adhesion::fixed_annulus(&RingBemSolver::new(), eps).unwrap();
     // The outer edge lets go first at b/a = 0.5.
     assert_eq!(jkr.governing_edge, "outer");
     let expected = -jkr.fc_outer;

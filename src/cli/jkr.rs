@@ -5,7 +5,7 @@ use crate::cli::args::JkrArgs;
 use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
-use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FlatAnnulusJkr, Jkr};
+use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FixedAnnulusJkr, Jkr};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::punch::{Contact, PunchKind};
 
@@ -44,7 +44,7 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     refuse_non_finite(&what, &r)?;
     Ok(Reply::ok(match (&r, args.json) {
         (_, true) => to_json(&r)?,
-        (Jkr::FlatAnnulus(r), false) => flat_annulus_text(r) + UNITS,
+        (Jkr::FixedAnnulus(r), false) => fixed_annulus_text(r) + UNITS,
         (Jkr::Concave(r), false) => concave_text(r) + UNITS,
         (Jkr::Band(r), false) => band_text(r) + UNITS,
     }))
@@ -62,7 +62,7 @@ fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Re
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match punch.contact() {
         Contact::FixedAnnulus => sweep_output(
-            &sweeps::flat_annulus_sweep(solver, &out).map_err(message)?,
+            &sweeps::fixed_annulus_sweep(solver, &out).map_err(message)?,
             args.json,
         )?,
         Contact::RimAndFreeInner => {
@@ -111,7 +111,7 @@ fn critical_columns(title: &str) -> Table {
 }
 
 /// The flat annulus: critical states at each edge, and the asymptotic references.
-fn flat_annulus_text(r: &FlatAnnulusJkr) -> String {
+fn fixed_annulus_text(r: &FixedAnnulusJkr) -> String {
     let mut t = critical_columns(&format!(
         "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0; the bound \
          is the larger of d_c's and F_c's, from the ring BEM's estimates)",

@@ -106,7 +106,7 @@ pub struct EdgeCritical {
 
 /// JKR detachment of the flat annulus (paper Fig. 7-8 recomputed).
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
-pub struct FlatAnnulusJkr {
+pub struct FixedAnnulusJkr {
     pub eps: f64,
     pub gamma: f64,
     pub gamma_prime: f64,
@@ -125,9 +125,9 @@ pub struct FlatAnnulusJkr {
     /// Argatov's narrow-ring asymptote (paper 22), where valid (`eps >= 0.85`).
     pub argatov: Option<EdgeCritical>,
     /// Error bounds of `dc_outer`, `fc_outer`, `dc_inner`, `fc_inner` (absolute, the same
-    /// units), propagated from the ring BEM's estimates ([`FlatAnnulusBounds`]).
+    /// units), propagated from the ring BEM's estimates ([`FixedAnnulusBounds`]).
     #[serde(default)]
-    pub error_bounds: Option<FlatAnnulusBounds>,
+    pub error_bounds: Option<FixedAnnulusBounds>,
 }
 
 /// Error bounds of the flat annulus' critical states, propagated from the ring BEM: `δγ` its
@@ -137,20 +137,20 @@ pub struct FlatAnnulusJkr {
 /// least the estimate and the inner edge's rounding floor `5e-14 a/b` relative); then
 /// `δd_c = δκ/κ²`, `δF_c = δγ/κ + γ δκ/κ²`.
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
-pub struct FlatAnnulusBounds {
+pub struct FixedAnnulusBounds {
     pub dc_outer: f64,
     pub fc_outer: f64,
     pub dc_inner: f64,
     pub fc_inner: f64,
 }
 
-/// [`FlatAnnulusBounds`] at `eps` from the edges `e` computed at tolerance [`TOL`].
+/// [`FixedAnnulusBounds`] at `eps` from the edges `e` computed at tolerance [`TOL`].
 fn flat_annulus_bounds(
     solver: &RingBemSolver,
     e: &AnnulusEdges,
     kappa_out: f64,
     kappa_in: f64,
-) -> Result<FlatAnnulusBounds> {
+) -> Result<FixedAnnulusBounds> {
     let eps = e.eps;
     let gamma = |x: f64| -> Result<f64> { Ok(solver.flat(x, TOL)?.gamma.unwrap_or(f64::NAN)) };
     let state = solver.flat(eps, TOL)?;
@@ -178,7 +178,7 @@ fn flat_annulus_bounds(
     };
     let (dc_outer, fc_outer) = of(kappa_out, d_kappa_out);
     let (dc_inner, fc_inner) = of(kappa_in, d_kappa_in);
-    Ok(FlatAnnulusBounds {
+    Ok(FixedAnnulusBounds {
         dc_outer,
         fc_outer,
         dc_inner,
@@ -194,7 +194,7 @@ fn flat_annulus_bounds(
 /// `γ'` is small against `γ` (`γ' ≈ -4 eps²/π²`); at `eps = 1e-4` it was 24 % off Collins'
 /// `2 sqrt(eps)/π`, the field's within 4e-7 of it. `kappa_consistency`
 /// compares the two routes at both edges.
-pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> {
+pub fn fixed_annulus(solver: &RingBemSolver, eps: f64) -> Result<FixedAnnulusJkr> {
     if !(0.0 < eps && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
@@ -230,7 +230,7 @@ pub fn flat_annulus(solver: &RingBemSolver, eps: f64) -> Result<FlatAnnulusJkr> 
             force: -pi * ((1.0 + eps).powi(3) * delta).sqrt() / (2.0 * std::f64::consts::SQRT_2),
         }
     });
-    Ok(FlatAnnulusJkr {
+    Ok(FixedAnnulusJkr {
         eps,
         gamma: e.gamma,
         gamma_prime: e.gamma_prime,

@@ -12,7 +12,7 @@ use ringcontact::punch::PunchKind;
 use super::{Field, Resource};
 
 /// Flat annulus: both edges' critical depth and force with their bounds, at `ratios`.
-pub fn flat_annulus(
+pub fn fixed_annulus(
     solver: &RingBemSolver,
     ratios: &[f64],
     progress: &dyn Fn(&str),
@@ -53,7 +53,7 @@ pub fn flat_annulus(
     );
     for (k, &eps) in ratios.iter().enumerate() {
         progress(&format!("flat annulus JKR: {} of {}", k + 1, ratios.len()));
-        let r = adhesion::flat_annulus(solver, eps)?;
+        let r = adhesion::fixed_annulus(solver, eps)?;
         let b = r.error_bounds;
         table.push(vec![
             eps.into(),

@@ -142,7 +142,7 @@ pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
             progress,
         )?);
     }
-    resources.push(adhesive::flat_annulus(
+    resources.push(adhesive::fixed_annulus(
         &solver,
         &size.annulus_ratios(),
         progress,

@@ -147,7 +147,7 @@ fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
     let ratios = [0.05, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99];
     let mut outer = 0;
     for &e in &ratios {
-        if adhesion::flat_annulus(ring, e)?.governing_edge == "outer" {
+        if adhesion::fixed_annulus(ring, e)?.governing_edge == "outer" {
             outer += 1;
         }
     }

@@ -1,7 +1,7 @@
 //! The adhesive sweeps of `verify jkr --sweep`: typed rows, one [`Table`] for every output
 //! format, and the charts, written next to the physics they use ([`ringcontact::adhesion`]).
 //!
-//! * [`flat_annulus_sweep`]: critical depths `d_c/d0` and forces `F_c/F0` of both edges against
+//! * [`fixed_annulus_sweep`]: critical depths `d_c/d0` and forces `F_c/F0` of both edges against
 //!   `b/a` (the paper's Fig. 7-8), with Collins' series (21) and Argatov's asymptote (22).
 //! * [`pulloff_sweep`]: the pull-off force `-F/F0` against `d0/h` by every route (fixed load,
 //!   fixed grips, the paper's route on its fitted formulas, full contact), and the adhesive
@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 
 use crate::harness::report::svg;
 use crate::harness::report::table::{Cell, Column, Format, Table};
-use ringcontact::adhesion::{self, ConcaveJkr, Critical, FlatAnnulusJkr};
+use ringcontact::adhesion::{self, ConcaveJkr, Critical, FixedAnnulusJkr};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
 use ringcontact::punch::PunchKind;
@@ -43,13 +43,13 @@ fn annulus_ratios() -> Vec<f64> {
 
 /// Flat annulus: both edges' critical states against `b/a`; writes
 /// `critical-flat-annulus.{csv,svg}` into `out`.
-pub(crate) fn flat_annulus_sweep(
+pub(crate) fn fixed_annulus_sweep(
     solver: &RingBemSolver,
     out: &Path,
-) -> Result<Sweep<FlatAnnulusJkr>> {
+) -> Result<Sweep<FixedAnnulusJkr>> {
     let rows = annulus_ratios()
         .into_iter()
-        .map(|e| adhesion::flat_annulus(solver, e))
+        .map(|e| adhesion::fixed_annulus(solver, e))
         .collect::<Result<Vec<_>>>()?;
     let fixed = |key: &str, label: &str| Column::number(key, label, Format::Fixed(5));
     let mut table = Table::new(
@@ -82,7 +82,7 @@ pub(crate) fn flat_annulus_sweep(
         ]);
     }
     create(out)?;
-    let series = |name: &str, f: &dyn Fn(&FlatAnnulusJkr) -> Option<f64>| svg::Series {
+    let series = |name: &str, f: &dyn Fn(&FixedAnnulusJkr) -> Option<f64>| svg::Series {
         name: name.to_string(),
         points: rows
             .iter()

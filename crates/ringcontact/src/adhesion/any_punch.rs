@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use super::{band_jkr, concave, flat_annulus, BandJkr, ConcaveJkr, FlatAnnulusJkr};
+use super::{band_jkr, concave, fixed_annulus, BandJkr, ConcaveJkr, FixedAnnulusJkr};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::punch::{Contact, PunchKind};
@@ -14,7 +14,7 @@ use crate::punch::{Contact, PunchKind};
 #[serde(untagged)]
 pub enum Jkr {
     /// A fixed annulus: the critical states at either edge.
-    FlatAnnulus(FlatAnnulusJkr),
+    FixedAnnulus(FixedAnnulusJkr),
     /// A rim and a free inner edge: pull-off under fixed load, fixed grips, from full contact.
     Concave(Box<ConcaveJkr>),
     /// Two free edges: pull-off under fixed load and fixed grips.
@@ -50,7 +50,7 @@ pub fn jkr(
             let eps = eps.ok_or_else(|| {
                 Error::invalid("eps", format!("is needed: the {name}'s b/a (0 < b/a < 1)"))
             })?;
-            flat_annulus(solver, eps).map(Jkr::FlatAnnulus)
+            fixed_annulus(solver, eps).map(Jkr::FixedAnnulus)
         }
         Contact::RimAndFreeInner | Contact::FreeBand => {
             if eps.is_some() {

@@ -965,7 +965,7 @@ pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Optio
     Ok(match case.punch.contact() {
         Contact::Disk => (Some(1.0), None, None),
         Contact::FixedAnnulus => {
-            let r = crate::adhesion::flat_annulus(&ring, case.eps)?;
+            let r = crate::adhesion::fixed_annulus(&ring, case.eps)?;
             // The edge that lets go first (smaller |d_c|) sets the pull-off.
             let edge = if r.governing_edge == "outer" {
                 r.fc_outer
