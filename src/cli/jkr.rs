@@ -110,7 +110,7 @@ fn critical_columns(title: &str) -> Table {
     )
 }
 
-/// The flat annulus: critical states at each edge, and the asymptotic references.
+/// The fixed annulus: critical states at each edge, and the asymptotic references.
 fn fixed_annulus_text(r: &FixedAnnulusJkr) -> String {
     let mut t = critical_columns(&format!(
         "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0; the bound \

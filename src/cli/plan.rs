@@ -37,7 +37,7 @@ pub fn plan(args: PlanArgs) -> Result<Reply, String> {
             return Err("--convergence needs --punch and --method".into());
         };
         let punch = super::punch_kind(name, args.exponent)?;
-        // A flat punch's study does not depend on --depth: the plan names one value.
+        // A flat-faced punch's study does not depend on --depth: the plan names one value.
         let depth = if punch.is_concave() { args.depth } else { 1.5 };
         let case = study_case(punch.clone(), args.eps, depth)?;
         let levels = args.levels as usize;

@@ -1,8 +1,8 @@
 //! The work of a report as independent parts: each [`Part`] is one job of a plan
-//! ([`crate::harness::plan`]), runs on its own (`verify part ID`, printing a [`JobRecord`]) and needs no
-//! other part's result. [`assemble`] joins the results, in the plan's order, into the
-//! [`ReportInputs`] the report is written from, so one process ([`compute_all`]) and a
-//! sharded run merged from files build their report from the same pieces by the same code.
+//! ([`crate::harness::plan`]), runs on its own (`verify part ID`, printing a [`JobRecord`]) and
+//! needs no other part's result. [`assemble`] joins the results, in the plan's order, into the
+//! [`ReportInputs`] the report is written from, so one process ([`compute_all`]) and a sharded run
+//! merged from files build their report from the same pieces by the same code.
 //!
 //! A part's id names everything it computes: `kind[:argument][:key=value]...`, e.g.
 //! `comparison:tol=1e-6`, `speed:cone-2:fem-tol=1e-8`,
@@ -233,7 +233,7 @@ impl Part {
                 } else if *tolerance >= 1e-6 {
                     0.6
                 } else {
-                    // 4.8 (flat annulus 0.5) to 12.8 s (sphere).
+                    // 4.8 (fixed annulus 0.5) to 12.8 s (parabolic gap).
                     9.0
                 }
             }
@@ -253,8 +253,8 @@ impl Part {
             Part::PulloffLive => 9.5,
             Part::AdhesionPeers => 15.0,
             // Small d0/h: pressed deeper until the hole closes, and ranges where it reopens
-            // replaced by smaller ones (alone on 2 cores: cone 0.3 224 s, sphere 0.3
-            // 155 s, cone and sphere 1 45-48 s).
+            // replaced by smaller ones (alone on 2 cores: linear gap 0.3 224 s, parabolic gap 0.3
+            // 155 s, linear gap and parabolic gap 1 45-48 s).
             Part::PulloffSimulation {
                 punch, d0_over_h, ..
             } => match punch.contact() {
@@ -425,7 +425,7 @@ fn pulloff_simulation(punch: PunchKind, eps: f64, d0_over_h: f64) -> PulloffReco
 
 /// The parts of the default report (`verify compare --report`): the comparison at `tolerance`,
 /// the stored external results, each speed-accuracy problem's base and FEM points at
-/// `fem_tolerances`, the grid BEM's and the FEM's three-level studies of the sphere at
+/// `fem_tolerances`, the grid BEM's and the FEM's three-level studies of the parabolic gap at
 /// `d = 1.5 h`, the JKR pull-off routes and one live pull-off simulation.
 pub(crate) fn report_parts(tolerance: f64, fem_tolerances: &[f64]) -> Vec<Part> {
     let mut parts = vec![

@@ -1,11 +1,11 @@
 //! JKR adhesion built on the ring BEM's converged non-adhesive solutions (paper section 3).
 //!
 //! Units: depths in `d0 = sqrt(2π a Δw / E*)`, forces in `F0 = sqrt(8π a³ E* Δw) = 2 E* a d0`
-//! (Kendall's flat punch). Stress intensities `K = E* L κ / sqrt(π a)` with `L` the depth (flat)
-//! or `h` (concave); an edge of the adhesive contact is in equilibrium when `G = K²/(2E*) = Δw`,
-//! i.e. `|κ| L = d0`.
+//! (Kendall's flat-faced punch). Stress intensities `K = E* L κ / sqrt(π a)` with `L` the depth
+//! (flat) or `h` (concave); an edge of the adhesive contact is in equilibrium when
+//! `G = K²/(2E*) = Δw`, i.e. `|κ| L = d0`.
 //!
-//! **Flat annulus** (fixed contact): `κ_out² = γ - eps γ'` (rim), `κ_in² = -γ'/eps` (inner edge);
+//! **Fixed annulus** (fixed contact): `κ_out² = γ - eps γ'` (rim), `κ_in² = -γ'/eps` (inner edge);
 //! detachment at the outer edge at `d_c/d0 = -1/κ_out`, `F_c/F0 = -γ/κ_out` (paper 16-17), at the
 //! inner edge at `d_c/d0 = -1/κ_in`, `F_c/F0 = -γ/κ_in` (paper 20); the smaller `|d_c|` governs.
 //!
@@ -78,7 +78,7 @@ pub struct AnnulusEdges {
     pub kappa_in_direct: f64,
 }
 
-/// `γ`, `γ'` and the edge intensities of the flat annulus at `eps`.
+/// `γ`, `γ'` and the edge intensities of the fixed annulus at `eps`.
 pub fn annulus_edges(solver: &RingBemSolver, eps: f64) -> Result<AnnulusEdges> {
     let gamma = |e: f64| -> Result<f64> { Ok(solver.flat(e, TOL)?.gamma.unwrap_or(f64::NAN)) };
     // The state first: a contact ratio outside the ring BEM's range is refused as given.
@@ -104,7 +104,7 @@ pub struct EdgeCritical {
     pub force: f64,
 }
 
-/// JKR detachment of the flat annulus (paper Fig. 7-8 recomputed).
+/// JKR detachment of the fixed annulus (paper Fig. 7-8 recomputed).
 #[derive(Clone, Debug, Serialize, serde::Deserialize)]
 pub struct FixedAnnulusJkr {
     pub eps: f64,
@@ -130,7 +130,7 @@ pub struct FixedAnnulusJkr {
     pub error_bounds: Option<FixedAnnulusBounds>,
 }
 
-/// Error bounds of the flat annulus' critical states, propagated from the ring BEM: `δγ` its
+/// Error bounds of the fixed annulus' critical states, propagated from the ring BEM: `δγ` its
 /// estimate; `δγ'` the change of the differenced `γ'` when its step is doubled plus the
 /// stencil's amplification of `δγ` (`1.5 δγ / h`); `δκ_out = (δγ + eps δγ') / (2 κ_out)`;
 /// `δκ_in` the change of the field's inner intensity between tolerances 1e-11 and 1e-8 (at
@@ -186,7 +186,7 @@ fn flat_annulus_bounds(
     })
 }
 
-/// JKR detachment of the flat annulus at `eps`: `d_c/d0 = -1/κ`, `F_c/F0 = -γ/κ` at each edge,
+/// JKR detachment of the fixed annulus at `eps`: `d_c/d0 = -1/κ`, `F_c/F0 = -γ/κ` at each edge,
 /// each `κ` by the route that keeps its digits. The rim's by the energy route, `κ_out² = γ -
 /// eps γ'` (fact 7, `γ'` by differences; the difference term is small where it is least
 /// accurate). The inner edge's as the ring BEM reads it off its pressure field (as for the

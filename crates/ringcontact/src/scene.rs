@@ -6,9 +6,9 @@
 //! rim_radius = 1.0          # a, length unit of your choice (a ring's radius where it has no rim)
 //! hole_depth = 0.1          # h, the depth of a recessed shape's hole (its gap at the axis)
 //! # exponent = 2.5          # a shape's own parameter, where it takes one: exponent (n of
-//! #                         # h (1 - (r/a)^n)), tube_radius (rho of a ring's section), profile ((r/a,
-//! #                         # g/h) points, relative to the scene file), inner_radius (b of a
-//! #                         # fixed annulus, 0 <= b < a)
+//! #                         # h (1 - (r/a)^n)), tube_radius (rho of a ring's section), profile
+//! ((r/a, #                         # g/h) points, relative to the scene file), inner_radius (b of
+//! a #                         # fixed annulus, 0 <= b < a)
 //!
 //! [material]
 //! effective_modulus = 1.0   # E* = E/(1 - nu²); or give youngs_modulus and poisson_ratio
@@ -19,7 +19,8 @@
 //! # contact_ratio = 0.5     # eps = b/a prescribed (concave punches): d and F are computed
 //!
 //! [accuracy]
-//! tolerance = 1e-9          # relative error wanted (default: the method's, 1e-9 ring BEM, 1e-3 FEM)
+//! tolerance = 1e-9          # relative error wanted (default: the method's, 1e-9 ring BEM, 1e-3
+//! FEM)
 //! ```
 //!
 //! Every field is checked; a broken rule is reported with the field's name and the rule.
@@ -253,7 +254,7 @@ impl SceneSpec {
         keywords::from_keywords(object, origin, base)
     }
 
-    /// Set `b/a` as `--eps` does: the flat annulus's hole (against the rim radius), or the
+    /// Set `b/a` as `--eps` does: the fixed annulus's hole (against the rim radius), or the
     /// prescribed contact ratio of a punch whose contact is found (a rim's free inner edge or
     /// a free band). The flat circular punch has no `b/a`: an error.
     pub fn eps(self, eps: f64) -> Result<Self> {
@@ -292,7 +293,7 @@ impl SceneSpec {
         self
     }
 
-    /// Set `b/a` of a flat annulus (with the rim radius of the scene, default 1).
+    /// Set `b/a` of a fixed annulus (with the rim radius of the scene, default 1).
     pub fn inner_ratio(mut self, eps: f64) -> Self {
         self.punch.inner_radius = None;
         self.inner_ratio = Some(eps);

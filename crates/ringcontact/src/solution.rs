@@ -250,7 +250,7 @@ impl Solution {
         }
     }
 
-    /// A hole that never closes but shrinks fast with depth (the cone's) may be resolved as
+    /// A hole that never closes but shrinks fast with depth (the linear gap's) may be resolved as
     /// closed when the estimate of `eps` is at least the hole there (`eps = 0` within the
     /// estimate then holds the true hole); a closed contact whose estimate is smaller is wrong.
     fn check_hole_within_estimate(&self, depth_over_hole: f64, hole: f64) -> Result<(), String> {
@@ -273,9 +273,9 @@ impl Solution {
         })
     }
 
-    /// A concave punch's full contact only at or beyond its closure ([`crate::punch::Profile::closure`],
-    /// less the method's own error in the depth); a hole that never closes may be resolved as
-    /// closed only with an error estimate to say how wide it is.
+    /// A concave punch's full contact only at or beyond its closure
+    /// ([`crate::punch::Profile::closure`], less the method's own error in the depth); a hole that
+    /// never closes may be resolved as closed only with an error estimate to say how wide it is.
     fn check_closure(&self, depth_over_hole: f64) -> Result<(), String> {
         let slack = 3.0 * self.error_estimate.unwrap_or(0.0).max(1e-9);
         match self.punch.closure().map(|(depth, _)| depth) {
@@ -383,8 +383,8 @@ mod tests {
         }
     }
 
-    /// The cone's hole bound ([`crate::punch::Profile::hole_lower_bound`]) stays below the ring
-    /// BEM's hole and within 20 % of it at depths not in its table. (At 1e-9: the ring BEM's
+    /// The linear gap's hole bound ([`crate::punch::Profile::hole_lower_bound`]) stays below the
+    /// ring BEM's hole and within 20 % of it at depths not in its table. (At 1e-9: the ring BEM's
     /// values scatter by about 1e-10 of themselves at the holes of 1e-4 a near d/h = 15.)
     #[test]
     fn the_cone_hole_bound_is_below_the_ring_bems_hole() {
@@ -430,8 +430,8 @@ mod tests {
         assert!(state(PunchKind::CONE, 0.45, 2.0, -3.6)
             .check_plausible()
             .is_err());
-        // Full contact where it cannot exist: the cone with an estimate smaller than its hole
-        // there (or without an estimate), and the sphere below d = 3h.
+        // Full contact where it cannot exist: the linear gap with an estimate smaller than its hole
+        // there (or without an estimate), and the parabolic gap below d = 3h.
         assert!(state(PunchKind::CONE, 0.0, 5.0, 10.0)
             .check_plausible()
             .is_err());

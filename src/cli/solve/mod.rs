@@ -95,7 +95,7 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     if let Some(path) = &args.profile {
         spec = spec.profile(path);
     }
-    // --eps fixes the annulus of a flat punch, or prescribes the contact of a concave one.
+    // --eps fixes the annulus of a flat-faced punch, or prescribes the contact of a concave one.
     if let Some(eps) = args.eps {
         match spec.shape_name().map(PunchName::contact) {
             Some(Contact::Disk) => {

@@ -1,4 +1,4 @@
-//! The adhesive part of the dataset: the JKR critical states of the flat annulus against `b/a`,
+//! The adhesive part of the dataset: the JKR critical states of the fixed annulus against `b/a`,
 //! the concave punches' pull-off against `d0/h` under fixed load and fixed grips, and the
 //! refitted formulas with their largest errors.
 
@@ -11,7 +11,7 @@ use ringcontact::punch::PunchKind;
 
 use super::{Field, Resource};
 
-/// Flat annulus: both edges' critical depth and force with their bounds, at `ratios`.
+/// Fixed annulus: both edges' critical depth and force with their bounds, at `ratios`.
 pub fn fixed_annulus(
     solver: &RingBemSolver,
     ratios: &[f64],

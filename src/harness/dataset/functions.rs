@@ -1,4 +1,4 @@
-//! The non-adhesive functions of the dataset: `γ(ε)` of the flat annulus, `γ1(ε)`, `γ2(ε)` of
+//! The non-adhesive functions of the dataset: `γ(ε)` of the fixed annulus, `γ1(ε)`, `γ2(ε)` of
 //! the concave punches, and of a free band with its outer edge `c/a` (both edges free; in units
 //! of its gap at the axis `h` one family for every size of its section), on a grid uniform in `s =
 //! ln(ε/(1 - ε))`, each with the ring BEM's error estimate, and the error of interpolating

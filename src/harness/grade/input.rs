@@ -13,7 +13,8 @@ use ringcontact::punch::{Contact, PunchName};
 )]
 #[serde(rename_all = "lowercase")]
 pub enum Quantity {
-    /// Contact ratio `b/a` (the flat annulus's hole; a concave punch's or a free band's inner edge).
+    /// Contact ratio `b/a` (the fixed annulus's hole; a concave punch's or a free band's inner
+    /// edge).
     Eps,
     /// Indentation depth `d` of the rim.
     Depth,
@@ -61,7 +62,7 @@ pub struct ResultRow {
     pub exponent: Option<f64>,
     pub tube_radius: Option<f64>,
     pub profile: Option<PathBuf>,
-    /// The flat annulus's `b/a` (its geometry, from `eps`).
+    /// The fixed annulus's `b/a` (its geometry, from `eps`).
     pub hole_ratio: Option<f64>,
     /// What fixes the state, and its value (dimensionless or in the row's units).
     pub state: Option<(Quantity, f64)>,
@@ -351,8 +352,8 @@ fn row(
 
 /// The state of a row: the `state` column's quantity, else the first of depth, force, eps
 /// given (a code is given a depth or a force and finds the contact; results given as the
-/// paper's functions of eps have no depth or force column). A flat punch without depth or force is at unit depth (`None`: its `gamma` does not
-/// depend on it).
+/// paper's functions of eps have no depth or force column). A flat-faced punch without depth or
+/// force is at unit depth (`None`: its `gamma` does not depend on it).
 fn state_of(
     place: &str,
     named: Option<&str>,

@@ -38,7 +38,7 @@ pub struct GradedValue {
     pub place: String,
     /// Punch name (with `exponent` where the shape takes one).
     pub punch: String,
-    /// What sets the state and its value (`eps`, `depth`, `force`; the flat annulus's `eps`).
+    /// What sets the state and its value (`eps`, `depth`, `force`; the fixed annulus's `eps`).
     pub state: String,
     pub state_value: f64,
     /// The graded quantity (`eps`, `depth`, `force`, `gamma`, `gamma1`, `gamma2`).

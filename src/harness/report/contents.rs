@@ -38,8 +38,8 @@ pub struct ReportExtras {
     pub verdicts: Vec<Verdict>,
     /// The stored pull-off simulations (`verify/pulloff/`).
     pub pulloff_simulations: Vec<crate::harness::records::pulloff::PulloffRecord>,
-    /// This run's single pull-off simulation (cone, `d0/h = 10`, the smallest default range), or
-    /// why it failed.
+    /// This run's single pull-off simulation (linear gap, `d0/h = 10`, the smallest default range),
+    /// or why it failed.
     pub pulloff_live: std::result::Result<ringcontact::cohesive::study::LiveSimulation, String>,
     /// Tamaas's pull-off (stored, `verify/peers/adhesion/`) against this run's simulations.
     #[serde(default)]

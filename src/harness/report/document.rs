@@ -436,7 +436,8 @@ fn band_chart(c: &ConcaveCurves, grid_bem: &Points) -> String {
     )
 }
 
-/// Pressure profiles of the sphere at `d = 1.5 h`: ring BEM, azimuthally averaged grid BEM, FEM.
+/// Pressure profiles of the parabolic gap at `d = 1.5 h`: ring BEM, azimuthally averaged grid BEM,
+/// FEM.
 fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
     let clip = |v: &Points| -> Points { v.iter().copied().filter(|&(r, _)| r < 0.99).collect() };
     let series = |name: &str, points: Points| Series {
@@ -488,9 +489,10 @@ fn write(dir: &Path, name: &str, text: &str) -> Result<()> {
     std::fs::write(dir.join(name), text).map_err(|e| Error::file("write", &dir.join(name), e))
 }
 
-/// Everything a report is made of: computed in one process ([`crate::harness::report_jobs::compute_all`])
-/// or read from the result files of a plan's jobs ([`crate::harness::plan::load_results`]),
-/// both joined by [`crate::harness::report_jobs::assemble`].
+/// Everything a report is made of: computed in one process
+/// ([`crate::harness::report_jobs::compute_all`]) or read from the result files of a plan's jobs
+/// ([`crate::harness::plan::load_results`]), both joined by
+/// [`crate::harness::report_jobs::assemble`].
 #[derive(Clone, Debug)]
 pub struct ReportInputs {
     pub comparison: ComparisonReport,
@@ -498,9 +500,9 @@ pub struct ReportInputs {
     pub operators: Vec<OperatorStatus>,
     pub peers: Vec<PeerComparison>,
     pub speed_accuracy: Vec<SpeedAccuracy>,
-    /// The grid BEM's and the FEM's studies of the sphere at `d = 1.5 h`.
+    /// The grid BEM's and the FEM's studies of the parabolic gap at `d = 1.5 h`.
     pub convergence: Vec<convergence::Study>,
-    /// Pull-off by the JKR routes against `d0/h`, cone then sphere.
+    /// Pull-off by the JKR routes against `d0/h`, linear gap then parabolic gap.
     pub pulloff: Vec<PulloffPoint>,
     /// The pull-off simulations shown (the stored ones, or this run's).
     pub pulloff_simulations: Vec<crate::harness::records::pulloff::PulloffRecord>,
@@ -560,8 +562,9 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
             bars: Vec::new(),
         },
     ];
-    // The paper fitted the cone and the sphere only, a free band has no full contact and only a
-    // free band shows fixed grips and its narrow-band asymptote: no empty legend entries.
+    // The paper fitted the linear gap and the parabolic gap only, a free band has no full contact
+    // and only a free band shows fixed grips and its narrow-band asymptote: no empty legend
+    // entries.
     let mut series: Vec<Series> = series
         .into_iter()
         .filter(|s| !s.points.is_empty())
@@ -597,7 +600,7 @@ fn pulloff_chart(kind: PunchKind, points: &[PulloffPoint]) -> String {
 pub(crate) struct Findings {
     /// The dimensionless functions against `eps`.
     pub functions: FunctionCurves,
-    /// The sphere's pressure profiles at `d = 1.5 h`.
+    /// The parabolic gap's pressure profiles at `d = 1.5 h`.
     pub pressure: PressureProfiles,
     /// The JKR route's annular branch for each stored annular study (in the order of
     /// [`crate::harness::records::pulloff::annular`]; none where a record has no result).

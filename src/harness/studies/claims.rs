@@ -12,7 +12,7 @@ use ringcontact::error::Result;
 use ringcontact::punch::PunchKind;
 
 /// Each claim of the paper with this run's numbers and the verdict: the fits (section 2), the
-/// outer edge governing the flat annulus (section 3), regime independence, the strongest
+/// outer edge governing the fixed annulus (section 3), regime independence, the strongest
 /// pull-off for `d0 >> h`, and (where simulated) the annular branch's pull-off.
 pub fn verdicts(
     ring: &RingBemSolver,
@@ -142,7 +142,7 @@ fn fits_verdict(ring: &RingBemSolver) -> Result<Verdict> {
     })
 }
 
-/// Section 3: the flat annulus detaches at the outer edge.
+/// Section 3: the fixed annulus detaches at the outer edge.
 fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
     let ratios = [0.05, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99];
     let mut outer = 0;
@@ -189,7 +189,7 @@ fn regime_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 fn strongest_pulloff_verdict(pulloff: &[PulloffPoint], simulations: &[PulloffRecord]) -> Verdict {
     let strongest: Vec<String> = pulloff
         .iter()
-        // The paper's claim is about its punches, the cone and the sphere.
+        // The paper's claim is about its punches, the linear gap and the parabolic gap.
         .filter(|p| p.d0_over_h >= 99.0 && (p.punch == "cone" || p.punch == "sphere"))
         .map(|p| {
             format!(
@@ -308,7 +308,7 @@ fn refutes_paper_route(studies: &[&PulloffStudy]) -> bool {
     })
 }
 
-/// The cone at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
+/// The linear gap at `d0/h = 10` (hole closed) at the smallest default range as the study runs it
 /// (Tabor 90 on its own rim-band mesh; without gmsh Tabor 36 on the committed disk level 2).
 pub(crate) fn live_pulloff() -> Result<ringcontact::cohesive::study::LiveSimulation> {
     use ringcontact::cohesive::study;

@@ -3,8 +3,8 @@
 //! the FEM cross-verified against the ring BEM.
 //!
 //! Verdict rule (cross-verification, `docs/methods.md`): a method and a reference
-//! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or bound.
-//! The paper's fits declare no bound: their difference is shown, not judged.
+//! agree when `|f_method - f_ref| <= U_method + U_ref`, with `U` each one's error estimate or
+//! bound. The paper's fits declare no bound: their difference is shown, not judged.
 
 use std::time::Instant;
 
@@ -69,7 +69,7 @@ pub struct IdentityCheck {
 pub struct CrossCheck {
     #[serde(flatten)]
     pub punch: PunchKind,
-    /// `b/a` (flat annulus) or `d/h` (concave): what was prescribed.
+    /// `b/a` (fixed annulus) or `d/h` (concave): what was prescribed.
     pub prescribed: String,
     /// `γ` (flat) or `γ2` (concave) of each method.
     pub fem_value: f64,
@@ -292,7 +292,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<(Vec<Cross
 /// docs/conventions.md fact 6: along the non-adhesive path `dF/dd = 2 E* a γ(eps)`, i.e.
 /// `γ2'(eps) = γ(eps) γ1'(eps)`. Derivatives by a fourth-order central difference of the ring
 /// BEM's own `γ1`, `γ2`; `γ` from an independent flat-annulus solve. A free band `[b, c]`
-/// has both edges free, so its stiffness is the flat annulus `b/c` scaled by `c`:
+/// has both edges free, so its stiffness is the fixed annulus `b/c` scaled by `c`:
 /// `γ2'(b) = c γ(b/c) γ1'(b)` (`c = a` for the punches with a rim).
 fn incremental_stiffness_checks(
     solver: &RingBemSolver,
@@ -384,9 +384,9 @@ fn full_contact_limit(n: f64) -> (f64, &'static str) {
 }
 
 /// The gap `h (1 - (r/a)^n)` with a free exponent: with the exponent of each built-in punch that
-/// fixes one it is that punch (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past its closure depth
-/// its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at `d = 3h`, where the
-/// disk basis is exact to rounding; docs/conventions.md fact 8).
+/// fixes one it is that punch (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past
+/// its closure depth its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at
+/// `d = 3h`, where the disk basis is exact to rounding; docs/conventions.md fact 8).
 fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let eps = 0.3;
@@ -471,9 +471,9 @@ fn free_band_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<I
 /// samples.
 const TABLE_CHECK_DEPTHS: [f64; 3] = [0.5, 1.5, 2.5];
 
-/// The report's punch given by points ([`cases::report_table_punch`], the sphere's profile at 21
-/// points) against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest difference
-/// of the two gaps `g/h` (the contact problem is monotone in the gap,
+/// The report's punch given by points ([`cases::report_table_punch`], the parabolic gap's profile
+/// at 21 points) against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest
+/// difference of the two gaps `g/h` (the contact problem is monotone in the gap,
 /// [`figures::largest_gap_difference`]). None where the checkout has no table file.
 fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let Some(table) = cases::report_table_punch() else {
@@ -503,10 +503,10 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
     Ok(checks)
 }
 
-/// docs/conventions.md fact 7: the flat annulus' edge stress intensities, `K = E* d κ / sqrt(π a)`, follow
-/// from the derivative of its force: `κ_out² = γ - eps γ'` and `κ_in² = -γ'/eps` (energy release
-/// rate at a fixed-depth edge). Left: the ring BEM's edge coefficients (local); right: a
-/// fourth-order difference of its force (global).
+/// docs/conventions.md fact 7: the fixed annulus' edge stress intensities,
+/// `K = E* d κ / sqrt(π a)`, follow from the derivative of its force: `κ_out² = γ - eps γ'` and
+/// `κ_in² = -γ'/eps` (energy release rate at a fixed-depth edge). Left: the ring BEM's edge
+/// coefficients (local); right: a fourth-order difference of its force (global).
 fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let root_pi = std::f64::consts::PI.sqrt();

@@ -538,7 +538,7 @@ mod tests {
         assert!(observed_order(1.0, 1.0 + 1e-16, 1.0 + 2e-16, 2.0, 2.0).is_none());
     }
 
-    /// The bars of the default report's two studies (sphere, d = 1.5 h; values of a run, the
+    /// The bars of the default report's two studies (parabolic gap, d = 1.5 h; values of a run, the
     /// actual errors against the ring BEM at 1e-11): the grid BEM's levels oscillate (the GCI
     /// from its observed order 5.1 was 2.5e-6 against an actual 2.1e-3), the FEM's order 7.2
     /// lies above the 6 of a P3 force (its GCI was 6.0e-6 against 1.7e-5). Both bars bound now.

@@ -29,7 +29,7 @@ pub(crate) fn unit_spec(kind: PunchKind, eps: f64) -> SceneSpec {
 }
 
 /// The scene a FEM load describes, for a solve through [`ringcontact::methods::Method`]: punch
-/// `kind`, `b/a = eps` (flat annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
+/// `kind`, `b/a = eps` (fixed annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
 /// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
 pub(crate) fn scene_of_fem_load(
     kind: PunchKind,

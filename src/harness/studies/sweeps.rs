@@ -41,7 +41,7 @@ fn annulus_ratios() -> Vec<f64> {
         .collect()
 }
 
-/// Flat annulus: both edges' critical states against `b/a`; writes
+/// Fixed annulus: both edges' critical states against `b/a`; writes
 /// `critical-flat-annulus.{csv,svg}` into `out`.
 pub(crate) fn fixed_annulus_sweep(
     solver: &RingBemSolver,

@@ -30,7 +30,7 @@ pub struct BranchPoint {
     pub kappa_out: f64,
     pub kappa_in: f64,
     /// The ring BEM's error estimates of the concave state (`γ1`, `γ2`, relative) and of the
-    /// flat annulus (`γ`, relative).
+    /// fixed annulus (`γ`, relative).
     #[serde(default)]
     pub concave_error: f64,
     #[serde(default)]
@@ -40,7 +40,7 @@ pub struct BranchPoint {
     /// (infinite where the profile cannot meet the floor, [`PunchKind::may_meet_hole_floor`]).
     #[serde(skip)]
     pub hole_clearance: [f64; HOLE_PROBES],
-    /// The flat annulus's lag at the same radii, `1 - w(r)` at unit depth (zero where not
+    /// The fixed annulus's lag at the same radii, `1 - w(r)` at unit depth (zero where not
     /// probed).
     #[serde(skip)]
     pub hole_lag: [f64; HOLE_PROBES],
@@ -60,9 +60,9 @@ impl BranchPoint {
         self.kappa_out_na / s - self.kappa_out / self.kappa_in
     }
     /// The adhesive state's least clearance over the punch's floor in the hole (units of `h`):
-    /// it is the non-adhesive state's plus the flat annulus's pulled by `δ = -s/κ_in`, so
+    /// it is the non-adhesive state's plus the fixed annulus's pulled by `δ = -s/κ_in`, so
     /// `min_r [c(r) + (s/κ_in)(1 - u(r))]`, with `c` the non-adhesive clearance and `1 - u` the
-    /// flat annulus's lag. Negative: the punch would rise into the surface, and the state is
+    /// fixed annulus's lag. Negative: the punch would rise into the surface, and the state is
     /// not an annular contact.
     pub fn floor_clearance(&self, s: f64) -> f64 {
         self.hole_clearance
@@ -101,13 +101,13 @@ pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result
 
 /// The hole clearance of a branch point of a profile that cannot meet its hole's floor
 /// ([`PunchKind::may_meet_hole_floor`]): not probed (the probes' 16 integrals took a quarter to a
-/// third of a cone's or sphere's JKR analysis), every state clears it.
+/// third of a linear gap's or parabolic gap's JKR analysis), every state clears it.
 const UNPROBED_CLEARANCE: [f64; HOLE_PROBES] = [f64::INFINITY; HOLE_PROBES];
 
 /// Looser tolerances, tried in turn, for a branch point whose solves cannot meet
 /// [`branch_tolerance`]: the widest rings of a steep-walled profile, where the pressure gathers
 /// at the rim and the inner edge's small `φ(b)` loses digits to rounding (the power laws
-/// `n = 30, 50` at `b = 0.004 a` settle to 4e-10 and 9e-10, the cone to 1e-13). The last is
+/// `n = 30, 50` at `b = 0.004 a` settle to 4e-10 and 9e-10, the linear gap to 1e-13). The last is
 /// a piecewise profile's own tolerance.
 const FALLBACK_BRANCH_TOLERANCES: [f64; 2] = [1e-9, 1e-8];
 
@@ -336,8 +336,8 @@ type AnnularOutcome = std::result::Result<(Critical, (f64, f64), f64), String>;
 /// the first interior maximum of `q` against `eps` and follows the branch while `q` falls. At a
 /// local minimum the state is unstable: where a later part of the branch reaches lower values,
 /// the contact jumps (a narrower ring at the same `q`) and unloading goes on there, so the
-/// pull-off is the lowest `q` after the maximum (the only minimum for the cone, the sphere and
-/// the power laws; a tabulated profile's curvature steps at its points can add others). The
+/// pull-off is the lowest `q` after the maximum (the only minimum for the linear gap, the parabolic
+/// gap and the power laws; a tabulated profile's curvature steps at its points can add others). The
 /// path visits the ratios where `q` is at its running minimum; the rim may fail first on them.
 fn annular_pulloff(
     branch: &ConcaveBranch,
@@ -466,12 +466,13 @@ fn critical_on_branch(branch: &ConcaveBranch, s: f64, eps: f64, edge: &str) -> R
 
 /// Full-contact constants of a concave punch by the method of dimensionality reduction: with
 /// the profile `w = d - h ĝ(r)` on the whole disk, `F = 2 E* a (d - c_F h)` and the rim intensity
-/// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (sphere) and `c_F = 1 - π/4`,
-/// `κ_h = π/2 - 1` (cone). (The disk BEM reproduces the sphere's to 1e-12; the cone's profile has a
-/// kink on the axis, where the disk basis converges slowly.) The gap `h (1 - (r/a)^n)`:
-/// `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of [`crate::reference::power_law::kappa`]
-/// (`κ_1 = π/2`, `κ_2 = 2` give the cone's and the sphere's).
-/// A profile that is neither `1 - ρ^n` nor piecewise has none here (an error naming it).
+/// is `κ = d + κ_h h` (units as above), `c_F = 1/3`, `κ_h = 1` (parabolic gap) and `c_F = 1 - π/4`,
+/// `κ_h = π/2 - 1` (linear gap). (The disk BEM reproduces the parabolic gap's to 1e-12; the linear
+/// gap's profile has a kink on the axis, where the disk basis converges slowly.) The gap
+/// `h (1 - (r/a)^n)`: `c_F = 1 - κ_n/(n + 1)`, `κ_h = κ_n - 1` with `κ_n` of
+/// [`crate::reference::power_law::kappa`] (`κ_1 = π/2`, `κ_2 = 2` give the linear gap's and the
+/// parabolic gap's). A profile that is neither `1 - ρ^n` nor piecewise has none here (an error
+/// naming it).
 pub fn full_contact_constants(kind: &PunchKind) -> Result<(f64, f64)> {
     if let Some(pieces) = kind.piecewise() {
         let fc = crate::reference::mdr::piecewise_full_contact(pieces);
@@ -692,13 +693,13 @@ impl<'a> ConcaveBranch<'a> {
     /// `F/F0 = γ2/s - γ/κ_in`: `δF = γ2 e_c/s + γ e_f/κ_in + γ δκ_in/κ_in²`,
     /// `δd = γ1 e_c + s δκ_in/κ_in²`, with `e_c`, `e_f` the concave and flat states' relative
     /// estimates and `δκ_in` the change of the inner intensity between tolerances 1e-10 (1e-8
-    /// for a piecewise profile, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the change of
-    /// the branch's force and depth when every input comes from the solves at 1e-7. Added to
-    /// it: the values' scatter ([`VALUE_SCATTER`] times one plus the two terms' sizes) and
-    /// each quantity's slope along the branch times `located_to`, the uncertainty of the
-    /// state's `eps` ([`stationary_point`] for a minimum, [`LOCATION_TOLERANCE`] for a rim
-    /// crossing; the term is near zero for the quantity that is stationary, the fixed-load
-    /// force or the fixed-grips depth, not for the other one).
+    /// for a piecewise profile, [`branch_tolerance`]) and 1e-7, never below `e_f κ_in`), and the
+    /// change of the branch's force and depth when every input comes from the solves at 1e-7. Added
+    /// to it: the values' scatter ([`VALUE_SCATTER`] times one plus the two terms' sizes) and each
+    /// quantity's slope along the branch times `located_to`, the uncertainty of the state's `eps`
+    /// ([`stationary_point`] for a minimum, [`LOCATION_TOLERANCE`] for a rim crossing; the term is
+    /// near zero for the quantity that is stationary, the fixed-load force or the fixed-grips
+    /// depth, not for the other one).
     pub fn bound_critical(&self, s: f64, c: &Critical, located_to: f64) -> Result<Critical> {
         let p = self.at(c.eps)?;
         let looser = branch_point_at(self.solver, self.kind.clone(), c.eps, 1e-7)?;
@@ -814,8 +815,8 @@ fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> 
 pub type EpsForce = (f64, f64);
 
 /// The paper's route evaluated with the paper's own fitted `γ1`, `γ2` (eqs. 8-11), as the paper
-/// did: `Δl_c = d0 sqrt(eps γ1'² / (γ1''γ2' - γ2''γ1'))` (28), `k/(2E*a) = γ2'/γ1'` (25), inner edge
-/// only; the critical states are the interior minima of `F(eps)` (29, fixed load) and `d(eps)`
+/// did: `Δl_c = d0 sqrt(eps γ1'² / (γ1''γ2' - γ2''γ1'))` (28), `k/(2E*a) = γ2'/γ1'` (25), inner
+/// edge only; the critical states are the interior minima of `F(eps)` (29, fixed load) and `d(eps)`
 /// (30, fixed grips). Derivatives by central differences of the fits. Returns
 /// `(fixed load, fixed grips)` as `(eps, F/F0)`, each `None` where the fitted branch has no
 /// interior minimum.

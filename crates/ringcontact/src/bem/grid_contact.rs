@@ -2,8 +2,8 @@
 //! `E* = 1`, `d = 1` or `h = 1`).
 //!
 //! The grid spans the punch's bounding square `[-a, a]²` with `N x N` cells; a cell belongs to the
-//! punch when its centre lies in `b <= r <= a` (flat annulus) or `r <= a` (the others), which is the
-//! staircase approximation of the edges that limits the method's convergence. The concave
+//! punch when its centre lies in `b <= r <= a` (fixed annulus) or `r <= a` (the others), which is
+//! the staircase approximation of the edges that limits the method's convergence. The concave
 //! punches' contact ratio is read off the contact area:
 //! `eps = sqrt(1 - (cells in contact)/(cells under the punch))`.
 

@@ -2,11 +2,11 @@
 //!
 //! The method is first order in the cell size `h` (piecewise-constant pressure, staircase edges),
 //! but its error coefficient wanders from grid to grid: the cells whose centres fall inside a
-//! circle follow no smooth law in `h` (the flat punch's relative error times `N` wanders from
-//! 0.09 to 0.24 between 32² and 1024², with 128² and 256² almost equal). A Richardson estimate from two
-//! levels can therefore see no change where the error is large, so the estimate takes the
-//! steepest of the three level pairs: the same problem is solved on `N/2` and `N/4` cells over
-//! the same square (about a fifth more work), and for each output `f`
+//! circle follow no smooth law in `h` (the flat-faced punch's relative error times `N` wanders from
+//! 0.09 to 0.24 between 32² and 1024², with 128² and 256² almost equal). A Richardson estimate from
+//! two levels can therefore see no change where the error is large, so the estimate takes the
+//! steepest of the three level pairs: the same problem is solved on `N/2` and `N/4` cells over the
+//! same square (about a fifth more work), and for each output `f`
 //!
 //! `bar = 3 h1 max_{i<j} |f_i - f_j| / |h_i - h_j|`,
 //!
@@ -15,7 +15,7 @@
 //! free edges, which the staircase cannot place to better than about a cell (the bar is never
 //! below one cell `h1` there). Over 192 states of every punch on 64², 128² and 256² (the
 //! narrowest bands, the deepest loads, holes a few cells wide near full contact) the actual
-//! error stays below 0.78 of the bar; the hardest is the sphere's small hole near full
+//! error stays below 0.78 of the bar; the hardest is the parabolic gap's small hole near full
 //! contact, whose edge follows the depth's error amplified by the closing hole
 //! (`tests/grid_estimate.rs` keeps a sample with it).
 
@@ -78,7 +78,7 @@ pub fn outer_edge(s: &GridState) -> f64 {
 /// `[-L, L]²` (`L = fine.square_half_size`), from `coarser(m)`, the same problem on `m` cells
 /// over the same square: the largest of the `γ`s' relative bars and the absolute bars of the
 /// `free_edges` (the edges the solution finds: [`inner_edge`] of a concave punch, both of a
-/// free band; none of a flat punch), see the module docs.
+/// free band; none of a flat-faced punch), see the module docs.
 pub fn estimate(
     fine: &GridState,
     free_edges: &[fn(&GridState) -> f64],
@@ -144,7 +144,7 @@ mod tests {
         );
     }
 
-    /// Two levels that agree by chance (the flat punch's 128² and 256²: 0.9991035, 0.9990669,
+    /// Two levels that agree by chance (the flat-faced punch's 128² and 256²: 0.9991035, 0.9990669,
     /// then 64²: 0.9981215; the actual error of 256² is 9.3e-4) still give a bar above it.
     #[test]
     fn levels_that_agree_by_chance_do_not_hide_the_error() {

@@ -3,7 +3,7 @@
 //! is the fixed-load pull-off of the annular contact (`verify jkr`, the paper's route), the value
 //! the closed hole's study ([`crate::cohesive::study::run`]) does not reach.
 //!
-//! The inner edge travels a large part of the contact line (the cone at `d0/h = 1`: from
+//! The inner edge travels a large part of the contact line (the linear gap at `d0/h = 1`: from
 //! `b/a = 0.33` at first touch to `0.78` at pull-off), so the line is meshed uniformly, with
 //! elements of a third of the cohesive zone `ℓ = π E* Δw/(4σ0²)` (`ℓ = π² (ρ/d0)²/2 a` for this
 //! study's units), one mesh per range. There the front still advances node by node (lattice

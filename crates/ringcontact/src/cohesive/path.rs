@@ -69,8 +69,8 @@ pub struct CurvePoint {
     /// hole of a concave punch (or of the detached part).
     pub open_to: Option<f64>,
     /// The two innermost nodes (the centre and the next, for a disk) are separated beyond the
-    /// zone while some node is in contact: an open hole. (A cone's apex alone may stay open by
-    /// less than its first element's slope: a hole the mesh does not resolve, not counted.)
+    /// zone while some node is in contact: an open hole. (A linear gap's apex alone may stay open
+    /// by less than its first element's slope: a hole the mesh does not resolve, not counted.)
     pub centre_open: bool,
     /// Branch number: 0 from the start, one more after every jump.
     pub branch: usize,

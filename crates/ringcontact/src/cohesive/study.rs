@@ -30,7 +30,7 @@ use crate::sparse::Backend;
 pub const DEFAULT_RANGES: [f64; 4] = [0.05, 0.025, 0.0125, 0.005];
 
 /// Default ranges without gmsh (no rim band, the committed meshes): Tabor 9 to 36. Smaller
-/// ranges there end at a mesh-dependent node hop or find no equilibrium (the cone at
+/// ranges there end at a mesh-dependent node hop or find no equilibrium (the linear gap at
 /// `d0/h = 10`, Tabor 90, on the committed disk level 2: none at touch after 300 Newton
 /// iterations).
 const COMMITTED_MESH_RANGES: [f64; 3] = [0.05, 0.025, 0.0125];
@@ -46,7 +46,7 @@ pub fn default_ranges(data: &DataPaths) -> Vec<f64> {
 }
 
 /// Width of the refined band at the rim, in cohesive-zone lengths `ℓ`: the crack front runs in
-/// from the rim before the tension peaks (the flat punch: `3.4 ℓ` at Tabor 9, `7.5 ℓ` at 36,
+/// from the rim before the tension peaks (the flat-faced punch: `3.4 ℓ` at Tabor 9, `7.5 ℓ` at 36,
 /// `9-13 ℓ` at 90), and the mesh must resolve the zone all that way.
 const RIM_BAND_ZONES: f64 = 20.0;
 
@@ -55,7 +55,7 @@ const RIM_BAND_ZONES: f64 = 20.0;
 const RIM_BAND_ELEMENTS_PER_ZONE: f64 = 6.0;
 
 /// Level of the adapted family under the rim band (the rest of the contact line and the
-/// body): the band resolves the zone, so the coarse level 1 suffices (the flat punch at Tabor
+/// body): the band resolves the zone, so the coarse level 1 suffices (the flat-faced punch at Tabor
 /// 90: level 2 under a band gives the same pull-off to 1e-5).
 const RIM_BAND_LEVEL: i32 = 1;
 
@@ -66,13 +66,14 @@ const RIM_BAND_HOP_FORCE: f64 = 1e-3;
 /// Preload of the flat punches, in units of `d0`.
 const FLAT_PRELOAD: f64 = 0.5;
 
-/// Preload of the concave punches, in units of `h`: past the depth where the sphere's hole closes
-/// without adhesion (`3h`); with adhesion both punches' holes close earlier where `d0/h` is large.
+/// Preload of the concave punches, in units of `h`: past the depth where the parabolic gap's hole
+/// closes without adhesion (`3h`); with adhesion both punches' holes close earlier where `d0/h` is
+/// large.
 const CONCAVE_PRELOAD: f64 = 3.0;
 
 /// Deepest preload of a concave punch, in units of `h`: where its hole is still open at
-/// [`CONCAVE_PRELOAD`] (small `d0/h`: the JKR route closes the cone's hole at `d0/h = 0.3` only
-/// past `3.8 h`), it is pressed on in steps of `3h` until the hole closes, down to this depth.
+/// [`CONCAVE_PRELOAD`] (small `d0/h`: the JKR route closes the linear gap's hole at `d0/h = 0.3`
+/// only past `3.8 h`), it is pressed on in steps of `3h` until the hole closes, down to this depth.
 const MAX_CONCAVE_PRELOAD: f64 = 24.0;
 
 /// Widest error bar, relative to the extrapolate, that still gives a verdict.
@@ -141,7 +142,7 @@ pub struct Case {
     pub linear_solver: Backend,
     /// Where the meshes and gmsh are.
     pub data: DataPaths,
-    /// `b/a` of the flat annulus.
+    /// `b/a` of the fixed annulus.
     pub eps: f64,
     /// `d0/h` of a concave punch.
     pub d0_over_h: f64,
@@ -170,7 +171,7 @@ impl Case {
 
     /// Where the pull stops if the punch is still attached (an error then): `4 d0` out, and for
     /// a concave punch `2h` more (its pull-off from full contact lies at `d = -(c h + d0 ...)`:
-    /// `-1.3 h` for the sphere at `d0/h = 0.3`).
+    /// `-1.3 h` for the parabolic gap at `d0/h = 0.3`).
     fn pull_to(&self) -> f64 {
         if self.punch.is_concave() {
             -4.0 * self.d0() - 2.0
@@ -326,7 +327,7 @@ pub struct PulloffStudy {
     pub stopped: Option<String>,
     #[serde(flatten)]
     pub punch: PunchKind,
-    /// `b/a` of the flat annulus.
+    /// `b/a` of the fixed annulus.
     pub eps: Option<f64>,
     /// `d0/h` of a concave punch.
     pub d0_over_h: Option<f64>,
@@ -405,7 +406,7 @@ impl PulloffStudy {
 /// Level of the adapted family the study runs on where it has no rim band ([`run`] on one
 /// mesh, the Tamaas comparison, and without gmsh the committed level closest to it): graded
 /// toward the edges (element size `g |r - a|` near the rim); there the pull-off is the first end
-/// of the branch, a node hop of the crack front, which moves with the mesh (the flat punch at
+/// of the branch, a node hop of the crack front, which moves with the mesh (the flat-faced punch at
 /// Tabor 36 on levels 2-5: 0.9768-0.9834; 0.9899 with the rim band).
 pub const STUDY_LEVEL: i32 = 3;
 
@@ -460,7 +461,7 @@ fn open_hole_declined(case: &Case, entry: &SequenceEntry) -> Result<()> {
 /// How a concave punch's simulation left the branch of the closed hole, if it did: the hole
 /// still open at the deepest preload, reopened on the way out, or an unknown landing.
 fn branch_left(case: &Case, entry: &SequenceEntry) -> Option<String> {
-    // A flat annulus has no hole to close: its inner edge letting go is one of its detachments.
+    // A fixed annulus has no hole to close: its inner edge letting go is one of its detachments.
     if !case.punch.is_concave() {
         return None;
     }
@@ -759,8 +760,8 @@ fn simulate_ranges(
     })
 }
 
-/// The case with `eps` zero unless the punch is a flat annulus, checked: `d0/h` of a concave
-/// punch, `0 < b/a < 1` of a flat annulus, the ranges.
+/// The case with `eps` zero unless the punch is a fixed annulus, checked: `d0/h` of a concave
+/// punch, `0 < b/a < 1` of a fixed annulus, the ranges.
 fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
     let eps = if case.punch.has_fixed_hole() {
         case.eps

@@ -25,7 +25,7 @@ const BAND_RETRIES: usize = 2;
 
 /// An active-set iteration that changes at most this many nodes is creeping: the hybrid loop
 /// hands over to the banded solve. Cold starts change about half as many nodes per iteration as
-/// the one before (266, 48, 20, 10, 4, 2 on a 7e4-unknown cone model).
+/// the one before (266, 48, 20, 10, 4, 2 on a 7e4-unknown linear gap model).
 const CREEP_CHANGES: usize = 12;
 
 /// Fewest nodes above the inner edge left in the band when the hybrid loop hands over (at least
@@ -305,7 +305,7 @@ impl<'m> ContactModel<'m> {
             .collect()
     }
 
-    /// Flat punch: `u_z = -depth` on the whole contact line.
+    /// Flat-faced punch: `u_z = -depth` on the whole contact line.
     pub fn flat(&self, solver: &mut ConstrainedCholesky, depth: f64) -> Result<ContactSolution> {
         let dofs = self.supports.len();
         let mut constrained = self.supports.clone();
@@ -458,14 +458,14 @@ impl<'m> ContactModel<'m> {
 
     /// A punch with a rim whose converged contact is not one ring `[b, a]` (active nodes near the
     /// axis, free ones, then the ring: the punch touches the floor of its hole, as a gap
-    /// `1 - ρ^n` with `n > 2` does before its ring closes) is declined by name: the model locates one free
-    /// edge, and refining the mesh cannot make a disk and an annulus one. Only a disk that is
-    /// resolved is taken as one: at least as wide as the free stretch between it and the ring,
-    /// or held by [`RESOLVED_DISK_NODES`] nodes (a coarse model of a nearly closed hole may hold the axis node alone, which a finer one
-    /// releases: the sphere at `d = 2.9999 h`, hole 6.1e-3 a, on a first model of node spacing
-    /// 2.7e-2 a; the cube `n = 3` holds a disk of 0.16-0.2 a on 5 to 40 nodes at `d = 2.4 h`,
-    /// of 0.08-0.12 a on 3 to 19 at `d = 2.36 h`, narrower than the free stretch beside it on
-    /// every model).
+    /// `1 - ρ^n` with `n > 2` does before its ring closes) is declined by name: the model locates
+    /// one free edge, and refining the mesh cannot make a disk and an annulus one. Only a disk that
+    /// is resolved is taken as one: at least as wide as the free stretch between it and the ring,
+    /// or held by [`RESOLVED_DISK_NODES`] nodes (a coarse model of a nearly closed hole may hold
+    /// the axis node alone, which a finer one releases: the parabolic gap at `d = 2.9999 h`, hole
+    /// 6.1e-3 a, on a first model of node spacing 2.7e-2 a; the cube `n = 3` holds a disk of
+    /// 0.16-0.2 a on 5 to 40 nodes at `d = 2.4 h`, of 0.08-0.12 a on 3 to 19 at `d = 2.36 h`,
+    /// narrower than the free stretch beside it on every model).
     fn check_single_ring(&self, kind: PunchKind, active: &[bool]) -> Result<()> {
         if !self.rim || !active.iter().any(|&a| a) || self.ring_edge(active).is_some() {
             return Ok(());
@@ -508,12 +508,12 @@ impl<'m> ContactModel<'m> {
 
     /// Secant step of the free edge. Near a free edge the contact pressure of a ring that is too
     /// wide (or narrow) by `δ` has a `1/√(r - x)` term of the wrong sign, and the primal-dual step
-    /// moves the edge about half of `δ` (ratios 0.45-0.55 per step, one factorisation each). Two successive plain steps
-    /// `x0 -> x1 -> x2` (the second starting where the first ended) that shrink by a ratio
-    /// `ρ = (x2 - x1)/(x1 - x0)` in [`EDGE_SECANT_RATIO`] are extrapolated to the edge their
-    /// geometric series converges to, `x2 + (x2 - x1) ρ/(1 - ρ)` (the secant root of the step as
-    /// a function of the edge). The loop still ends only at an active set that repeats, so this
-    /// changes the path, not the solution.
+    /// moves the edge about half of `δ` (ratios 0.45-0.55 per step, one factorisation each). Two
+    /// successive plain steps `x0 -> x1 -> x2` (the second starting where the first ended) that
+    /// shrink by a ratio `ρ = (x2 - x1)/(x1 - x0)` in [`EDGE_SECANT_RATIO`] are extrapolated to the
+    /// edge their geometric series converges to, `x2 + (x2 - x1) ρ/(1 - ρ)` (the secant root of the
+    /// step as a function of the edge). The loop still ends only at an active set that repeats, so
+    /// this changes the path, not the solution.
     fn edge_secant(previous: (f64, f64), step: (f64, f64)) -> Option<f64> {
         let (x0, x1) = previous;
         let (from, x2) = step;
@@ -530,8 +530,9 @@ impl<'m> ContactModel<'m> {
     /// edge within a band: the contact nodes at `r >= core_radius` (the core) are held in
     /// contact in the factorised matrix, and the active-set iteration runs on the nodes below
     /// through their unit responses ([`BandedSystem`]). Returns `None` when the solution releases
-    /// a core node (the band was too narrow) or the band needs more than [`crate::fem::contact_band::MAX_BAND_NODES`]
-    /// responses; the caller then falls back to [`Self::concave`].
+    /// a core node (the band was too narrow) or the band needs more than
+    /// [`crate::fem::contact_band::MAX_BAND_NODES`] responses; the caller then falls back to
+    /// [`Self::concave`].
     fn concave_banded(
         &self,
         system: &mut BandedSystem,
@@ -1055,7 +1056,7 @@ impl<'m> ContactModel<'m> {
     /// taken by a central difference along that direction, with a step that moves no gap by
     /// more than 1e-3 of itself. 0 without a located hole.
     ///
-    /// It measures how well the edge is conditioned: near a closing hole (the sphere as
+    /// It measures how well the edge is conditioned: near a closing hole (the parabolic gap as
     /// `d → 3h`) the edge moves tens of times the relative depth, so a small error of the
     /// displacement field (of the size of the relative force error) moves it that much more.
     pub(crate) fn edge_depth_sensitivity(

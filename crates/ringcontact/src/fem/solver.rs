@@ -51,7 +51,8 @@ pub const DEFAULT_TOLERANCE: f64 = 1e-3;
 pub const MIN_TOLERANCE: f64 = 1e-8;
 
 /// An error component that level-to-level changes do not capture, added to every relative
-/// estimate: `2e-9`, whatever the contact ratio (docs/decisions.md, "Where the constants come from").
+/// estimate: `2e-9`, whatever the contact ratio (docs/decisions.md, "Where the constants come
+/// from").
 pub const UNRESOLVED_COMPONENT: f64 = 2e-9;
 
 /// Coefficient `c` of the singular edges' force error `c h / w` ([`PreparedModel`]'s edge
@@ -71,20 +72,20 @@ const COMMITTED_TOLERANCE_FLOOR: f64 = 1e-4;
 /// Fewest free contact nodes in a concave punch's hole for the located edge to be bounded by
 /// [`INNER_RADIUS_BOUND`] of the spacing: the edge is extrapolated from the three free nodes
 /// before the last (P3) or the last three (P1, P2); with fewer the bound is two spacings (the
-/// cone at `d = 12 h`, hole `9.1e-4 a` inside 1-2 nodes, was located 5.9e-4 off).
+/// linear gap at `d = 12 h`, hole `9.1e-4 a` inside 1-2 nodes, was located 5.9e-4 off).
 const MIN_FREE_NODES: usize = 5;
 
 /// Bound on the error of the located inner radius, as a fraction of the contact-node spacing
 /// there. The force is stationary in `b` (Barber), so the discrete free edge converges more slowly
 /// than the force: against the ring BEM, P2 on the committed meshes showed errors up to 0.12 of
-/// the spacing (12 states, levels 1-3), and P3 on the adapted meshes up to 0.20 (the sphere at
-/// `d = 2.8 h`, `--tol 1e-6`; 0.04-0.14 elsewhere); the bound takes 0.3.
+/// the spacing (12 states, levels 1-3), and P3 on the adapted meshes up to 0.20 (the parabolic gap
+/// at `d = 2.8 h`, `--tol 1e-6`; 0.04-0.14 elsewhere); the bound takes 0.3.
 const INNER_RADIUS_BOUND: f64 = 0.3;
 
 /// What to solve.
 #[derive(Clone, Copy, Debug)]
 pub enum FemLoad {
-    /// Flat or flat-annular punch at unit depth.
+    /// Flat or fixed-annulus punch at unit depth.
     Flat,
     /// Concave punch at `d/h`.
     ConcaveDepth(f64),
@@ -213,7 +214,7 @@ pub struct FemTimings {
     /// Unit responses of band nodes computed by the banded contact solve.
     pub band_responses: usize,
     /// The linear model on the same mesh that located a concave punch's free edge for a cold
-    /// start (all its phases; 0 when a coarser model or a flat punch needed none).
+    /// start (all its phases; 0 when a coarser model or a flat-faced punch needed none).
     #[serde(rename = "edge_presolve_s")]
     pub edge_presolve: f64,
 }
@@ -231,7 +232,7 @@ pub fn mesh_directory() -> PathBuf {
     DataPaths::default().meshes
 }
 
-/// Where the contact line of the punch's mesh starts: `b/a` for the flat annulus, else 0.
+/// Where the contact line of the punch's mesh starts: `b/a` for the fixed annulus, else 0.
 pub fn contact_start(kind: &PunchKind, eps: f64) -> f64 {
     if kind.has_fixed_hole() {
         eps
@@ -297,7 +298,8 @@ struct PreparedModel {
     domain_radius: f64,
     /// Largest far-arc edge over `R`: the grading of the far field.
     arc_grading: f64,
-    /// The stiffness, cubic cells' bubbles condensed ([`StiffnessPattern::with_condensed_bubbles`]).
+    /// The stiffness, cubic cells' bubbles condensed
+    /// ([`StiffnessPattern::with_condensed_bubbles`]).
     stiffness: nalgebra_sparse::CscMatrix<f64>,
     /// Where each column's diagonal entry is among `stiffness`'s entries (from the assembly).
     diagonal: Vec<usize>,
@@ -1001,8 +1003,8 @@ fn below_known_order(degree: Degree, change: f64, previous_change: Option<f64>) 
 }
 
 /// Predicted relative force error of adapted level `k` at degree `p`: `C_p 0.6^{2pk}` with
-/// `C_1 = 1e-2`, `C_2 = 3.3e-4`, `C_3 = 3.3e-6` (fitted on the flat annulus 0.3 and the cone at
-/// `d = 2h`, level 0).
+/// `C_1 = 1e-2`, `C_2 = 3.3e-4`, `C_3 = 3.3e-6` (fitted on the fixed annulus 0.3 and the linear gap
+/// at `d = 2h`, level 0).
 fn predicted_force_error(degree: Degree, level: i32) -> f64 {
     let base = match degree {
         Degree::Linear => 1e-2,
@@ -1054,7 +1056,7 @@ fn edge_locator(data: &DataPaths, kind: PunchKind, eps: f64) -> Vec<MeshRequest>
         .collect()
 }
 
-/// The outputs one model gives: the force-like output (`γ` for a flat punch, `γ1` for a
+/// The outputs one model gives: the force-like output (`γ` for a flat-faced punch, `γ1` for a
 /// concave one), `γ2` (concave punches; NaN otherwise) and the located `eps`.
 #[derive(Clone, Copy, Debug)]
 struct LevelValues {
@@ -1066,12 +1068,12 @@ struct LevelValues {
 /// What a concave punch's model found at the axis.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum AxisContact {
-    /// A hole (or a flat punch): the edge is where the contact line's nodes say.
+    /// A hole (or a flat-faced punch): the edge is where the contact line's nodes say.
     Open,
     /// Full contact: the located edge `0` is known only to within the first contact node off
     /// the axis (`spacing`), the whole of which bounds its error.
     Full,
-    /// Full contact of a profile with a kink at the axis (the cone, whose hole never closes)
+    /// Full contact of a profile with a kink at the axis (the linear gap, whose hole never closes)
     /// that its margins do not show closed beyond the model's error: a hole hides inside the
     /// first node off the axis (`spacing`), or just beyond it; the next mesh refines inside it.
     HoleInsideFirstNode,
@@ -1113,8 +1115,8 @@ impl LevelResult {
         }
         // A profile with a kink at the axis never closes: its full contact, unless its margin
         // extrapolated to the axis stays beyond the model's error, hides a hole at its first
-        // node, and the model's error at the apex can hide one a little wider (the cone at 12 h:
-        // a hole of 9e-4 a under first nodes at 7.5e-4 a, whose margins fell toward the axis):
+        // node, and the model's error at the apex can hide one a little wider (the linear gap at 12
+        // h: a hole of 9e-4 a under first nodes at 7.5e-4 a, whose margins fell toward the axis):
         // two first-node radii bound it, and the next mesh refines inside.
         if self.axis == AxisContact::Full
             && !kind.profile_smooth_at_axis()
@@ -1167,7 +1169,7 @@ fn state_of(
 /// lies inside the first node off the axis, whose radius is returned (the located edge's
 /// uncertainty); else `None`. A free axis node alone bounds the hole by that radius too (its
 /// own spacing to the axis is no bound: P2 returned `eps = 0` with an estimate of 2.3e-4 for
-/// holes 6e-3 and 1.9e-2 a wide, the sphere at `d = 2.9999h` and `2.999h`).
+/// holes 6e-3 and 1.9e-2 a wide, the parabolic gap at `d = 2.9999h` and `2.999h`).
 fn full_contact_spacing(s: &ContactSolution) -> Option<f64> {
     let on_axis = |&(r, _): &(f64, f64)| r == 0.0;
     let axis_free_alone =
@@ -1654,7 +1656,8 @@ impl<'o> Ladder<'o> {
         current.eps_error = current.eps_estimate(previous);
         // The edge moves κ = |db/dd| d times a depth error; a field error acts as a share of
         // one, or as the whole of one under a prescribed force and outside the asymptotic range,
-        // where it adds to the edge's own error (docs/decisions.md, "Where the constants come from").
+        // where it adds to the edge's own error (docs/decisions.md, "Where the constants come
+        // from").
         let conditioning = s.conditioning.edge_depth_sensitivity.abs() * solved.x.abs();
         let whole_shift = self.grading.pre_asymptotic || matches!(load, FemLoad::ConcaveForce(_));
         let field_share = if whole_shift {
@@ -1899,7 +1902,7 @@ mod tests {
             let faster = grading_step_estimate(degree, change, Some(100.0 * change));
             assert!(close(faster, known), "{degree:?}");
         }
-        // The sphere at 2.9998 h, P3: changes 1.6e-3 then 1.9e-4, a ratio of 8.5 (not 12.9).
+        // The parabolic gap at 2.9998 h, P3: changes 1.6e-3 then 1.9e-4, a ratio of 8.5 (not 12.9).
         let observed = grading_step_estimate(Degree::Cubic, change, Some(1.6e-3));
         assert!(close(
             observed,
@@ -1936,7 +1939,7 @@ mod tests {
                 Some(0.99 * known * change)
             ));
         }
-        // The sphere at 2.9998 h, P3: a ratio of 8.5.
+        // The parabolic gap at 2.9998 h, P3: a ratio of 8.5.
         assert!(below_known_order(Degree::Cubic, change, Some(1.6e-3)));
         // No change to compare with: not judged.
         assert!(!below_known_order(Degree::Cubic, 0.0, Some(1.6e-3)));

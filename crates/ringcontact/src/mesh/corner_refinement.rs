@@ -3,7 +3,7 @@
 //! gmsh's 2-D mesher keeps its elements' shape only down to about `1e-8` of the coordinates'
 //! magnitude: asked for elements of `1e-10 a` at the rim `r = a`, it placed the surface nodes but
 //! filled the corner with slivers (quality `4 √3 A / Σ l²` of 0.007-0.03 against 0.5-0.6 at
-//! `1e-8 a`), and the force error grew as the size fell below `1e-8 a` (flat annulus
+//! `1e-8 a`), and the force error grew as the size fell below `1e-8 a` (fixed annulus
 //! `b/a = 0.97`, cubic elements: 5.6e-9 at `1e-8 a`, 2.1e-8 at `1e-9 a`, 1.4e-8 at `1e-10 a`).
 //! The finest elements are therefore made here: every triangle touching the corner `P` is
 //! replaced by its copy scaled by [`CORNER_RATIO`] about `P` and the two triangles of the

@@ -6,15 +6,15 @@
 //! default, enough for the default tolerance with neither gmsh nor network.
 //!
 //! **Adapted family** (generated from `meshes/half_space.geo`): geometric grading toward the
-//! singular edges, `h(x) = min(hmin + g |x - a|, hmin + g |x - b|)` (the inner edge only for the flat
-//! annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by the FEM's
-//! own coarser solve; no uniform size along the contact line. Level `k` has `g_k = 0.32 · 0.6^k`,
-//! `hmin_k` from [`adapted_rim_size`] and `hb_k = 10^-3 · 10^-k`: for quadratic elements the
-//! force error of the graded zone falls like `g⁴` (a factor 7.7 per level), for cubic like `g⁶`,
-//! and that of the innermost element like `hmin`. The domain radius is `R = 1e7 a`. gmsh makes
-//! elements down to [`GMSH_MIN_ELEMENT_SIZE`]; smaller rim sizes are reached by halving the
-//! corner patches in Rust ([`crate::mesh::corner_refinement`]), which the provided mesh carries as a
-//! request applied when it is read.
+//! singular edges, `h(x) = min(hmin + g |x - a|, hmin + g |x - b|)` (the inner edge only for the
+//! flat annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by
+//! the FEM's own coarser solve; no uniform size along the contact line. Level `k` has
+//! `g_k = 0.32 · 0.6^k`, `hmin_k` from [`adapted_rim_size`] and `hb_k = 10^-3 · 10^-k`: for
+//! quadratic elements the force error of the graded zone falls like `g⁴` (a factor 7.7 per level),
+//! for cubic like `g⁶`, and that of the innermost element like `hmin`. The domain radius is
+//! `R = 1e7 a`. gmsh makes elements down to [`GMSH_MIN_ELEMENT_SIZE`]; smaller rim sizes are
+//! reached by halving the corner patches in Rust ([`crate::mesh::corner_refinement`]), which the
+//! provided mesh carries as a request applied when it is read.
 //!
 //! The cache lives in [`DataPaths::cache`] (`<project>/.mesh-cache/` by default, ignored by git),
 //! keyed by the SHA-256 of the geometry file, the parameters and the gmsh version.
@@ -78,7 +78,7 @@ pub(crate) fn ring_width_scale(width: f64) -> f64 {
 
 /// Rim size wanted for `level` and `target`: [`adapted_rim_size`], and no larger than a tenth of
 /// the target's tolerance (the innermost element's force error is about `0.16 hmin` for P2, and
-/// `0.5 hmin` for P3 on the flat annulus `b/a = 0.97`), both times `ring_scale`
+/// `0.5 hmin` for P3 on the fixed annulus `b/a = 0.97`), both times `ring_scale`
 /// ([`ring_width_scale`]); never below [`MIN_RIM_SIZE`].
 fn wanted_rim_size(level: i32, target: Option<SizeTarget>, ring_scale: f64) -> f64 {
     let size = match target {
@@ -284,17 +284,17 @@ fn adapted_grading(level: i32) -> f64 {
 /// `gmsh -setnumber` parameters of level `level` of the adapted family (module documentation).
 ///
 /// Sizes: grading `g` from [`adapted_grading`]; rim size `hmin` from [`wanted_rim_size`], but
-/// not below [`GMSH_MIN_ELEMENT_SIZE`] (finer is [`adapted_corner_refinement`]'s job); around a free edge known to within `δ`, the edge size
-/// `hb = g δ / (exp(N g / p) - 1)` puts `N` = [`EDGE_WINDOW_NODES`] contact nodes of degree `p`
-/// in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`), but never below `0.75 p · tol` times the
-/// ring's [`ring_width_scale`] (which makes the edge's location bound `0.3 hb / p` under a
-/// quarter of the tolerance, and on a narrow ring keeps as many elements across the ring at the
-/// edge as on a wide one) or, without a target, `1e-3 · 10^-k`, unless a quarter of a hole
-/// `b̃ > 0` is smaller (a small hole keeps a few elements). Unscaled, the free edge of a ring
-/// `3e-4 a` wide (sphere at `d = 0.004 h`, P2, `--tol 1e-5`) had elements of `1.5e-5 a`, and its
-/// force error of 2.6e-6 was above the estimate of 2.0e-6: the levels shared that size, so their
-/// changes did not see the edge's share. Around the axis point (full contact) the edge size is
-/// never below [`AXIS_MIN_ELEMENT_SIZE`].
+/// not below [`GMSH_MIN_ELEMENT_SIZE`] (finer is [`adapted_corner_refinement`]'s job); around a
+/// free edge known to within `δ`, the edge size `hb = g δ / (exp(N g / p) - 1)` puts `N` =
+/// [`EDGE_WINDOW_NODES`] contact nodes of degree `p` in `[b̃, b̃ + δ]` (`∫ p dr / (hb + g r) = N`),
+/// but never below `0.75 p · tol` times the ring's [`ring_width_scale`] (which makes the edge's
+/// location bound `0.3 hb / p` under a quarter of the tolerance, and on a narrow ring keeps as many
+/// elements across the ring at the edge as on a wide one) or, without a target, `1e-3 · 10^-k`,
+/// unless a quarter of a hole `b̃ > 0` is smaller (a small hole keeps a few elements). Unscaled,
+/// the free edge of a ring `3e-4 a` wide (parabolic gap at `d = 0.004 h`, P2, `--tol 1e-5`) had
+/// elements of `1.5e-5 a`, and its force error of 2.6e-6 was above the estimate of 2.0e-6: the
+/// levels shared that size, so their changes did not see the edge's share. Around the axis point
+/// (full contact) the edge size is never below [`AXIS_MIN_ELEMENT_SIZE`].
 pub fn adapted_parameters(
     contact_start: f64,
     level: i32,
@@ -308,7 +308,7 @@ pub fn adapted_parameters(
     let hmin = wanted_rim_size(level, target, ring_scale).max(GMSH_MIN_ELEMENT_SIZE);
     let edge_floor = free_edge_floor(level, target, ring_scale);
     let window = free_edge_window(grading, degree, edge_uncertainty);
-    // A hole smaller than the floor (a deep cone: b/a = 9e-4 at d = 12h) still gets elements
+    // A hole smaller than the floor (a deep linear gap: b/a = 9e-4 at d = 12h) still gets elements
     // of a quarter of its radius. Full contact (`b̃ = 0`) has no hole to keep elements in: its
     // axis refinement stays at the floor (else each level's window, a fraction of the last
     // node spacing, shrank it again, down to gmsh stalling on 5e-10 a).

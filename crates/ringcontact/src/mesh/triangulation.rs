@@ -10,7 +10,7 @@ use crate::error::{Error, Result};
 
 /// Physical tags of the boundary curves and the domain, as written by `meshes/half_space.geo`.
 pub mod tags {
-    /// Candidate contact line: `[b, a]` (flat annulus) or `[0, a]`.
+    /// Candidate contact line: `[b, a]` (fixed annulus) or `[0, a]`.
     pub const CONTACT: i32 = 1;
     /// Free surface `[a, R]`.
     pub const FREE: i32 = 2;
@@ -367,7 +367,7 @@ impl Mesh {
     }
 
     /// Check that every physical group lies where its role says (`meshes/half_space.geo`), for a
-    /// contact line that must start at `contact_start` (`b/a` of the flat annulus, 0 otherwise):
+    /// contact line that must start at `contact_start` (`b/a` of the fixed annulus, 0 otherwise):
     ///
     /// * axis (4) on `r = 0`; contact (1), free (2) and hole (5) on `z = 0`; every node in
     ///   `r >= 0`, `z <= 0`;

@@ -65,7 +65,7 @@ impl Auto {
 /// The order `auto` tries methods in: the axisymmetric ones by cost (ring BEM ~1 ms,
 /// FEM 0.1-5 s; the grid BEM, first order, is never the cheapest to certify a tolerance),
 /// then, as the last resort where both decline, the analytic references with an error bound
-/// (the flat annulus beyond the ring BEM's `b/a = 0.9999`, whose rim the FEM cannot refine
+/// (the fixed annulus beyond the ring BEM's `b/a = 0.9999`, whose rim the FEM cannot refine
 /// enough for a tight tolerance, is the narrow-ring asymptote's, bound `δ² ln(16/δ)`): the
 /// independent discretisations first wherever they apply.
 const AUTO_ORDER: [Method; 3] = [Method::RingBem, Method::Fem, Method::Reference];

@@ -11,14 +11,14 @@ use crate::punch::PunchKind;
 #[derive(Clone, Debug)]
 pub struct StudyCase {
     pub punch: PunchKind,
-    /// `b/a` of the flat annulus.
+    /// `b/a` of the fixed annulus.
     pub eps: f64,
     /// `d/h` of a concave punch.
     pub depth: f64,
 }
 
 /// One level's solve: its label, representative size `h` (cell side for the grid BEM,
-/// `1/sqrt(dofs)` for the FEM, `1/N` for the ring BEM), unknowns, value (`γ` of a flat punch,
+/// `1/sqrt(dofs)` for the FEM, `1/N` for the ring BEM), unknowns, value (`γ` of a flat-faced punch,
 /// `γ2` of a concave one at its depth) and, for the FEM, the free edges it located.
 #[derive(Clone, Debug)]
 pub struct Rung {

@@ -73,7 +73,7 @@ fn no_closed_form(reason: String) -> Error {
     }
 }
 
-/// A flat punch's `γ(b/a)` from the most trusted reference valid at `b/a`.
+/// A flat-faced punch's `γ(b/a)` from the most trusted reference valid at `b/a`.
 fn flat_reference(scene: &Scene, mut solution: Solution) -> Result<Solution> {
     let kind = &scene.punch.kind;
     let a = scene.punch.rim_radius;
@@ -200,7 +200,7 @@ fn concave_solution(
 }
 
 /// The full contact past the closure `(d_c/h, γ2_c)` the profile declares: the contact is the
-/// disk there and a rigid shift adds the flat punch's stiffness, `γ2 = γ2_c + (γ1 - d_c/h)`.
+/// disk there and a rigid shift adds the flat-faced punch's stiffness, `γ2 = γ2_c + (γ1 - d_c/h)`.
 fn full_contact(scene: &Scene, solution: &Solution) -> Option<Solution> {
     let kind = &scene.punch.kind;
     let (closure_depth, closure_force) = kind.closure()?;

@@ -37,7 +37,7 @@ impl Solver for RingBem {
     }
 }
 
-/// The ring BEM's ladder: `6 + 2k` nodes on a flat punch's contact (its concave states are
+/// The ring BEM's ladder: `6 + 2k` nodes on a flat-faced punch's contact (its concave states are
 /// certified by their own node ladder).
 impl Ladder for RingBem {
     fn check_levels(&self, _case: &StudyCase, _levels: usize) -> Result<()> {

@@ -69,7 +69,7 @@ fn depth_force(
     }
 }
 
-/// Physical depth and force of a flat punch with `F = 2 E* d a γ`, under the scene's load.
+/// Physical depth and force of a flat-faced punch with `F = 2 E* d a γ`, under the scene's load.
 pub(super) fn flat_depth_force(scene: &Scene, gamma: f64) -> Result<(f64, f64)> {
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;

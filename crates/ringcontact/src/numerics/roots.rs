@@ -96,7 +96,7 @@ where
 /// is bracketed, every step goes the way the sign of `f` points (left where `f < 0`), a secant
 /// or Newton step that points the other way (a local rise) replaced by twice the last step the
 /// right way. Near a hump just short of zero a plain secant bounces between its flanks (the
-/// sampled sphere's pre-search at `d/h = 2.97`: 20 evaluations); this one walks past it to a
+/// sampled parabolic gap's pre-search at `d/h = 2.97`: 20 evaluations); this one walks past it to a
 /// bracket.
 pub(crate) fn find_root_descending<F>(
     f: F,

@@ -20,13 +20,13 @@
 //!
 //! The contact is full (`p >= 0` on the disk) from `d_c/h = max_r P(r)` on,
 //! `P(r) = G(1) - sqrt(1 - r²) ∫_0^{sqrt(1 - r²)} G'(x)/x du` (`x = sqrt(r² + u²)`). A profile
-//! with a slope at the axis (`ĝ'(0) < 0`, a cone's apex) makes `P(0)` infinite: its hole never
-//! closes. Every integral is split at the profile's breakpoints and done by 10-point
+//! with a slope at the axis (`ĝ'(0) < 0`, a linear gap's apex) makes `P(0)` infinite: its hole
+//! never closes. Every integral is split at the profile's breakpoints and done by 10-point
 //! Gauss-Legendre quadrature on each piece (near rounding for a piecewise-polynomial `ĝ`, whose
-//! pieces are smooth in `θ` and `u`); the sphere's `c_F = 1/3`, `κ_h = 1`, `d_c = 3` and the
-//! power laws' closed forms come out to 1e-12 (tests below). The cost grows as the square of
-//! the number of pieces for `c_F` and as its square times the scan for `d_c`: about 0.1 s for a
-//! table of 100 points.
+//! pieces are smooth in `θ` and `u`); the parabolic gap's `c_F = 1/3`, `κ_h = 1`, `d_c = 3` and the
+//! power laws' closed forms come out to 1e-12 (tests below). The cost grows as the square of the
+//! number of pieces for `c_F` and as its square times the scan for `d_c`: about 0.1 s for a table
+//! of 100 points.
 
 use std::collections::HashMap;
 use std::sync::{Mutex, OnceLock};
@@ -351,8 +351,8 @@ mod tests {
     }
 
     /// The lower bounds of the closure are the closed forms where the hole opens at the axis
-    /// (the sphere: `d_c = 3h`, `F/(2 E* h a) = 3 - 1/3`) and bounds below them where it opens
-    /// on a ring (`n = 4`, at `r = a/2`); none where the hole never closes.
+    /// (the parabolic gap: `d_c = 3h`, `F/(2 E* h a) = 3 - 1/3`) and bounds below them where it
+    /// opens on a ring (`n = 4`, at `r = a/2`); none where the hole never closes.
     #[test]
     fn the_closure_bounds_bound_the_closure() {
         let (depth, force) = closure_lower_bounds(&PowerLaw(2.0)).unwrap();

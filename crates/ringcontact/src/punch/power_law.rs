@@ -25,11 +25,11 @@
 //!
 //! so the contact is full (`p >= 0` everywhere) from the depth
 //! `d_c = h [1 + κ_n max_r (n sqrt(1 - r²) I_n(r) - 1)]` on. For `1 < n <= 2` the maximum is at
-//! the axis, `d_c = h (1 + κ_n / (n - 1))` (`d_c = 3 h` for the sphere, `docs/conventions.md`
-//! fact 4). For `n > 2` it moves off the axis (`r = 0.5 a` for `n = 4`, where `d_c = 7h/3`):
-//! the pressure first fails on a ring, the contact closes from a disk and an annulus, not by a
-//! shrinking hole. For `n <= 1` the integral for `p(0)` diverges to tension: the hole never
-//! closes.
+//! the axis, `d_c = h (1 + κ_n / (n - 1))` (`d_c = 3 h` for the parabolic gap,
+//! `docs/conventions.md` fact 4). For `n > 2` it moves off the axis (`r = 0.5 a` for `n = 4`, where
+//! `d_c = 7h/3`): the pressure first fails on a ring, the contact closes from a disk and an
+//! annulus, not by a shrinking hole. For `n <= 1` the integral for `p(0)` diverges to tension: the
+//! hole never closes.
 
 use std::collections::HashMap;
 use std::f64::consts::PI;
@@ -143,10 +143,10 @@ pub fn full_contact_gamma1(n: f64, gamma2: f64) -> Option<f64> {
 }
 
 /// The paper's fit a concave profile of rim slope `s = -a g'(a)/h` starts its inverse search
-/// from, and the value `target` becomes for it: for `s >= 1.5` the sphere's fit at `2 target / s`
-/// (`γ ≈ (s/2) γ_sphere`, exact as the contact narrows toward the rim), else the cone's,
-/// unscaled. The sphere's fit unscaled started a steep-walled profile inside its hole, where
-/// `γ1` is not monotone.
+/// from, and the value `target` becomes for it: for `s >= 1.5` the parabolic gap's fit at
+/// `2 target / s` (`γ ≈ (s/2) γ_sphere`, exact as the contact narrows toward the rim), else the
+/// linear gap's, unscaled. The parabolic gap's fit unscaled started a steep-walled profile inside
+/// its hole, where `γ1` is not monotone.
 pub fn starting_fit(rim_slope: f64, target: f64) -> (f64, fn(usize, f64) -> f64) {
     if rim_slope < 1.5 {
         (target, super::cone::paper_fit)
@@ -173,7 +173,7 @@ mod tests {
         }
     }
 
-    /// `κ_1 = π/2` (the cone's MDR factor) and `κ_2 = 2` (the paraboloid's), and for integer
+    /// `κ_1 = π/2` (the linear gap's MDR factor) and `κ_2 = 2` (the paraboloid's), and for integer
     /// `n` the Wallis recursion `κ_{n+2} = κ_n (n + 2) / (n + 1)`.
     #[test]
     fn kappa_matches_the_cone_the_sphere_and_wallis() {
@@ -200,7 +200,8 @@ mod tests {
         );
     }
 
-    /// The sphere closes at `d = 3h` with `F = 2 E* a (d - h/3)` (docs/conventions.md fact 4).
+    /// The parabolic gap closes at `d = 3h` with `F = 2 E* a (d - h/3)` (docs/conventions.md fact
+    /// 4).
     #[test]
     fn the_sphere_is_the_power_law_with_n_2() {
         assert!((closure_depth(2.0).unwrap() - 3.0).abs() < 1e-14);

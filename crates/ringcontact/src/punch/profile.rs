@@ -13,7 +13,7 @@ use super::{PunchName, PunchRecord};
 pub enum Contact {
     /// The whole flat face `r <= a` (Boussinesq's punch): one fixed edge, the rim.
     Disk,
-    /// The flat annulus `b <= r <= a`, `b` a parameter of the punch: two fixed edges.
+    /// The fixed annulus `b <= r <= a`, `b` a parameter of the punch: two fixed edges.
     FixedAnnulus,
     /// `[b(d), a]`: a sharp rim at `r = a` and a free inner edge (the concave punches).
     RimAndFreeInner,
@@ -141,7 +141,7 @@ pub trait Profile: Send + Sync + std::fmt::Debug {
     }
 
     /// Whether the contact closes from a disk and an annulus rather than by a shrinking hole
-    /// (a profile flatter than the sphere at the axis); the ring BEM's single annulus stops
+    /// (a profile flatter than the parabolic gap at the axis); the ring BEM's single annulus stops
     /// short of it.
     fn flatter_than_the_sphere(&self) -> bool {
         false

@@ -488,8 +488,8 @@ mod tests {
         }
     }
 
-    /// The interpolation's order on the sphere's profile `1 - ρ²`, sampled densely: the largest
-    /// error falls as the square of the spacing (it sits next to the axis, where the slope
+    /// The interpolation's order on the parabolic gap's profile `1 - ρ²`, sampled densely: the
+    /// largest error falls as the square of the spacing (it sits next to the axis, where the slope
     /// vanishes and the harmonic mean's slope is first-order, `h²/(2 r_k)`); away from the axis
     /// (`ρ >= 1/4`) it falls as the cube.
     #[test]

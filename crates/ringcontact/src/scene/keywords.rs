@@ -1,7 +1,7 @@
 //! A scene given as one flat set of keywords (`shape`, `depth`, `effective_modulus`, ...), as the
 //! Python package's `solve(**keywords)` passes it: every key of the scene file, without its
 //! sections (no key name repeats across sections), plus `punch` (a name for `shape`, as on the
-//! command line) and `eps` (b/a: the flat annulus's hole, or a concave punch's prescribed contact,
+//! command line) and `eps` (b/a: the fixed annulus's hole, or a concave punch's prescribed contact,
 //! as `--eps`).
 
 use super::{PunchName, SceneSpec};
@@ -217,7 +217,7 @@ mod tests {
         assert_eq!(flat, file);
     }
 
-    /// `eps` is the hole of the flat annulus and the prescribed contact of a concave punch.
+    /// `eps` is the hole of the fixed annulus and the prescribed contact of a concave punch.
     #[test]
     fn eps_means_what_the_command_line_flag_means() {
         let annulus = keywords(r#"{"punch": "flat-annulus", "eps": 0.25, "rim_radius": 2}"#)

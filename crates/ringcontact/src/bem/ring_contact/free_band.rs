@@ -22,10 +22,10 @@
 //! rounding at each node count; the self-convergence estimate covers `b`, `c`, `γ1` and `γ2`
 //! and the search's residual.
 //!
-//! **The contact never closes.** Near the axis the gap is `h (1 - 2r/a + ...)`: a conical
-//! dimple, whose full-contact pressure is logarithmically tensile at the apex (as the cone's).
-//! The inner edge approaches the axis only as the load grows without bound, and the ring BEM
-//! refuses `b < 1e-4 a` as for the cone.
+//! **The contact never closes.** Near the axis the gap is `h (1 - 2r/a + ...)`: a linear-gap
+//! dimple, whose full-contact pressure is logarithmically tensile at the apex (as the linear
+//! gap's). The inner edge approaches the axis only as the load grows without bound, and the ring
+//! BEM refuses `b < 1e-4 a` as for the linear gap.
 
 use std::f64::consts::PI;
 
@@ -100,7 +100,8 @@ impl BandSolver<'_> {
     /// edges: the centre `m` (band `[m - w, m + w]`) by the safeguarded secant on
     /// [`Band::mismatch`]. The JKR equilibria are parametrised by the width, not by the
     /// inner edge: a narrow adhesive band shifts toward the axis as it shrinks (at `d0/h = 0.1`
-    /// wholly inside `r < a`), so the inner edge is not monotone along the curve, while the width is.
+    /// wholly inside `r < a`), so the inner edge is not monotone along the curve, while the width
+    /// is.
     fn band_width_sample(
         &self,
         kind: &PunchKind,
@@ -400,11 +401,11 @@ impl BandSolver<'_> {
     /// close to its root and is its rung below (six evaluations on the cheaper rung, two on the
     /// needed one, instead of the reverse). The estimate is the change of the state from
     /// the rung below (solved the same way, from this rung's edges, where the ladder skipped it;
-    /// none on a rung below the one the inner edge needs, which only starts that one): of `b` and `c`
-    /// (absolute, units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's
-    /// residual (the search's own error: each rung stops after a step below 1 % of the
-    /// tolerance, and the residual of the state, at rounding then, is counted). `None` where
-    /// Newton's method does not converge at some rung: the caller then runs the nested search.
+    /// none on a rung below the one the inner edge needs, which only starts that one): of `b` and
+    /// `c` (absolute, units of `a`) and of `γ1` and `γ2` (relative), plus twice the target's
+    /// residual (the search's own error: each rung stops after a step below 1 % of the tolerance,
+    /// and the residual of the state, at rounding then, is counted). `None` where Newton's method
+    /// does not converge at some rung: the caller then runs the nested search.
     pub(super) fn band_inverse(
         &self,
         kind: &PunchKind,
