@@ -348,7 +348,7 @@ fn one_entry_routes_every_punch_and_names_a_missing_value() {
             PunchKind::CONE,
             Some(0.5),
             Some(1.0),
-            "`eps` fixes the flat annulus's hole",
+            "`eps` fixes the hole of a fixed annulus",
         ),
         (flat.clone(), None, None, "`eps` is needed"),
         (

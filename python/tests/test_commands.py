@@ -53,7 +53,7 @@ def test_jkr_errors_name_the_keyword():
         rc.jkr("blob", d0h=1)
     with pytest.raises(rc.RingContactError, match="0 < b/a < 1"):
         rc.jkr("flat-annulus", eps=0.0)
-    with pytest.raises(rc.RingContactError, match="`eps` fixes the flat annulus's hole"):
+    with pytest.raises(rc.RingContactError, match="`eps` fixes the hole of a fixed annulus"):
         rc.jkr("sphere", eps=0.5, d0h=1)
     with pytest.raises(rc.RingContactError, match="`d0h` is a concave punch's work of adhesion"):
         rc.jkr("flat-annulus", eps=0.5, d0h=1)

@@ -10,7 +10,7 @@
 //! inner edge at `d_c/d0 = -1/κ_in`, `F_c/F0 = -γ/κ_in` (paper 20); the smaller `|d_c|` governs.
 //!
 //! **Concave punches**, contact `[b, a]`, `eps = b/a`: the adhesive state adds to the non-adhesive
-//! one a flat-annulus displacement `-Δl` at fixed contact; the inner edge is in equilibrium for
+//! one a fixed-annulus displacement `-Δl` at fixed contact; the inner edge is in equilibrium for
 //! `Δl = d0/κ_in(eps)` (paper 27-28, simplified with `γ2' = γ γ1'`), so
 //! `d/h = γ1 - (d0/h)/κ_in`, `F/F0 = (h/d0) γ2 - γ/κ_in`.
 //! The branch is stable under fixed grips where `dd/deps < 0` and under fixed load where
@@ -65,7 +65,7 @@ fn derivative(f: impl Fn(f64) -> Result<f64>, x: f64, h: f64, lo: f64, hi: f64) 
     )
 }
 
-/// Flat-annulus quantities at `eps`: `γ`, `γ'` (difference of converged values), and the edge
+/// Fixed-annulus quantities at `eps`: `γ`, `γ'` (difference of converged values), and the edge
 /// intensities `κ` both from the force derivative (fact 7) and read directly off the BEM pressure.
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct AnnulusEdges {

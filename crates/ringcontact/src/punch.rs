@@ -57,6 +57,19 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::{Error, Result};
 
+/// The paper's fit a concave profile of rim slope `s = -a g'(a)/h` starts its inverse search
+/// from, and the value `target` becomes for it: for `s >= 1.5` the parabolic gap's fit at
+/// `2 target / s` (`γ ≈ (s/2) γ_sphere`, exact as the contact narrows toward the rim), else the
+/// linear gap's, unscaled. The parabolic gap's fit unscaled started a steep-walled profile inside
+/// its hole, where `γ1` is not monotone.
+pub fn starting_fit(rim_slope: f64, target: f64) -> (f64, fn(usize, f64) -> f64) {
+    if rim_slope < 1.5 {
+        (target, cone::paper_fit)
+    } else {
+        (2.0 * target / rim_slope, sphere::paper_fit)
+    }
+}
+
 /// The names of the built-in punch shapes, as written on the command line (`--punch`), in scene
 /// files (`punch.shape`) and in JSON (`"punch"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]

@@ -2,13 +2,13 @@
 //!
 //! ```toml
 //! [punch]
-//! shape = "cone"            # a built-in shape (`verify references` lists them)
+//! shape = "power"           # a built-in shape (`verify references` lists them)
 //! rim_radius = 1.0          # a, length unit of your choice (a ring's radius where it has no rim)
 //! hole_depth = 0.1          # h, the depth of a recessed shape's hole (its gap at the axis)
-//! # exponent = 2.5          # a shape's own parameter, where it takes one: exponent (n of
-//! #                         # h (1 - (r/a)^n)), tube_radius (rho of a ring's section), profile
-//! ((r/a, #                         # g/h) points, relative to the scene file), inner_radius (b of
-//! a #                         # fixed annulus, 0 <= b < a)
+//! exponent = 2.5            # a shape's own parameter, where it takes one: exponent (n of
+//! #                         # h (1 - (r/a)^n)), tube_radius (rho of a ring's section),
+//! #                         # profile ((r/a, g/h) points, relative to the scene file),
+//! #                         # inner_radius (b of a fixed annulus, 0 <= b < a)
 //!
 //! [material]
 //! effective_modulus = 1.0   # E* = E/(1 - nu²); or give youngs_modulus and poisson_ratio
@@ -19,8 +19,7 @@
 //! # contact_ratio = 0.5     # eps = b/a prescribed (concave punches): d and F are computed
 //!
 //! [accuracy]
-//! tolerance = 1e-9          # relative error wanted (default: the method's, 1e-9 ring BEM, 1e-3
-//! FEM)
+//! tolerance = 1e-9          # relative error wanted (default: the method's, 1e-9 ring BEM, 1e-3 FEM)
 //! ```
 //!
 //! Every field is checked; a broken rule is reported with the field's name and the rule.
@@ -169,7 +168,7 @@ impl SceneSpec {
     }
 
     /// A scene written as a JSON object with the keys of the TOML file (`{"punch": {"shape":
-    /// "cone"}, "load": {"depth": 2}}`), as `verify solve --batch` reads it; a relative
+    /// "flat"}, "load": {"depth": 2}}`), as `verify solve --batch` reads it; a relative
     /// `punch.profile` is read from `base` (the batch file's directory). Unknown keys and wrong
     /// types are errors naming the key.
     pub fn from_json_value(
@@ -242,7 +241,7 @@ impl SceneSpec {
         self
     }
 
-    /// The scene of the flat keywords `object` (`{"punch": "cone", "depth": 2}`): each key is
+    /// The scene of the flat keywords `object` (`{"punch": "flat", "depth": 2}`): each key is
     /// placed in its section of the scene file and read as the file is
     /// ([`SceneSpec::from_json_value`]); `eps` is `b/a` as `--eps` takes it. Unknown keys, a key
     /// given twice (`punch` and `shape`), and `eps` beside another load are errors naming them.
@@ -431,16 +430,17 @@ impl SceneSpec {
             (true, None, None) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
-                    "is required for shape = flat-annulus (or give eps = b/a)",
+                    format!("is required for shape = {kind} (or give eps = b/a)"),
                 ))
             }
             (_, Some(_), _) | (_, _, Some(_)) => {
                 return Err(Error::invalid(
                     "punch.inner_radius",
                     format!(
-                        "applies only to shape = flat-annulus, not {kind} \
+                        "applies only to shape = {}, not {kind} \
                          (for the concave punches the inner radius is found by the solver; \
-                         prescribe it with load.contact_ratio)"
+                         prescribe it with load.contact_ratio)",
+                        PunchName::names(Some(Contact::FixedAnnulus), ", ")
                     ),
                 ))
             }
@@ -506,8 +506,8 @@ impl SceneSpec {
                     return Err(Error::invalid(
                         "punch.hole_depth",
                         format!(
-                            "applies only to the concave shapes (cone, sphere, power, table), not \
-                         {kind}"
+                            "applies only to the concave shapes ({}), not {kind}",
+                            PunchName::names(Some(Contact::RimAndFreeInner), ", ")
                         ),
                     ))
                 }
@@ -636,72 +636,5 @@ impl RawLoad {
         } else {
             Ok(Load::Depth(1.0))
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn rule_of(text: &str) -> String {
-        SceneSpec::from_toml(text, "test")
-            .and_then(SceneSpec::validate)
-            .unwrap_err()
-            .to_string()
-    }
-
-    #[test]
-    fn defaults_give_dimensionless_scene() {
-        let s = SceneSpec::default()
-            .shape(PunchKind::CONE)
-            .depth(2.0)
-            .validate()
-            .unwrap();
-        assert_eq!(s.punch.rim_radius, 1.0);
-        assert_eq!(s.punch.hole_depth, 1.0);
-        assert_eq!(s.material.effective_modulus, 1.0);
-        assert_eq!(s.load, Load::Depth(2.0));
-    }
-
-    #[test]
-    fn each_rule_is_named() {
-        assert!(rule_of("[punch]\nshape='flat-annulus'\ninner_radius=1.0").contains("b < a"));
-        assert!(
-            rule_of("[punch]\nshape='cone'\nhole_depth=-1\n[load]\ndepth=1")
-                .contains("punch.hole_depth")
-        );
-        assert!(
-            rule_of("[punch]\nshape='cone'\nhole_depth=0\n[load]\ndepth=1").contains("must be > 0")
-        );
-        assert!(
-            rule_of("[punch]\nshape='flat'\n[material]\neffective_modulus=-2")
-                .contains("material.effective_modulus")
-        );
-        assert!(
-            rule_of("[punch]\nshape='flat'\n[material]\nyoungs_modulus=1\npoisson_ratio=0.5")
-                .contains("(-1, 0.5)")
-        );
-        assert!(rule_of("[punch]\nshape='flat'\n[load]\ndepth=nan").contains("finite"));
-        assert!(rule_of("[punch]\nshape='flat'\n[load]\ndepth=inf").contains("finite"));
-        assert!(rule_of("[punch]\nshape='flat'\ncolour='red'").contains("unknown field `colour`"));
-        assert!(rule_of("[punch]\nshape='hexagon'").contains("unknown variant"));
-        assert!(rule_of("[punch]\nshape='sphere'").contains("needs one of depth"));
-    }
-
-    #[test]
-    fn youngs_modulus_and_poisson_give_effective_modulus() {
-        let s = SceneSpec::from_toml(
-            "[punch]\nshape='flat'\n[material]\nyoungs_modulus=3.0\npoisson_ratio=0.5e0\n",
-            "t",
-        );
-        assert!(s.unwrap().validate().is_err());
-        let s = SceneSpec::from_toml(
-            "[punch]\nshape='flat'\n[material]\nyoungs_modulus=3.0\npoisson_ratio=0.0\n",
-            "t",
-        )
-        .unwrap()
-        .validate()
-        .unwrap();
-        assert_eq!(s.material.effective_modulus, 3.0);
     }
 }

@@ -1,4 +1,4 @@
-//! The JKR solution of any punch at one state, chosen by how its contact is bounded: the flat
+//! The JKR solution of any punch at one state, chosen by how its contact is bounded: a fixed
 //! annulus at its `b/a`, a punch with a rim and a free inner edge or a free band at its work of
 //! adhesion `d0/h`.
 
@@ -34,8 +34,11 @@ pub fn jkr(
     match kind.contact() {
         Contact::Disk => Err(Error::invalid(
             "punch",
-            "the flat circular punch is Kendall's: F_c = -F0, d_c = -d0 (give the flat \
-             annulus with its b/a)",
+            format!(
+                "the {name} punch is Kendall's: F_c = -F0, d_c = -d0 (give the {} punch with \
+                 its b/a)",
+                crate::punch::PunchName::names(Some(Contact::FixedAnnulus), ", ")
+            ),
         )),
         Contact::FixedAnnulus => {
             if d0h.is_some() {
@@ -57,7 +60,7 @@ pub fn jkr(
                 return Err(Error::invalid(
                     "eps",
                     format!(
-                        "fixes the flat annulus's hole; the {name}'s contact ratio is found, not \
+                        "fixes the hole of a fixed annulus; the {name}'s contact ratio is found, not \
                          given (give d0h)"
                     ),
                 ));

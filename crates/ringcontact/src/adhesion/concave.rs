@@ -18,7 +18,7 @@ use crate::numerics::brent::brent_minimum;
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
 
-/// The non-adhesive and flat-annulus quantities at one contact ratio (h = 1, a = 1, E* = 1).
+/// The non-adhesive and fixed-annulus quantities at one contact ratio (h = 1, a = 1, E* = 1).
 #[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
 pub struct BranchPoint {
     pub eps: f64,
@@ -739,7 +739,11 @@ fn check_concave(kind: PunchKind) -> Result<()> {
     if !kind.is_concave() {
         return Err(Error::invalid(
             "punch",
-            "the concave JKR analysis applies to cone, sphere, power and table",
+            format!(
+                "the concave JKR analysis applies to the punches with a rim and a free inner \
+                 edge ({})",
+                crate::punch::PunchName::names(Some(crate::punch::Contact::RimAndFreeInner), ", ")
+            ),
         ));
     }
     if !kind.has_rim() {

@@ -5,7 +5,7 @@
 //! i.e. `K = -sqrt(2 E* Δw)`, which is `-s/sqrt(π)` in units of `E* h/sqrt(a)`. For a band
 //! half-width `w` the ring BEM finds the band's centre and the depth `d` with that intensity at
 //! both edges ([`RingBemSolver::band_with_edge_intensity`]): the equilibrium curve
-//! `(b(w), c(w), d(w), F(w))`, no flat-annulus superposition (the band moves at both ends). The
+//! `(b(w), c(w), d(w), F(w))`, no fixed-annulus superposition (the band moves at both ends). The
 //! width parametrises it (the inner edge does not: a narrow adhesive band drifts toward the
 //! axis as it shrinks).
 //!
@@ -103,7 +103,7 @@ pub fn band_jkr(solver: &RingBemSolver, kind: &PunchKind, s: f64) -> Result<Band
         return Err(Error::Unsupported {
             method: "jkr".into(),
             reason: format!(
-                "the {} has a rim: its JKR analysis is the concave punches' or the flat \
+                "the {} has a rim: its JKR analysis is the concave punches' or the fixed \
                  annulus's, not a free band's",
                 kind.name()
             ),

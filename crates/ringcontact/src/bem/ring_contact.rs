@@ -27,7 +27,7 @@ use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::error::{Error, Result};
 use crate::numerics::roots::RootError;
 use crate::numerics::tanh_sinh::TanhSinhRule;
-use crate::punch::power_law;
+use crate::punch::starting_fit;
 use crate::punch::PunchKind;
 
 use piecewise_gap::{BandEdges, InnerStencil};
@@ -1202,7 +1202,7 @@ const PRESEARCH_EVALUATIONS: usize = 24;
 const FIRST_SEARCH_RUNG: usize = 1;
 
 /// Starting contact ratio for the inverse problem: the profile's approximant where it has one,
-/// else the fit [`power_law::starting_fit`] picks for its rim slope. Fits only start the
+/// else the fit [`starting_fit`] picks for its rim slope. Fits only start the
 /// search: the root is that of the ring BEM's own `γ1` or `γ2`, whatever the start.
 fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
     let depth_controlled = matches!(controlled, Controlled::Depth);
@@ -1223,7 +1223,7 @@ fn initial_ratio(kind: &PunchKind, target: f64, controlled: Controlled) -> f64 {
         Controlled::Depth => 1,
         Controlled::Force => 2,
     };
-    let (target, fit) = power_law::starting_fit(kind.rim_slope(), target);
+    let (target, fit) = starting_fit(kind.rim_slope(), target);
     // Bisection on the (monotone) fit: cheap and always lands inside the admissible range.
     bisect_decreasing(
         |eps| fit(i, eps),

@@ -100,7 +100,8 @@ pub fn run_annular(
         return Err(Error::invalid(
             "branch",
             format!(
-                "the annular branch is a concave punch's (cone, sphere); the {} has none",
+                "the annular branch is a concave punch's ({}); the {} has none",
+                crate::punch::PunchName::names(Some(crate::punch::Contact::RimAndFreeInner), ", "),
                 case.punch
             ),
         ));

@@ -774,7 +774,11 @@ fn checked_case(case: Case, ranges: &[f64]) -> Result<Case> {
     if case.punch.has_fixed_hole() && !(eps > 0.0 && eps < 1.0) {
         return Err(Error::invalid(
             "eps",
-            format!("the flat annulus needs 0 < b/a < 1 (got {eps}; b/a = 0 is the flat punch)"),
+            format!(
+                "the {} needs 0 < b/a < 1 (got {eps}; b/a = 0 is the {})",
+                case.punch,
+                crate::punch::PunchName::names(Some(crate::punch::Contact::Disk), ", ")
+            ),
         ));
     }
     check_ranges(ranges)?;
@@ -1059,9 +1063,11 @@ pub fn simulate_cases(
             if case.punch.has_fixed_hole() {
                 return Err(Error::Unsupported {
                     method: "cohesive-fem".into(),
-                    reason: "simulate_cases covers contact lines from the axis (flat, cone, \
-                             sphere); the flat annulus needs its own mesh"
-                        .into(),
+                    reason: format!(
+                        "simulate_cases covers contact lines from the axis; the {} needs its own \
+                         mesh",
+                        case.punch
+                    ),
                 });
             }
             let (entry, curve, _) = simulate(&response, case, range, Branch::Closed, None)?;

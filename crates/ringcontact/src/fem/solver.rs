@@ -687,7 +687,8 @@ fn solve_free_edges_model(
         }
         FemLoad::Flat => {
             return Err(fem_error(
-                "a flat punch has a rim: it is not solved as a contact with two free edges".into(),
+                "a flat-faced punch has a rim: it is not solved as a contact with two free edges"
+                    .into(),
             ))
         }
     };
@@ -764,7 +765,7 @@ impl PreparedModel {
             .truncation_bias(self.domain_radius, self.arc_grading)
     }
 
-    /// Largest contact-line element at a singular edge: at the rim `r = a`, and for the flat
+    /// Largest contact-line element at a singular edge: at the rim `r = a`, and for the fixed
     /// annulus also at `r = b` (units of `a`; from the vertex mesh, so the element's length).
     fn edge_element_size(&self) -> f64 {
         let start = self.spec.contact_start;

@@ -7,7 +7,7 @@
 //!
 //! **Adapted family** (generated from `meshes/half_space.geo`): geometric grading toward the
 //! singular edges, `h(x) = min(hmin + g |x - a|, hmin + g |x - b|)` (the inner edge only for the
-//! flat annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by
+//! fixed annulus), and for a concave punch `hb + g |x - b̃|` around the free edge `b̃` located by
 //! the FEM's own coarser solve; no uniform size along the contact line. Level `k` has
 //! `g_k = 0.32 · 0.6^k`, `hmin_k` from [`adapted_rim_size`] and `hb_k = 10^-3 · 10^-k`: for
 //! quadratic elements the force error of the graded zone falls like `g⁴` (a factor 7.7 per level),
@@ -106,7 +106,7 @@ fn check_rim_size_reachable(width: f64, target: SizeTarget) -> Result<()> {
             "a contact ring {} a wide (b/a = {}) needs elements of {} a at its edges for the \
              tolerance {:e}, below the smallest the FEM makes ({MIN_RIM_SIZE:e} a); ask for a \
              tolerance of at least {}, or use the ring BEM (rings of 1e-4 a and wider) or, for \
-             a flat annulus narrower than that, `--method reference` (the narrow-ring asymptote)",
+             a fixed annulus narrower than that, `--method reference` (the narrow-ring asymptote)",
             crate::error::show(width),
             crate::error::show(1.0 - width),
             crate::error::show(needed),

@@ -441,7 +441,7 @@ impl Mesh {
                 src,
                 format!(
                     "the contact line spans r/a in [{}, {}]; this punch needs [{contact_start}, 1] \
-                     (a concave or flat punch needs a disk mesh, the flat annulus one whose \
+                     (a concave or flat-faced punch needs a disk mesh, a fixed annulus one whose \
                      contact line starts at b/a)",
                     contact_range.0, contact_range.1
                 ),

@@ -78,7 +78,7 @@ pub(super) fn flat_depth_force(scene: &Scene, gamma: f64) -> Result<(f64, f64)> 
         Load::Force(f) => Ok((f / (2.0 * es * a * gamma), f)),
         Load::ContactRatio(_) => Err(Error::invalid(
             "load.contact_ratio",
-            "applies only to cone and sphere",
+            "applies only to a punch whose contact edge is found (a free edge)",
         )),
     }
 }

@@ -341,9 +341,9 @@ mod tests {
                 "n = {n}: {fc:?} vs {closure}"
             );
         }
-        let sphere = full_contact(&PowerLaw(2.0));
-        assert!((sphere.closure_depth.unwrap() - 3.0).abs() < 1e-12);
-        assert!(sphere.opening_radius < 1e-6);
+        let parabolic = full_contact(&PowerLaw(2.0));
+        assert!((parabolic.closure_depth.unwrap() - 3.0).abs() < 1e-12);
+        assert!(parabolic.opening_radius < 1e-6);
         // n = 4: the pressure first fails on the ring r = a/2, at d = 7h/3.
         let quartic = full_contact(&PowerLaw(4.0));
         assert!((quartic.opening_radius - 0.5).abs() < 1e-4);
@@ -375,8 +375,8 @@ mod tests {
 
     #[test]
     fn a_slope_at_the_axis_never_closes() {
-        let cone = full_contact(&PowerLaw(1.0));
-        assert!(cone.closure_depth.is_none());
-        assert!((cone.force_offset - (1.0 - std::f64::consts::FRAC_PI_4)).abs() < 1e-12);
+        let linear = full_contact(&PowerLaw(1.0));
+        assert!(linear.closure_depth.is_none());
+        assert!((linear.force_offset - (1.0 - std::f64::consts::FRAC_PI_4)).abs() < 1e-12);
     }
 }

@@ -142,19 +142,6 @@ pub fn full_contact_gamma1(n: f64, gamma2: f64) -> Option<f64> {
     (depth >= closure).then_some(depth)
 }
 
-/// The paper's fit a concave profile of rim slope `s = -a g'(a)/h` starts its inverse search
-/// from, and the value `target` becomes for it: for `s >= 1.5` the parabolic gap's fit at
-/// `2 target / s` (`γ ≈ (s/2) γ_sphere`, exact as the contact narrows toward the rim), else the
-/// linear gap's, unscaled. The parabolic gap's fit unscaled started a steep-walled profile inside
-/// its hole, where `γ1` is not monotone.
-pub fn starting_fit(rim_slope: f64, target: f64) -> (f64, fn(usize, f64) -> f64) {
-    if rim_slope < 1.5 {
-        (target, super::cone::paper_fit)
-    } else {
-        (2.0 * target / rim_slope, super::sphere::paper_fit)
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -43,7 +43,7 @@ pub trait PiecewiseProfile: Send + Sync {
 /// [`gap`](Self::gap) and [`slope`](Self::slope) are required; every other answer has a safe
 /// default (no closed form, no closure, the floor of the hole probed).
 pub trait Profile: Send + Sync + std::fmt::Debug {
-    /// Name on the command line and in JSON (`cone`, `flat-annulus`, or a user's own).
+    /// Name on the command line and in JSON (a built-in's, or a user's own).
     fn name(&self) -> &str;
 
     /// Where the contact lies and which edges are free ([`Contact`]).

@@ -14,7 +14,8 @@ pub struct Quantity {
 }
 
 impl Quantity {
-    /// A function with its JSON key (`cone_gamma1`), its label (`gamma1 (cone)`) and its number.
+    /// A function with its JSON key (`<punch>_gamma1`), its label (`gamma1 (<punch>)`) and its
+    /// number.
     pub const fn new(key: &'static str, label: &'static str, function: u8) -> Quantity {
         Quantity {
             key,

@@ -227,7 +227,7 @@ pub(super) fn solve(kind: PunchKind, load: FemLoad, options: &FemOptions) -> Res
         });
     }
     if matches!(load, FemLoad::Flat) {
-        return Err(fem_error(format!("the {kind} is not a flat punch")));
+        return Err(fem_error(format!("the {kind} is not a flat-faced punch")));
     }
     options.data.check()?;
     let progress = Heartbeat::start("fem", options.progress);
@@ -259,7 +259,7 @@ pub(super) fn solve_on_level(
 ) -> Result<FemState> {
     let start = Instant::now();
     if matches!(load, FemLoad::Flat) {
-        return Err(fem_error(format!("the {kind} is not a flat punch")));
+        return Err(fem_error(format!("the {kind} is not a flat-faced punch")));
     }
     options.data.check()?;
     let frame = initial_frame(&kind, load);
