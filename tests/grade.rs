@@ -6,6 +6,7 @@
 mod common;
 
 use common::{scratch, verify};
+use ringcontact_verify::harness::grade::input::{parse, Quantity, ResultRow};
 
 fn graded(args: &[&str]) -> (Option<i32>, serde_json::Value) {
     let out = verify(&[&["grade", "--json"], args].concat());
@@ -245,4 +246,96 @@ fn bad_files_are_named_by_line_and_column() {
         "0",
     ]);
     assert!(String::from_utf8_lossy(&out.stderr).contains("0 < T < 1"));
+}
+
+// The results file's parsing, on its own.
+
+/// The rows of a results CSV given as text.
+fn parse_csv(text: &str) -> Result<Vec<ResultRow>, String> {
+    parse(text, "t.csv", false, None)
+}
+
+#[test]
+fn the_state_is_the_first_of_depth_force_eps_and_the_rest_is_graded() {
+    let rows = parse_csv("punch,eps,gamma1,gamma2,code\ncone,0.5,1.79,1.59,mine\nsphere,,,,x\n");
+    let e = rows.unwrap_err();
+    assert!(e.contains("line 3") && e.contains("no state"), "{e}");
+    let rows = parse_csv("punch,eps,gamma1,gamma2,code\ncone,0.5,1.79,1.59,mine\n").unwrap();
+    assert_eq!(rows[0].state, Some((Quantity::Eps, 0.5)));
+    assert_eq!(
+        rows[0].values,
+        vec![(Quantity::Gamma1, 1.79), (Quantity::Gamma2, 1.59)]
+    );
+    let rows = parse_csv("punch,eps,depth,force,gamma1\nsphere,0.8,1,1.5,1\n").unwrap();
+    assert_eq!(rows[0].state, Some((Quantity::Depth, 1.0)));
+    assert_eq!(
+        rows[0].values,
+        vec![(Quantity::Eps, 0.8), (Quantity::Force, 1.5)]
+    );
+    let rows = parse_csv("punch,eps,depth,force,state\nsphere,0.8,1,1.5,force\n").unwrap();
+    assert_eq!(rows[0].state, Some((Quantity::Force, 1.5)));
+    assert_eq!(
+        rows[0].values,
+        vec![(Quantity::Eps, 0.8), (Quantity::Depth, 1.0)]
+    );
+    let rows = parse_csv("punch,eps,depth,force,state\nsphere,0.8,1,1.5,depth\n").unwrap();
+    assert_eq!(rows[0].state, Some((Quantity::Depth, 1.0)));
+    assert_eq!(
+        rows[0].values,
+        vec![(Quantity::Eps, 0.8), (Quantity::Force, 1.5)]
+    );
+    let rows = parse_csv("punch,eps,gamma\nflat-annulus,0.5,0.98\n").unwrap();
+    assert_eq!((rows[0].hole_ratio, rows[0].state), (Some(0.5), None));
+}
+
+#[test]
+fn bad_rows_name_their_line_and_column() {
+    for (text, says) in [
+        ("eps,gamma\n0.5,1\n", "missing column `punch`"),
+        ("punch,code\ncone,1\n", "no column to grade"),
+        (
+            "punch,eps,gamma1\nwedge,0.5,1\n",
+            "line 2, column punch: unknown punch \"wedge\"",
+        ),
+        (
+            "punch,eps,gamma1\ncone,0.5,abc\n",
+            "line 2, column gamma1: \"abc\" is not",
+        ),
+        ("punch,eps,gamma1\ncone,0.5,inf\n", "column gamma1"),
+        (
+            "punch,eps,gamma\ncone,0.5,1\n",
+            "column gamma: does not apply to the cone",
+        ),
+        ("punch,eps,gamma1\nflat-annulus,0.5,1\n", "column gamma1"),
+        (
+            "punch,depth,gamma\nflat-annulus,1,1\n",
+            "column eps: the flat-annulus needs",
+        ),
+        ("punch,eps\ncone,0.5\n", "nothing to grade"),
+        ("Punch,eps,gamma1\ncone,0.5,1\n", "missing column `punch`"),
+        ("punch,EPS,gamma1\ncone,0.5,1\n", "case-sensitive"),
+        ("punch,eps,gamma1,state\ncone,0.5,1,size\n", "column state"),
+    ] {
+        let e = parse_csv(text).unwrap_err();
+        assert!(e.contains(says), "{text:?}: {e}");
+    }
+}
+
+#[test]
+fn json_rows_read_like_csv_rows() {
+    let rows = parse(
+        r#"{"rows": [{"punch": "cone", "eps": 0.5, "gamma1": 1.79, "note": null}]}"#,
+        "t.json",
+        true,
+        None,
+    )
+    .unwrap();
+    assert_eq!(rows[0].place, "row 1");
+    assert_eq!(rows[0].values, vec![(Quantity::Gamma1, 1.79)]);
+    assert!(parse("[1]", "t.json", true, None)
+        .unwrap_err()
+        .contains("row 1"));
+    assert!(parse("{\"a\": 1}", "t.json", true, None)
+        .unwrap_err()
+        .contains("rows"));
 }

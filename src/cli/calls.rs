@@ -96,7 +96,7 @@ pub fn solve_keyword_scenes(
     serde_json::to_string(&solutions).map_err(message)
 }
 
-/// Run the subcommand `words` (without the program name: `["jkr", "--punch", "cone", ...]`) as
+/// Run the subcommand `words` (without the program name: `["jkr", "--punch", NAME, ...]`) as
 /// `verify` would, and return its reply; parse errors are the message clap prints.
 pub fn command(words: &[String]) -> Result<Reply, String> {
     let parser = crate::cli::args::Cli::command()

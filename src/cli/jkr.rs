@@ -9,7 +9,7 @@ use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FixedAnnulusJkr
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::punch::{Contact, PunchKind};
 
-/// `verify jkr`: one flat annulus (`--eps`), one concave punch or free band (`--d0h`), or a
+/// `verify jkr`: one fixed annulus (`--eps`), one concave punch or free band (`--d0h`), or a
 /// sweep (`--sweep`).
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
@@ -20,12 +20,12 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     }
     let name = punch.name();
     let what = match punch.contact() {
-        Contact::Disk => return Err(KENDALL.into()),
+        Contact::Disk => return Err(kendall()),
         Contact::FixedAnnulus => {
             let eps = args
                 .eps
-                .ok_or("flat-annulus needs --eps B_OVER_A (or --sweep)")?;
-            format!("jkr flat-annulus --eps {eps}")
+                .ok_or_else(|| format!("{name} needs --eps B_OVER_A (or --sweep)"))?;
+            format!("jkr {name} --eps {eps}")
         }
         Contact::RimAndFreeInner => {
             let s = args
@@ -54,10 +54,16 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
 const UNITS: &str = "  units: F0 = sqrt(8 pi E* dw a^3) (Kendall's force), d0 = \
                      sqrt(2 pi a dw / E*), dw the work of adhesion\n";
 
-/// What `verify jkr` says of the flat circular punch.
-const KENDALL: &str = "the flat circular punch is Kendall's: F_c = -F0 (use flat-annulus --eps)";
+/// What `verify jkr` says of the punch whose contact is the whole disk.
+fn kendall() -> String {
+    format!(
+        "the {} punch is Kendall's: F_c = -F0 (use {} --eps)",
+        super::names_of(Contact::Disk),
+        super::names_of(Contact::FixedAnnulus)
+    )
+}
 
-/// `verify jkr --sweep`: the flat annulus over `b/a`, a concave punch over `d0/h`.
+/// `verify jkr --sweep`: a fixed annulus over `b/a`, a concave punch over `d0/h`.
 fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Reply, String> {
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match punch.contact() {
@@ -78,7 +84,7 @@ fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Re
                 punch.name()
             ))
         }
-        Contact::Disk => return Err(KENDALL.into()),
+        Contact::Disk => return Err(kendall()),
     };
     Ok(Reply::ok(text))
 }
@@ -113,9 +119,12 @@ fn critical_columns(title: &str) -> Table {
 /// The fixed annulus: critical states at each edge, and the asymptotic references.
 fn fixed_annulus_text(r: &FixedAnnulusJkr) -> String {
     let mut t = critical_columns(&format!(
-        "flat annulus b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0; the bound \
+        "{} b/a = {}: gamma = {:.12}, gamma' = {:.9} (d_c in d0, F_c in F0; the bound \
          is the larger of d_c's and F_c's, from the ring BEM's estimates)",
-        r.eps, r.gamma, r.gamma_prime
+        super::names_of(Contact::FixedAnnulus).replace('-', " "),
+        r.eps,
+        r.gamma,
+        r.gamma_prime
     ));
     let governs = |edge: &str| {
         if r.governing_edge == edge {

@@ -172,7 +172,12 @@ pub(crate) fn punch_kind_or_free_band(
     }
 }
 
-/// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes the flat
+/// The built-in punches whose contact is `contact`, as `--punch` takes them (`a, b`).
+pub(crate) fn names_of(contact: ringcontact::punch::Contact) -> String {
+    ringcontact::punch::PunchName::names(Some(contact), ", ")
+}
+
+/// Refuse a flag of the other punch family instead of ignoring it: `--eps` fixes a fixed
 /// annulus's hole (a concave punch's contact ratio is found, not given), `--d0h` is a concave
 /// punch's work of adhesion in units of `h` (the flat punches' results are in units of `d0`,
 /// `F0` already). Used by `verify jkr` and `verify pulloff`.
@@ -183,8 +188,9 @@ fn refuse_other_family_flags(
 ) -> Result<(), String> {
     if punch.is_concave() && eps.is_some() {
         return Err(format!(
-            "--eps fixes the flat annulus's hole; the {punch}'s contact ratio is found, not \
-             given (use --d0h)"
+            "--eps fixes the hole of a fixed annulus ({}); the {punch}'s contact ratio is \
+             found, not given (use --d0h)",
+            names_of(ringcontact::punch::Contact::FixedAnnulus)
         ));
     }
     if !punch.is_concave() && d0h.is_some() {

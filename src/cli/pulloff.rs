@@ -37,7 +37,9 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
     // A free band (two free edges) has its own route: touched, then pulled.
     let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     let eps = match punch.has_fixed_hole() {
-        true => args.eps.ok_or("flat-annulus needs --eps B_OVER_A")?,
+        true => args
+            .eps
+            .ok_or_else(|| format!("{} needs --eps B_OVER_A", punch.name()))?,
         false => 0.0,
     };
     let d0_over_h = match (punch.is_concave(), args.d0h) {
@@ -64,7 +66,8 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
     };
     if punch.has_fixed_hole() && !(eps > 0.0 && eps < 1.0) {
         return Err(format!(
-            "--eps {eps}: the flat annulus needs 0 < b/a < 1 (b/a = 0 is --punch flat)"
+            "--eps {eps}: the {punch} needs 0 < b/a < 1 (b/a = 0 is --punch {})",
+            super::names_of(ringcontact::punch::Contact::Disk)
         ));
     }
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
@@ -79,8 +82,8 @@ fn checked_case_and_ranges(args: &PulloffArgs) -> Result<(study::Case, Vec<f64>)
     let annular = args.branch == study::Branch::Annular || band;
     if annular && !punch.is_concave() {
         return Err(format!(
-            "--branch annular: the annular branch is a concave punch's (cone, sphere); the {} \
-             has none",
+            "--branch annular: the annular branch is a concave punch's ({}); the {} has none",
+            super::names_of(ringcontact::punch::Contact::RimAndFreeInner),
             punch
         ));
     }

@@ -240,7 +240,7 @@ pub(super) fn absolute(path: &std::path::Path) -> String {
         .to_string()
 }
 
-/// The case of a convergence study from `--punch`, `--eps` (flat annulus only) and `--depth`,
+/// The case of a convergence study from `--punch`, `--eps` (a fixed annulus only) and `--depth`,
 /// checked.
 pub(super) fn study_case(
     punch: PunchKind,

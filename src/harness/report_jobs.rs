@@ -5,8 +5,8 @@
 //! merged from files build their report from the same pieces by the same code.
 //!
 //! A part's id names everything it computes: `kind[:argument][:key=value]...`, e.g.
-//! `comparison:tol=1e-6`, `speed:cone-2:fem-tol=1e-8`,
-//! `convergence:sphere:fem:eps=0:depth=1.5:level=2:of=3`, `pulloff:cone:d0h=10`.
+//! `comparison:tol=1e-6`, `speed:PROBLEM:fem-tol=1e-8`,
+//! `convergence:PUNCH:fem:eps=0:depth=1.5:level=2:of=3`, `pulloff:PUNCH:d0h=10`.
 
 use std::collections::HashMap;
 use std::sync::{Condvar, Mutex};

@@ -25,7 +25,7 @@ pub fn solve_batch(path: &Path, args: &SolveArgs) -> Result<Reply, String> {
     if lines.is_empty() {
         return Err(format!(
             "--batch {}: no scene in the file (one JSON object per line, e.g. \
-             {{\"punch\": {{\"shape\": \"cone\"}}, \"load\": {{\"depth\": 2}}}})",
+             {{\"punch\": {{\"shape\": \"flat\"}}, \"load\": {{\"depth\": 2}}}})",
             path.display()
         ));
     }

@@ -99,9 +99,11 @@ pub(crate) fn scene_of(args: &SolveArgs) -> Result<Scene, String> {
     if let Some(eps) = args.eps {
         match spec.shape_name().map(PunchName::contact) {
             Some(Contact::Disk) => {
-                return Err("--eps does not apply to the flat circular punch; \
-                            use --punch flat-annulus --eps B_OVER_A"
-                    .into())
+                return Err(format!(
+                    "--eps does not apply to the flat circular punch; use --punch {} --eps \
+                     B_OVER_A",
+                    crate::cli::names_of(Contact::FixedAnnulus)
+                ))
             }
             Some(Contact::FixedAnnulus) | None => {}
             Some(_) if args.depth.is_some() || args.force.is_some() => {

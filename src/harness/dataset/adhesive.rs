@@ -7,7 +7,7 @@ use ringcontact::adhesion::{self, Critical};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::Result;
 use ringcontact::fit;
-use ringcontact::punch::PunchKind;
+use ringcontact::punch::{Contact, PunchKind};
 
 use super::{Field, Resource};
 
@@ -17,7 +17,12 @@ pub fn fixed_annulus(
     ratios: &[f64],
     progress: &dyn Fn(&str),
 ) -> Result<Resource> {
-    let mut fields = vec![Field::number("eps", "1", "b/a of the flat annulus")];
+    let annulus = PunchKind::built_in(Contact::FixedAnnulus)
+        .into_iter()
+        .next()
+        .expect("a built-in fixed annulus");
+    let words = annulus.name().replace('-', " ");
+    let mut fields = vec![Field::number("eps", "1", &format!("b/a of the {words}"))];
     for (edge, where_) in [
         ("outer", "the rim r = a"),
         ("inner", "the inner edge r = b"),
@@ -48,11 +53,11 @@ pub fn fixed_annulus(
         "the edge that detaches first (the smaller |d_c|): outer or inner",
     ));
     let mut table = Table::new(
-        "flat annulus JKR",
+        &format!("{words} JKR"),
         fields.iter().map(Field::column).collect(),
     );
     for (k, &eps) in ratios.iter().enumerate() {
-        progress(&format!("flat annulus JKR: {} of {}", k + 1, ratios.len()));
+        progress(&format!("{words} JKR: {} of {}", k + 1, ratios.len()));
         let r = adhesion::fixed_annulus(solver, eps)?;
         let b = r.error_bounds;
         table.push(vec![
@@ -69,13 +74,14 @@ pub fn fixed_annulus(
         ]);
     }
     Ok(Resource {
-        name: "jkr-flat-annulus".into(),
-        title: "Flat annular punch: JKR detachment at either edge".into(),
-        description: "Critical states of the JKR-adhesive flat annulus (fixed grips, the paper's \
-                      eqs. 15-20 with gamma from the ring BEM): detachment at the rim or at the \
-                      inner edge. Units: d0 = sqrt(2 pi a dw / E*), F0 = sqrt(8 pi a^3 E* dw) \
-                      (Kendall's flat punch of radius a)."
-            .into(),
+        name: format!("jkr-{}", annulus.label()),
+        title: format!("{annulus}: JKR detachment at either edge"),
+        description: format!(
+            "Critical states of the JKR-adhesive {words} (fixed grips, the paper's eqs. 15-20 \
+             with gamma from the ring BEM): detachment at the rim or at the inner edge. Units: \
+             d0 = sqrt(2 pi a dw / E*), F0 = sqrt(8 pi a^3 E* dw) (Kendall's force on the flat \
+             disk of radius a)."
+        ),
         fields,
         table,
         interpolation_error: Vec::new(),
@@ -260,7 +266,8 @@ pub fn fits(solver: &RingBemSolver) -> Result<Resource> {
     let fields = vec![
         Field::text(
             "function",
-            "the fitted function (flat gamma, cone or sphere gamma1/gamma2)",
+            "the fitted function (flat for gamma, else the quantity's key: PUNCH_gamma1, \
+             PUNCH_gamma2)",
         ),
         Field::text("paper_form", "the paper's formula"),
         Field::text("paper_parameters", "the paper's parameters, ';'-separated"),

@@ -246,7 +246,7 @@ fn table_shape(kind: &PunchKind) -> (bool, bool) {
 /// The title of `kind`'s function table.
 fn function_title(kind: &PunchKind) -> String {
     match table_shape(kind) {
-        (true, _) => "Flat annular punch: gamma(eps) = F/(2 E* d a)".into(),
+        (true, _) => format!("{kind}: gamma(eps) = F/(2 E* d a)"),
         (_, true) => {
             format!("{kind}: gamma1(eps) = d/h, gamma2(eps) = F/(2 E* h a) and c/a, h = a²/(2 rho)")
         }
@@ -260,13 +260,13 @@ fn function_fields(kind: &PunchKind) -> Vec<Field> {
     let mut fields = vec![Field::number(
         "eps",
         "1",
-        "contact ratio b/a (the flat annulus's hole; the inner contact edge of the others)",
+        "contact ratio b/a (a fixed annulus's hole; the inner contact edge of the others)",
     )];
     if fixed_hole {
         fields.push(Field::number(
             "gamma",
             "1",
-            "F/(2 E* d a): force of the flat annulus at depth d",
+            "F/(2 E* d a): force of the fixed annulus at depth d",
         ));
     } else {
         fields.push(Field::number(

@@ -70,7 +70,7 @@ impl Field {
 
 /// One table of the dataset.
 pub struct Resource {
-    /// File stem (`functions-cone` gives `functions-cone.csv` and `.json`).
+    /// File stem (`functions-LABEL` gives `functions-LABEL.csv` and `.json`).
     pub name: String,
     pub title: String,
     pub description: String,

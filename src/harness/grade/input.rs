@@ -287,7 +287,7 @@ fn row(
         let wrong = match (flat, q) {
             (true, Quantity::Gamma1 | Quantity::Gamma2) => Some("the flat punches' function is gamma = F/(2 E* d a)"),
             (false, Quantity::Gamma) => Some("a concave punch's (and a free band's) functions are gamma1 = d/h and gamma2 = F/(2 E* h a)"),
-            (true, Quantity::Eps) if punch.contact() == Contact::Disk => Some("the flat punch has no hole (its contact is the disk)"),
+            (true, Quantity::Eps) if punch.contact() == Contact::Disk => Some("its contact is the whole disk: it has no hole"),
             _ => None,
         };
         if let Some(why) = wrong {
@@ -305,7 +305,7 @@ fn row(
             .iter()
             .find(|(q, _)| *q == Quantity::Eps)
             .map(|p| p.1)
-            .ok_or_else(|| format!("{place}, column eps: the flat annulus needs its b/a"))?;
+            .ok_or_else(|| format!("{place}, column eps: the {} needs its b/a", punch.as_str()))?;
         hole_ratio = Some(eps);
         rest.retain(|(q, _)| *q != Quantity::Eps);
     }
@@ -384,101 +384,5 @@ fn state_of(
         None => Err(format!(
             "{place}: no state: give eps, depth or force (the columns the state is read from)"
         )),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn parse_csv(text: &str) -> Result<Vec<ResultRow>, String> {
-        let records = csv_records(text, "t.csv")?;
-        records
-            .into_iter()
-            .map(|(place, cells)| row(&place, &cells, None))
-            .collect()
-    }
-
-    #[test]
-    fn the_state_is_the_first_of_depth_force_eps_and_the_rest_is_graded() {
-        let rows =
-            parse_csv("punch,eps,gamma1,gamma2,code\ncone,0.5,1.79,1.59,mine\nsphere,,,,x\n");
-        let e = rows.unwrap_err();
-        assert!(e.contains("line 3") && e.contains("no state"), "{e}");
-        let rows = parse_csv("punch,eps,gamma1,gamma2,code\ncone,0.5,1.79,1.59,mine\n").unwrap();
-        assert_eq!(rows[0].state, Some((Quantity::Eps, 0.5)));
-        assert_eq!(
-            rows[0].values,
-            vec![(Quantity::Gamma1, 1.79), (Quantity::Gamma2, 1.59)]
-        );
-        let rows = parse_csv("punch,eps,depth,force,gamma1\nsphere,0.8,1,1.5,1\n").unwrap();
-        assert_eq!(rows[0].state, Some((Quantity::Depth, 1.0)));
-        assert_eq!(
-            rows[0].values,
-            vec![(Quantity::Eps, 0.8), (Quantity::Force, 1.5)]
-        );
-        let rows = parse_csv("punch,eps,depth,force,state\nsphere,0.8,1,1.5,force\n").unwrap();
-        assert_eq!(rows[0].state, Some((Quantity::Force, 1.5)));
-        assert_eq!(
-            rows[0].values,
-            vec![(Quantity::Eps, 0.8), (Quantity::Depth, 1.0)]
-        );
-        let rows = parse_csv("punch,eps,depth,force,state\nsphere,0.8,1,1.5,depth\n").unwrap();
-        assert_eq!(rows[0].state, Some((Quantity::Depth, 1.0)));
-        assert_eq!(
-            rows[0].values,
-            vec![(Quantity::Eps, 0.8), (Quantity::Force, 1.5)]
-        );
-        let rows = parse_csv("punch,eps,gamma\nflat-annulus,0.5,0.98\n").unwrap();
-        assert_eq!((rows[0].hole_ratio, rows[0].state), (Some(0.5), None));
-    }
-
-    #[test]
-    fn bad_rows_name_their_line_and_column() {
-        for (text, says) in [
-            ("eps,gamma\n0.5,1\n", "missing column `punch`"),
-            ("punch,code\ncone,1\n", "no column to grade"),
-            (
-                "punch,eps,gamma1\nwedge,0.5,1\n",
-                "line 2, column punch: unknown punch \"wedge\"",
-            ),
-            (
-                "punch,eps,gamma1\ncone,0.5,abc\n",
-                "line 2, column gamma1: \"abc\" is not",
-            ),
-            ("punch,eps,gamma1\ncone,0.5,inf\n", "column gamma1"),
-            (
-                "punch,eps,gamma\ncone,0.5,1\n",
-                "column gamma: does not apply to the cone",
-            ),
-            ("punch,eps,gamma1\nflat-annulus,0.5,1\n", "column gamma1"),
-            (
-                "punch,depth,gamma\nflat-annulus,1,1\n",
-                "column eps: the flat annulus needs",
-            ),
-            ("punch,eps\ncone,0.5\n", "nothing to grade"),
-            ("Punch,eps,gamma1\ncone,0.5,1\n", "missing column `punch`"),
-            ("punch,EPS,gamma1\ncone,0.5,1\n", "case-sensitive"),
-            ("punch,eps,gamma1,state\ncone,0.5,1,size\n", "column state"),
-        ] {
-            let e = parse_csv(text).unwrap_err();
-            assert!(e.contains(says), "{text:?}: {e}");
-        }
-    }
-
-    #[test]
-    fn json_rows_read_like_csv_rows() {
-        let rows = json_records(
-            r#"{"rows": [{"punch": "cone", "eps": 0.5, "gamma1": 1.79, "note": null}]}"#,
-            "t.json",
-        )
-        .unwrap();
-        let parsed = row(&rows[0].0, &rows[0].1, None).unwrap();
-        assert_eq!(parsed.place, "row 1");
-        assert_eq!(parsed.values, vec![(Quantity::Gamma1, 1.79)]);
-        assert!(json_records("[1]", "t.json").unwrap_err().contains("row 1"));
-        assert!(json_records("{\"a\": 1}", "t.json")
-            .unwrap_err()
-            .contains("rows"));
     }
 }

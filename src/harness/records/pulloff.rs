@@ -24,7 +24,7 @@ pub struct PulloffRecord {
 }
 
 /// Sort key of a record's file: the name up to its trailing number, then that number
-/// (`cone-d0h3` before `cone-d0h10`).
+/// (`punch-d0h3` before `punch-d0h10`).
 fn natural_key(name: &str) -> (String, f64) {
     let stem = name.trim_end_matches(".json");
     let split = stem
@@ -263,17 +263,14 @@ mod tests {
     #[test]
     fn files_sort_by_their_trailing_number() {
         assert_eq!(
-            natural_key("cone-d0h10.json"),
-            ("cone-d0h".to_string(), 10.0)
+            natural_key("punch-d0h10.json"),
+            ("punch-d0h".to_string(), 10.0)
         );
         assert_eq!(
-            natural_key("cone-d0h0.3.json"),
-            ("cone-d0h".to_string(), 0.3)
+            natural_key("punch-d0h0.3.json"),
+            ("punch-d0h".to_string(), 0.3)
         );
         assert_eq!(natural_key("flat.json"), ("flat".to_string(), 0.0));
-        assert_eq!(
-            natural_key("flat-annulus-0.9.json"),
-            ("flat-annulus-".to_string(), 0.9)
-        );
+        assert_eq!(natural_key("ring-0.9.json"), ("ring-".to_string(), 0.9));
     }
 }

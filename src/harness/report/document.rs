@@ -445,8 +445,9 @@ fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
         points,
         bars: Vec::new(),
     };
+    let (kind, depth) = crate::harness::cases::PRESSURE_PROFILE;
     let chart = linear_chart(
-        "sphere d/h = 1.5: contact pressure p/(E* h/a) against r/a (r < 0.99 a)",
+        &format!("{kind} d/h = {depth}: contact pressure p/(E* h/a) against r/a (r < 0.99 a)"),
         "r/a",
         "p a / (E* h)",
         &[
@@ -455,7 +456,15 @@ fn pressure_chart(profiles: &PressureProfiles, dir: &Path) -> Result<()> {
             series("FEM P2 (nodal)", profiles.fem.clone()),
         ],
     );
-    write(dir, "pressure-sphere.svg", &chart)
+    write(dir, &pressure_chart_file(), &chart)
+}
+
+/// The pressure chart's file name, `pressure-LABEL.svg`.
+fn pressure_chart_file() -> String {
+    format!(
+        "pressure-{}.svg",
+        crate::harness::cases::PRESSURE_PROFILE.0.label()
+    )
 }
 
 /// The committed reference dataset (`verify/dataset/`, `verify dataset --small`), copied into
@@ -874,7 +883,12 @@ fn markdown(
             t.table.to_markdown_table()
         );
     }
-    md += "## Convergence (sphere, d/h = 1.5)\n\n";
+    let study = crate::harness::cases::REPORT_STUDY;
+    let _ = writeln!(
+        md,
+        "## Convergence ({}, d/h = {})\n",
+        study.punch, study.depth
+    );
     for s in &extras.convergence {
         let table = convergence::table(s);
         let _ = writeln!(
@@ -894,7 +908,10 @@ fn markdown(
                small copy committed in `verify/dataset/`). `verify dataset` writes the full \
                grids, which interpolate to 1e-8.\n\n";
     }
-    md += "## Charts\n\n![](gamma-flat-annulus.svg)\n";
+    md += "## Charts\n\n";
+    for annulus in PunchKind::built_in(Contact::FixedAnnulus) {
+        let _ = writeln!(md, "![](gamma-{}.svg)", annulus.label());
+    }
     let punches = crate::harness::cases::report_profile_punches();
     for kind in &punches {
         let _ = writeln!(md, "![](gammas-{}.svg)", kind.label());
@@ -902,7 +919,7 @@ fn markdown(
             let _ = writeln!(md, "![](gammas-{}-difference.svg)", kind.label());
         }
     }
-    md += "![](pressure-sphere.svg)\n";
+    let _ = writeln!(md, "![]({})", pressure_chart_file());
     for kind in &punches {
         let _ = writeln!(md, "![](pulloff-{}.svg)", kind.label());
     }

@@ -316,10 +316,12 @@ fn pulloff_tables(extras: &ReportExtras) -> Vec<ReportTable> {
 /// The stored pull-off sequences with this run's live point (or why it failed).
 fn pulloff_simulation_table(extras: &ReportExtras) -> ReportTable {
     let mut table = crate::harness::records::pulloff::table(&extras.pulloff_simulations);
+    let (live_punch, live_d0h) = crate::harness::cases::live_pulloff();
+    let live_case = format!("{}-d0h{live_d0h}", live_punch.label());
     match &extras.pulloff_live {
         Ok(live) => table.push(vec![
             format!(
-                "cone-d0h10, this run (Tabor {:.0} only; {} contact nodes, {})",
+                "{live_case}, this run (Tabor {:.0} only; {} contact nodes, {})",
                 live.entry.tabor, live.contact_nodes, live.mesh
             )
             .into(),
@@ -334,7 +336,7 @@ fn pulloff_simulation_table(extras: &ReportExtras) -> ReportTable {
             Cell::Missing,
         ]),
         Err(why) => table.push(crate::harness::records::pulloff::row_without_result(
-            "cone-d0h10, this run".into(),
+            format!("{live_case}, this run"),
             "this run",
             Cell::Flag(format!("FAILED: {why}")),
         )),

@@ -152,7 +152,7 @@ fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
         }
     }
     Ok(Verdict {
-        claim: "the annular flat punch always starts to detach at the outer boundary".into(),
+        claim: "the fixed annulus always starts to detach at the outer boundary".into(),
         numbers: format!(
             "outer edge governs at {outer} of {} ratios in 0.05..0.99",
             ratios.len()
@@ -187,10 +187,11 @@ fn regime_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 /// +50 % / +60 % for `d0 >> h`: the JKR routes at `d0/h = 100` and the stored direct
 /// simulations (a second route, no JKR theory) at the largest `d0/h`.
 fn strongest_pulloff_verdict(pulloff: &[PulloffPoint], simulations: &[PulloffRecord]) -> Verdict {
+    let paper_punches = crate::harness::cases::paper_recessed_punches();
     let strongest: Vec<String> = pulloff
         .iter()
         // The paper's claim is about its punches, the linear gap and the parabolic gap.
-        .filter(|p| p.d0_over_h >= 99.0 && (p.punch == "cone" || p.punch == "sphere"))
+        .filter(|p| p.d0_over_h >= 99.0 && paper_punches.iter().any(|k| p.punch == k.label()))
         .map(|p| {
             format!(
                 "{}: paper's route on its fits {}, converged annular {}, full contact {:.3} F0",
@@ -231,7 +232,10 @@ fn strongest_pulloff_verdict(pulloff: &[PulloffPoint], simulations: &[PulloffRec
         .collect();
     let direct_refutes = !direct.is_empty() && refutes_paper_route(&direct);
     Verdict {
-        claim: "pull-off up to +50 % (cone) and +60 % (sphere) above F0 for d0 >> h".into(),
+        claim: format!(
+            "pull-off up to +50 % ({}) and +60 % ({}) above F0 for d0 >> h",
+            paper_punches[0], paper_punches[1]
+        ),
         numbers: if direct_numbers.is_empty() {
             format!("at d0/h = 100: {}", strongest.join("; "))
         } else {

@@ -14,7 +14,7 @@ use crate::harness::report::table::{Cell, Column, Format, Table};
 use ringcontact::adhesion::{self, ConcaveJkr, Critical, FixedAnnulusJkr};
 use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
-use ringcontact::punch::PunchKind;
+use ringcontact::punch::{Contact, PunchKind};
 
 /// What a sweep returns: its rows, the table of them, and the files written.
 pub(crate) struct Sweep<R> {
@@ -34,6 +34,13 @@ fn create(out: &Path) -> Result<()> {
 }
 
 /// Ratios `b/a = 1 - 0.99 · 10^(-k/20)`, `k = 1..40` (dense toward 1).
+/// The fixed annulus's name as words (hyphens as spaces).
+fn annulus_name() -> String {
+    PunchKind::built_in(Contact::FixedAnnulus)
+        .first()
+        .map_or("fixed annulus".into(), |k| k.name().replace('-', " "))
+}
+
 fn annulus_ratios() -> Vec<f64> {
     (1..=40)
         .map(|k| 1.0 - 10f64.powf(-2.0 * k as f64 / 40.0) * 0.99)
@@ -42,7 +49,7 @@ fn annulus_ratios() -> Vec<f64> {
 }
 
 /// Fixed annulus: both edges' critical states against `b/a`; writes
-/// `critical-flat-annulus.{csv,svg}` into `out`.
+/// `critical-LABEL.{csv,svg}` into `out` (`LABEL` the annulus's).
 pub(crate) fn fixed_annulus_sweep(
     solver: &RingBemSolver,
     out: &Path,
@@ -52,8 +59,9 @@ pub(crate) fn fixed_annulus_sweep(
         .map(|e| adhesion::fixed_annulus(solver, e))
         .collect::<Result<Vec<_>>>()?;
     let fixed = |key: &str, label: &str| Column::number(key, label, Format::Fixed(5));
+    let annulus = annulus_name();
     let mut table = Table::new(
-        "flat annulus: critical depths (units d0) and forces (units F0)",
+        &format!("{annulus}: critical depths (units d0) and forces (units F0)"),
         vec![
             Column::number("eps", "eps", Format::Fixed(4)),
             fixed("dc_outer", "dc_outer"),
@@ -91,7 +99,7 @@ pub(crate) fn fixed_annulus_sweep(
         bars: Vec::new(),
     };
     let chart = svg::log_log_chart(
-        "flat annulus: |critical force| / F0 against 1 - b/a",
+        &format!("{annulus}: |critical force| / F0 against 1 - b/a"),
         "1 - eps",
         "|F_c| / F0",
         &[
@@ -102,7 +110,7 @@ pub(crate) fn fixed_annulus_sweep(
         ],
     );
     let mut files = Vec::new();
-    let stem = out.join("critical-flat-annulus");
+    let stem = out.join(format!("critical-{}", annulus.replace(' ', "-")));
     write(stem.with_extension("csv"), &table.to_csv()?, &mut files)?;
     write(stem.with_extension("svg"), &chart, &mut files)?;
     Ok(Sweep { rows, table, files })
@@ -139,7 +147,7 @@ pub(crate) fn pulloff_sweep(
     let force = |key: &str, label: &str| Column::number(key, label, Format::Fixed(4));
     let mut table = Table::new(
         &format!(
-            "{kind}: pull-off force -F/F0 against d0/h (F0 = Kendall's flat punch of radius a)"
+            "{kind}: pull-off force -F/F0 against d0/h (F0 = Kendall's force, sqrt(8 pi E* dw a^3))"
         ),
         vec![
             Column::number("d0_over_h", "d0/h", Format::Fixed(3)),
