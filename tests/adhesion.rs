@@ -5,14 +5,14 @@ use std::f64::consts::PI;
 
 use ringcontact::adhesion::{self, full_contact_constants};
 use ringcontact::bem::ring::{ContactRegion, RingSystem};
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::numerics::tanh_sinh::TanhSinhRule;
 use ringcontact::punch::PunchKind;
 
 #[test]
 fn a_small_hole_detaches_like_kendalls_flat_punch() {
     // eps -> 0: outer-edge detachment at d_c = -d0, F_c = -F0 (Kendall 1971).
-    let r = adhesion::fixed_annulus(&RingBemSolver::new(), 0.01).unwrap();
+    let r = adhesion::fixed_annulus(&RingBem::new(), 0.01).unwrap();
     assert!(
         (r.dc_outer + 1.0).abs() < 1e-6 && (r.fc_outer + 1.0).abs() < 1e-6,
         "{r:?}"
@@ -22,7 +22,7 @@ fn a_small_hole_detaches_like_kendalls_flat_punch() {
 
 #[test]
 fn flat_annulus_agrees_with_collins_and_approaches_argatov() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     // Collins' series in (16)-(17): truncation error O(eps^7) in gamma.
     let r = adhesion::fixed_annulus(&solver, 0.1).unwrap();
     let c = r.collins.unwrap();
@@ -45,7 +45,7 @@ fn a_small_holes_inner_edge_follows_collins_down_to_the_range_end() {
     // Collins' series (paper 21): γ' = -4 eps²/π² - 8 eps⁴/(3π²) - 32 eps⁵/(9π⁴), so
     // κ_in = sqrt(-γ'/eps) and d_c = -1/κ_in at the inner edge. The differenced γ' loses digits
     // here (γ' ~ 1e-9 against γ ~ 1): it once gave a d_c 24 % off at eps = 1e-4.
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [1e-4, 3e-4, 1e-3, 1e-2] {
         let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         let gp = -4.0 * eps * eps / (PI * PI)
@@ -65,7 +65,7 @@ fn a_small_holes_inner_edge_follows_collins_down_to_the_range_end() {
 #[test]
 fn the_outer_edge_governs_and_edge_intensities_are_consistent() {
     // Paper: "the annular flat punch will always start to detach at the outer boundary".
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 0.99] {
         let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         assert_eq!(r.governing_edge, "outer", "eps = {eps}");
@@ -84,7 +84,7 @@ fn concave_critical_state_satisfies_griffith_in_a_direct_solve() {
     // Formula route (superposition, κ_in of the flat annulus) against a fresh BEM solve of the
     // adhesive contact at the critical state: G_inner = Δw and the same rim intensity.
     for kind in [PunchKind::CONE, PunchKind::SPHERE] {
-        let r = adhesion::concave(&RingBemSolver::new(), kind.clone(), 1.0).unwrap();
+        let r = adhesion::concave(&RingBem::new(), kind.clone(), 1.0).unwrap();
         let ratio = r.direct_inner_energy_ratio.unwrap();
         assert!((ratio - 1.0).abs() < 1e-8, "{kind}: G/dw = {ratio}");
         assert!(r.direct_rim_difference.unwrap().abs() < 1e-8);
@@ -118,7 +118,7 @@ fn strong_adhesion_leaves_no_stable_annular_state() {
     // Finding: for d0/h = 10 F(eps) has no stationary point on 0.004..0.9999: the annular
     // contact is unstable under fixed load, and pull-off needs the full-contact branch, whose rim
     // holds up to F/F0 = -1 - (c_F + κ_h)/(d0/h).
-    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::SPHERE, 10.0).unwrap();
+    let r = adhesion::concave(&RingBem::new(), PunchKind::SPHERE, 10.0).unwrap();
     assert!(r.fixed_load.is_none() && r.fixed_load_note.is_some());
     let expected = -1.0 - (1.0 / 3.0 + 1.0) / 10.0;
     assert!((r.full_contact.pulloff.force - expected).abs() < 1e-12);
@@ -130,7 +130,7 @@ fn strong_adhesion_leaves_no_stable_annular_state() {
 /// critical depth and force.
 #[test]
 fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [0.01, 0.015, 0.02] {
         let r = adhesion::fixed_annulus(&solver, eps).unwrap();
         let c = r.collins.unwrap();
@@ -160,7 +160,7 @@ fn the_flat_annulus_error_bounds_bound_the_error_against_collins() {
 /// as at `eps = 1e-3`.)
 #[test]
 fn no_flat_annulus_bound_is_zero() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [1e-3, 0.1, 0.5, 0.9] {
         let b = adhesion::fixed_annulus(&solver, eps)
             .unwrap()
@@ -180,7 +180,7 @@ fn no_flat_annulus_bound_is_zero() {
 /// A concave punch's critical states carry bounds; full contact's closed forms are exact.
 #[test]
 fn the_concave_critical_states_carry_error_bounds() {
-    let r = adhesion::concave(&RingBemSolver::new(), PunchKind::SPHERE, 1.0).unwrap();
+    let r = adhesion::concave(&RingBem::new(), PunchKind::SPHERE, 1.0).unwrap();
     for c in [&r.fixed_load, &r.fixed_grips].into_iter().flatten() {
         let bound = c.error_bound.expect("a bound");
         assert!(bound > 0.0 && bound < 1e-6, "{c:?}");
@@ -230,7 +230,7 @@ fn hole_clearances(kind: PunchKind, eps: f64, depth: f64) -> Vec<f64> {
 /// assembled here from the analysis's depths, 2e-3 either side of the reported touch.
 #[test]
 fn a_steep_power_laws_adhesive_branch_ends_where_its_hole_meets_the_floor() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let kind = PunchKind::power(ringcontact::punch::Exponent::new(20.0).unwrap());
     let s = 0.5;
     let r = adhesion::concave(&solver, kind.clone(), s).unwrap();
@@ -259,7 +259,7 @@ fn a_steep_power_laws_adhesive_branch_ends_where_its_hole_meets_the_floor() {
 /// now, and its fixed-load critical state satisfies Griffith in a direct solve.
 #[test]
 fn a_power_law_with_a_wall_as_steep_as_n_50_has_a_jkr_analysis() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let kind = PunchKind::power(ringcontact::punch::Exponent::new(50.0).unwrap());
     let r = adhesion::concave(&solver, kind, 5.0).unwrap();
     let load = r.fixed_load.as_ref().expect("a fixed-load pull-off");
@@ -279,13 +279,14 @@ fn a_power_law_with_a_wall_as_steep_as_n_50_has_a_jkr_analysis() {
 /// the rows), so 1e-10 there is refused or met by chance.
 #[test]
 fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let ratios = [1e-4, 1e-3, 0.01, 0.05, 0.2, 0.4, 0.6, 0.8, 0.95, 0.999];
     let power = |n| PunchKind::power(ringcontact::punch::Exponent::new(n).unwrap());
     for kind in [power(0.25), PunchKind::CONE, power(1.5), PunchKind::SPHERE] {
         assert!(!kind.may_meet_hole_floor());
         for eps in ratios {
             let depth = solver
+                .engine()
                 .free_inner_edge_field(&kind, eps, 1e-9)
                 .unwrap()
                 .gamma1
@@ -317,7 +318,7 @@ fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() 
 /// value of the other family, or a missing one, is an error naming it.
 #[test]
 fn one_entry_routes_every_punch_and_names_a_missing_value() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let flat = PunchKind::FLAT_ANNULUS;
     match adhesion::jkr(&solver, &flat, Some(0.01), None).unwrap() {
         adhesion::Jkr::FixedAnnulus(r) => {

@@ -4,10 +4,10 @@
 
 mod common;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
 use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 
 fn solve_on(mesh: &str, kind: PunchKind, load: FemLoad, far_field: FarField) -> FemState {
@@ -67,7 +67,7 @@ fn the_far_field_removes_the_one_over_r_bias_on_the_default_domain() {
         assert!(far.truncation_bias < fixed.truncation_bias / 4.0);
     }
     // The cone at d = 2h on the finest committed level, against the ring BEM.
-    let bem = RingBemSolver::new()
+    let bem = RingBem::new()
         .concave_at_depth(&PunchKind::CONE, 2.0, 1e-11)
         .unwrap()
         .gamma2

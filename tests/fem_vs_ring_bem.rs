@@ -5,9 +5,9 @@
 mod common;
 use common::gmsh_available;
 
-use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
 use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::{RingBem, RingState};
 use ringcontact::punch::PunchKind;
 use ringcontact::Error;
 
@@ -52,7 +52,7 @@ fn reference(solve: impl Fn(f64) -> ringcontact::Result<RingState>) -> RingState
 }
 
 fn errors(kind: PunchKind, eps: f64, load: FemLoad, state: &FemState) -> (f64, f64) {
-    let bem = RingBemSolver::new();
+    let bem = RingBem::new();
     match load {
         FemLoad::Flat => {
             let g = bem.flat(eps, 1e-10).unwrap().gamma.unwrap();
@@ -159,11 +159,7 @@ fn tolerance_1e4_is_met() {
 
 #[test]
 fn linear_elements_converge_toward_the_ring_bem() {
-    let bem = RingBemSolver::new()
-        .flat(0.5, 1e-10)
-        .unwrap()
-        .gamma
-        .unwrap();
+    let bem = RingBem::new().flat(0.5, 1e-10).unwrap().gamma.unwrap();
     let dir = solver::mesh_directory();
     let errors: Vec<f64> = (0..3)
         .map(|level| {
@@ -486,7 +482,7 @@ fn a_closed_cone_within_its_estimate_is_answered() {
     if !gmsh_available("a_closed_cone_within_its_estimate_is_answered") {
         return;
     }
-    let bem = RingBemSolver::new();
+    let bem = RingBem::new();
     for depth in [13.0, 14.0] {
         let output = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
             .args([
@@ -531,7 +527,7 @@ fn the_free_edges_conditioning_follows_the_ring_bem() {
     if !gmsh_available("the_free_edges_conditioning_follows_the_ring_bem") {
         return;
     }
-    let bem = RingBemSolver::new();
+    let bem = RingBem::new();
     for (kind, depth) in [
         (PunchKind::CONE, 2.0),
         (PunchKind::SPHERE, 1.5),

@@ -3,7 +3,7 @@
 //! to the committed meshes (SHA-256), agree in force within 1e-8 and have the same active contact
 //! set. A result whose mesh changed is caught as stale and not used.
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact_verify::harness::records::fenicsx::{
     self, compare, large_results_directory, load_results, results_directory, FORCE_AGREEMENT,
 };
@@ -94,7 +94,7 @@ fn committed_mesh_result() -> (String, fenicsx::FenicsxResult) {
 fn a_result_whose_mesh_changed_is_stale_and_not_used() {
     let (file, mut stored) = committed_mesh_result();
     stored.mesh_sha256 = "0".repeat(64);
-    let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
+    let row = compare(&file, &stored, &RingBem::new()).unwrap();
     assert_eq!(row.status, "stale");
     assert!(row.our_force.is_none() && !row.passed);
     // Not compared is a failure: the stale row, and a run that compared nothing.
@@ -112,7 +112,7 @@ fn a_disagreeing_result_fails() {
     // The check must be able to fail: a force off by 1e-6 is a disagreement.
     let (file, mut stored) = committed_mesh_result();
     stored.force *= 1.0 + 1e-6;
-    let row = compare(&file, &stored, &RingBemSolver::new()).unwrap();
+    let row = compare(&file, &stored, &RingBem::new()).unwrap();
     assert_eq!(row.status, "current");
     assert!(!row.passed);
     assert_eq!(fenicsx::failures(&[row]), 1);

@@ -1,11 +1,11 @@
 //! Refits of the paper's approximations to the ring BEM's converged data (`verify fit`).
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::fit;
+use ringcontact::methods::RingBem;
 
 #[test]
 fn refits_improve_on_the_published_parameters_and_better_forms_reach_1e3() {
-    let reports = fit::run(&RingBemSolver::new()).unwrap();
+    let reports = fit::run(&RingBem::new()).unwrap();
     let names: Vec<&str> = reports.iter().map(|r| r.name.as_str()).collect();
     assert_eq!(
         names,

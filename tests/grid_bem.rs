@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use ringcontact::bem::grid::{love_influence, solve_contact, GridLoad, GridOperator};
 use ringcontact::bem::grid_contact::{self, cell_centre};
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::numerics::elliptic::complete_k;
 use ringcontact::punch::PunchKind;
 use ringcontact::Error;
@@ -96,7 +96,7 @@ fn elliptical_flat_punch_matches_its_closed_form() {
 #[test]
 fn grid_bem_agrees_with_the_ring_bem_to_its_discretisation_error() {
     // The staircase edge makes the grid method read low by about 1e-3 at 128 x 128.
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let n = 128;
     let flat =
         grid_contact::solve(PunchKind::FLAT_ANNULUS, 0.5, n, GridLoad::Depth(1.0), 1e-10).unwrap();
@@ -160,7 +160,7 @@ fn non_convergence_and_bad_grids_are_errors() {
 /// does, on either side of the touch.
 #[test]
 fn the_grid_declines_a_contact_that_is_not_one_ring_where_the_ring_bem_does() {
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let cube = PunchKind::power(ringcontact::punch::Exponent::new(3.0).unwrap());
     for depth in [2.3, 2.4] {
         let by_ring = ring.concave_at_depth(&cube, depth, 1e-9);

@@ -27,10 +27,10 @@ const LAYERS: [(&str, u8); 23] = [
     ("fem", 4),
     ("bem", 4),
     ("reference", 4),
-    ("fit", 5),
     ("scene", 6),
     ("solution", 6),
     ("methods", 6),
+    ("fit", 7),
     ("adhesion", 7),
     ("cohesive", 7),
     ("harness", 8),
@@ -174,34 +174,6 @@ fn folders_are_small_and_unsafe_code_stays_in_the_native_backend() {
     }
 }
 
-/// The harness and the command line ask the methods for solutions (`methods::Method`) and the
-/// FEM only through the names `fem/mod.rs` exports for what only the FEM offers: never a module
-/// inside the FEM, the discretisation or the linear algebra's backends.
-#[test]
-fn the_harness_reaches_the_fem_only_through_its_api() {
-    let files = common::rust_sources(&common::program_root());
-    assert!(!files.is_empty(), "no harness sources found");
-    let internals = [
-        "fem::solver",
-        "fem::contact",
-        "fem::surface_response",
-        "discretisation::assembly",
-        "discretisation::element",
-        "sparse::native",
-        "sparse::constrained",
-    ];
-    for file in &files {
-        let code = code_of(file);
-        for internal in internals {
-            assert!(
-                !code.contains(internal),
-                "{} reaches into {internal} (use methods::Method or the names in fem/mod.rs)",
-                file.display()
-            );
-        }
-    }
-}
-
 /// The library crate carries no command line, progress bars, markdown renderer or allocator:
 /// those belong to the program's crate (the root `Cargo.toml`).
 #[test]
@@ -220,57 +192,35 @@ fn the_library_depends_on_no_program_crate() {
     }
 }
 
-/// The harness's studies reach the methods through their public interface (`methods::Solver`,
-/// `Method::ladder` for convergence levels); the files listed here still name the BEM's or the
-/// FEM's own modules (the JKR analysis takes the ring BEM's solver, the stability and speed
-/// studies drive single models); a file that stops naming them leaves the list.
+/// The harness and the command line reach the methods through their types (`methods::RingBem`,
+/// `Fem`, `GridBem` with their typed options and states; `methods::Solver`; `Method::ladder` for
+/// convergence levels): no file names the BEM's or the FEM's modules, the linear algebra's
+/// backends, nor the discretisation but its operator export (`discretisation::export`, what the
+/// FEniCSx operator comparison reads).
 #[test]
-fn harness_files_naming_bem_or_fem_modules_do_not_grow() {
+fn the_harness_names_no_bem_or_fem_module() {
     let root = common::program_root();
-    let still_naming = [
-        "cli/jkr.rs",
-        "cli/studies.rs",
-        "harness/dataset/adhesive.rs",
-        "harness/dataset/functions.rs",
-        "harness/dataset/mod.rs",
-        "harness/records/fenicsx.rs",
-        "harness/report_jobs.rs",
-        "harness/studies/claims.rs",
-        "harness/studies/comparison.rs",
-        "harness/studies/figures.rs",
-        "harness/studies/mod.rs",
-        "harness/studies/speed_accuracy.rs",
-        "harness/studies/stability.rs",
-        "harness/studies/sweeps.rs",
-    ];
+    let files = common::rust_sources(&root);
+    assert!(!files.is_empty(), "no harness sources found");
     let mut naming = Vec::new();
-    for file in common::rust_sources(&root) {
-        let code = code_of(&file);
-        if code.contains("ringcontact::bem") || code.contains("ringcontact::fem") {
-            let relative = file
-                .strip_prefix(&root)
-                .unwrap()
-                .to_string_lossy()
-                .replace('\\', "/");
-            naming.push(relative);
+    for file in files {
+        let code = code_of(&file).replace("ringcontact::discretisation::export", "");
+        for internal in [
+            "ringcontact::bem",
+            "ringcontact::fem",
+            "ringcontact::discretisation",
+            "ringcontact::sparse::native",
+            "ringcontact::sparse::constrained",
+        ] {
+            if code.contains(internal) {
+                naming.push(format!("{} names {internal}", file.display()));
+            }
         }
     }
-    let new: Vec<&String> = naming
-        .iter()
-        .filter(|f| !still_naming.contains(&f.as_str()))
-        .collect();
     assert!(
-        new.is_empty(),
-        "{new:?} name the BEM's or the FEM's modules: ask the methods (methods::Solver, \
-         Method::ladder) instead"
-    );
-    let cleared: Vec<&&str> = still_naming
-        .iter()
-        .filter(|f| !naming.iter().any(|n| n == **f))
-        .collect();
-    assert!(
-        cleared.is_empty(),
-        "{cleared:?} no longer name the BEM's or the FEM's modules: take them off the list"
+        naming.is_empty(),
+        "{naming:#?}: ask the methods (methods::RingBem, Fem, GridBem, Solver, Method::ladder) \
+         instead"
     );
 }
 

@@ -4,13 +4,13 @@
 //! tolerance and within the FEM's own estimate; the backends' answers agree to 1e-10. The
 //! constrained solves themselves are checked against the definition `K_C x = b`.
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::discretisation::assembly::assemble_stiffness;
 use ringcontact::discretisation::element::Lame;
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::discretisation::quadrature::stiffness_rule;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
 use ringcontact::mesh::triangulation::{structured_rectangle, Degree};
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 use ringcontact::sparse::constrained::ConstrainedCholesky;
 use ringcontact::sparse::Backend;
@@ -19,7 +19,7 @@ const BACKENDS: [Backend; 2] = [Backend::BUILT_IN, Backend::Faer];
 
 /// The ring BEM's force-like output and `eps` of a state (converged to 1e-10).
 fn ring_bem(kind: PunchKind, eps: f64, load: FemLoad) -> (f64, f64) {
-    let bem = RingBemSolver::new();
+    let bem = RingBem::new();
     match load {
         FemLoad::Flat => (bem.flat(eps, 1e-10).unwrap().gamma.unwrap(), eps),
         FemLoad::ConcaveDepth(d) => {

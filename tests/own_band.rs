@@ -8,7 +8,7 @@
 mod common;
 
 use ringcontact::adhesion;
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::{Contact, Profile, PunchKind, PunchName};
 use ringcontact::scene::SceneSpec;
@@ -105,7 +105,7 @@ fn own_parabolic_ring_equals_the_built_in_one_on_the_grid_bem() {
 
 #[test]
 fn own_parabolic_ring_has_the_built_in_ones_jkr_pulloff() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let own = adhesion::band_jkr(&solver, &PunchKind::new(MyRing), 0.1).unwrap();
     let built_in = adhesion::band_jkr(&solver, &torus(), 0.1).unwrap();
     let (own_load, built_in_load) = (own.fixed_load.unwrap(), built_in.fixed_load.unwrap());

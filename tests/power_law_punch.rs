@@ -8,7 +8,7 @@ mod common;
 
 use std::process::Command;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::{Exponent, PunchKind, PunchName};
 use ringcontact::reference::power_law;
@@ -28,7 +28,7 @@ fn relative(a: f64, b: f64) -> f64 {
 /// `1 - r²`: the agreement is of two evaluations, not of one code with itself.
 #[test]
 fn exponents_1_and_2_are_the_cone_and_the_sphere_to_1e_12() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     // 1e-10: the cone's hole at d/h = 10 (b/a = 3e-3) has a free-edge rounding floor of 2e-11.
     let tol = 1e-10;
     let cases = [
@@ -87,7 +87,7 @@ fn exponents_1_and_2_are_the_cone_and_the_sphere_to_1e_12() {
 /// estimate says so, and the tolerance asked is met or refused).
 #[test]
 fn full_contact_follows_the_closed_form_within_the_estimate() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let cases = [
         (4.0, 3.0, 1e-11),
         (4.0, 5.0, 1e-11),
@@ -114,7 +114,7 @@ fn full_contact_follows_the_closed_form_within_the_estimate() {
 /// point at the axis), not only the estimate it reached.
 #[test]
 fn full_contact_of_a_fractional_exponent_names_why_a_tight_tolerance_fails() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let message = solver
         .concave_at_depth(&power(1.5), 6.0, 1e-9)
         .unwrap_err()
@@ -133,7 +133,7 @@ fn full_contact_of_a_fractional_exponent_names_why_a_tight_tolerance_fails() {
 /// algebraic convergence stopped `n = 3` under `γ2 = 2.25` at an estimate of 1.1e-7 (N = 80).
 #[test]
 fn full_contact_under_a_force_follows_the_closed_form_within_the_estimate() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     // The tolerances of the depth-controlled test above (the odd and fractional n's algebraic
     // convergence), and 1e-9 for the state that was refused.
     let cases = [
@@ -165,7 +165,7 @@ fn full_contact_under_a_force_follows_the_closed_form_within_the_estimate() {
 /// answer with one annulus.
 #[test]
 fn closure_is_where_the_full_contact_pressure_first_vanishes() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for n in [1.5, 2.5, 3.0, 4.0, 8.0] {
         let closure = power_law::closure_depth(n).unwrap();
         let tol = if n == 4.0 || n == 8.0 { 1e-9 } else { 1e-6 };
@@ -203,7 +203,7 @@ fn closure_is_where_the_full_contact_pressure_first_vanishes() {
 /// the sphere and the cone (which close by a shrinking hole) is a state.
 #[test]
 fn the_floor_of_the_hole_is_checked() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [0.3, 0.45] {
         let message = solver
             .concave_at_ratio(&power(3.0), eps, 1e-9)
@@ -233,7 +233,7 @@ fn the_floor_of_the_hole_is_checked() {
 /// (`tests/fem_vs_ring_bem.rs`).
 #[test]
 fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let on_rim_branch = |n: f64, state: &ringcontact::bem::ring_contact::RingState| {
         let narrower = 0.9 * state.eps + 0.1;
         let shallower = solver.concave_at_ratio(&power(n), narrower, 1e-9).unwrap();

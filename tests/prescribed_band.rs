@@ -5,7 +5,7 @@
 
 use std::f64::consts::PI;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 
 const TOL: f64 = 1e-11;
 
@@ -16,7 +16,7 @@ const TOL: f64 = 1e-11;
 /// intensities.
 #[test]
 fn a_flat_band_is_the_scaled_flat_annulus() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for eps in [0.3, 0.8, 0.99] {
         let annulus = solver.flat(eps, TOL).unwrap();
         for c in [0.6, 1.7, 25.0] {
@@ -48,7 +48,7 @@ fn a_flat_band_is_the_scaled_flat_annulus() {
 /// 1.6e-4 for `w = 0.08 ... 0.01` (`ρ = a/2`), observed orders 1.71, 1.76, 1.79 rising toward 2.
 #[test]
 fn a_narrow_torus_approaches_the_plane_strain_hertz_cylinder() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let rho = 0.5;
     let gap = |r: f64| (r - 1.0) * (r - 1.0) / (2.0 * rho);
     let mut previous: Option<f64> = None;

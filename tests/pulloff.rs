@@ -12,12 +12,12 @@ use common::gmsh_available;
 
 use std::process::Command;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::cohesive::equilibrium::CohesiveSurface;
 use ringcontact::cohesive::law::ExponentialLaw;
 use ringcontact::cohesive::study;
 use ringcontact::fem::solver::surface_response_on_mesh;
 use ringcontact::mesh::provider::{provide, MeshRequest};
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 
 /// The study's FE model of the committed disk mesh `level`, condensed onto its contact line (no
@@ -63,7 +63,7 @@ fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
     let recess: Vec<f64> = response.radii.iter().map(|&r| 1.0 - r).collect();
     let cone = CohesiveSurface::new(&response, recess.clone(), negligible).unwrap();
     let state = cone.equilibrium(2.0, &recess).unwrap();
-    let ring = RingBemSolver::new()
+    let ring = RingBem::new()
         .concave_at_depth(&PunchKind::CONE, 2.0, 1e-10)
         .unwrap();
     let expected = 2.0 * ring.gamma2.unwrap();
@@ -128,7 +128,7 @@ fn flat_annulus_pulloff_tends_to_the_jkr_route() {
         data: Default::default(),
     };
     let s = study::run_rim_band(case, &study::DEFAULT_RANGES, |_| {}).unwrap();
-    let jkr = ringcontact::adhesion::fixed_annulus(&RingBemSolver::new(), eps).unwrap();
+    let jkr = ringcontact::adhesion::fixed_annulus(&RingBem::new(), eps).unwrap();
     // The outer edge lets go first at b/a = 0.5.
     assert_eq!(jkr.governing_edge, "outer");
     let expected = -jkr.fc_outer;
@@ -477,7 +477,7 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
     assert!(e.hole_closed_at.is_none() && e.hole_closed_at_preload == Some(false));
     // The inner edge crossed many nodes, each a hop that did not end the branch.
     assert!(e.node_hops > 0, "{e:?}");
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let jkr = ringcontact::adhesion::concave(&ring, PunchKind::CONE, 1.0).unwrap();
     let fixed_load = -jkr.fixed_load.as_ref().unwrap().force;
     assert!((fixed_load - 0.5394).abs() < 1e-3, "JKR route {fixed_load}");

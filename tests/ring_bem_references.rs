@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use approx::assert_relative_eq;
 
 use ringcontact::bem::ring::{ContactRegion, RingSystem};
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::numerics::tanh_sinh::TanhSinhRule;
 use ringcontact::punch::PunchKind;
 use ringcontact::reference::asymptotic::{collins_series, narrow_ring};
@@ -14,14 +14,14 @@ use ringcontact::Error;
 
 const TOL: f64 = 1e-10;
 
-fn gamma(solver: &RingBemSolver, eps: f64) -> f64 {
+fn gamma(solver: &RingBem, eps: f64) -> f64 {
     solver.flat(eps, TOL).unwrap().gamma.unwrap()
 }
 
 #[test]
 fn flat_circular_punch_is_boussinesq() {
     // F = 2 E* a d exactly, and K = E* d / sqrt(π a) at the rim (κ = 1).
-    let state = RingBemSolver::new().flat(0.0, TOL).unwrap();
+    let state = RingBem::new().flat(0.0, TOL).unwrap();
     assert!(
         (state.gamma.unwrap() - 1.0).abs() < 1e-12,
         "{:?}",
@@ -37,7 +37,7 @@ fn flat_circular_punch_is_boussinesq() {
 
 #[test]
 fn flat_annulus_agrees_with_collins_series_to_its_truncation_error() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for &eps in &[0.001, 0.01, 0.05, 0.1, 0.2, 0.3] {
         let reference = collins_series(eps);
         let state = solver.flat(eps, TOL).unwrap();
@@ -57,7 +57,7 @@ fn flat_annulus_agrees_with_collins_series_to_its_truncation_error() {
 
 #[test]
 fn flat_annulus_approaches_the_narrow_ring_asymptote_at_its_order() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let mut previous = f64::INFINITY;
     for &eps in &[0.9, 0.95, 0.98, 0.99, 0.995, 0.999] {
         let delta = (1.0 - eps) / (1.0 + eps);
@@ -77,14 +77,14 @@ fn flat_annulus_approaches_the_narrow_ring_asymptote_at_its_order() {
 #[test]
 fn the_factor_one_half_in_the_narrow_ring_force() {
     // docs/conventions.md: F = π² (a+b) E* d / ln(16/δ) (without the 1/2) gives γ > 1, twice too large.
-    let g = gamma(&RingBemSolver::new(), 0.99);
+    let g = gamma(&RingBem::new(), 0.99);
     let without_half = 2.0 * narrow_ring(0.99).value;
     assert!(without_half > 1.0 && (g - without_half).abs() > 0.5);
 }
 
 #[test]
 fn spherical_punch_full_contact_limits() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     // d = 3h: F = 16/3 E* h a (Barber; MDR).
     let onset = solver
         .full_contact(&ringcontact::punch::PunchKind::SPHERE, 3.0, TOL)
@@ -113,7 +113,7 @@ fn spherical_punch_full_contact_limits() {
 fn small_hole_limits_follow_the_full_contact_solutions() {
     // A small hole perturbs the force by O(eps³); the full-contact (MDR) relations give
     // γ1 - γ2 -> 1 - π/4 (cone) and 1/3 (sphere).
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for &eps in &[0.01, 0.02] {
         let cone = solver.concave_at_ratio(&PunchKind::CONE, eps, TOL).unwrap();
         let diff = cone.gamma1.unwrap() - cone.gamma2.unwrap();
@@ -135,7 +135,7 @@ fn small_hole_limits_follow_the_full_contact_solutions() {
 #[test]
 fn cone_depth_grows_like_half_pi_log_one_over_eps() {
     // docs/conventions.md fact 5: γ1 ~ (π/2) ln(1/eps) as eps -> 0 (full contact is never reached).
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let g1 = |eps| {
         solver
             .concave_at_ratio(&PunchKind::CONE, eps, TOL)
@@ -150,7 +150,7 @@ fn cone_depth_grows_like_half_pi_log_one_over_eps() {
 #[test]
 fn incremental_stiffness_identity_holds() {
     // docs/conventions.md fact 6: γ2'(eps) = γ(eps) γ1'(eps), γ from an independent flat-annulus solve.
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for kind in [PunchKind::CONE, PunchKind::SPHERE] {
         for &eps in &[0.05, 0.2, 0.5, 0.8, 0.95] {
             let step = 1e-3 * f64::min(eps, 1.0 - eps);
@@ -175,7 +175,7 @@ fn incremental_stiffness_identity_holds() {
 #[test]
 fn edge_stress_intensities_follow_from_the_force_derivative() {
     // docs/conventions.md fact 7: κ_out² = γ - eps γ', κ_in² = -γ'/eps with K = E* d κ / sqrt(π a).
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for &eps in &[0.1, 0.4, 0.7, 0.95] {
         let step = 1e-3 * f64::min(eps, 1.0 - eps);
         let slope = (-gamma(&solver, eps + 2.0 * step) + 8.0 * gamma(&solver, eps + step)
@@ -227,7 +227,7 @@ fn collocation_converges_geometrically_to_a_rounding_floor() {
 
 #[test]
 fn depth_and_force_control_invert_the_contact_ratio() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for kind in [PunchKind::CONE, PunchKind::SPHERE] {
         for &eps in &[0.05, 0.3, 0.6, 0.95] {
             let direct = solver.concave_at_ratio(&kind, eps, 1e-11).unwrap();
@@ -258,7 +258,7 @@ fn depth_and_force_control_invert_the_contact_ratio() {
 
 #[test]
 fn concave_pressure_is_compressive_and_vanishes_at_the_free_inner_edge() {
-    let state = RingBemSolver::new()
+    let state = RingBem::new()
         .concave_at_ratio(&PunchKind::SPHERE, 0.4, TOL)
         .unwrap();
     assert!(state.pressure.iter().all(|&(_, p)| p > 0.0));
@@ -273,7 +273,7 @@ fn concave_pressure_is_compressive_and_vanishes_at_the_free_inner_edge() {
 
 #[test]
 fn states_outside_the_validated_range_are_errors_not_numbers() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     // The cone closes only as d -> infinity: eps would be far below 1e-4.
     let err = solver
         .concave_at_depth(&PunchKind::CONE, 40.0, TOL)
@@ -298,7 +298,7 @@ fn the_estimate_of_a_loose_inverse_solve_covers_its_root_search() {
     // stops far from the discretisation's accuracy, and the estimate must say so (the sphere at
     // d = 1.5 h and 1e-2 was 7.2e-10 off with an estimate of 1e-13). Reference: the same states
     // converged to 1e-11 (the ring BEM matches the closed forms to 1e-13, tests above).
-    let solver = ringcontact::bem::ring_contact::RingBemSolver::new();
+    let solver = ringcontact::methods::RingBem::new();
     let (cone, sphere) = (PunchKind::CONE, PunchKind::SPHERE);
     for tolerance in [1e-2, 1e-4, 1e-6] {
         for (kind, depth) in [(&sphere, 1.5), (&cone, 2.0), (&sphere, 0.5), (&cone, 0.5)] {

@@ -17,7 +17,7 @@ use common::{assert_study_converges, gmsh_available};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{PunchKind, PunchName};
 
 /// A table of the sphere's profile at `points` equally spaced radii, written to a fresh file.
@@ -66,7 +66,7 @@ fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
         return;
     }
     let dir = scratch("convergence");
-    let sphere = RingBemSolver::new()
+    let sphere = RingBem::new()
         .concave_at_depth(&PunchKind::SPHERE, 1.0, 1e-12)
         .unwrap();
     let reference = sphere.gamma2.unwrap();
@@ -101,9 +101,7 @@ fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
         let estimate = json["error_estimate"].as_f64().unwrap();
         // The ring BEM on the same table: within the FEM's estimate (two independent methods
         // on the same piecewise-cubic gap).
-        let ring = RingBemSolver::new()
-            .concave_at_depth(&kind, 1.0, 1e-10)
-            .unwrap();
+        let ring = RingBem::new().concave_at_depth(&kind, 1.0, 1e-10).unwrap();
         let ring_gamma2 = ring.gamma2.unwrap();
         assert!(
             (ring_gamma2 - gamma2).abs() <= estimate * gamma2 + 1e-10 * ring_gamma2,
@@ -128,7 +126,7 @@ fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
 #[test]
 fn the_ring_bem_tends_to_the_sphere_as_the_table_is_refined() {
     let dir = scratch("ring-convergence");
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let reference = solver
         .concave_at_depth(&PunchKind::SPHERE, 1.0, 1e-12)
         .unwrap()
@@ -166,7 +164,7 @@ fn a_steep_walled_table_is_solved_near_its_power_law() {
         .map(|k| f64::from(k) / 20000.0)
         .map(|rho| (table.gap_shape(rho) - power.gap_shape(rho)).abs())
         .fold(0.0, f64::max);
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for depth in [0.5, 0.9, 1.2] {
         let state = solver
             .concave_at_depth(&table, depth, 1e-9)
@@ -270,7 +268,7 @@ fn states_beyond_the_single_annulus_are_refused_with_the_reason() {
         assert!(stderr.contains(reason), "{flag} {value}: {stderr}");
     }
     // Short of them the same tables solve.
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for (path, depth) in [(&cosine, 4.0), (&cube, 1.0)] {
         let kind = PunchName::Table.with_parameters(None, Some(path)).unwrap();
         let state = solver.concave_at_depth(&kind, depth, 1e-9).unwrap();
@@ -362,7 +360,7 @@ fn a_scene_file_reads_its_profile_beside_itself() {
 #[test]
 fn the_jkr_pulloff_of_a_sampled_sphere_tends_to_the_spheres() {
     let dir = scratch("jkr");
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let scales = [0.1, 0.178, 0.422, 1.0];
     let sphere = ringcontact::adhesion::ConcaveBranch::new(&solver, PunchKind::SPHERE).unwrap();
     let references: Vec<f64> = scales
@@ -492,7 +490,7 @@ impl ringcontact::punch::PiecewiseProfile for SphereInPieces {
 /// sphere finds, within the two estimates (two routes through the ring BEM).
 #[test]
 fn a_users_own_piecewise_profile_takes_the_piecewise_route() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let own = PunchKind::new(SphereInPieces);
     assert!(own.piecewise().is_some());
     for depth in [0.5, 1.5] {

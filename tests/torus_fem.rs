@@ -7,9 +7,9 @@
 mod common;
 use common::{assert_study_converges, gmsh_available};
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, default_degree, FemLoad, FemOptions};
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 
 fn options(tolerance: f64) -> FemOptions {
@@ -29,7 +29,7 @@ fn options(tolerance: f64) -> FemOptions {
 /// The FEM's `(γ1, γ2, b, c)` errors against the ring BEM's, each within the FEM's estimate,
 /// which is within `tolerance`.
 fn check(loads: &[FemLoad], tolerance: f64) {
-    let bem = RingBemSolver::new();
+    let bem = RingBem::new();
     for &load in loads {
         let fem = solver::solve(PunchKind::TORUS, 0.0, load, &options(tolerance))
             .unwrap_or_else(|e| panic!("{load:?}: {e}"));

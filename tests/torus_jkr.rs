@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 use std::process::Command;
 
 use ringcontact::adhesion;
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 
 /// The plane-strain JKR cylinder (Barquins 1988): per unit length, the Hertz load of half-width
@@ -29,7 +29,7 @@ fn plane_strain_cylinder_pulloff(s: f64) -> f64 {
 /// `plane_strain_pulloff` is checked against the closed form written here.
 #[test]
 fn the_narrow_torus_pulls_off_like_the_plane_strain_jkr_cylinder() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let mut previous: Option<f64> = None;
     for s in [1e-2, 1e-3, 1e-4] {
         let r = adhesion::band_jkr(&solver, &PunchKind::TORUS, s).unwrap();
@@ -63,7 +63,7 @@ fn the_narrow_torus_pulls_off_like_the_plane_strain_jkr_cylinder() {
 /// fixed-load one (its branch runs on past the minimum of the force).
 #[test]
 fn the_critical_states_have_both_edges_in_equilibrium() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     for s in [0.01, 0.3, 1.0] {
         let r = adhesion::band_jkr(&solver, &PunchKind::TORUS, s).unwrap();
         let k = -s / PI.sqrt();

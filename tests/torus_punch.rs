@@ -6,7 +6,7 @@
 use std::f64::consts::PI;
 use std::process::Command;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::methods::{self, Method};
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::{Scene, SceneSpec};
@@ -76,7 +76,7 @@ fn a_narrow_torus_approaches_the_plane_strain_hertz_cylinder() {
 /// central difference of the torus's own `F(d)`, `O(δ²)` with `δ = 1e-4 d`.
 #[test]
 fn the_incremental_stiffness_is_that_of_the_flat_band() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let tol = 1e-11;
     for depth in [0.01, 0.5, 3.0, 12.0] {
         let state = solver
@@ -108,7 +108,7 @@ fn the_incremental_stiffness_is_that_of_the_flat_band() {
 /// `F/(2π m sqrt(c - b))`, a code path of its own: edges given, no search).
 #[test]
 fn depth_force_and_edge_controls_agree_and_both_edges_are_free() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let tol = 1e-10;
     for eps in [0.98, 0.7, 0.3, 0.05] {
         let at_ratio = solver
@@ -153,7 +153,7 @@ fn depth_force_and_edge_controls_agree_and_both_edges_are_free() {
 /// quantities the estimate covers.
 #[test]
 fn the_estimate_bounds_the_error_of_depth_and_force_controlled_states() {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let state = |depth: bool, target: f64, tol: f64| {
         if depth {
             solver.concave_at_depth(&PunchKind::TORUS, target, tol)

@@ -9,8 +9,8 @@ use pyo3::exceptions::PyException;
 use pyo3::prelude::*;
 
 use ringcontact::adhesion;
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::finite_guard;
+use ringcontact::methods::RingBem;
 use ringcontact::provenance;
 use ringcontact::punch::PunchName;
 use ringcontact_verify::cli::calls::{self, SolveOptions};
@@ -77,7 +77,7 @@ fn jkr(
                 .with_parameters(exponent, profile.as_deref())
                 .map_err(|e| e.to_string())?;
             let solution =
-                adhesion::jkr(&RingBemSolver::new(), &kind, eps, d0h).map_err(|e| e.to_string())?;
+                adhesion::jkr(&RingBem::new(), &kind, eps, d0h).map_err(|e| e.to_string())?;
             finite_guard::check_finite(&solution).map_err(|field| {
                 format!(
                     "{call} produced a non-finite result ({field}): the input is beyond the \

@@ -620,8 +620,8 @@ pub struct SolveArgs {
     /// default): the arc follows the point-force field, bias O((a/R)^2); `fixed`: u = 0 there,
     /// the classical truncation (too stiff by about 1.2 a/R), the model of the stored FEniCSx
     /// results.
-    #[arg(long, value_parser = choice::parser::<ringcontact::discretisation::far_field::FarField>())]
-    pub far_field: Option<ringcontact::discretisation::far_field::FarField>,
+    #[arg(long, value_parser = choice::parser::<ringcontact::methods::FarField>())]
+    pub far_field: Option<ringcontact::methods::FarField>,
     /// FEM only: element degree, 1 (linear), 2 (quadratic) or 3 (cubic) [default: 3 on meshes
     /// made by gmsh, 2 on the committed meshes and with --mesh].
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
@@ -693,8 +693,8 @@ pub struct TableArgs {
     #[arg(long)]
     pub tol: Option<f64>,
     /// FEM only: the condition on the far arc (as `verify solve`).
-    #[arg(long, value_parser = choice::parser::<ringcontact::discretisation::far_field::FarField>())]
-    pub far_field: Option<ringcontact::discretisation::far_field::FarField>,
+    #[arg(long, value_parser = choice::parser::<ringcontact::methods::FarField>())]
+    pub far_field: Option<ringcontact::methods::FarField>,
     /// FEM only: element degree 1, 2 or 3 (as `verify solve`).
     #[arg(long, value_parser = clap::value_parser!(u8).range(1..=3))]
     pub degree: Option<u8>,

@@ -9,7 +9,7 @@ use ringcontact::choice::Choice;
 use super::{message, refuse_non_finite, Reply};
 use crate::harness::grade::{self, GradeReport};
 use ringcontact::heartbeat::Heartbeat;
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::provenance::Provenance;
 use ringcontact::scene::SceneSpec;

@@ -6,7 +6,7 @@ use crate::harness::progress::Progress;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use crate::harness::studies::sweeps::{self, Sweep};
 use ringcontact::adhesion::{self, BandJkr, ConcaveJkr, Critical, FixedAnnulusJkr, Jkr};
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 
 /// `verify jkr`: one fixed annulus (`--eps`), one concave punch or free band (`--d0h`), or a
@@ -14,7 +14,7 @@ use ringcontact::punch::{Contact, PunchKind};
 pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     let punch = super::punch_kind_or_free_band(args.punch, args.exponent, args.profile.as_deref())?;
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     if args.sweep {
         return sweep(&args, &punch, &solver);
     }
@@ -64,7 +64,7 @@ fn kendall() -> String {
 }
 
 /// `verify jkr --sweep`: a fixed annulus over `b/a`, a concave punch over `d0/h`.
-fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBemSolver) -> Result<Reply, String> {
+fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBem) -> Result<Reply, String> {
     let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
     let text = match punch.contact() {
         Contact::FixedAnnulus => sweep_output(

@@ -7,7 +7,7 @@ use crate::harness::records::fenicsx;
 use crate::harness::records::operator;
 use ringcontact::discretisation::export::export_mesh;
 use ringcontact::mesh::provider::{self, MeshRequest};
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
 
 /// `verify fenicsx`: every stored FEniCSx result against our FEM, and the stored operator
 /// comparisons (`--operators`: those alone).

@@ -18,7 +18,7 @@ use crate::harness::report_jobs;
 use crate::harness::studies::comparison;
 use crate::harness::studies::convergence;
 use crate::harness::studies::stability;
-use ringcontact::bem::ring_contact::RingBemSolver;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 use ringcontact::punch::PunchName;
 use ringcontact::reference;
@@ -328,7 +328,7 @@ pub fn history(args: HistoryArgs) -> Result<Reply, String> {
 
 /// `verify fit`: the paper's approximations refitted to ring-BEM data, and better forms.
 pub fn fit(args: JsonArgs) -> Result<Reply, String> {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let reports = ringcontact::fit::run(&solver).map_err(message)?;
     if args.json {
         // One entry per function, keyed by its name.

@@ -27,10 +27,10 @@ use crate::harness::studies::convergence::{self, ComputedLevel, StudyCase};
 use crate::harness::studies::speed_accuracy::{self, BasePoints, CostPoint, Problem};
 use crate::harness::studies::stability::{self, Probe};
 use crate::harness::studies::{claims, figures};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::cohesive::study::{self, LiveSimulation};
 use ringcontact::error::{Error, Result};
 use ringcontact::methods::Method;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 
 /// Grid size up to which the stored peer results are compared (as `verify compare`).
@@ -297,7 +297,7 @@ impl Part {
     /// Run the part in this process (`edges` carries the free edges of convergence levels
     /// already computed here, so that one process does not solve a coarser level twice).
     pub(crate) fn compute(&self, edges: &mut EdgeMemo) -> Result<PartResult> {
-        let ring = RingBemSolver::new();
+        let ring = RingBem::new();
         Ok(match self.clone() {
             Part::Comparison { tolerance } => PartResult::Comparison(comparison::run(tolerance)?),
             Part::Fenicsx => PartResult::Fenicsx(fenicsx::run()?),
@@ -779,7 +779,7 @@ pub(crate) fn write_report(
     progress: impl FnMut(&str) + Send,
 ) -> Result<ReportExtras> {
     let start = Instant::now();
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let progress = Mutex::new(progress);
     let tick = |what: &str| report_to(&progress, what);
     // The verdicts (the longest stage) beside the rest: none of them is timed.

@@ -11,7 +11,7 @@ use std::sync::OnceLock;
 
 use ringcontact::error::{Error, Result};
 use ringcontact::mesh::files::{DataPaths, DATA_MARKER};
-use ringcontact::methods::MethodOptions;
+use ringcontact::methods::{Fem, MethodOptions};
 use ringcontact::sparse::{Backend, ENVIRONMENT_VARIABLE};
 
 /// Environment variable naming the project's data directory (`verify --data-dir` sets it).
@@ -142,5 +142,17 @@ pub fn method_options() -> MethodOptions {
         data: Some(data_paths()),
         progress: crate::harness::progress::fem_progress(),
         ..MethodOptions::default()
+    }
+}
+
+/// The FEM with this program's [`linear_solver`], [`trace`], data and progress lines, its other
+/// options at their defaults.
+pub fn fem() -> Fem {
+    Fem {
+        linear_solver: Some(linear_solver()),
+        trace: trace(),
+        data: Some(data_paths()),
+        progress: crate::harness::progress::fem_progress(),
+        ..Fem::default()
     }
 }

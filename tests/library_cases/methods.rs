@@ -32,6 +32,7 @@ fn the_grid_extent_is_refused_on_a_punch_with_a_rim() {
         cells: 32,
         extent: Some(2.0),
         with_estimate: false,
+        max_iterations: None,
     };
     let refused = solver.solve(&scene).unwrap_err().to_string();
     assert!(refused.contains("--grid-extent"), "{refused}");

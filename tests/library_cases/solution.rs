@@ -70,7 +70,7 @@ fn state(punch: PunchKind, eps: f64, depth: f64, force: f64) -> Solution {
 /// values scatter by about 1e-10 of themselves at the holes of 1e-4 a near d/h = 15.)
 #[test]
 fn the_cone_hole_bound_is_below_the_ring_bems_hole() {
-    let bem = ringcontact::bem::ring_contact::RingBemSolver::new();
+    let bem = ringcontact::methods::RingBem::new();
     for depth in [2.0, 3.0, 4.0, 6.0, 8.0, 10.5, 12.0, 13.0, 14.0, 15.0] {
         let hole = bem
             .concave_at_depth(&PunchKind::CONE, depth, 1e-9)

@@ -25,10 +25,9 @@
 use serde::Serialize;
 
 use crate::bem::ring::ContactRegion;
-use crate::bem::ring_contact::{
-    free_edge_floor, RingBemSolver, MAX_CONTACT_RATIO, MIN_CONTACT_RATIO,
-};
+use crate::bem::ring_contact::{free_edge_floor, MAX_CONTACT_RATIO, MIN_CONTACT_RATIO};
 use crate::error::{Error, Result};
+use crate::methods::RingBem;
 use crate::punch::collins_series;
 
 mod any_punch;
@@ -79,7 +78,7 @@ pub struct AnnulusEdges {
 }
 
 /// `γ`, `γ'` and the edge intensities of the fixed annulus at `eps`.
-pub fn annulus_edges(solver: &RingBemSolver, eps: f64) -> Result<AnnulusEdges> {
+pub fn annulus_edges(solver: &RingBem, eps: f64) -> Result<AnnulusEdges> {
     let gamma = |e: f64| -> Result<f64> { Ok(solver.flat(e, TOL)?.gamma.unwrap_or(f64::NAN)) };
     // The state first: a contact ratio outside the ring BEM's range is refused as given.
     let state = solver.flat(eps, TOL)?;
@@ -146,7 +145,7 @@ pub struct FixedAnnulusBounds {
 
 /// [`FixedAnnulusBounds`] at `eps` from the edges `e` computed at tolerance [`TOL`].
 fn flat_annulus_bounds(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     e: &AnnulusEdges,
     kappa_out: f64,
     kappa_in: f64,
@@ -194,7 +193,7 @@ fn flat_annulus_bounds(
 /// `γ'` is small against `γ` (`γ' ≈ -4 eps²/π²`); at `eps = 1e-4` it was 24 % off Collins'
 /// `2 sqrt(eps)/π`, the field's within 4e-7 of it. `kappa_consistency`
 /// compares the two routes at both edges.
-pub fn fixed_annulus(solver: &RingBemSolver, eps: f64) -> Result<FixedAnnulusJkr> {
+pub fn fixed_annulus(solver: &RingBem, eps: f64) -> Result<FixedAnnulusJkr> {
     if !(0.0 < eps && eps < 1.0) {
         return Err(Error::invalid(
             "eps",

@@ -8,8 +8,8 @@
 use nalgebra::{DMatrix, DVector};
 use serde::Serialize;
 
-use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
+use crate::methods::RingBem;
 use crate::reference::{self, Reference, ReferenceKind};
 
 /// A parametrised form `f(eps; θ)` with a readable formula.
@@ -227,7 +227,7 @@ const FUNCTIONS: [&str; 5] = [
 ];
 
 /// Refit all five functions.
-pub fn run(solver: &RingBemSolver) -> Result<Vec<FitReport>> {
+pub fn run(solver: &RingBem) -> Result<Vec<FitReport>> {
     let (fit_x, check_x) = (chebyshev_grid(60), chebyshev_grid(301));
     FUNCTIONS
         .iter()
@@ -260,7 +260,7 @@ fn paper_fit(name: &str) -> Result<Reference> {
 
 /// The ring BEM's values of function `name` at the contact ratios `xs` (tolerance 1e-10), on
 /// the punch whose fit it is.
-fn ring_bem_values(solver: &RingBemSolver, name: &str, xs: &[f64]) -> Result<Vec<f64>> {
+fn ring_bem_values(solver: &RingBem, name: &str, xs: &[f64]) -> Result<Vec<f64>> {
     let quantity = paper_fit(name)?.quantity;
     let function = quantity.function();
     let kind = reference::fitted_punch(quantity).filter(|_| function > 0);
@@ -357,7 +357,7 @@ fn best_candidate(
 }
 
 /// Function `name`: the paper's fit graded, its form refitted, and the best candidate form.
-fn refit(solver: &RingBemSolver, name: &str, fit_x: &[f64], check_x: &[f64]) -> Result<FitReport> {
+fn refit(solver: &RingBem, name: &str, fit_x: &[f64], check_x: &[f64]) -> Result<FitReport> {
     let (fy, cy) = (
         ring_bem_values(solver, name, fit_x)?,
         ring_bem_values(solver, name, check_x)?,

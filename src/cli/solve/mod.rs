@@ -8,7 +8,7 @@ pub(super) mod table;
 use super::{message, to_json, Reply};
 use crate::cli::args::SolveArgs;
 use crate::harness::report::table::{readable, Column, Table};
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
 use ringcontact::methods::{self, MethodOptions};
 use ringcontact::punch::{Contact, PunchName};
 use ringcontact::scene::{Scene, SceneSpec};

@@ -4,16 +4,16 @@
 
 use crate::harness::report::table::{Cell, Table};
 use ringcontact::adhesion::{self, Critical};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::Result;
 use ringcontact::fit;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 
 use super::{Field, Resource};
 
 /// Fixed annulus: both edges' critical depth and force with their bounds, at `ratios`.
 pub fn fixed_annulus(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     ratios: &[f64],
     progress: &dyn Fn(&str),
 ) -> Result<Resource> {
@@ -141,7 +141,7 @@ fn critical_cells(c: Option<&Critical>) -> Vec<Cell> {
 /// A concave punch: the pull-off under fixed load and fixed grips, and from full contact, at
 /// each `d0/h` of `scales`.
 pub fn concave(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     scales: &[f64],
     progress: &dyn Fn(&str),
@@ -201,7 +201,7 @@ pub fn concave(
 /// edges, [`adhesion::band_jkr`]) at each `d0/h` of `scales`, beside the plane-strain JKR
 /// cylinder's fixed-load pull-off (the narrow limit).
 pub fn free_band(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     band: &PunchKind,
     scales: &[f64],
     progress: &dyn Fn(&str),
@@ -262,7 +262,7 @@ pub fn free_band(
 
 /// The paper's formulas refitted to converged data and the best forms found, with their
 /// largest relative errors on `0.05 <= eps <= 0.99`.
-pub fn fits(solver: &RingBemSolver) -> Result<Resource> {
+pub fn fits(solver: &RingBem) -> Result<Resource> {
     let fields = vec![
         Field::text(
             "function",

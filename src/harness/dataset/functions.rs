@@ -11,8 +11,8 @@
 //! every interior interval against a fresh solve there.
 
 use crate::harness::report::table::{Cell, Table};
-use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
 use ringcontact::error::Result;
+use ringcontact::methods::{RingBem, RingState};
 use ringcontact::punch::{Contact, PunchKind};
 
 use super::{Field, Resource};
@@ -95,7 +95,7 @@ struct Solved {
 }
 
 fn solve_all(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     eps: &[f64],
     progress: &dyn Fn(&str),
@@ -143,7 +143,7 @@ fn functions(kind: PunchKind, s: &RingState) -> Vec<f64> {
 /// The largest relative error of interpolating each function at the midpoints of the interior
 /// intervals, against fresh solves there.
 fn interpolation_error(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     solved: &Solved,
     progress: &dyn Fn(&str),
@@ -177,7 +177,7 @@ fn interpolation_error(
 
 /// The function table of `kind` on a grid of `intervals` intervals, as a dataset resource.
 pub fn resource(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     intervals: usize,
     progress: &dyn Fn(&str),

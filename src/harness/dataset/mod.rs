@@ -14,8 +14,8 @@ use serde_json::{json, Value};
 
 use crate::harness::cases;
 use crate::harness::report::table::{Column, Format, Table};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
+use ringcontact::methods::RingBem;
 use ringcontact::provenance::Provenance;
 
 /// One column of a table: its name, unit and meaning (a Frictionless table-schema field).
@@ -132,7 +132,7 @@ impl Size {
 
 /// Compute every table of the dataset.
 pub fn build(size: Size, progress: &dyn Fn(&str)) -> Result<Vec<Resource>> {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let mut resources = Vec::new();
     for kind in cases::dataset_function_punches() {
         resources.push(functions::resource(

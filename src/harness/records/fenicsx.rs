@@ -13,10 +13,11 @@ use std::time::Instant;
 use serde::{Deserialize, Serialize};
 
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
-use ringcontact::bem::ring_contact::RingBemSolver;
+use crate::harness::studies::{unit_scene, UnitLoad};
 use ringcontact::error::{Error, Result};
-use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
+use ringcontact::methods::FarField;
+use ringcontact::methods::{Fem, RingBem};
 use ringcontact::punch::{Contact, PunchKind};
 
 /// Relative force agreement required of two codes solving the identical discrete problem.
@@ -95,11 +96,7 @@ pub fn load_results(dir: &Path) -> Result<Vec<(String, FenicsxResult)>> {
 }
 
 /// Compare one stored result with our FEM on the identical problem.
-pub fn compare(
-    file: &str,
-    stored: &FenicsxResult,
-    ring: &RingBemSolver,
-) -> Result<FenicsxComparison> {
+pub fn compare(file: &str, stored: &FenicsxResult, ring: &RingBem) -> Result<FenicsxComparison> {
     let mesh_path = repository_root().join(&stored.mesh);
     let mut out = FenicsxComparison {
         file: file.to_string(),
@@ -144,34 +141,31 @@ pub fn compare(
         reason: format!("{file}: degree {}", stored.degree),
     })?;
     let (eps, load) = match stored.punch.contact() {
-        Contact::Disk => (0.0, FemLoad::Flat),
-        Contact::FixedAnnulus => (stored.eps.unwrap_or(0.0), FemLoad::Flat),
-        Contact::RimAndFreeInner | Contact::FreeBand => (0.0, FemLoad::ConcaveDepth(stored.depth)),
+        Contact::Disk => (0.0, UnitLoad::Flat),
+        Contact::FixedAnnulus => (stored.eps.unwrap_or(0.0), UnitLoad::Flat),
+        Contact::RimAndFreeInner | Contact::FreeBand => (0.0, UnitLoad::Depth(stored.depth)),
     };
-    let options = FemOptions {
-        linear_solver: crate::harness::settings::linear_solver(),
-        trace: crate::harness::settings::trace(),
-        data: crate::harness::settings::data_paths(),
-        progress: crate::harness::progress::fem_progress(),
-        degree,
-        tolerance: fem_solver::DEFAULT_TOLERANCE,
+    // FEniCSx's model: its mesh and degree, the far arc held fixed, the FEM's default tolerance.
+    let fem = Fem {
         mesh: Some(mesh_path),
-        poisson_ratio: 0.0,
-        far_field: ringcontact::discretisation::far_field::FarField::Fixed,
+        degree: Some(degree),
+        far_field: Some(FarField::Fixed),
+        ..crate::harness::settings::fem()
     };
+    let scene = unit_scene(stored.punch.clone(), eps, load, None)?;
     let start = Instant::now();
-    let ours = fem_solver::solve(stored.punch.clone(), eps, load, &options)?;
+    let ours = fem.state(&scene)?;
     let our_wall = start.elapsed().as_secs_f64();
     // Flat punches: F = 2 γ d; concave (h = 1): F = 2 γ2.
     let our_force = match load {
-        FemLoad::Flat => 2.0 * ours.gamma.unwrap_or(f64::NAN) * stored.depth,
-        _ => 2.0 * ours.gamma2.unwrap_or(f64::NAN),
+        UnitLoad::Flat => 2.0 * ours.gamma.unwrap_or(f64::NAN) * stored.depth,
+        UnitLoad::Depth(_) => 2.0 * ours.gamma2.unwrap_or(f64::NAN),
     };
     let relative = (our_force - stored.force) / stored.force;
     let same_active = same_active_set(&ours.active_radii, &stored.active_contact_radii, degree);
     let ring_force = match load {
-        FemLoad::Flat => ring.flat(eps, 1e-10)?.gamma.map(|g| 2.0 * g * stored.depth),
-        _ => ring
+        UnitLoad::Flat => ring.flat(eps, 1e-10)?.gamma.map(|g| 2.0 * g * stored.depth),
+        UnitLoad::Depth(_) => ring
             .concave_at_depth(&stored.punch, stored.depth, 1e-10)?
             .gamma2
             .map(|g| 2.0 * g),
@@ -226,7 +220,7 @@ pub fn run() -> Result<Vec<FenicsxComparison>> {
 /// Compare every stored result, and with `large` those of [`large_results_directory`] too
 /// (their files named `large/NAME.json`), printing one progress line per large model to stderr.
 pub(crate) fn run_with(large: bool) -> Result<Vec<FenicsxComparison>> {
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let mut rows = load_results(&results_directory())?
         .iter()
         .map(|(file, stored)| compare(file, stored, &ring))

@@ -21,7 +21,7 @@ use ringcontact::discretisation::export::{
     assemble_system, load_mesh, read_dofs, read_matrix, DofRecord,
 };
 use ringcontact::error::{Error, Result};
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
 
 /// What one operator comparison found.
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]

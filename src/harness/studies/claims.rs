@@ -6,16 +6,16 @@ use crate::harness::cases;
 use crate::harness::records::pulloff::PulloffRecord;
 use crate::harness::report::contents::{PulloffPoint, Verdict};
 use ringcontact::adhesion;
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::cohesive::study::{Branch, PulloffStudy};
 use ringcontact::error::Result;
+use ringcontact::methods::RingBem;
 use ringcontact::punch::PunchKind;
 
 /// Each claim of the paper with this run's numbers and the verdict: the fits (section 2), the
 /// outer edge governing the fixed annulus (section 3), regime independence, the strongest
 /// pull-off for `d0 >> h`, and (where simulated) the annular branch's pull-off.
 pub fn verdicts(
-    ring: &RingBemSolver,
+    ring: &RingBem,
     pulloff: &[PulloffPoint],
     simulations: &[PulloffRecord],
 ) -> Result<Vec<Verdict>> {
@@ -120,7 +120,7 @@ fn band_narrow_verdict(pulloff: &[PulloffPoint], label: &str) -> Option<Verdict>
 }
 
 /// Section 2: the fitted formulas against the ring BEM's data.
-fn fits_verdict(ring: &RingBemSolver) -> Result<Verdict> {
+fn fits_verdict(ring: &RingBem) -> Result<Verdict> {
     let fits = ringcontact::fit::run(ring)?;
     let worst: Vec<String> = fits
         .iter()
@@ -143,7 +143,7 @@ fn fits_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 }
 
 /// Section 3: the fixed annulus detaches at the outer edge.
-fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
+fn outer_edge_verdict(ring: &RingBem) -> Result<Verdict> {
     let ratios = [0.05, 0.2, 0.4, 0.6, 0.8, 0.9, 0.95, 0.99];
     let mut outer = 0;
     for &e in &ratios {
@@ -166,7 +166,7 @@ fn outer_edge_verdict(ring: &RingBemSolver) -> Result<Verdict> {
 }
 
 /// Pull-off almost the same under fixed grips and fixed load, at `d0/h = 1`.
-fn regime_verdict(ring: &RingBemSolver) -> Result<Verdict> {
+fn regime_verdict(ring: &RingBem) -> Result<Verdict> {
     let mut spreads = Vec::new();
     for kind in cases::paper_recessed_punches() {
         let r = adhesion::concave(ring, kind.clone(), 1.0)?;
@@ -344,7 +344,7 @@ pub(crate) fn pulloff_scales() -> impl Iterator<Item = f64> {
 
 /// Pull-off `-F/F0` of a concave punch against `d0/h` ([`pulloff_scales`]) by each route: fixed
 /// load on the annular branch, the paper's route on its fits, from full contact.
-pub(crate) fn pulloff_points(ring: &RingBemSolver, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
+pub(crate) fn pulloff_points(ring: &RingBem, kind: PunchKind) -> Result<Vec<PulloffPoint>> {
     if kind.is_free_band() {
         return band_pulloff_points(ring, &kind);
     }
@@ -373,7 +373,7 @@ pub(crate) fn band_pulloff_scales() -> impl Iterator<Item = f64> {
 
 /// Pull-off `-F/F0` of a free band against `d0/h` ([`band_pulloff_scales`]): fixed load, fixed
 /// grips (both edges Griffith) and the plane-strain JKR cylinder's asymptote.
-fn band_pulloff_points(ring: &RingBemSolver, kind: &PunchKind) -> Result<Vec<PulloffPoint>> {
+fn band_pulloff_points(ring: &RingBem, kind: &PunchKind) -> Result<Vec<PulloffPoint>> {
     band_pulloff_scales()
         .map(|s| {
             let r = adhesion::band_jkr(ring, kind, s)?;

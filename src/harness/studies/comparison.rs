@@ -10,14 +10,13 @@ use std::time::Instant;
 
 use serde::Serialize;
 
-use super::figures;
+use super::{figures, UnitLoad};
 use crate::harness::cases::{self, power};
 use crate::harness::report::table::{verdict, Cell, Column, Format, Table};
-use ringcontact::bem::ring_contact::{RingBemSolver, RingState};
 use ringcontact::error::Result;
-use ringcontact::fem::FemLoad;
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
 use ringcontact::methods::{self, Method, MethodOptions};
+use ringcontact::methods::{RingBem, RingState};
 use ringcontact::punch::{Contact, PunchKind};
 use ringcontact::reference::{self, power_law, Quantity, ReferenceKind};
 
@@ -150,7 +149,7 @@ fn row(quantity: Quantity, state: &RingState, value: f64, wall_s: f64) -> Row {
 
 /// Run the comparison with the ring BEM at `tolerance`.
 pub fn run(tolerance: f64) -> Result<ComparisonReport> {
-    let solver = RingBemSolver::new();
+    let solver = RingBem::new();
     let mut rows = Vec::new();
     for kind in PunchKind::built_in(Contact::FixedAnnulus) {
         let Some(quantity) = reference::quantity_of(&kind, 0) else {
@@ -207,31 +206,29 @@ pub fn run(tolerance: f64) -> Result<ComparisonReport> {
 /// The FEM (default tolerance, P2, committed meshes; a free band on meshes gmsh makes) against
 /// the ring BEM on the states of [`cases::fem_cross_check_states`]; with the number of states
 /// not run for want of gmsh.
-fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<(Vec<CrossCheck>, usize)> {
+fn fem_cross_checks(solver: &RingBem, tolerance: f64) -> Result<(Vec<CrossCheck>, usize)> {
     // `--method fem` at its default tolerance, P2, on the meshes it picks.
     let options = MethodOptions {
         degree: Some(Degree::Quadratic),
         ..crate::harness::settings::method_options()
     };
     let mut checks = Vec::new();
-    let load = |depth: Option<f64>| depth.map_or(FemLoad::Flat, FemLoad::ConcaveDepth);
+    let load = UnitLoad::of_depth;
     let cases = cases::fem_cross_check_states()
         .into_iter()
         .map(|(kind, eps, depth)| (kind, eps, load(depth)));
     // The report's punch given by points on the committed meshes, where the checkout has it.
-    let table = cases::report_table_punch().map(|kind| (kind, 0.0, FemLoad::ConcaveDepth(1.5)));
+    let table = cases::report_table_punch().map(|kind| (kind, 0.0, UnitLoad::Depth(1.5)));
     // A free band's meshes are made for the scene (gmsh): without it these are not run (counted).
     let gmsh = ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths());
     let bands: Vec<_> = cases::free_bands()
         .into_iter()
-        .flat_map(|band| {
-            cases::BAND_FEM_DEPTHS.map(|d| (band.clone(), 0.0, FemLoad::ConcaveDepth(d)))
-        })
+        .flat_map(|band| cases::BAND_FEM_DEPTHS.map(|d| (band.clone(), 0.0, UnitLoad::Depth(d))))
         .collect();
     let not_run = if gmsh { 0 } else { bands.len() };
     let bands = bands.into_iter().filter(|_| gmsh);
     for (kind, eps, load) in cases.chain(table).chain(bands) {
-        let scene = super::scene_of_fem_load(kind.clone(), eps, load, None)?;
+        let scene = super::unit_scene(kind.clone(), eps, load, None)?;
         let fem = methods::solve_with(&scene, Method::Fem, &options)?;
         // A FEM solution always carries its model's part.
         let (dofs, mesh) = fem
@@ -240,7 +237,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<(Vec<Cross
             .map_or((0, String::new()), |m| (m.dofs, m.mesh.clone()));
         let mut outer_difference = None;
         let (bem_value, bem_eps, bem_estimate, prescribed, fem_value) = match load {
-            FemLoad::ConcaveDepth(d) => {
+            UnitLoad::Depth(d) => {
                 let s = solver.concave_at_depth(&kind, d, tolerance)?;
                 outer_difference = (!kind.has_rim()).then_some(fem.outer_radius - s.outer_edge);
                 (
@@ -294,10 +291,7 @@ fn fem_cross_checks(solver: &RingBemSolver, tolerance: f64) -> Result<(Vec<Cross
 /// BEM's own `γ1`, `γ2`; `γ` from an independent fixed-annulus solve. A free band `[b, c]`
 /// has both edges free, so its stiffness is the fixed annulus `b/c` scaled by `c`:
 /// `γ2'(b) = c γ(b/c) γ1'(b)` (`c = a` for the punches with a rim).
-fn incremental_stiffness_checks(
-    solver: &RingBemSolver,
-    tolerance: f64,
-) -> Result<Vec<IdentityCheck>> {
+fn incremental_stiffness_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     for (kind, ratios) in cases::stiffness_identity_ratios() {
         for &eps in ratios {
@@ -346,7 +340,7 @@ fn incremental_stiffness_checks(
 /// `n` has `γ1 - γ2 -> 1 - κ_n/(n + 1)` (`F = 2 E* a (d - h (1 - κ_n/(n + 1)))` in full
 /// contact): `1 - π/4` for `n = 1`, `1/3` for `n = 2`. Checked at `eps = 0.01` with the bound
 /// `eps³`.
-fn full_contact_limit_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn full_contact_limit_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let eps = 0.01_f64;
     let mut checks = Vec::new();
     for kind in cases::full_contact_limit_punches() {
@@ -387,7 +381,7 @@ fn full_contact_limit(n: f64) -> (f64, &'static str) {
 /// fixes one it is that punch (`γ2` at `eps = 0.3` to 1e-12, two evaluations of the gap), and past
 /// its closure depth its force is the MDR's closed form `γ2 = γ1 - 1 + κ_n/(n + 1)` (`n = 4` at
 /// `d = 3h`, where the disk basis is exact to rounding; docs/conventions.md fact 8).
-fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn power_law_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let eps = 0.3;
     let named_power_laws = PunchKind::built_in(Contact::RimAndFreeInner)
@@ -436,7 +430,7 @@ fn power_law_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Identi
 /// A free band's two edges: the ring BEM on the prescribed band `[b, c]` at the state's depth
 /// (the other path: both edges given, both intensities computed) finds `K = 0` at each,
 /// relative to the band's scale `F/(π (b + c) sqrt(c - b))`, and the state's force.
-fn free_band_edge_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn free_band_edge_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     for band in cases::free_bands() {
         for eps in cases::BAND_EDGE_RATIOS {
@@ -475,7 +469,7 @@ const TABLE_CHECK_DEPTHS: [f64; 3] = [0.5, 1.5, 2.5];
 /// at 21 points) against the punch it samples: `|Δγ2| <= δ` at any depth, `δ` the largest
 /// difference of the two gaps `g/h` (the contact problem is monotone in the gap,
 /// [`figures::largest_gap_difference`]). None where the checkout has no table file.
-fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn table_punch_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let Some(table) = cases::report_table_punch() else {
         return Ok(Vec::new());
     };
@@ -507,7 +501,7 @@ fn table_punch_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<Iden
 /// `K = E* d κ / sqrt(π a)`, follow from the derivative of its force: `κ_out² = γ - eps γ'` and
 /// `κ_in² = -γ'/eps` (energy release rate at a fixed-depth edge). Left: the ring BEM's edge
 /// coefficients (local); right: a fourth-order difference of its force (global).
-fn edge_intensity_checks(solver: &RingBemSolver, tolerance: f64) -> Result<Vec<IdentityCheck>> {
+fn edge_intensity_checks(solver: &RingBem, tolerance: f64) -> Result<Vec<IdentityCheck>> {
     let mut checks = Vec::new();
     let root_pi = std::f64::consts::PI.sqrt();
     let Some(annulus) = PunchKind::built_in(Contact::FixedAnnulus)

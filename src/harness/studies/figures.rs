@@ -5,13 +5,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use super::UnitLoad;
 use crate::harness::cases::{self, report_profile_punches, REPORT_TABLE_SAMPLES};
-use ringcontact::bem::grid::{solve_contact, GridLoad, GridOperator};
-use ringcontact::bem::grid_contact::{self, cell_centre, discretise};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::Result;
-use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
-use ringcontact::mesh::triangulation::Degree;
+use ringcontact::methods::Degree;
+use ringcontact::methods::FarField;
+use ringcontact::methods::{GridBem, GridState, RingBem};
 use ringcontact::punch::PunchKind;
 
 /// A curve or a set of points `(x, y)`.
@@ -81,16 +80,14 @@ pub(crate) struct FunctionCurves {
 pub(crate) const BAND_GRID_DEPTHS: [f64; 3] = [0.1, 0.5, 2.0];
 
 /// Compute the function curves (ring BEM to 1e-10, grid BEM on 128²).
-pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
+pub(crate) fn function_curves(ring: &RingBem) -> Result<FunctionCurves> {
     let flat_ring_bem = flat_ratios()
         .into_iter()
         .map(|e| Ok((e, ring.flat(e, 1e-10)?.gamma.unwrap_or(f64::NAN))))
         .collect::<Result<_>>()?;
     let mut flat_grid_bem = Vec::new();
     for e in [0.0, 0.5, 0.9] {
-        if let Ok(s) =
-            grid_contact::solve(cases::flat_punch(e), e, 128, GridLoad::Depth(1.0), 1e-10)
-        {
+        if let Ok(s) = grid_alone(cases::flat_punch(e), e, UnitLoad::Flat, 128) {
             flat_grid_bem.push((e, s.gamma.unwrap_or(f64::NAN)));
         }
     }
@@ -133,7 +130,7 @@ pub(crate) fn function_curves(ring: &RingBemSolver) -> Result<FunctionCurves> {
         .take(1)
         .flat_map(|band| BAND_GRID_DEPTHS.map(|d| (band.clone(), d)))
         .filter_map(|(band, d)| {
-            grid_contact::solve(band, 0.0, 128, GridLoad::Depth(d), 1e-10)
+            grid_alone(band, 0.0, UnitLoad::Depth(d), 128)
                 .ok()
                 .and_then(|s| Some((d, s.gamma2?)))
         })
@@ -158,25 +155,23 @@ pub(crate) struct PressureProfiles {
 }
 
 /// Compute the pressure profiles at [`cases::PRESSURE_PROFILE`].
-pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles> {
+pub(crate) fn pressure_profiles(ring: &RingBem) -> Result<PressureProfiles> {
     let (kind, depth) = cases::PRESSURE_PROFILE;
     let state = ring.concave_at_depth(&kind, depth, 1e-10)?;
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
-    let grid_bem = ring_averaged_grid_pressure(256, 64)?;
-    let options = FemOptions {
-        linear_solver: crate::harness::settings::linear_solver(),
-        trace: crate::harness::settings::trace(),
-        data: crate::harness::settings::data_paths(),
-        progress: crate::harness::progress::fem_progress(),
-        degree: Degree::Quadratic,
-        tolerance: 1e-3,
-        mesh: None,
-        poisson_ratio: 0.0,
-        far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
+    let grid_bem =
+        grid_alone(kind.clone(), 0.0, UnitLoad::Depth(depth), 256)?.ring_averaged_pressure(64);
+    let fem = crate::harness::settings::fem();
+    let fem = ringcontact::methods::Fem {
+        degree: Some(Degree::Quadratic),
+        far_field: Some(FarField::Boussinesq),
+        ..fem
     };
-    let fem_state = fem_solver::solve(kind, 0.0, FemLoad::ConcaveDepth(depth), &options)?;
+    let scene = super::unit_scene(kind, 0.0, UnitLoad::Depth(depth), Some(1e-3))?;
     // Nodal estimates in the contact, clipped near the rim singularity.
-    let fem = ringcontact::fem::nodal_pressure(&fem_state.field.mesh, &fem_state.reactions)
+    let fem = fem
+        .state(&scene)?
+        .contact_pressure()
         .into_iter()
         .filter(|&(r, p)| p > 0.0 && r < 0.99)
         .collect();
@@ -187,43 +182,22 @@ pub(crate) fn pressure_profiles(ring: &RingBemSolver) -> Result<PressureProfiles
     })
 }
 
-/// The grid BEM's pressure at [`cases::PRESSURE_PROFILE`] on `n²` cells, averaged over `bins`
-/// rings of equal width inside `r < a`.
-fn ring_averaged_grid_pressure(n: usize, bins: usize) -> Result<Points> {
-    let (kind, depth) = cases::PRESSURE_PROFILE;
-    let op = GridOperator::new(n, 2.0 / n as f64);
-    let punch = discretise(kind, 0.0, n);
-    let c = solve_contact(
-        &op,
-        &punch.allowed,
-        &punch.profile,
-        GridLoad::Depth(depth),
-        1e-10,
-        10_000,
-    )?;
-    let mut sum = vec![0.0; bins];
-    let mut count = vec![0usize; bins];
-    for i in 0..n {
-        for j in 0..n {
-            let r = cell_centre(n, i).hypot(cell_centre(n, j));
-            if r < 1.0 {
-                let b = ((r * bins as f64) as usize).min(bins - 1);
-                sum[b] += c.pressure[i * n + j];
-                count[b] += 1;
-            }
-        }
-    }
-    Ok((0..bins)
-        .filter(|&b| count[b] > 0)
-        .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
-        .collect())
+/// The grid BEM's state of `kind` under `load` on `n²` cells alone (the paper's method as its
+/// peers run it: no coarser levels, residual 1e-10).
+fn grid_alone(kind: PunchKind, eps: f64, load: UnitLoad, n: usize) -> Result<GridState> {
+    let grid = GridBem {
+        cells: n,
+        with_estimate: false,
+        ..GridBem::default()
+    };
+    grid.state(&super::unit_scene(kind, eps, load, None)?)
 }
 
 /// The pulled part of the JKR route's adhesive annular branch of `punch` at `d0/h`, from the
 /// ring BEM at `b/a` = 0.30-0.995 (`d/h = γ1 - (d0/h)/κ_in`, `F/F0 = (h/d0) γ2 - γ/κ_in`), as
 /// `(d/d0, F/F0)`: from its fixed-grips end (the most negative depth) back toward smaller
 /// `b/a` while the depth rises, up to `d = 0`.
-pub(crate) fn annular_jkr_branch(ring: &RingBemSolver, punch: PunchKind, d0_over_h: f64) -> Points {
+pub(crate) fn annular_jkr_branch(ring: &RingBem, punch: PunchKind, d0_over_h: f64) -> Points {
     // b/a = 0.30-0.96 by 0.01, then 0.965-0.995 by 0.005 (at small d0/h the annulus lets go
     // near the rim: at b/a = 0.98 for the linear gap at d0/h = 0.3).
     let ratios = (0..=66)

@@ -11,7 +11,6 @@ pub mod stability;
 pub mod sweeps;
 
 use ringcontact::error::Result;
-use ringcontact::fem::FemLoad;
 use ringcontact::punch::PunchKind;
 use ringcontact::scene::{Scene, SceneSpec};
 
@@ -28,20 +27,35 @@ pub(crate) fn unit_spec(kind: PunchKind, eps: f64) -> SceneSpec {
     }
 }
 
-/// The scene a FEM load describes, for a solve through [`ringcontact::methods::Method`]: punch
-/// `kind`, `b/a = eps` (fixed annulus), depth `d/h` or force `F/(2 E* h a)` of a concave punch,
-/// on the unit scene (`a = h = E* = 1`), with the tolerance if given.
-pub(crate) fn scene_of_fem_load(
+/// A state of the unit scene (`a = h = E* = 1`): a flat-faced punch (its depth is the unit of
+/// its answer `γ`), or a concave punch at the depth `d/h`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum UnitLoad {
+    /// A flat-faced punch: `γ = F/(2 E* d a)` whatever the depth.
+    Flat,
+    /// A concave punch pressed to `d/h`.
+    Depth(f64),
+}
+
+impl UnitLoad {
+    /// A concave punch at `depth`, or a flat-faced one (`None`).
+    pub(crate) fn of_depth(depth: Option<f64>) -> Self {
+        depth.map_or(UnitLoad::Flat, UnitLoad::Depth)
+    }
+}
+
+/// The unit scene of punch `kind`, `b/a = eps` (fixed annulus) under `load`, with the tolerance
+/// if given, for a solve through [`ringcontact::methods`].
+pub(crate) fn unit_scene(
     kind: PunchKind,
     eps: f64,
-    load: FemLoad,
+    load: UnitLoad,
     tolerance: Option<f64>,
 ) -> Result<Scene> {
     let spec = unit_spec(kind, eps);
     let spec = match load {
-        FemLoad::Flat => spec,
-        FemLoad::ConcaveDepth(depth) => spec.depth(depth),
-        FemLoad::ConcaveForce(force) => spec.force(2.0 * force),
+        UnitLoad::Flat => spec,
+        UnitLoad::Depth(depth) => spec.depth(depth),
     };
     match tolerance {
         Some(t) => spec.tolerance(t).validate(),

@@ -12,16 +12,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::harness::cases::{self, RingPoints, SpeedProblem};
 
+use super::UnitLoad;
 use crate::harness::records::fenicsx::FenicsxComparison;
-use ringcontact::bem::grid::GridLoad;
-use ringcontact::bem::grid_contact;
-use ringcontact::bem::ring::{ContactRegion, RingSystem};
-use ringcontact::bem::ring_contact::RingBemSolver;
-use ringcontact::error::{Error, Result};
-use ringcontact::fem::{self as fem_solver, FemLoad, FemOptions};
-use ringcontact::mesh::triangulation::Degree;
-use ringcontact::methods::{self, Method, MethodOptions};
-use ringcontact::numerics::tanh_sinh::TanhSinhRule;
+use ringcontact::error::Result;
+use ringcontact::methods::Degree;
+use ringcontact::methods::FarField;
+use ringcontact::methods::{self, GridBem, Method, MethodOptions, RingBem};
 use ringcontact::punch::PunchKind;
 
 /// One (time, error) point of a method on a problem.
@@ -198,7 +194,7 @@ impl Problem {
 
     /// The ring BEM's value the points are compared with: `γ` at tolerance 1e-12 for the
     /// problem whose points are node counts, the others' `γ` or `γ2` at 1e-11.
-    pub(crate) fn yardstick(self, ring: &RingBemSolver) -> Result<f64> {
+    pub(crate) fn yardstick(self, ring: &RingBem) -> Result<f64> {
         let cost = self.cost_problem();
         match self.case().ring_points {
             RingPoints::NodeCounts => Ok(ring.flat(cost.eps, 1e-12)?.gamma.unwrap_or(f64::NAN)),
@@ -212,10 +208,7 @@ impl Problem {
             kind: case.kind,
             eps: case.eps,
             family: case.family,
-            load: match case.depth {
-                Some(depth) => FemLoad::ConcaveDepth(depth),
-                None => FemLoad::Flat,
-            },
+            load: UnitLoad::of_depth(case.depth),
         }
     }
 }
@@ -254,25 +247,15 @@ pub struct BasePoints {
 /// says), the FEM with P1 and P2 on the
 /// committed levels L0-L2 where the problem has a committed family, and the grid BEM at 64² to
 /// 256² cells.
-pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<BasePoints> {
+pub(crate) fn base_points(ring: &RingBem, problem: Problem) -> Result<BasePoints> {
     let cost = problem.cost_problem();
     let yardstick = problem.yardstick(ring)?;
     let mut points = match problem.case().ring_points {
         RingPoints::NodeCounts => {
-            let rule = TanhSinhRule::new(1.0 / 16.0);
             // The ring BEM at a few node counts (it converges geometrically).
             let mut points = Vec::new();
             for n in [3usize, 4, 5, 6, 8] {
-                let (g, t) = timed(|| {
-                    let region = ContactRegion::Annulus { eps: cost.eps };
-                    RingSystem::assemble(region, n, &rule)
-                        .solve(&vec![1.0; n])
-                        .map(|f| 0.5 * f.force)
-                        .ok_or_else(|| Error::NoConvergence {
-                            method: "ring-bem".into(),
-                            reason: "singular".into(),
-                        })
-                })?;
+                let (g, t) = timed(|| ring.flat_on_nodes(cost.eps, n))?;
                 points.push(point("ring-bem", format!("N = {n}"), t, g, yardstick));
             }
             points
@@ -320,20 +303,21 @@ pub(crate) fn base_points(ring: &RingBemSolver, problem: Problem) -> Result<Base
 /// `tolerance`, when gmsh is there (`None` without gmsh, and when the solve fails: the reason is
 /// written to standard error and the point left out).
 pub(crate) fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
-    if !fem_solver::gmsh_found(&crate::harness::settings::data_paths()) {
+    if !crate::harness::settings::fem().makes_meshes() {
         return None;
     }
     let cost = problem.cost_problem();
-    let degree = fem_solver::default_degree(&crate::harness::settings::data_paths(), tolerance);
     let solve = || {
-        let scene =
-            super::scene_of_fem_load(cost.kind.clone(), cost.eps, cost.load, Some(tolerance))?;
+        let scene = super::unit_scene(cost.kind.clone(), cost.eps, cost.load, Some(tolerance))?;
         methods::solve_with(&scene, Method::Fem, &MethodOptions::default())
     };
     match timed(solve) {
         Ok((s, t)) => Some(estimated_point(
             "fem --tol",
-            format!("tol {tolerance:.0e}, P{}", degree as u8),
+            format!(
+                "tol {tolerance:.0e}, P{}",
+                s.fem.as_ref().map_or(0, |fem| fem.degree)
+            ),
             t,
             s.gamma.or(s.gamma2).unwrap_or(f64::NAN),
             yardstick,
@@ -373,7 +357,7 @@ pub fn assemble(
 /// Error against wall time on every problem, in one process: [`base_points`], a
 /// [`ladder_point`] per entry of `fem_tolerances` and the stored FEniCSx results, [`assemble`]d.
 pub fn speed_accuracy(
-    ring: &RingBemSolver,
+    ring: &RingBem,
     fenicsx: &[FenicsxComparison],
     fem_tolerances: &[f64],
 ) -> Result<Vec<SpeedAccuracy>> {
@@ -405,8 +389,8 @@ fn fenicsx_points(
             let r = &c.stored;
             r.punch == problem.kind
                 && match problem.load {
-                    FemLoad::ConcaveDepth(d) => (r.depth - d).abs() < 1e-12,
-                    _ => {
+                    UnitLoad::Depth(d) => (r.depth - d).abs() < 1e-12,
+                    UnitLoad::Flat => {
                         (r.eps.unwrap_or(0.0) - problem.eps).abs() < 1e-12
                             && (r.depth - 1.0).abs() < 1e-12
                     }
@@ -454,23 +438,23 @@ struct CostProblem {
     eps: f64,
     /// Committed mesh family, if there is one for this contact line.
     family: Option<&'static str>,
-    load: FemLoad,
+    load: UnitLoad,
 }
 
 impl CostProblem {
     /// The depth `d/h` of a concave problem (0 for a flat one).
     fn load_depth(&self) -> f64 {
         match self.load {
-            FemLoad::ConcaveDepth(d) => d,
-            _ => 0.0,
+            UnitLoad::Depth(d) => d,
+            UnitLoad::Flat => 0.0,
         }
     }
 
     /// `γ` (flat) or `γ2` (concave) by the ring BEM at `tolerance`.
-    fn value_of_ring_bem(&self, ring: &RingBemSolver, tolerance: f64) -> Result<f64> {
+    fn value_of_ring_bem(&self, ring: &RingBem, tolerance: f64) -> Result<f64> {
         let value = match self.load {
-            FemLoad::ConcaveDepth(d) => ring.concave_at_depth(&self.kind, d, tolerance)?.gamma2,
-            _ => ring.flat(self.eps, tolerance)?.gamma,
+            UnitLoad::Depth(d) => ring.concave_at_depth(&self.kind, d, tolerance)?.gamma2,
+            UnitLoad::Flat => ring.flat(self.eps, tolerance)?.gamma,
         };
         Ok(value.unwrap_or(f64::NAN))
     }
@@ -480,6 +464,8 @@ impl CostProblem {
 /// is `γ` (flat) or `γ2` (concave).
 fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<CostPoint>> {
     let mut points = Vec::new();
+    // Each FEM point is one model on a committed level (tolerance 1e-3: its estimate unused).
+    let scene = super::unit_scene(problem.kind.clone(), problem.eps, problem.load, Some(1e-3))?;
     for (degree, name) in [(Degree::Linear, "fem P1"), (Degree::Quadratic, "fem P2")] {
         let Some(family) = problem.family else {
             break;
@@ -487,20 +473,13 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
         for level in 0..3 {
             let mesh =
                 crate::harness::settings::mesh_directory().join(format!("{family}-L{level}.msh"));
-            let options = FemOptions {
-                linear_solver: crate::harness::settings::linear_solver(),
-                trace: crate::harness::settings::trace(),
-                data: crate::harness::settings::data_paths(),
-                progress: crate::harness::progress::fem_progress(),
-                degree,
-                tolerance: 1e-3,
+            let fem = methods::Fem {
                 mesh: Some(mesh),
-                poisson_ratio: 0.0,
-                far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
+                degree: Some(degree),
+                far_field: Some(FarField::Boussinesq),
+                ..crate::harness::settings::fem()
             };
-            let (s, t) = timed(|| {
-                fem_solver::solve(problem.kind.clone(), problem.eps, problem.load, &options)
-            })?;
+            let (s, t) = timed(|| fem.state(&scene))?;
             points.push(point(
                 name,
                 format!("L{level}"),
@@ -510,13 +489,15 @@ fn fem_and_grid_points(problem: &CostProblem, yardstick: f64) -> Result<Vec<Cost
             ));
         }
     }
-    let grid_load = match problem.load {
-        FemLoad::ConcaveDepth(d) => GridLoad::Depth(d),
-        _ => GridLoad::Depth(1.0),
-    };
+    // The paper's method as peers run it: the requested grid alone, residual 1e-10.
+    let scene = super::unit_scene(problem.kind.clone(), problem.eps, problem.load, None)?;
     for n in [64usize, 128, 256] {
-        let (s, t) =
-            timed(|| grid_contact::solve(problem.kind.clone(), problem.eps, n, grid_load, 1e-10))?;
+        let grid = GridBem {
+            cells: n,
+            with_estimate: false,
+            ..GridBem::default()
+        };
+        let (s, t) = timed(|| grid.state(&scene))?;
         points.push(point(
             "grid-bem",
             format!("{n}²"),

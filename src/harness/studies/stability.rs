@@ -12,13 +12,13 @@
 
 use serde::Serialize;
 
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::Result;
-use ringcontact::fem::FemLoad;
+use ringcontact::methods::RingBem;
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference::asymptotic::{collins_series, narrow_ring};
 
+use super::UnitLoad;
 use crate::harness::cases;
 use ringcontact::scene::{Scene, SceneSpec};
 
@@ -40,7 +40,7 @@ pub struct Probe {
 /// Value and bound of the independent reference of a scene, if there is one.
 type Reference = Option<(f64, f64)>;
 
-fn flat_reference(ring: &RingBemSolver, eps: f64) -> Reference {
+fn flat_reference(ring: &RingBem, eps: f64) -> Reference {
     if eps <= 0.05 {
         let r = collins_series(eps);
         return Some((r.value, r.error_bound.unwrap_or(0.0) + 1e-13));
@@ -61,7 +61,7 @@ fn beyond_closure(kind: &PunchKind, depth: f64) -> Reference {
     (depth >= closure_depth).then_some((closure_force + (depth - closure_depth), 0.0))
 }
 
-fn concave_reference(ring: &RingBemSolver, kind: PunchKind, depth: f64) -> Reference {
+fn concave_reference(ring: &RingBem, kind: PunchKind, depth: f64) -> Reference {
     if let Some(reference) = beyond_closure(&kind, depth) {
         return Some(reference);
     }
@@ -171,7 +171,7 @@ fn swapped_tag_mesh() -> Option<std::path::PathBuf> {
 
 /// The disk (`eps = 0`) or the fixed annulus of `b/a = eps` on the unit scene.
 fn flat_scene(eps: f64) -> Result<Scene> {
-    super::scene_of_fem_load(cases::flat_punch(eps), eps, FemLoad::Flat, None)
+    super::unit_scene(cases::flat_punch(eps), eps, UnitLoad::Flat, None)
 }
 
 /// A punch's name as words, hyphens as spaces.
@@ -181,7 +181,7 @@ fn words(kind: &PunchKind) -> String {
 
 /// A concave punch at depth `d/h` on the unit scene.
 fn concave_scene(kind: PunchKind, depth: f64, tolerance: Option<f64>) -> Result<Scene> {
-    super::scene_of_fem_load(kind, 0.0, FemLoad::ConcaveDepth(depth), tolerance)
+    super::unit_scene(kind, 0.0, UnitLoad::Depth(depth), tolerance)
 }
 
 /// Number of probes [`run`] makes (for progress display).
@@ -189,7 +189,7 @@ pub const PROBES: usize = 43;
 
 /// Run all probes, calling `progress` as each one ends.
 pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     let mut probes = Vec::new();
     let mut push = |p: Probe| {
         progress(&p);
@@ -206,7 +206,7 @@ pub fn run(mut progress: impl FnMut(&Probe)) -> Vec<Probe> {
 
 /// Ring BEM: eps -> 0 and -> 1, the open hole's blow-up, the closing hole at the edge of full
 /// contact, a tolerance below its rounding floor.
-fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+fn ring_bem_probes(ring: &RingBem, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
     let punches = cases::stability_punches();
     let annulus = words(&punches.annulus);
@@ -258,7 +258,7 @@ fn ring_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 }
 
 /// FEM: default ladder, tolerances it cannot reach, coarse single meshes, P1.
-fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+fn fem_probes(ring: &RingBem, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
     for (eps, tol) in [(0.0, 1e-3), (0.5, 1e-4), (0.9, 1e-5)] {
         let scene = flat_scene(eps).map(|s| Scene {
@@ -288,7 +288,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
     }
     let coarse = MethodOptions {
         mesh: Some(crate::harness::settings::mesh_directory().join("disk-L0.msh")),
-        degree: Some(ringcontact::mesh::triangulation::Degree::Linear),
+        degree: Some(ringcontact::methods::Degree::Linear),
         ..crate::harness::settings::method_options()
     };
     let p = probe(
@@ -314,7 +314,7 @@ fn fem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 }
 
 /// Grid BEM: rings narrower than the cells, coarse grids, near full contact.
-fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+fn grid_bem_probes(ring: &RingBem, push: &mut impl FnMut(Probe)) {
     let punches = cases::stability_punches();
     let annulus = words(&punches.annulus);
     for (eps, n) in [(0.9, 64), (0.97, 64), (0.99, 64), (0.99, 512)] {
@@ -349,18 +349,14 @@ fn grid_bem_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
 
 /// Iteration caps: Polonsky-Keer stopped after 3 iterations must be an error, not a number.
 fn iteration_cap_probe() -> Probe {
-    use ringcontact::bem::grid::{solve_contact, GridLoad as Load, GridOperator};
-    let op = GridOperator::new(64, 2.0 / 64.0);
     let (closing, _) = cases::stability_punches().closing_hole;
-    let punch = ringcontact::bem::grid_contact::discretise(closing.clone(), 0.0, 64);
-    let outcome = solve_contact(
-        &op,
-        &punch.allowed,
-        &punch.profile,
-        Load::Depth(1.5),
-        1e-10,
-        3,
-    );
+    let capped = ringcontact::methods::GridBem {
+        cells: 64,
+        with_estimate: false,
+        max_iterations: Some(3),
+        ..Default::default()
+    };
+    let outcome = concave_scene(closing.clone(), 1.5, None).and_then(|s| capped.state(&s));
     Probe {
         method: "grid-bem".into(),
         probe: format!("{closing} d/h = 1.5, 64², iteration cap 3"),
@@ -425,7 +421,7 @@ fn declined_probes(push: &mut impl FnMut(Probe)) {
 }
 
 /// References outside their ranges.
-fn reference_probes(ring: &RingBemSolver, push: &mut impl FnMut(Probe)) {
+fn reference_probes(ring: &RingBem, push: &mut impl FnMut(Probe)) {
     let none = MethodOptions::default();
     let annulus = words(&cases::stability_punches().annulus);
     for eps in [0.5, 0.95] {

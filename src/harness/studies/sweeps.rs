@@ -12,8 +12,8 @@ use std::path::{Path, PathBuf};
 use crate::harness::report::svg;
 use crate::harness::report::table::{Cell, Column, Format, Table};
 use ringcontact::adhesion::{self, ConcaveJkr, Critical, FixedAnnulusJkr};
-use ringcontact::bem::ring_contact::RingBemSolver;
 use ringcontact::error::{Error, Result};
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 
 /// What a sweep returns: its rows, the table of them, and the files written.
@@ -50,10 +50,7 @@ fn annulus_ratios() -> Vec<f64> {
 
 /// Fixed annulus: both edges' critical states against `b/a`; writes
 /// `critical-LABEL.{csv,svg}` into `out` (`LABEL` the annulus's).
-pub(crate) fn fixed_annulus_sweep(
-    solver: &RingBemSolver,
-    out: &Path,
-) -> Result<Sweep<FixedAnnulusJkr>> {
+pub(crate) fn fixed_annulus_sweep(solver: &RingBem, out: &Path) -> Result<Sweep<FixedAnnulusJkr>> {
     let rows = annulus_ratios()
         .into_iter()
         .map(|e| adhesion::fixed_annulus(solver, e))
@@ -133,7 +130,7 @@ fn pulloff(c: &Option<Critical>) -> Option<f64> {
 /// writes `pulloff-KIND.{csv,svg}` and `branches-KIND.{csv,svg}` into `out`. `progress` is
 /// called after each `d0/h`.
 pub(crate) fn pulloff_sweep(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     out: &Path,
     mut progress: impl FnMut(&str),
@@ -203,12 +200,7 @@ fn branch_ratios() -> impl Iterator<Item = f64> {
 
 /// Fig. 9's analogue: the adhesive branches `F/(2E*ha)` against `d/h` (inner edge in
 /// equilibrium) for a few `d0/h`, with the non-adhesive curve.
-fn branches(
-    solver: &RingBemSolver,
-    kind: PunchKind,
-    out: &Path,
-    files: &mut Vec<PathBuf>,
-) -> Result<()> {
+fn branches(solver: &RingBem, kind: PunchKind, out: &Path, files: &mut Vec<PathBuf>) -> Result<()> {
     let mut table = Table::new(
         &format!("{kind}: adhesive branches"),
         vec![

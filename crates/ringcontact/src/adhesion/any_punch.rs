@@ -5,8 +5,8 @@
 use serde::Serialize;
 
 use super::{band_jkr, concave, fixed_annulus, BandJkr, ConcaveJkr, FixedAnnulusJkr};
-use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
+use crate::methods::RingBem;
 use crate::punch::{Contact, PunchKind};
 
 /// One punch's JKR solution (serialised as the solution it holds).
@@ -24,12 +24,7 @@ pub enum Jkr {
 /// The JKR solution of `kind`: at `b/a = eps` for a fixed annulus, at the work of adhesion
 /// `d0/h = d0h` (`d0 = sqrt(2π a Δw / E*)`) for a free inner edge or a free band; an error
 /// naming the value that is missing or belongs to the other family.
-pub fn jkr(
-    solver: &RingBemSolver,
-    kind: &PunchKind,
-    eps: Option<f64>,
-    d0h: Option<f64>,
-) -> Result<Jkr> {
+pub fn jkr(solver: &RingBem, kind: &PunchKind, eps: Option<f64>, d0h: Option<f64>) -> Result<Jkr> {
     let name = kind.name();
     match kind.contact() {
         Contact::Disk => Err(Error::invalid(

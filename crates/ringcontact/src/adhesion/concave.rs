@@ -12,8 +12,9 @@ use serde::Serialize;
 
 use super::ROOT_PI;
 use crate::bem::ring::{ContactRegion, RingSystem};
-use crate::bem::ring_contact::{RingBemSolver, HOLE_OVERLAP_TOLERANCE, HOLE_PROBES};
+use crate::bem::ring_contact::{HOLE_OVERLAP_TOLERANCE, HOLE_PROBES};
 use crate::error::{Error, Result};
+use crate::methods::RingBem;
 use crate::numerics::brent::brent_minimum;
 use crate::numerics::tanh_sinh::TanhSinhRule;
 use crate::punch::PunchKind;
@@ -85,7 +86,7 @@ impl BranchPoint {
 /// Ring-BEM quantities at `eps` for a concave punch (tolerance [`branch_tolerance`]). A point
 /// whose solves cannot meet it is taken at the first of [`FALLBACK_BRANCH_TOLERANCES`] they
 /// meet, its estimates (carried into the critical states' error bounds) saying so.
-pub fn branch_point(solver: &RingBemSolver, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
+pub fn branch_point(solver: &RingBem, kind: PunchKind, eps: f64) -> Result<BranchPoint> {
     let tolerance = branch_tolerance(&kind);
     let mut outcome = branch_point_at(solver, kind.clone(), eps, tolerance);
     for looser in FALLBACK_BRANCH_TOLERANCES {
@@ -123,7 +124,7 @@ pub fn branch_tolerance(kind: &PunchKind) -> f64 {
 
 /// [`branch_point`] from ring-BEM solves at `tolerance`.
 fn branch_point_at(
-    solver: &RingBemSolver,
+    solver: &RingBem,
     kind: PunchKind,
     eps: f64,
     tolerance: f64,
@@ -131,12 +132,16 @@ fn branch_point_at(
     let probes =
         |v: Vec<f64>| -> [f64; HOLE_PROBES] { v.try_into().unwrap_or([f64::NAN; HOLE_PROBES]) };
     let (concave, flat, hole_clearance, hole_lag) = if kind.may_meet_hole_floor() {
-        let (concave, clearance) = solver.free_inner_edge_clearance(&kind, eps, tolerance)?;
-        let (flat, lag) = solver.flat_hole_lag(eps, tolerance)?;
+        let (concave, clearance) = solver
+            .engine()
+            .free_inner_edge_clearance(&kind, eps, tolerance)?;
+        let (flat, lag) = solver.engine().flat_hole_lag(eps, tolerance)?;
         (concave, flat, probes(clearance), probes(lag))
     } else {
         (
-            solver.free_inner_edge_field(&kind, eps, tolerance)?,
+            solver
+                .engine()
+                .free_inner_edge_field(&kind, eps, tolerance)?,
             solver.flat(eps, tolerance)?,
             UNPROBED_CLEARANCE,
             [0.0; HOLE_PROBES],
@@ -540,7 +545,7 @@ pub const D0H_RANGE: (f64, f64) = (1e-6, 1e6);
 /// searches of one analysis share the points they have in common (the paper's route and the
 /// full route minimise the same `F(eps)` and `d(eps)`).
 pub struct ConcaveBranch<'a> {
-    solver: &'a RingBemSolver,
+    solver: &'a RingBem,
     kind: PunchKind,
     /// The points at [`scan_ratios`], in order.
     scan: Vec<BranchPoint>,
@@ -551,7 +556,7 @@ pub struct ConcaveBranch<'a> {
 impl<'a> ConcaveBranch<'a> {
     /// Solve the branch of `kind` at the scan's contact ratios (`0.004 ..= 0.9999`, 201 ratios),
     /// the ratios in parallel. Refuses a punch without a rim or not concave.
-    pub fn new(solver: &'a RingBemSolver, kind: PunchKind) -> Result<Self> {
+    pub fn new(solver: &'a RingBem, kind: PunchKind) -> Result<Self> {
         check_concave(kind.clone())?;
         // A ratio the ring BEM cannot resolve (the widest rings of a steep-walled profile) stops
         // the analysis: the error names the ratio and the scan.
@@ -783,7 +788,7 @@ pub(super) fn check_scale(s: f64) -> Result<()> {
 
 /// JKR analysis of a concave punch for `d0/h = s` (its branch solved for this `s` alone; for
 /// many `d0/h`, solve the [`ConcaveBranch`] once and call [`ConcaveBranch::jkr`]).
-pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
+pub fn concave(solver: &RingBem, kind: PunchKind, s: f64) -> Result<ConcaveJkr> {
     check_concave(kind.clone())?;
     check_scale(s)?;
     ConcaveBranch::new(solver, kind)?.jkr(s)
@@ -792,9 +797,11 @@ pub fn concave(solver: &RingBemSolver, kind: PunchKind, s: f64) -> Result<Concav
 /// Both edges' intensities (units `E* h / sqrt(a)`) of the adhesive contact at a critical
 /// state, solved directly: the annulus `[eps, 1]` pressed to the state's depth, collocated at 40
 /// nodes (a piecewise profile: its band through the flat band's fields, refined to 1e-9).
-fn direct_intensities(solver: &RingBemSolver, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
+fn direct_intensities(solver: &RingBem, kind: PunchKind, c: &Critical) -> Result<(f64, f64)> {
     if kind.piecewise().is_some() {
-        let band = solver.punch_band(&kind, c.eps, 1.0, c.depth, 1e-9)?;
+        let band = solver
+            .engine()
+            .punch_band(&kind, c.eps, 1.0, c.depth, 1e-9)?;
         return Ok((band.inner_stress_intensity, band.outer_stress_intensity));
     }
     let rule = TanhSinhRule::new(1.0 / 16.0);

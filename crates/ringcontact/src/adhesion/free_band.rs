@@ -4,7 +4,7 @@
 //! Units as in the parent module: `d0 = sqrt(2π a Δw / E*)`, `F0 = 2 E* a d0`, `s = d0/h`. An edge is in equilibrium when its energy release rate `K²/(2E*)` equals `Δw`,
 //! i.e. `K = -sqrt(2 E* Δw)`, which is `-s/sqrt(π)` in units of `E* h/sqrt(a)`. For a band
 //! half-width `w` the ring BEM finds the band's centre and the depth `d` with that intensity at
-//! both edges ([`RingBemSolver::band_with_edge_intensity`]): the equilibrium curve
+//! both edges ([`RingBem::band_with_edge_intensity`]): the equilibrium curve
 //! `(b(w), c(w), d(w), F(w))`, no fixed-annulus superposition (the band moves at both ends). The
 //! width parametrises it (the inner edge does not: a narrow adhesive band drifts toward the
 //! axis as it shrinks).
@@ -28,8 +28,8 @@ use std::f64::consts::PI;
 use serde::Serialize;
 
 use super::{check_scale, minimum_in, stationary_point, VALUE_SCATTER};
-use crate::bem::ring_contact::{RingBemSolver, RingState};
 use crate::error::{Error, Result};
+use crate::methods::{RingBem, RingState};
 use crate::punch::PunchKind;
 
 /// Tolerance of the equilibrium states that locate and report the critical ones.
@@ -97,7 +97,7 @@ pub fn plane_strain_pulloff(s: f64, r0: f64, curvature: f64) -> f64 {
 }
 
 /// The JKR pull-off of a free band `kind` under fixed load and fixed grips for `d0/h = s`.
-pub fn band_jkr(solver: &RingBemSolver, kind: &PunchKind, s: f64) -> Result<BandJkr> {
+pub fn band_jkr(solver: &RingBem, kind: &PunchKind, s: f64) -> Result<BandJkr> {
     check_scale(s)?;
     if !kind.is_free_band() {
         return Err(Error::Unsupported {
@@ -154,7 +154,7 @@ impl BranchPoint {
 
 /// A free band's JKR equilibrium branch at `d0/h = s`: both edges at the intensity `K = -s/√π`.
 struct Branch<'a> {
-    solver: &'a RingBemSolver,
+    solver: &'a RingBem,
     kind: &'a PunchKind,
     s: f64,
     intensity: f64,

@@ -42,6 +42,33 @@ pub struct GridState {
     pub residual: f64,
     pub contact_cells: usize,
     pub wall_s: f64,
+    /// The cells' pressures, row by row over the square `[-L, L]²` (`n²` values, units of the
+    /// solve: `E* d / a` for a flat-faced punch, `E* h / a` for a concave one).
+    pub pressure: Vec<f64>,
+}
+
+impl GridState {
+    /// The cells' pressures averaged over `bins` rings of equal width inside `r < a`, as
+    /// `(r/a, p)` at the rings' mid-radii (rings holding no cell centre left out).
+    pub fn ring_averaged_pressure(&self, bins: usize) -> Vec<(f64, f64)> {
+        let n = self.grid;
+        let mut sum = vec![0.0; bins];
+        let mut count = vec![0usize; bins];
+        for i in 0..n {
+            for j in 0..n {
+                let r = self.square_half_size * cell_centre(n, i).hypot(cell_centre(n, j));
+                if r < 1.0 {
+                    let b = ((r * bins as f64) as usize).min(bins - 1);
+                    sum[b] += self.pressure[i * n + j];
+                    count[b] += 1;
+                }
+            }
+        }
+        (0..bins)
+            .filter(|&b| count[b] > 0)
+            .map(|b| ((b as f64 + 0.5) / bins as f64, sum[b] / count[b] as f64))
+            .collect()
+    }
 }
 
 /// The discretised punch: which cells it covers and its gap there.
@@ -144,6 +171,33 @@ pub fn solve(
     if kind.is_free_band() {
         return solve_band(&kind, n, load, tolerance);
     }
+    solve_capped(kind, eps, n, load, tolerance, default_iteration_cap(n))
+}
+
+/// Polonsky-Keer's default iteration cap on an `n x n` grid, `50 + 20 n`.
+pub fn default_iteration_cap(n: usize) -> usize {
+    50 + 20 * n
+}
+
+/// [`solve`] for a punch with a rim, stopping with an error after `max_iterations` iterations of
+/// Polonsky-Keer.
+pub fn solve_capped(
+    kind: PunchKind,
+    eps: f64,
+    n: usize,
+    load: GridLoad,
+    tolerance: f64,
+    max_iterations: usize,
+) -> Result<GridState> {
+    if kind.is_free_band() {
+        return Err(Error::Unsupported {
+            method: crate::bem::grid::METHOD.into(),
+            reason: format!(
+                "an iteration cap applies to a punch with a rim; the {} is a free band",
+                kind.name()
+            ),
+        });
+    }
     check_grid(n)?;
     // A ring narrower than two cells is not resolved: the staircase would carry most of the error
     // and the number would look plausible. Refuse it instead.
@@ -167,7 +221,6 @@ pub fn solve(
         GridLoad::Force(f) => GridLoad::Force(2.0 * f),
         other => other,
     };
-    let max_iterations = 50 + 20 * n;
     let c = solve_contact(
         &op,
         &punch.allowed,
@@ -212,6 +265,7 @@ pub fn solve(
         residual: c.residual,
         contact_cells: c.contact_cells,
         wall_s,
+        pressure: c.pressure,
     })
 }
 
@@ -330,7 +384,14 @@ fn band_on_square(
         GridLoad::Force(f) => GridLoad::Force(2.0 * f),
         other => other,
     };
-    let c = solve_contact(&op, &allowed, &profile, load, tolerance, 50 + 20 * n)?;
+    let c = solve_contact(
+        &op,
+        &allowed,
+        &profile,
+        load,
+        tolerance,
+        default_iteration_cap(n),
+    )?;
     let (mut inner, mut outer) = (f64::INFINITY, 0.0_f64);
     for i in 0..n {
         for j in 0..n {
@@ -367,6 +428,7 @@ fn band_on_square(
             residual: c.residual,
             contact_cells: c.contact_cells,
             wall_s: 0.0,
+            pressure: c.pressure,
         },
         inner,
         outer,

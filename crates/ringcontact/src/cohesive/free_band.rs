@@ -154,11 +154,8 @@ pub fn run_band(
         .iter()
         .map(|&r| band_mesh(&case, r, ANNULAR_ELEMENTS_PER_ZONE))
         .collect::<Result<Vec<_>>>()?;
-    let jkr = crate::adhesion::band_jkr(
-        &crate::bem::ring_contact::RingBemSolver::new(),
-        &case.punch,
-        case.d0_over_h,
-    )?;
+    let jkr =
+        crate::adhesion::band_jkr(&crate::methods::RingBem::new(), &case.punch, case.d0_over_h)?;
     touched_sequence(
         &case,
         ranges,

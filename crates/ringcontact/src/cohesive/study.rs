@@ -11,7 +11,6 @@ use std::time::Instant;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::bem::ring_contact::RingBemSolver;
 use crate::cohesive::equilibrium::CohesiveSurface;
 use crate::cohesive::law::ExponentialLaw;
 use crate::cohesive::path::{follow, Curve, CurvePoint, PathOptions};
@@ -23,6 +22,7 @@ use crate::heartbeat::Progress;
 use crate::mesh::files::DataPaths;
 use crate::mesh::provider::{self, MeshRequest, ProvidedMesh};
 use crate::mesh::triangulation::Degree;
+use crate::methods::RingBem;
 use crate::punch::{Contact, PunchKind};
 use crate::sparse::Backend;
 
@@ -966,7 +966,7 @@ pub(super) fn file_simulation(
 /// (flat punches; the annular contact of a concave one, if it has a stable one), the pull-off
 /// from full contact and the paper's route on its fitted formulas (concave punches).
 pub(super) fn jkr_values(case: &Case) -> Result<(Option<f64>, Option<f64>, Option<f64>)> {
-    let ring = RingBemSolver::new();
+    let ring = RingBem::new();
     Ok(match case.punch.contact() {
         Contact::Disk => (Some(1.0), None, None),
         Contact::FixedAnnulus => {

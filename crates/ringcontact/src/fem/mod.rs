@@ -9,11 +9,10 @@ pub mod contact_band;
 pub mod solver;
 pub mod surface_response;
 
-// The FEM's API for the harness and other callers, for what only the FEM offers beside
-// `methods::Method` (a scene's solution): a solve with its full state (fields, reactions,
-// timings), a solve on a given mesh (convergence ladders), the mesh ladder and its start, the
-// component of the error refinement does not reduce, and nodal contact pressures. The harness
-// uses these names and nothing deeper (tests/layering.rs).
+// The FEM's API for the methods (`methods::Fem` wraps it for users and the harness): a solve
+// with its full state (fields, reactions, timings), a solve on a given mesh (convergence
+// ladders), the mesh ladder and its start, the component of the error refinement does not
+// reduce, and nodal contact pressures.
 pub use contact::nodal_pressure;
 pub use solver::{
     contact_start, default_degree, gmsh_found, mesh_directory, mesh_sequence, solve,

@@ -180,6 +180,14 @@ pub struct FemState {
     pub outer_edge: Option<f64>,
 }
 
+impl FemState {
+    /// Nodal contact pressures `(r, p)` along the contact line, ascending in `r`
+    /// ([`crate::fem::contact::nodal_pressure`]: the reactions over the nodes' weights).
+    pub fn contact_pressure(&self) -> Vec<(f64, f64)> {
+        crate::fem::contact::nodal_pressure(&self.field.mesh, &self.reactions)
+    }
+}
+
 /// Mesh and displacement `(u_r, u_z)` per node of a solved model.
 #[derive(Clone, Debug)]
 pub struct FemField {

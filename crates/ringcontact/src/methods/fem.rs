@@ -8,6 +8,7 @@ use super::units::base;
 use super::Solver;
 use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
+pub use crate::fem::solver::FemState;
 use crate::fem::solver::{self as fem_solver, FemLoad, FemOptions};
 use crate::heartbeat::Progress;
 use crate::mesh::files::DataPaths;
@@ -233,8 +234,21 @@ impl Solver for Fem {
     }
 }
 
-/// Solve with the finite-element method.
-fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
+impl Fem {
+    /// The FEM's full answer at `scene` (its fields, reactions, active set, timings): what
+    /// [`Solver::solve`] reports, before it becomes a [`Solution`].
+    pub fn state(&self, scene: &Scene) -> Result<FemState> {
+        fem_state(scene, self)
+    }
+
+    /// Whether gmsh is there to make meshes for a scene (without it, the committed meshes only).
+    pub fn makes_meshes(&self) -> bool {
+        fem_solver::gmsh_found(&self.data.clone().unwrap_or_default())
+    }
+}
+
+/// The FEM's state at `scene` with `options`.
+fn fem_state(scene: &Scene, options: &Fem) -> Result<FemState> {
     let kind = scene.punch.kind.clone();
     let a = scene.punch.rim_radius;
     let es = scene.material.effective_modulus;
@@ -271,7 +285,14 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
         data,
         progress: options.progress,
     };
-    let state = fem_solver::solve(kind.clone(), scene.punch.inner_ratio(), load, &fem_options)?;
+    fem_solver::solve(kind, scene.punch.inner_ratio(), load, &fem_options)
+}
+
+/// Solve with the finite-element method.
+fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
+    let kind = scene.punch.kind.clone();
+    let a = scene.punch.rim_radius;
+    let state = fem_state(scene, options)?;
     let outer_radius = state.outer_edge.map_or(a, |c| c * a);
     if let Some(path) = &options.vtu {
         crate::discretisation::vtu::write_vtu(path, &state.field.mesh, &state.field.displacement)?;

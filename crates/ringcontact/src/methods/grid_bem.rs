@@ -7,6 +7,7 @@ use super::ladder::{Ladder, LocatedEdges, Rung, StudyCase};
 use super::units::base;
 use super::Solver;
 use crate::bem::grid::GridLoad;
+pub use crate::bem::grid_contact::GridState;
 use crate::bem::{grid_contact, grid_estimate};
 use crate::error::{Error, Result};
 use crate::punch::Contact;
@@ -27,6 +28,9 @@ pub struct GridBem {
     /// Solve the coarser levels of the error estimate too (default); `false` solves the
     /// requested grid alone (the paper's method as the peer codes run it).
     pub with_estimate: bool,
+    /// Polonsky-Keer's iteration cap, past which the solve is an error (default
+    /// [`grid_contact::default_iteration_cap`], `50 + 20 N`); a punch with a rim only.
+    pub max_iterations: Option<usize>,
 }
 
 impl GridBem {
@@ -34,6 +38,62 @@ impl GridBem {
     pub const MIN_CELLS: usize = grid_contact::MIN_GRID;
     /// The most cells per side the grid BEM takes.
     pub const MAX_CELLS: usize = grid_contact::MAX_GRID;
+
+    /// The requested grid's own state at `scene` (its cell pressures among it), without the
+    /// coarser levels of the error estimate.
+    pub fn state(&self, scene: &Scene) -> Result<GridState> {
+        let load = grid_load(scene)?;
+        self.state_under(scene, load, scene_tolerance(scene))
+    }
+
+    /// The state on `self.cells` cells per side under `load` at `tolerance`.
+    fn state_under(&self, scene: &Scene, load: GridLoad, tolerance: f64) -> Result<GridState> {
+        let kind = scene.punch.kind.clone();
+        if self.extent.is_some() && !kind.is_free_band() {
+            return Err(Error::Unsupported {
+                method: self.name().into(),
+                reason: EXTENT_ONLY_FOR_A_BAND.into(),
+            });
+        }
+        let eps = scene.punch.inner_ratio();
+        match (self.extent, self.max_iterations) {
+            (Some(half_size), None) => {
+                grid_contact::solve_band_on_square(&kind, self.cells, half_size, load, tolerance)
+            }
+            (None, Some(cap)) => {
+                grid_contact::solve_capped(kind, eps, self.cells, load, tolerance, cap)
+            }
+            (None, None) => grid_contact::solve(kind, eps, self.cells, load, tolerance),
+            (Some(_), Some(_)) => Err(Error::Unsupported {
+                method: self.name().into(),
+                reason: "an iteration cap applies to a punch with a rim, a grid extent to a \
+                         free band: not both"
+                    .into(),
+            }),
+        }
+    }
+}
+
+/// The grid BEM's convergence criterion: the complementarity residual 1e-10, or the scene's
+/// tolerance if tighter.
+fn scene_tolerance(scene: &Scene) -> f64 {
+    scene.tolerance.unwrap_or(1e-10).min(1e-10)
+}
+
+/// The grid's load of `scene`: unit depth (flat-faced), `d/h` or `F/(2 E* h a)` (concave).
+fn grid_load(scene: &Scene) -> Result<GridLoad> {
+    let a = scene.punch.rim_radius;
+    let es = scene.material.effective_modulus;
+    let h = scene.punch.hole_depth;
+    match (scene.punch.kind.is_concave(), scene.load) {
+        (false, _) => Ok(GridLoad::Depth(1.0)),
+        (_, Load::Depth(d)) => Ok(GridLoad::Depth(d / h)),
+        (_, Load::Force(f)) => Ok(GridLoad::Force(f / (2.0 * es * h * a))),
+        (_, Load::ContactRatio(_)) => Err(Error::Unsupported {
+            method: crate::bem::grid::METHOD.into(),
+            reason: "the grid BEM takes a depth or a force (use the ring BEM for --eps)".into(),
+        }),
+    }
 }
 
 impl Default for GridBem {
@@ -42,6 +102,7 @@ impl Default for GridBem {
             cells: DEFAULT_GRID,
             extent: None,
             with_estimate: true,
+            max_iterations: None,
         }
     }
 }
@@ -101,13 +162,7 @@ impl Solver for GridBem {
     }
 
     fn compute(&self, scene: &Scene) -> Result<Solution> {
-        if self.extent.is_some() && !scene.punch.kind.is_free_band() {
-            return Err(Error::Unsupported {
-                method: self.name().into(),
-                reason: EXTENT_ONLY_FOR_A_BAND.into(),
-            });
-        }
-        solve_grid_bem(scene, self.cells, self.extent, self.with_estimate)
+        solve_grid_bem(scene, self)
     }
 }
 
@@ -116,49 +171,28 @@ pub(super) const EXTENT_ONLY_FOR_A_BAND: &str =
     "--grid-extent sets the square of a free band's grid (a punch whose contact edges are both \
      free) with --method grid-bem (the other punches' grid covers their own [-a, a]²)";
 
-/// Solve with the square-grid FFT BEM on `n x n` cells; `extent`: a free band's square
-/// half-size `L/a` (see [`GridBem::extent`]). Its convergence criterion is the complementarity
+/// Solve with the square-grid FFT BEM on `n x n` cells (`grid.cells`); a free band's square
+/// half-size `L/a` is `grid.extent` if given. Its convergence criterion is the complementarity
 /// residual (tolerance 1e-10, or the scene's if tighter); its discretisation error is estimated
 /// from the same problem on `n/2` and `n/4` cells over the same square
 /// ([`crate::bem::grid_estimate`]); where a coarser level cannot be solved (a ring too narrow
-/// for it, `n/4 < 8`) the solution has no estimate and says why. `estimated: false` skips the
-/// coarser levels.
-fn solve_grid_bem(
-    scene: &Scene,
-    n: usize,
-    extent: Option<f64>,
-    estimated: bool,
-) -> Result<Solution> {
+/// for it, `n/4 < 8`) the solution has no estimate and says why. `grid.with_estimate: false`
+/// skips the coarser levels.
+fn solve_grid_bem(scene: &Scene, grid: &GridBem) -> Result<Solution> {
     let kind = scene.punch.kind.clone();
     let a = scene.punch.rim_radius;
-    let es = scene.material.effective_modulus;
-    let h = scene.punch.hole_depth;
-    let load = match (kind.is_concave(), scene.load) {
-        (false, _) => GridLoad::Depth(1.0),
-        (_, Load::Depth(d)) => GridLoad::Depth(d / h),
-        (_, Load::Force(f)) => GridLoad::Force(f / (2.0 * es * h * a)),
-        (_, Load::ContactRatio(_)) => {
-            return Err(Error::Unsupported {
-                method: crate::bem::grid::METHOD.into(),
-                reason: "the grid BEM takes a depth or a force (use the ring BEM for --eps)".into(),
-            })
-        }
-    };
-    let tolerance = scene.tolerance.unwrap_or(1e-10).min(1e-10);
+    let n = grid.cells;
+    let load = grid_load(scene)?;
+    let tolerance = scene_tolerance(scene);
     let eps = scene.punch.inner_ratio();
     let start = Instant::now();
-    let state = match extent {
-        Some(half_size) => {
-            grid_contact::solve_band_on_square(&kind, n, half_size, load, tolerance)?
-        }
-        None => grid_contact::solve(kind.clone(), eps, n, load, tolerance)?,
-    };
+    let state = grid.state_under(scene, load, tolerance)?;
     let free_edges: &[fn(&grid_contact::GridState) -> f64] = match kind.contact() {
         Contact::FreeBand => &[grid_estimate::inner_edge, grid_estimate::outer_edge],
         Contact::RimAndFreeInner => &[grid_estimate::inner_edge],
         Contact::Disk | Contact::FixedAnnulus => &[],
     };
-    let estimate = estimated.then(|| {
+    let estimate = grid.with_estimate.then(|| {
         grid_estimate::estimate(&state, free_edges, |m| {
             if kind.is_free_band() {
                 grid_contact::solve_band_on_square(

@@ -12,10 +12,8 @@ use std::path::PathBuf;
 use serde::Serialize;
 
 use crate::bem::ring_contact;
-use crate::discretisation::far_field::FarField;
 use crate::error::{Error, Result};
 use crate::fem::solver as fem_solver;
-use crate::mesh::triangulation::Degree;
 use crate::scene::Scene;
 use crate::solution::Solution;
 
@@ -27,11 +25,14 @@ mod reference;
 mod ring_bem;
 mod units;
 
+// The FEM's option types, with the method that takes them.
+pub use crate::discretisation::far_field::FarField;
+pub use crate::mesh::triangulation::Degree;
 pub use auto::Auto;
-pub use fem::Fem;
-pub use grid_bem::{GridBem, DEFAULT_GRID};
+pub use fem::{Fem, FemState};
+pub use grid_bem::{GridBem, GridState, DEFAULT_GRID};
 pub use reference::Reference;
-pub use ring_bem::RingBem;
+pub use ring_bem::{BandState, RingBem, RingState};
 
 /// A method: solves a scene into a [`Solution`] with its own error estimate.
 pub trait Solver {
@@ -136,6 +137,7 @@ impl Method {
                 cells: options.grid.unwrap_or(DEFAULT_GRID),
                 extent: options.grid_extent,
                 with_estimate: !options.grid_without_estimate,
+                max_iterations: None,
             }),
             Method::Auto => Box::new(Auto {
                 vtu: options.vtu.clone(),

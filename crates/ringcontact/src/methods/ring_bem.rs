@@ -7,14 +7,19 @@ use super::ladder::{Ladder, LocatedEdges, Rung, StudyCase};
 use super::units::base;
 use super::Solver;
 use crate::bem::ring::{ContactRegion, RingSystem};
-use crate::bem::ring_contact::{self, RingBemSolver, RingState};
+use crate::bem::ring_contact::{self, RingBemSolver};
 use crate::error::{Error, Result};
 use crate::numerics::tanh_sinh::TanhSinhRule;
+use crate::punch::PunchKind;
 use crate::scene::{Load, Scene};
 use crate::solution::{PressureSample, Solution};
 
+pub use crate::bem::ring_contact::{BandState, RingState};
+
 /// The ring BEM; it holds its [`RingBemSolver`] (quadrature built once), so one value solves
-/// many scenes cheaply.
+/// many scenes cheaply. Besides [`Solver::solve`] (a scene in physical units), it answers in the
+/// unit scene (`a = h = E* = 1`) with the method's own [`RingState`]: `γ`, `γ1`, `γ2`, the edges,
+/// their stress intensities and the pressure, which the JKR analysis and the studies read.
 #[derive(Default)]
 pub struct RingBem {
     solver: RingBemSolver,
@@ -24,6 +29,108 @@ impl RingBem {
     /// A ring BEM with its own solver.
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// The BEM engine itself, for the library's analyses built on its lower-level routes.
+    pub fn engine(&self) -> &RingBemSolver {
+        &self.solver
+    }
+
+    /// Factorisations so far (the cost of the answers given).
+    pub fn factorisations(&self) -> usize {
+        self.solver.factorisations()
+    }
+
+    /// A flat-faced punch's contact of `b/a = eps` (0 for the disk) at unit depth: `γ = F/(2 E* d a)`.
+    pub fn flat(&self, eps: f64, tolerance: f64) -> Result<RingState> {
+        self.solver.flat(eps, tolerance)
+    }
+
+    /// `γ = F/(2 E* d a)` of a flat-faced punch on `b/a = eps` (0: the disk) with `nodes`
+    /// collocation nodes and no refinement: one rung of its node ladder.
+    pub fn flat_on_nodes(&self, eps: f64, nodes: usize) -> Result<f64> {
+        let rule = TanhSinhRule::new(1.0 / 16.0);
+        let region = if eps > 0.0 {
+            ContactRegion::Annulus { eps }
+        } else {
+            ContactRegion::Disk
+        };
+        let field = RingSystem::assemble(region, nodes, &rule)
+            .solve(&vec![1.0; nodes])
+            .ok_or_else(|| Error::NoConvergence {
+                method: ring_contact::METHOD.into(),
+                reason: format!("singular system at {nodes} nodes"),
+            })?;
+        Ok(0.5 * field.force)
+    }
+
+    /// A concave punch whose free inner edge sits at `b/a = eps`: `γ1 = d/h`, `γ2 = F/(2 E* h a)`.
+    pub fn concave_at_ratio(
+        &self,
+        kind: &PunchKind,
+        eps: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        self.solver.concave_at_ratio(kind, eps, tolerance)
+    }
+
+    /// A concave punch pressed to `d/h = depth_over_hole` (full contact past the closure).
+    pub fn concave_at_depth(
+        &self,
+        kind: &PunchKind,
+        depth_over_hole: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        self.solver
+            .concave_at_depth(kind, depth_over_hole, tolerance)
+    }
+
+    /// A concave punch under the force `F/(2 E* h a) = force`.
+    pub fn concave_at_force(
+        &self,
+        kind: &PunchKind,
+        force: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        self.solver.concave_at_force(kind, force, tolerance)
+    }
+
+    /// A concave punch in full contact at `d/h = depth_over_hole` (past its closure).
+    pub fn full_contact(
+        &self,
+        kind: &PunchKind,
+        depth_over_hole: f64,
+        tolerance: f64,
+    ) -> Result<RingState> {
+        self.solver.full_contact(kind, depth_over_hole, tolerance)
+    }
+
+    /// The contact band `inner < ρ < outer` held against the gap `gap(ρ)` at `d/h = depth`:
+    /// its force and the stress intensities of both edges (a prescribed band, no complementarity).
+    pub fn prescribed_band(
+        &self,
+        gap: impl Fn(f64) -> f64,
+        inner: f64,
+        outer: f64,
+        depth: f64,
+        tolerance: f64,
+    ) -> Result<BandState> {
+        self.solver
+            .prescribed_band(gap, inner, outer, depth, tolerance)
+    }
+
+    /// A free band of half-width `half_width` whose edges carry the stress intensity
+    /// `intensity` (the JKR equilibrium of a band), centred near `centre_hint` if given.
+    pub fn band_with_edge_intensity(
+        &self,
+        kind: &PunchKind,
+        half_width: f64,
+        intensity: f64,
+        tolerance: f64,
+        centre_hint: Option<f64>,
+    ) -> Result<RingState> {
+        self.solver
+            .band_with_edge_intensity(kind, half_width, intensity, tolerance, centre_hint)
     }
 }
 
@@ -46,12 +153,6 @@ impl Ladder for RingBem {
 
     fn level(&self, case: &StudyCase, k: usize, _located: LocatedEdges) -> Result<Rung> {
         let n = 6 + 2 * k;
-        let rule = TanhSinhRule::new(1.0 / 16.0);
-        let region = if case.eps > 0.0 {
-            ContactRegion::Annulus { eps: case.eps }
-        } else {
-            ContactRegion::Disk
-        };
         if case.punch.is_concave() {
             return Err(Error::Unsupported {
                 method: "ring-bem".into(),
@@ -60,18 +161,11 @@ impl Ladder for RingBem {
                     .into(),
             });
         }
-        let system = RingSystem::assemble(region, n, &rule);
-        let field = system
-            .solve(&vec![1.0; n])
-            .ok_or_else(|| Error::NoConvergence {
-                method: "ring-bem".into(),
-                reason: "singular system".into(),
-            })?;
         Ok(Rung {
             label: format!("N = {n}"),
             size: 1.0 / n as f64,
             unknowns: n,
-            value: 0.5 * field.force,
+            value: self.flat_on_nodes(case.eps, n)?,
             free_edge: None,
             outer_edge: None,
         })
