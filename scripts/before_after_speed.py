@@ -91,8 +91,8 @@ def main():
                      "after": spread(times[label]["after"]), "after_over_before": spread(ratios)})
     record = {
         "benchmark": "before-after",
-        "command": f"python3 scripts/before_after_speed.py --before {opts.before_label} "
-                   f"--after {opts.after_label} --rounds {opts.rounds}",
+        "command": f"python3 scripts/before_after_speed.py --before <{opts.before_label} build> "
+                   f"--after <{opts.after_label} build> --rounds {opts.rounds}",
         "before": opts.before_label,
         "after": opts.after_label,
         "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
