@@ -131,12 +131,16 @@ def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, 
             d0h=None if d0h is None else float(d0h),
         )
         return json.loads(text)
-    words = ["jkr", "--punch", str(punch), "--json", "--sweep"]
-    words += _flag("exponent", exponent)
-    words += _flag("profile", None if profile is None else os.fspath(profile))
-    words += _flag("eps", eps) + _flag("d0h", d0h)
-    words += _flag("out", None if out is None else os.fspath(out))
-    return _json_command(words, call)
+    text = _native.jkr_sweep(
+        str(punch),
+        call,
+        exponent=None if exponent is None else float(exponent),
+        profile=None if profile is None else os.fspath(profile),
+        eps=None if eps is None else float(eps),
+        d0h=None if d0h is None else float(d0h),
+        out=None if out is None else os.fspath(out),
+    )
+    return json.loads(text)
 
 
 def grade(results, *, tol=1e-3):
@@ -161,7 +165,7 @@ def grade(results, *, tol=1e-3):
     if isinstance(results, (str, os.PathLike)):
         path = os.fspath(results)
         call = _call("grade", path, tol=tol)
-        text, _ = _native.command(["grade", "--results", path, "--tol", repr(tol), "--json"], call)
+        text, _ = _native.grade_file(path, tol, call)
         return json.loads(text)
     if hasattr(results, "to_dict") and hasattr(results, "columns"):
         rows = results.to_dict(orient="records")
@@ -205,8 +209,7 @@ def dataset(out=None, *, small=False):
 
 def _write_dataset(directory, small, call):
     """Write the dataset into ``directory``; the names of its tables."""
-    words = ["dataset", "--out", directory, "--json"] + (["--small"] if small else [])
-    summary = _json_command(words, call)
+    summary = json.loads(_native.dataset(directory, bool(small), call))
     return directory, [r["name"] for r in summary["resources"]]
 
 
@@ -223,17 +226,6 @@ def _read_dataset(written, pd):
             frame.attrs[key] = table.get(key)
         tables[name] = frame
     return tables
-
-
-def _json_command(words, call):
-    """The JSON a ``verify`` subcommand prints."""
-    text, _ = _native.command(words, call)
-    return json.loads(text)
-
-
-def _flag(name, value):
-    """``--name value`` when a value is given."""
-    return [] if value is None else [f"--{name.replace('_', '-')}", str(value)]
 
 
 def _call(function, *args, **kwargs):

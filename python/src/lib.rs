@@ -67,15 +67,7 @@ fn jkr(
 ) -> PyResult<String> {
     py.detach(|| {
         provenance::called_as(&call, || {
-            let name = PunchName::parse(&punch).ok_or_else(|| {
-                format!(
-                    "unknown punch {punch:?} (one of {})",
-                    PunchName::names(None, ", ")
-                )
-            })?;
-            let kind = name
-                .with_parameters(exponent, profile.as_deref())
-                .map_err(|e| e.to_string())?;
+            let kind = punch_of(&punch, exponent, profile.as_deref())?;
             let solution =
                 adhesion::jkr(&RingBem::new(), &kind, eps, d0h).map_err(|e| e.to_string())?;
             finite_guard::check_finite(&solution).map_err(|field| {
@@ -90,6 +82,22 @@ fn jkr(
     .map_err(RingContactError::new_err)
 }
 
+/// The punch named `punch` with its `exponent` or `profile`; an error naming the known punches.
+fn punch_of(
+    punch: &str,
+    exponent: Option<f64>,
+    profile: Option<&std::path::Path>,
+) -> Result<ringcontact::punch::PunchKind, String> {
+    let name = PunchName::parse(punch).ok_or_else(|| {
+        format!(
+            "unknown punch {punch:?} (one of {})",
+            PunchName::names(None, ", ")
+        )
+    })?;
+    name.with_parameters(exponent, profile)
+        .map_err(|e| e.to_string())
+}
+
 /// The analytic references and fits the library knows ([`ringcontact::reference::catalogue`]):
 /// the JSON of `verify references --json`.
 #[pyfunction]
@@ -98,14 +106,48 @@ fn references() -> PyResult<String> {
         .map_err(|e| RingContactError::new_err(e.to_string()))
 }
 
-/// Run the `verify` subcommand `words` (e.g. `["jkr", "--punch", "cone", "--d0h", "1",
-/// "--json"]`); its standard output and whether its verdict passed. `call` names the Python call
-/// in the provenance of what it writes.
+/// Grade the results file `path` (CSV or JSON) at tolerance `tol`: the JSON of `verify grade
+/// --json` and whether every value is within `tol`.
 #[pyfunction]
-fn command(py: Python<'_>, words: Vec<String>, call: String) -> PyResult<(String, bool)> {
-    py.detach(|| provenance::called_as(&call, || calls::command(&words)))
-        .map(|reply| (reply.text, reply.success))
+fn grade_file(
+    py: Python<'_>,
+    path: std::path::PathBuf,
+    tol: f64,
+    call: String,
+) -> PyResult<(String, bool)> {
+    py.detach(|| provenance::called_as(&call, || calls::grade_file(&path, tol)))
         .map_err(RingContactError::new_err)
+}
+
+/// Write the dataset (`small`: the coarse copy) into `out`: the JSON of `verify dataset --json`.
+#[pyfunction]
+fn dataset(py: Python<'_>, out: std::path::PathBuf, small: bool, call: String) -> PyResult<String> {
+    py.detach(|| provenance::called_as(&call, || calls::dataset(&out, small)))
+        .map_err(RingContactError::new_err)
+}
+
+/// The JKR sweep of the punch named `punch` (with its `exponent` or `profile`), written into
+/// `out`: the rows' JSON of `verify jkr --sweep --json`.
+#[pyfunction]
+#[pyo3(signature = (punch, call, exponent=None, profile=None, eps=None, d0h=None, out=None))]
+#[allow(clippy::too_many_arguments)]
+fn jkr_sweep(
+    py: Python<'_>,
+    punch: String,
+    call: String,
+    exponent: Option<f64>,
+    profile: Option<std::path::PathBuf>,
+    eps: Option<f64>,
+    d0h: Option<f64>,
+    out: Option<std::path::PathBuf>,
+) -> PyResult<String> {
+    py.detach(|| {
+        provenance::called_as(&call, || {
+            let kind = punch_of(&punch, exponent, profile.as_deref())?;
+            calls::jkr_sweep(&kind, eps, d0h, out.as_deref())
+        })
+    })
+    .map_err(RingContactError::new_err)
 }
 
 /// Grade the results `text` (CSV, or JSON when `json`), named `origin`, at tolerance `tol`:
@@ -153,7 +195,9 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     }));
     m.add("RingContactError", m.py().get_type::<RingContactError>())?;
     m.add_function(wrap_pyfunction!(solve_scenes, m)?)?;
-    m.add_function(wrap_pyfunction!(command, m)?)?;
+    m.add_function(wrap_pyfunction!(grade_file, m)?)?;
+    m.add_function(wrap_pyfunction!(dataset, m)?)?;
+    m.add_function(wrap_pyfunction!(jkr_sweep, m)?)?;
     m.add_function(wrap_pyfunction!(jkr, m)?)?;
     m.add_function(wrap_pyfunction!(references, m)?)?;
     m.add_function(wrap_pyfunction!(grade_text, m)?)?;

@@ -59,3 +59,17 @@ def test_jkr_errors_name_the_keyword():
         rc.jkr("flat-annulus", eps=0.5, d0h=1)
     with pytest.raises(rc.RingContactError, match="Kendall's"):
         rc.jkr("flat", d0h=1)
+
+
+def test_jkr_sweep_is_the_command_lines(tmp_path):
+    # The fixed annulus's sweep over b/a through the library's call: the same rows as
+    # `verify jkr --sweep --json`, and its CSV and chart written where asked.
+    mine = rc.jkr("flat-annulus", sweep=True, out=tmp_path / "python")
+    theirs = json.loads(run_verify("jkr", "--punch", "flat-annulus", "--sweep", "--json",
+                                   "--out", str(tmp_path / "cli")))
+    assert mine == theirs and len(mine) > 10
+    assert (tmp_path / "python" / "critical-flat-annulus.csv").is_file()
+    with pytest.raises(rc.RingContactError, match="`eps` fixes the hole of a fixed annulus"):
+        rc.jkr("cone", sweep=True, eps=0.5, out=tmp_path)
+    with pytest.raises(rc.RingContactError, match="`d0h` is a concave punch's work of adhesion"):
+        rc.jkr("flat-annulus", sweep=True, d0h=1.0, out=tmp_path)

@@ -3,10 +3,9 @@
 //! converts and releases the interpreter lock. Nothing here computes anything the subcommands
 //! do not.
 
-use clap::{CommandFactory, FromArgMatches};
 use ringcontact::choice::Choice;
 
-use super::{message, refuse_non_finite, Reply};
+use super::{message, refuse_non_finite};
 use crate::harness::grade::{self, GradeReport};
 use ringcontact::heartbeat::Heartbeat;
 use ringcontact::methods::Degree;
@@ -96,30 +95,6 @@ pub fn solve_keyword_scenes(
     serde_json::to_string(&solutions).map_err(message)
 }
 
-/// Run the subcommand `words` (without the program name: `["jkr", "--punch", NAME, ...]`) as
-/// `verify` would, and return its reply; parse errors are the message clap prints.
-pub fn command(words: &[String]) -> Result<Reply, String> {
-    let parser = crate::cli::args::Cli::command()
-        .allow_negative_numbers(true)
-        .mut_subcommands(|sub| sub.allow_negative_numbers(true));
-    let everything = std::iter::once("verify".to_string()).chain(words.iter().cloned());
-    let matches = parser.try_get_matches_from(everything).map_err(|e| {
-        // clap's message without its `error: ` and its pointer to --help.
-        let text = e.render().to_string();
-        let kept: Vec<&str> = text
-            .lines()
-            .filter(|l| !l.starts_with("For more information"))
-            .collect();
-        let joined = kept.join("\n");
-        joined.trim().trim_start_matches("error: ").to_string()
-    })?;
-    let cli = crate::cli::args::Cli::from_arg_matches(&matches).map_err(message)?;
-    if cli.command.is_none() {
-        return Err("name a subcommand".into());
-    }
-    super::dispatch(cli.command)
-}
-
 /// Grade the results `text` (CSV, or JSON when `json` or when it starts with `[` or `{`),
 /// named `origin` in messages and in the report, at tolerance `tol`, as `verify grade --json`
 /// does. Returns the report's JSON and whether every value is within `tol`.
@@ -139,4 +114,54 @@ pub fn grade_text(
     };
     let text = serde_json::to_string(&report).map_err(message)?;
     Ok((text, grading.beyond == 0))
+}
+
+/// Grade the results file `path` (CSV, or JSON) at tolerance `tol`, as `verify grade --results
+/// PATH --json` does. Returns the report's JSON and whether every value is within `tol`.
+pub fn grade_file(path: &std::path::Path, tol: f64) -> Result<(String, bool), String> {
+    let rows = grade::input::read(path)?;
+    let grading = super::grade::grade_rows(&rows, tol, "ringcontact.grade")?;
+    let report = GradeReport {
+        results: path.display().to_string(),
+        provenance: Provenance::of_this_process(),
+        grading: &grading,
+    };
+    let text = serde_json::to_string(&report).map_err(message)?;
+    Ok((text, grading.beyond == 0))
+}
+
+/// Write the dataset (`small`: the coarse copy) into `out`, as `verify dataset --out OUT --json`
+/// does, and return what that prints.
+pub fn dataset(out: &std::path::Path, small: bool) -> Result<String, String> {
+    let written = super::dataset::write(out, small)?;
+    super::dataset::summary_json(out, &written)
+}
+
+/// The JKR sweep of `punch` (a fixed annulus over `b/a`, a punch with a rim over `d0/h`) written
+/// into `out` (default `reports/jkr`), as `verify jkr --sweep --json` does: the rows' JSON.
+/// A sweep takes neither `eps` nor `d0h`; the one that belongs to the other family is refused by
+/// its keyword.
+pub fn jkr_sweep(
+    punch: &ringcontact::punch::PunchKind,
+    eps: Option<f64>,
+    d0h: Option<f64>,
+    out: Option<&std::path::Path>,
+) -> Result<String, String> {
+    use ringcontact::error::Error;
+    use ringcontact::punch::Contact;
+    let name = punch.name();
+    let fixed_annulus = punch.contact() == Contact::FixedAnnulus;
+    if fixed_annulus && d0h.is_some() {
+        let rule =
+            format!("is a concave punch's work of adhesion; the {name}'s sweep runs over b/a");
+        return Err(Error::invalid("d0h", rule).to_string());
+    }
+    if !fixed_annulus && eps.is_some() {
+        let rule = format!(
+            "fixes the hole of a fixed annulus; the {name}'s contact ratio is found, not given"
+        );
+        return Err(Error::invalid("eps", rule).to_string());
+    }
+    let out = super::output_directory(out, "reports/jkr");
+    super::jkr::sweep(punch, &ringcontact::methods::RingBem::new(), &out, true)
 }

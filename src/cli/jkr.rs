@@ -16,7 +16,8 @@ pub fn jkr(args: JkrArgs) -> Result<Reply, String> {
     refuse_other_family_flags(punch.clone(), args.eps, args.d0h)?;
     let solver = RingBem::new();
     if args.sweep {
-        return sweep(&args, &punch, &solver);
+        let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
+        return Ok(Reply::ok(sweep(&punch, &solver, &out, args.json)?));
     }
     let name = punch.name();
     let what = match punch.contact() {
@@ -63,19 +64,25 @@ fn kendall() -> String {
     )
 }
 
-/// `verify jkr --sweep`: a fixed annulus over `b/a`, a concave punch over `d0/h`.
-fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBem) -> Result<Reply, String> {
-    let out = crate::cli::output_directory(args.out.as_deref(), "reports/jkr");
+/// `verify jkr --sweep`: a fixed annulus over `b/a`, a concave punch over `d0/h`; the table (or
+/// the rows as JSON) and the files written into `out`.
+pub(super) fn sweep(
+    punch: &PunchKind,
+    solver: &RingBem,
+    out: &std::path::Path,
+    json: bool,
+) -> Result<String, String> {
+    let out = out.to_path_buf();
     let text = match punch.contact() {
         Contact::FixedAnnulus => sweep_output(
             &sweeps::fixed_annulus_sweep(solver, &out).map_err(message)?,
-            args.json,
+            json,
         )?,
         Contact::RimAndFreeInner => {
             let mut bar = Progress::new("sweep", 25);
             let sweep = sweeps::pulloff_sweep(solver, punch.clone(), &out, |s| bar.tick(s))
                 .map_err(message)?;
-            sweep_output(&sweep, args.json)?
+            sweep_output(&sweep, json)?
         }
         Contact::FreeBand => {
             return Err(format!(
@@ -86,7 +93,7 @@ fn sweep(args: &JkrArgs, punch: &PunchKind, solver: &RingBem) -> Result<Reply, S
         }
         Contact::Disk => return Err(kendall()),
     };
-    Ok(Reply::ok(text))
+    Ok(text)
 }
 
 /// The sweep's table (or its rows as JSON) and the files it wrote.
