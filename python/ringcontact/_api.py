@@ -121,26 +121,16 @@ def jkr(punch, *, exponent=None, profile=None, eps=None, d0h=None, sweep=False, 
         sweep=sweep,
         out=out,
     )
-    if not sweep:
-        text = _native.jkr(
-            str(punch),
-            call,
-            exponent=None if exponent is None else float(exponent),
-            profile=None if profile is None else os.fspath(profile),
-            eps=None if eps is None else float(eps),
-            d0h=None if d0h is None else float(d0h),
-        )
-        return json.loads(text)
-    text = _native.jkr_sweep(
-        str(punch),
-        call,
+    given = dict(
         exponent=None if exponent is None else float(exponent),
         profile=None if profile is None else os.fspath(profile),
         eps=None if eps is None else float(eps),
         d0h=None if d0h is None else float(d0h),
-        out=None if out is None else os.fspath(out),
     )
-    return json.loads(text)
+    if not sweep:
+        return json.loads(_native.jkr(str(punch), call, **given))
+    out = None if out is None else os.fspath(out)
+    return json.loads(_native.jkr_sweep(str(punch), call, out=out, **given))
 
 
 def grade(results, *, tol=1e-3):

@@ -21,6 +21,7 @@ fn fem_provenance_keys_are_the_solutions_own() {
             far_field: ringcontact::discretisation::far_field::FarField::Boussinesq,
             fem_timings: Default::default(),
             degree: 2,
+            edge_conditioning: Some(0.5),
         }),
         ..other
     };
@@ -29,10 +30,12 @@ fn fem_provenance_keys_are_the_solutions_own() {
     assert_eq!(json["mesh"], "meshes/disk-L2.msh");
     assert_eq!(json["far_field"], "boussinesq");
     assert_eq!(json["degree"], 2);
+    assert_eq!(json["edge_conditioning"], 0.5);
     assert!(json.get("fem").is_none() && json.get("gmsh_version").is_none());
     let back: Solution = serde_json::from_value(json).unwrap();
     let part = back.fem.expect("the FEM's keys read back into its part");
     assert_eq!((part.dofs, part.degree), (1234, 2));
+    assert_eq!(part.edge_conditioning, Some(0.5));
 }
 
 fn state(punch: PunchKind, eps: f64, depth: f64, force: f64) -> Solution {
@@ -57,7 +60,6 @@ fn state(punch: PunchKind, eps: f64, depth: f64, force: f64) -> Solution {
         iterations: 0,
         fem: None,
         complementarity_residual: None,
-        edge_conditioning: None,
         grid_bem: None,
         selection: None,
         pressure: Vec::new(),

@@ -72,11 +72,6 @@ pub struct Solution {
     /// Complementarity residual of the contact solution (FEM concave punches, grid BEM).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub complementarity_residual: Option<f64>,
-    /// Conditioning of the located free edge, `κ = |db/dd| d` (FEM concave punches): the edge
-    /// moves κ times a relative change of the depth; above about 1 its error is set by the
-    /// displacement field's, not by the mesh at the edge.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub edge_conditioning: Option<f64>,
     /// The grid BEM's grid (grid BEM only), written as keys of the solution itself (`grid`,
     /// `grid_extent`).
     #[serde(flatten, skip_serializing_if = "Option::is_none")]
@@ -126,6 +121,11 @@ pub struct FemProvenance {
     pub fem_timings: crate::fem::solver::FemTimings,
     /// Element degree, 1, 2 or 3.
     pub degree: u8,
+    /// Conditioning of the located free edge, `κ = |db/dd| d` (concave punches): the edge moves
+    /// κ times a relative change of the depth; above about 1 its error is set by the
+    /// displacement field's, not by the mesh at the edge.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub edge_conditioning: Option<f64>,
 }
 
 impl Solution {

@@ -194,7 +194,7 @@ pub(crate) fn describe(scene: &Scene, s: &Solution) -> Table {
             format!("{} dofs, P{} on {}", fem.dofs, fem.degree, fem.mesh),
         );
     }
-    if let Some(k) = s.edge_conditioning {
+    if let Some(k) = s.fem.as_ref().and_then(|fem| fem.edge_conditioning) {
         row(
             "free edge",
             format!("conditioning κ = |db/dd| d = {k:.2} (the edge moves κ times a relative depth change)"),

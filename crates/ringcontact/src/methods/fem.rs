@@ -312,9 +312,9 @@ fn solve_fem(scene: &Scene, options: &Fem) -> Result<Solution> {
             far_field: state.far_field,
             fem_timings: state.timings,
             degree: state.degree as u8,
+            edge_conditioning: state.edge_conditioning,
         }),
         complementarity_residual: kind.is_concave().then_some(state.complementarity_residual),
-        edge_conditioning: state.edge_conditioning,
         provenance: format!(
             "axisymmetric FEM, P{} triangles, {} dofs on {} ({}{}, sha256 {}){}, domain radius {:.3e} a with {} far field \
              (truncation bias {:.1e} included in the estimate){}",

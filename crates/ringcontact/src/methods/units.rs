@@ -37,7 +37,6 @@ pub(super) fn base(
         iterations: 0,
         fem: None,
         complementarity_residual: None,
-        edge_conditioning: None,
         grid_bem: None,
         selection: None,
         pressure: Vec::new(),
