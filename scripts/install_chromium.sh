@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Install Debian's chromium (headless browser for the report page's test, tests/report_browser.rs)
+# Install Debian's chromium (headless browser for the report page's test, tests/suite/report_browser.rs)
 # when missing. Idempotent.
 set -euo pipefail
 if command -v chromium >/dev/null 2>&1; then

@@ -17,7 +17,7 @@
 //! narrowest bands, the deepest loads, holes a few cells wide near full contact) the actual
 //! error stays below 0.78 of the bar; the hardest is the parabolic gap's small hole near full
 //! contact, whose edge follows the depth's error amplified by the closing hole
-//! (`tests/grid_estimate.rs` keeps a sample with it).
+//! (`tests/suite/grid_estimate.rs` keeps a sample with it).
 
 use crate::bem::grid_contact::{GridState, MIN_GRID};
 use crate::error::{Error, Result};

@@ -17,7 +17,7 @@
 //! next term of the far field is a multipole of relative size `(a/R)²`, so the truncation error of
 //! the force drops from `1.2 a/R` (fixed arc, `u = 0`) to `O((a/R)²)` plus the discretisation error
 //! of the far field itself (about `7e-4 a/R` at grading 0.1): 2e-4 at `R = 4 a` where the fixed
-//! arc is 29 % off (`tests/fem_far_field.rs`).
+//! arc is 29 % off (`tests/suite/fem_far_field.rs`).
 
 use crate::discretisation::element::Lame;
 use crate::discretisation::quadrature::gauss_legendre;
@@ -72,7 +72,7 @@ impl FarField {
     /// For the Boussinesq condition, the discretisation of the `1/ρ` field by the far elements,
     /// `-6.6e-4 a/R` at `g = 0.1` and falling like `g³` (quadratic
     /// elements), bounded here by `1.5e-3 (g/0.1)³ a/R`, plus `0.05 (a/R)²` for the next multipole.
-    /// See `tests/fem_far_field.rs`.
+    /// See `tests/suite/fem_far_field.rs`.
     pub fn truncation_bias(self, domain_radius: f64, arc_grading: f64) -> f64 {
         match self {
             FarField::Fixed => 1.2 / domain_radius,

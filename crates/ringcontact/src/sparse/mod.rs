@@ -17,7 +17,7 @@
 //! this crate's own factorisation on `faer`'s supernodal layout ([`native`], split over two cores
 //! where the model admits a separator). The native one is the default, 1.3-2.2x faster on the
 //! user's paths (`benches/records/linear-solver.md`,
-//! `docs/decisions.md`); `tests/linear_solver_contract.rs` runs the FE suite on both. Only
+//! `docs/decisions.md`); `tests/suite/linear_solver_contract.rs` runs the FE suite on both. Only
 //! [`native`] reads `faer`'s internal layouts or holds `unsafe` code.
 
 pub mod constrained;

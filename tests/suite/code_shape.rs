@@ -4,7 +4,7 @@
 //! regression would be written (a rough scanner: comments, strings and character literals are
 //! blanked before braces are counted).
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::PathBuf;

@@ -1,7 +1,7 @@
 //! `verify table` (many states of one punch, one row each) and `verify solve --batch` (JSON
 //! lines of scenes): rows against closed forms, provenance, bad lists and bad lines named.
 
-mod common;
+use crate::common;
 
 use common::{scratch, verify, verify_with_input};
 

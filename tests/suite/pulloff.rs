@@ -7,7 +7,7 @@
 //! (`adhesion::flat_annulus`: ring BEM plus the energy balance, no cohesive law) for the limit of
 //! vanishing range.
 
-mod common;
+use crate::common;
 use common::gmsh_available;
 
 use std::process::Command;

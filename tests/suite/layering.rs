@@ -7,7 +7,7 @@
 //! depends on no command-line crate (its manifest).
 //! Read from the sources (`crate::` paths outside comments and unit tests).
 
-mod common;
+use crate::common;
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -86,7 +86,7 @@ fn layer(module: &str) -> u8 {
     LAYERS
         .iter()
         .find(|(name, _)| *name == top)
-        .unwrap_or_else(|| panic!("module {module} has no layer in tests/layering.rs"))
+        .unwrap_or_else(|| panic!("module {module} has no layer in tests/suite/layering.rs"))
         .1
 }
 

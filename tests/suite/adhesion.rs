@@ -314,7 +314,7 @@ fn profiles_no_flatter_than_the_sphere_clear_their_holes_floor_at_every_ratio() 
 /// `adhesion::jkr` picks the analysis by the punch's contact: a small-holed annulus lets go as
 /// Kendall's flat punch (`d_c = -d0`, `F_c = -F0`, Kendall 1971); the torus's narrow band as the
 /// plane-strain JKR cylinder it tends to (within 1e-3 at `d0/h = 1e-3`, as
-/// `tests/torus_jkr.rs` checks against the closed form); and a
+/// `tests/suite/torus_jkr.rs` checks against the closed form); and a
 /// value of the other family, or a missing one, is an error naming it.
 #[test]
 fn one_entry_routes_every_punch_and_names_a_missing_value() {

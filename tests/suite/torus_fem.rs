@@ -4,7 +4,7 @@
 //! `--tol 1e-6` is within its own estimate of the ring BEM's, the force-like outputs relative
 //! and both edges `b/a`, `c/a` absolute, and the estimate is within the tolerance.
 
-mod common;
+use crate::common;
 use common::{assert_study_converges, gmsh_available};
 
 use ringcontact::discretisation::far_field::FarField;

@@ -3,7 +3,7 @@
 //! same discrete problem, so they must agree to rounding (the reference is the independent
 //! factorisation-per-iteration route), whatever side of the true free edge the warm start lies.
 
-mod common;
+use crate::common;
 
 use ringcontact::discretisation::assembly::assemble_stiffness;
 use ringcontact::discretisation::element::Lame;

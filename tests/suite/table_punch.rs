@@ -11,7 +11,7 @@
 //! interpolant's order next to the axis, `crates/ringcontact/src/punch/table.rs`). A state the ring BEM's single
 //! annulus cannot model is refused with the reason, and bad tables are errors naming the line.
 
-mod common;
+use crate::common;
 use common::{assert_study_converges, gmsh_available};
 
 use std::path::{Path, PathBuf};

@@ -1,16 +1,16 @@
 //! The programs in `examples/` run as tests, so that what a new user reads first keeps working.
 
-mod common;
+use crate::common;
 
-#[path = "../examples/own_profile.rs"]
+#[path = "../../examples/own_profile.rs"]
 #[allow(dead_code)]
 mod own_profile;
 
-#[path = "../examples/every_method.rs"]
+#[path = "../../examples/every_method.rs"]
 #[allow(dead_code)]
 mod every_method;
 
-#[path = "../examples/convergence_ladder.rs"]
+#[path = "../../examples/convergence_ladder.rs"]
 #[allow(dead_code)]
 mod convergence_ladder;
 
@@ -20,7 +20,7 @@ use ringcontact::scene::SceneSpec;
 
 /// A user's own sphere solves as the built-in sphere does: the same ring-BEM numbers to 1e-12,
 /// the FEM's within its estimate; and the own FEM lies within its estimate of the own ring BEM
-/// (an independent method, checked against closed forms in `tests/ring_bem_references.rs`).
+/// (an independent method, checked against closed forms in `tests/suite/ring_bem_references.rs`).
 #[test]
 fn own_profile_solves_as_the_builtin_sphere() {
     let ring_bem = own_profile::solve_own_sphere(Method::RingBem, None).unwrap();
@@ -67,7 +67,7 @@ fn own_profile_solves_as_the_builtin_sphere() {
 }
 
 /// Every method's force on the flat annulus lies within its own estimate (plus the ring BEM's)
-/// of the ring BEM, which is checked against closed forms in `tests/ring_bem_references.rs`.
+/// of the ring BEM, which is checked against closed forms in `tests/suite/ring_bem_references.rs`.
 #[test]
 fn every_method_agrees_with_the_ring_bem_within_its_estimate() {
     let solutions = every_method::solve_every_method().unwrap();

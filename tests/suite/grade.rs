@@ -3,7 +3,7 @@
 //! worked examples of docs/tasks.md (the paper's fits, our own coarse runs against their own
 //! estimates, Tamaas's stored results) and bad files named by line and column.
 
-mod common;
+use crate::common;
 
 use common::{scratch, verify};
 use ringcontact_verify::harness::grade::input::{parse, Quantity, ResultRow};

@@ -4,7 +4,7 @@
 //! (`ringcontact::reference::power_law`, checked there against Γ values, Wallis's recursion and
 //! a hand calculation at `n = 4`), and the physics of the hole's floor for `n > 2`.
 
-mod common;
+use crate::common;
 
 use std::process::Command;
 
@@ -230,7 +230,7 @@ fn the_floor_of_the_hole_is_checked() {
 /// floor and refused a state that exists (`n = 6`, `d = 1.8 h`; `n = 50`, `F/(2 E* h a) = 0.5`).
 /// Checked: every state meets its target and the tolerance, and lies on the rim's branch (a
 /// narrower ring is shallower and carries less force); the FEM finds the same states
-/// (`tests/fem_vs_ring_bem.rs`).
+/// (`tests/suite/fem_vs_ring_bem.rs`).
 #[test]
 fn steep_walled_profiles_are_solved_on_the_branch_that_grows_from_the_rim() {
     let solver = RingBem::new();

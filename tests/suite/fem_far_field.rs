@@ -2,7 +2,7 @@
 //! energy) against the classical fixed arc, on the committed meshes: the reference is Boussinesq's
 //! flat punch `γ(0) = 1` (exact), and the ring BEM for the cone.
 
-mod common;
+use crate::common;
 
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};

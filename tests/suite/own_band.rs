@@ -5,7 +5,7 @@
 //! gap, solved by the same methods) and, for a ring no built-in punch has, the agreement of two
 //! independent discretisations (ring BEM and grid BEM) within the sum of their own estimates.
 
-mod common;
+use crate::common;
 
 use ringcontact::adhesion;
 use ringcontact::methods::RingBem;

@@ -2,7 +2,7 @@
 //! the error bounds it states; every column is described in datapackage.json; and the values
 //! agree with independent references at the ends of their range.
 
-mod common;
+use crate::common;
 
 use std::collections::BTreeMap;
 use std::path::Path;

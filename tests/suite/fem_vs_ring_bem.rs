@@ -2,7 +2,7 @@
 //! an independent discretisation of the same problem): with default settings the FEM agrees
 //! within 1e-3, with `--tol 1e-4` within 1e-4, and its error estimate bounds its actual error.
 
-mod common;
+use crate::common;
 use common::gmsh_available;
 
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};

@@ -3,7 +3,7 @@
 
 use std::process::Command;
 
-mod common;
+use crate::common;
 
 use ringcontact::methods::{self, Method, MethodOptions};
 use ringcontact::punch::PunchKind;

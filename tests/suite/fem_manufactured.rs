@@ -8,7 +8,7 @@
 //! `b = -div σ` in cylindrical coordinates (derivation in the comments below) makes it an exact
 //! solution; `u = u*` is prescribed on the top, side and bottom, `u_r = 0` on the axis.
 
-mod common;
+use crate::common;
 
 use ringcontact::discretisation::assembly::assemble_stiffness;
 use ringcontact::discretisation::element::Lame;

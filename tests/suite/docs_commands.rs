@@ -6,7 +6,7 @@
 //!
 //! Left out: lines marked `# long` (the nightly run's), the two commands of the README's front
 //! door (`cargo run --release --bin verify` is `.ci/run`'s smoke run, `cargo test --release` is
-//! this suite), and lines that run scripts (`bash`, `python3`: `tests/scripts.rs` runs the
+//! this suite), and lines that run scripts (`bash`, `python3`: `tests/suite/scripts.rs` runs the
 //! scripts). Commands that need gmsh are skipped without it unless `RINGCONTACT_REQUIRE_GMSH`
 //! is set (CI sets it).
 

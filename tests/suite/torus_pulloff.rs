@@ -4,7 +4,7 @@
 //! of the JKR fixed-load value (the stored study at Tabor 4.5-9, `verify/pulloff/torus-d0h1.json`,
 //! within 1e-3), while the fixed-grips value and the plane-strain cylinder's lie 8 % and 9 % away.
 
-mod common;
+use crate::common;
 use common::gmsh_available;
 
 #[test]
