@@ -3,7 +3,7 @@
 # appended to a history file and compared with the previous run (an accuracy beyond its
 # tolerance or a time more than 1.5x slower is a regression: exit status 1).
 #
-# Usage: bash scripts/nightly.sh [--out DIR] [--history FILE] [--quick]
+# Usage: bash scripts/nightly.sh [--out DIR] [--history FILE] [--quick] [--help]
 #   --out DIR       the report directory (default reports/<UTC date>)
 #   --history FILE  the JSON-lines history (default reports/history.jsonl)
 #   --quick         the default report, the stability probes and fresh peer runs only (no pull-off
@@ -18,6 +18,7 @@
 # Refreshing a baseline is its own step: the peer's script with --out verify/..., reviewed and
 # committed.
 set -uo pipefail
+self="$(cd "$(dirname "$0")" && pwd)/$(basename "$0")"
 cd "$(dirname "$0")/.."
 source scripts/lib.sh
 out=""
@@ -28,6 +29,7 @@ while [ $# -gt 0 ]; do
     --out) out=$2; shift ;;
     --history) history=$2; shift ;;
     --quick) quick=1 ;;
+    -h|--help) awk 'NR > 1 && /^#/ { sub(/^# ?/, ""); print; next } NR > 1 { exit }' "$self"; exit 0 ;;
     *) echo "nightly.sh: unknown option $1 (see the comment at the top of this script)" >&2; exit 2 ;;
   esac
   shift

@@ -130,6 +130,26 @@ fn scripts_refuse_bad_arguments() {
     }
 }
 
+/// `--help` prints the nightly script's usage from its header and exits 0, before it builds.
+#[test]
+fn the_nightly_script_teaches_its_options() {
+    let result = run(&["bash", "scripts/nightly.sh", "--help"], &[], None);
+    let text = String::from_utf8_lossy(&result.stdout);
+    assert_eq!(result.status.code(), Some(0), "{text}");
+    for option in [
+        "Usage: bash scripts/nightly.sh",
+        "--out DIR",
+        "--history FILE",
+        "--quick",
+    ] {
+        assert!(
+            text.contains(option),
+            "--help does not name {option}: {text}"
+        );
+    }
+    assert!(!text.contains("set -uo"), "--help printed code: {text}");
+}
+
 /// A nightly run with `CARGO_TARGET_DIR` set elsewhere finds the binary there, writes its report
 /// (and its fresh results) into its own directory, and leaves `verify/` and `meshes/` as they
 /// were (`git status` of the whole checkout, untracked files included). `--quick` leaves out
