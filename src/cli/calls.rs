@@ -140,28 +140,14 @@ pub fn dataset(out: &std::path::Path, small: bool) -> Result<String, String> {
 /// The JKR sweep of `punch` (a fixed annulus over `b/a`, a punch with a rim over `d0/h`) written
 /// into `out` (default `reports/jkr`), as `verify jkr --sweep --json` does: the rows' JSON.
 /// A sweep takes neither `eps` nor `d0h`; the one that belongs to the other family is refused by
-/// its keyword.
+/// its keyword ([`ringcontact::adhesion::refuse_other_family`]).
 pub fn jkr_sweep(
     punch: &ringcontact::punch::PunchKind,
     eps: Option<f64>,
     d0h: Option<f64>,
     out: Option<&std::path::Path>,
 ) -> Result<String, String> {
-    use ringcontact::error::Error;
-    use ringcontact::punch::Contact;
-    let name = punch.name();
-    let fixed_annulus = punch.contact() == Contact::FixedAnnulus;
-    if fixed_annulus && d0h.is_some() {
-        let rule =
-            format!("is a concave punch's work of adhesion; the {name}'s sweep runs over b/a");
-        return Err(Error::invalid("d0h", rule).to_string());
-    }
-    if !fixed_annulus && eps.is_some() {
-        let rule = format!(
-            "fixes the hole of a fixed annulus; the {name}'s contact ratio is found, not given"
-        );
-        return Err(Error::invalid("eps", rule).to_string());
-    }
+    ringcontact::adhesion::refuse_other_family(punch, eps, d0h).map_err(message)?;
     let out = super::output_directory(out, "reports/jkr");
     super::jkr::sweep(punch, &ringcontact::methods::RingBem::new(), &out, true)
 }

@@ -33,7 +33,7 @@ use crate::punch::collins_series;
 mod any_punch;
 mod concave;
 mod free_band;
-pub use any_punch::{jkr, Jkr};
+pub use any_punch::{jkr, refuse_other_family, Jkr};
 pub use concave::{
     branch_point, branch_tolerance, concave, full_contact_constants, paper_fit_route, BranchPoint,
     ConcaveBranch, ConcaveJkr, Critical, EpsForce, FloorContact, FullContactBranch, D0H_RANGE,

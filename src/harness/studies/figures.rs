@@ -161,11 +161,10 @@ pub(crate) fn pressure_profiles(ring: &RingBem) -> Result<PressureProfiles> {
     let ring_bem = state.pressure.iter().map(|&(r, p)| (r, p)).collect();
     let grid_bem =
         grid_alone(kind.clone(), 0.0, UnitLoad::Depth(depth), 256)?.ring_averaged_pressure(64);
-    let fem = crate::harness::settings::fem();
     let fem = ringcontact::methods::Fem {
         degree: Some(Degree::Quadratic),
         far_field: Some(FarField::Boussinesq),
-        ..fem
+        ..crate::harness::settings::fem()
     };
     let scene = super::unit_scene(kind, 0.0, UnitLoad::Depth(depth), Some(1e-3))?;
     // Nodal estimates in the contact, clipped near the rim singularity.

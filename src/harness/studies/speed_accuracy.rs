@@ -303,7 +303,7 @@ pub(crate) fn base_points(ring: &RingBem, problem: Problem) -> Result<BasePoints
 /// `tolerance`, when gmsh is there (`None` without gmsh, and when the solve fails: the reason is
 /// written to standard error and the point left out).
 pub(crate) fn ladder_point(problem: Problem, yardstick: f64, tolerance: f64) -> Option<CostPoint> {
-    if !crate::harness::settings::fem().makes_meshes() {
+    if !ringcontact::mesh::provider::gmsh_available(&crate::harness::settings::data_paths()) {
         return None;
     }
     let cost = problem.cost_problem();

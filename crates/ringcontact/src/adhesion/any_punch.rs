@@ -25,6 +25,7 @@ pub enum Jkr {
 /// `d0/h = d0h` (`d0 = sqrt(2π a Δw / E*)`) for a free inner edge or a free band; an error
 /// naming the value that is missing or belongs to the other family.
 pub fn jkr(solver: &RingBem, kind: &PunchKind, eps: Option<f64>, d0h: Option<f64>) -> Result<Jkr> {
+    refuse_other_family(kind, eps, d0h)?;
     let name = kind.name();
     match kind.contact() {
         Contact::Disk => Err(Error::invalid(
@@ -36,30 +37,12 @@ pub fn jkr(solver: &RingBem, kind: &PunchKind, eps: Option<f64>, d0h: Option<f64
             ),
         )),
         Contact::FixedAnnulus => {
-            if d0h.is_some() {
-                return Err(Error::invalid(
-                    "d0h",
-                    format!(
-                        "is a concave punch's work of adhesion in units of h; the {name}'s \
-                         results are in units of d0 and F0 already"
-                    ),
-                ));
-            }
             let eps = eps.ok_or_else(|| {
                 Error::invalid("eps", format!("is needed: the {name}'s b/a (0 < b/a < 1)"))
             })?;
             fixed_annulus(solver, eps).map(Jkr::FixedAnnulus)
         }
         Contact::RimAndFreeInner | Contact::FreeBand => {
-            if eps.is_some() {
-                return Err(Error::invalid(
-                    "eps",
-                    format!(
-                        "fixes the hole of a fixed annulus; the {name}'s contact ratio is found, not \
-                         given (give d0h)"
-                    ),
-                ));
-            }
             let s = d0h.ok_or_else(|| {
                 Error::invalid(
                     "d0h",
@@ -75,5 +58,28 @@ pub fn jkr(solver: &RingBem, kind: &PunchKind, eps: Option<f64>, d0h: Option<f64
                 concave(solver, kind.clone(), s).map(|r| Jkr::Concave(Box::new(r)))
             }
         }
+    }
+}
+
+/// An error naming `eps` given for a punch whose contact ratio is found, or `d0h` given for a
+/// fixed annulus (whose results are in units of `d0` and `F0` already).
+pub fn refuse_other_family(kind: &PunchKind, eps: Option<f64>, d0h: Option<f64>) -> Result<()> {
+    let name = kind.name();
+    match kind.contact() {
+        Contact::FixedAnnulus if d0h.is_some() => Err(Error::invalid(
+            "d0h",
+            format!(
+                "is a concave punch's work of adhesion in units of h; the {name}'s results are \
+                 in units of d0 and F0 already"
+            ),
+        )),
+        Contact::RimAndFreeInner | Contact::FreeBand if eps.is_some() => Err(Error::invalid(
+            "eps",
+            format!(
+                "fixes the hole of a fixed annulus; the {name}'s contact ratio is found, not \
+                 given (give d0h)"
+            ),
+        )),
+        _ => Ok(()),
     }
 }

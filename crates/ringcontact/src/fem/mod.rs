@@ -15,7 +15,7 @@ pub mod surface_response;
 // reduce, and nodal contact pressures.
 pub use contact::nodal_pressure;
 pub use solver::{
-    contact_start, default_degree, gmsh_found, mesh_directory, mesh_sequence, solve,
-    solve_free_edges_on_level, solve_on_mesh, FemLoad, FemOptions, FemState, FemTimings,
-    DEFAULT_TOLERANCE, METHOD, MIN_TOLERANCE, UNRESOLVED_COMPONENT,
+    contact_start, default_degree, mesh_directory, mesh_sequence, solve, solve_free_edges_on_level,
+    solve_on_mesh, FemLoad, FemOptions, FemState, FemTimings, DEFAULT_TOLERANCE, METHOD,
+    MIN_TOLERANCE, UNRESOLVED_COMPONENT,
 };

@@ -930,17 +930,11 @@ const CUBIC_BELOW_TOLERANCE: f64 = 1e-4;
 /// tolerance below [`CUBIC_BELOW_TOLERANCE`]); quadratic on the committed ladder, whose levels
 /// were made for it.
 pub fn default_degree(data: &DataPaths, tolerance: f64) -> Degree {
-    if tolerance < CUBIC_BELOW_TOLERANCE || gmsh_found(data) {
+    if tolerance < CUBIC_BELOW_TOLERANCE || provider::gmsh_available(data) {
         Degree::Cubic
     } else {
         Degree::Quadratic
     }
-}
-
-/// Whether gmsh can make meshes for `data` (found once per process, see
-/// [`crate::mesh::gmsh::Gmsh::get`]).
-pub fn gmsh_found(data: &DataPaths) -> bool {
-    crate::mesh::gmsh::Gmsh::get(data, "").is_ok()
 }
 
 /// Share of the edge's conditioning times the model's force error that bounds the located
@@ -1040,7 +1034,7 @@ fn committed_ladder(
     eps: f64,
     tolerance: f64,
 ) -> Vec<MeshRequest> {
-    if tolerance < COMMITTED_TOLERANCE_FLOOR || gmsh_found(data) {
+    if tolerance < COMMITTED_TOLERANCE_FLOOR || provider::gmsh_available(data) {
         return Vec::new();
     }
     let Some(family) = provider::committed_family(data, contact_start(&kind, eps)) else {

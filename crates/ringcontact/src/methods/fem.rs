@@ -50,6 +50,12 @@ impl Fem {
     /// The smallest tolerance the FEM takes ([`fem_solver::MIN_TOLERANCE`]).
     pub const MIN_TOLERANCE: f64 = fem_solver::MIN_TOLERANCE;
 
+    /// The FEM's full answer at `scene` (its fields, reactions, active set, timings): what
+    /// [`Solver::solve`] reports, before it becomes a [`Solution`].
+    pub fn state(&self, scene: &Scene) -> Result<FemState> {
+        fem_state(scene, self)
+    }
+
     /// The options of a study's levels: this FEM's backend, trace, data and progress, elements
     /// of `degree`, `ν = 0`, Boussinesq's far field, the solve's own tolerance 1e-3 (each level
     /// is one model, its estimate unused).
@@ -72,7 +78,7 @@ impl Fem {
     /// few 1e-9 in six levels); without, the committed levels with quadratic elements.
     fn study_ladder(&self, case: &StudyCase) -> (Vec<MeshRequest>, Degree) {
         let data = self.data.clone().unwrap_or_default();
-        if fem_solver::gmsh_found(&data) {
+        if provider::gmsh_available(&data) {
             let start = fem_solver::contact_start(&case.punch, case.eps);
             let ladder = (provider::ADAPTED_MIN_LEVEL..=STUDY_MAX_CUBIC_LEVEL)
                 .map(|level| MeshRequest::Adapted {
@@ -231,19 +237,6 @@ impl Solver for Fem {
 
     fn compute(&self, scene: &Scene) -> Result<Solution> {
         solve_fem(scene, self)
-    }
-}
-
-impl Fem {
-    /// The FEM's full answer at `scene` (its fields, reactions, active set, timings): what
-    /// [`Solver::solve`] reports, before it becomes a [`Solution`].
-    pub fn state(&self, scene: &Scene) -> Result<FemState> {
-        fem_state(scene, self)
-    }
-
-    /// Whether gmsh is there to make meshes for a scene (without it, the committed meshes only).
-    pub fn makes_meshes(&self) -> bool {
-        fem_solver::gmsh_found(&self.data.clone().unwrap_or_default())
     }
 }
 
