@@ -23,3 +23,6 @@ if ! "$venv/bin/python" -c "import gmsh" 2>/dev/null; then
   "$venv/bin/pip" install --quiet "gmsh==4.15.2"
 fi
 "$venv/bin/python" "$venv/bin/gmsh" --version
+# The tests that need gmsh are ignored when the build found none (build.rs): touching build.rs
+# makes the next build look again.
+touch build.rs

@@ -96,12 +96,20 @@ def test_the_torus_and_the_power_law_take_their_keywords():
         ({"punch": "cone", "shape": "sphere"}, "`punch` and `shape` both name the shape"),
         ({"punch": "table", "profile": "no-such-tip.csv", "depth": 1}, "no-such-tip.csv"),
         ({"depth": 1}, "`punch` is required"),
+        ({"punch": "blob", "depth": 1}, '`punch` is not a punch: "blob" (one of flat, '),
+        (
+            {"punch": "sphere", "depth": 1, "contact_ratio": 0.5},
+            "`depth` and `contact_ratio` are both loads: give exactly one",
+        ),
+        ({"punch": "cone"}, "the cone punch needs one of depth, force or contact_ratio"),
     ],
 )
 def test_bad_scenes_raise_the_tools_message(keywords, words):
     with pytest.raises(rc.RingContactError) as caught:
         rc.solve(**keywords)
     assert words in str(caught.value)
+    # The user gave keywords: the message names no scene file and no section of one.
+    assert "scene file" not in str(caught.value) and "load." not in str(caught.value)
 
 
 def test_unknown_keywords_and_methods_are_named():

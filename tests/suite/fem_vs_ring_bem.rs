@@ -3,7 +3,6 @@
 //! within 1e-3, with `--tol 1e-4` within 1e-4, and its error estimate bounds its actual error.
 
 use crate::common;
-use common::gmsh_available;
 
 use ringcontact::fem::solver::{self, FemLoad, FemOptions, FemState};
 use ringcontact::mesh::triangulation::Degree;
@@ -146,11 +145,9 @@ fn sphere_past_full_contact_follows_mdr() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn tolerance_1e4_is_met() {
     // Climbs past the committed levels into meshes made by gmsh.
-    if !gmsh_available("tolerance_1e4_is_met") {
-        return;
-    }
     let mut cases = FLAT.to_vec();
     cases.push((PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(2.0)));
     cases.push((PunchKind::SPHERE, 0.0, FemLoad::ConcaveDepth(1.5)));
@@ -226,12 +223,10 @@ fn mismatched_mesh_and_scene_are_errors() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes() {
     // b/a without a committed family, and tolerances past the committed levels: gmsh makes the
     // meshes (graded toward r = a, r = b and the located free edge); the ring BEM is the reference.
-    if !gmsh_available("any_annulus_ratio_and_tolerance_meets_it_on_generated_meshes") {
-        return;
-    }
     let mut cases = Vec::new();
     for eps in [0.1, 0.3, 0.7, 0.97] {
         cases.push((PunchKind::FLAT_ANNULUS, eps, FemLoad::Flat));
@@ -270,12 +265,10 @@ fn many_states() -> Vec<(PunchKind, f64, FemLoad)> {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_estimate_bounds_the_error_at_29_states_at_1e3_and_1e6() {
     // Meshes made for each scene, the default degree (cubic), against the ring BEM at 1e-10:
     // every state meets the tolerance in force and eps, and its estimate bounds both errors.
-    if !gmsh_available("the_estimate_bounds_the_error_at_29_states_at_1e3_and_1e6") {
-        return;
-    }
     for tolerance in [1e-3, 1e-6] {
         check_degree(
             solver::default_degree(&ringcontact::mesh::files::DataPaths::default(), tolerance),
@@ -286,14 +279,12 @@ fn the_estimate_bounds_the_error_at_29_states_at_1e3_and_1e6() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn narrow_contact_rings_are_resolved_or_declined() {
     // Rings 1e-3 to 1.5e-4 a wide: the flat annulus near b/a = 1 and the shallow concave punches,
     // whose contact is a thin ring at the rim. The elements at the edges scale with the ring's
     // width; before they did, every level was wrong alike (b/a = 0.9999: a force error of 9e-3
     // under an estimate of 3e-5, the sphere at d = 0.003 h: 4.5e-3 under 1.2e-4).
-    if !gmsh_available("narrow_contact_rings_are_resolved_or_declined") {
-        return;
-    }
     let cases = [
         (PunchKind::FLAT_ANNULUS, 0.999, FemLoad::Flat),
         (PunchKind::FLAT_ANNULUS, 0.9999, FemLoad::Flat),
@@ -330,15 +321,13 @@ fn narrow_contact_rings_are_resolved_or_declined() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn a_nearly_closed_hole_is_bound_or_declined() {
     // The sphere within 1e-3 h and 1e-4 h of full contact (holes 1.9e-2 a and 6.1e-3 a): its
     // edge moves 29 and 92 times a relative change of the depth (the ring BEM's), so the small
     // error of the displacement field moves it far more than the mesh at the edge does. Before
     // the edge's field component, cubic models at 1e-6 returned edges off by 8.3e-7 and 4.3e-6
     // under estimates of 6.4e-7 and 6.5e-7, and at 1e-7 by 2.1e-7 under 4.2e-8.
-    if !gmsh_available("a_nearly_closed_hole_is_bound_or_declined") {
-        return;
-    }
     check_degree(
         Degree::Cubic,
         &[
@@ -375,15 +364,13 @@ fn a_nearly_closed_hole_is_bound_or_declined() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn an_edge_under_a_prescribed_force_is_bound_near_closure() {
     // The sphere under F = 5.3 and 5.333 (d = 2.983 h and 2.9998 h by the ring BEM; closed from
     // F = 16/3): cubic models at 1e-3 returned edges off by 5.1e-4 and 1.3e-3 under estimates of
     // 2.5e-4 and 6.5e-4. Under a prescribed force the model's force error is a depth error, which
     // moves the edge by κ times itself, on top of the edge's own error: the estimate now takes
     // the whole shift and adds it.
-    if !gmsh_available("an_edge_under_a_prescribed_force_is_bound_near_closure") {
-        return;
-    }
     check_degree(
         Degree::Cubic,
         &[
@@ -395,6 +382,7 @@ fn an_edge_under_a_prescribed_force_is_bound_near_closure() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error() {
     // The sphere under F = 5.3328 (d = 2.99973 h by the ring BEM, a hole of 0.0100 a): the
     // located edge moves κ = |db/dd| d times the relative depth error, and the model's own κ
@@ -402,9 +390,6 @@ fn an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error() {
     // whole shift once, the cubic model at 1e-3 answered eps off by 9.3e-4 under an estimate of
     // 9.5e-4: bound by a factor of 1.02, so a neighbouring state with a worse κ would not be.
     // The estimate must keep a margin of 1.25 here (the model's κ a fifth under).
-    if !gmsh_available("an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error") {
-        return;
-    }
     check_degree_with_margin(
         Degree::Cubic,
         &[(PunchKind::SPHERE, 0.0, FemLoad::ConcaveForce(2.6664))],
@@ -414,6 +399,7 @@ fn an_edge_under_a_force_keeps_a_margin_for_its_conditionings_error() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn full_contact_near_closure_is_bound_certified_or_declined() {
     // Quadratic models near the sphere's closure (holes of 1.9e-2, 6.1e-3 and 4.3e-3 a at
     // d/h = 2.999, 2.9999, 2.99995; closed from d = 3h, where F = 2 E* a (d - h/3)): their
@@ -426,9 +412,6 @@ fn full_contact_near_closure_is_bound_certified_or_declined() {
     // hole of 9e-4 a lay inside first nodes at 7.5e-4 a, whose margins fell toward the axis, and
     // P2 and P3 at 1e-3 ended in the impossible-state error; the next mesh now refines inside
     // that node. Each must bound its errors against the ring BEM (MDR past closure) or decline.
-    if !gmsh_available("full_contact_near_closure_is_bound_certified_or_declined") {
-        return;
-    }
     let mut answered = 0;
     let sphere = PunchKind::SPHERE;
     let cases = [
@@ -473,15 +456,13 @@ fn full_contact_near_closure_is_bound_certified_or_declined() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn a_closed_cone_within_its_estimate_is_answered() {
     // The cone never closes, but at 13 and 14 h its holes (4.8e-4 and 2.5e-4 a, ring BEM) are
     // below the quadratic models' resolution at 1e-3: their answer, eps = 0 within 8.2e-4, holds
     // them. The harness's plausibility check once refused every closed cone below 15 h (it now
     // compares the estimate with the hole's lower bound at that depth). Through
     // the binary, where the check applies; both bounds against the ring BEM.
-    if !gmsh_available("a_closed_cone_within_its_estimate_is_answered") {
-        return;
-    }
     let bem = RingBem::new();
     for depth in [13.0, 14.0] {
         let output = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
@@ -518,15 +499,13 @@ fn a_closed_cone_within_its_estimate_is_answered() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_free_edges_conditioning_follows_the_ring_bem() {
     // κ = |db/dd| d of the FEM's final model against the ring BEM's central difference of its
     // located edge over d ± 1e-6 (converged to 1e-10). The FEM's is a difference of its edge's
     // extrapolation from the free nodes' gaps: measured 0.80-1.34 of the ring BEM's at 1e-5
     // (cone d/h = 0.5, 2, 4; sphere 0.5, 1.5, 2.99, 2.999). It only has to tell a
     // well-conditioned edge (κ below 1) from a nearly closed hole (κ of 10-100).
-    if !gmsh_available("the_free_edges_conditioning_follows_the_ring_bem") {
-        return;
-    }
     let bem = RingBem::new();
     for (kind, depth) in [
         (PunchKind::CONE, 2.0),
@@ -555,12 +534,10 @@ fn the_free_edges_conditioning_follows_the_ring_bem() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn tolerance_1e8_is_met_on_a_narrow_ring_and_both_concave_punches() {
     // 1e-8 needs rim elements of 1e-9 a and below, finer than gmsh meshes well (slivers below
     // 1e-8 a): the corner refinement makes them. Before it, b/a = 0.97 stopped at 1.4e-8.
-    if !gmsh_available("tolerance_1e8_is_met_on_a_narrow_ring_and_both_concave_punches") {
-        return;
-    }
     let cases = [
         (PunchKind::FLAT_ANNULUS, 0.97, FemLoad::Flat),
         (PunchKind::CONE, 0.0, FemLoad::ConcaveDepth(2.0)),
@@ -636,10 +613,8 @@ fn a_missing_gmsh_is_one_clear_error() {
 /// both errors. (States of `n > 2` whose contact is a disk and an annulus are left out: the ring
 /// BEM refuses them.)
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn power_law_punches_agree_with_the_ring_bem_to_1e6() {
-    if !gmsh_available("power_law_punches_agree_with_the_ring_bem_to_1e6") {
-        return;
-    }
     let power = |n: f64| PunchKind::power(ringcontact::punch::Exponent::new(n).unwrap());
     let mut cases = Vec::new();
     for (n, depths) in [

@@ -4,8 +4,6 @@
 //! (`ringcontact::reference::power_law`, checked there against Γ values, Wallis's recursion and
 //! a hand calculation at `n = 4`), and the physics of the hole's floor for `n > 2`.
 
-use crate::common;
-
 use std::process::Command;
 
 use ringcontact::methods::RingBem;
@@ -400,10 +398,8 @@ fn punch_records_round_trip() {
 /// annulus. The FEM declines it by name on its first model instead of refining a single free
 /// edge that is not there, as the ring BEM declines it.
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_fem_declines_a_disk_and_an_annulus_by_name() {
-    if !common::gmsh_available("the_fem_declines_a_disk_and_an_annulus_by_name") {
-        return;
-    }
     // `n = 4` at `d = 2.3 h`: a disk wider than the free stretch beside it. The cube just past
     // its floor touch (the ring BEM: at `r = 0` from `d = 2.36 h`) holds a narrower disk on 3 to
     // 19 nodes; it once climbed to a million unknowns and said "use the ring BEM".

@@ -7,9 +7,6 @@
 //! (`adhesion::flat_annulus`: ring BEM plus the energy balance, no cohesive law) for the limit of
 //! vanishing range.
 
-use crate::common;
-use common::gmsh_available;
-
 use std::process::Command;
 
 use ringcontact::cohesive::equilibrium::CohesiveSurface;
@@ -77,10 +74,8 @@ fn without_adhesion_the_condensed_model_is_the_non_adhesive_contact() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn flat_punch_pulloff_tends_to_kendall_from_below() {
-    if !gmsh_available("flat_punch_pulloff_tends_to_kendall_from_below") {
-        return;
-    }
     let case = study::Case {
         punch: PunchKind::FLAT,
         eps: 0.0,
@@ -115,10 +110,8 @@ fn flat_punch_pulloff_tends_to_kendall_from_below() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn flat_annulus_pulloff_tends_to_the_jkr_route() {
-    if !gmsh_available("flat_annulus_pulloff_tends_to_the_jkr_route") {
-        return;
-    }
     let eps = 0.5;
     let case = study::Case {
         punch: PunchKind::FLAT_ANNULUS,
@@ -212,11 +205,8 @@ fn pulloff_refuses_what_it_cannot_do_with_a_reason() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers() {
-    if !gmsh_available("cone_at_large_d0_over_h_lets_go_near_the_full_contact_value_not_the_papers")
-    {
-        return;
-    }
     // d0/h = 10: the paper's route on its fitted formulas gives about 1.31 F0 (the disputed
     // "+50 %" regime); the JKR route from full contact 1 + π h/(4 d0) = 1.0785 F0.
     let case = study::Case {
@@ -411,12 +401,8 @@ fn shallow_cone_on_the_check_mesh() -> (study::Case, ringcontact::mesh::provider
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn small_d0_over_h_is_pressed_until_the_hole_closes_and_lets_go_at_the_full_contact_value() {
-    if !gmsh_available(
-        "small_d0_over_h_is_pressed_until_the_hole_closes_and_lets_go_at_the_full_contact_value",
-    ) {
-        return;
-    }
     // Cone at d0/h = 0.3: pressed to 3h its hole is still open (the JKR route closes it only
     // past 3.8h), so the simulation presses on until it closes. From full contact the rim
     // holds up to F0 (1 + π h/(4 d0)) = 3.618 F0 (closed form of the JKR full-contact branch);
@@ -438,10 +424,8 @@ fn small_d0_over_h_is_pressed_until_the_hole_closes_and_lets_go_at_the_full_cont
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn a_hole_that_reopens_on_the_way_out_is_named_not_reported_as_a_pulloff() {
-    if !gmsh_available("a_hole_that_reopens_on_the_way_out_is_named_not_reported_as_a_pulloff") {
-        return;
-    }
     // Cone at d0/h = 0.3, Tabor 9: the range is wide enough that the closed hole reopens from
     // the apex on the way out while the punch is still pressed in (a compressive "pull-off"
     // otherwise); the simulation must say so, and the study replace the range.
@@ -460,10 +444,8 @@ fn a_hole_that_reopens_on_the_way_out_is_named_not_reported_as_a_pulloff() {
 /// (`ρ/d0 = 0.1`, Tabor 4.5) the simulation lets go about 4 % below it (measured 0.519; 0.535 at
 /// Tabor 9), and far from the paper's route on its fitted formulas (0.698 F0).
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
-    if !gmsh_available("annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value") {
-        return;
-    }
     let case = study::Case {
         punch: PunchKind::CONE,
         eps: 0.0,
@@ -508,10 +490,8 @@ fn annular_branch_of_the_cone_lets_go_near_the_jkr_fixed_load_value() {
 /// even when pulled to `d = -0.17 h`), the simulation's hole closes too, and the study says so
 /// instead of reporting an annular pull-off.
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn annular_branch_is_declined_where_the_hole_closes_on_touch() {
-    if !gmsh_available("annular_branch_is_declined_where_the_hole_closes_on_touch") {
-        return;
-    }
     let case = study::Case {
         punch: PunchKind::CONE,
         eps: 0.0,
@@ -536,10 +516,8 @@ fn annular_branch_is_declined_where_the_hole_closes_on_touch() {
 /// 1e-3 of the sphere's own simulation on the same mesh (measured 3e-5: the table's
 /// interpolation error).
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn a_table_of_the_spheres_profile_lets_go_like_the_sphere() {
-    if !gmsh_available("a_table_of_the_spheres_profile_lets_go_like_the_sphere") {
-        return;
-    }
     let path =
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("verify/profiles/sphere-21.csv");
     let table = ringcontact::punch::PunchName::Table

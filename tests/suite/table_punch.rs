@@ -12,7 +12,7 @@
 //! annulus cannot model is refused with the reason, and bad tables are errors naming the line.
 
 use crate::common;
-use common::{assert_study_converges, gmsh_available};
+use common::assert_study_converges;
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -61,10 +61,8 @@ fn profile_error(kind: PunchKind) -> f64 {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn sampled_sphere_tends_to_the_sphere_as_the_table_is_refined() {
-    if !gmsh_available("sampled_sphere_tends_to_the_sphere_as_the_table_is_refined") {
-        return;
-    }
     let dir = scratch("convergence");
     let sphere = RingBem::new()
         .concave_at_depth(&PunchKind::SPHERE, 1.0, 1e-12)

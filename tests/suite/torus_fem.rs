@@ -5,7 +5,7 @@
 //! and both edges `b/a`, `c/a` absolute, and the estimate is within the tolerance.
 
 use crate::common;
-use common::{assert_study_converges, gmsh_available};
+use common::assert_study_converges;
 
 use ringcontact::discretisation::far_field::FarField;
 use ringcontact::fem::solver::{self, default_degree, FemLoad, FemOptions};
@@ -65,37 +65,29 @@ fn check(loads: &[FemLoad], tolerance: f64) {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn shallow_states_under_depth_control_are_within_the_estimate() {
-    if !gmsh_available("shallow_states_under_depth_control_are_within_the_estimate") {
-        return;
-    }
     let depths = [1e-3, 1e-2, 0.1, 0.5];
     check(&depths.map(FemLoad::ConcaveDepth), 1e-6);
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn deep_states_under_depth_control_are_within_the_estimate() {
-    if !gmsh_available("deep_states_under_depth_control_are_within_the_estimate") {
-        return;
-    }
     let depths = [1.0, 2.0, 5.0, 10.0];
     check(&depths.map(FemLoad::ConcaveDepth), 1e-6);
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn states_under_force_control_are_within_the_estimate() {
-    if !gmsh_available("states_under_force_control_are_within_the_estimate") {
-        return;
-    }
     let forces = [1e-4, 1e-2, 0.5, 2.0];
     check(&forces.map(FemLoad::ConcaveForce), 1e-6);
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_default_tolerance_is_met() {
-    if !gmsh_available("the_default_tolerance_is_met") {
-        return;
-    }
     check(
         &[FemLoad::ConcaveDepth(0.3), FemLoad::ConcaveForce(0.3)],
         1e-3,
@@ -112,10 +104,8 @@ fn a_mesh_of_ones_own_is_refused_for_the_torus() {
 }
 
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_command_line_gives_both_edges_of_the_fem() {
-    if !gmsh_available("the_command_line_gives_both_edges_of_the_fem") {
-        return;
-    }
     let solve = |method: &str| -> serde_json::Value {
         let out = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
             .args([
@@ -156,10 +146,8 @@ fn the_command_line_gives_both_edges_of_the_fem() {
 /// error bar bounds its actual error. Measured at `d/h = 1`: FEM 4.2e-3, 1.2e-3, 2.1e-4,
 /// 3.4e-5 (bar 1.2e-4); grid BEM 2.6e-4, 6.2e-5, 1.9e-5 (bar 1.3e-4).
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn convergence_studies_of_the_torus_are_bounded_by_their_bars() {
-    if !gmsh_available("convergence_studies_of_the_torus_are_bounded_by_their_bars") {
-        return;
-    }
     let out_dir =
         std::env::temp_dir().join(format!("ringcontact-torus-conv-{}", std::process::id()));
     for (method, levels, finest) in [("fem", "4", 1e-4), ("grid-bem", "3", 1e-4)] {

@@ -4,14 +4,9 @@
 //! of the JKR fixed-load value (the stored study at Tabor 4.5-9, `verify/pulloff/torus-d0h1.json`,
 //! within 1e-3), while the fixed-grips value and the plane-strain cylinder's lie 8 % and 9 % away.
 
-use crate::common;
-use common::gmsh_available;
-
 #[test]
+#[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_simulated_pulloff_is_the_two_edge_jkr_fixed_load_value() {
-    if !gmsh_available("the_simulated_pulloff_is_the_two_edge_jkr_fixed_load_value") {
-        return;
-    }
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_verify"))
         .args(["pulloff", "--punch", "torus", "--d0h", "1"])
         .args(["--ranges", "0.12,0.11,0.1", "--json"])

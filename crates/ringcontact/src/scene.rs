@@ -596,7 +596,7 @@ impl RawLoad {
         if given > 1 {
             return Err(Error::invalid(
                 "load",
-                "give exactly one of depth, force, contact_ratio",
+                "has more than one of depth, force, contact_ratio: give exactly one",
             ));
         }
         if let Some(d) = self.depth {
@@ -631,7 +631,10 @@ impl RawLoad {
         if kind.is_concave() {
             Err(Error::invalid(
                 "load",
-                format!("{kind} needs one of depth, force or contact_ratio (or eps = b/a)"),
+                format!(
+                    "is missing: the {kind} punch needs one of depth, force or contact_ratio \
+                     (or eps = b/a)"
+                ),
             ))
         } else {
             Ok(Load::Depth(1.0))

@@ -51,7 +51,18 @@ pub(super) fn from_keywords(
                 eps = Some(value);
                 continue;
             }
-            "punch" => ("shape".to_string(), "punch"),
+            "punch" | "shape" => {
+                if let Some(name) = value.as_str().filter(|n| PunchName::parse(n).is_none()) {
+                    return Err(Error::invalid(
+                        &key,
+                        format!(
+                            "is not a punch: {name:?} (one of {})",
+                            PunchName::names(None, ", ")
+                        ),
+                    ));
+                }
+                ("shape".to_string(), "punch")
+            }
             _ => match SECTIONS.iter().find(|(k, _)| *k == key) {
                 Some((_, section)) => (key, *section),
                 None => {
@@ -93,7 +104,14 @@ pub(super) fn from_keywords(
         .get("punch")
         .and_then(|p| p.get("inner_radius"))
         .is_some();
-    let spec = SceneSpec::from_json_value(serde_json::Value::Object(nested), origin, base)?;
+    let spec = SceneSpec::from_json_value(serde_json::Value::Object(nested), origin, base)
+        .map_err(|e| match e {
+            // Keywords are no file: their error names the keywords.
+            Error::SceneFile { message, .. } => {
+                Error::invalid("keywords", format!("do not make a scene: {message}"))
+            }
+            other => other,
+        })?;
     let Some(eps) = eps else {
         return Ok(spec);
     };
@@ -121,10 +139,22 @@ pub fn in_keywords(error: Error, given: &[String]) -> Error {
     };
     let gave = |keyword: &str| given.iter().any(|g| g == keyword);
     let key = field.rsplit('.').next().unwrap_or(&field).to_string();
-    let field = match key.as_str() {
-        "contact_ratio" | "inner_radius" if gave("eps") => "eps".to_string(),
-        "shape" if !gave("shape") => "punch".to_string(),
-        _ => key,
+    let loads: Vec<&str> = ["depth", "force", "contact_ratio"]
+        .into_iter()
+        .filter(|k| gave(k))
+        .collect();
+    let (field, rule) = match key.as_str() {
+        "contact_ratio" | "inner_radius" if gave("eps") => ("eps".to_string(), rule),
+        "shape" if !gave("shape") => ("punch".to_string(), rule),
+        // The scene file's `load` section is the load keywords given.
+        "load" if loads.len() > 1 => (
+            loads.join("` and `"),
+            format!(
+                "are {} loads: give exactly one of depth, force, contact_ratio",
+                if loads.len() == 2 { "both" } else { "all" }
+            ),
+        ),
+        _ => (key, rule),
     };
     Error::InvalidScene { field, rule }
 }
