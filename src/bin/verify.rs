@@ -58,13 +58,6 @@ fn report_panics_in_one_line() {
     }));
 }
 
-/// The program's allocator (a choice of this binary, not of the library: programs that link
-/// `ringcontact` keep their own). mimalloc reuses the large blocks a finite-element solve frees
-/// (pattern, factor, scratch) where the system allocator returns them to the kernel and takes
-/// fresh zeroed pages for the next model.
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 fn main() -> ExitCode {
     report_panics_in_one_line();
     // Numbers may be negative everywhere (`--tol -1` is a value to reject with a reason, not an
