@@ -6,8 +6,9 @@
 //!
 //! `RINGCONTACT_REQUIRE_GMSH=1` and `RINGCONTACT_REQUIRE_CHROMIUM=1` (set by `.ci/run`) make the
 //! tests run, and fail, without them. The answer is kept until the `PATH`, those variables or a
-//! found program changes; `scripts/install_gmsh.sh` touches this file so that the next build sees
-//! the gmsh it installed (after installing a program by other means, `touch build.rs`).
+//! found program changes; `scripts/install_gmsh.sh`, `scripts/install_chromium.sh` and
+//! `scripts/fenicsx/setup.sh` touch this file so that the next build sees what they installed
+//! (after installing a program by other means, `touch build.rs`).
 
 use std::path::Path;
 use std::process::Command;

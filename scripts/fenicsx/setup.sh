@@ -15,3 +15,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 /usr/bin/python3 -c "import dolfinx; print('dolfinx', dolfinx.__version__)"
+# The tests that need dolfinx are ignored when the build found none (build.rs): touching build.rs
+# makes the next build look again.
+touch "$(cd "$(dirname "$0")/../.." && pwd)/build.rs"

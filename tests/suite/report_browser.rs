@@ -55,7 +55,10 @@ fn page_errors(log: &str) -> Vec<&str> {
 }
 
 #[test]
-#[cfg_attr(chromium_missing, ignore = "needs chromium: apt-get install chromium")]
+#[cfg_attr(
+    chromium_missing,
+    ignore = "needs chromium: bash scripts/install_chromium.sh"
+)]
 fn the_report_page_renders_in_a_browser_with_every_chart() {
     let chromium = chromium().expect("chromium, or RINGCONTACT_CHROMIUM naming it");
     // Kept after the test (reports/ is ignored by git): the page and its screenshot to look at.

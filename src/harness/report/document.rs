@@ -853,8 +853,8 @@ fn dir_has_dataset() -> bool {
 
 /// The units of the report's adhesive results (conventions: `docs/conventions.md`).
 pub const ADHESIVE_UNITS: &str = "Units of the adhesive results (JKR, pull-off): depths in \
-    d0 = sqrt(2 pi a dw / E*), forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch of \
-    radius a), dw the work of adhesion, a the punch's outer radius; each column says its sign.";
+    d0 = sqrt(2 pi a dw / E*), forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's force), dw the \
+    work of adhesion, a the punch's outer radius; each column says its sign.";
 
 fn markdown(
     comparison: &ComparisonReport,
