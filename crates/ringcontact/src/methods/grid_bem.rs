@@ -184,7 +184,6 @@ fn solve_grid_bem(scene: &Scene, grid: &GridBem) -> Result<Solution> {
     let n = grid.cells;
     let load = grid_load(scene)?;
     let tolerance = scene_tolerance(scene);
-    let eps = scene.punch.inner_ratio();
     let start = Instant::now();
     let state = grid.state_under(scene, load, tolerance)?;
     let free_edges: &[fn(&grid_contact::GridState) -> f64] = match kind.contact() {
@@ -192,19 +191,16 @@ fn solve_grid_bem(scene: &Scene, grid: &GridBem) -> Result<Solution> {
         Contact::RimAndFreeInner => &[grid_estimate::inner_edge],
         Contact::Disk | Contact::FixedAnnulus => &[],
     };
+    // The coarser levels on the same square (a free band's as solved), without an iteration cap.
+    let coarser = |cells: usize| GridBem {
+        cells,
+        extent: kind.is_free_band().then_some(state.square_half_size),
+        with_estimate: false,
+        max_iterations: None,
+    };
     let estimate = grid.with_estimate.then(|| {
         grid_estimate::estimate(&state, free_edges, |m| {
-            if kind.is_free_band() {
-                grid_contact::solve_band_on_square(
-                    &kind,
-                    m,
-                    state.square_half_size,
-                    load,
-                    tolerance,
-                )
-            } else {
-                grid_contact::solve(kind.clone(), eps, m, load, tolerance)
-            }
+            coarser(m).state_under(scene, load, tolerance)
         })
     });
     let estimate_note = match &estimate {
