@@ -116,9 +116,12 @@ fn needs_gmsh(command: &str) -> bool {
     command.contains("--mesh-parameters")
 }
 
-#[test]
-fn the_stored_fenicsx_results_on_committed_meshes_are_reproduced_by_their_commands() {
-    let records = fenicsx_records(|name, command| !name.contains("large/") && !needs_gmsh(command));
+/// The stored FEniCSx results of the default set on committed meshes (`generated` false) or
+/// on meshes gmsh makes (true), at least ten, reproduced to 1e-8.
+fn check_default_fenicsx_results(generated: bool) {
+    let records = fenicsx_records(|name, command| {
+        !name.contains("large/") && needs_gmsh(command) == generated
+    });
     assert!(
         records.len() >= 10,
         "found {} FEniCSx records",
@@ -128,15 +131,14 @@ fn the_stored_fenicsx_results_on_committed_meshes_are_reproduced_by_their_comman
 }
 
 #[test]
+fn the_stored_fenicsx_results_on_committed_meshes_are_reproduced_by_their_commands() {
+    check_default_fenicsx_results(false);
+}
+
+#[test]
 #[cfg_attr(gmsh_missing, ignore = "needs gmsh: bash scripts/install_gmsh.sh")]
 fn the_stored_fenicsx_results_on_generated_meshes_are_reproduced_by_their_commands() {
-    let records = fenicsx_records(|name, command| !name.contains("large/") && needs_gmsh(command));
-    assert!(
-        records.len() >= 10,
-        "found {} FEniCSx records",
-        records.len()
-    );
-    check_forces(&records, 1e-8);
+    check_default_fenicsx_results(true);
 }
 
 #[test]
@@ -181,32 +183,34 @@ fn pulloff_numbers(result: &Value) -> Vec<f64> {
     out
 }
 
-/// Each stored pull-off simulation names the command of ours that made it (the ignored test
-/// below runs them).
-#[test]
-fn the_stored_pulloff_simulations_name_their_commands() {
+/// The stored pull-off simulations (at least 15), each with its command of ours.
+fn pulloff_records() -> Vec<(String, Value, String)> {
     let records = records("pulloff");
     assert!(
         records.len() >= 15,
         "found {} pull-off records",
         records.len()
     );
-    for (name, record) in &records {
-        reproduce_of(name, record);
-    }
+    records
+        .into_iter()
+        .map(|(name, record)| {
+            let command = reproduce_of(&name, &record);
+            (name, record, command)
+        })
+        .collect()
+}
+
+/// Each stored pull-off simulation names the command of ours that made it (the ignored test
+/// below runs them).
+#[test]
+fn the_stored_pulloff_simulations_name_their_commands() {
+    pulloff_records();
 }
 
 #[test]
 #[ignore = "long (20 s to 3.5 min each): the nightly run, or --include-ignored"]
 fn the_stored_pulloff_simulations_are_reproduced_by_their_commands() {
-    let records = records("pulloff");
-    assert!(
-        records.len() >= 15,
-        "found {} pull-off records",
-        records.len()
-    );
-    for (name, record) in &records {
-        let command = reproduce_of(name, record);
+    for (name, record, command) in &pulloff_records() {
         let args = command.strip_prefix(OURS).unwrap();
         let out = Command::new(env!("CARGO_BIN_EXE_verify"))
             .args(args.split_whitespace())
