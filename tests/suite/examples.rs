@@ -31,42 +31,41 @@ fn own_profile_solves_as_the_builtin_sphere_in_the_fem() {
     own_profile_solves_as_the_builtin_sphere(Method::Fem, Some(1e-6));
 }
 
+/// The own sphere in `method` at `tolerance` against the built-in sphere and the own ring BEM.
 fn own_profile_solves_as_the_builtin_sphere(method: Method, tolerance: Option<f64>) {
     let ring_bem = own_profile::solve_own_sphere(Method::RingBem, None).unwrap();
-    {
-        let solution = own_profile::solve_own_sphere(method, tolerance).unwrap();
-        assert_eq!(solution.method, method.name());
-        let mut spec = SceneSpec::default().shape(PunchKind::SPHERE).depth(1.5);
-        if let Some(tolerance) = tolerance {
-            spec = spec.tolerance(tolerance);
-        }
-        let builtin = methods::solve(&spec.validate().unwrap(), method).unwrap();
-        let estimate = solution.error_estimate.unwrap();
-        let allowed = if method == Method::RingBem {
-            1e-12
-        } else {
-            estimate
-        };
-        for (what, mine, theirs, exact) in [
-            ("force", solution.force, builtin.force, ring_bem.force),
-            ("eps", solution.eps, builtin.eps, ring_bem.eps),
-        ] {
-            println!(
-                "{} {what}: own {mine}, built-in {theirs}, own ring BEM {exact}",
-                solution.method
-            );
-            assert!(
-                (mine - theirs).abs() <= allowed * theirs.abs().max(1.0),
-                "{} {what}: own {mine} against built-in {theirs}",
-                solution.method
-            );
-            let bound = estimate + ring_bem.error_estimate.unwrap();
-            assert!(
-                (mine - exact).abs() <= bound * exact.abs().max(1.0),
-                "{} {what}: own {mine} against the ring BEM's {exact} (bound {bound:.1e})",
-                solution.method
-            );
-        }
+    let solution = own_profile::solve_own_sphere(method, tolerance).unwrap();
+    assert_eq!(solution.method, method.name());
+    let mut spec = SceneSpec::default().shape(PunchKind::SPHERE).depth(1.5);
+    if let Some(tolerance) = tolerance {
+        spec = spec.tolerance(tolerance);
+    }
+    let builtin = methods::solve(&spec.validate().unwrap(), method).unwrap();
+    let estimate = solution.error_estimate.unwrap();
+    let allowed = if method == Method::RingBem {
+        1e-12
+    } else {
+        estimate
+    };
+    for (what, mine, theirs, exact) in [
+        ("force", solution.force, builtin.force, ring_bem.force),
+        ("eps", solution.eps, builtin.eps, ring_bem.eps),
+    ] {
+        println!(
+            "{} {what}: own {mine}, built-in {theirs}, own ring BEM {exact}",
+            solution.method
+        );
+        assert!(
+            (mine - theirs).abs() <= allowed * theirs.abs().max(1.0),
+            "{} {what}: own {mine} against built-in {theirs}",
+            solution.method
+        );
+        let bound = estimate + ring_bem.error_estimate.unwrap();
+        assert!(
+            (mine - exact).abs() <= bound * exact.abs().max(1.0),
+            "{} {what}: own {mine} against the ring BEM's {exact} (bound {bound:.1e})",
+            solution.method
+        );
     }
 }
 
