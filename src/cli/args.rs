@@ -293,6 +293,32 @@ Examples:
   verify pulloff --punch torus --d0h 1                    about 5 min: two free edges
   verify pulloff --punch flat --ranges 0.1,0.05,0.025")]
     Pulloff(PulloffArgs),
+    /// Adhesion at any Tabor parameter: the Maugis-Dugdale law on the ring BEM, from the
+    /// rigid limit (uniform tension over the contact) to JKR; the pull-off and its path.
+    #[command(after_help = "\
+The law (--law dugdale): a tension sigma0 wherever the gap between punch and surface is below
+delta_c = dw/sigma0 (dw the work of adhesion), none beyond; contact where the gap closes. The
+Tabor parameter lambda = 2 sigma0 sqrt(a/(pi E* dw)) sets the range: the cohesive zone at a crack
+tip is about a/lambda^2 long; lambda -> infinity is JKR (`verify jkr`), small lambda the rigid
+limit. Each cohesive zone's tension is laid on in closed form and the contact's pressure is
+solved by the ring BEM with bounded stress at its free edges; the pull-off is the first
+extremum of the force (--control load) or the depth (--control grips) met as the punch is
+pulled, refined until two node counts agree to --tol (the error bound reported).
+
+Punches: flat so far (its closed form, derived in the library's reference::dugdale_flat, is
+printed beside); the others are declined with that reason.
+
+Units: forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch; negative = tensile), depths in
+d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` directly.
+
+--sweep: the pull-off against lambda from 0.05 to 100 under both controls, with the JKR value,
+written as dugdale-PUNCH.csv and .svg into --out (default reports/adhesion).
+
+Examples:
+  verify adhesion --punch flat --tabor 2
+  verify adhesion --punch flat --tabor 5 --control grips --json
+  verify adhesion --punch flat --sweep")]
+    Adhesion(AdhesionArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
     /// 0.05 <= eps <= 0.99 and propose better forms.
     #[command(after_help = "Example:\n  verify fit --json")]
@@ -415,6 +441,42 @@ pub struct PulloffArgs {
     #[arg(long)]
     pub mesh: Option<PathBuf>,
     /// Print one JSON object instead of the table.
+    #[arg(long)]
+    pub json: bool,
+}
+
+// The arguments of `verify adhesion`.
+#[derive(Args)]
+pub struct AdhesionArgs {
+    /// Punch shape (flat so far).
+    #[arg(long, value_parser = choice::parser::<PunchName>())]
+    pub punch: PunchName,
+    /// Exponent n of the power-law punch (`--punch power`).
+    #[arg(long)]
+    pub exponent: Option<f64>,
+    /// Profile table of `--punch table` (CSV of `r/a, g/h` points).
+    #[arg(long, value_name = "FILE")]
+    pub profile: Option<PathBuf>,
+    /// The adhesion law: dugdale (constant tension sigma0 up to the gap dw/sigma0).
+    #[arg(long, default_value = "dugdale", value_parser = ["dugdale"])]
+    pub law: String,
+    /// Tabor parameter lambda = 2 sigma0 sqrt(a/(pi E* dw)), > 0 (needed unless --sweep).
+    #[arg(long, allow_negative_numbers = true)]
+    pub tabor: Option<f64>,
+    /// What the machine holds while pulling: the force (load) or the depth (grips).
+    #[arg(long, default_value = "load", value_parser = ["load", "grips"])]
+    pub control: String,
+    /// Bound on the pull-off's error, in units of F0 and d0.
+    #[arg(long, default_value_t = 1e-6, allow_negative_numbers = true)]
+    pub tol: f64,
+    /// Sweep lambda from 0.05 to 100 under both controls, writing CSV and SVG into --out.
+    #[arg(long)]
+    pub sweep: bool,
+    /// Directory for the sweep's CSV and SVG [default: reports/adhesion in the project's
+    /// directory].
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print JSON.
     #[arg(long)]
     pub json: bool,
 }

@@ -4,6 +4,7 @@
 //!
 //! Tables come from [`crate::harness::report::table::Table`]; `--json` prints the typed results.
 
+mod adhesion;
 pub mod args;
 pub mod calls;
 pub mod choice;
@@ -81,6 +82,7 @@ pub fn dispatch(command: Option<Command>) -> Result<Reply, String> {
         Some(Command::Export(args)) => operators::export(args),
         Some(Command::Convergence(args)) => studies::convergence(args),
         Some(Command::Jkr(args)) => jkr::jkr(args),
+        Some(Command::Adhesion(args)) => adhesion::adhesion(args),
         Some(Command::Pulloff(args)) => pulloff::pulloff(args),
         Some(Command::Fit(args)) => studies::fit(args),
         Some(Command::History(args)) => studies::history(args),

@@ -13,7 +13,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// Layer of each top-level module, from the ground up.
-const LAYERS: [(&str, u8); 23] = [
+const LAYERS: [(&str, u8); 24] = [
     ("choice", 0),
     ("error", 0),
     ("finite_guard", 0),
@@ -33,6 +33,7 @@ const LAYERS: [(&str, u8); 23] = [
     ("fit", 7),
     ("adhesion", 7),
     ("cohesive", 7),
+    ("dugdale", 7),
     ("harness", 8),
     ("cli", 9),
     ("lib", 10),

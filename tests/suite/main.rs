@@ -11,6 +11,7 @@ mod cli;
 mod code_shape;
 mod dataset;
 mod docs_commands;
+mod dugdale;
 mod examples;
 mod fem_contact_band;
 mod fem_far_field;

@@ -35,6 +35,7 @@ pub mod bem;
 pub mod choice;
 pub mod cohesive;
 pub mod discretisation;
+pub mod dugdale;
 pub mod error;
 pub mod fem;
 pub mod finite_guard;

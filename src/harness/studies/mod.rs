@@ -5,6 +5,7 @@
 pub mod claims;
 pub mod comparison;
 pub mod convergence;
+pub mod dugdale_sweep;
 pub mod figures;
 pub mod speed_accuracy;
 pub mod stability;

@@ -252,7 +252,20 @@ impl RingBemSolver {
         self.factorisations.load(Ordering::Relaxed)
     }
 
-    fn system(&self, region: ContactRegion, nodes: usize) -> RingSystem {
+    /// The rule that integrates the deflection off the contact of a field of `nodes` unknowns
+    /// ([`RingSystem::deflection_beyond`], [`RingSystem::deflection_in_hole`]): the one that
+    /// assembles its rows, fine enough for its basis polynomials' degree.
+    pub(crate) fn deflection_rule(&self, nodes: usize) -> &TanhSinhRule {
+        if nodes > COARSE_QUADRATURE_NODES {
+            &self.fine_rule
+        } else {
+            &self.rule
+        }
+    }
+
+    /// The collocation system of `region` at `nodes` unknowns, assembled with the rule its
+    /// node count needs (and counted).
+    pub(crate) fn system(&self, region: ContactRegion, nodes: usize) -> RingSystem {
         self.factorisations.fetch_add(1, Ordering::Relaxed);
         let rule = if nodes > COARSE_QUADRATURE_NODES {
             &self.fine_rule

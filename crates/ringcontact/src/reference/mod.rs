@@ -12,6 +12,8 @@ pub use crate::punch::{Quantity, Reference, ReferenceKind, ReferenceValue};
 use crate::punch::PunchKind;
 
 /// The series and the asymptote of `γ(b/a)` under their older path.
+pub mod dugdale_flat;
+
 pub mod asymptotic {
     pub use crate::punch::{collins_series, narrow_ring};
 }

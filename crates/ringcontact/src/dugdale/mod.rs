@@ -1,0 +1,229 @@
+//! Adhesion at any Tabor parameter: the Maugis-Dugdale law on the ring BEM.
+//!
+//! The law ([`law`]): a tension `σ0` wherever the gap between punch and surface is in
+//! `(0, δc]`, `δc = Δw/σ0`, contact where it closes. An equilibrium is a contact with cohesive
+//! zones beside its free edges ([`configuration`]): the zones' tension in closed form
+//! ([`uniform_load`]), the contact's pressure by the ring BEM with its free edges' singular
+//! coefficients zero and each zone ending where the gap reaches `δc` (or at the face's edge).
+//! The pull-off is the first extremum met along the path ([`path`]), under fixed load or fixed
+//! grips, refined on the node ladder until two node counts agree to the tolerance.
+//!
+//! Units as `verify jkr`'s: depths in `d0 = sqrt(2π a Δw / E*)`, forces in Kendall's
+//! `F0 = sqrt(8π E* Δw a³)` (negative: tensile); the Tabor parameter
+//! `λ = 2 σ0 sqrt(a / (π E* Δw))`.
+
+use std::collections::HashMap;
+use std::sync::{Arc, Mutex};
+
+use serde::Serialize;
+
+use crate::bem::ring::{ContactRegion, RingSystem};
+use crate::bem::ring_contact::RingBemSolver;
+use crate::error::{Error, Result};
+use crate::punch::{Contact, PunchKind, PunchName};
+
+pub mod configuration;
+mod flat_disk;
+pub mod law;
+pub mod path;
+pub mod uniform_load;
+
+pub use law::DugdaleLaw;
+pub use path::{Control, PathPoint};
+
+/// The method's name in errors and JSON.
+pub const METHOD: &str = "ring-bem-dugdale";
+
+/// Rounding floor of a pull-off's force and depth (units of `F0`, `d0`): node counts that agree
+/// better are not taken as proof of a smaller error.
+const ROUNDING_FLOOR: f64 = 1e-12;
+
+/// Node counts climbed until the pull-off of two consecutive counts agree.
+/// (Beyond 192 the disk's rows are not integrated to the accuracy the nodes could give.)
+const NODE_LADDER: [usize; 8] = [16, 24, 32, 48, 64, 96, 128, 192];
+
+/// The ladder starts at this many nodes per unit of the Tabor parameter: the Chebyshev nodes'
+/// spacing at the contact's edge, about `1/N²` of `a²`, then resolves the zone of length `a/λ²`.
+const NODES_PER_TABOR: f64 = 2.0;
+
+/// Which edge of the contact lets go at the pull-off.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DetachingEdge {
+    /// The inner edge (the hole's side).
+    Inner,
+    /// The outer edge (the rim's side).
+    Outer,
+    /// Both at once.
+    Both,
+}
+
+impl DetachingEdge {
+    /// The name in JSON and text.
+    pub fn name(self) -> &'static str {
+        match self {
+            DetachingEdge::Inner => "inner",
+            DetachingEdge::Outer => "outer",
+            DetachingEdge::Both => "both",
+        }
+    }
+}
+
+/// The pull-off of one punch under one control, in the units of `verify jkr`.
+#[derive(Clone, Debug, Serialize)]
+pub struct DugdalePulloff {
+    /// The punch's name.
+    pub punch: String,
+    /// The adhesion law (`dugdale`).
+    pub law: &'static str,
+    /// Tabor parameter `λ = 2 σ0 sqrt(a / (π E* Δw))`.
+    pub tabor: f64,
+    /// Fixed load or fixed grips.
+    pub control: Control,
+    /// Pull-off force `F/F0` (negative: tensile).
+    pub pulloff_force: f64,
+    /// Bound of its error (the change between the last two node counts), units of `F0`.
+    pub pulloff_force_error: f64,
+    /// Depth `d/d0` at the pull-off.
+    pub pulloff_depth: f64,
+    /// Bound of its error, units of `d0`.
+    pub pulloff_depth_error: f64,
+    /// The edge that lets go.
+    pub detaching_edge: DetachingEdge,
+    /// Contact `[c1, c2] / a` at the pull-off (`c1 = 0`: a disk; `[0, 0]`: none left).
+    pub contact: [f64; 2],
+    /// Loaded region (contact and cohesive zones) `[z1, z2] / a` at the pull-off.
+    pub loaded_region: [f64; 2],
+    /// Depths `d/d0` along the path as the punch is pulled (to the pull-off and beyond).
+    pub path_depth: Vec<f64>,
+    /// Forces `F/F0` along the path.
+    pub path_force: Vec<f64>,
+    /// Collocation nodes of the finer count.
+    pub nodes: usize,
+    /// Tolerance the estimate met.
+    pub tolerance: f64,
+}
+
+/// The Maugis-Dugdale solver: the ring BEM and the unit disk's systems it has assembled (every
+/// disk contact is that disk scaled, so a sweep assembles each node count once).
+#[derive(Default)]
+pub struct DugdaleSolver {
+    ring: RingBemSolver,
+    disks: Mutex<HashMap<usize, Arc<RingSystem>>>,
+}
+
+impl DugdaleSolver {
+    /// A solver with the ring BEM's default quadrature.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// The unit disk's system at `nodes` unknowns.
+    fn disk(&self, nodes: usize) -> Arc<RingSystem> {
+        let mut disks = self
+            .disks
+            .lock()
+            .unwrap_or_else(|poisoned| poisoned.into_inner());
+        disks
+            .entry(nodes)
+            .or_insert_with(|| Arc::new(self.ring.system(ContactRegion::Disk, nodes)))
+            .clone()
+    }
+
+    /// The pull-off of `kind` under the Dugdale law at `law`'s Tabor parameter, held by
+    /// `control`, refined until two node counts agree to `tolerance` (units of `F0` and `d0`).
+    pub fn pulloff(
+        &self,
+        kind: &PunchKind,
+        law: DugdaleLaw,
+        control: Control,
+        tolerance: f64,
+    ) -> Result<DugdalePulloff> {
+        pulloff(self, kind, law, control, tolerance)
+    }
+}
+
+/// [`DugdaleSolver::pulloff`].
+fn pulloff(
+    solver: &DugdaleSolver,
+    kind: &PunchKind,
+    law: DugdaleLaw,
+    control: Control,
+    tolerance: f64,
+) -> Result<DugdalePulloff> {
+    if !(tolerance.is_finite() && tolerance > 0.0) {
+        return Err(Error::invalid(
+            "tol",
+            format!(
+                "must be a finite number > 0; got {}",
+                crate::error::show(tolerance)
+            ),
+        ));
+    }
+    if kind.contact() != Contact::Disk {
+        return Err(Error::Unsupported {
+            method: METHOD.into(),
+            reason: format!(
+                "the Dugdale law is solved so far where the contact is the whole face (the {} \
+                 punch); the {} punch's contact (free or fixed inner edge) is not yet",
+                PunchName::names(Some(Contact::Disk), ", "),
+                kind.name()
+            ),
+        });
+    }
+    let units = |p: &PathPoint| (p.depth, p.force / law::KENDALL_FORCE);
+    let first = NODE_LADDER
+        .iter()
+        .position(|&n| n as f64 >= NODES_PER_TABOR * law.tabor)
+        .unwrap_or(NODE_LADDER.len())
+        .min(NODE_LADDER.len() - 3);
+    let mut history: Vec<(f64, f64)> = Vec::new();
+    let mut bracket: Option<f64> = None;
+    let mut last_change = f64::INFINITY;
+    for &nodes in &NODE_LADDER[first..] {
+        let system = solver.disk(nodes);
+        let face = flat_disk::FlatDisk::new(&solver.ring, &system, law);
+        let (parameter, pulloff) = face.pulloff(control, bracket)?;
+        bracket = Some(parameter);
+        history.push(units(&pulloff));
+        let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
+            continue;
+        };
+        // The larger of the last two changes: the node ladder's convergence is geometric only
+        // once the zone is resolved, and a single change can pass through zero before then.
+        let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
+        let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
+        last_change = depth_error.max(force_error);
+        if last_change <= tolerance {
+            let configuration = pulloff.configuration;
+            let path = face.path()?;
+            return Ok(DugdalePulloff {
+                punch: kind.name().to_string(),
+                law: "dugdale",
+                tabor: law.tabor,
+                control,
+                pulloff_force: f0,
+                pulloff_force_error: force_error,
+                pulloff_depth: d0,
+                pulloff_depth_error: depth_error,
+                detaching_edge: DetachingEdge::Outer,
+                contact: [configuration.inner, configuration.outer],
+                loaded_region: [configuration.zone_inner, configuration.zone_outer],
+                path_depth: path.iter().map(|(_, p)| units(p).0).collect(),
+                path_force: path.iter().map(|(_, p)| units(p).1).collect(),
+                nodes,
+                tolerance,
+            });
+        }
+    }
+    Err(Error::NoConvergence {
+        method: METHOD.into(),
+        reason: format!(
+            "the pull-off at Tabor parameter {} changes by {last_change:.1e} over the node \
+             counts up to N = {}, above the tolerance {tolerance:.1e} (the cohesive zone, about \
+             a/λ² long, is too short for the ring's nodes)",
+            crate::error::show(law.tabor),
+            NODE_LADDER[NODE_LADDER.len() - 1]
+        ),
+    })
+}

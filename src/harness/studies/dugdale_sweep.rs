@@ -1,0 +1,142 @@
+//! `verify adhesion --sweep`: the Maugis-Dugdale pull-off against the Tabor parameter under both
+//! controls, beside the JKR limit; a table, a CSV and a log-log chart.
+
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::harness::report::svg;
+use crate::harness::report::table::{Cell, Column, Format, Table};
+use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver};
+use ringcontact::error::{Error, Result};
+use ringcontact::punch::PunchKind;
+
+/// Tabor parameters of the sweep: 40 points, evenly spaced in `ln λ` from 0.05 to 100.
+pub(crate) fn tabor_parameters() -> Vec<f64> {
+    let (lo, hi) = (0.05f64.ln(), 100f64.ln());
+    (0..40)
+        .map(|k| (lo + (hi - lo) * k as f64 / 39.0).exp())
+        .collect()
+}
+
+/// One Tabor parameter's pull-off under one control, or why it has none.
+#[derive(Clone, Debug, Serialize)]
+pub(crate) struct SweepPoint {
+    pub tabor: f64,
+    pub control: Control,
+    /// `F/F0` (negative: tensile).
+    pub pulloff_force: Option<f64>,
+    pub pulloff_force_error: Option<f64>,
+    pub pulloff_depth: Option<f64>,
+    /// The reason a state was declined.
+    pub declined: Option<String>,
+}
+
+/// The sweep's rows, table and files.
+pub(crate) struct DugdaleSweep {
+    pub rows: Vec<SweepPoint>,
+    pub table: Table,
+    pub files: Vec<PathBuf>,
+}
+
+/// Sweep `kind` over [`tabor_parameters`] under both controls to `tolerance`; write
+/// `dugdale-LABEL.{csv,svg}` into `out`, the JKR limit `jkr_force` (`F/F0`) drawn beside.
+/// `progress` is called after each Tabor parameter.
+pub(crate) fn sweep(
+    solver: &DugdaleSolver,
+    kind: &PunchKind,
+    tolerance: f64,
+    jkr_force: f64,
+    out: &Path,
+    mut progress: impl FnMut(&str),
+) -> Result<DugdaleSweep> {
+    let mut rows = Vec::new();
+    for tabor in tabor_parameters() {
+        let law = DugdaleLaw::new(tabor)?;
+        for control in Control::ALL {
+            rows.push(match solver.pulloff(kind, law, control, tolerance) {
+                Ok(p) => SweepPoint {
+                    tabor,
+                    control,
+                    pulloff_force: Some(p.pulloff_force),
+                    pulloff_force_error: Some(p.pulloff_force_error),
+                    pulloff_depth: Some(p.pulloff_depth),
+                    declined: None,
+                },
+                Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => SweepPoint {
+                    tabor,
+                    control,
+                    pulloff_force: None,
+                    pulloff_force_error: None,
+                    pulloff_depth: None,
+                    declined: Some(e.to_string()),
+                },
+                Err(e) => return Err(e),
+            });
+        }
+        progress(&format!("lambda = {tabor:.3}"));
+    }
+    let mut table = Table::new(
+        &format!(
+            "{}: Maugis-Dugdale pull-off F/F0 against the Tabor parameter (JKR limit {jkr_force:.6}; \
+             F0 = sqrt(8 pi E* dw a^3), d0 = sqrt(2 pi a dw / E*))",
+            kind.describe()
+        ),
+        vec![
+            Column::number("tabor", "lambda", Format::Scientific(3)),
+            Column::text("control", "control"),
+            Column::number("pulloff_force", "F/F0", Format::Fixed(8)),
+            Column::number("pulloff_force_error", "error bound", Format::Scientific(1)),
+            Column::number("pulloff_depth", "d/d0", Format::Fixed(8)),
+            Column::text("declined", "declined"),
+        ],
+    );
+    for r in &rows {
+        table.push(vec![
+            r.tabor.into(),
+            r.control.name().into(),
+            r.pulloff_force.into(),
+            r.pulloff_force_error.into(),
+            r.pulloff_depth.into(),
+            Cell::from(r.declined.clone().unwrap_or_default()),
+        ]);
+    }
+    let curve = |control: Control| svg::Series {
+        name: format!("fixed {}", control.name()),
+        points: rows
+            .iter()
+            .filter(|r| r.control == control)
+            .filter_map(|r| r.pulloff_force.map(|f| (r.tabor, -f)))
+            .collect(),
+        bars: Vec::new(),
+    };
+    let (lo, hi) = (tabor_parameters()[0], tabor_parameters()[39]);
+    let chart = svg::log_log_chart(
+        &format!(
+            "{}: Dugdale pull-off against the Tabor parameter",
+            kind.describe()
+        ),
+        "Tabor parameter lambda",
+        "-F_pulloff / F0",
+        &[
+            curve(Control::Load),
+            curve(Control::Grips),
+            svg::Series {
+                name: "JKR limit".into(),
+                points: vec![(lo, -jkr_force), (hi, -jkr_force)],
+                bars: Vec::new(),
+            },
+        ],
+    );
+    std::fs::create_dir_all(out).map_err(|e| Error::file("create the directory", out, e))?;
+    let stem = out.join(format!("dugdale-{}", kind.label()));
+    let mut files = Vec::new();
+    for (path, text) in [
+        (stem.with_extension("csv"), table.to_csv()?),
+        (stem.with_extension("svg"), chart),
+    ] {
+        std::fs::write(&path, text).map_err(|e| Error::file("write", &path, e))?;
+        files.push(path);
+    }
+    Ok(DugdaleSweep { rows, table, files })
+}

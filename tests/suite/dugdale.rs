@@ -1,0 +1,182 @@
+//! The Maugis-Dugdale adhesion of the flat punch on the ring BEM (`verify adhesion`) against
+//! its closed form, written here from Sneddon's representation of the half-space: the ring BEM
+//! solves the contact by collocation of the ring kernel and shares none of it.
+
+use std::f64::consts::PI;
+
+use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver};
+use ringcontact::punch::PunchKind;
+use ringcontact::reference::dugdale_flat;
+
+/// The flat punch's pull-off `F/F0` (Kendall's `F0 = sqrt(8π E* Δw a³)`) at Tabor parameter
+/// `λ = 2 σ0 sqrt(a/(π E* Δw))`, either control. Sneddon's `g(t)`: `g = d` on the contact
+/// `t < c`, `g = -2σ0 sqrt(1 - t²)/E*` under the zone reaching the rim; bounded stress at `c`
+/// gives `d = -2σ0 sqrt(1 - c²)/E*`, `F = 2E* ∫ g dt = -2σ0 a² (c s + arccos c)`, and the rim's
+/// gap `(4σ0 a/(π E*)) (s arccos c + c - 1)` reaches `δc = Δw/σ0` at the pull-off: with
+/// `σ0² = λ² π E* Δw/(4a)`, `s arccos c + c - 1 = 1/λ²`. Below `λ = (π/2 - 1)^{-1/2}` it never
+/// does and the whole face lets go at `F = -π a² σ0`. In units `F0`: `σ0 a²/F0 = λ/(4 sqrt 2)`.
+fn closed_form(tabor: f64) -> f64 {
+    let scale = tabor / (4.0 * 2f64.sqrt());
+    let q = |c: f64| (1.0 - c * c).sqrt() * c.acos() + c - 1.0;
+    let target = 1.0 / (tabor * tabor);
+    if target >= q(0.0) {
+        return -PI * scale;
+    }
+    let (mut lo, mut hi) = (0.0_f64, 1.0_f64);
+    while hi - lo > 1e-15 {
+        let mid = 0.5 * (lo + hi);
+        if q(mid) > target {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    let c = 0.5 * (lo + hi);
+    -2.0 * scale * (c * (1.0 - c * c).sqrt() + c.acos())
+}
+
+fn flat() -> PunchKind {
+    PunchKind::from_label("flat").expect("the built-in flat punch")
+}
+
+#[test]
+fn the_flat_punch_matches_its_closed_form_between_the_limits() {
+    let solver = DugdaleSolver::new();
+    for tabor in [1.5, 2.0, 5.0, 20.0] {
+        let exact = closed_form(tabor);
+        let library = dugdale_flat::pulloff(tabor).unwrap();
+        assert!(
+            (library.force - exact).abs() < 1e-13,
+            "λ = {tabor}: {library:?}"
+        );
+        for control in Control::ALL {
+            let law = DugdaleLaw::new(tabor).unwrap();
+            let r = solver.pulloff(&flat(), law, control, 1e-7).unwrap();
+            let error = (r.pulloff_force - exact).abs();
+            println!(
+                "λ = {tabor} {control:?}: F/F0 = {:.12}, closed form {exact:.12}, error {error:.1e}, bound {:.1e}",
+                r.pulloff_force, r.pulloff_force_error
+            );
+            assert!(error < 1e-6, "λ = {tabor} {control:?}: error {error:e}");
+            assert!(
+                error <= r.pulloff_force_error,
+                "the bound {r:?} misses {error:e}"
+            );
+            let depth_error = (r.pulloff_depth - library.load_depth).abs();
+            assert!(depth_error < 1e-6 && depth_error <= r.pulloff_depth_error);
+            assert_eq!(r.detaching_edge.name(), "outer");
+        }
+    }
+}
+
+#[test]
+fn at_small_tabor_the_whole_face_lets_go_at_the_uniform_stress() {
+    let solver = DugdaleSolver::new();
+    for tabor in [0.05, 0.5, 1.2] {
+        let law = DugdaleLaw::new(tabor).unwrap();
+        // π a² σ0 in units of F0.
+        let uniform = -PI * tabor / (4.0 * 2f64.sqrt());
+        for control in Control::ALL {
+            let r = solver.pulloff(&flat(), law, control, 1e-8).unwrap();
+            assert!((r.pulloff_force - uniform).abs() < 1e-12, "{r:?}");
+            assert_eq!(r.contact[1], 0.0, "no contact left at the pull-off: {r:?}");
+        }
+        // Under fixed grips the face holds on until the rim's gap reaches δc:
+        // d = -δc - 4σ0 a/(π E*), with δc/d0 = sqrt(2)/(π λ) and σ0 a/(E* d0) = λ/(2 sqrt 2).
+        let grips = solver.pulloff(&flat(), law, Control::Grips, 1e-8).unwrap();
+        let expected = -2f64.sqrt() / (PI * tabor) - 4.0 / PI * tabor / (2.0 * 2f64.sqrt());
+        assert!((grips.pulloff_depth - expected).abs() < 1e-12, "{grips:?}");
+    }
+}
+
+/// The zone at the pull-off is about `a/λ²` long and the pull-off's distance from Kendall's
+/// shrinks as fast: `(1 + F/F0)` falls fourfold for each doubling of `λ`.
+#[test]
+fn at_large_tabor_the_pulloff_tends_to_kendall_at_the_zone_length_rate() {
+    let solver = DugdaleSolver::new();
+    let gap = |tabor: f64| {
+        let law = DugdaleLaw::new(tabor).unwrap();
+        1.0 + solver
+            .pulloff(&flat(), law, Control::Load, 1e-8)
+            .unwrap()
+            .pulloff_force
+    };
+    let gaps: Vec<f64> = [5.0, 10.0, 20.0].into_iter().map(gap).collect();
+    for pair in gaps.windows(2) {
+        let ratio = pair[0] / pair[1];
+        println!("(1 + F/F0) falls {ratio:.3} times per doubling of λ");
+        assert!(pair[1] > 0.0 && (ratio - 4.0).abs() < 0.25, "{gaps:?}");
+    }
+}
+
+#[test]
+fn the_command_answers_with_its_contract_keys() {
+    let out = crate::common::verify(&[
+        "adhesion",
+        "--punch",
+        "flat",
+        "--law",
+        "dugdale",
+        "--tabor",
+        "2",
+        "--control",
+        "grips",
+        "--json",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in [
+        "tabor",
+        "pulloff_force",
+        "pulloff_force_error",
+        "pulloff_depth",
+        "detaching_edge",
+        "control",
+        "path_depth",
+        "path_force",
+    ] {
+        assert!(json.get(key).is_some(), "no `{key}` in {json}");
+    }
+    assert_eq!(json["control"], "grips");
+    assert_eq!(json["detaching_edge"], "outer");
+    let force = json["pulloff_force"].as_f64().unwrap();
+    assert!((force - closed_form(2.0)).abs() < 1e-6);
+    let (depths, forces) = (
+        json["path_depth"].as_array().unwrap(),
+        json["path_force"].as_array().unwrap(),
+    );
+    assert!(depths.len() >= 20 && depths.len() == forces.len());
+}
+
+#[test]
+fn bad_input_is_named_never_a_panic() {
+    for (args, named) in [
+        (&["--tabor", "0"][..], "tabor"),
+        (&["--tabor", "-2"], "tabor"),
+        (&["--tabor", "nan"], "tabor"),
+        (&["--tabor", "inf"], "tabor"),
+        (&["--tabor", "2", "--law", "lennard-jones"], "--law"),
+        (&["--tabor", "2", "--control", "displacement"], "--control"),
+        (&["--tabor", "2", "--tol", "0"], "tol"),
+        (&[], "--tabor"),
+    ] {
+        let mut all = vec!["adhesion", "--punch", "flat"];
+        all.extend_from_slice(args);
+        let out = crate::common::verify(&all);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(!out.status.success(), "{all:?} succeeded");
+        assert!(stderr.contains(named), "{all:?}: {stderr}");
+        assert!(!stderr.contains("panicked"), "{all:?}: {stderr}");
+    }
+    // A punch the law is not solved for yet is declined with the reason.
+    let out = crate::common::verify(&["adhesion", "--punch", "sphere", "--tabor", "2"]);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        !out.status.success() && stderr.contains("not yet"),
+        "{stderr}"
+    );
+}
