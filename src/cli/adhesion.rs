@@ -7,7 +7,9 @@ use super::{message, refuse_non_finite, to_json, Reply};
 use crate::cli::args::AdhesionArgs;
 use crate::harness::progress::Progress;
 use crate::harness::studies::dugdale_sweep;
+use ringcontact::adhesion;
 use ringcontact::dugdale::{law, Control, DugdaleLaw, DugdalePulloff, DugdaleSolver};
+use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 use ringcontact::reference::dugdale_flat;
 
@@ -16,11 +18,15 @@ use ringcontact::reference::dugdale_flat;
 struct Answer {
     #[serde(flatten)]
     pulloff: DugdalePulloff,
+    /// `b/a` of a fixed annulus.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    eps: Option<f64>,
     /// The range `δc/d0 = sqrt(2)/(π λ)`.
     range_over_d0: f64,
     /// The cohesive zone's length at a crack tip in the JKR limit, `ℓ/a = 1/λ²`.
     zone_length_over_a: f64,
-    /// The JKR limit's pull-off `F/F0` (`verify jkr`; Kendall's -1 for a flat face).
+    /// The JKR limit's pull-off `F/F0` (`verify jkr`: Kendall's -1 for the whole face, the
+    /// governing edge's for a fixed annulus).
     jkr_pulloff_force: f64,
     /// The flat face's closed form (`reference::dugdale_flat`), where it applies.
     closed_form_force: Option<f64>,
@@ -37,7 +43,7 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         "grips" => Control::Grips,
         _ => Control::Load,
     };
-    let jkr_force = jkr_limit(&punch)?;
+    let jkr_force = jkr_limit(&punch, args.eps)?;
     let solver = DugdaleSolver::new();
     if args.sweep {
         if args.tabor.is_some() {
@@ -46,8 +52,10 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         let out = crate::cli::output_directory(args.out.as_deref(), "reports/adhesion");
         let mut bar = Progress::new("sweep", 40);
         let sweep =
-            dugdale_sweep::sweep(&solver, &punch, args.tol, jkr_force, &out, |s| bar.tick(s))
-                .map_err(message)?;
+            dugdale_sweep::sweep(&solver, &punch, args.eps, args.tol, jkr_force, &out, |s| {
+                bar.tick(s)
+            })
+            .map_err(message)?;
         if args.json {
             return Ok(Reply::ok(to_json(&sweep.rows)?));
         }
@@ -65,7 +73,7 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         .ok_or("give --tabor LAMBDA (the Tabor parameter, > 0) or --sweep")?;
     let law = DugdaleLaw::new(tabor).map_err(message)?;
     let pulloff = solver
-        .pulloff(&punch, law, control, args.tol)
+        .pulloff(&punch, args.eps, law, control, args.tol)
         .map_err(message)?;
     let answer = Answer {
         range_over_d0: law::WORK / law.tension(),
@@ -75,6 +83,7 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
             .then(|| dugdale_flat::pulloff(tabor).map(|p| p.force))
             .flatten(),
         units: UNITS,
+        eps: args.eps,
         pulloff,
     };
     refuse_non_finite(&format!("adhesion {punch} --tabor {tabor}"), &answer)?;
@@ -85,14 +94,31 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
     }))
 }
 
-/// The JKR limit's pull-off force `F/F0` of `punch`, which the Dugdale pull-off tends to.
-fn jkr_limit(punch: &PunchKind) -> Result<f64, String> {
+/// The JKR limit's pull-off force `F/F0` of `punch`, which the Dugdale pull-off tends to:
+/// Kendall's for the whole face, the governing edge's critical force for a fixed annulus
+/// (`verify jkr`).
+fn jkr_limit(punch: &PunchKind, eps: Option<f64>) -> Result<f64, String> {
     match punch.contact() {
         Contact::Disk => Ok(-1.0),
+        Contact::FixedAnnulus => {
+            let eps = eps.ok_or_else(|| {
+                format!("the {} needs --eps B_OVER_A (0 < b/a < 1)", punch.name())
+            })?;
+            if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
+                return Err(format!("--eps must satisfy 0 < b/a < 1; got {eps}"));
+            }
+            let jkr = adhesion::fixed_annulus(&RingBem::new(), eps).map_err(message)?;
+            Ok(if jkr.governing_edge == "inner" {
+                jkr.fc_inner
+            } else {
+                jkr.fc_outer
+            })
+        }
         _ => Err(format!(
-            "the Dugdale law is solved so far where the contact is the whole face (the {} \
-             punch); the {} punch is not yet (`verify jkr` gives its JKR limit)",
+            "the Dugdale law is solved so far for flat faces (the {}, {} punches); the {} \
+             punch's free edges are not yet (`verify jkr` gives its JKR limit)",
             super::names_of(Contact::Disk),
+            super::names_of(Contact::FixedAnnulus),
             punch.name()
         )),
     }
@@ -101,17 +127,19 @@ fn jkr_limit(punch: &PunchKind) -> Result<f64, String> {
 fn text(answer: &Answer) -> String {
     let p = &answer.pulloff;
     let [inner, outer] = p.contact;
-    let contact = if outer == 0.0 {
+    let contact = if outer <= inner {
         "none (the whole face in tension)".to_string()
     } else if inner == 0.0 {
         format!("r/a <= {outer:.6}")
     } else {
         format!("{inner:.6} <= r/a <= {outer:.6}")
     };
-    let mut out = format!(
-        "{} punch, Dugdale law, Tabor parameter {} (range dc/d0 = {:.6}, zone length a/lambda^2 \
+    let mut out =
+        format!(
+        "{} punch{}, Dugdale law, Tabor parameter {} (range dc/d0 = {:.6}, zone length a/lambda^2 \
          = {:.3e} a), fixed {}\n",
         p.punch,
+        answer.eps.map(|e| format!(" b/a = {e}")).unwrap_or_default(),
         p.tabor,
         answer.range_over_d0,
         answer.zone_length_over_a,
@@ -132,7 +160,7 @@ fn text(answer: &Answer) -> String {
         p.loaded_region[1]
     );
     out += &format!(
-        "  JKR limit       F/F0 = {:.6} (verify jkr; Kendall's for a flat face)\n",
+        "  JKR limit       F/F0 = {:.6} (verify jkr)\n",
         answer.jkr_pulloff_force
     );
     if let Some(closed) = answer.closed_form_force {

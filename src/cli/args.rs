@@ -305,8 +305,10 @@ solved by the ring BEM with bounded stress at its free edges; the pull-off is th
 extremum of the force (--control load) or the depth (--control grips) met as the punch is
 pulled, refined until two node counts agree to --tol (the error bound reported).
 
-Punches: flat so far (its closed form, derived in the library's reference::dugdale_flat, is
-printed beside); the others are declined with that reason.
+Punches: the flat faces so far: flat (its closed form, derived in the library's
+reference::dugdale_flat, is printed beside) and flat-annulus --eps B_OVER_A (both contact edges
+free, a cohesive zone from each toward the face's edge; --json's detaching_edge says which edge's
+gap reached the range first). The others are declined with that reason.
 
 Units: forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch; negative = tensile), depths in
 d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` directly.
@@ -317,6 +319,7 @@ written as dugdale-PUNCH.csv and .svg into --out (default reports/adhesion).
 Examples:
   verify adhesion --punch flat --tabor 2
   verify adhesion --punch flat --tabor 5 --control grips --json
+  verify adhesion --punch flat-annulus --eps 0.5 --tabor 3
   verify adhesion --punch flat --sweep")]
     Adhesion(AdhesionArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
@@ -448,7 +451,7 @@ pub struct PulloffArgs {
 // The arguments of `verify adhesion`.
 #[derive(Args)]
 pub struct AdhesionArgs {
-    /// Punch shape (flat so far).
+    /// Punch shape (flat and flat-annulus so far).
     #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`).
@@ -457,6 +460,9 @@ pub struct AdhesionArgs {
     /// Profile table of `--punch table` (CSV of `r/a, g/h` points).
     #[arg(long, value_name = "FILE")]
     pub profile: Option<PathBuf>,
+    /// b/a of the flat annulus.
+    #[arg(long, allow_negative_numbers = true)]
+    pub eps: Option<f64>,
     /// The adhesion law: dugdale (constant tension sigma0 up to the gap dw/sigma0).
     #[arg(long, default_value = "dugdale", value_parser = ["dugdale"])]
     pub law: String,

@@ -51,7 +51,7 @@ fn the_flat_punch_matches_its_closed_form_between_the_limits() {
         );
         for control in Control::ALL {
             let law = DugdaleLaw::new(tabor).unwrap();
-            let r = solver.pulloff(&flat(), law, control, 1e-7).unwrap();
+            let r = solver.pulloff(&flat(), None, law, control, 1e-7).unwrap();
             let error = (r.pulloff_force - exact).abs();
             println!(
                 "λ = {tabor} {control:?}: F/F0 = {:.12}, closed form {exact:.12}, error {error:.1e}, bound {:.1e}",
@@ -77,13 +77,15 @@ fn at_small_tabor_the_whole_face_lets_go_at_the_uniform_stress() {
         // π a² σ0 in units of F0.
         let uniform = -PI * tabor / (4.0 * 2f64.sqrt());
         for control in Control::ALL {
-            let r = solver.pulloff(&flat(), law, control, 1e-8).unwrap();
+            let r = solver.pulloff(&flat(), None, law, control, 1e-8).unwrap();
             assert!((r.pulloff_force - uniform).abs() < 1e-12, "{r:?}");
             assert_eq!(r.contact[1], 0.0, "no contact left at the pull-off: {r:?}");
         }
         // Under fixed grips the face holds on until the rim's gap reaches δc:
         // d = -δc - 4σ0 a/(π E*), with δc/d0 = sqrt(2)/(π λ) and σ0 a/(E* d0) = λ/(2 sqrt 2).
-        let grips = solver.pulloff(&flat(), law, Control::Grips, 1e-8).unwrap();
+        let grips = solver
+            .pulloff(&flat(), None, law, Control::Grips, 1e-8)
+            .unwrap();
         let expected = -2f64.sqrt() / (PI * tabor) - 4.0 / PI * tabor / (2.0 * 2f64.sqrt());
         assert!((grips.pulloff_depth - expected).abs() < 1e-12, "{grips:?}");
     }
@@ -97,7 +99,7 @@ fn at_large_tabor_the_pulloff_tends_to_kendall_at_the_zone_length_rate() {
     let gap = |tabor: f64| {
         let law = DugdaleLaw::new(tabor).unwrap();
         1.0 + solver
-            .pulloff(&flat(), law, Control::Load, 1e-8)
+            .pulloff(&flat(), None, law, Control::Load, 1e-8)
             .unwrap()
             .pulloff_force
     };
@@ -179,4 +181,62 @@ fn bad_input_is_named_never_a_panic() {
         !out.status.success() && stderr.contains("not yet"),
         "{stderr}"
     );
+}
+
+fn annulus() -> PunchKind {
+    PunchKind::from_label("flat-annulus").expect("the built-in flat annulus")
+}
+
+/// Below the Tabor parameter at which a zone can reach `δc` while in contact, the annular face
+/// `b <= r <= a` lets go whole at the uniform tension over its area, `-π (a² - b²) σ0`.
+#[test]
+fn an_annular_face_at_small_tabor_lets_go_whole_at_the_uniform_stress() {
+    let solver = DugdaleSolver::new();
+    let tabor = 0.5;
+    let law = DugdaleLaw::new(tabor).unwrap();
+    for eps in [0.1, 0.5, 0.9] {
+        let uniform = -PI * (1.0 - eps * eps) * tabor / (4.0 * 2f64.sqrt());
+        let r = solver
+            .pulloff(&annulus(), Some(eps), law, Control::Load, 1e-8)
+            .unwrap();
+        assert!(
+            (r.pulloff_force - uniform).abs() < 1e-12,
+            "b/a = {eps}: {r:?}"
+        );
+    }
+}
+
+/// As `λ` grows the annulus's pull-off tends to the JKR solution's (`verify jkr`: the critical
+/// force of the governing edge, from the non-adhesive ring-BEM solutions and Griffith's
+/// condition, no cohesive zone), the distance falling fourfold per doubling of `λ` (the zone's
+/// length `a/λ²`), and the same edge lets go.
+#[test]
+fn the_annulus_tends_to_its_jkr_pulloff_at_the_zone_length_rate() {
+    let solver = DugdaleSolver::new();
+    let eps = 0.5;
+    let jkr =
+        ringcontact::adhesion::fixed_annulus(&ringcontact::methods::RingBem::new(), eps).unwrap();
+    let jkr_force = if jkr.governing_edge == "inner" {
+        jkr.fc_inner
+    } else {
+        jkr.fc_outer
+    };
+    let mut distances = Vec::new();
+    for tabor in [4.0, 8.0, 16.0] {
+        let law = DugdaleLaw::new(tabor).unwrap();
+        let r = solver
+            .pulloff(&annulus(), Some(eps), law, Control::Load, 1e-6)
+            .unwrap();
+        assert_eq!(
+            r.detaching_edge.name(),
+            jkr.governing_edge,
+            "λ = {tabor}: {r:?}"
+        );
+        distances.push(r.pulloff_force - jkr_force);
+    }
+    for pair in distances.windows(2) {
+        let ratio = pair[0] / pair[1];
+        println!("F/F0 - JKR falls {ratio:.3} times per doubling of λ");
+        assert!(pair[1] > 0.0 && (ratio - 4.0).abs() < 0.4, "{distances:?}");
+    }
 }

@@ -39,12 +39,13 @@ pub(crate) struct DugdaleSweep {
     pub files: Vec<PathBuf>,
 }
 
-/// Sweep `kind` over [`tabor_parameters`] under both controls to `tolerance`; write
-/// `dugdale-LABEL.{csv,svg}` into `out`, the JKR limit `jkr_force` (`F/F0`) drawn beside.
+/// Sweep `kind` (a fixed annulus at `b/a = eps`) over [`tabor_parameters`] under both controls
+/// to `tolerance`; write `dugdale-LABEL[-EPS].{csv,svg}` into `out`, the JKR limit `jkr_force` (`F/F0`) drawn beside.
 /// `progress` is called after each Tabor parameter.
 pub(crate) fn sweep(
     solver: &DugdaleSolver,
     kind: &PunchKind,
+    eps: Option<f64>,
     tolerance: f64,
     jkr_force: f64,
     out: &Path,
@@ -54,7 +55,7 @@ pub(crate) fn sweep(
     for tabor in tabor_parameters() {
         let law = DugdaleLaw::new(tabor)?;
         for control in Control::ALL {
-            rows.push(match solver.pulloff(kind, law, control, tolerance) {
+            rows.push(match solver.pulloff(kind, eps, law, control, tolerance) {
                 Ok(p) => SweepPoint {
                     tabor,
                     control,
@@ -76,6 +77,26 @@ pub(crate) fn sweep(
         }
         progress(&format!("lambda = {tabor:.3}"));
     }
+    let table = table(kind, jkr_force, &rows);
+    let chart = chart(kind, jkr_force, &rows);
+    std::fs::create_dir_all(out).map_err(|e| Error::file("create the directory", out, e))?;
+    let stem = match eps {
+        Some(eps) => out.join(format!("dugdale-{}-{eps}", kind.label())),
+        None => out.join(format!("dugdale-{}", kind.label())),
+    };
+    let mut files = Vec::new();
+    for (path, text) in [
+        (stem.with_extension("csv"), table.to_csv()?),
+        (stem.with_extension("svg"), chart),
+    ] {
+        std::fs::write(&path, text).map_err(|e| Error::file("write", &path, e))?;
+        files.push(path);
+    }
+    Ok(DugdaleSweep { rows, table, files })
+}
+
+/// The sweep's rows as a table (terminal and CSV).
+fn table(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> Table {
     let mut table = Table::new(
         &format!(
             "{}: Maugis-Dugdale pull-off F/F0 against the Tabor parameter (JKR limit {jkr_force:.6}; \
@@ -91,7 +112,7 @@ pub(crate) fn sweep(
             Column::text("declined", "declined"),
         ],
     );
-    for r in &rows {
+    for r in rows {
         table.push(vec![
             r.tabor.into(),
             r.control.name().into(),
@@ -101,6 +122,12 @@ pub(crate) fn sweep(
             Cell::from(r.declined.clone().unwrap_or_default()),
         ]);
     }
+    table
+}
+
+/// The log-log chart of the tensile pull-off against `λ`, one curve per control, the JKR limit
+/// beside.
+fn chart(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> String {
     let curve = |control: Control| svg::Series {
         name: format!("fixed {}", control.name()),
         points: rows
@@ -111,7 +138,7 @@ pub(crate) fn sweep(
         bars: Vec::new(),
     };
     let (lo, hi) = (tabor_parameters()[0], tabor_parameters()[39]);
-    let chart = svg::log_log_chart(
+    svg::log_log_chart(
         &format!(
             "{}: Dugdale pull-off against the Tabor parameter",
             kind.describe()
@@ -127,16 +154,5 @@ pub(crate) fn sweep(
                 bars: Vec::new(),
             },
         ],
-    );
-    std::fs::create_dir_all(out).map_err(|e| Error::file("create the directory", out, e))?;
-    let stem = out.join(format!("dugdale-{}", kind.label()));
-    let mut files = Vec::new();
-    for (path, text) in [
-        (stem.with_extension("csv"), table.to_csv()?),
-        (stem.with_extension("svg"), chart),
-    ] {
-        std::fs::write(&path, text).map_err(|e| Error::file("write", &path, e))?;
-        files.push(path);
-    }
-    Ok(DugdaleSweep { rows, table, files })
+    )
 }

@@ -80,6 +80,21 @@ impl<'a> Fields<'a> {
         })
     }
 
+    /// The configuration solved.
+    pub fn configuration(&self) -> Configuration {
+        self.configuration
+    }
+
+    /// The singular coefficient of the contact's pressure at its outer (`true`) or inner edge
+    /// at an equilibrium (positive: compressive).
+    pub fn coefficient(&self, equilibrium: &Equilibrium, outer: bool) -> f64 {
+        if outer {
+            equilibrium.field.rim_coefficient
+        } else {
+            equilibrium.field.inner_coefficient
+        }
+    }
+
     /// The depth at which the outer edge's (`outer = true`) or inner edge's singular
     /// coefficient vanishes: `d φ_1(c) - h φ_g(c) + σ0 φ_U(c) = 0`.
     pub fn depth_freeing(&self, outer: bool, h: f64, sigma0: f64) -> f64 {

@@ -9,13 +9,9 @@ use crate::numerics::roots::find_root;
 
 use super::configuration::{Configuration, Fields};
 use super::law::DugdaleLaw;
-use super::path::{self, Control, PathPoint};
+use super::path::{Family, PathPoint};
 use super::uniform_load::disk_deflection;
 use super::METHOD;
-
-/// Path samples, spaced geometrically in the distance `1 - c/a` of the contact's edge from the
-/// rim.
-const PATH_SAMPLES: usize = 40;
 
 /// Smallest contact radius `c/a` sampled before the whole face is in tension.
 const SMALLEST_CONTACT: f64 = 1e-3;
@@ -67,7 +63,15 @@ impl<'a> FlatDisk<'a> {
         let gap = fields
             .gap(&equilibrium, m, 0.0, sigma0, &flat, rule)
             .unwrap_or(0.0);
-        Ok((PathPoint::new(configuration, depth, equilibrium.force), gap))
+        Ok((
+            PathPoint::new(
+                configuration,
+                depth,
+                equilibrium.force,
+                [0.0, gap / self.law.range()],
+            ),
+            gap,
+        ))
     }
 
     /// The state with contact radius `c` (`0 < c < 1`).
@@ -112,60 +116,34 @@ impl<'a> FlatDisk<'a> {
             zone_outer: 1.0,
         };
         let force = -sigma0 * std::f64::consts::PI;
+        let first_gap = sigma0 * (centre - rim) / self.law.range();
         Some([
-            PathPoint::new(configuration, -sigma0 * centre, force),
-            PathPoint::new(configuration, -self.law.range() - sigma0 * rim, force),
+            PathPoint::new(configuration, -sigma0 * centre, force, [0.0, first_gap]),
+            PathPoint::new(
+                configuration,
+                -self.law.range() - sigma0 * rim,
+                force,
+                [0.0, 1.0],
+            ),
         ])
     }
+}
 
-    /// The path parameter `t = ln(1 - c/a)` of the first sample (where the zone is a fiftieth
-    /// of its JKR-limit length `a/λ²`) and of the last ([`SMALLEST_CONTACT`]), and their spacing.
-    fn parameter_range(&self) -> (f64, f64, f64) {
+impl Family for FlatDisk<'_> {
+    /// `t = ln(1 - c/a)` from where the zone is a fiftieth of its JKR-limit length `a/λ²` to
+    /// [`SMALLEST_CONTACT`].
+    fn parameter_range(&self) -> (f64, f64) {
         let first = (0.02 * self.law.zone_length()).clamp(1e-7, 0.5).ln();
-        let last = (1.0 - SMALLEST_CONTACT).ln();
-        (first, last, (last - first) / (PATH_SAMPLES - 1) as f64)
+        (first, (1.0 - SMALLEST_CONTACT).ln())
     }
 
-    /// The state at path parameter `t = ln(1 - c/a)`.
     fn at(&self, t: f64) -> Result<PathPoint> {
         self.state(1.0 - t.exp())
     }
 
-    /// The path as the punch is pulled: contact radii from near the rim down to
-    /// [`SMALLEST_CONTACT`], then the whole face in tension if its rim holds; each state with
-    /// its path parameter (infinite for the whole face in tension).
-    pub fn path(&self) -> Result<Vec<(f64, PathPoint)>> {
-        let (first, _, step) = self.parameter_range();
-        let mut samples = Vec::with_capacity(PATH_SAMPLES + 2);
-        for k in 0..PATH_SAMPLES {
-            let t = first + step * k as f64;
-            samples.push((t, self.at(t)?));
-        }
-        if let Some(tension) = self.whole_face_in_tension() {
-            for point in tension {
-                samples.push((f64::INFINITY, point));
-            }
-        }
-        Ok(samples)
-    }
-
-    /// The pull-off under `control` and its path parameter: refined by golden section within
-    /// two sample spacings of `near` (a coarser node count's), else found along the whole path.
-    pub fn pulloff(&self, control: Control, near: Option<f64>) -> Result<(f64, PathPoint)> {
-        let held = |p: &PathPoint| control.held(p);
-        let (first, last, step) = self.parameter_range();
-        let inside_path =
-            |t: &f64| t.is_finite() && *t - 2.0 * step >= first && *t + 2.0 * step <= last;
-        if let Some(t) = near.filter(inside_path) {
-            let bracket: Vec<(f64, PathPoint)> = [t - 2.0 * step, t, t + 2.0 * step]
-                .into_iter()
-                .map(|t| self.at(t).map(|p| (t, p)))
-                .collect::<Result<_>>()?;
-            let inside = held(&bracket[1].1) < held(&bracket[0].1).min(held(&bracket[2].1));
-            if inside {
-                return path::first_minimum(&bracket, held, |t| self.at(t));
-            }
-        }
-        path::first_minimum(&self.path()?, held, |t| self.at(t))
+    fn beyond_contact(&self) -> Vec<PathPoint> {
+        self.whole_face_in_tension()
+            .map(Vec::from)
+            .unwrap_or_default()
     }
 }

@@ -22,6 +22,7 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::punch::{Contact, PunchKind, PunchName};
 
+mod annulus;
 pub mod configuration;
 mod flat_disk;
 pub mod law;
@@ -130,16 +131,18 @@ impl DugdaleSolver {
             .clone()
     }
 
-    /// The pull-off of `kind` under the Dugdale law at `law`'s Tabor parameter, held by
-    /// `control`, refined until two node counts agree to `tolerance` (units of `F0` and `d0`).
+    /// The pull-off of `kind` (a fixed annulus at `b/a = eps`) under the Dugdale law at `law`'s
+    /// Tabor parameter, held by `control`, refined until the node counts agree to `tolerance`
+    /// (units of `F0` and `d0`).
     pub fn pulloff(
         &self,
         kind: &PunchKind,
+        eps: Option<f64>,
         law: DugdaleLaw,
         control: Control,
         tolerance: f64,
     ) -> Result<DugdalePulloff> {
-        pulloff(self, kind, law, control, tolerance)
+        pulloff(self, kind, eps, law, control, tolerance)
     }
 }
 
@@ -147,6 +150,7 @@ impl DugdaleSolver {
 fn pulloff(
     solver: &DugdaleSolver,
     kind: &PunchKind,
+    eps: Option<f64>,
     law: DugdaleLaw,
     control: Control,
     tolerance: f64,
@@ -160,17 +164,7 @@ fn pulloff(
             ),
         ));
     }
-    if kind.contact() != Contact::Disk {
-        return Err(Error::Unsupported {
-            method: METHOD.into(),
-            reason: format!(
-                "the Dugdale law is solved so far where the contact is the whole face (the {} \
-                 punch); the {} punch's contact (free or fixed inner edge) is not yet",
-                PunchName::names(Some(Contact::Disk), ", "),
-                kind.name()
-            ),
-        });
-    }
+    let face = Face::of(kind, eps)?;
     let units = |p: &PathPoint| (p.depth, p.force / law::KENDALL_FORCE);
     let first = NODE_LADDER
         .iter()
@@ -181,23 +175,24 @@ fn pulloff(
     let mut bracket: Option<f64> = None;
     let mut last_change = f64::INFINITY;
     for &nodes in &NODE_LADDER[first..] {
-        let system = solver.disk(nodes);
-        let face = flat_disk::FlatDisk::new(&solver.ring, &system, law);
-        let (parameter, pulloff) = face.pulloff(control, bracket)?;
-        bracket = Some(parameter);
-        history.push(units(&pulloff));
-        let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
-            continue;
-        };
-        // The larger of the last two changes: the node ladder's convergence is geometric only
-        // once the zone is resolved, and a single change can pass through zero before then.
-        let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
-        let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
-        last_change = depth_error.max(force_error);
-        if last_change <= tolerance {
+        let answer = face.with_family(solver, nodes, law, &mut |family| {
+            let (parameter, pulloff) = path::pulloff(family, control, bracket)?;
+            bracket = Some(parameter);
+            history.push(units(&pulloff));
+            let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
+                return Ok(None);
+            };
+            // The larger of the last two changes: the ladder's convergence is geometric only
+            // once the zone is resolved, and a single change can pass through zero before then.
+            let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
+            let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
+            last_change = depth_error.max(force_error);
+            if last_change > tolerance {
+                return Ok(None);
+            }
             let configuration = pulloff.configuration;
-            let path = face.path()?;
-            return Ok(DugdalePulloff {
+            let path = path::path(family)?;
+            Ok(Some(DugdalePulloff {
                 punch: kind.name().to_string(),
                 law: "dugdale",
                 tabor: law.tabor,
@@ -206,14 +201,17 @@ fn pulloff(
                 pulloff_force_error: force_error,
                 pulloff_depth: d0,
                 pulloff_depth_error: depth_error,
-                detaching_edge: DetachingEdge::Outer,
+                detaching_edge: face.detaching_edge(&pulloff),
                 contact: [configuration.inner, configuration.outer],
                 loaded_region: [configuration.zone_inner, configuration.zone_outer],
                 path_depth: path.iter().map(|(_, p)| units(p).0).collect(),
                 path_force: path.iter().map(|(_, p)| units(p).1).collect(),
                 nodes,
                 tolerance,
-            });
+            }))
+        })?;
+        if let Some(answer) = answer {
+            return Ok(answer);
         }
     }
     Err(Error::NoConvergence {
@@ -226,4 +224,99 @@ fn pulloff(
             NODE_LADDER[NODE_LADDER.len() - 1]
         ),
     })
+}
+
+/// The punch's face as the Dugdale solver sees it.
+#[derive(Clone, Copy)]
+enum Face {
+    /// The whole face `r <= a` ([`Contact::Disk`]).
+    Disk,
+    /// The annular face `b <= r <= a` ([`Contact::FixedAnnulus`]).
+    Annulus { hole: f64 },
+}
+
+impl Face {
+    /// The face of `kind` (with its `b/a = eps` for a fixed annulus); an error for a punch the
+    /// law is not solved for yet, or a missing or invalid `eps`.
+    fn of(kind: &PunchKind, eps: Option<f64>) -> Result<Self> {
+        match kind.contact() {
+            Contact::Disk => match eps {
+                None => Ok(Face::Disk),
+                Some(_) => Err(Error::invalid(
+                    "eps",
+                    format!(
+                        "fixes the hole of a fixed annulus; the {} punch has none",
+                        kind.name()
+                    ),
+                )),
+            },
+            Contact::FixedAnnulus => {
+                let hole = eps.ok_or_else(|| {
+                    Error::invalid(
+                        "eps",
+                        format!("is needed: the {}'s b/a (0 < b/a < 1)", kind.name()),
+                    )
+                })?;
+                if !(hole.is_finite() && hole > 0.0 && hole < 1.0) {
+                    return Err(Error::invalid(
+                        "eps",
+                        format!(
+                            "b/a must satisfy 0 < b/a < 1; got {}",
+                            crate::error::show(hole)
+                        ),
+                    ));
+                }
+                Ok(Face::Annulus { hole })
+            }
+            Contact::RimAndFreeInner | Contact::FreeBand => Err(Error::Unsupported {
+                method: METHOD.into(),
+                reason: format!(
+                    "the Dugdale law is solved so far for flat faces (the {} punches); the {} \
+                     punch's free edges are not yet",
+                    PunchName::names(Some(Contact::Disk), ", ")
+                        + ", "
+                        + &PunchName::names(Some(Contact::FixedAnnulus), ", "),
+                    kind.name()
+                ),
+            }),
+        }
+    }
+
+    /// Run `work` on the face's family of equilibria at `nodes` unknowns.
+    fn with_family<T>(
+        self,
+        solver: &DugdaleSolver,
+        nodes: usize,
+        law: DugdaleLaw,
+        work: &mut dyn FnMut(&dyn path::Family) -> Result<T>,
+    ) -> Result<T> {
+        match self {
+            Face::Disk => {
+                let system = solver.disk(nodes);
+                work(&flat_disk::FlatDisk::new(&solver.ring, &system, law))
+            }
+            Face::Annulus { hole } => {
+                work(&annulus::AnnularFace::new(&solver.ring, nodes, law, hole))
+            }
+        }
+    }
+
+    /// The edge that lets go at `pulloff`: those whose gap has reached `δc` (to 1e-6), else the
+    /// one nearest to it.
+    fn detaching_edge(self, pulloff: &PathPoint) -> DetachingEdge {
+        let [inner, outer] = pulloff.edge_gaps;
+        match self {
+            Face::Disk => DetachingEdge::Outer,
+            Face::Annulus { .. } => {
+                let reached = |gap: f64| gap >= 1.0 - 1e-6;
+                match (reached(inner), reached(outer)) {
+                    (true, true) => DetachingEdge::Both,
+                    (true, false) => DetachingEdge::Inner,
+                    (false, true) => DetachingEdge::Outer,
+                    (false, false) if inner > outer => DetachingEdge::Inner,
+                    (false, false) => DetachingEdge::Outer,
+                }
+            }
+        }
+    }
 }

@@ -16,14 +16,23 @@ pub struct PathPoint {
     pub depth: f64,
     /// Force `F/(E* a²)`, positive in compression.
     pub force: f64,
+    /// The gap at the face's inner and outer edge over the range `δc` (0 where the face has no
+    /// inner edge): an edge whose gap has reached `δc` has let go of the surface.
+    pub edge_gaps: [f64; 2],
 }
 
 impl PathPoint {
-    pub(crate) fn new(configuration: Configuration, depth: f64, force: f64) -> Self {
+    pub(crate) fn new(
+        configuration: Configuration,
+        depth: f64,
+        force: f64,
+        edge_gaps: [f64; 2],
+    ) -> Self {
         Self {
             configuration,
             depth,
             force,
+            edge_gaps,
         }
     }
 }
@@ -59,13 +68,70 @@ impl Control {
     }
 }
 
+/// Samples along a path.
+const PATH_SAMPLES: usize = 40;
+
+/// A family of equilibria along one path parameter `t`, growing as the punch is pulled.
+pub(crate) trait Family {
+    /// The first and last `t` sampled.
+    fn parameter_range(&self) -> (f64, f64);
+    /// The equilibrium at `t`.
+    fn at(&self, t: f64) -> Result<PathPoint>;
+    /// States past the last `t` that the parameter does not reach (the whole face in tension
+    /// with no contact left), in the order they are met; none by default.
+    fn beyond_contact(&self) -> Vec<PathPoint> {
+        Vec::new()
+    }
+}
+
+/// The path of `family` as the punch is pulled, each state with its parameter (infinite for
+/// the states beyond the contact).
+pub(crate) fn path(family: &dyn Family) -> Result<Vec<(f64, PathPoint)>> {
+    let (first, last) = family.parameter_range();
+    let step = (last - first) / (PATH_SAMPLES - 1) as f64;
+    let mut samples = Vec::with_capacity(PATH_SAMPLES + 2);
+    for k in 0..PATH_SAMPLES {
+        let t = first + step * k as f64;
+        samples.push((t, family.at(t)?));
+    }
+    for point in family.beyond_contact() {
+        samples.push((f64::INFINITY, point));
+    }
+    Ok(samples)
+}
+
+/// The pull-off of `family` under `control` and its parameter: refined by golden section
+/// within two sample spacings of `near` (a coarser node count's), else found along the whole
+/// path.
+pub(crate) fn pulloff(
+    family: &dyn Family,
+    control: Control,
+    near: Option<f64>,
+) -> Result<(f64, PathPoint)> {
+    let held = |p: &PathPoint| control.held(p);
+    let (first, last) = family.parameter_range();
+    let step = (last - first) / (PATH_SAMPLES - 1) as f64;
+    let inside_path =
+        |t: &f64| t.is_finite() && *t - 2.0 * step >= first && *t + 2.0 * step <= last;
+    if let Some(t) = near.filter(inside_path) {
+        let bracket: Vec<(f64, PathPoint)> = [t - 2.0 * step, t, t + 2.0 * step]
+            .into_iter()
+            .map(|t| family.at(t).map(|p| (t, p)))
+            .collect::<Result<_>>()?;
+        if held(&bracket[1].1) < held(&bracket[0].1).min(held(&bracket[2].1)) {
+            return first_minimum(&bracket, held, |t| family.at(t));
+        }
+    }
+    first_minimum(&path(family)?, held, |t| family.at(t))
+}
+
 /// Golden-section width of the path parameter at the pull-off.
 const PARAMETER_WIDTH: f64 = 1e-11;
 
 /// The first local minimum of `held` along the `samples` of `state(t)` (ordered as the punch is
 /// pulled), refined by golden section between its neighbours; the last sample when `held`
 /// falls all the way.
-pub(crate) fn first_minimum(
+fn first_minimum(
     samples: &[(f64, PathPoint)],
     held: impl Fn(&PathPoint) -> f64,
     state: impl Fn(f64) -> Result<PathPoint>,
