@@ -6,7 +6,7 @@
 //! ([`uniform_load`]), the contact's pressure by the ring BEM with its free edges' singular
 //! coefficients zero and each zone ending where the gap reaches `δc` (or at the face's edge).
 //! The pull-off is the first extremum met along the path ([`path`]), under fixed load or fixed
-//! grips, refined on the node ladder until two node counts agree to the tolerance.
+//! grips, refined on the node ladder until its last two changes are within the tolerance.
 //!
 //! Units as `verify jkr`'s: depths in `d0 = sqrt(2π a Δw / E*)`, forces in Kendall's
 //! `F0 = sqrt(8π E* Δw a³)` (negative: tensile); the Tabor parameter
@@ -91,7 +91,8 @@ pub struct DugdalePulloff {
     pub pulloff_depth_error: f64,
     /// The edge that lets go.
     pub detaching_edge: DetachingEdge,
-    /// Contact `[c1, c2] / a` at the pull-off (`c1 = 0`: a disk; `[0, 0]`: none left).
+    /// Contact `[c1, c2] / a` at the pull-off (`c1 = 0`: a disk; `c1 = c2`: none left, the
+    /// whole face in tension).
     pub contact: [f64; 2],
     /// Loaded region (contact and cohesive zones) `[z1, z2] / a` at the pull-off.
     pub loaded_region: [f64; 2],
