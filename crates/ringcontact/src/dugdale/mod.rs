@@ -133,8 +133,8 @@ impl DugdaleSolver {
     }
 
     /// The pull-off of `kind` (a fixed annulus at `b/a = eps`) under the Dugdale law at `law`'s
-    /// Tabor parameter, held by `control`, refined until the node counts agree to `tolerance`
-    /// (units of `F0` and `d0`).
+    /// Tabor parameter, held by `control`, refined on the node ladder until its last two
+    /// changes are within `tolerance` (units of `F0` and `d0`).
     pub fn pulloff(
         &self,
         kind: &PunchKind,
@@ -143,88 +143,76 @@ impl DugdaleSolver {
         control: Control,
         tolerance: f64,
     ) -> Result<DugdalePulloff> {
-        pulloff(self, kind, eps, law, control, tolerance)
-    }
-}
-
-/// [`DugdaleSolver::pulloff`].
-fn pulloff(
-    solver: &DugdaleSolver,
-    kind: &PunchKind,
-    eps: Option<f64>,
-    law: DugdaleLaw,
-    control: Control,
-    tolerance: f64,
-) -> Result<DugdalePulloff> {
-    if !(tolerance.is_finite() && tolerance > 0.0) {
-        return Err(Error::invalid(
-            "tol",
-            format!(
-                "must be a finite number > 0; got {}",
-                crate::error::show(tolerance)
-            ),
-        ));
-    }
-    let face = Face::of(kind, eps)?;
-    let units = |p: &PathPoint| (p.depth, p.force / law::KENDALL_FORCE);
-    let first = NODE_LADDER
-        .iter()
-        .position(|&n| n as f64 >= NODES_PER_TABOR * law.tabor)
-        .unwrap_or(NODE_LADDER.len())
-        .min(NODE_LADDER.len() - 3);
-    let mut history: Vec<(f64, f64)> = Vec::new();
-    let mut bracket: Option<f64> = None;
-    let mut last_change = f64::INFINITY;
-    for &nodes in &NODE_LADDER[first..] {
-        let answer = face.with_family(solver, nodes, law, &mut |family| {
-            let (parameter, pulloff) = path::pulloff(family, control, bracket)?;
-            bracket = Some(parameter);
-            history.push(units(&pulloff));
-            let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
-                return Ok(None);
-            };
-            // The larger of the last two changes: the ladder's convergence is geometric only
-            // once the zone is resolved, and a single change can pass through zero before then.
-            let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
-            let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
-            last_change = depth_error.max(force_error);
-            if last_change > tolerance {
-                return Ok(None);
-            }
-            let configuration = pulloff.configuration;
-            let path = path::path(family)?;
-            Ok(Some(DugdalePulloff {
-                punch: kind.name().to_string(),
-                law: "dugdale",
-                tabor: law.tabor,
-                control,
-                pulloff_force: f0,
-                pulloff_force_error: force_error,
-                pulloff_depth: d0,
-                pulloff_depth_error: depth_error,
-                detaching_edge: face.detaching_edge(&pulloff),
-                contact: [configuration.inner, configuration.outer],
-                loaded_region: [configuration.zone_inner, configuration.zone_outer],
-                path_depth: path.iter().map(|(_, p)| units(p).0).collect(),
-                path_force: path.iter().map(|(_, p)| units(p).1).collect(),
-                nodes,
-                tolerance,
-            }))
-        })?;
-        if let Some(answer) = answer {
-            return Ok(answer);
+        if !(tolerance.is_finite() && tolerance > 0.0) {
+            return Err(Error::invalid(
+                "tol",
+                format!(
+                    "must be a finite number > 0; got {}",
+                    crate::error::show(tolerance)
+                ),
+            ));
         }
-    }
-    Err(Error::NoConvergence {
-        method: METHOD.into(),
-        reason: format!(
-            "the pull-off at Tabor parameter {} changes by {last_change:.1e} over the node \
+        let face = Face::of(kind, eps)?;
+        let units = |p: &PathPoint| (p.depth, p.force / law::KENDALL_FORCE);
+        let first = NODE_LADDER
+            .iter()
+            .position(|&n| n as f64 >= NODES_PER_TABOR * law.tabor)
+            .unwrap_or(NODE_LADDER.len())
+            .min(NODE_LADDER.len() - 3);
+        let mut history: Vec<(f64, f64)> = Vec::new();
+        let mut bracket: Option<f64> = None;
+        let mut last_change = f64::INFINITY;
+        for &nodes in &NODE_LADDER[first..] {
+            let answer = face.with_family(self, nodes, law, &mut |family| {
+                let (parameter, pulloff) = path::pulloff(family, control, bracket)?;
+                bracket = Some(parameter);
+                history.push(units(&pulloff));
+                let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
+                    return Ok(None);
+                };
+                // The larger of the last two changes: the ladder's convergence is geometric only
+                // once the zone is resolved, and a single change can pass through zero before then.
+                let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
+                let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
+                last_change = depth_error.max(force_error);
+                if last_change > tolerance {
+                    return Ok(None);
+                }
+                let configuration = pulloff.configuration;
+                let path = path::path(family)?;
+                Ok(Some(DugdalePulloff {
+                    punch: kind.name().to_string(),
+                    law: "dugdale",
+                    tabor: law.tabor,
+                    control,
+                    pulloff_force: f0,
+                    pulloff_force_error: force_error,
+                    pulloff_depth: d0,
+                    pulloff_depth_error: depth_error,
+                    detaching_edge: face.detaching_edge(&pulloff),
+                    contact: [configuration.inner, configuration.outer],
+                    loaded_region: [configuration.zone_inner, configuration.zone_outer],
+                    path_depth: path.iter().map(|(_, p)| units(p).0).collect(),
+                    path_force: path.iter().map(|(_, p)| units(p).1).collect(),
+                    nodes,
+                    tolerance,
+                }))
+            })?;
+            if let Some(answer) = answer {
+                return Ok(answer);
+            }
+        }
+        Err(Error::NoConvergence {
+            method: METHOD.into(),
+            reason: format!(
+                "the pull-off at Tabor parameter {} changes by {last_change:.1e} over the node \
              counts up to N = {}, above the tolerance {tolerance:.1e} (the cohesive zone, about \
              a/λ² long, is too short for the ring's nodes)",
-            crate::error::show(law.tabor),
-            NODE_LADDER[NODE_LADDER.len() - 1]
-        ),
-    })
+                crate::error::show(law.tabor),
+                NODE_LADDER[NODE_LADDER.len() - 1]
+            ),
+        })
+    }
 }
 
 /// The punch's face as the Dugdale solver sees it.
