@@ -8,7 +8,7 @@ use crate::cli::args::AdhesionArgs;
 use crate::harness::progress::Progress;
 use crate::harness::studies::dugdale_sweep;
 use ringcontact::adhesion;
-use ringcontact::dugdale::{law, Control, DugdaleLaw, DugdalePulloff, DugdaleSolver};
+use ringcontact::dugdale::{self, law, Control, DugdaleLaw, DugdalePulloff, DugdaleSolver};
 use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 use ringcontact::reference::dugdale_flat;
@@ -43,6 +43,7 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         "grips" => Control::Grips,
         _ => Control::Load,
     };
+    dugdale::check_face(&punch, args.eps).map_err(message)?;
     let jkr_force = jkr_limit(&punch, args.eps)?;
     let solver = DugdaleSolver::new();
     if args.sweep {
@@ -94,19 +95,12 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
     }))
 }
 
-/// The JKR limit's pull-off force `F/F0` of `punch`, which the Dugdale pull-off tends to:
-/// Kendall's for the whole face, the governing edge's critical force for a fixed annulus
-/// (`verify jkr`).
+/// The JKR limit's pull-off force `F/F0` of `punch` (checked by [`dugdale::check_face`]),
+/// which the Dugdale pull-off tends to: Kendall's for the whole face, the governing edge's
+/// critical force for a fixed annulus (`verify jkr`).
 fn jkr_limit(punch: &PunchKind, eps: Option<f64>) -> Result<f64, String> {
-    match punch.contact() {
-        Contact::Disk => Ok(-1.0),
-        Contact::FixedAnnulus => {
-            let eps = eps.ok_or_else(|| {
-                format!("the {} needs --eps B_OVER_A (0 < b/a < 1)", punch.name())
-            })?;
-            if !(eps.is_finite() && eps > 0.0 && eps < 1.0) {
-                return Err(format!("--eps must satisfy 0 < b/a < 1; got {eps}"));
-            }
+    match (punch.contact(), eps) {
+        (Contact::FixedAnnulus, Some(eps)) => {
             let jkr = adhesion::fixed_annulus(&RingBem::new(), eps).map_err(message)?;
             Ok(if jkr.governing_edge == "inner" {
                 jkr.fc_inner
@@ -114,13 +108,7 @@ fn jkr_limit(punch: &PunchKind, eps: Option<f64>) -> Result<f64, String> {
                 jkr.fc_outer
             })
         }
-        _ => Err(format!(
-            "the Dugdale law is solved so far for flat faces (the {}, {} punches); the {} \
-             punch's free edges are not yet (`verify jkr` gives its JKR limit)",
-            super::names_of(Contact::Disk),
-            super::names_of(Contact::FixedAnnulus),
-            punch.name()
-        )),
+        _ => Ok(-1.0),
     }
 }
 

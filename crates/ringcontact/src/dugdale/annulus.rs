@@ -9,10 +9,9 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::numerics::roots::find_root;
 
-use super::configuration::{Configuration, Fields};
+use super::configuration::{flat_face, whole_face_in_tension, Configuration, Fields};
 use super::law::DugdaleLaw;
 use super::path::{Family, PathPoint};
-use super::uniform_load::annulus_deflection;
 use super::METHOD;
 
 /// Tolerance of a zone's end and of the contact's centre (units of `a`).
@@ -23,10 +22,6 @@ const ZONE_PASSES: usize = 30;
 
 /// Narrowest contact sampled, as a fraction of the face's width.
 const NARROWEST_CONTACT: f64 = 1e-3;
-
-fn flat(_: f64) -> f64 {
-    0.0
-}
 
 fn not_converged(reason: String) -> Error {
     Error::NoConvergence {
@@ -83,7 +78,7 @@ impl<'a> AnnularFace<'a> {
                 zone_inner: z1,
                 zone_outer: z2,
             };
-            let fields = Fields::solve(configuration, &system, &flat).ok_or_else(|| {
+            let fields = Fields::solve(configuration, &system, &flat_face).ok_or_else(|| {
                 not_converged(format!("singular collocation matrix on [{c1}, {c2}]"))
             })?;
             let depth = fields.depth_freeing(free_outer, 0.0, sigma0);
@@ -97,7 +92,7 @@ impl<'a> AnnularFace<'a> {
             let (fields, depth) = solve(z1, z2)?;
             let equilibrium = fields.at_depth(depth, 0.0, sigma0);
             fields
-                .gap(&equilibrium, r, 0.0, sigma0, &flat, rule)
+                .gap(&equilibrium, r, 0.0, sigma0, &flat_face, rule)
                 .ok_or_else(|| not_converged(format!("no gap at r = {r} off [{c1}, {c2}]")))
         };
         let zone_end = |lo: f64, hi: f64, gap: &dyn Fn(f64) -> Result<f64>| -> Result<f64> {
@@ -132,7 +127,7 @@ impl<'a> AnnularFace<'a> {
                 let equilibrium = fields.at_depth(depth, 0.0, sigma0);
                 let edge_gap = |r: f64| {
                     fields
-                        .gap(&equilibrium, r, 0.0, sigma0, &flat, rule)
+                        .gap(&equilibrium, r, 0.0, sigma0, &flat_face, rule)
                         .map(|g| g / range)
                         .unwrap_or(0.0)
                 };
@@ -191,34 +186,6 @@ impl<'a> AnnularFace<'a> {
         })?;
         Ok(self.band(root.x - half, root.x + half)?.point)
     }
-
-    /// With no contact left: the first state (the surface just leaving the face where it is
-    /// highest) and the last (the first face edge's gap at `δc`), when the edges hold at the
-    /// first; `None` otherwise.
-    fn whole_face_in_tension(&self) -> Option<[PathPoint; 2]> {
-        let (sigma0, range) = (self.law.tension(), self.law.range());
-        let lift = |r: f64| annulus_deflection(self.hole, 1.0, r);
-        let top = crate::numerics::golden::golden_section_max(lift, self.hole, 1.0, 1e-12);
-        let highest = lift(top);
-        let edges = [lift(self.hole), lift(1.0)];
-        if sigma0 * (highest - edges[0].min(edges[1])) > range {
-            return None;
-        }
-        let configuration = Configuration {
-            inner: top,
-            outer: top,
-            zone_inner: self.hole,
-            zone_outer: 1.0,
-        };
-        let force = -sigma0 * std::f64::consts::PI * (1.0 - self.hole * self.hole);
-        let first_depth = -sigma0 * highest;
-        let gaps = |depth: f64| edges.map(|lift| (-sigma0 * lift - depth) / range);
-        let last_depth = -range - sigma0 * edges[0].min(edges[1]);
-        Some([
-            PathPoint::new(configuration, first_depth, force, gaps(first_depth)),
-            PathPoint::new(configuration, last_depth, force, gaps(last_depth)),
-        ])
-    }
 }
 
 impl Family for AnnularFace<'_> {
@@ -235,7 +202,7 @@ impl Family for AnnularFace<'_> {
     }
 
     fn beyond_contact(&self) -> Vec<PathPoint> {
-        self.whole_face_in_tension()
+        whole_face_in_tension(self.law, self.hole)
             .map(Vec::from)
             .unwrap_or_default()
     }

@@ -12,7 +12,55 @@
 use crate::bem::ring::{ContactRegion, RingField, RingSystem};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 
+use super::law::DugdaleLaw;
+use super::path::PathPoint;
 use super::uniform_load::annulus_deflection;
+
+/// The gap profile `ĝ = 0` of a flat face.
+pub(crate) fn flat_face(_: f64) -> f64 {
+    0.0
+}
+
+/// A flat face `b <= r <= a` (`b = 0`: the whole disk) with no contact left, all of it in
+/// tension `σ0`: the first such state (the surface just leaving the face where its lift
+/// `σ0 U(r)` is highest, the centre of a disk) and the last (the first face edge's gap at
+/// `δc`), when the edges hold at the first; `None` otherwise. The force is `-π (a² - b²) σ0`
+/// throughout.
+pub(crate) fn whole_face_in_tension(law: DugdaleLaw, hole: f64) -> Option<[PathPoint; 2]> {
+    let (sigma0, range) = (law.tension(), law.range());
+    let lift = |r: f64| annulus_deflection(hole, 1.0, r);
+    let top = if hole == 0.0 {
+        0.0
+    } else {
+        crate::numerics::golden::golden_section_max(lift, hole, 1.0, 1e-12)
+    };
+    let highest = lift(top);
+    let edges = [lift(hole), lift(1.0)];
+    let lowest_edge = if hole == 0.0 {
+        edges[1]
+    } else {
+        edges[0].min(edges[1])
+    };
+    if sigma0 * (highest - lowest_edge) > range {
+        return None;
+    }
+    let configuration = Configuration {
+        inner: top,
+        outer: top,
+        zone_inner: hole,
+        zone_outer: 1.0,
+    };
+    let force = -sigma0 * std::f64::consts::PI * (1.0 - hole * hole);
+    let gaps = |depth: f64| {
+        let [inner, outer] = edges.map(|lift| (-sigma0 * lift - depth) / range);
+        [if hole == 0.0 { 0.0 } else { inner }, outer]
+    };
+    let (first_depth, last_depth) = (-sigma0 * highest, -range - sigma0 * lowest_edge);
+    Some([
+        PathPoint::new(configuration, first_depth, force, gaps(first_depth)),
+        PathPoint::new(configuration, last_depth, force, gaps(last_depth)),
+    ])
+}
 
 /// The contact `[inner, outer]` (`inner = 0`: the disk `r <= outer`) and the loaded region
 /// `[zone_inner, zone_outer]` around it, in units of `a`.

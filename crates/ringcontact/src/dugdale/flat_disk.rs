@@ -7,10 +7,9 @@ use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
 use crate::numerics::roots::find_root;
 
-use super::configuration::{Configuration, Fields};
+use super::configuration::{flat_face, whole_face_in_tension, Configuration, Fields};
 use super::law::DugdaleLaw;
 use super::path::{Family, PathPoint};
-use super::uniform_load::disk_deflection;
 use super::METHOD;
 
 /// Smallest contact radius `c/a` sampled before the whole face is in tension.
@@ -24,10 +23,6 @@ pub(crate) struct FlatDisk<'a> {
     solver: &'a RingBemSolver,
     system: &'a RingSystem,
     law: DugdaleLaw,
-}
-
-fn flat(_: f64) -> f64 {
-    0.0
 }
 
 impl<'a> FlatDisk<'a> {
@@ -51,17 +46,18 @@ impl<'a> FlatDisk<'a> {
             zone_inner: 0.0,
             zone_outer: m,
         };
-        let fields =
-            Fields::solve(configuration, self.system, &flat).ok_or_else(|| Error::Implausible {
+        let fields = Fields::solve(configuration, self.system, &flat_face).ok_or_else(|| {
+            Error::Implausible {
                 method: METHOD.into(),
                 state: format!("contact radius {c}"),
                 reason: "singular collocation matrix".into(),
-            })?;
+            }
+        })?;
         let depth = fields.depth_freeing(true, 0.0, sigma0);
         let equilibrium = fields.at_depth(depth, 0.0, sigma0);
         let rule = self.solver.deflection_rule(self.system.unknowns());
         let gap = fields
-            .gap(&equilibrium, m, 0.0, sigma0, &flat, rule)
+            .gap(&equilibrium, m, 0.0, sigma0, &flat_face, rule)
             .unwrap_or(0.0);
         Ok((
             PathPoint::new(
@@ -99,34 +95,6 @@ impl<'a> FlatDisk<'a> {
         })?;
         Ok(self.with_zone_end(c, root.x)?.0)
     }
-
-    /// With no contact left and the whole face in tension: the first such state (the surface
-    /// just leaving the face's centre) and the last (the rim's gap at `δc`), where the rim's gap
-    /// is within the range when the centre lets go; `None` otherwise.
-    pub fn whole_face_in_tension(&self) -> Option<[PathPoint; 2]> {
-        let sigma0 = self.law.tension();
-        let (centre, rim) = (disk_deflection(1.0, 0.0), disk_deflection(1.0, 1.0));
-        if sigma0 * (centre - rim) > self.law.range() {
-            return None;
-        }
-        let configuration = Configuration {
-            inner: 0.0,
-            outer: 0.0,
-            zone_inner: 0.0,
-            zone_outer: 1.0,
-        };
-        let force = -sigma0 * std::f64::consts::PI;
-        let first_gap = sigma0 * (centre - rim) / self.law.range();
-        Some([
-            PathPoint::new(configuration, -sigma0 * centre, force, [0.0, first_gap]),
-            PathPoint::new(
-                configuration,
-                -self.law.range() - sigma0 * rim,
-                force,
-                [0.0, 1.0],
-            ),
-        ])
-    }
 }
 
 impl Family for FlatDisk<'_> {
@@ -142,7 +110,7 @@ impl Family for FlatDisk<'_> {
     }
 
     fn beyond_contact(&self) -> Vec<PathPoint> {
-        self.whole_face_in_tension()
+        whole_face_in_tension(self.law, 0.0)
             .map(Vec::from)
             .unwrap_or_default()
     }

@@ -215,6 +215,12 @@ impl DugdaleSolver {
     }
 }
 
+/// Whether the Dugdale law is solved for `kind` (with `b/a = eps` for a fixed annulus): an error
+/// naming what is missing, invalid or not solved yet.
+pub fn check_face(kind: &PunchKind, eps: Option<f64>) -> Result<()> {
+    Face::of(kind, eps).map(|_| ())
+}
+
 /// The punch's face as the Dugdale solver sees it.
 #[derive(Clone, Copy)]
 enum Face {
