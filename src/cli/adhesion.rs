@@ -8,7 +8,9 @@ use crate::cli::args::AdhesionArgs;
 use crate::harness::progress::Progress;
 use crate::harness::studies::dugdale_sweep;
 use ringcontact::adhesion;
-use ringcontact::dugdale::{self, law, Control, DugdaleLaw, DugdalePulloff, DugdaleSolver};
+use ringcontact::dugdale::{
+    self, law, Control, DugdaleLaw, DugdalePulloff, DugdaleSolver, FaceParameters,
+};
 use ringcontact::methods::RingBem;
 use ringcontact::punch::{Contact, PunchKind};
 use ringcontact::reference::dugdale_flat;
@@ -25,9 +27,13 @@ struct Answer {
     range_over_d0: f64,
     /// The cohesive zone's length at a crack tip in the JKR limit, `ℓ/a = 1/λ²`.
     zone_length_over_a: f64,
-    /// The JKR limit's pull-off `F/F0` (`verify jkr`: Kendall's -1 for the whole face, the
-    /// governing edge's for a fixed annulus).
-    jkr_pulloff_force: f64,
+    /// The JKR limit's pull-off `F/F0` under this control (`verify jkr`: Kendall's -1 for the
+    /// whole face, the governing edge's for a fixed annulus, the annular pull-off for a concave
+    /// punch; `null` where that has none, `jkr_note` saying why).
+    jkr_pulloff_force: Option<f64>,
+    /// Why there is no JKR pull-off to read against.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    jkr_note: Option<String>,
     /// The flat face's closed form (`reference::dugdale_flat`), where it applies.
     closed_form_force: Option<f64>,
     units: &'static str,
@@ -43,8 +49,12 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         "grips" => Control::Grips,
         _ => Control::Load,
     };
-    dugdale::check_face(&punch, args.eps).map_err(message)?;
-    let jkr_force = jkr_limit(&punch, args.eps)?;
+    let parameters = FaceParameters {
+        eps: args.eps,
+        d0_over_h: args.d0h,
+    };
+    dugdale::check_face(&punch, parameters).map_err(message)?;
+    let jkr_force = |control| jkr_limit(&punch, parameters, control);
     let solver = DugdaleSolver::new();
     if args.sweep {
         if args.tabor.is_some() {
@@ -52,11 +62,14 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         }
         let out = crate::cli::output_directory(args.out.as_deref(), "reports/adhesion");
         let mut bar = Progress::new("sweep", 40);
-        let sweep =
-            dugdale_sweep::sweep(&solver, &punch, args.eps, args.tol, jkr_force, &out, |s| {
-                bar.tick(s)
-            })
-            .map_err(message)?;
+        let jkr = [
+            jkr_force(Control::Load)?.ok(),
+            jkr_force(Control::Grips)?.ok(),
+        ];
+        let sweep = dugdale_sweep::sweep(&solver, &punch, parameters, args.tol, jkr, &out, |s| {
+            bar.tick(s)
+        })
+        .map_err(message)?;
         if args.json {
             return Ok(Reply::ok(to_json(&sweep.rows)?));
         }
@@ -73,13 +86,15 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         .tabor
         .ok_or("give --tabor LAMBDA (the Tabor parameter, > 0) or --sweep")?;
     let law = DugdaleLaw::new(tabor).map_err(message)?;
+    let jkr = jkr_force(control)?;
     let pulloff = solver
-        .pulloff(&punch, args.eps, law, control, args.tol)
+        .pulloff(&punch, parameters, law, control, args.tol)
         .map_err(message)?;
     let answer = Answer {
         range_over_d0: law::WORK / law.tension(),
         zone_length_over_a: law.zone_length(),
-        jkr_pulloff_force: jkr_force,
+        jkr_pulloff_force: jkr.as_ref().ok().copied(),
+        jkr_note: jkr.err(),
         closed_form_force: (punch.contact() == Contact::Disk)
             .then(|| dugdale_flat::pulloff(tabor).map(|p| p.force))
             .flatten(),
@@ -95,20 +110,43 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
     }))
 }
 
-/// The JKR limit's pull-off force `F/F0` of `punch` (checked by [`dugdale::check_face`]),
-/// which the Dugdale pull-off tends to: Kendall's for the whole face, the governing edge's
-/// critical force for a fixed annulus (`verify jkr`).
-fn jkr_limit(punch: &PunchKind, eps: Option<f64>) -> Result<f64, String> {
-    match (punch.contact(), eps) {
-        (Contact::FixedAnnulus, Some(eps)) => {
+/// The JKR limit's pull-off force `F/F0` of `punch` under `control` (checked by
+/// [`dugdale::check_face`]), which the Dugdale pull-off tends to (`verify jkr`): Kendall's for
+/// the whole face, the governing edge's critical force for a fixed annulus, the annular
+/// pull-off (the rim criterion included) for a concave punch; `Ok(Err(why))` where it has none.
+fn jkr_limit(
+    punch: &PunchKind,
+    parameters: FaceParameters,
+    control: Control,
+) -> Result<Result<f64, String>, String> {
+    match (punch.contact(), parameters) {
+        (Contact::FixedAnnulus, FaceParameters { eps: Some(eps), .. }) => {
             let jkr = adhesion::fixed_annulus(&RingBem::new(), eps).map_err(message)?;
-            Ok(if jkr.governing_edge == "inner" {
+            Ok(Ok(if jkr.governing_edge == "inner" {
                 jkr.fc_inner
             } else {
                 jkr.fc_outer
-            })
+            }))
         }
-        _ => Ok(-1.0),
+        (
+            Contact::RimAndFreeInner,
+            FaceParameters {
+                d0_over_h: Some(s), ..
+            },
+        ) => {
+            let jkr = adhesion::concave(&RingBem::new(), punch.clone(), s).map_err(message)?;
+            let (critical, note) = match control {
+                Control::Load => (jkr.fixed_load, jkr.fixed_load_note),
+                Control::Grips => (jkr.fixed_grips, jkr.fixed_grips_note),
+            };
+            Ok(critical.map(|c| c.force).ok_or_else(|| {
+                format!(
+                    "verify jkr has no annular pull-off here: {}",
+                    note.unwrap_or_default()
+                )
+            }))
+        }
+        _ => Ok(Ok(-1.0)),
     }
 }
 
@@ -127,7 +165,8 @@ fn text(answer: &Answer) -> String {
         "{} punch{}, Dugdale law, Tabor parameter {} (range dc/d0 = {:.6}, zone length a/lambda^2 \
          = {:.3e} a), fixed {}\n",
         p.punch,
-        answer.eps.map(|e| format!(" b/a = {e}")).unwrap_or_default(),
+        answer.eps.map(|e| format!(" b/a = {e}")).unwrap_or_default()
+            + &p.d0_over_h.map(|s| format!(" d0/h = {s}")).unwrap_or_default(),
         p.tabor,
         answer.range_over_d0,
         answer.zone_length_over_a,
@@ -147,10 +186,13 @@ fn text(answer: &Answer) -> String {
         p.detaching_edge.name(),
         p.loaded_region[1]
     );
-    out += &format!(
-        "  JKR limit       F/F0 = {:.6} (verify jkr)\n",
-        answer.jkr_pulloff_force
-    );
+    out += &match (answer.jkr_pulloff_force, &answer.jkr_note) {
+        (Some(force), _) => format!("  JKR limit       F/F0 = {force:.6} (verify jkr)\n"),
+        (None, note) => format!(
+            "  JKR limit       none: {}\n",
+            note.as_deref().unwrap_or("")
+        ),
+    };
     if let Some(closed) = answer.closed_form_force {
         out += &format!(
             "  closed form     F/F0 = {closed:.10} (a flat face, Sneddon's representation; \

@@ -306,11 +306,14 @@ extremum of the force (--control load) or the depth (--control grips) met as the
 pulled, refined on a ladder of node counts until its last two changes are within --tol (the
 larger is the error bound reported).
 
-Punches: the flat faces so far: flat (its closed form, derived in the library's
-reference::dugdale_flat, is printed beside) and flat-annulus --eps B_OVER_A (the contact held at
-a face edge while that edge's stress is compressive, else both edges free, a cohesive zone from
-each free edge toward the face's edge; detaching_edge names the face edge whose gap reaches the
-range first). The others are declined with that reason.
+Punches: flat (its closed form, derived in the library's reference::dugdale_flat, is printed
+beside); flat-annulus --eps B_OVER_A (the contact held at a face edge while that edge's stress
+is compressive, else both edges free, a cohesive zone from each free edge toward the face's
+edge; detaching_edge names the face edge whose gap reaches the range first); the concave cone,
+sphere, power and table --d0h D0_OVER_H (pressed until the hole is about to close, then pulled:
+the contact holds the rim while the rim's stress is compressive, a cohesive zone runs from the
+free inner edge into the recess; detaching_edge is outer when the rim's gap reaches the range,
+else inner; the JKR limit is `verify jkr`'s annular pull-off). The torus is declined.
 
 Units: forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch; negative = tensile), depths in
 d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` directly.
@@ -324,6 +327,7 @@ Examples:
   verify adhesion --punch flat --tabor 2
   verify adhesion --punch flat --tabor 5 --control grips --json
   verify adhesion --punch flat-annulus --eps 0.5 --tabor 3
+  verify adhesion --punch cone --d0h 1 --tabor 5
   verify adhesion --punch flat --sweep")]
     Adhesion(AdhesionArgs),
     /// Refit the paper's approximations (3), (8), (10) to converged ring-BEM data on
@@ -455,7 +459,7 @@ pub struct PulloffArgs {
 // The arguments of `verify adhesion`.
 #[derive(Args)]
 pub struct AdhesionArgs {
-    /// Punch shape (flat and flat-annulus so far).
+    /// Punch shape: flat, flat-annulus or a concave one (cone, sphere, power, table).
     #[arg(long, value_parser = choice::parser::<PunchName>())]
     pub punch: PunchName,
     /// Exponent n of the power-law punch (`--punch power`).
@@ -467,6 +471,9 @@ pub struct AdhesionArgs {
     /// b/a of the flat annulus.
     #[arg(long, allow_negative_numbers = true)]
     pub eps: Option<f64>,
+    /// d0/h of a concave punch (its recess's depth h in units of d0 = sqrt(2 pi a dw / E*)).
+    #[arg(long, allow_negative_numbers = true)]
+    pub d0h: Option<f64>,
     /// The adhesion law: dugdale (constant tension sigma0 up to the gap dw/sigma0).
     #[arg(long, default_value = "dugdale", value_parser = ["dugdale"])]
     pub law: String,

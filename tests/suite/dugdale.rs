@@ -1,10 +1,12 @@
-//! The Maugis-Dugdale adhesion of the flat punch on the ring BEM (`verify adhesion`) against
-//! its closed form, written here from Sneddon's representation of the half-space: the ring BEM
-//! solves the contact by collocation of the ring kernel and shares none of it.
+//! The Maugis-Dugdale adhesion on the ring BEM (`verify adhesion`): the flat punch against its
+//! closed form, written here from Sneddon's representation of the half-space (the ring BEM
+//! solves the contact by collocation of the ring kernel and shares none of it); every face
+//! against the uniform tension at small Tabor parameter and against the JKR analyses of
+//! `verify jkr` (no cohesive zone) at large.
 
 use std::f64::consts::PI;
 
-use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver};
+use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver, FaceParameters};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference::dugdale_flat;
 
@@ -51,7 +53,9 @@ fn the_flat_punch_matches_its_closed_form_between_the_limits() {
         );
         for control in Control::ALL {
             let law = DugdaleLaw::new(tabor).unwrap();
-            let r = solver.pulloff(&flat(), None, law, control, 1e-7).unwrap();
+            let r = solver
+                .pulloff(&flat(), FaceParameters::default(), law, control, 1e-7)
+                .unwrap();
             let error = (r.pulloff_force - exact).abs();
             println!(
                 "λ = {tabor} {control:?}: F/F0 = {:.12}, closed form {exact:.12}, error {error:.1e}, bound {:.1e}",
@@ -77,14 +81,22 @@ fn at_small_tabor_the_whole_face_lets_go_at_the_uniform_stress() {
         // π a² σ0 in units of F0.
         let uniform = -PI * tabor / (4.0 * 2f64.sqrt());
         for control in Control::ALL {
-            let r = solver.pulloff(&flat(), None, law, control, 1e-8).unwrap();
+            let r = solver
+                .pulloff(&flat(), FaceParameters::default(), law, control, 1e-8)
+                .unwrap();
             assert!((r.pulloff_force - uniform).abs() < 1e-12, "{r:?}");
             assert_eq!(r.contact[1], 0.0, "no contact left at the pull-off: {r:?}");
         }
         // Under fixed grips the face holds on until the rim's gap reaches δc:
         // d = -δc - 4σ0 a/(π E*), with δc/d0 = sqrt(2)/(π λ) and σ0 a/(E* d0) = λ/(2 sqrt 2).
         let grips = solver
-            .pulloff(&flat(), None, law, Control::Grips, 1e-8)
+            .pulloff(
+                &flat(),
+                FaceParameters::default(),
+                law,
+                Control::Grips,
+                1e-8,
+            )
             .unwrap();
         let expected = -2f64.sqrt() / (PI * tabor) - 4.0 / PI * tabor / (2.0 * 2f64.sqrt());
         assert!((grips.pulloff_depth - expected).abs() < 1e-12, "{grips:?}");
@@ -99,7 +111,7 @@ fn at_large_tabor_the_pulloff_tends_to_kendall_at_the_zone_length_rate() {
     let gap = |tabor: f64| {
         let law = DugdaleLaw::new(tabor).unwrap();
         1.0 + solver
-            .pulloff(&flat(), None, law, Control::Load, 1e-8)
+            .pulloff(&flat(), FaceParameters::default(), law, Control::Load, 1e-8)
             .unwrap()
             .pulloff_force
     };
@@ -156,31 +168,146 @@ fn the_command_answers_with_its_contract_keys() {
 
 #[test]
 fn bad_input_is_named_never_a_panic() {
+    let flat = |rest: &[&'static str]| [&["--punch", "flat"][..], rest].concat();
     for (args, named) in [
-        (&["--tabor", "0"][..], "tabor"),
-        (&["--tabor", "-2"], "tabor"),
-        (&["--tabor", "nan"], "tabor"),
-        (&["--tabor", "inf"], "tabor"),
-        (&["--tabor", "2", "--law", "lennard-jones"], "--law"),
-        (&["--tabor", "2", "--control", "displacement"], "--control"),
-        (&["--tabor", "2", "--tol", "0"], "tol"),
-        (&[], "--tabor"),
+        (flat(&["--tabor", "0"]), "tabor"),
+        (flat(&["--tabor", "-2"]), "tabor"),
+        (flat(&["--tabor", "nan"]), "tabor"),
+        (flat(&["--tabor", "inf"]), "tabor"),
+        (flat(&["--tabor", "2", "--law", "lennard-jones"]), "--law"),
+        (
+            flat(&["--tabor", "2", "--control", "displacement"]),
+            "--control",
+        ),
+        (flat(&["--tabor", "2", "--tol", "0"]), "tol"),
+        (flat(&[]), "--tabor"),
+        // A concave punch needs its d0/h, in range; a flat face has none; the torus is declined.
+        (flat(&["--d0h", "1", "--tabor", "2"]), "d0h"),
+        (vec!["--punch", "sphere", "--tabor", "2"], "d0h"),
+        (vec!["--punch", "cone", "--d0h", "0", "--tabor", "2"], "d0h"),
+        (
+            vec!["--punch", "cone", "--d0h", "nan", "--tabor", "2"],
+            "d0h",
+        ),
+        (
+            vec![
+                "--punch", "cone", "--d0h", "1", "--eps", "0.5", "--tabor", "2",
+            ],
+            "eps",
+        ),
+        (vec!["--punch", "torus", "--tabor", "2"], "not yet"),
     ] {
-        let mut all = vec!["adhesion", "--punch", "flat"];
-        all.extend_from_slice(args);
+        let all = [&["adhesion"][..], &args].concat();
         let out = crate::common::verify(&all);
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(!out.status.success(), "{all:?} succeeded");
         assert!(stderr.contains(named), "{all:?}: {stderr}");
         assert!(!stderr.contains("panicked"), "{all:?}: {stderr}");
     }
-    // A punch the law is not solved for yet is declined with the reason.
-    let out = crate::common::verify(&["adhesion", "--punch", "sphere", "--tabor", "2"]);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert!(
-        !out.status.success() && stderr.contains("not yet"),
-        "{stderr}"
-    );
+}
+
+fn concave(label: &str) -> PunchKind {
+    PunchKind::from_label(label).expect("a built-in concave punch")
+}
+
+/// At small `λ` the range `δc` exceeds the recess's depth `h` and the surface's lift, and a
+/// recessed face lets go whole at the uniform tension over `π a²`. The depths are those of a
+/// uniform pressure on a disk (Johnson, *Contact Mechanics*, §3.4: `w(0) = 2 p a/E*`,
+/// `w(a) = 4 p a/(π E*)`): under fixed load the face leaves the surface first at the rim,
+/// `d ≈ -σ0 w(a)/p` (the gap `h ĝ(a) = 0` there is least), and under fixed grips the centre's
+/// gap `h - d - σ0 w(0)/p` reaches `δc`.
+#[test]
+fn a_recessed_face_at_small_tabor_lets_go_whole_at_the_uniform_stress() {
+    let solver = DugdaleSolver::new();
+    let tabor = 0.2;
+    let law = DugdaleLaw::new(tabor).unwrap();
+    // Units a = E* = 1, Δw = 1/(2π) (so d0 = 1, F0 = 2): σ0 = λ sqrt(π Δw / 4), δc = Δw/σ0.
+    let sigma0 = tabor * (PI / (4.0 * 2.0 * PI)).sqrt();
+    let range = 1.0 / (2.0 * PI * sigma0);
+    for label in ["cone", "sphere"] {
+        let s = 1.0;
+        let at = |control| {
+            solver
+                .pulloff(
+                    &concave(label),
+                    FaceParameters::recess(s),
+                    law,
+                    control,
+                    1e-8,
+                )
+                .unwrap()
+        };
+        let (load, grips) = (at(Control::Load), at(Control::Grips));
+        let uniform = -PI * sigma0 / 2.0;
+        assert!(
+            (load.pulloff_force - uniform).abs() < 1e-12,
+            "{label}: {load:?}"
+        );
+        assert!(
+            (grips.pulloff_force - uniform).abs() < 1e-12,
+            "{label}: {grips:?}"
+        );
+        // The least gap sits a hair inside the rim (the lift's slope is logarithmically
+        // infinite there), below the rim's by about 1e-11.
+        let rim_depth = -sigma0 * 4.0 / PI;
+        assert!(
+            load.pulloff_depth <= rim_depth && rim_depth - load.pulloff_depth < 1e-9,
+            "{label}: {load:?}"
+        );
+        let centre_depth = 1.0 / s - 2.0 * sigma0 - range;
+        assert!(
+            (grips.pulloff_depth - centre_depth).abs() < 1e-12,
+            "{label}: {grips:?}"
+        );
+        assert_eq!(load.d0_over_h, Some(s));
+    }
+}
+
+/// As `λ` grows, a concave punch's pull-off on the annular route tends to `verify jkr`'s
+/// (Griffith's condition at the inner edge and the rim's criterion, from the non-adhesive
+/// ring-BEM branch: no cohesive zone), the distance falling fourfold per doubling of `λ` as the
+/// zone length `a/λ²` does, and the same edge (the inner one) lets go.
+#[test]
+fn a_concave_punch_tends_to_its_jkr_pulloff_at_the_zone_length_rate() {
+    let solver = DugdaleSolver::new();
+    let ring = ringcontact::methods::RingBem::new();
+    let s = 1.0;
+    for (label, tabors, least_ratio) in [
+        ("cone", &[2.5, 5.0, 10.0][..], 3.8),
+        ("sphere", &[5.0, 10.0], 3.0),
+    ] {
+        let jkr = ringcontact::adhesion::concave(&ring, concave(label), s).unwrap();
+        let critical = jkr.fixed_load.expect("an annular pull-off at d0/h = 1");
+        assert_eq!(critical.governing_edge, "inner");
+        let mut distances = Vec::new();
+        for &tabor in tabors {
+            let law = DugdaleLaw::new(tabor).unwrap();
+            let r = solver
+                .pulloff(
+                    &concave(label),
+                    FaceParameters::recess(s),
+                    law,
+                    Control::Load,
+                    3e-5,
+                )
+                .unwrap();
+            assert_eq!(
+                r.detaching_edge.name(),
+                "inner",
+                "{label} λ = {tabor}: {r:?}"
+            );
+            assert!(r.pulloff_force_error <= 3e-5);
+            distances.push(r.pulloff_force - critical.force);
+        }
+        for pair in distances.windows(2) {
+            let ratio = pair[0] / pair[1];
+            println!("{label}: F/F0 - JKR falls {ratio:.3} times per doubling of λ");
+            assert!(
+                pair[1] > 0.0 && ratio >= least_ratio && ratio < 4.2,
+                "{label}: {distances:?}"
+            );
+        }
+    }
 }
 
 fn annulus() -> PunchKind {
@@ -197,7 +324,13 @@ fn an_annular_face_at_small_tabor_lets_go_whole_at_the_uniform_stress() {
     for eps in [0.1, 0.5, 0.9] {
         let uniform = -PI * (1.0 - eps * eps) * tabor / (4.0 * 2f64.sqrt());
         let r = solver
-            .pulloff(&annulus(), Some(eps), law, Control::Load, 1e-8)
+            .pulloff(
+                &annulus(),
+                FaceParameters::hole(eps),
+                law,
+                Control::Load,
+                1e-8,
+            )
             .unwrap();
         assert!(
             (r.pulloff_force - uniform).abs() < 1e-12,
@@ -225,7 +358,13 @@ fn the_annulus_tends_to_its_jkr_pulloff_at_the_zone_length_rate() {
     for tabor in [4.0, 8.0, 16.0] {
         let law = DugdaleLaw::new(tabor).unwrap();
         let r = solver
-            .pulloff(&annulus(), Some(eps), law, Control::Load, 1e-6)
+            .pulloff(
+                &annulus(),
+                FaceParameters::hole(eps),
+                law,
+                Control::Load,
+                1e-6,
+            )
             .unwrap();
         assert_eq!(
             r.detaching_edge.name(),

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use crate::harness::report::svg;
 use crate::harness::report::table::{Cell, Column, Format, Table};
-use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver};
+use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver, FaceParameters};
 use ringcontact::error::{Error, Result};
 use ringcontact::punch::PunchKind;
 
@@ -39,15 +39,19 @@ pub(crate) struct DugdaleSweep {
     pub files: Vec<PathBuf>,
 }
 
-/// Sweep `kind` (a fixed annulus at `b/a = eps`) over [`tabor_parameters`] under both controls
-/// to `tolerance`; write `dugdale-LABEL[-EPS].{csv,svg}` into `out`, the JKR limit `jkr_force` (`F/F0`) drawn beside.
-/// `progress` is called after each Tabor parameter.
+/// The JKR limit's pull-off `F/F0` under fixed load and fixed grips (in [`Control::ALL`]'s
+/// order; `None` where `verify jkr` has none).
+pub(crate) type JkrForces = [Option<f64>; 2];
+
+/// Sweep `kind` (with its `parameters`) over [`tabor_parameters`] under both controls to
+/// `tolerance`; write `dugdale-LABEL[-EPS|-d0hS].{csv,svg}` into `out`, the JKR limit
+/// `jkr_force` drawn beside. `progress` is called after each Tabor parameter.
 pub(crate) fn sweep(
     solver: &DugdaleSolver,
     kind: &PunchKind,
-    eps: Option<f64>,
+    parameters: FaceParameters,
     tolerance: f64,
-    jkr_force: f64,
+    jkr_force: JkrForces,
     out: &Path,
     mut progress: impl FnMut(&str),
 ) -> Result<DugdaleSweep> {
@@ -55,34 +59,43 @@ pub(crate) fn sweep(
     for tabor in tabor_parameters() {
         let law = DugdaleLaw::new(tabor)?;
         for control in Control::ALL {
-            rows.push(match solver.pulloff(kind, eps, law, control, tolerance) {
-                Ok(p) => SweepPoint {
-                    tabor,
-                    control,
-                    pulloff_force: Some(p.pulloff_force),
-                    pulloff_force_error: Some(p.pulloff_force_error),
-                    pulloff_depth: Some(p.pulloff_depth),
-                    declined: None,
+            rows.push(
+                match solver.pulloff(kind, parameters, law, control, tolerance) {
+                    Ok(p) => SweepPoint {
+                        tabor,
+                        control,
+                        pulloff_force: Some(p.pulloff_force),
+                        pulloff_force_error: Some(p.pulloff_force_error),
+                        pulloff_depth: Some(p.pulloff_depth),
+                        declined: None,
+                    },
+                    Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => {
+                        SweepPoint {
+                            tabor,
+                            control,
+                            pulloff_force: None,
+                            pulloff_force_error: None,
+                            pulloff_depth: None,
+                            declined: Some(e.to_string()),
+                        }
+                    }
+                    Err(e) => return Err(e),
                 },
-                Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => SweepPoint {
-                    tabor,
-                    control,
-                    pulloff_force: None,
-                    pulloff_force_error: None,
-                    pulloff_depth: None,
-                    declined: Some(e.to_string()),
-                },
-                Err(e) => return Err(e),
-            });
+            );
         }
         progress(&format!("lambda = {tabor:.3}"));
     }
     let table = table(kind, jkr_force, &rows);
     let chart = chart(kind, jkr_force, &rows);
     std::fs::create_dir_all(out).map_err(|e| Error::file("create the directory", out, e))?;
-    let stem = match eps {
-        Some(eps) => out.join(format!("dugdale-{}-{eps}", kind.label())),
-        None => out.join(format!("dugdale-{}", kind.label())),
+    let stem = match parameters {
+        FaceParameters { eps: Some(eps), .. } => {
+            out.join(format!("dugdale-{}-{eps}", kind.label()))
+        }
+        FaceParameters {
+            d0_over_h: Some(s), ..
+        } => out.join(format!("dugdale-{}-d0h{s}", kind.label())),
+        _ => out.join(format!("dugdale-{}", kind.label())),
     };
     let mut files = Vec::new();
     for (path, text) in [
@@ -96,11 +109,13 @@ pub(crate) fn sweep(
 }
 
 /// The sweep's rows as a table (terminal and CSV).
-fn table(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> Table {
+fn table(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> Table {
+    let [load, grips] = jkr_force.map(|f| f.map_or("none".into(), |f| format!("{f:.6}")));
     let mut table = Table::new(
         &format!(
-            "{}: Maugis-Dugdale pull-off F/F0 against the Tabor parameter (JKR limit {jkr_force:.6}; \
-             F0 = sqrt(8 pi E* dw a^3), d0 = sqrt(2 pi a dw / E*))",
+            "{}: Maugis-Dugdale pull-off F/F0 against the Tabor parameter (JKR limit {load} \
+             fixed load, {grips} fixed grips; F0 = sqrt(8 pi E* dw a^3), \
+             d0 = sqrt(2 pi a dw / E*))",
             kind.describe()
         ),
         vec![
@@ -127,7 +142,7 @@ fn table(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> Table {
 
 /// The log-log chart of the tensile pull-off against `λ`, one curve per control, the JKR limit
 /// beside.
-fn chart(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> String {
+fn chart(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> String {
     let curve = |control: Control| svg::Series {
         name: format!("fixed {}", control.name()),
         points: rows
@@ -138,6 +153,19 @@ fn chart(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> String {
         bars: Vec::new(),
     };
     let (lo, hi) = (tabor_parameters()[0], tabor_parameters()[39]);
+    let jkr_line = |name: &str, force: f64| svg::Series {
+        name: name.into(),
+        points: vec![(lo, -force), (hi, -force)],
+        bars: Vec::new(),
+    };
+    let mut series = vec![curve(Control::Load), curve(Control::Grips)];
+    match jkr_force {
+        [Some(load), Some(grips)] if load == grips => series.push(jkr_line("JKR limit", load)),
+        [load, grips] => {
+            series.extend(load.map(|f| jkr_line("JKR limit, fixed load", f)));
+            series.extend(grips.map(|f| jkr_line("JKR limit, fixed grips", f)));
+        }
+    }
     svg::log_log_chart(
         &format!(
             "{}: Dugdale pull-off against the Tabor parameter",
@@ -145,14 +173,6 @@ fn chart(kind: &PunchKind, jkr_force: f64, rows: &[SweepPoint]) -> String {
         ),
         "Tabor parameter lambda",
         "-F_pulloff / F0",
-        &[
-            curve(Control::Load),
-            curve(Control::Grips),
-            svg::Series {
-                name: "JKR limit".into(),
-                points: vec![(lo, -jkr_force), (hi, -jkr_force)],
-                bars: Vec::new(),
-            },
-        ],
+        &series,
     )
 }

@@ -21,45 +21,60 @@ pub(crate) fn flat_face(_: f64) -> f64 {
     0.0
 }
 
-/// A flat face `b <= r <= a` (`b = 0`: the whole disk) with no contact left, all of it in
-/// tension `σ0`: the first such state (the surface just leaving the face where its lift
-/// `σ0 U(r)` is highest, the centre of a disk) and the last (the first face edge's gap at
-/// `δc`), when the edges hold at the first; `None` otherwise. The force is `-π (a² - b²) σ0`
-/// throughout.
-pub(crate) fn whole_face_in_tension(law: DugdaleLaw, hole: f64) -> Option<[PathPoint; 2]> {
+/// The face `b <= r <= a` (`b = 0`: the whole disk) of gap `h ĝ(r)` with no contact left, all
+/// of it in tension `σ0`: the first such state (the surface just leaving the face where
+/// `h ĝ - σ0 U` is least, `U` the deflection of a unit pressure on the face) and the last (the
+/// largest gap at `δc`), when the gap's spread over the face is within `δc`; `None` otherwise.
+/// The force is `-π (a² - b²) σ0` throughout.
+pub(crate) fn whole_face_in_tension(
+    law: DugdaleLaw,
+    hole: f64,
+    h: f64,
+    profile: &dyn Fn(f64) -> f64,
+) -> Option<[PathPoint; 2]> {
     let (sigma0, range) = (law.tension(), law.range());
-    let lift = |r: f64| annulus_deflection(hole, 1.0, r);
-    let top = if hole == 0.0 {
-        0.0
-    } else {
-        crate::numerics::golden::golden_section_max(lift, hole, 1.0, 1e-12)
-    };
-    let highest = lift(top);
-    let edges = [lift(hole), lift(1.0)];
-    let lowest_edge = if hole == 0.0 {
-        edges[1]
-    } else {
-        edges[0].min(edges[1])
-    };
-    if sigma0 * (highest - lowest_edge) > range {
+    // The gap plus the depth: `g(r) + d = h ĝ(r) - σ0 U(r)`.
+    let offset = |r: f64| h * profile(r) - sigma0 * annulus_deflection(hole, 1.0, r);
+    let least = least_on_face(&offset, hole);
+    let most = -least_on_face(&|r| -offset(r), hole);
+    let (first_depth, last_depth) = (offset(least), offset(most) - range);
+    if last_depth > first_depth {
         return None;
     }
     let configuration = Configuration {
-        inner: top,
-        outer: top,
+        inner: least,
+        outer: least,
         zone_inner: hole,
         zone_outer: 1.0,
     };
     let force = -sigma0 * std::f64::consts::PI * (1.0 - hole * hole);
+    let has_inner = hole > 0.0 || h > 0.0;
     let gaps = |depth: f64| {
-        let [inner, outer] = edges.map(|lift| (-sigma0 * lift - depth) / range);
-        [if hole == 0.0 { 0.0 } else { inner }, outer]
+        let [inner, outer] = [hole, 1.0].map(|r| (offset(r) - depth) / range);
+        [if has_inner { inner } else { 0.0 }, outer]
     };
-    let (first_depth, last_depth) = (-sigma0 * highest, -range - sigma0 * lowest_edge);
     Some([
         PathPoint::new(configuration, first_depth, force, gaps(first_depth)),
         PathPoint::new(configuration, last_depth, force, gaps(last_depth)),
     ])
+}
+
+/// Samples of the face searched for the least value before it is refined.
+const FACE_SAMPLES: usize = 64;
+
+/// Where `f` is least on the face `[hole, 1]`: the least of [`FACE_SAMPLES`] samples refined by
+/// golden section between its neighbours (an end sample kept when it is least).
+fn least_on_face(f: &dyn Fn(f64) -> f64, hole: f64) -> f64 {
+    let at = |k: usize| hole + (1.0 - hole) * k as f64 / FACE_SAMPLES as f64;
+    let best = (0..=FACE_SAMPLES)
+        .min_by(|&i, &j| f(at(i)).total_cmp(&f(at(j))))
+        .unwrap_or(0);
+    let (lo, hi) = (at(best.saturating_sub(1)), at((best + 1).min(FACE_SAMPLES)));
+    let inside = crate::numerics::golden::golden_section_max(|r| -f(r), lo, hi, 1e-12);
+    [at(best), inside]
+        .into_iter()
+        .min_by(|a, b| f(*a).total_cmp(&f(*b)))
+        .unwrap_or(at(best))
 }
 
 /// The contact `[inner, outer]` (`inner = 0`: the disk `r <= outer`) and the loaded region

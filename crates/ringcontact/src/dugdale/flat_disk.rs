@@ -110,7 +110,7 @@ impl Family for FlatDisk<'_> {
     }
 
     fn beyond_contact(&self) -> Vec<PathPoint> {
-        whole_face_in_tension(self.law, 0.0)
+        whole_face_in_tension(self.law, 0.0, 0.0, &flat_face)
             .map(Vec::from)
             .unwrap_or_default()
     }

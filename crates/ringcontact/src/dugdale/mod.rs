@@ -17,6 +17,7 @@ use std::sync::{Arc, Mutex};
 
 use serde::Serialize;
 
+use crate::adhesion::D0H_RANGE;
 use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
@@ -27,6 +28,7 @@ pub mod configuration;
 mod flat_disk;
 pub mod law;
 pub mod path;
+mod recess;
 pub mod uniform_load;
 
 pub use law::DugdaleLaw;
@@ -70,6 +72,34 @@ impl DetachingEdge {
     }
 }
 
+/// What a face needs beyond its profile: `b/a` of a fixed annulus, `d0/h` of a recessed face
+/// (the concave punches; `h` the recess's depth, `d0 = sqrt(2π a Δw / E*)`).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FaceParameters {
+    /// `b/a` of a fixed annulus.
+    pub eps: Option<f64>,
+    /// `d0/h` of a recessed face.
+    pub d0_over_h: Option<f64>,
+}
+
+impl FaceParameters {
+    /// A fixed annulus's `b/a`.
+    pub fn hole(eps: f64) -> Self {
+        Self {
+            eps: Some(eps),
+            d0_over_h: None,
+        }
+    }
+
+    /// A recessed face's `d0/h`.
+    pub fn recess(d0_over_h: f64) -> Self {
+        Self {
+            eps: None,
+            d0_over_h: Some(d0_over_h),
+        }
+    }
+}
+
 /// The pull-off of one punch under one control, in the units of `verify jkr`.
 #[derive(Clone, Debug, Serialize)]
 pub struct DugdalePulloff {
@@ -79,6 +109,9 @@ pub struct DugdalePulloff {
     pub law: &'static str,
     /// Tabor parameter `λ = 2 σ0 sqrt(a / (π E* Δw))`.
     pub tabor: f64,
+    /// `d0/h` of a recessed face (the concave punches).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub d0_over_h: Option<f64>,
     /// Fixed load or fixed grips.
     pub control: Control,
     /// Pull-off force `F/F0` (negative: tensile).
@@ -132,13 +165,14 @@ impl DugdaleSolver {
             .clone()
     }
 
-    /// The pull-off of `kind` (a fixed annulus at `b/a = eps`) under the Dugdale law at `law`'s
-    /// Tabor parameter, held by `control`, refined on the node ladder until its last two
-    /// changes are within `tolerance` (units of `F0` and `d0`).
+    /// The pull-off of `kind` (with its `parameters`: `b/a` of a fixed annulus, `d0/h` of a
+    /// recessed face) under the Dugdale law at `law`'s Tabor parameter, held by `control`,
+    /// refined on the node ladder until its last two changes are within `tolerance` (units of
+    /// `F0` and `d0`).
     pub fn pulloff(
         &self,
         kind: &PunchKind,
-        eps: Option<f64>,
+        parameters: FaceParameters,
         law: DugdaleLaw,
         control: Control,
         tolerance: f64,
@@ -152,7 +186,7 @@ impl DugdaleSolver {
                 ),
             ));
         }
-        let face = Face::of(kind, eps)?;
+        let face = Face::of(kind, parameters)?;
         let units = |p: &PathPoint| (p.depth, p.force / law::KENDALL_FORCE);
         let first = NODE_LADDER
             .iter()
@@ -163,7 +197,7 @@ impl DugdaleSolver {
         let mut bracket: Option<f64> = None;
         let mut last_change = f64::INFINITY;
         for &nodes in &NODE_LADDER[first..] {
-            let answer = face.with_family(self, nodes, law, &mut |family| {
+            let answer = face.with_family(self, kind, nodes, law, &mut |family| {
                 let (parameter, pulloff) = path::pulloff(family, control, bracket)?;
                 bracket = Some(parameter);
                 history.push(units(&pulloff));
@@ -179,11 +213,12 @@ impl DugdaleSolver {
                     return Ok(None);
                 }
                 let configuration = pulloff.configuration;
-                let path = path::path(family)?;
+                let path = path::path(family)?.samples;
                 Ok(Some(DugdalePulloff {
                     punch: kind.name().to_string(),
                     law: "dugdale",
                     tabor: law.tabor,
+                    d0_over_h: parameters.d0_over_h,
                     control,
                     pulloff_force: f0,
                     pulloff_force_error: force_error,
@@ -215,10 +250,10 @@ impl DugdaleSolver {
     }
 }
 
-/// Whether the Dugdale law is solved for `kind` (with `b/a = eps` for a fixed annulus): an error
-/// naming what is missing, invalid or not solved yet.
-pub fn check_face(kind: &PunchKind, eps: Option<f64>) -> Result<()> {
-    Face::of(kind, eps).map(|_| ())
+/// Whether the Dugdale law is solved for `kind` with its `parameters`: an error naming what is
+/// missing, invalid or not solved yet.
+pub fn check_face(kind: &PunchKind, parameters: FaceParameters) -> Result<()> {
+    Face::of(kind, parameters).map(|_| ())
 }
 
 /// The punch's face as the Dugdale solver sees it.
@@ -228,23 +263,30 @@ enum Face {
     Disk,
     /// The annular face `b <= r <= a` ([`Contact::FixedAnnulus`]).
     Annulus { hole: f64 },
+    /// The recessed face `r <= a` of gap `h ĝ(r)` ([`Contact::RimAndFreeInner`]), `h = d0/s`.
+    Recess { d0_over_h: f64 },
 }
 
 impl Face {
     /// The face of `kind` (with its `b/a = eps` for a fixed annulus); an error for a punch the
     /// law is not solved for yet, or a missing or invalid `eps`.
-    fn of(kind: &PunchKind, eps: Option<f64>) -> Result<Self> {
-        match kind.contact() {
-            Contact::Disk => match eps {
-                None => Ok(Face::Disk),
-                Some(_) => Err(Error::invalid(
-                    "eps",
-                    format!(
-                        "fixes the hole of a fixed annulus; the {} punch has none",
-                        kind.name()
-                    ),
-                )),
-            },
+    fn of(kind: &PunchKind, parameters: FaceParameters) -> Result<Self> {
+        let FaceParameters { eps, d0_over_h } = parameters;
+        let unexpected = |flag: &str, what: &str| {
+            Err(Error::invalid(
+                flag,
+                format!("{what}; the {} punch has none", kind.name()),
+            ))
+        };
+        let contact = kind.contact();
+        if eps.is_some() && contact != Contact::FixedAnnulus {
+            return unexpected("eps", "fixes the hole of a fixed annulus");
+        }
+        if d0_over_h.is_some() && contact != Contact::RimAndFreeInner {
+            return unexpected("d0h", "scales a recess's depth h");
+        }
+        match contact {
+            Contact::Disk => Ok(Face::Disk),
             Contact::FixedAnnulus => {
                 let hole = eps.ok_or_else(|| {
                     Error::invalid(
@@ -263,14 +305,41 @@ impl Face {
                 }
                 Ok(Face::Annulus { hole })
             }
-            Contact::RimAndFreeInner | Contact::FreeBand => Err(Error::Unsupported {
+            Contact::RimAndFreeInner => {
+                let s = d0_over_h.ok_or_else(|| {
+                    Error::invalid(
+                        "d0h",
+                        format!(
+                            "is needed: d0/h of the {} punch (its recess's depth h in units \
+                             of d0 = sqrt(2 pi a dw / E*))",
+                            kind.name()
+                        ),
+                    )
+                })?;
+                let (lo, hi) = D0H_RANGE;
+                if !(s.is_finite() && (lo..=hi).contains(&s)) {
+                    return Err(Error::invalid(
+                        "d0h",
+                        format!(
+                            "must lie in [{lo:e}, {hi:e}]; got {}",
+                            crate::error::show(s)
+                        ),
+                    ));
+                }
+                Ok(Face::Recess { d0_over_h: s })
+            }
+            Contact::FreeBand => Err(Error::Unsupported {
                 method: METHOD.into(),
                 reason: format!(
-                    "the Dugdale law is solved so far for flat faces (the {} punches); the {} \
-                     punch's free edges are not yet",
-                    PunchName::names(Some(Contact::Disk), ", ")
-                        + ", "
-                        + &PunchName::names(Some(Contact::FixedAnnulus), ", "),
+                    "the Dugdale law is solved so far for faces with a rim (the {} punches); \
+                     the {} punch's band with two free edges is not yet",
+                    [
+                        Contact::Disk,
+                        Contact::FixedAnnulus,
+                        Contact::RimAndFreeInner
+                    ]
+                    .map(|c| PunchName::names(Some(c), ", "))
+                    .join(", "),
                     kind.name()
                 ),
             }),
@@ -281,6 +350,7 @@ impl Face {
     fn with_family<T>(
         self,
         solver: &DugdaleSolver,
+        kind: &PunchKind,
         nodes: usize,
         law: DugdaleLaw,
         work: &mut dyn FnMut(&dyn path::Family) -> Result<T>,
@@ -293,6 +363,18 @@ impl Face {
             Face::Annulus { hole } => {
                 work(&annulus::AnnularFace::new(&solver.ring, nodes, law, hole))
             }
+            Face::Recess { d0_over_h } => {
+                let profile = |r: f64| kind.gap_shape(r);
+                let face = annulus::AnnularFace::recessed(
+                    &solver.ring,
+                    nodes,
+                    law,
+                    1.0 / d0_over_h,
+                    &profile,
+                    kind.profile().may_meet_hole_floor(),
+                );
+                work(&recess::RecessedFace::new(face))
+            }
         }
     }
 
@@ -302,6 +384,10 @@ impl Face {
         let [inner, outer] = pulloff.edge_gaps;
         match self {
             Face::Disk => DetachingEdge::Outer,
+            // The inner edge's zone always ends in the recess; the rim lets go when its gap
+            // reaches `δc` (the JKR limit's rim failure), else the inner edge governs.
+            Face::Recess { .. } if outer >= 1.0 - 1e-6 => DetachingEdge::Outer,
+            Face::Recess { .. } => DetachingEdge::Inner,
             Face::Annulus { .. } => {
                 let reached = |gap: f64| gap >= 1.0 - 1e-6;
                 match (reached(inner), reached(outer)) {

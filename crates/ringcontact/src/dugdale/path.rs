@@ -3,9 +3,10 @@
 
 use serde::Serialize;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 
 use super::configuration::Configuration;
+use super::METHOD;
 
 /// One equilibrium: the contact, the loaded region, depth `d/a` and force `F/(E* a²)`.
 #[derive(Clone, Copy, Debug)]
@@ -59,6 +60,14 @@ impl Control {
         }
     }
 
+    /// The held quantity's name.
+    pub(crate) fn quantity(self) -> &'static str {
+        match self {
+            Control::Load => "force",
+            Control::Grips => "depth",
+        }
+    }
+
     /// The quantity whose first minimum along the path is the pull-off.
     pub(crate) fn held(self, point: &PathPoint) -> f64 {
         match self {
@@ -77,6 +86,12 @@ pub(crate) trait Family {
     fn parameter_range(&self) -> (f64, f64);
     /// The equilibrium at `t`.
     fn at(&self, t: f64) -> Result<PathPoint>;
+    /// Whether the contact is pressed from the rim inward before it is pulled (a recess:
+    /// pressing stops where [`pressing_stops`] says, and the pull-off is the lowest held value
+    /// after it); else the path starts where pressing left it.
+    fn pressed_from_rim(&self) -> bool {
+        false
+    }
     /// States past the last `t` that the parameter does not reach (the whole face in tension
     /// with no contact left), in the order they are met; none by default.
     fn beyond_contact(&self) -> Vec<PathPoint> {
@@ -84,20 +99,63 @@ pub(crate) trait Family {
     }
 }
 
-/// The path of `family` as the punch is pulled, each state with its parameter (infinite for
-/// the states beyond the contact).
-pub(crate) fn path(family: &dyn Family) -> Result<Vec<(f64, PathPoint)>> {
+/// A path as the punch is pulled: its states, each with its parameter (infinite for the states
+/// beyond the contact), and why it ends.
+pub(crate) struct Path {
+    pub samples: Vec<(f64, PathPoint)>,
+    /// Why the samples end where the held quantity may still fall: the narrowest contact
+    /// sampled, or the family's states ceasing; `None` where they run on beyond the contact.
+    pub cut_short: Option<String>,
+}
+
+/// The path of `family`. Where the family has no state ([`Error::OutOfRange`]) the path is the
+/// last run of states without a gap (pressing from the rim enters it and cannot cross a gap;
+/// pulling ends where the run ends); an error where it has no state at all.
+pub(crate) fn path(family: &dyn Family) -> Result<Path> {
     let (first, last) = family.parameter_range();
     let step = (last - first) / (PATH_SAMPLES - 1) as f64;
-    let mut samples = Vec::with_capacity(PATH_SAMPLES + 2);
+    let mut states = Vec::with_capacity(PATH_SAMPLES);
     for k in 0..PATH_SAMPLES {
         let t = first + step * k as f64;
-        samples.push((t, family.at(t)?));
+        let got = family.at(t);
+        match got {
+            Ok(point) => states.push(Ok((t, point))),
+            Err(e @ Error::OutOfRange { .. }) => states.push(Err(e)),
+            Err(e) => return Err(e),
+        }
     }
-    for point in family.beyond_contact() {
-        samples.push((f64::INFINITY, point));
-    }
-    Ok(samples)
+    let end = states.iter().rposition(|s| s.is_ok());
+    let Some(end) = end else {
+        return Err(states
+            .pop()
+            .and_then(|s| s.err())
+            .unwrap_or(Error::OutOfRange {
+                method: super::METHOD.into(),
+                reason: "no state on the path".into(),
+            }));
+    };
+    let start = states[..end]
+        .iter()
+        .rposition(|s| s.is_err())
+        .map_or(0, |k| k + 1);
+    let cut_short = match states.get(end + 1) {
+        Some(Err(reason)) => Some(format!(
+            "the states end there ({})",
+            reason.to_string().trim_end_matches('.')
+        )),
+        _ => None,
+    };
+    let mut samples: Vec<(f64, PathPoint)> =
+        states.drain(start..=end).filter_map(|s| s.ok()).collect();
+    let cut_short = cut_short.or_else(|| {
+        let beyond = family.beyond_contact();
+        let narrowest = beyond
+            .is_empty()
+            .then(|| "at the narrowest contact sampled".into());
+        samples.extend(beyond.into_iter().map(|p| (f64::INFINITY, p)));
+        narrowest
+    });
+    Ok(Path { samples, cut_short })
 }
 
 /// The pull-off of `family` under `control` and its parameter: refined by golden section
@@ -114,32 +172,102 @@ pub(crate) fn pulloff(
     let inside_path =
         |t: &f64| t.is_finite() && *t - 2.0 * step >= first && *t + 2.0 * step <= last;
     if let Some(t) = near.filter(inside_path) {
-        let bracket: Vec<(f64, PathPoint)> = [t - 2.0 * step, t, t + 2.0 * step]
+        let bracket: Result<Vec<(f64, PathPoint)>> = [t - 2.0 * step, t, t + 2.0 * step]
             .into_iter()
             .map(|t| family.at(t).map(|p| (t, p)))
-            .collect::<Result<_>>()?;
-        if held(&bracket[1].1) < held(&bracket[0].1).min(held(&bracket[2].1)) {
-            return first_minimum(&bracket, held, |t| family.at(t));
+            .collect();
+        // A bracket reaching past the family's states falls back on the whole path.
+        let bracket = match bracket {
+            Err(Error::OutOfRange { .. }) => Vec::new(),
+            other => other?,
+        };
+        if bracket.len() == 3 && held(&bracket[1].1) < held(&bracket[0].1).min(held(&bracket[2].1))
+        {
+            let bracket = Path {
+                samples: bracket,
+                cut_short: None,
+            };
+            return first_minimum(&bracket, control, false, |t| family.at(t));
         }
     }
-    first_minimum(&path(family)?, held, |t| family.at(t))
+    first_minimum(&path(family)?, control, family.pressed_from_rim(), |t| {
+        family.at(t)
+    })
+}
+
+/// Where pressing from the rim stops on a path ordered as the punch is pulled: from the last
+/// contact state inward, past the states where the held quantity falls inward (met unstably
+/// on touching) and up the states where it rises (pressing) to its first maximum; the widest
+/// state where it rises all the way (pressed further, the hole snaps shut).
+fn pressing_stops(samples: &[(f64, PathPoint)], held: &dyn Fn(&PathPoint) -> f64) -> usize {
+    let value = |k: usize| held(&samples[k].1);
+    let mut k = samples
+        .iter()
+        .rposition(|(t, _)| t.is_finite())
+        .unwrap_or(0);
+    while k > 0 && value(k - 1) < value(k) {
+        k -= 1;
+    }
+    while k > 0 && value(k - 1) >= value(k) {
+        k -= 1;
+    }
+    k
 }
 
 /// Golden-section width of the path parameter at the pull-off.
 const PARAMETER_WIDTH: f64 = 1e-11;
 
-/// The first local minimum of `held` along the `samples` of `state(t)` (ordered as the punch is
-/// pulled), refined by golden section between its neighbours; the last sample when `held`
-/// falls all the way.
+/// The first local minimum of `held` after its first maximum along the `samples` of `state(t)`
+/// (ordered as the punch is pulled; states before the maximum are not reached by pressing;
+/// when `pressed_from_rim`, the lowest value after where pressing stops,
+/// [`pressing_stops`]),
+/// refined by golden section between its neighbours; the last sample when `held` falls all the
+/// way into the states beyond the contact, an error when it still falls at the narrowest
+/// contact sampled.
 fn first_minimum(
-    samples: &[(f64, PathPoint)],
-    held: impl Fn(&PathPoint) -> f64,
+    path: &Path,
+    control: Control,
+    pressed_from_rim: bool,
     state: impl Fn(f64) -> Result<PathPoint>,
 ) -> Result<(f64, PathPoint)> {
-    let index = (1..samples.len())
-        .find(|&k| held(&samples[k].1) >= held(&samples[k - 1].1))
-        .map(|k| k - 1)
-        .unwrap_or(samples.len() - 1);
+    let samples = &path.samples;
+    let held = |p: &PathPoint| control.held(p);
+    let falls = |k: usize| held(&samples[k].1) < held(&samples[k - 1].1);
+    let top = if pressed_from_rim {
+        pressing_stops(samples, &held)
+    } else {
+        (1..samples.len()).find(|&k| falls(k)).map_or(0, |k| k - 1)
+    };
+    let index = if pressed_from_rim {
+        // Past a local minimum the contact jumps to a later state of the same held value: the
+        // pull-off is the lowest value after the maximum.
+        (top..samples.len()).fold(top, |m, k| {
+            if held(&samples[k].1) < held(&samples[m].1) {
+                k
+            } else {
+                m
+            }
+        })
+    } else {
+        (top + 1..samples.len())
+            .find(|&k| !falls(k))
+            .map_or(samples.len() - 1, |k| k - 1)
+    };
+    if let Some(end) = path
+        .cut_short
+        .as_ref()
+        .filter(|_| index + 1 == samples.len())
+    {
+        return Err(Error::OutOfRange {
+            method: METHOD.into(),
+            reason: format!(
+                "no pull-off on the path: the {} still falls where the path ends, {end} \
+                 (fixed {})",
+                control.quantity(),
+                control.name()
+            ),
+        });
+    }
     if index == 0 || index + 1 == samples.len() {
         return Ok(samples[index]);
     }

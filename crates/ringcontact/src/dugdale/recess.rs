@@ -1,0 +1,56 @@
+//! A recessed face `r <= a` of gap `h ĝ(r)` ([`crate::punch::Contact::RimAndFreeInner`]) under
+//! the Dugdale law: the annular contact `[c1, c2]` of [`super::annulus`] with the inner edge
+//! always free and a cohesive zone running from it into the recess.
+//!
+//! **Loading history** (`verify jkr`'s annular route). The path runs from `c1 = 10⁻³ a` to a
+//! ring [`NARROWEST_CONTACT`] wide. Touching at the rim, the contact jumps in; pressing grows it
+//! inward while the held quantity rises, up to its first maximum (pressed past it, the hole
+//! snaps shut: at finite range a hole shallower than `δc` is held in tension throughout, close
+//! to full contact, a regime the annular route does not enter). Pulled from there, the
+//! pull-off is the lowest held value that follows.
+
+use super::annulus::AnnularFace;
+use super::path::{Family, PathPoint};
+use crate::error::Result;
+
+/// Inner edge `c1/a` of the widest contact sampled (the hole about to close).
+const WIDEST_HOLE: f64 = 1e-3;
+
+/// Width of the narrowest contact sampled, in units of `a`.
+const NARROWEST_CONTACT: f64 = 1e-4;
+
+/// The recessed face's states at one node count, parameterised by `t = ln((1 - w)/w)`, `w` the
+/// contact's width (`t = logit(c1)` while the contact holds the rim).
+pub(crate) struct RecessedFace<'a> {
+    face: AnnularFace<'a>,
+}
+
+impl<'a> RecessedFace<'a> {
+    /// The states of `face` (built by [`AnnularFace::recessed`]).
+    pub fn new(face: AnnularFace<'a>) -> Self {
+        Self { face }
+    }
+}
+
+/// `ln(x / (1 - x))`.
+fn logit(x: f64) -> f64 {
+    (x / (1.0 - x)).ln()
+}
+
+impl Family for RecessedFace<'_> {
+    fn parameter_range(&self) -> (f64, f64) {
+        (logit(WIDEST_HOLE), logit(1.0 - NARROWEST_CONTACT))
+    }
+
+    fn at(&self, t: f64) -> Result<PathPoint> {
+        self.face.state_from_inner_edge(1.0 / (1.0 + (-t).exp()))
+    }
+
+    fn pressed_from_rim(&self) -> bool {
+        true
+    }
+
+    fn beyond_contact(&self) -> Vec<PathPoint> {
+        self.face.whole_face()
+    }
+}
