@@ -6,6 +6,7 @@
 
 use std::f64::consts::PI;
 
+use ringcontact::dugdale::uniform_load::annulus_deflection;
 use ringcontact::dugdale::{Control, DugdaleLaw, DugdaleSolver, FaceParameters};
 use ringcontact::punch::PunchKind;
 use ringcontact::reference::dugdale_flat;
@@ -321,20 +322,36 @@ fn an_annular_face_at_small_tabor_lets_go_whole_at_the_uniform_stress() {
     let solver = DugdaleSolver::new();
     let tabor = 0.5;
     let law = DugdaleLaw::new(tabor).unwrap();
+    // Units a = E* = 1, Δw = 1/(2π): σ0 = λ sqrt(π Δw / 4), δc = Δw/σ0.
+    let sigma0 = tabor * (PI / (4.0 * 2.0 * PI)).sqrt();
+    let range = 1.0 / (2.0 * PI * sigma0);
+    let at = |eps, control| {
+        solver
+            .pulloff(&annulus(), FaceParameters::hole(eps), law, control, 1e-8)
+            .unwrap()
+    };
     for eps in [0.1, 0.5, 0.9] {
         let uniform = -PI * (1.0 - eps * eps) * tabor / (4.0 * 2f64.sqrt());
-        let r = solver
-            .pulloff(
-                &annulus(),
-                FaceParameters::hole(eps),
-                law,
-                Control::Load,
-                1e-8,
-            )
-            .unwrap();
+        let r = at(eps, Control::Load);
         assert!(
             (r.pulloff_force - uniform).abs() < 1e-12,
             "b/a = {eps}: {r:?}"
+        );
+        assert!(r
+            .path_depth
+            .iter()
+            .chain(&r.path_force)
+            .all(|v| v.is_finite()));
+        // Under fixed grips the face lets go where the lower face edge's gap reaches δc: the
+        // surface there is lifted by σ0 times the uniform annular load's deflection (Johnson's
+        // closed form, checked against the ring kernel by quadrature in `uniform_load`).
+        let grips = at(eps, Control::Grips);
+        let lift = |r: f64| annulus_deflection(eps, 1.0, r);
+        let depth = -range - sigma0 * lift(eps).min(lift(1.0));
+        assert!(
+            (grips.pulloff_depth - depth).abs() < 1e-12,
+            "b/a = {eps}: {} against {depth}",
+            grips.pulloff_depth
         );
     }
 }

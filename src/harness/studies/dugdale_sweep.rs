@@ -28,8 +28,25 @@ pub(crate) struct SweepPoint {
     pub pulloff_force: Option<f64>,
     pub pulloff_force_error: Option<f64>,
     pub pulloff_depth: Option<f64>,
+    /// The edge that lets go (`inner`, `outer`, `both`).
+    pub detaching_edge: Option<&'static str>,
     /// The reason a state was declined.
     pub declined: Option<String>,
+}
+
+impl SweepPoint {
+    /// A Tabor parameter the solver declined, with its reason.
+    fn declined(tabor: f64, control: Control, reason: String) -> Self {
+        Self {
+            tabor,
+            control,
+            pulloff_force: None,
+            pulloff_force_error: None,
+            pulloff_depth: None,
+            detaching_edge: None,
+            declined: Some(reason),
+        }
+    }
 }
 
 /// The sweep's rows, table and files.
@@ -67,17 +84,11 @@ pub(crate) fn sweep(
                         pulloff_force: Some(p.pulloff_force),
                         pulloff_force_error: Some(p.pulloff_force_error),
                         pulloff_depth: Some(p.pulloff_depth),
+                        detaching_edge: Some(p.detaching_edge.name()),
                         declined: None,
                     },
                     Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => {
-                        SweepPoint {
-                            tabor,
-                            control,
-                            pulloff_force: None,
-                            pulloff_force_error: None,
-                            pulloff_depth: None,
-                            declined: Some(e.to_string()),
-                        }
+                        SweepPoint::declined(tabor, control, e.to_string())
                     }
                     Err(e) => return Err(e),
                 },
@@ -124,6 +135,7 @@ fn table(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> Table {
             Column::number("pulloff_force", "F/F0", Format::Fixed(8)),
             Column::number("pulloff_force_error", "error bound", Format::Scientific(1)),
             Column::number("pulloff_depth", "d/d0", Format::Fixed(8)),
+            Column::text("detaching_edge", "edge"),
             Column::text("declined", "declined"),
         ],
     );
@@ -134,6 +146,7 @@ fn table(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> Table {
             r.pulloff_force.into(),
             r.pulloff_force_error.into(),
             r.pulloff_depth.into(),
+            Cell::from(r.detaching_edge.unwrap_or_default()),
             Cell::from(r.declined.clone().unwrap_or_default()),
         ]);
     }

@@ -36,7 +36,7 @@ pub(crate) fn whole_face_in_tension(
     // The gap plus the depth: `g(r) + d = h ĝ(r) - σ0 U(r)`.
     let offset = |r: f64| h * profile(r) - sigma0 * annulus_deflection(hole, 1.0, r);
     let least = least_on_face(&offset, hole);
-    let most = -least_on_face(&|r| -offset(r), hole);
+    let most = least_on_face(&|r| -offset(r), hole);
     let (first_depth, last_depth) = (offset(least), offset(most) - range);
     if last_depth > first_depth {
         return None;

@@ -117,8 +117,7 @@ pub(crate) fn path(family: &dyn Family) -> Result<Path> {
     let mut states = Vec::with_capacity(PATH_SAMPLES);
     for k in 0..PATH_SAMPLES {
         let t = first + step * k as f64;
-        let got = family.at(t);
-        match got {
+        match family.at(t) {
             Ok(point) => states.push(Ok((t, point))),
             Err(e @ Error::OutOfRange { .. }) => states.push(Err(e)),
             Err(e) => return Err(e),
