@@ -5,8 +5,9 @@
 //! zones beside its free edges ([`configuration`]): the zones' tension in closed form
 //! ([`uniform_load`]), the contact's pressure by the ring BEM with its free edges' singular
 //! coefficients zero and each zone ending where the gap reaches `δc` (or at the face's edge).
-//! The pull-off is the first extremum met along the path ([`path`]), under fixed load or fixed
-//! grips, refined on the node ladder until its last two changes are within the tolerance.
+//! The pull-off is the first extremum met along the path ([`path`]; on a recess, the lowest after
+//! where pressing from the rim stops), under fixed load or fixed grips, refined on the node
+//! ladder until its last two changes are within the tolerance.
 //!
 //! Units as `verify jkr`'s: depths in `d0 = sqrt(2π a Δw / E*)`, forces in Kendall's
 //! `F0 = sqrt(8π E* Δw a³)` (negative: tensile); the Tabor parameter

@@ -19,8 +19,8 @@ const WIDEST_HOLE: f64 = 1e-3;
 /// Width of the narrowest contact sampled, in units of `a`.
 const NARROWEST_CONTACT: f64 = 1e-4;
 
-/// The recessed face's states at one node count, parameterised by `t = ln((1 - w)/w)`, `w` the
-/// contact's width (`t = logit(c1)` while the contact holds the rim).
+/// The recessed face's states at one node count, parameterised by `t = logit(c1)`, `c1` the
+/// contact's inner edge (its outer edge at the rim or, once the rim lets go, found from `c1`).
 pub(crate) struct RecessedFace<'a> {
     face: AnnularFace<'a>,
 }
