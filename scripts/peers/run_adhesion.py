@@ -58,7 +58,16 @@ TOLERANCE_MET = 1e-8
 GRIDS = [(3.0, 256), (3.0, 512), (6.0, 512)]
 
 
-def setup(kind, d0_over_h, side, n):
+def exponential_law(tm, heights, d0, dw):
+    """Tamaas's exponential functional at our range: tension (dw/rho) exp(-g/rho)."""
+    law = tm.ExponentialAdhesionFunctional(heights)
+    law.parameters = {"rho": RANGE_OVER_D0 * d0, "surface_energy": dw}
+    return law
+
+
+def setup(kind, d0_over_h, side, n, law=exponential_law):
+    """The punch in a periodic cell of side `side` with n x n cells, under `law(tm, heights, d0,
+    dw)` (a Tamaas adhesion functional); returns (force_at(shift), d0, F0)."""
     import tamaas as tm
     d0 = 1.0 if d0_over_h is None else d0_over_h
     dw = d0 * d0 / (2.0 * math.pi)
@@ -79,8 +88,7 @@ def setup(kind, d0_over_h, side, n):
     model.nu = 0.0
     solver = tm.PolonskyKeerRey(model, heights, 1e-9, tm.PolonskyKeerRey.gap,
                                 tm.PolonskyKeerRey.gap)
-    adhesion = tm.ExponentialAdhesionFunctional(heights)
-    adhesion.parameters = {"rho": RANGE_OVER_D0 * d0, "surface_energy": dw}
+    adhesion = law(tm, heights, d0, dw)
     solver.addFunctionalTerm(adhesion)
     solver.max_iter = MAX_ITER
     base = float(np.mean(-heights))  # mean gap of the undeformed surface touching the rim plane
@@ -119,10 +127,51 @@ def image_compliance(side, n):
     return 0.5 - 1.0 / k_cell
 
 
-def pull(kind, d0_over_h, side, n, log):
+def close_in_on_branch_end(kind, d0_over_h, side, n, law, marched, end, log):
+    """Where the most tensile state ends the branch (`end`: the first shift with no state):
+    fresh solvers march again through the `marched` shifts (a solve that failed leaves Tamaas's
+    solver off the branch, and a cold start finds no state near the end), then on in steps a
+    quarter of the last, until the step is below REFINE or the most tensile state lies inside
+    the branch. Returns the converged states met on the way and how much more tension the
+    branch may hold than the most tensile of them: the force's rise toward it (from its left
+    neighbour) continued to its right neighbour, or to the end of the branch."""
+    shifts = [s for s, _ in marched]
+    step = STEP
+    found = []
+    states = list(marched)
+    while True:
+        step /= 4.0
+        force_at, _, _ = setup(kind, d0_over_h, side, n, law)
+        for s in shifts:
+            if force_at(s) is None:
+                raise RuntimeError(f"the march to {s:+.5f} d0 did not converge again")
+        s = shifts[-1]
+        while s + step < end:
+            s = round(s + step, 12)
+            f = force_at(s)
+            log(f"  {kind} L={side} N={n}: closing in, shift {s:+.5f} d0, F/F0 "
+                + ("not converged: end of the branch" if f is None else f"{f:+.5f}"))
+            if f is None:
+                end = s
+                break
+            shifts.append(s)
+            found.append((s, f))
+            states.append((s, f))
+        k = min(range(len(states)), key=lambda i: states[i][1])
+        right = states[k + 1][0] if k + 1 < len(states) else end
+        (s_left, f_left), (s_best, f_best) = states[k - 1], states[k]
+        more = (f_left - f_best) / (s_best - s_left) * (right - s_best)
+        if k + 1 < len(states) or step <= REFINE:
+            return found, abs(more)
+
+
+def pull(kind, d0_over_h, side, n, log, law=exponential_law, close_in=False):
+    """The pull-off of one case on one cell and grid: the march, the search for the most
+    tensile state and, with `close_in`, the branch's end approached by finer marches where the
+    most tensile state ends it ([`close_in_on_branch_end`])."""
     import tamaas as tm
     tm.set_log_level(tm.LogLevel.error)
-    force_at, d0, f0 = setup(kind, d0_over_h, side, n)
+    force_at, d0, f0 = setup(kind, d0_over_h, side, n, law)
     start = time.perf_counter()
     # Compression in full contact (flat punch: F = 2 E* a d; the concave ones pressed past 3 h).
     first = -0.08
@@ -188,6 +237,10 @@ def pull(kind, d0_over_h, side, n, log):
             f2 = trial(x2)
     if not failed:
         bracket = 0.0
+    elif close_in and bracket > 0.0:
+        closer, bracket = close_in_on_branch_end(kind, d0_over_h, side, n, law, curve[:k + 1],
+                                                 end, log)
+        refined += closer
     s_best, f_best = min(refined + [curve[k]], key=lambda p: p[1])
     curve = sorted(curve + refined)
     pulloff = -f_best
@@ -210,6 +263,27 @@ def pull(kind, d0_over_h, side, n, log):
     }
 
 
+def extrapolated(runs):
+    """The stored pull-off from the runs on GRIDS (coarse, fine, wide) and its uncertainty.
+
+    The images act on the punch through the curvature of their displacement field over it
+    (constant and linear parts are a rigid body and cancel by symmetry): O((a/L)^3), so
+    Richardson with order 3 from L = 3 and 6 at the same cell size; the resolution change from
+    the coarse to the fine cell is added. The uncertainty: the Richardson correction plus that
+    change plus the largest branch-end bracket."""
+    coarse, fine, wide = runs
+    images = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) * 8.0 / 7.0
+    resolution = fine["pulloff_over_f0"] - coarse["pulloff_over_f0"]
+    richardson_correction = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) / 7.0
+    return {
+        "pulloff_over_f0": coarse["pulloff_over_f0"] + images + resolution,
+        "uncertainty": abs(richardson_correction) + abs(resolution)
+        + max(r["branch_end_bracket"] for r in runs),
+        "image_correction": images,
+        "resolution_change": resolution,
+    }
+
+
 def main():
     import argparse
     import tamaas
@@ -229,13 +303,8 @@ def main():
         if only and name not in only:
             continue
         runs = [pull(kind, d0_over_h, side, n, log) for side, n in GRIDS]
-        coarse, fine, wide = runs
-        # The images act on the punch through the curvature of their displacement field over it
-        # (constant and linear parts are a rigid body and cancel by symmetry): O((a/L)^3), so
-        # Richardson with order 3 from L = 3 and 6 at the same cell size.
-        images = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) * 8.0 / 7.0
-        resolution = fine["pulloff_over_f0"] - coarse["pulloff_over_f0"]
-        richardson_correction = (wide["pulloff_over_f0"] - coarse["pulloff_over_f0"]) / 7.0
+        combined = extrapolated(runs)
+        images, resolution = combined["image_correction"], combined["resolution_change"]
         # Flat punch compressed in full contact: F = 2 E* a d (isolated); the cell's stiffness
         # gives the image compliance that converts the approach (stored for every case: the same
         # cell and grid).
@@ -255,11 +324,7 @@ def main():
                      "forces / F0 = sqrt(8 pi E* dw a^3), compression positive in the curves",
             "cell": "periodic square cell of side L centred on the punch; N x N cells; outside "
                     f"the punch the surface is {OUTSIDE} d0 away",
-            "pulloff_over_f0": coarse["pulloff_over_f0"] + images + resolution,
-            "uncertainty": abs(richardson_correction) + abs(resolution)
-            + max(r["branch_end_bracket"] for r in runs),
-            "image_correction": images,
-            "resolution_change": resolution,
+            **combined,
             "runs": runs,
             "date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "reproduce": "PYTHONPATH=scripts/peers .venv-peers/bin/python scripts/peers/run_adhesion.py "

@@ -54,7 +54,6 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         d0_over_h: args.d0h,
     };
     dugdale::check_face(&punch, parameters).map_err(message)?;
-    let jkr_force = |control| jkr_limit(&punch, parameters, control);
     let solver = DugdaleSolver::new();
     if args.sweep {
         if args.tabor.is_some() {
@@ -62,10 +61,7 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         }
         let out = crate::cli::output_directory(args.out.as_deref(), "reports/adhesion");
         let mut bar = Progress::new("sweep", 40);
-        let jkr = [
-            jkr_force(Control::Load)?.ok(),
-            jkr_force(Control::Grips)?.ok(),
-        ];
+        let jkr = jkr_limits(&punch, parameters)?.map(Result::ok);
         let sweep = dugdale_sweep::sweep(&solver, &punch, parameters, args.tol, jkr, &out, |s| {
             bar.tick(s)
         })
@@ -86,7 +82,11 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
         .tabor
         .ok_or("give --tabor LAMBDA (the Tabor parameter, > 0) or --sweep")?;
     let law = DugdaleLaw::new(tabor).map_err(message)?;
-    let jkr = jkr_force(control)?;
+    let [at_load, at_grips] = jkr_limits(&punch, parameters)?;
+    let jkr = match control {
+        Control::Load => at_load,
+        Control::Grips => at_grips,
+    };
     let pulloff = solver
         .pulloff(&punch, parameters, law, control, args.tol)
         .map_err(message)?;
@@ -110,23 +110,23 @@ pub fn adhesion(args: AdhesionArgs) -> Result<Reply, String> {
     }))
 }
 
-/// The JKR limit's pull-off force `F/F0` of `punch` under `control` (checked by
-/// [`dugdale::check_face`]), which the Dugdale pull-off tends to (`verify jkr`): Kendall's for
+/// The JKR limit's pull-off force `F/F0` of `punch` under fixed load and fixed grips (checked
+/// by [`dugdale::check_face`]), which the Dugdale pull-off tends to (`verify jkr`): Kendall's for
 /// the whole face, the governing edge's critical force for a fixed annulus, the annular
-/// pull-off (the rim criterion included) for a concave punch; `Ok(Err(why))` where it has none.
-fn jkr_limit(
+/// pull-off (the rim criterion included) for a concave punch; `Err(why)` where it has none.
+fn jkr_limits(
     punch: &PunchKind,
     parameters: FaceParameters,
-    control: Control,
-) -> Result<Result<f64, String>, String> {
+) -> Result<[Result<f64, String>; 2], String> {
     match (punch.contact(), parameters) {
         (Contact::FixedAnnulus, FaceParameters { eps: Some(eps), .. }) => {
             let jkr = adhesion::fixed_annulus(&RingBem::new(), eps).map_err(message)?;
-            Ok(Ok(if jkr.governing_edge == "inner" {
+            let force = if jkr.governing_edge == "inner" {
                 jkr.fc_inner
             } else {
                 jkr.fc_outer
-            }))
+            };
+            Ok([Ok(force), Ok(force)])
         }
         (
             Contact::RimAndFreeInner,
@@ -135,18 +135,20 @@ fn jkr_limit(
             },
         ) => {
             let jkr = adhesion::concave(&RingBem::new(), punch.clone(), s).map_err(message)?;
-            let (critical, note) = match control {
-                Control::Load => (jkr.fixed_load, jkr.fixed_load_note),
-                Control::Grips => (jkr.fixed_grips, jkr.fixed_grips_note),
+            let annular = |critical: Option<adhesion::Critical>, note: Option<String>| {
+                critical.map(|c| c.force).ok_or_else(|| {
+                    format!(
+                        "verify jkr has no annular pull-off here: {}",
+                        note.unwrap_or_default()
+                    )
+                })
             };
-            Ok(critical.map(|c| c.force).ok_or_else(|| {
-                format!(
-                    "verify jkr has no annular pull-off here: {}",
-                    note.unwrap_or_default()
-                )
-            }))
+            Ok([
+                annular(jkr.fixed_load, jkr.fixed_load_note),
+                annular(jkr.fixed_grips, jkr.fixed_grips_note),
+            ])
         }
-        _ => Ok(Ok(-1.0)),
+        _ => Ok([Ok(-1.0), Ok(-1.0)]),
     }
 }
 

@@ -319,9 +319,9 @@ Units: forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch; negative = ten
 d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` directly.
 
 --sweep: the pull-off against lambda from 0.05 to 100 under both controls, with the JKR value,
-written as dugdale-PUNCH.csv and .svg into --out (default reports/adhesion). Time on a 2-core
-machine: flat about 40 s; flat-annulus and the concave punches over 15 min (each lambda above
-20 takes minutes). A lambda whose node ladder does not meet --tol (about 40 and above at 1e-6),
+written as dugdale-PUNCH.csv and .svg into --out (default reports/adhesion), the lambdas solved
+in parallel. Time on a 2-core machine: flat about 15 s; flat-annulus and the concave punches
+6-7 min (lambdas above 20 take the longest). A lambda whose node ladder does not meet --tol (about 40 and above at 1e-6),
 or whose path has no pull-off on its route, is listed as declined with the reason.
 
 Examples:

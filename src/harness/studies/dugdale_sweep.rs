@@ -2,6 +2,9 @@
 //! controls, beside the JKR limit; a table, a CSV and a log-log chart.
 
 use std::path::{Path, PathBuf};
+use std::sync::Mutex;
+
+use rayon::prelude::*;
 
 use serde::Serialize;
 
@@ -70,53 +73,75 @@ pub(crate) fn sweep(
     tolerance: f64,
     jkr_force: JkrForces,
     out: &Path,
-    mut progress: impl FnMut(&str),
+    progress: impl FnMut(&str) + Send,
 ) -> Result<DugdaleSweep> {
-    let mut rows = Vec::new();
-    for tabor in tabor_parameters() {
-        let law = DugdaleLaw::new(tabor)?;
-        for control in Control::ALL {
-            rows.push(
-                match solver.pulloff(kind, parameters, law, control, tolerance) {
-                    Ok(p) => SweepPoint {
-                        tabor,
-                        control,
-                        pulloff_force: Some(p.pulloff_force),
-                        pulloff_force_error: Some(p.pulloff_force_error),
-                        pulloff_depth: Some(p.pulloff_depth),
-                        detaching_edge: Some(p.detaching_edge.name()),
-                        declined: None,
-                    },
-                    Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => {
-                        SweepPoint::declined(tabor, control, e.to_string())
-                    }
-                    Err(e) => return Err(e),
-                },
-            );
-        }
-        progress(&format!("lambda = {tabor:.3}"));
-    }
+    // The Tabor parameters are independent: solved in parallel, kept in their order.
+    let progress = Mutex::new(progress);
+    let per_tabor: Vec<Vec<SweepPoint>> = tabor_parameters()
+        .into_par_iter()
+        .map(|tabor| {
+            let points = both_controls(solver, kind, parameters, tabor, tolerance)?;
+            if let Ok(mut progress) = progress.lock() {
+                progress(&format!("lambda = {tabor:.3}"));
+            }
+            Ok(points)
+        })
+        .collect::<Result<_>>()?;
+    let rows: Vec<SweepPoint> = per_tabor.into_iter().flatten().collect();
     let table = table(kind, jkr_force, &rows);
     let chart = chart(kind, jkr_force, &rows);
     std::fs::create_dir_all(out).map_err(|e| Error::file("create the directory", out, e))?;
-    let stem = match parameters {
-        FaceParameters { eps: Some(eps), .. } => {
-            out.join(format!("dugdale-{}-{eps}", kind.label()))
-        }
-        FaceParameters {
-            d0_over_h: Some(s), ..
-        } => out.join(format!("dugdale-{}-d0h{s}", kind.label())),
-        _ => out.join(format!("dugdale-{}", kind.label())),
-    };
+    let [csv, svg] = file_names(out, kind, parameters);
     let mut files = Vec::new();
-    for (path, text) in [
-        (stem.with_extension("csv"), table.to_csv()?),
-        (stem.with_extension("svg"), chart),
-    ] {
+    for (path, text) in [(csv, table.to_csv()?), (svg, chart)] {
         std::fs::write(&path, text).map_err(|e| Error::file("write", &path, e))?;
         files.push(path);
     }
     Ok(DugdaleSweep { rows, table, files })
+}
+
+/// The sweep's CSV and SVG files in `out`: `dugdale-LABEL[-EPS|-d0hS].{csv,svg}` (the
+/// extension appended: `EPS` and `S` may have a dot of their own).
+fn file_names(out: &Path, kind: &PunchKind, parameters: FaceParameters) -> [PathBuf; 2] {
+    let stem = match parameters {
+        FaceParameters { eps: Some(eps), .. } => format!("dugdale-{}-{eps}", kind.label()),
+        FaceParameters {
+            d0_over_h: Some(s), ..
+        } => format!("dugdale-{}-d0h{s}", kind.label()),
+        _ => format!("dugdale-{}", kind.label()),
+    };
+    ["csv", "svg"].map(|extension| out.join(format!("{stem}.{extension}")))
+}
+
+/// The pull-off at one Tabor parameter under each control, or why it has none.
+fn both_controls(
+    solver: &DugdaleSolver,
+    kind: &PunchKind,
+    parameters: FaceParameters,
+    tabor: f64,
+    tolerance: f64,
+) -> Result<Vec<SweepPoint>> {
+    let law = DugdaleLaw::new(tabor)?;
+    Control::ALL
+        .into_iter()
+        .map(
+            |control| match solver.pulloff(kind, parameters, law, control, tolerance) {
+                Ok(p) => Ok(SweepPoint {
+                    tabor,
+                    control,
+                    pulloff_force: Some(p.pulloff_force),
+                    pulloff_force_error: Some(p.pulloff_force_error),
+                    pulloff_depth: Some(p.pulloff_depth),
+                    detaching_edge: Some(p.detaching_edge.name()),
+                    declined: None,
+                }),
+                Err(e @ (Error::NoConvergence { .. } | Error::OutOfRange { .. })) => {
+                    Ok(SweepPoint::declined(tabor, control, e.to_string()))
+                }
+                Err(e) => Err(e),
+            },
+        )
+        .collect()
 }
 
 /// The sweep's rows as a table (terminal and CSV).
@@ -188,4 +213,37 @@ fn chart(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> String 
         "-F_pulloff / F0",
         &series,
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Sweeps of one punch at different `b/a` or `d0/h` write different files (a dot in the
+    /// value once cut the name at it: 0.5 and 0.9 both wrote `dugdale-flat-annulus-0.csv`).
+    #[test]
+    fn each_face_parameter_has_its_own_files() {
+        let out = Path::new("out");
+        let annulus = PunchKind::from_label("flat-annulus").unwrap();
+        let cone = PunchKind::from_label("cone").unwrap();
+        let names = |kind: &PunchKind, eps, d0_over_h| {
+            file_names(out, kind, FaceParameters { eps, d0_over_h })
+                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        };
+        assert_eq!(
+            names(&annulus, Some(0.5), None),
+            [
+                "dugdale-flat-annulus-0.5.csv",
+                "dugdale-flat-annulus-0.5.svg"
+            ]
+        );
+        assert_ne!(
+            names(&annulus, Some(0.5), None),
+            names(&annulus, Some(0.9), None)
+        );
+        assert_eq!(
+            names(&cone, None, Some(0.1)),
+            ["dugdale-cone-d0h0.1.csv", "dugdale-cone-d0h0.1.svg"]
+        );
+    }
 }

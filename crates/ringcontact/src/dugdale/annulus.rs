@@ -5,13 +5,15 @@
 //! its edges are free; a cohesive zone runs from each free edge to the face's edge (`[b, c1]`,
 //! `[c2, a]`) or to where the gap reaches `δc`. With no contact left, the whole face in tension.
 
+use std::cell::Cell;
+
 use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::numerics::roots::find_root;
+use crate::numerics::roots::{find_root, find_root_with_slope};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 
-use super::configuration::{flat_face, whole_face_in_tension, Configuration, Fields};
+use super::configuration::{flat_face, whole_face_in_tension, BandParts, Configuration, Fields};
 use super::law::DugdaleLaw;
 use super::path::{Family, PathPoint};
 use super::METHOD;
@@ -55,6 +57,9 @@ pub(crate) struct AnnularFace<'a> {
     profile: &'a dyn Fn(f64) -> f64,
     /// Whether the surface in the recess may meet its floor, so that each state is probed.
     probe_floor: bool,
+    /// The last contact centre found with both edges free and its coefficient's slope there:
+    /// the next search starts from it (the path's states are met in order, and close).
+    centre_hint: Cell<Option<(f64, f64)>>,
 }
 
 /// One contact's equilibrium with its zones, and the singular coefficient of the edge the depth
@@ -77,6 +82,7 @@ impl<'a> AnnularFace<'a> {
             h: 0.0,
             profile: &flat_face,
             probe_floor: false,
+            centre_hint: Cell::new(None),
         }
     }
 
@@ -98,6 +104,7 @@ impl<'a> AnnularFace<'a> {
             h,
             profile,
             probe_floor,
+            centre_hint: Cell::new(None),
         }
     }
 
@@ -112,12 +119,15 @@ impl<'a> AnnularFace<'a> {
             },
             self.nodes,
         );
+        let parts = BandParts::new(&system, self.profile)
+            .ok_or_else(|| not_converged(format!("singular collocation matrix on [{c1}, {c2}]")))?;
         let band = Band {
             face: self,
             c1,
             c2,
             free_outer: !free_inner && c2 < 1.0,
             system: &system,
+            parts: &parts,
             rule: self.solver.deflection_rule(self.nodes),
         };
         let (z1, z2) = band.settled_zones()?;
@@ -139,16 +149,26 @@ impl<'a> AnnularFace<'a> {
         let half = 0.5 * width;
         let (lo, hi) = (self.hole + half, 1.0 - half);
         let margin = 1e-9 * (hi - lo).max(1e-300);
-        let root = find_root(
+        // The root is the last point evaluated unless the search stopped at rounding.
+        let mut last: Option<(f64, BandEquilibrium)> = None;
+        let (lo, hi) = (lo + margin, hi - margin);
+        let (guess, slope) = match self.centre_hint.get() {
+            Some((centre, slope)) if (lo..=hi).contains(&centre) => (centre, Some(slope)),
+            _ => (0.5 * (lo + hi), None),
+        };
+        let root = find_root_with_slope(
             |centre| {
-                self.band(centre - half, centre + half, false)
-                    .map(|b| b.other_coefficient)
-                    .map_err(|e| e.to_string())
+                let band = self
+                    .band(centre - half, centre + half, false)
+                    .map_err(|e| e.to_string())?;
+                let coefficient = band.other_coefficient;
+                last = Some((centre, band));
+                Ok(coefficient)
             },
-            lo + margin,
-            hi - margin,
-            0.5 * (lo + hi),
-            POSITION_TOLERANCE,
+            (lo, hi),
+            guess,
+            slope.filter(|s| s.is_finite() && *s != 0.0),
+            (POSITION_TOLERANCE, None),
             200,
         )
         .map_err(|e| {
@@ -157,7 +177,11 @@ impl<'a> AnnularFace<'a> {
                 self.hole
             ))
         })?;
-        Ok(self.band(root.x - half, root.x + half, false)?.point)
+        self.centre_hint.set(Some((root.x, root.slope)));
+        match last {
+            Some((centre, band)) if centre == root.x => Ok(band.point),
+            _ => Ok(self.band(root.x - half, root.x + half, false)?.point),
+        }
     }
 
     /// The recessed face's equilibrium whose contact's inner edge is `c1`: held at the rim
@@ -191,8 +215,14 @@ impl<'a> AnnularFace<'a> {
             }
             (near, step) = (far, 2.0 * step);
         };
+        let mut last: Option<(f64, BandEquilibrium)> = None;
         let root = find_root(
-            |c2| outer_coefficient(c2).map_err(|e| e.to_string()),
+            |c2| {
+                let band = self.band(c1, c2, true).map_err(|e| e.to_string())?;
+                let coefficient = band.other_coefficient;
+                last = Some((c2, band));
+                Ok(coefficient)
+            },
             far,
             near.min(1.0 - 1e-12),
             0.5 * (far + near),
@@ -204,7 +234,10 @@ impl<'a> AnnularFace<'a> {
                 "the outer edge of the contact from r/a = {c1} with both edges free: {e:?}"
             ))
         })?;
-        clear_of_floor(c1, self.band(c1, root.x, true)?)
+        match last {
+            Some((c2, band)) if c2 == root.x => clear_of_floor(c1, band),
+            _ => clear_of_floor(c1, self.band(c1, root.x, true)?),
+        }
     }
 
     /// The states with no contact left, the whole face in tension (none where the gap's spread
@@ -247,6 +280,8 @@ struct Band<'b, 'a> {
     /// Whether the depth frees the outer edge (else the inner).
     free_outer: bool,
     system: &'b RingSystem,
+    /// What the band's zones do not change, solved once.
+    parts: &'b BandParts,
     rule: &'b TanhSinhRule,
 }
 
@@ -260,7 +295,7 @@ impl Band<'_, '_> {
             zone_inner: z1,
             zone_outer: z2,
         };
-        let fields = Fields::solve(configuration, self.system, self.face.profile)
+        let fields = Fields::solve_on_band(configuration, self.system, self.parts)
             .ok_or_else(|| not_converged(format!("singular collocation matrix on [{c1}, {c2}]")))?;
         let depth = fields.depth_freeing(self.free_outer, self.face.h, self.face.law.tension());
         Ok((fields, depth))
@@ -362,11 +397,23 @@ impl Band<'_, '_> {
     /// The zones' ends, each solved with the other held, in passes until both settle.
     fn settled_zones(&self) -> Result<(f64, f64)> {
         let (mut z1, mut z2) = (self.face.hole, 1.0);
+        // The inner end is a function of the outer one: solved once per outer end met.
+        let mut last_inner: Option<(f64, f64)> = None;
+        let mut inner_zone_end = |z2: f64| -> Result<f64> {
+            match last_inner {
+                Some((outer, inner)) if outer == z2 => Ok(inner),
+                _ => {
+                    let inner = self.inner_zone_end(z2)?;
+                    last_inner = Some((z2, inner));
+                    Ok(inner)
+                }
+            }
+        };
         if self.face.h > 0.0 {
-            z1 = self.inner_zone_end(z2)?;
+            z1 = inner_zone_end(z2)?;
         }
         for _ in 0..ZONE_PASSES {
-            let inner = self.inner_zone_end(z2)?;
+            let inner = inner_zone_end(z2)?;
             let outer = self.outer_zone_end(inner)?;
             let settled =
                 (inner - z1).abs() <= SETTLED_ZONES && (outer - z2).abs() <= SETTLED_ZONES;

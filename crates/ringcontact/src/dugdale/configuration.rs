@@ -14,7 +14,7 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 
 use super::law::DugdaleLaw;
 use super::path::PathPoint;
-use super::uniform_load::annulus_deflection;
+use super::uniform_load::{annulus_deflection, disk_deflection};
 
 /// The gap profile `ĝ = 0` of a flat face.
 pub(crate) fn flat_face(_: f64) -> f64 {
@@ -66,15 +66,17 @@ const FACE_SAMPLES: usize = 64;
 /// golden section between its neighbours (an end sample kept when it is least).
 fn least_on_face(f: &dyn Fn(f64) -> f64, hole: f64) -> f64 {
     let at = |k: usize| hole + (1.0 - hole) * k as f64 / FACE_SAMPLES as f64;
+    let values: Vec<f64> = (0..=FACE_SAMPLES).map(|k| f(at(k))).collect();
     let best = (0..=FACE_SAMPLES)
-        .min_by(|&i, &j| f(at(i)).total_cmp(&f(at(j))))
+        .min_by(|&i, &j| values[i].total_cmp(&values[j]))
         .unwrap_or(0);
     let (lo, hi) = (at(best.saturating_sub(1)), at((best + 1).min(FACE_SAMPLES)));
     let inside = crate::numerics::golden::golden_section_max(|r| -f(r), lo, hi, 1e-12);
-    [at(best), inside]
-        .into_iter()
-        .min_by(|a, b| f(*a).total_cmp(&f(*b)))
-        .unwrap_or(at(best))
+    if f(inside) < values[best] {
+        inside
+    } else {
+        at(best)
+    }
 }
 
 /// The contact `[inner, outer]` (`inner = 0`: the disk `r <= outer`) and the loaded region
@@ -101,6 +103,30 @@ pub(crate) struct Fields<'a> {
     unit: RingField,
     profile: RingField,
     load: RingField,
+}
+
+/// The parts of a band's fields that its zones do not change, solved once per band system: the
+/// unit depth's and the profile's fields, and the deflection at the collocation radii of a unit
+/// pressure on the face `s <= a` (`disk_deflection(1, r)`: a zone reaching the rim loads
+/// `[z, a]`, the disk less the disk `s < z`).
+pub(crate) struct BandParts {
+    unit: RingField,
+    profile: RingField,
+    rim_load: Vec<f64>,
+}
+
+impl BandParts {
+    /// The parts on a band's `system` for the face's `profile` (`ĝ`); `None` where the
+    /// collocation matrix is singular.
+    pub fn new(system: &RingSystem, profile: &dyn Fn(f64) -> f64) -> Option<Self> {
+        let radii = system.radii();
+        let profile_target: Vec<f64> = radii.iter().map(|&r| profile(r)).collect();
+        Some(Self {
+            unit: system.solve(&vec![1.0; radii.len()])?,
+            profile: system.solve(&profile_target)?,
+            rim_load: radii.iter().map(|&r| disk_deflection(1.0, r)).collect(),
+        })
+    }
 }
 
 /// A configuration's equilibrium: depth, force and the field that makes it.
@@ -139,6 +165,35 @@ impl<'a> Fields<'a> {
             scale,
             unit,
             profile: system.solve(&profile_target)?,
+            load: system.solve(&load_target)?,
+        })
+    }
+
+    /// [`Self::solve`] on a band's system with the `parts` its zones do not change.
+    pub fn solve_on_band(
+        configuration: Configuration,
+        system: &'a RingSystem,
+        parts: &BandParts,
+    ) -> Option<Self> {
+        let (z1, z2) = (configuration.zone_inner, configuration.zone_outer);
+        let load_target: Vec<f64> = system
+            .radii()
+            .iter()
+            .zip(&parts.rim_load)
+            .map(|(&r, &rim)| {
+                if z2 == 1.0 {
+                    rim - disk_deflection(z1, r)
+                } else {
+                    annulus_deflection(z1, z2, r)
+                }
+            })
+            .collect();
+        Some(Self {
+            configuration,
+            system,
+            scale: 1.0,
+            unit: parts.unit.clone(),
+            profile: parts.profile.clone(),
             load: system.solve(&load_target)?,
         })
     }

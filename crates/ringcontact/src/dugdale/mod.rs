@@ -199,16 +199,21 @@ impl DugdaleSolver {
         let mut last_change = f64::INFINITY;
         for &nodes in &NODE_LADDER[first..] {
             let answer = face.with_family(self, kind, nodes, law, &mut |family| {
-                let (parameter, pulloff) = path::pulloff(family, control, bracket)?;
-                bracket = Some(parameter);
+                let located = path::pulloff(family, control, bracket, tolerance)?;
+                let pulloff = located.point;
+                bracket = Some(located.parameter);
                 history.push(units(&pulloff));
                 let [.., (d2, f2), (d1, f1), (d0, f0)] = history[..] else {
                     return Ok(None);
                 };
                 // The larger of the last two changes: the ladder's convergence is geometric only
                 // once the zone is resolved, and a single change can pass through zero before then.
-                let depth_error = (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR);
-                let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR);
+                // Plus what locating the pull-off on its path leaves open.
+                let [depth_spread, force_spread] = located.spread;
+                let depth_error =
+                    (d0 - d1).abs().max((d1 - d2).abs()).max(ROUNDING_FLOOR) + depth_spread;
+                let force_error = (f0 - f1).abs().max((f1 - f2).abs()).max(ROUNDING_FLOOR)
+                    + force_spread / law::KENDALL_FORCE;
                 last_change = depth_error.max(force_error);
                 if last_change > tolerance {
                     return Ok(None);

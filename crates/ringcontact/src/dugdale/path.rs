@@ -4,6 +4,7 @@
 use serde::Serialize;
 
 use crate::error::{Error, Result};
+use crate::numerics::brent::brent_minimum;
 
 use super::configuration::Configuration;
 use super::METHOD;
@@ -157,14 +158,38 @@ pub(crate) fn path(family: &dyn Family) -> Result<Path> {
     Ok(Path { samples, cut_short })
 }
 
-/// The pull-off of `family` under `control` and its parameter: refined by golden section
-/// within two sample spacings of `near` (a coarser node count's), else found along the whole
-/// path.
+/// A pull-off located on its path: its parameter and state, and how far the depth and the force
+/// may differ at the extremum itself (`[depth, force]`: the steepest slope to the nearest
+/// states evaluated on either side times the farther one's distance; 0 for a state exact as it
+/// is), which a kink in the held quantity (the zone's end leaving the rim) makes linear in the
+/// search's width.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Located {
+    pub parameter: f64,
+    pub point: PathPoint,
+    pub spread: [f64; 2],
+}
+
+impl Located {
+    fn new((parameter, point): (f64, PathPoint), spread: [f64; 2]) -> Self {
+        Self {
+            parameter,
+            point,
+            spread,
+        }
+    }
+}
+
+/// The pull-off of `family` under `control` and its parameter, located to a thousandth of
+/// `tolerance` ([`parameter_width`]): refined by Brent's search within two sample spacings of
+/// `near` (a coarser node count's), else found along the whole path.
 pub(crate) fn pulloff(
     family: &dyn Family,
     control: Control,
     near: Option<f64>,
-) -> Result<(f64, PathPoint)> {
+    tolerance: f64,
+) -> Result<Located> {
+    let width = parameter_width(tolerance);
     let held = |p: &PathPoint| control.held(p);
     let (first, last) = family.parameter_range();
     let step = (last - first) / (PATH_SAMPLES - 1) as f64;
@@ -186,12 +211,16 @@ pub(crate) fn pulloff(
                 samples: bracket,
                 cut_short: None,
             };
-            return first_minimum(&bracket, control, false, |t| family.at(t));
+            return first_minimum(&bracket, control, false, width, |t| family.at(t));
         }
     }
-    first_minimum(&path(family)?, control, family.pressed_from_rim(), |t| {
-        family.at(t)
-    })
+    first_minimum(
+        &path(family)?,
+        control,
+        family.pressed_from_rim(),
+        width,
+        |t| family.at(t),
+    )
 }
 
 /// Where pressing from the rim stops on a path ordered as the punch is pulled: from the last
@@ -213,22 +242,27 @@ fn pressing_stops(samples: &[(f64, PathPoint)], held: &dyn Fn(&PathPoint) -> f64
     k
 }
 
-/// Golden-section width of the path parameter at the pull-off.
-const PARAMETER_WIDTH: f64 = 1e-11;
+/// Width of the path parameter within which Brent's search locates the pull-off, for a
+/// pull-off wanted to `tolerance`: a thousandth of it (the depth or force not held moves about
+/// linearly with the parameter there, the held one quadratically), between the rounding floor of
+/// a quadratic minimum's location and 1e-6.
+fn parameter_width(tolerance: f64) -> f64 {
+    (1e-3 * tolerance).clamp(1e-11, 1e-6)
+}
 
 /// The first local minimum of `held` after its first maximum along the `samples` of `state(t)`
 /// (ordered as the punch is pulled; states before the maximum are not reached by pressing;
 /// when `pressed_from_rim`, the lowest value after where pressing stops,
-/// [`pressing_stops`]),
-/// refined by golden section between its neighbours; the last sample when `held` falls all the
+/// [`pressing_stops`]), refined by Brent's search between its neighbours to `width`; the last sample when `held` falls all the
 /// way into the states beyond the contact, an error when it still falls at the narrowest
 /// contact sampled.
 fn first_minimum(
     path: &Path,
     control: Control,
     pressed_from_rim: bool,
+    width: f64,
     state: impl Fn(f64) -> Result<PathPoint>,
-) -> Result<(f64, PathPoint)> {
+) -> Result<Located> {
     let samples = &path.samples;
     let held = |p: &PathPoint| control.held(p);
     let falls = |k: usize| held(&samples[k].1) < held(&samples[k - 1].1);
@@ -268,35 +302,46 @@ fn first_minimum(
         });
     }
     if index == 0 || index + 1 == samples.len() {
-        return Ok(samples[index]);
+        return Ok(Located::new(samples[index], [0.0; 2]));
     }
-    let (mut lo, mut hi) = (samples[index - 1].0, samples[index + 1].0);
+    let (lo, hi) = (samples[index - 1].0, samples[index + 1].0);
     if !(lo.is_finite() && hi.is_finite()) {
         // A state off the parameterised path (the whole face in tension) is exact as it is.
-        return Ok(samples[index]);
+        return Ok(Located::new(samples[index], [0.0; 2]));
     }
-    let golden = 0.5 * (5f64.sqrt() - 1.0);
     let mut best = samples[index];
-    let mut x1 = hi - golden * (hi - lo);
-    let mut x2 = lo + golden * (hi - lo);
-    let (mut p1, mut p2) = (state(x1)?, state(x2)?);
-    while (hi - lo).abs() > PARAMETER_WIDTH {
-        if held(&p1) < held(&p2) {
-            hi = x2;
-            (x2, p2) = (x1, p1);
-            x1 = hi - golden * (hi - lo);
-            p1 = state(x1)?;
-        } else {
-            lo = x1;
-            (x1, p1) = (x2, p2);
-            x2 = lo + golden * (hi - lo);
-            p2 = state(x2)?;
+    let mut evaluated = vec![samples[index - 1], samples[index + 1]];
+    let mut visit = |t: f64| -> Result<f64> {
+        let point = state(t)?;
+        evaluated.push((t, point));
+        if held(&point) < held(&best.1) {
+            best = (t, point);
         }
-        for candidate in [(x1, p1), (x2, p2)] {
-            if held(&candidate.1) < held(&best.1) {
-                best = candidate;
-            }
-        }
-    }
-    Ok(best)
+        Ok(held(&point))
+    };
+    brent_minimum(&mut visit, lo, hi, 0.25 * width)?;
+    let nearest = |side: f64| {
+        evaluated
+            .iter()
+            .filter(|(t, _)| (t - best.0) * side > 0.0)
+            .min_by(|a, b| (a.0 - best.0).abs().total_cmp(&(b.0 - best.0).abs()))
+    };
+    // The extremum lies between the nearest states on either side: each quantity can differ
+    // from the best state's by its steepest slope toward them times the farther one's distance.
+    let neighbours: Vec<&(f64, PathPoint)> = [nearest(-1.0), nearest(1.0)]
+        .into_iter()
+        .flatten()
+        .collect();
+    let reach = neighbours
+        .iter()
+        .map(|(t, _)| (t - best.0).abs())
+        .fold(0.0, f64::max);
+    let steepest = |quantity: fn(&PathPoint) -> f64| {
+        neighbours
+            .iter()
+            .map(|(t, p)| (quantity(p) - quantity(&best.1)).abs() / (t - best.0).abs())
+            .fold(0.0, f64::max)
+    };
+    let spread = [steepest(|p| p.depth) * reach, steepest(|p| p.force) * reach];
+    Ok(Located::new(best, spread))
 }

@@ -84,9 +84,17 @@ impl ChebyshevNodes {
     /// multiplies the values, so values near the largest `f64` do not overflow, as the unnormalised
     /// barycentric sum `Σ_j w_j f_j / (t - t_j)` did).
     pub(crate) fn interpolate(&self, values: &[f64], t: f64) -> f64 {
-        let mut basis = vec![0.0; self.points.len()];
-        self.basis_at(t, &mut basis);
-        basis.iter().zip(values).map(|(l, f)| l * f).sum()
+        let n = self.points.len();
+        let combine = |basis: &mut [f64]| -> f64 {
+            self.basis_at(t, basis);
+            basis.iter().zip(values).map(|(l, f)| l * f).sum()
+        };
+        // The basis on the stack for the usual node counts: this runs once per quadrature node.
+        if n <= BASIS_ON_STACK {
+            combine(&mut [0.0; BASIS_ON_STACK][..n])
+        } else {
+            combine(&mut vec![0.0; n])
+        }
     }
 
     /// Chebyshev coefficients `c_k` of the interpolant through `values` at the nodes,
@@ -121,6 +129,9 @@ pub(crate) fn chebyshev_series(coefficients: &[f64], t: f64) -> f64 {
     }
     t * b1 - b2 + coefficients.first().copied().unwrap_or(0.0)
 }
+
+/// Node counts up to which [`ChebyshevNodes::interpolate`] keeps its basis on the stack.
+const BASIS_ON_STACK: usize = 64;
 
 #[cfg(test)]
 mod tests {
