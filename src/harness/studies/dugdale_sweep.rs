@@ -218,32 +218,35 @@ fn chart(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> String 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use ringcontact::punch::Contact;
 
     /// Sweeps of one punch at different `b/a` or `d0/h` write different files (a dot in the
-    /// value once cut the name at it: 0.5 and 0.9 both wrote `dugdale-flat-annulus-0.csv`).
+    /// value once cut the name at it: `b/a` = 0.5 and 0.9 both wrote `...-0.csv`).
     #[test]
     fn each_face_parameter_has_its_own_files() {
         let out = Path::new("out");
-        let annulus = PunchKind::from_label("flat-annulus").unwrap();
-        let cone = PunchKind::from_label("cone").unwrap();
-        let names = |kind: &PunchKind, eps, d0_over_h| {
-            file_names(out, kind, FaceParameters { eps, d0_over_h })
-                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        let names = |contact, eps, d0_over_h| {
+            let kind = PunchKind::built_in(contact).remove(0);
+            let files = file_names(out, &kind, FaceParameters { eps, d0_over_h })
+                .map(|p| p.file_name().unwrap().to_string_lossy().into_owned());
+            (kind.label().to_string(), files)
         };
+        let (label, files) = names(Contact::FixedAnnulus, Some(0.5), None);
         assert_eq!(
-            names(&annulus, Some(0.5), None),
+            files,
             [
-                "dugdale-flat-annulus-0.5.csv",
-                "dugdale-flat-annulus-0.5.svg"
+                format!("dugdale-{label}-0.5.csv"),
+                format!("dugdale-{label}-0.5.svg")
             ]
         );
-        assert_ne!(
-            names(&annulus, Some(0.5), None),
-            names(&annulus, Some(0.9), None)
-        );
+        assert_ne!(files, names(Contact::FixedAnnulus, Some(0.9), None).1);
+        let (label, files) = names(Contact::RimAndFreeInner, None, Some(0.1));
         assert_eq!(
-            names(&cone, None, Some(0.1)),
-            ["dugdale-cone-d0h0.1.csv", "dugdale-cone-d0h0.1.svg"]
+            files,
+            [
+                format!("dugdale-{label}-d0h0.1.csv"),
+                format!("dugdale-{label}-d0h0.1.svg")
+            ]
         );
     }
 }
