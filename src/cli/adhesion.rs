@@ -155,8 +155,10 @@ fn jkr_limits(
 fn text(answer: &Answer) -> String {
     let p = &answer.pulloff;
     let [inner, outer] = p.contact;
-    let contact = if outer <= inner {
-        "none (the whole face in tension)".to_string()
+    let contact = if p.loaded_region[0] >= 1.0 {
+        "none, no zone left (the punch came away gradually, the force falling to zero)".to_string()
+    } else if outer <= inner {
+        "none (the cohesive zone alone holds the surface)".to_string()
     } else if inner == 0.0 {
         format!("r/a <= {outer:.6}")
     } else {

@@ -312,8 +312,10 @@ is compressive, else both edges free, a cohesive zone from each free edge toward
 edge; detaching_edge names the face edge whose gap reaches the range first); the concave cone,
 sphere, power and table --d0h D0_OVER_H (pressed until the hole is about to close, then pulled:
 the contact holds the rim while the rim's stress is compressive, a cohesive zone runs from the
-free inner edge into the recess; detaching_edge is outer when the rim's gap reaches the range,
-else inner; the JKR limit is `verify jkr`'s annular pull-off). The torus is declined.
+free inner edge into the recess; where the narrowing ring vanishes the surface is held by its
+zone alone, shrinking to the rim: under grips the punch may come away gradually, force about 0
+at depth -delta_c; detaching_edge is outer when the rim's gap reaches the range, else inner;
+the JKR limit is `verify jkr`'s annular pull-off). The torus is declined.
 
 Units: forces in F0 = sqrt(8 pi E* dw a^3) (Kendall's flat punch; negative = tensile), depths in
 d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` directly.

@@ -1,5 +1,5 @@
 //! `verify adhesion --sweep`: the Maugis-Dugdale pull-off against the Tabor parameter under both
-//! controls, beside the JKR limit; a table, a CSV and a log-log chart.
+//! controls, beside the JKR limit; a table, a CSV and a chart.
 
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -178,19 +178,20 @@ fn table(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> Table {
     table
 }
 
-/// The log-log chart of the tensile pull-off against `λ`, one curve per control, the JKR limit
-/// beside.
+/// The chart of the tensile pull-off against `log10 λ`, one curve per control, the JKR limit
+/// beside: the force on a linear axis, as a punch that comes away gradually has none.
 fn chart(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> String {
     let curve = |control: Control| svg::Series {
         name: format!("fixed {}", control.name()),
         points: rows
             .iter()
             .filter(|r| r.control == control)
-            .filter_map(|r| r.pulloff_force.map(|f| (r.tabor, -f)))
+            .filter_map(|r| r.pulloff_force.map(|f| (r.tabor.log10(), -f)))
             .collect(),
         bars: Vec::new(),
     };
-    let (lo, hi) = (tabor_parameters()[0], tabor_parameters()[39]);
+    let parameters = tabor_parameters();
+    let (lo, hi) = (parameters[0].log10(), parameters[39].log10());
     let jkr_line = |name: &str, force: f64| svg::Series {
         name: name.into(),
         points: vec![(lo, -force), (hi, -force)],
@@ -204,12 +205,12 @@ fn chart(kind: &PunchKind, jkr_force: JkrForces, rows: &[SweepPoint]) -> String 
             series.extend(grips.map(|f| jkr_line("JKR limit, fixed grips", f)));
         }
     }
-    svg::log_log_chart(
+    svg::linear_chart_with_markers(
         &format!(
             "{}: Dugdale pull-off against the Tabor parameter",
             kind.describe()
         ),
-        "Tabor parameter lambda",
+        "log10 of the Tabor parameter lambda",
         "-F_pulloff / F0",
         &series,
     )

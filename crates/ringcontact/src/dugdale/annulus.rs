@@ -15,7 +15,7 @@ use crate::numerics::tanh_sinh::TanhSinhRule;
 
 use super::configuration::{flat_face, whole_face_in_tension, BandParts, Configuration, Fields};
 use super::law::DugdaleLaw;
-use super::path::{Family, PathPoint};
+use super::path::{Beyond, Family, PathPoint};
 use super::METHOD;
 
 /// Tolerance of a zone's end and of the contact's centre (units of `a`).
@@ -205,13 +205,15 @@ impl<'a> AnnularFace<'a> {
         };
         let mut step = (1e-3 * self.law.zone_length()).min(0.25 * (1.0 - c1));
         let mut near = 1.0;
+        let narrowest = c1 + NARROWEST_CONTACT * (1.0 - c1);
         let far = loop {
-            let far = 1.0 - step;
-            if far <= c1 + NARROWEST_CONTACT * (1.0 - c1) {
-                return Err(no_state());
-            }
+            // The last step stops at the narrowest contact rather than stepping past a root.
+            let far = (1.0 - step).max(narrowest);
             if outer_coefficient(far)? >= 0.0 {
                 break far;
+            }
+            if far == narrowest {
+                return Err(no_state());
             }
             (near, step) = (far, 2.0 * step);
         };
@@ -470,7 +472,7 @@ impl Family for AnnularFace<'_> {
         self.state((1.0 - self.hole) * (1.0 - t.exp()))
     }
 
-    fn beyond_contact(&self) -> Vec<PathPoint> {
-        self.whole_face()
+    fn beyond_contact(&self, _: &PathPoint, ceased: bool) -> Beyond {
+        Beyond::exact(self.whole_face(), ceased)
     }
 }

@@ -35,8 +35,8 @@ pub(crate) fn whole_face_in_tension(
     let (sigma0, range) = (law.tension(), law.range());
     // The gap plus the depth: `g(r) + d = h ĝ(r) - σ0 U(r)`.
     let offset = |r: f64| h * profile(r) - sigma0 * annulus_deflection(hole, 1.0, r);
-    let least = least_on_face(&offset, hole);
-    let most = least_on_face(&|r| -offset(r), hole);
+    let least = least_between(&offset, hole, 1.0);
+    let most = least_between(&|r| -offset(r), hole, 1.0);
     let (first_depth, last_depth) = (offset(least), offset(most) - range);
     if last_depth > first_depth {
         return None;
@@ -59,13 +59,13 @@ pub(crate) fn whole_face_in_tension(
     ])
 }
 
-/// Samples of the face searched for the least value before it is refined.
+/// Samples of an interval searched for the least value before it is refined.
 const FACE_SAMPLES: usize = 64;
 
-/// Where `f` is least on the face `[hole, 1]`: the least of [`FACE_SAMPLES`] samples refined by
-/// golden section between its neighbours (an end sample kept when it is least).
-fn least_on_face(f: &dyn Fn(f64) -> f64, hole: f64) -> f64 {
-    let at = |k: usize| hole + (1.0 - hole) * k as f64 / FACE_SAMPLES as f64;
+/// Where `f` is least on `[lo, hi]`: the least of [`FACE_SAMPLES`] samples refined by golden
+/// section between its neighbours (an end sample kept when it is least).
+pub(crate) fn least_between(f: &dyn Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+    let at = |k: usize| lo + (hi - lo) * k as f64 / FACE_SAMPLES as f64;
     let values: Vec<f64> = (0..=FACE_SAMPLES).map(|k| f(at(k))).collect();
     let best = (0..=FACE_SAMPLES)
         .min_by(|&i, &j| values[i].total_cmp(&values[j]))

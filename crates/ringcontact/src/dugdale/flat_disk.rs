@@ -9,7 +9,7 @@ use crate::numerics::roots::find_root;
 
 use super::configuration::{flat_face, whole_face_in_tension, Configuration, Fields};
 use super::law::DugdaleLaw;
-use super::path::{Family, PathPoint};
+use super::path::{Beyond, Family, PathPoint};
 use super::METHOD;
 
 /// Smallest contact radius `c/a` sampled before the whole face is in tension.
@@ -109,9 +109,8 @@ impl Family for FlatDisk<'_> {
         self.state(1.0 - t.exp())
     }
 
-    fn beyond_contact(&self) -> Vec<PathPoint> {
-        whole_face_in_tension(self.law, 0.0, 0.0, &flat_face)
-            .map(Vec::from)
-            .unwrap_or_default()
+    fn beyond_contact(&self, _: &PathPoint, ceased: bool) -> Beyond {
+        let whole_face = whole_face_in_tension(self.law, 0.0, 0.0, &flat_face);
+        Beyond::exact(whole_face.map(Vec::from).unwrap_or_default(), ceased)
     }
 }

@@ -30,6 +30,7 @@ mod flat_disk;
 pub mod law;
 pub mod path;
 mod recess;
+mod suspended;
 pub mod uniform_load;
 
 pub use law::DugdaleLaw;
@@ -379,7 +380,8 @@ impl Face {
                     &profile,
                     kind.profile().may_meet_hole_floor(),
                 );
-                work(&recess::RecessedFace::new(face))
+                let suspended = suspended::SuspendedStates::new(law, 1.0 / d0_over_h, &profile);
+                work(&recess::RecessedFace::new(face, suspended))
             }
         }
     }

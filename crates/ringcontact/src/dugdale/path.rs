@@ -93,10 +93,52 @@ pub(crate) trait Family {
     fn pressed_from_rim(&self) -> bool {
         false
     }
-    /// States past the last `t` that the parameter does not reach (the whole face in tension
-    /// with no contact left), in the order they are met; none by default.
-    fn beyond_contact(&self) -> Vec<PathPoint> {
-        Vec::new()
+    /// States past the contact's `last` one, in the order they are met ([`Beyond`]): reached
+    /// when `ceased` is false at the narrowest contact sampled, else where the family's states
+    /// ceased; none by default.
+    fn beyond_contact(&self, last: &PathPoint, ceased: bool) -> Beyond {
+        let _ = (last, ceased);
+        Beyond::none()
+    }
+    /// Spacing of the samples of the states beyond the contact, in their parameter.
+    fn beyond_step(&self) -> f64 {
+        0.0
+    }
+}
+
+/// Parameters at and above this one belong to the states with no contact left that
+/// [`Family::at`] refines (`BEYOND_CONTACT` plus their own parameter); a family's contact
+/// states lie well below it (within ±20), and the parameters' rounding stays near 1e-14.
+pub(crate) const BEYOND_CONTACT: f64 = 100.0;
+
+/// The states past a family's contact states: each with its parameter (at or above
+/// [`BEYOND_CONTACT`], or infinite for a state exact as it is, not refined), and why they end
+/// short of the surface letting go, if they do.
+pub(crate) struct Beyond {
+    pub states: Vec<(f64, PathPoint)>,
+    pub cut_short: Option<String>,
+}
+
+impl Beyond {
+    /// No states past the contact.
+    pub fn none() -> Self {
+        Self {
+            states: Vec::new(),
+            cut_short: None,
+        }
+    }
+
+    /// States exact as they are (the whole face in tension), after the narrowest contact
+    /// sampled only (`ceased` false).
+    pub fn exact(states: Vec<PathPoint>, ceased: bool) -> Self {
+        Self {
+            states: if ceased {
+                Vec::new()
+            } else {
+                states.into_iter().map(|p| (f64::INFINITY, p)).collect()
+            },
+            cut_short: None,
+        }
     }
 }
 
@@ -147,14 +189,14 @@ pub(crate) fn path(family: &dyn Family) -> Result<Path> {
     };
     let mut samples: Vec<(f64, PathPoint)> =
         states.drain(start..=end).filter_map(|s| s.ok()).collect();
-    let cut_short = cut_short.or_else(|| {
-        let beyond = family.beyond_contact();
-        let narrowest = beyond
-            .is_empty()
-            .then(|| "at the narrowest contact sampled".into());
-        samples.extend(beyond.into_iter().map(|p| (f64::INFINITY, p)));
-        narrowest
-    });
+    let last = samples[samples.len() - 1].1;
+    let beyond = family.beyond_contact(&last, cut_short.is_some());
+    let cut_short = if beyond.states.is_empty() {
+        cut_short.or_else(|| Some("at the narrowest contact sampled".into()))
+    } else {
+        beyond.cut_short
+    };
+    samples.extend(beyond.states);
     Ok(Path { samples, cut_short })
 }
 
@@ -193,9 +235,20 @@ pub(crate) fn pulloff(
     let held = |p: &PathPoint| control.held(p);
     let (first, last) = family.parameter_range();
     let step = (last - first) / (PATH_SAMPLES - 1) as f64;
-    let inside_path =
-        |t: &f64| t.is_finite() && *t - 2.0 * step >= first && *t + 2.0 * step <= last;
+    let inside_path = |t: &f64| {
+        t.is_finite()
+            && if *t >= BEYOND_CONTACT {
+                *t - 2.0 * family.beyond_step() >= BEYOND_CONTACT
+            } else {
+                *t - 2.0 * step >= first && *t + 2.0 * step <= last
+            }
+    };
     if let Some(t) = near.filter(inside_path) {
+        let step = if t >= BEYOND_CONTACT {
+            family.beyond_step()
+        } else {
+            step
+        };
         let bracket: Result<Vec<(f64, PathPoint)>> = [t - 2.0 * step, t, t + 2.0 * step]
             .into_iter()
             .map(|t| family.at(t).map(|p| (t, p)))
@@ -240,6 +293,37 @@ fn pressing_stops(samples: &[(f64, PathPoint)], held: &dyn Fn(&PathPoint) -> f64
         k -= 1;
     }
     k
+}
+
+/// The part of a path a sample's parameter belongs to: the contact's states, the states
+/// beyond the contact that are refined, or those exact as they are.
+fn segment(t: f64) -> u8 {
+    if t.is_infinite() {
+        2
+    } else if t >= BEYOND_CONTACT {
+        1
+    } else {
+        0
+    }
+}
+
+/// The interval around `samples[index]` searched for the extremum: between its neighbours on
+/// its own segment of the path ([`segment`]); at the contact's last state, as far again past
+/// it (where the contact's states may end); at the first state beyond the contact, from it.
+/// `None` for a state exact as it is.
+fn bracket_in_segment(samples: &[(f64, PathPoint)], index: usize) -> Option<(f64, f64)> {
+    let t = samples[index].0;
+    let own = segment(t);
+    let (before, after) = (samples[index - 1].0, samples[index + 1].0);
+    let lo = if segment(before) == own { before } else { t };
+    let hi = if segment(after) == own {
+        after
+    } else if own == 0 {
+        t + (t - lo)
+    } else {
+        t
+    };
+    (own != 2 && hi > lo).then_some((lo, hi))
 }
 
 /// Width of the path parameter within which Brent's search locates the pull-off, for a
@@ -304,15 +388,28 @@ fn first_minimum(
     if index == 0 || index + 1 == samples.len() {
         return Ok(Located::new(samples[index], [0.0; 2]));
     }
-    let (lo, hi) = (samples[index - 1].0, samples[index + 1].0);
-    if !(lo.is_finite() && hi.is_finite()) {
+    let Some((lo, hi)) = bracket_in_segment(samples, index) else {
         // A state off the parameterised path (the whole face in tension) is exact as it is.
         return Ok(Located::new(samples[index], [0.0; 2]));
-    }
+    };
     let mut best = samples[index];
-    let mut evaluated = vec![samples[index - 1], samples[index + 1]];
+    let mut evaluated: Vec<(f64, PathPoint)> = [index - 1, index + 1]
+        .into_iter()
+        .map(|k| samples[k])
+        .filter(|(t, _)| (lo..=hi).contains(t))
+        .collect();
+    // Where the family has no state (past the end of the contact's states) the held quantity
+    // counts as infinite: the search keeps to the states that exist.
+    let mut ceased: Vec<f64> = Vec::new();
     let mut visit = |t: f64| -> Result<f64> {
-        let point = state(t)?;
+        let point = match state(t) {
+            Ok(point) => point,
+            Err(Error::OutOfRange { .. }) => {
+                ceased.push(t);
+                return Ok(f64::INFINITY);
+            }
+            Err(e) => return Err(e),
+        };
         evaluated.push((t, point));
         if held(&point) < held(&best.1) {
             best = (t, point);
@@ -320,21 +417,41 @@ fn first_minimum(
         Ok(held(&point))
     };
     brent_minimum(&mut visit, lo, hi, 0.25 * width)?;
+    let spread = spread_around(best, &evaluated, &ceased);
+    Ok(Located::new(best, spread))
+}
+
+/// How far the depth and the force may differ at the extremum from the `best` state found:
+/// the extremum lies between the nearest `evaluated` states on either side (or the nearest
+/// parameter with no state, `ceased`, when that is nearer), so each quantity can differ by its
+/// steepest slope toward them times the farthest distance.
+fn spread_around(
+    best: (f64, PathPoint),
+    evaluated: &[(f64, PathPoint)],
+    ceased: &[f64],
+) -> [f64; 2] {
     let nearest = |side: f64| {
         evaluated
             .iter()
             .filter(|(t, _)| (t - best.0) * side > 0.0)
             .min_by(|a, b| (a.0 - best.0).abs().total_cmp(&(b.0 - best.0).abs()))
     };
-    // The extremum lies between the nearest states on either side: each quantity can differ
-    // from the best state's by its steepest slope toward them times the farther one's distance.
     let neighbours: Vec<&(f64, PathPoint)> = [nearest(-1.0), nearest(1.0)]
         .into_iter()
         .flatten()
         .collect();
-    let reach = neighbours
-        .iter()
-        .map(|(t, _)| (t - best.0).abs())
+    let nearest_on = |side: f64| {
+        let state = nearest(side).map(|(t, _)| *t);
+        let no_state = ceased.iter().copied().filter(|t| (t - best.0) * side > 0.0);
+        state
+            .into_iter()
+            .chain(no_state)
+            .map(|t| (t - best.0).abs())
+            .reduce(f64::min)
+    };
+    let reach = [-1.0, 1.0]
+        .into_iter()
+        .filter_map(nearest_on)
         .fold(0.0, f64::max);
     let steepest = |quantity: fn(&PathPoint) -> f64| {
         neighbours
@@ -342,6 +459,5 @@ fn first_minimum(
             .map(|(t, p)| (quantity(p) - quantity(&best.1)).abs() / (t - best.0).abs())
             .fold(0.0, f64::max)
     };
-    let spread = [steepest(|p| p.depth) * reach, steepest(|p| p.force) * reach];
-    Ok(Located::new(best, spread))
+    [steepest(|p| p.depth) * reach, steepest(|p| p.force) * reach]
 }

@@ -12,7 +12,8 @@ const GOLDEN: f64 = 0.381_966_011_250_105_1;
 
 /// The abscissa and value of a minimum of `f` in `[lo, hi]` (`f` unimodal there), located to
 /// `tolerance` in `x`: the search stops once the bracket around its best point is at most
-/// `4 tolerance` wide, so the true minimum lies within that of the point returned. Every
+/// `4 tolerance` wide (`tolerance` at least the rounding of the abscissa), so the true minimum
+/// lies within that of the point returned. Every
 /// evaluation lies inside `[lo, hi]`; an error of `f` ends the search and is returned.
 pub fn brent_minimum<E>(
     mut f: impl FnMut(f64) -> Result<f64, E>,
@@ -29,7 +30,8 @@ pub fn brent_minimum<E>(
     let (mut d, mut e) = (0.0f64, 0.0f64);
     loop {
         let middle = 0.5 * (a + b);
-        let tol1 = tolerance;
+        // Below the rounding of `x` a step cannot move it: the search would never end.
+        let tol1 = tolerance.max(4.0 * f64::EPSILON * x.abs());
         let tol2 = 2.0 * tol1;
         if (x - middle).abs() <= tol2 - 0.5 * (b - a) {
             return Ok((x, fx));
@@ -150,6 +152,28 @@ mod tests {
                 calls.get()
             );
         }
+    }
+
+    /// A tolerance below the rounding of the abscissa (here 1e-15 at x = 100, where doubles
+    /// are 1.4e-14 apart) still ends the search, at the rounding; the evaluations are capped
+    /// so that a search that would not end fails instead.
+    #[test]
+    fn a_tolerance_below_the_abscissa_s_rounding_ends_the_search() {
+        let mut evaluations = 0;
+        let r = brent_minimum(
+            |x: f64| {
+                evaluations += 1;
+                if evaluations > 10_000 {
+                    return Err("the search did not end");
+                }
+                Ok((x - 100.3) * (x - 100.3))
+            },
+            100.0,
+            101.0,
+            1e-15,
+        );
+        let (x, _) = r.unwrap();
+        assert!((x - 100.3).abs() < 1e-7, "{x}");
     }
 
     #[test]
