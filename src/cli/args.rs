@@ -323,8 +323,9 @@ d0 = sqrt(2 pi a dw / E*), radii in a: the JKR limit reads against `verify jkr` 
 --sweep: the pull-off against lambda from 0.05 to 100 under both controls, with the JKR value,
 written as dugdale-PUNCH.csv and .svg into --out (default reports/adhesion), the lambdas solved
 in parallel. Time on a 2-core machine: flat about 15 s; flat-annulus and the concave punches
-6-7 min (lambdas above 20 take the longest). A lambda whose node ladder does not meet --tol (about 40 and above at 1e-6),
-or whose path has no pull-off on its route, is listed as declined with the reason.
+6-10 min (lambdas above 20 take the longest). A lambda whose node ladder does not meet --tol
+(about 10-40 and above at 1e-6), or whose path has no pull-off on its route, is listed as
+declined with the reason.
 
 Examples:
   verify adhesion --punch flat --tabor 2

@@ -35,8 +35,8 @@ pub(crate) fn whole_face_in_tension(
     let (sigma0, range) = (law.tension(), law.range());
     // The gap plus the depth: `g(r) + d = h ĝ(r) - σ0 U(r)`.
     let offset = |r: f64| h * profile(r) - sigma0 * annulus_deflection(hole, 1.0, r);
-    let least = least_between(&offset, hole, 1.0);
-    let most = least_between(&|r| -offset(r), hole, 1.0);
+    let least = least_between(&offset, hole, 1.0, 1e-12);
+    let most = least_between(&|r| -offset(r), hole, 1.0, 1e-12);
     let (first_depth, last_depth) = (offset(least), offset(most) - range);
     if last_depth > first_depth {
         return None;
@@ -63,15 +63,15 @@ pub(crate) fn whole_face_in_tension(
 const FACE_SAMPLES: usize = 64;
 
 /// Where `f` is least on `[lo, hi]`: the least of [`FACE_SAMPLES`] samples refined by golden
-/// section between its neighbours (an end sample kept when it is least).
-pub(crate) fn least_between(f: &dyn Fn(f64) -> f64, lo: f64, hi: f64) -> f64 {
+/// section between its neighbours to `tolerance` (an end sample kept when it is least).
+pub(crate) fn least_between(f: &dyn Fn(f64) -> f64, lo: f64, hi: f64, tolerance: f64) -> f64 {
     let at = |k: usize| lo + (hi - lo) * k as f64 / FACE_SAMPLES as f64;
     let values: Vec<f64> = (0..=FACE_SAMPLES).map(|k| f(at(k))).collect();
     let best = (0..=FACE_SAMPLES)
         .min_by(|&i, &j| values[i].total_cmp(&values[j]))
         .unwrap_or(0);
     let (lo, hi) = (at(best.saturating_sub(1)), at((best + 1).min(FACE_SAMPLES)));
-    let inside = crate::numerics::golden::golden_section_max(|r| -f(r), lo, hi, 1e-12);
+    let inside = crate::numerics::golden::golden_section_max(|r| -f(r), lo, hi, tolerance);
     if f(inside) < values[best] {
         inside
     } else {
@@ -159,13 +159,26 @@ impl<'a> Fields<'a> {
             .iter()
             .map(|&r| annulus_deflection(z1, z2, r) / scale)
             .collect();
+        let profile = system.solve(&profile_target)?;
+        Self::with_load(configuration, system, scale, [unit, profile], &load_target)
+    }
+
+    /// The fields from the unit depth's and the profile's, the loaded region's solved for its
+    /// `load_target` on `system`.
+    fn with_load(
+        configuration: Configuration,
+        system: &'a RingSystem,
+        scale: f64,
+        [unit, profile]: [RingField; 2],
+        load_target: &[f64],
+    ) -> Option<Self> {
         Some(Self {
             configuration,
             system,
             scale,
             unit,
-            profile: system.solve(&profile_target)?,
-            load: system.solve(&load_target)?,
+            profile,
+            load: system.solve(load_target)?,
         })
     }
 
@@ -188,14 +201,8 @@ impl<'a> Fields<'a> {
                 }
             })
             .collect();
-        Some(Self {
-            configuration,
-            system,
-            scale: 1.0,
-            unit: parts.unit.clone(),
-            profile: parts.profile.clone(),
-            load: system.solve(&load_target)?,
-        })
+        let fields = [parts.unit.clone(), parts.profile.clone()];
+        Self::with_load(configuration, system, 1.0, fields, &load_target)
     }
 
     /// The configuration solved.

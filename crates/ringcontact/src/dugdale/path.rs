@@ -336,10 +336,10 @@ fn parameter_width(tolerance: f64) -> f64 {
 
 /// The first local minimum of `held` after its first maximum along the `samples` of `state(t)`
 /// (ordered as the punch is pulled; states before the maximum are not reached by pressing;
-/// when `pressed_from_rim`, the lowest value after where pressing stops,
-/// [`pressing_stops`]), refined by Brent's search between its neighbours to `width`; the last sample when `held` falls all the
-/// way into the states beyond the contact, an error when it still falls at the narrowest
-/// contact sampled.
+/// when `pressed_from_rim`, the lowest value after where pressing stops, [`pressing_stops`]),
+/// refined by Brent's search on its segment of the path ([`bracket_in_segment`]) to `width`;
+/// the last sample when `held` falls all the way into the states beyond the contact, an error
+/// when it still falls where the path is cut short.
 fn first_minimum(
     path: &Path,
     control: Control,

@@ -31,6 +31,14 @@ const GAP_ROUNDING: f64 = 1e-9;
 /// Width in `ln(a / (a - z1))` below which the zone's end where the contact vanishes is found.
 const JUNCTION_WIDTH: f64 = 1e-13;
 
+/// Where the least gap on a zone is located (units of `a`): its value is then exact to far
+/// below the gap's rounding check.
+const LEAST_GAP_WIDTH: f64 = 1e-9;
+
+/// Where the largest gap on a zone, or the least inside its end, is located (units of `a`):
+/// they are compared with `δc` only.
+const CHECK_WIDTH: f64 = 1e-6;
+
 /// What the zone `[z1, a]` alone makes of the surface.
 enum Suspension {
     /// A state: the zone holds the surface clear of the punch.
@@ -68,22 +76,30 @@ impl<'a> SuspendedStates<'a> {
         offset(r) - offset(z1) + self.law.range()
     }
 
+    /// Where the gap is least on the zone `[z1, a]`, and that gap.
+    fn least_gap(&self, z1: f64) -> (f64, f64) {
+        let gap = |r: f64| self.gap(z1, r);
+        let at = least_between(&gap, z1, 1.0, LEAST_GAP_WIDTH);
+        (at, gap(at))
+    }
+
     /// What the zone `[z1, a]` makes of the surface.
     fn suspension(&self, z1: f64) -> Suspension {
         let range = self.law.range();
         let gap = |r: f64| self.gap(z1, r);
-        let at = least_between(&gap, z1, 1.0);
-        if gap(at) <= 0.0 {
+        let (at, least) = self.least_gap(z1);
+        if least <= 0.0 {
             return Suspension::Touching { at };
         }
-        let most = gap(least_between(&|r| -gap(r), z1, 1.0));
+        let most = gap(least_between(&|r| -gap(r), z1, 1.0, CHECK_WIDTH));
         if most > range * (1.0 + GAP_ROUNDING) {
             return Suspension::Other(format!(
                 "the gap passes δc inside the zone [{z1:.6}, 1] a: a zone ending short of the \
                  rim is not modelled"
             ));
         }
-        if z1 > 0.0 && gap(least_between(&gap, 0.0, z1)) < range * (1.0 - GAP_ROUNDING) {
+        if z1 > 0.0 && gap(least_between(&gap, 0.0, z1, CHECK_WIDTH)) < range * (1.0 - GAP_ROUNDING)
+        {
             return Suspension::Other(format!(
                 "the gap inside the zone's end r/a = {z1:.6} is below δc: the zone would reach \
                  further in"
@@ -208,13 +224,12 @@ impl<'a> SuspendedStates<'a> {
         let mut touch_point = None;
         while hi - lo > JUNCTION_WIDTH {
             let middle = 0.5 * (lo + hi);
-            match self.suspension(zone_end(middle)) {
-                Suspension::Touching { at, .. } => {
-                    touch_point = Some(at);
-                    lo = middle;
-                }
-                Suspension::Held(_) => hi = middle,
-                _ => return None,
+            let (at, least) = self.least_gap(zone_end(middle));
+            if least <= 0.0 {
+                touch_point = Some(at);
+                lo = middle;
+            } else {
+                hi = middle;
             }
         }
         let Suspension::Held(point) = self.suspension(zone_end(hi)) else {
