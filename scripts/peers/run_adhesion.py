@@ -284,6 +284,20 @@ def extrapolated(runs):
     }
 
 
+def write_record(out_dir, name, record, log):
+    """Store `record` as OUT_DIR/tamaas-NAME.json (written whole, then renamed into place) and
+    log its pull-off with the parts of its uncertainty."""
+    path = os.path.join(out_dir, f"tamaas-{name}.json")
+    tmp = f"{path}.{os.getpid()}.partial"
+    with open(tmp, "w") as f:
+        json.dump(record, f, indent=1)
+        f.write("\n")
+    os.replace(tmp, path)
+    log(f"{path}: pull-off {record['pulloff_over_f0']:.4f} F0 +- {record['uncertainty']:.4f} "
+        f"(images {record['image_correction']:+.4f}, "
+        f"resolution {record['resolution_change']:+.4f})")
+
+
 def main():
     import argparse
     import tamaas
@@ -304,7 +318,6 @@ def main():
             continue
         runs = [pull(kind, d0_over_h, side, n, log) for side, n in GRIDS]
         combined = extrapolated(runs)
-        images, resolution = combined["image_correction"], combined["resolution_change"]
         # Flat punch compressed in full contact: F = 2 E* a d (isolated); the cell's stiffness
         # gives the image compliance that converts the approach (stored for every case: the same
         # cell and grid).
@@ -334,14 +347,7 @@ def main():
         if not out_dir:
             print(json.dumps(record, indent=1))
             continue
-        path = os.path.join(out_dir, f"tamaas-{name}.json")
-        tmp = f"{path}.{os.getpid()}.partial"
-        with open(tmp, "w") as f:
-            json.dump(record, f, indent=1)
-            f.write("\n")
-        os.replace(tmp, path)
-        log(f"{path}: pull-off {record['pulloff_over_f0']:.4f} F0 +- {record['uncertainty']:.4f} "
-            f"(images {images:+.4f}, resolution {resolution:+.4f})")
+        write_record(out_dir, name, record, log)
 
 
 if __name__ == "__main__":

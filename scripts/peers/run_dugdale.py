@@ -105,14 +105,7 @@ def main():
         if not args.out:
             print(json.dumps(record, indent=1))
             continue
-        path = os.path.join(args.out, f"tamaas-{name}.json")
-        tmp = f"{path}.{os.getpid()}.partial"
-        with open(tmp, "w") as f:
-            json.dump(record, f, indent=1)
-            f.write("\n")
-        os.replace(tmp, path)
-        log(f"{path}: pull-off {record['pulloff_over_f0']:.4f} F0 +- {record['uncertainty']:.4f} "
-            f"(images {record['image_correction']:+.4f}, resolution {record['resolution_change']:+.4f})")
+        run_adhesion.write_record(args.out, name, record, log)
 
 
 if __name__ == "__main__":

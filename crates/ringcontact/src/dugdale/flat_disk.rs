@@ -1,6 +1,7 @@
 //! A flat face `r <= a` in contact ([`crate::punch::Contact::Disk`]) under the Dugdale law:
-//! contact on the disk `r <= c`, the cohesive zone `c < r < m` inside the face, `m = a` (the zone reaches the rim, whose gap is below `δc`)
-//! or `m < a` where the gap reaches `δc`; with no contact left, the whole face in tension.
+//! contact on the disk `r <= c`, the cohesive zone `c < r < m` inside the face, `m = a` (the
+//! zone reaches the rim, whose gap is below `δc`) or `m < a` where the gap reaches `δc`; with no
+//! contact left, the whole face in tension.
 
 use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;

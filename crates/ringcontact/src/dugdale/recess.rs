@@ -3,7 +3,8 @@
 //! always free and a cohesive zone running from it into the recess.
 //!
 //! **Loading history** (`verify jkr`'s annular route). The path runs from `c1 = 10⁻³ a` to a
-//! ring [`NARROWEST_CONTACT`] wide. Touching at the rim, the contact jumps in; pressing grows it
+//! ring [`NARROWEST_CONTACT`] wide, or to where the ring vanishes, and on past the contact, the
+//! surface held by its zone alone ([`SuspendedStates`]). Touching at the rim, the contact jumps in; pressing grows it
 //! inward while the held quantity rises, up to its first maximum (pressed past it, the hole
 //! snaps shut: at finite range a hole shallower than `δc` is held in tension throughout, close
 //! to full contact, a regime the annular route does not enter). Pulled from there, the
