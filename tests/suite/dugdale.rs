@@ -513,3 +513,50 @@ fn the_annulus_tends_to_its_jkr_pulloff_at_the_zone_length_rate() {
         assert!(pair[1] > 0.0 && (ratio - 4.0).abs() < 0.4, "{distances:?}");
     }
 }
+
+/// Where a concave punch's narrowing ring vanishes the surface is held by its zone alone, so the
+/// pull-offs met there are answered under both controls (they were declined while the path
+/// ended with the contact). Both controls follow one path: the grips pull-off, the lowest depth
+/// after pressing stops, is pulled at least as far as the load's, and no force on that path is
+/// more tensile than the load's pull-off, the most tensile one.
+#[test]
+fn a_concave_punch_is_followed_past_its_vanishing_contact() {
+    let solver = DugdaleSolver::new();
+    let tolerance = 1e-6;
+    for label in ["cone", "sphere"] {
+        for tabor in [1.0, 2.0] {
+            let law = DugdaleLaw::new(tabor).unwrap();
+            let at = |control| {
+                solver
+                    .pulloff(
+                        &concave(label),
+                        FaceParameters::recess(1.0),
+                        law,
+                        control,
+                        tolerance,
+                    )
+                    .unwrap_or_else(|e| panic!("{label} λ = {tabor} {control:?}: {e}"))
+            };
+            let (load, grips) = (at(Control::Load), at(Control::Grips));
+            for r in [&load, &grips] {
+                assert!(r.pulloff_force_error <= tolerance, "{label}: {r:?}");
+                assert!(r.pulloff_depth_error <= tolerance, "{label}: {r:?}");
+            }
+            let [c1, c2] = grips.contact;
+            assert_eq!(
+                c1, c2,
+                "{label} λ = {tabor}: the zone alone at the pull-off"
+            );
+            let bounds = load.pulloff_depth_error + grips.pulloff_depth_error;
+            assert!(
+                grips.pulloff_depth <= load.pulloff_depth + bounds,
+                "{label} λ = {tabor}: {grips:?} {load:?}"
+            );
+            let bounds = load.pulloff_force_error + grips.pulloff_force_error;
+            assert!(
+                grips.pulloff_force >= load.pulloff_force - bounds,
+                "{label} λ = {tabor}: {grips:?} {load:?}"
+            );
+        }
+    }
+}
