@@ -25,13 +25,12 @@ import argparse
 import datetime
 import json
 import os
-import statistics
 import subprocess
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from records import ROOT, commit_of, machine, write_atomically  # noqa: E402
+from records import ROOT, commit_of, machine, spread, write_atomically  # noqa: E402
 from linear_solver_speed import TARGET_STATES  # noqa: E402
 
 AGREEMENT = 1e-10
@@ -49,11 +48,6 @@ def run(verify, args):
         sys.exit(f"{verify} {' '.join(args)} failed: {p.stderr.strip()[-400:]}")
     result = json.loads(p.stdout)
     return result["wall_s"], result["force"]
-
-
-def spread(values):
-    return {"median": statistics.median(values), "min": min(values), "max": max(values),
-            "runs": values}
 
 
 def main():

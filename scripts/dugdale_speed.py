@@ -18,13 +18,12 @@ import argparse
 import datetime
 import json
 import os
-import statistics
 import subprocess
 import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from records import ROOT, commit_of, machine, write_atomically  # noqa: E402
+from records import ROOT, commit_of, machine, spread, write_atomically  # noqa: E402
 
 TARGET_S = 0.5
 TOLERANCE = "1e-4"
@@ -51,11 +50,6 @@ def run(verify, args):
         return wall, None, p.stderr.strip().splitlines()[-1] if p.stderr.strip() else "failed"
     result = json.loads(p.stdout)
     return wall, result["pulloff_force"], result["pulloff_force_error"]
-
-
-def spread(values):
-    return {"median": statistics.median(values), "min": min(values), "max": max(values),
-            "runs": values}
 
 
 def main():

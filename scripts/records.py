@@ -1,9 +1,11 @@
 """What the project's Python scripts share: the `verify` binary found as cargo finds it, the
-commit and machine a record names, and writing a file through a temporary name and a rename."""
+commit and machine a record names, the spread of timed runs, and writing a file through a
+temporary name and a rename."""
 
 import json
 import os
 import platform
+import statistics
 import subprocess
 import sys
 
@@ -76,3 +78,9 @@ def write_atomically(path, text):
     with open(tmp, "w") as f:
         f.write(text)
     os.replace(tmp, path)
+
+
+def spread(values):
+    """The median, least and largest of timed runs, with the runs themselves."""
+    return {"median": statistics.median(values), "min": min(values), "max": max(values),
+            "runs": values}

@@ -6,6 +6,19 @@ pub fn verify(args: &[&str]) -> std::process::Output {
     verify_with_input(args, "")
 }
 
+/// Run the `verify` binary with `args` and return its standard output, failing the test with
+/// its standard error unless it succeeds.
+#[allow(dead_code)]
+pub fn verify_succeeding(args: &[&str]) -> Vec<u8> {
+    let out = verify(args);
+    assert!(
+        out.status.success(),
+        "verify {args:?}: {}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    out.stdout
+}
+
 /// Run the `verify` binary with `args`, `input` on its standard input.
 #[allow(dead_code)]
 pub fn verify_with_input(args: &[&str], input: &str) -> std::process::Output {

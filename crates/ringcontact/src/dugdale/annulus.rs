@@ -10,7 +10,7 @@ use std::cell::Cell;
 use crate::bem::ring::{ContactRegion, RingSystem};
 use crate::bem::ring_contact::RingBemSolver;
 use crate::error::{Error, Result};
-use crate::numerics::roots::{find_root, find_root_with_slope};
+use crate::numerics::roots::{find_root, find_root_with_slope, Root, RootError};
 use crate::numerics::tanh_sinh::TanhSinhRule;
 
 use super::configuration::{flat_face, whole_face_in_tension, BandParts, Configuration, Fields};
@@ -149,39 +149,25 @@ impl<'a> AnnularFace<'a> {
         let half = 0.5 * width;
         let (lo, hi) = (self.hole + half, 1.0 - half);
         let margin = 1e-9 * (hi - lo).max(1e-300);
-        // The root is the last point evaluated unless the search stopped at rounding.
-        let mut last: Option<(f64, BandEquilibrium)> = None;
         let (lo, hi) = (lo + margin, hi - margin);
         let (guess, slope) = match self.centre_hint.get() {
             Some((centre, slope)) if (lo..=hi).contains(&centre) => (centre, Some(slope)),
             _ => (0.5 * (lo + hi), None),
         };
-        let root = find_root_with_slope(
-            |centre| {
-                let band = self
-                    .band(centre - half, centre + half, false)
-                    .map_err(|e| e.to_string())?;
-                let coefficient = band.other_coefficient;
-                last = Some((centre, band));
-                Ok(coefficient)
-            },
+        let (root, band) = band_at_root(
+            |centre| self.band(centre - half, centre + half, false),
             (lo, hi),
             guess,
             slope.filter(|s| s.is_finite() && *s != 0.0),
-            (POSITION_TOLERANCE, None),
-            200,
-        )
-        .map_err(|e| {
-            not_converged(format!(
-                "no contact {width} wide with both edges free on the face [{}, 1]: {e:?}",
-                self.hole
-            ))
-        })?;
+            |e| {
+                not_converged(format!(
+                    "no contact {width} wide with both edges free on the face [{}, 1]: {e:?}",
+                    self.hole
+                ))
+            },
+        )?;
         self.centre_hint.set(Some((root.x, root.slope)));
-        match last {
-            Some((centre, band)) if centre == root.x => Ok(band.point),
-            _ => Ok(self.band(root.x - half, root.x + half, false)?.point),
-        }
+        Ok(band.point)
     }
 
     /// The recessed face's equilibrium whose contact's inner edge is `c1`: held at the rim
@@ -195,7 +181,7 @@ impl<'a> AnnularFace<'a> {
         }
         // The outer edge nearest the rim where its coefficient vanishes (the states met from
         // the rim-held ones; a root far from the rim is a contact deep in the recess).
-        let outer_coefficient = |c2: f64| self.band(c1, c2, true).map(|b| b.other_coefficient);
+        let band_to = |c2: f64| self.band(c1, c2, true);
         let no_state = || Error::OutOfRange {
             method: METHOD.into(),
             reason: format!(
@@ -209,7 +195,7 @@ impl<'a> AnnularFace<'a> {
         let far = loop {
             // The last step stops at the narrowest contact rather than stepping past a root.
             let far = (1.0 - step).max(narrowest);
-            if outer_coefficient(far)? >= 0.0 {
+            if band_to(far)?.other_coefficient >= 0.0 {
                 break far;
             }
             if far == narrowest {
@@ -217,29 +203,18 @@ impl<'a> AnnularFace<'a> {
             }
             (near, step) = (far, 2.0 * step);
         };
-        let mut last: Option<(f64, BandEquilibrium)> = None;
-        let root = find_root(
-            |c2| {
-                let band = self.band(c1, c2, true).map_err(|e| e.to_string())?;
-                let coefficient = band.other_coefficient;
-                last = Some((c2, band));
-                Ok(coefficient)
-            },
-            far,
-            near.min(1.0 - 1e-12),
+        let (_, band) = band_at_root(
+            band_to,
+            (far, near.min(1.0 - 1e-12)),
             0.5 * (far + near),
-            POSITION_TOLERANCE,
-            200,
-        )
-        .map_err(|e| {
-            not_converged(format!(
-                "the outer edge of the contact from r/a = {c1} with both edges free: {e:?}"
-            ))
-        })?;
-        match last {
-            Some((c2, band)) if c2 == root.x => clear_of_floor(c1, band),
-            _ => clear_of_floor(c1, self.band(c1, root.x, true)?),
-        }
+            None,
+            |e| {
+                not_converged(format!(
+                    "the outer edge of the contact from r/a = {c1} with both edges free: {e:?}"
+                ))
+            },
+        )?;
+        clear_of_floor(c1, band)
     }
 
     /// The states with no contact left, the whole face in tension (none where the gap's spread
@@ -249,6 +224,39 @@ impl<'a> AnnularFace<'a> {
             .map(Vec::from)
             .unwrap_or_default()
     }
+}
+
+/// The root in `bracket` (from `guess`, with the coefficient's `slope` there if known) of the
+/// other edge's coefficient of `band_at(x)`, and the band there: the last one solved when the
+/// search ended on it (it does unless it stopped at rounding), else solved again; `failed`
+/// names a search that found no root.
+fn band_at_root(
+    band_at: impl Fn(f64) -> Result<BandEquilibrium>,
+    bracket: (f64, f64),
+    guess: f64,
+    slope: Option<f64>,
+    failed: impl FnOnce(RootError) -> Error,
+) -> Result<(Root, BandEquilibrium)> {
+    let mut last: Option<(f64, BandEquilibrium)> = None;
+    let root = find_root_with_slope(
+        |x| {
+            let band = band_at(x).map_err(|e| e.to_string())?;
+            let coefficient = band.other_coefficient;
+            last = Some((x, band));
+            Ok(coefficient)
+        },
+        bracket,
+        guess,
+        slope,
+        (POSITION_TOLERANCE, None),
+        200,
+    )
+    .map_err(failed)?;
+    let band = match last {
+        Some((x, band)) if x == root.x => band,
+        _ => band_at(root.x)?,
+    };
+    Ok((root, band))
 }
 
 /// The state `band` of the contact from `c1`, or an [`Error::OutOfRange`] where its surface meets

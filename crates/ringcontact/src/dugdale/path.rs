@@ -235,20 +235,21 @@ pub(crate) fn pulloff(
     let held = |p: &PathPoint| control.held(p);
     let (first, last) = family.parameter_range();
     let step = (last - first) / (PATH_SAMPLES - 1) as f64;
-    let inside_path = |t: &f64| {
-        t.is_finite()
-            && if *t >= BEYOND_CONTACT {
-                *t - 2.0 * family.beyond_step() >= BEYOND_CONTACT
-            } else {
-                *t - 2.0 * step >= first && *t + 2.0 * step <= last
-            }
-    };
-    if let Some(t) = near.filter(inside_path) {
-        let step = if t >= BEYOND_CONTACT {
+    let step_at = |t: f64| {
+        if t >= BEYOND_CONTACT {
             family.beyond_step()
         } else {
             step
-        };
+        }
+    };
+    let inside_path = |&(t, step): &(f64, f64)| {
+        let (lo, hi) = (t - 2.0 * step, t + 2.0 * step);
+        step > 0.0
+            && segment(lo) == segment(t)
+            && (t >= BEYOND_CONTACT || lo >= first && hi <= last)
+    };
+    let near = near.filter(|t| t.is_finite()).map(|t| (t, step_at(t)));
+    if let Some((t, step)) = near.filter(inside_path) {
         let bracket: Result<Vec<(f64, PathPoint)>> = [t - 2.0 * step, t, t + 2.0 * step]
             .into_iter()
             .map(|t| family.at(t).map(|p| (t, p)))
